@@ -1,0 +1,290 @@
+#include "CloudDensityEvaluator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace cloudvis
+{
+
+namespace
+{
+bool Finite(glm::vec3 v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+}
+
+std::string ValidateFieldDescription(const FieldDescription& f)
+{
+  std::ostringstream error;
+  const auto finite = [](double v) { return std::isfinite(v); };
+  const noise::FbmParameters& n = f.Noise;
+  if (n.Octaves < 1 || n.Octaves > 12)
+  {
+    error << "octaves must be between 1 and 12, got " << n.Octaves;
+  }
+  else if (!finite(n.Frequency) || n.Frequency <= 0.0 || n.Frequency > 1e6)
+  {
+    error << "frequency must be a positive number up to 1e6, got " << n.Frequency;
+  }
+  else if (!finite(n.Lacunarity) || !finite(n.LacunarityIncrement) ||
+    n.Lacunarity + (n.Octaves - 1) * n.LacunarityIncrement <= 0.0)
+  {
+    error << "lacunarity must stay positive over all octaves";
+  }
+  else if (!finite(n.Gain) || !finite(n.Amplitude))
+  {
+    error << "gain and amplitude must be finite numbers";
+  }
+  else if (!finite(f.DensityScale) || f.DensityScale < 0.0)
+  {
+    error << "density scale must be a finite number >= 0, got " << f.DensityScale;
+  }
+  else if (!finite(f.FalloffWidth) || f.FalloffWidth <= 0.0)
+  {
+    error << "falloff width must be a positive number, got " << f.FalloffWidth;
+  }
+  else if (!finite(f.BlendRadius) || f.BlendRadius < 0.0)
+  {
+    error << "blend radius must be a finite number >= 0, got " << f.BlendRadius;
+  }
+  else if (!finite(f.Wind.x) || !finite(f.Wind.y) || !finite(f.Wind.z))
+  {
+    error << "wind must be finite";
+  }
+  else if (!f.Morph && f.Shapes.empty())
+  {
+    error << "at least one shape is needed";
+  }
+  if (!error.str().empty())
+  {
+    return error.str();
+  }
+  for (size_t i = 0; i < f.Shapes.size() && !f.Morph; ++i)
+  {
+    const Shape& s = f.Shapes[i];
+    const bool ok = std::isfinite(s.Scale) && s.Scale > 0.0f &&
+      Finite((s.Center)) && Finite((s.RotationDegrees)) &&
+      std::isfinite(s.Radius) && s.Radius >= 0.0f && Finite((s.HalfSize)) &&
+      glm::all(glm::greaterThanEqual(s.HalfSize, glm::vec3(0.0f))) &&
+      std::isfinite(s.MajorRadius) && std::isfinite(s.MinorRadius) && s.MinorRadius >= 0.0f &&
+      std::isfinite(s.ArmWidth) && s.ArmWidth >= 0.0f && std::isfinite(s.ArmLength) &&
+      s.ArmLength >= 0.0f && Finite((s.EndA)) && Finite((s.EndB));
+    if (!ok)
+    {
+      error << "shape " << i
+            << " has a parameter that is not finite, a negative size, or a scale <= 0";
+      return error.str();
+    }
+    if (s.Type == ShapeType::Capsule && s.EndA == s.EndB)
+    {
+      error << "shape " << i << " is a capsule whose two ends are the same point";
+      return error.str();
+    }
+  }
+  return {};
+}
+
+DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
+  : Field(field)
+  , Time(time)
+  , NoiseOffset(field.Wind * time)
+  , Octaves(noise::OctaveSchedule(field.Noise))
+{
+  const std::vector<Shape> shapes = field.Morph ? MorphTimeline::Shapes() : field.Shapes;
+  for (const Shape& s : shapes)
+  {
+    this->Shapes.emplace_back(s);
+  }
+  if (field.Morph)
+  {
+    this->MorphPhase = MorphTimeline::At(time);
+  }
+  switch (field.Model)
+  {
+    case DensityModel::SdfPlusFbm:
+      this->Bound = noise::FbmBound(field.Noise);
+      break;
+    case DensityModel::FbmFalloff:
+    case DensityModel::Constant:
+      this->Bound = 0.0;
+      break;
+  }
+}
+
+float DensityEvaluator::SignedDistance(glm::vec3 p) const
+{
+  if (this->Field.Morph)
+  {
+    const float from = this->Shapes[this->MorphPhase.From].SignedDistance(p);
+    const float to = this->Shapes[this->MorphPhase.To].SignedDistance(p);
+    return from + (to - from) * this->MorphPhase.Blend;
+  }
+  float d = this->Shapes.front().SignedDistance(p);
+  const float radius = static_cast<float>(this->Field.BlendRadius);
+  for (size_t i = 1; i < this->Shapes.size(); ++i)
+  {
+    const float di = this->Shapes[i].SignedDistance(p);
+    d = this->Field.Blend == ShapeBlend::SmoothUnion ? sdf::SmoothMin(d, di, radius)
+                                                     : std::min(d, di);
+  }
+  return d;
+}
+
+float DensityEvaluator::Fbm(glm::dvec3 p) const
+{
+  const glm::dvec3 q = p + this->NoiseOffset;
+  float sum = 0.0f;
+  for (const noise::Octave& o : this->Octaves)
+  {
+    sum += o.Amplitude *
+      noise::Evaluate(this->Field.Noise.Type, q.x * o.Frequency, q.y * o.Frequency,
+        q.z * o.Frequency, o.Seed);
+  }
+  return sum;
+}
+
+bool DensityEvaluator::NeedsNoise(float signedDistance) const
+{
+  switch (this->Field.Model)
+  {
+    case DensityModel::SdfPlusFbm:
+      // -sdf + fbm <= -sdf + bound <= 0: the density is 0 whatever the noise.
+      return signedDistance < this->Bound && !this->Octaves.empty();
+    case DensityModel::FbmFalloff:
+      return signedDistance < 0.0f && !this->Octaves.empty();
+    case DensityModel::Constant:
+      break;
+  }
+  return false;
+}
+
+float DensityEvaluator::Combine(float signedDistance, float fbm) const
+{
+  const float scale = static_cast<float>(this->Field.DensityScale);
+  switch (this->Field.Model)
+  {
+    case DensityModel::SdfPlusFbm:
+      return scale * std::max(0.0f, -signedDistance + fbm);
+    case DensityModel::FbmFalloff:
+    {
+      const float width = static_cast<float>(this->Field.FalloffWidth);
+      const float t = glm::clamp(-signedDistance / width, 0.0f, 1.0f);
+      return scale * std::max(0.0f, fbm) * (t * t * (3.0f - 2.0f * t));
+    }
+    case DensityModel::Constant:
+      return signedDistance <= 0.0f ? scale : 0.0f;
+  }
+  return 0.0f;
+}
+
+float DensityEvaluator::Density(glm::dvec3 p) const
+{
+  const float d = this->SignedDistance(glm::vec3(p));
+  return this->Combine(d, this->NeedsNoise(d) ? this->Fbm(p) : 0.0f);
+}
+
+void DensityEvaluator::EvaluateRow(int firstIndex, int count, double originX, double spacingX,
+  double y, double z, float* out, RowScratch& scratch) const
+{
+  scratch.SignedDistance.resize(count);
+  int firstNoisy = count, lastNoisy = -1;
+  for (int j = 0; j < count; ++j)
+  {
+    const double x = originX + static_cast<double>(firstIndex + j) * spacingX;
+    const float d = this->SignedDistance(glm::vec3(glm::dvec3(x, y, z)));
+    scratch.SignedDistance[j] = d;
+    if (this->NeedsNoise(d))
+    {
+      firstNoisy = std::min(firstNoisy, j);
+      lastNoisy = j;
+    }
+  }
+
+  scratch.Noise.assign(count, 0.0f);
+  if (lastNoisy >= firstNoisy)
+  {
+    const int noisyCount = lastNoisy - firstNoisy + 1;
+    for (const noise::Octave& octave : this->Octaves)
+    {
+      this->AccumulateOctaveAlongRow(octave, firstIndex + firstNoisy, noisyCount, originX,
+        spacingX, y, z, scratch.Noise.data() + firstNoisy, scratch);
+    }
+  }
+
+  for (int j = 0; j < count; ++j)
+  {
+    const float d = scratch.SignedDistance[j];
+    out[j] = this->Combine(d, this->NeedsNoise(d) ? scratch.Noise[j] : 0.0f);
+  }
+}
+
+void DensityEvaluator::AccumulateOctaveAlongRow(const noise::Octave& octave, int firstIndex,
+  int count, double originX, double spacingX, double y, double z, float* sum,
+  RowScratch& scratch) const
+{
+  using namespace noise;
+  const double f = octave.Frequency;
+  const LatticeCoordinate ly = Split((y + this->NoiseOffset.y) * f);
+  const LatticeCoordinate lz = Split((z + this->NoiseOffset.z) * f);
+  const auto latticeX = [&](int i) {
+    return (originX + static_cast<double>(i) * spacingX + this->NoiseOffset.x) * f;
+  };
+  const NoiseType type = this->Field.Noise.Type;
+
+  if (type == NoiseType::White)
+  {
+    for (int j = 0; j < count; ++j)
+    {
+      const LatticeCoordinate lx = Split(latticeX(firstIndex + j));
+      sum[j] += octave.Amplitude * HashToSigned(Hash(lx.Cell, ly.Cell, lz.Cell, octave.Seed));
+    }
+    return;
+  }
+
+  // The lattice columns the row crosses: x is monotonic along the row, so they are the cells
+  // from the first voxel's to the last voxel's, plus one for the upper corner.
+  const std::int32_t firstCell = Split(latticeX(firstIndex)).Cell;
+  const std::int32_t lastCell = Split(latticeX(firstIndex + count - 1)).Cell;
+  const int columns = static_cast<int>(std::max(firstCell, lastCell) - std::min(firstCell, lastCell)) + 2;
+  const std::int32_t baseCell = std::min(firstCell, lastCell);
+  scratch.ColumnA.resize(columns);
+  scratch.ColumnB.resize(columns);
+  float* a = scratch.ColumnA.data();
+  float* b = scratch.ColumnB.data();
+
+  if (type == NoiseType::Value)
+  {
+    const float uy = FadeCubic(ly.Fraction), uz = FadeCubic(lz.Fraction);
+    for (int c = 0; c < columns; ++c)
+    {
+      a[c] = ValueColumn(baseCell + c, ly, lz, uy, uz, octave.Seed);
+    }
+    for (int j = 0; j < count; ++j)
+    {
+      const LatticeCoordinate lx = Split(latticeX(firstIndex + j));
+      const int c = lx.Cell - baseCell;
+      sum[j] += octave.Amplitude * ValueAlongX(a[c], a[c + 1], lx.Fraction);
+    }
+  }
+  else if (type == NoiseType::Perlin)
+  {
+    const float uy = FadeQuintic(ly.Fraction), uz = FadeQuintic(lz.Fraction);
+    for (int c = 0; c < columns; ++c)
+    {
+      const PerlinColumnTerms t = PerlinColumn(baseCell + c, ly, lz, uy, uz, octave.Seed);
+      a[c] = t.Offset;
+      b[c] = t.Slope;
+    }
+    for (int j = 0; j < count; ++j)
+    {
+      const LatticeCoordinate lx = Split(latticeX(firstIndex + j));
+      const int c = lx.Cell - baseCell;
+      sum[j] += octave.Amplitude *
+        PerlinAlongX({ a[c], b[c] }, { a[c + 1], b[c + 1] }, lx.Fraction);
+    }
+  }
+}
+
+} // namespace cloudvis

@@ -1,0 +1,102 @@
+#include "CloudFieldGeometry.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace cloudvis
+{
+
+void LatticeFromBounds(
+  const int dimensions[3], const double bounds[6], double origin[3], double spacing[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = bounds[2 * a], hi = bounds[2 * a + 1];
+    if (dimensions[a] > 1)
+    {
+      origin[a] = lo;
+      spacing[a] = (hi - lo) / (dimensions[a] - 1);
+    }
+    else
+    {
+      // A single layer sits in the middle of the bounds.
+      origin[a] = 0.5 * (lo + hi);
+      spacing[a] = hi > lo ? hi - lo : 1.0;
+    }
+  }
+}
+
+std::uint64_t AvailableMemoryBytes()
+{
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+  {
+    if (key == "MemAvailable:")
+    {
+      return kib * 1024u;
+    }
+  }
+  const long pages = sysconf(_SC_AVPHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+  return pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0u;
+}
+
+std::string FormatBytes(double bytes)
+{
+  static const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };
+  int u = 0;
+  while (bytes >= 1024.0 && u < 6)
+  {
+    bytes /= 1024.0;
+    ++u;
+  }
+  std::ostringstream out;
+  out.precision(u == 0 ? 0 : 3);
+  out << bytes << ' ' << units[u];
+  return out.str();
+}
+
+std::string ValidateFieldGeometry(const int dimensions[3], const double bounds[6], int bytesPerVoxel)
+{
+  static const char* axes = "xyz";
+  std::ostringstream error;
+  double voxels = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dimensions[a] < 1)
+    {
+      error << "dimensions must be at least 1 along each axis, got " << dimensions[a] << " along "
+            << axes[a];
+      return error.str();
+    }
+    voxels *= dimensions[a];
+    const double lo = bounds[2 * a], hi = bounds[2 * a + 1];
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+    {
+      error << "bounds along " << axes[a] << " must be finite numbers";
+      return error.str();
+    }
+    if (!(lo < hi))
+    {
+      error << "bounds along " << axes[a] << " must increase (min < max), got [" << lo << ", "
+            << hi << "]";
+      return error.str();
+    }
+  }
+  const double needed = voxels * bytesPerVoxel;
+  const std::uint64_t available = AvailableMemoryBytes();
+  if (available > 0 && needed > static_cast<double>(available))
+  {
+    error << "a field of " << dimensions[0] << " x " << dimensions[1] << " x " << dimensions[2]
+          << " voxels needs " << FormatBytes(needed) << " but only " << FormatBytes(double(available))
+          << " of memory is available";
+    return error.str();
+  }
+  return {};
+}
+
+} // namespace cloudvis

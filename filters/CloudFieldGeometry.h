@@ -1,0 +1,33 @@
+// Where a procedural field is sampled: a box of world bounds and a number of voxels per axis,
+// as in vtkSampleFunction's model bounds. Shared by the source and the application so both
+// refuse the same bad geometry with the same words.
+#ifndef CloudFieldGeometry_h
+#define CloudFieldGeometry_h
+
+#include "cloudvisFiltersModule.h"
+
+#include <cstdint>
+#include <string>
+
+namespace cloudvis
+{
+
+// Origin and spacing of a lattice that puts its first and last voxels on the bounds.
+CLOUDVISFILTERS_EXPORT void LatticeFromBounds(
+  const int dimensions[3], const double bounds[6], double origin[3], double spacing[3]);
+
+// Bytes of physical memory this process can still take (MemAvailable), or 0 when unknown.
+CLOUDVISFILTERS_EXPORT std::uint64_t AvailableMemoryBytes();
+
+// Empty when dimensions and bounds describe a field that fits in memory, else the problem:
+// dimensions below 1, bounds that are not finite or not increasing, or a field larger than the
+// memory available (stating how much it needs).
+CLOUDVISFILTERS_EXPORT std::string ValidateFieldGeometry(
+  const int dimensions[3], const double bounds[6], int bytesPerVoxel = 4);
+
+// "1.5 GiB", "300 MiB": sizes people can read in messages.
+CLOUDVISFILTERS_EXPORT std::string FormatBytes(double bytes);
+
+} // namespace cloudvis
+
+#endif

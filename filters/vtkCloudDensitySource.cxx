@@ -1,0 +1,180 @@
+#include "vtkCloudDensitySource.h"
+
+#include "CloudFieldGeometry.h"
+
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkSMPTools.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <vector>
+
+vtkStandardNewMacro(vtkCloudDensitySource);
+
+vtkCloudDensitySource::vtkCloudDensitySource()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+void vtkCloudDensitySource::SetField(const cloudvis::FieldDescription& field)
+{
+  this->Field = field;
+  this->Modified();
+}
+
+std::string vtkCloudDensitySource::Validate() const
+{
+  std::string error = cloudvis::ValidateFieldGeometry(this->Dimensions, this->Bounds);
+  if (error.empty())
+  {
+    error = cloudvis::ValidateFieldDescription(this->Field);
+  }
+  if (error.empty() && (this->NumberOfTimeSteps < 0 || !(this->TimeRange[0] <= this->TimeRange[1])))
+  {
+    error = "time steps need a count >= 0 and an increasing time range";
+  }
+  return error;
+}
+
+int vtkCloudDensitySource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  const std::string error = this->Validate();
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  double origin[3], spacing[3];
+  cloudvis::LatticeFromBounds(this->Dimensions, this->Bounds, origin, spacing);
+  const int wholeExtent[6] = { 0, this->Dimensions[0] - 1, 0, this->Dimensions[1] - 1, 0,
+    this->Dimensions[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+
+  std::vector<double> steps(this->NumberOfTimeSteps);
+  for (int i = 0; i < this->NumberOfTimeSteps; ++i)
+  {
+    const double f = this->NumberOfTimeSteps > 1 ? double(i) / (this->NumberOfTimeSteps - 1) : 0.0;
+    steps[i] = this->TimeRange[0] + f * (this->TimeRange[1] - this->TimeRange[0]);
+  }
+  if (steps.empty())
+  {
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  }
+  else
+  {
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(),
+      static_cast<int>(steps.size()));
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), this->TimeRange, 2);
+  return 1;
+}
+
+namespace
+{
+// Fills the rows (y, z) of one block of z slices of the output extent.
+class FillRows
+{
+public:
+  const cloudvis::DensityEvaluator& Evaluator;
+  const int* Extent;
+  const double* Origin;
+  const double* Spacing;
+  float* Density; // first voxel of the extent
+  int FirstSlice;
+
+  void operator()(vtkIdType begin, vtkIdType end) const
+  {
+    cloudvis::RowScratch scratch;
+    const int nx = this->Extent[1] - this->Extent[0] + 1;
+    const int ny = this->Extent[3] - this->Extent[2] + 1;
+    for (vtkIdType row = begin; row < end; ++row)
+    {
+      const int j = this->Extent[2] + static_cast<int>(row % ny);
+      const int k = this->FirstSlice + static_cast<int>(row / ny);
+      const double y = this->Origin[1] + j * this->Spacing[1];
+      const double z = this->Origin[2] + k * this->Spacing[2];
+      const vtkIdType offset =
+        (vtkIdType(k - this->Extent[4]) * ny + (j - this->Extent[2])) * vtkIdType(nx);
+      this->Evaluator.EvaluateRow(this->Extent[0], nx, this->Origin[0], this->Spacing[0], y, z,
+        this->Density + offset, scratch);
+    }
+  }
+};
+}
+
+int vtkCloudDensitySource::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  int extent[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+  double origin[3], spacing[3];
+  cloudvis::LatticeFromBounds(this->Dimensions, this->Bounds, origin, spacing);
+
+  double time = this->Time;
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+
+  output->SetExtent(extent);
+  output->SetOrigin(origin);
+  output->SetSpacing(spacing);
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfComponents(1);
+  density->SetNumberOfTuples(output->GetNumberOfPoints());
+  output->GetPointData()->SetScalars(density);
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
+  if (output->GetNumberOfPoints() == 0)
+  {
+    return 1;
+  }
+
+  const cloudvis::DensityEvaluator evaluator(this->Field, time);
+  const int ny = extent[3] - extent[2] + 1;
+  const int nz = extent[5] - extent[4] + 1;
+  // Work in blocks of z slices so progress and abort are handled on this thread between blocks.
+  const int blocks = std::min(nz, 20);
+  this->UpdateProgress(0.0);
+  for (int b = 0; b < blocks && !this->GetAbortExecute(); ++b)
+  {
+    const int firstSlice = extent[4] + b * nz / blocks;
+    const int endSlice = extent[4] + (b + 1) * nz / blocks;
+    const vtkIdType rows = vtkIdType(endSlice - firstSlice) * ny;
+    FillRows fill{ evaluator, extent, origin, spacing, density->GetPointer(0), firstSlice };
+    vtkSMPTools::For(0, rows, fill);
+    this->UpdateProgress(double(b + 1) / blocks);
+  }
+  return 1;
+}
+
+void vtkCloudDensitySource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Dimensions: " << this->Dimensions[0] << ", " << this->Dimensions[1] << ", "
+     << this->Dimensions[2] << "\n";
+  os << indent << "Bounds: ";
+  for (int i = 0; i < 6; ++i)
+  {
+    os << this->Bounds[i] << (i < 5 ? ", " : "\n");
+  }
+  os << indent << "Shapes: " << this->Field.Shapes.size() << (this->Field.Morph ? " (morph)" : "")
+     << "\n";
+  os << indent << "Octaves: " << this->Field.Noise.Octaves << "\n";
+  os << indent << "Time: " << this->Time << "\n";
+  os << indent << "TimeRange: " << this->TimeRange[0] << ", " << this->TimeRange[1] << "\n";
+  os << indent << "NumberOfTimeSteps: " << this->NumberOfTimeSteps << "\n";
+}
