@@ -86,6 +86,36 @@ std::string ValidateFieldDescription(const FieldDescription& f)
   return {};
 }
 
+std::string ValidateNoiseRange(const FieldDescription& field, const double bounds[6], double time)
+{
+  const std::vector<noise::Octave> octaves = noise::OctaveSchedule(field.Noise);
+  if (octaves.empty())
+  {
+    return {};
+  }
+  const glm::dvec3 offset = field.Wind * time;
+  double farthest = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    farthest = std::max(farthest, std::abs(bounds[2 * a] + offset[a]));
+    farthest = std::max(farthest, std::abs(bounds[2 * a + 1] + offset[a]));
+  }
+  double highest = 0.0;
+  for (const noise::Octave& o : octaves)
+  {
+    highest = std::max(highest, o.Frequency);
+  }
+  const double limit = 1073741824.0; // 2^30
+  if (!(highest * farthest < limit))
+  {
+    std::ostringstream error;
+    error << "the noise's highest octave frequency (" << highest << ") times the farthest noise "
+          << "coordinate (" << farthest << ", bounds plus wind x time) must stay below 2^30";
+    return error.str();
+  }
+  return {};
+}
+
 DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
   : Field(field)
   , Time(time)
@@ -206,10 +236,17 @@ void DensityEvaluator::EvaluateRow(int firstIndex, int count, double originX, do
   if (lastNoisy >= firstNoisy)
   {
     const int noisyCount = lastNoisy - firstNoisy + 1;
+    // x of each voxel in noise space (with the wind), computed as Fbm() does for a point.
+    scratch.NoiseX.resize(noisyCount);
+    for (int j = 0; j < noisyCount; ++j)
+    {
+      const double x = originX + static_cast<double>(firstIndex + firstNoisy + j) * spacingX;
+      scratch.NoiseX[j] = x + this->NoiseOffset.x;
+    }
     for (const noise::Octave& octave : this->Octaves)
     {
-      this->AccumulateOctaveAlongRow(octave, firstIndex + firstNoisy, noisyCount, originX,
-        spacingX, y, z, scratch.Noise.data() + firstNoisy, scratch);
+      this->AccumulateOctaveAlongRow(octave, noisyCount, scratch.NoiseX.data(), y, z,
+        scratch.Noise.data() + firstNoisy, scratch);
     }
   }
 
@@ -220,35 +257,49 @@ void DensityEvaluator::EvaluateRow(int firstIndex, int count, double originX, do
   }
 }
 
-void DensityEvaluator::AccumulateOctaveAlongRow(const noise::Octave& octave, int firstIndex,
-  int count, double originX, double spacingX, double y, double z, float* sum,
-  RowScratch& scratch) const
+namespace
+{
+// The lattice cell (relative to baseCell) and fraction of every voxel of a row at frequency f,
+// in a loop of its own so that the compiler can vectorise it.
+void SplitRow(const double* noiseX, double f, int count, std::int32_t baseCell, RowScratch& scratch)
+{
+  scratch.Cell.resize(count);
+  scratch.Fraction.resize(count);
+  std::int32_t* cell = scratch.Cell.data();
+  float* fraction = scratch.Fraction.data();
+  for (int j = 0; j < count; ++j)
+  {
+    const noise::LatticeCoordinate lx = noise::Split(noiseX[j] * f);
+    cell[j] = lx.Cell - baseCell;
+    fraction[j] = lx.Fraction;
+  }
+}
+}
+
+void DensityEvaluator::AccumulateOctaveAlongRow(const noise::Octave& octave, int count,
+  const double* noiseX, double y, double z, float* sum, RowScratch& scratch) const
 {
   using namespace noise;
   const double f = octave.Frequency;
-  const LatticeCoordinate ly = Split((y + this->NoiseOffset.y) * f);
-  const LatticeCoordinate lz = Split((z + this->NoiseOffset.z) * f);
-  const auto latticeX = [&](int i) {
-    return (originX + static_cast<double>(i) * spacingX + this->NoiseOffset.x) * f;
-  };
+  const double noiseY = (y + this->NoiseOffset.y) * f, noiseZ = (z + this->NoiseOffset.z) * f;
   const NoiseType type = this->Field.Noise.Type;
 
   if (type == NoiseType::White)
   {
+    const std::uint32_t yz = HashYZ(Split(noiseY).Cell, Split(noiseZ).Cell, octave.Seed);
     for (int j = 0; j < count; ++j)
     {
-      const LatticeCoordinate lx = Split(latticeX(firstIndex + j));
-      sum[j] += octave.Amplitude * HashToSigned(Hash(lx.Cell, ly.Cell, lz.Cell, octave.Seed));
+      sum[j] += octave.Amplitude * HashToSigned(HashX(yz, Split(noiseX[j] * f).Cell));
     }
     return;
   }
 
   // The lattice columns the row crosses: x is monotonic along the row, so they are the cells
   // from the first voxel's to the last voxel's, plus one for the upper corner.
-  const std::int32_t firstCell = Split(latticeX(firstIndex)).Cell;
-  const std::int32_t lastCell = Split(latticeX(firstIndex + count - 1)).Cell;
-  const int columns = static_cast<int>(std::max(firstCell, lastCell) - std::min(firstCell, lastCell)) + 2;
+  const std::int32_t firstCell = Split(noiseX[0] * f).Cell;
+  const std::int32_t lastCell = Split(noiseX[count - 1] * f).Cell;
   const std::int32_t baseCell = std::min(firstCell, lastCell);
+  const int columns = static_cast<int>(std::max(firstCell, lastCell) - baseCell) + 2;
   scratch.ColumnA.resize(columns);
   scratch.ColumnB.resize(columns);
   float* a = scratch.ColumnA.data();
@@ -256,33 +307,36 @@ void DensityEvaluator::AccumulateOctaveAlongRow(const noise::Octave& octave, int
 
   if (type == NoiseType::Value)
   {
-    const float uy = FadeCubic(ly.Fraction), uz = FadeCubic(lz.Fraction);
+    const RowCorners r = CornersOfRow(noiseY, noiseZ, octave.Seed, FadeCubic);
     for (int c = 0; c < columns; ++c)
     {
-      a[c] = ValueColumn(baseCell + c, ly, lz, uy, uz, octave.Seed);
+      a[c] = ValueColumn(baseCell + c, r);
     }
+    SplitRow(noiseX, f, count, baseCell, scratch);
+    const std::int32_t* cell = scratch.Cell.data();
+    const float* fx = scratch.Fraction.data();
     for (int j = 0; j < count; ++j)
     {
-      const LatticeCoordinate lx = Split(latticeX(firstIndex + j));
-      const int c = lx.Cell - baseCell;
-      sum[j] += octave.Amplitude * ValueAlongX(a[c], a[c + 1], lx.Fraction);
+      const int c = cell[j];
+      sum[j] += octave.Amplitude * ValueAlongX(a[c], a[c + 1], fx[j]);
     }
   }
   else if (type == NoiseType::Perlin)
   {
-    const float uy = FadeQuintic(ly.Fraction), uz = FadeQuintic(lz.Fraction);
+    const RowCorners r = CornersOfRow(noiseY, noiseZ, octave.Seed, FadeQuintic);
     for (int c = 0; c < columns; ++c)
     {
-      const PerlinColumnTerms t = PerlinColumn(baseCell + c, ly, lz, uy, uz, octave.Seed);
+      const PerlinColumnTerms t = PerlinColumn(baseCell + c, r);
       a[c] = t.Offset;
       b[c] = t.Slope;
     }
+    SplitRow(noiseX, f, count, baseCell, scratch);
+    const std::int32_t* cell = scratch.Cell.data();
+    const float* fx = scratch.Fraction.data();
     for (int j = 0; j < count; ++j)
     {
-      const LatticeCoordinate lx = Split(latticeX(firstIndex + j));
-      const int c = lx.Cell - baseCell;
-      sum[j] += octave.Amplitude *
-        PerlinAlongX({ a[c], b[c] }, { a[c + 1], b[c + 1] }, lx.Fraction);
+      const int c = cell[j];
+      sum[j] += octave.Amplitude * PerlinAlongX({ a[c], b[c] }, { a[c + 1], b[c + 1] }, fx[j]);
     }
   }
 }

@@ -21,6 +21,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -51,13 +52,21 @@ struct FieldDescription
 // Returns an empty string when the description can be evaluated, else what is wrong with it.
 CLOUDVISFILTERS_EXPORT std::string ValidateFieldDescription(const FieldDescription& field);
 
+// Empty when the noise lattice coordinates of every point of the bounds at this time fit the
+// evaluator's 32-bit lattice cells, else the problem: frequency x distance must stay below 2^30.
+CLOUDVISFILTERS_EXPORT std::string ValidateNoiseRange(
+  const FieldDescription& field, const double bounds[6], double time);
+
 // Scratch memory of one thread for EvaluateRow; reused from row to row.
 struct RowScratch
 {
   std::vector<float> SignedDistance;
+  std::vector<double> NoiseX;
   std::vector<float> Noise;
   std::vector<float> ColumnA;
   std::vector<float> ColumnB;
+  std::vector<std::int32_t> Cell;
+  std::vector<float> Fraction;
 };
 
 class CLOUDVISFILTERS_EXPORT DensityEvaluator
@@ -80,8 +89,8 @@ public:
 private:
   float Combine(float signedDistance, float fbm) const;
   bool NeedsNoise(float signedDistance) const;
-  void AccumulateOctaveAlongRow(const noise::Octave& octave, int firstIndex, int count,
-    double originX, double spacingX, double y, double z, float* sum, RowScratch& scratch) const;
+  void AccumulateOctaveAlongRow(const noise::Octave& octave, int count, const double* noiseX,
+    double y, double z, float* sum, RowScratch& scratch) const;
 
   FieldDescription Field;
   double Time;

@@ -10,6 +10,7 @@
 #ifndef CloudNoise_h
 #define CloudNoise_h
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -32,20 +33,32 @@ inline std::uint32_t RotateLeft(std::uint32_t x, int r)
   return (x << r) | (x >> (32 - r));
 }
 
-// Hash of a lattice point and a seed, with xxHash32's primes and final avalanche.
-inline std::uint32_t Hash(std::int32_t ix, std::int32_t iy, std::int32_t iz, std::uint32_t seed)
+// Hash of a lattice point and a seed, with xxHash32's primes and final avalanche. It absorbs z,
+// then y, then x, so that a row along x can absorb its fixed y and z once (HashYZ) and finish
+// each lattice column with one round (HashX).
+constexpr std::uint32_t HashP2 = 2246822519u, HashP3 = 3266489917u, HashP4 = 668265263u,
+                        HashP5 = 374761393u;
+inline std::uint32_t HashRound(std::uint32_t h, std::int32_t coordinate)
 {
-  constexpr std::uint32_t P2 = 2246822519u, P3 = 3266489917u, P4 = 668265263u, P5 = 374761393u;
-  std::uint32_t h = seed + P5;
-  h = RotateLeft(h + static_cast<std::uint32_t>(ix) * P3, 17) * P4;
-  h = RotateLeft(h + static_cast<std::uint32_t>(iy) * P3, 17) * P4;
-  h = RotateLeft(h + static_cast<std::uint32_t>(iz) * P3, 17) * P4;
+  return RotateLeft(h + static_cast<std::uint32_t>(coordinate) * HashP3, 17) * HashP4;
+}
+inline std::uint32_t HashYZ(std::int32_t iy, std::int32_t iz, std::uint32_t seed)
+{
+  return HashRound(HashRound(seed + HashP5, iz), iy);
+}
+inline std::uint32_t HashX(std::uint32_t yzState, std::int32_t ix)
+{
+  std::uint32_t h = HashRound(yzState, ix);
   h ^= h >> 15;
-  h *= P2;
+  h *= HashP2;
   h ^= h >> 13;
-  h *= P3;
+  h *= HashP3;
   h ^= h >> 16;
   return h;
+}
+inline std::uint32_t Hash(std::int32_t ix, std::int32_t iy, std::int32_t iz, std::uint32_t seed)
+{
+  return HashX(HashYZ(iy, iz, seed), ix);
 }
 
 // The top 24 bits of a hash as a value in [-1, 1], both ends included.
@@ -94,20 +107,37 @@ struct LatticeCoordinate
 };
 inline LatticeCoordinate Split(double x)
 {
-  const double cell = std::floor(x);
-  return { static_cast<std::int32_t>(static_cast<std::int64_t>(cell)),
-    static_cast<float>(x - cell) };
+  // floor by truncation (std::floor is a library call without SSE4.1). Lattice coordinates stay
+  // within +-2^30: ValidateFieldDescription bounds frequency times distance from the origin.
+  std::int32_t cell = static_cast<std::int32_t>(x);
+  cell -= x < static_cast<double>(cell);
+  return { cell, static_cast<float>(x - static_cast<double>(cell)) };
+}
+
+// What a row of fixed y and z shares for one octave: the lattice cells and fractions in y and z,
+// their interpolation weights, and the hash states of the four (y, z) corners.
+struct RowCorners
+{
+  LatticeCoordinate Y, Z;
+  float Uy, Uz;
+  std::uint32_t State00, State10, State01, State11; // (dy, dz)
+};
+inline RowCorners CornersOfRow(double y, double z, std::uint32_t seed, float (*fade)(float))
+{
+  const LatticeCoordinate ly = Split(y), lz = Split(z);
+  return { ly, lz, fade(ly.Fraction), fade(lz.Fraction), HashYZ(ly.Cell, lz.Cell, seed),
+    HashYZ(ly.Cell + 1, lz.Cell, seed), HashYZ(ly.Cell, lz.Cell + 1, seed),
+    HashYZ(ly.Cell + 1, lz.Cell + 1, seed) };
 }
 
 // Value noise along y and z for one lattice column ix: the bilinear blend of its four corners.
-inline float ValueColumn(
-  std::int32_t ix, LatticeCoordinate y, LatticeCoordinate z, float uy, float uz, std::uint32_t seed)
+inline float ValueColumn(std::int32_t ix, const RowCorners& r)
 {
-  const float v00 = HashToSigned(Hash(ix, y.Cell, z.Cell, seed));
-  const float v10 = HashToSigned(Hash(ix, y.Cell + 1, z.Cell, seed));
-  const float v01 = HashToSigned(Hash(ix, y.Cell, z.Cell + 1, seed));
-  const float v11 = HashToSigned(Hash(ix, y.Cell + 1, z.Cell + 1, seed));
-  return Lerp(Lerp(v00, v10, uy), Lerp(v01, v11, uy), uz);
+  const float v00 = HashToSigned(HashX(r.State00, ix));
+  const float v10 = HashToSigned(HashX(r.State10, ix));
+  const float v01 = HashToSigned(HashX(r.State01, ix));
+  const float v11 = HashToSigned(HashX(r.State11, ix));
+  return Lerp(Lerp(v00, v10, r.Uy), Lerp(v01, v11, r.Uy), r.Uz);
 }
 
 // Gradient noise along y and z for one lattice column ix. A corner contributes
@@ -118,14 +148,13 @@ struct PerlinColumnTerms
   float Offset;
   float Slope;
 };
-inline PerlinColumnTerms PerlinColumn(
-  std::int32_t ix, LatticeCoordinate y, LatticeCoordinate z, float uy, float uz, std::uint32_t seed)
+inline PerlinColumnTerms PerlinColumn(std::int32_t ix, const RowCorners& r)
 {
-  const Gradient& g00 = GradientOf(Hash(ix, y.Cell, z.Cell, seed));
-  const Gradient& g10 = GradientOf(Hash(ix, y.Cell + 1, z.Cell, seed));
-  const Gradient& g01 = GradientOf(Hash(ix, y.Cell, z.Cell + 1, seed));
-  const Gradient& g11 = GradientOf(Hash(ix, y.Cell + 1, z.Cell + 1, seed));
-  const float fy = y.Fraction, fz = z.Fraction;
+  const Gradient& g00 = GradientOf(HashX(r.State00, ix));
+  const Gradient& g10 = GradientOf(HashX(r.State10, ix));
+  const Gradient& g01 = GradientOf(HashX(r.State01, ix));
+  const Gradient& g11 = GradientOf(HashX(r.State11, ix));
+  const float fy = r.Y.Fraction, fz = r.Z.Fraction, uy = r.Uy, uz = r.Uz;
   const float o00 = g00.y * fy + g00.z * fz;
   const float o10 = g10.y * (fy - 1.0f) + g10.z * fz;
   const float o01 = g01.y * fy + g01.z * (fz - 1.0f);
@@ -144,7 +173,8 @@ inline float PerlinAlongX(const PerlinColumnTerms& c0, const PerlinColumnTerms& 
   const float n0 = c0.Offset + c0.Slope * fx;
   const float n1 = c1.Offset + c1.Slope * (fx - 1.0f);
   const float n = Lerp(n0, n1, FadeQuintic(fx)) * PerlinScale;
-  return n < -1.0f ? -1.0f : (n > 1.0f ? 1.0f : n);
+  return std::min(1.0f, std::max(-1.0f, n)); // branch-free: minss / maxss
+
 }
 
 // Point evaluations in lattice coordinates; each returns a value in [-1, 1].
@@ -154,17 +184,15 @@ inline float White(double x, double y, double z, std::uint32_t seed)
 }
 inline float Value(double x, double y, double z, std::uint32_t seed)
 {
-  const LatticeCoordinate lx = Split(x), ly = Split(y), lz = Split(z);
-  const float uy = FadeCubic(ly.Fraction), uz = FadeCubic(lz.Fraction);
-  return ValueAlongX(ValueColumn(lx.Cell, ly, lz, uy, uz, seed),
-    ValueColumn(lx.Cell + 1, ly, lz, uy, uz, seed), lx.Fraction);
+  const LatticeCoordinate lx = Split(x);
+  const RowCorners r = CornersOfRow(y, z, seed, FadeCubic);
+  return ValueAlongX(ValueColumn(lx.Cell, r), ValueColumn(lx.Cell + 1, r), lx.Fraction);
 }
 inline float Perlin(double x, double y, double z, std::uint32_t seed)
 {
-  const LatticeCoordinate lx = Split(x), ly = Split(y), lz = Split(z);
-  const float uy = FadeQuintic(ly.Fraction), uz = FadeQuintic(lz.Fraction);
-  return PerlinAlongX(PerlinColumn(lx.Cell, ly, lz, uy, uz, seed),
-    PerlinColumn(lx.Cell + 1, ly, lz, uy, uz, seed), lx.Fraction);
+  const LatticeCoordinate lx = Split(x);
+  const RowCorners r = CornersOfRow(y, z, seed, FadeQuintic);
+  return PerlinAlongX(PerlinColumn(lx.Cell, r), PerlinColumn(lx.Cell + 1, r), lx.Fraction);
 }
 inline float Evaluate(NoiseType type, double x, double y, double z, std::uint32_t seed)
 {

@@ -112,12 +112,20 @@ public:
     rotation = glm::rotate(rotation, r.x, glm::vec3(1, 0, 0));
     // The inverse of a rotation is its transpose.
     this->WorldToLocal = glm::transpose(glm::mat3(rotation));
+    this->Rotated = shape.RotationDegrees != glm::vec3(0.0f);
+    this->InverseScale = 1.0f / shape.Scale;
   }
 
   float SignedDistance(glm::vec3 p) const
   {
     const Shape& s = this->Description;
-    const glm::vec3 q = this->WorldToLocal * (p - s.Center) / s.Scale;
+    // Most shapes are not rotated: skip the matrix on the per-voxel path.
+    glm::vec3 q = p - s.Center;
+    if (this->Rotated)
+    {
+      q = this->WorldToLocal * q;
+    }
+    q *= this->InverseScale;
     float d = 0.0f;
     switch (s.Type)
     {
@@ -143,6 +151,8 @@ public:
 private:
   Shape Description;
   glm::mat3 WorldToLocal{ 1.0f };
+  bool Rotated = false;
+  float InverseScale = 1.0f;
 };
 
 // The morph of the write-ups: torus -> cross -> sphere -> capsule -> torus, one shape per 3 s

@@ -34,6 +34,10 @@ std::string vtkCloudDensitySource::Validate() const
   {
     error = cloudvis::ValidateFieldDescription(this->Field);
   }
+  if (error.empty())
+  {
+    error = cloudvis::ValidateNoiseRange(this->Field, this->Bounds, this->Time);
+  }
   if (error.empty() && (this->NumberOfTimeSteps < 0 || !(this->TimeRange[0] <= this->TimeRange[1])))
   {
     error = "time steps need a count >= 0 and an increasing time range";
@@ -127,6 +131,13 @@ int vtkCloudDensitySource::RequestData(
   if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
   {
     time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+
+  const std::string rangeError = cloudvis::ValidateNoiseRange(this->Field, this->Bounds, time);
+  if (!rangeError.empty())
+  {
+    vtkErrorMacro(<< rangeError);
+    return 0;
   }
 
   output->SetExtent(extent);

@@ -314,4 +314,17 @@ TEST(DensitySource, RefusesBadGeometryWithAReason)
   source->SetDimensions(100000, 100000, 100000);
   const std::string tooBig = source->Validate();
   EXPECT_NE(tooBig.find("needs 3.55 PiB"), std::string::npos) << tooBig;
+
+  // Noise lattice coordinates beyond 32-bit cells are refused, for the source's time and for a
+  // time requested through the pipeline.
+  source->SetDimensions(8, 8, 8);
+  FieldDescription field;
+  field.Noise.Frequency = 1e6;
+  field.Noise.Octaves = 12;
+  source->SetField(field);
+  EXPECT_NE(source->Validate().find("2^30"), std::string::npos);
+  source->SetField(FieldDescription{});
+  EXPECT_EQ(source->Validate(), "");
+  EXPECT_NE(ValidateNoiseRange(FieldDescription{}, source->GetBounds(), 1e10).find("2^30"),
+    std::string::npos);
 }

@@ -56,8 +56,12 @@ TEST_P(NoiseOfEveryType, TheSeedChangesThePattern)
   EXPECT_GT(different, 950);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-  AllTypes, NoiseOfEveryType, ::testing::Values(NoiseType::White, NoiseType::Value, NoiseType::Perlin));
+INSTANTIATE_TEST_SUITE_P(AllTypes, NoiseOfEveryType,
+  ::testing::Values(NoiseType::White, NoiseType::Value, NoiseType::Perlin),
+  [](const ::testing::TestParamInfo<NoiseType>& info) {
+    return info.param == NoiseType::White ? "White"
+                                          : (info.param == NoiseType::Value ? "Value" : "Perlin");
+  });
 
 TEST(Noise, ValueAndPerlinNoiseAreContinuous)
 {
