@@ -1,0 +1,279 @@
+// Generic parsing, help and dispatch over the command table (the table itself and the commands
+// live in Commands.cxx). Options follow GNU conventions: --name VALUE, --name=VALUE, -o VALUE,
+// and "--" ends the options.
+#include "CommandLine.h"
+
+#include "Errors.h"
+
+#include <algorithm>
+#include <exception>
+#include <new>
+#include <sstream>
+
+namespace cloudvis
+{
+namespace
+{
+
+const OptionSpec* FindOption(const CommandSpec& command, const std::string& argument)
+{
+  for (const OptionSpec& option : command.Options)
+  {
+    if (argument == "--" + option.Long || (option.Short && argument == std::string("-") + option.Short))
+    {
+      return &option;
+    }
+  }
+  return nullptr;
+}
+
+std::string OptionTitle(const OptionSpec& option)
+{
+  std::string title = option.Short ? std::string("-") + option.Short + ", " : "    ";
+  title += "--" + option.Long;
+  if (!option.Value.empty())
+  {
+    title += " " + option.Value;
+  }
+  return title;
+}
+
+// Breaks text into lines of at most `width` characters, continuation lines indented.
+std::string Wrap(const std::string& text, size_t indent, size_t width)
+{
+  std::istringstream words(text);
+  std::string word, wrapped, line;
+  while (words >> word)
+  {
+    if (!line.empty() && indent + line.size() + 1 + word.size() > width)
+    {
+      wrapped += line + "\n" + std::string(indent, ' ');
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  return wrapped + line;
+}
+
+std::string UsageLine(const CommandSpec& command)
+{
+  std::string usage = "cloudvis " + command.Name;
+  if (!command.Operands.empty())
+  {
+    usage += " " + command.Operands;
+  }
+  for (const OptionSpec& option : command.Options)
+  {
+    if (option.Long == "help")
+    {
+      continue;
+    }
+    const std::string name =
+      option.Short ? std::string("-") + option.Short : "--" + option.Long;
+    const std::string text = option.Value.empty() ? name : name + " " + option.Value;
+    usage += option.Required ? " " + text : option.Repeatable ? " [" + text + "]..." : " [" + text + "]";
+  }
+  return usage;
+}
+
+const CommandSpec* FindCommand(const std::string& name)
+{
+  for (const CommandSpec& command : Commands())
+  {
+    if (command.Name == name)
+    {
+      return &command;
+    }
+  }
+  return nullptr;
+}
+
+std::string CommandNames()
+{
+  std::string names;
+  for (const CommandSpec& command : Commands())
+  {
+    names += (names.empty() ? "" : ", ") + command.Name;
+  }
+  return names;
+}
+
+} // namespace
+
+std::string Arguments::Value(const std::string& option) const
+{
+  const auto found = this->Options.find(option);
+  return found == this->Options.end() || found->second.empty() ? "" : found->second.back();
+}
+
+std::vector<std::string> Arguments::Values(const std::string& option) const
+{
+  const auto found = this->Options.find(option);
+  return found == this->Options.end() ? std::vector<std::string>{} : found->second;
+}
+
+Arguments ParseArguments(const CommandSpec& command, const std::vector<std::string>& arguments)
+{
+  Arguments parsed;
+  bool optionsEnded = false;
+  for (size_t i = 0; i < arguments.size(); ++i)
+  {
+    const std::string& argument = arguments[i];
+    if (optionsEnded || argument.size() < 2 || argument[0] != '-')
+    {
+      parsed.Operands.push_back(argument);
+      continue;
+    }
+    if (argument == "--")
+    {
+      optionsEnded = true;
+      continue;
+    }
+    // --name=value carries its value inline.
+    const auto equals = argument.rfind("--", 0) == 0 ? argument.find('=') : std::string::npos;
+    const std::string name = argument.substr(0, equals);
+    const OptionSpec* option = FindOption(command, name);
+    if (!option)
+    {
+      throw UsageError(command.Name + ": unknown option " + name);
+    }
+    std::string value;
+    if (option->Value.empty())
+    {
+      if (equals != std::string::npos)
+      {
+        throw UsageError(command.Name + ": option --" + option->Long + " takes no value");
+      }
+    }
+    else if (equals != std::string::npos)
+    {
+      value = argument.substr(equals + 1);
+    }
+    else if (i + 1 < arguments.size())
+    {
+      value = arguments[++i];
+    }
+    else
+    {
+      throw UsageError(command.Name + ": option " + name + " needs a value (" + option->Value + ")");
+    }
+    if (!option->Repeatable && parsed.Has(option->Long))
+    {
+      throw UsageError(command.Name + ": option --" + option->Long + " given more than once");
+    }
+    parsed.Options[option->Long].push_back(value);
+  }
+  if (parsed.Has("help"))
+  {
+    return parsed;
+  }
+  if (parsed.Operands.size() < command.MinOperands)
+  {
+    throw UsageError(command.Name + ": missing argument " + command.Operands);
+  }
+  if (parsed.Operands.size() > command.MaxOperands)
+  {
+    throw UsageError(command.Name + ": unexpected argument \"" +
+      parsed.Operands[command.MaxOperands] + "\"");
+  }
+  return parsed;
+}
+
+std::string CommandHelp(const CommandSpec& command)
+{
+  std::ostringstream help;
+  help << "Usage: " << UsageLine(command) << "\n\n" << command.Summary << "\n\n";
+  if (!command.Description.empty())
+  {
+    help << command.Description << "\n\n";
+  }
+  help << "Options:\n";
+  for (const OptionSpec& option : command.Options)
+  {
+    const std::string title = OptionTitle(option);
+    help << "  " << title << std::string(title.size() < 24 ? 24 - title.size() : 1, ' ')
+         << Wrap(option.Help + (option.Repeatable ? " (repeatable)" : ""), 26, 92) << "\n";
+  }
+  return help.str();
+}
+
+std::string GeneralHelp()
+{
+  std::ostringstream help;
+  help << "Usage: cloudvis [COMMAND [OPTIONS]...]\n\n"
+       << "Generate and inspect procedural cloud density fields.\n\n"
+       << "Without a command, cloudvis generates the default scene (a unit sphere plus 6 octaves\n"
+       << "of value noise) into out/default.vti and prints its statistics.\n\n"
+       << "Commands:\n";
+  for (const CommandSpec& command : Commands())
+  {
+    help << "  " << command.Name << std::string(command.Name.size() < 12 ? 12 - command.Name.size() : 1, ' ')
+         << command.Summary << "\n";
+  }
+  help << "\nUsage of each command:\n";
+  for (const CommandSpec& command : Commands())
+  {
+    help << "  " << UsageLine(command) << "\n";
+  }
+  help << "\nOptions:\n"
+       << "  -h, --help              show this help; 'cloudvis COMMAND --help' describes a command\n"
+       << "\nExit status: 0 on success, 1 for bad input or failed output, 2 for usage errors.\n"
+       << "Scene files: docs/scene-format.md. Command line: docs/command-line.md.\n";
+  return help.str();
+}
+
+int RunCommandLine(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err)
+{
+  std::string hint = "run 'cloudvis --help' for usage";
+  try
+  {
+    if (arguments.size() < 2)
+    {
+      return RunDefault(out);
+    }
+    const std::string& name = arguments[1];
+    if (name == "--help" || name == "-h" || name == "help")
+    {
+      const CommandSpec* command = arguments.size() > 2 ? FindCommand(arguments[2]) : nullptr;
+      out << (command ? CommandHelp(*command) : GeneralHelp());
+      return ExitSuccess;
+    }
+    const CommandSpec* command = FindCommand(name);
+    if (!command)
+    {
+      throw UsageError(name[0] == '-' ? "unknown option " + name
+                                      : "unknown command \"" + name + "\"; commands: " + CommandNames());
+    }
+    hint = "run 'cloudvis " + command->Name + " --help' for usage";
+    const Arguments parsed =
+      ParseArguments(*command, std::vector<std::string>(arguments.begin() + 2, arguments.end()));
+    if (parsed.Has("help"))
+    {
+      out << CommandHelp(*command);
+      return ExitSuccess;
+    }
+    return command->Run(parsed, out);
+  }
+  catch (const UsageError& e)
+  {
+    err << "cloudvis: error: " << e.what() << "\n" << "cloudvis: " << hint << "\n";
+    return ExitUsage;
+  }
+  catch (const InputError& e)
+  {
+    err << "cloudvis: error: " << e.what() << "\n";
+    return ExitFailure;
+  }
+  catch (const std::bad_alloc&)
+  {
+    err << "cloudvis: error: out of memory\n";
+    return ExitFailure;
+  }
+  catch (const std::exception& e)
+  {
+    err << "cloudvis: error: " << e.what() << "\n";
+    return ExitFailure;
+  }
+}
+
+} // namespace cloudvis

@@ -1,0 +1,792 @@
+// Scene parsing is table-driven at every level: top-level sections, the keys of "field", the
+// keys of a shape object, and the names of enumerations are each one table, and one set of typed
+// readers (number, integer, vector, name) checks every value, so each check is written once and
+// every message has the same shape: "<source>: <dotted key>: <problem>".
+#include "Scene.h"
+
+#include "Errors.h"
+#include "SceneField.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace cloudvis
+{
+namespace
+{
+using json = nlohmann::json;
+
+// Where the document came from, for messages and relative paths.
+struct Context
+{
+  std::string Source;
+  std::string BaseDirectory;
+  std::vector<std::string> OverriddenKeys;
+
+  [[noreturn]] void Fail(const std::string& key, const std::string& problem) const
+  {
+    std::string note;
+    for (const std::string& overridden : this->OverriddenKeys)
+    {
+      if (key == overridden || key.rfind(overridden + ".", 0) == 0 ||
+        key.rfind(overridden + "[", 0) == 0)
+      {
+        note = " (set with --set)";
+      }
+    }
+    throw InputError(this->Source + ": " + key + ": " + problem + note);
+  }
+};
+
+std::string Join(const std::vector<std::string>& names)
+{
+  std::string joined;
+  for (const std::string& name : names)
+  {
+    joined += (joined.empty() ? "" : ", ") + name;
+  }
+  return joined;
+}
+
+std::string Describe(const json& value)
+{
+  const std::string text = value.dump();
+  return std::string(value.type_name()) + " " + (text.size() > 40 ? text.substr(0, 37) + "..." : text);
+}
+
+std::string FormatNumber(double value)
+{
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+// An allowed interval of a number, and its description for messages and docs.
+struct Range
+{
+  double Min = -std::numeric_limits<double>::max();
+  double Max = std::numeric_limits<double>::max();
+  bool MinOpen = false; // true: Min itself is excluded
+
+  bool Contains(double v) const
+  {
+    return (this->MinOpen ? v > this->Min : v >= this->Min) && v <= this->Max;
+  }
+  std::string Text() const
+  {
+    const bool bounded = this->Max < std::numeric_limits<double>::max();
+    const bool floored = this->Min > -std::numeric_limits<double>::max();
+    if (floored && bounded)
+    {
+      return std::string(this->MinOpen ? "(" : "[") + FormatNumber(this->Min) + ", " +
+        FormatNumber(this->Max) + "]";
+    }
+    if (floored)
+    {
+      return std::string(this->MinOpen ? "> " : ">= ") + FormatNumber(this->Min);
+    }
+    return "any finite number";
+  }
+};
+const Range AnyNumber{};
+const Range NonNegative{ 0.0 };
+const Range Positive{ 0.0, std::numeric_limits<double>::max(), true };
+
+double ReadNumber(const Context& c, const json& v, const std::string& key, const Range& range)
+{
+  if (!v.is_number())
+  {
+    c.Fail(key, "expected a number, got " + Describe(v));
+  }
+  const double value = v.get<double>();
+  if (!std::isfinite(value))
+  {
+    c.Fail(key, "expected a finite number, got " + FormatNumber(value));
+  }
+  if (!range.Contains(value))
+  {
+    c.Fail(key, "value " + FormatNumber(value) + " is out of range: allowed " + range.Text());
+  }
+  return value;
+}
+
+// Integers may be written as 6 or 6.0, never 6.5.
+long long ReadInteger(
+  const Context& c, const json& v, const std::string& key, long long min, long long max)
+{
+  const std::string allowed = "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  if (!v.is_number())
+  {
+    c.Fail(key, "expected " + allowed + ", got " + Describe(v));
+  }
+  if (v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(max))
+  {
+    c.Fail(key, "value " + v.dump() + " is out of range: allowed " + allowed);
+  }
+  const double asDouble = v.get<double>();
+  if (v.is_number_float() && (!std::isfinite(asDouble) || asDouble != std::floor(asDouble)))
+  {
+    c.Fail(key, "expected " + allowed + ", got " + v.dump());
+  }
+  if (asDouble < double(min) || asDouble > double(max))
+  {
+    c.Fail(key, "value " + v.dump() + " is out of range: allowed " + allowed);
+  }
+  return v.is_number_float() ? static_cast<long long>(asDouble) : v.get<long long>();
+}
+
+template <size_t N>
+std::array<double, N> ReadNumbers(
+  const Context& c, const json& v, const std::string& key, const Range& range)
+{
+  if (!v.is_array() || v.size() != N)
+  {
+    c.Fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + Describe(v));
+  }
+  std::array<double, N> values;
+  for (size_t i = 0; i < N; ++i)
+  {
+    values[i] = ReadNumber(c, v[i], key + "[" + std::to_string(i) + "]", range);
+  }
+  return values;
+}
+
+glm::vec3 ReadVec3(const Context& c, const json& v, const std::string& key, const Range& range)
+{
+  const std::array<double, 3> a = ReadNumbers<3>(c, v, key, range);
+  return glm::vec3(float(a[0]), float(a[1]), float(a[2]));
+}
+
+// The names scene files use for enumerations.
+template <typename E>
+struct Named
+{
+  const char* Name;
+  E Value;
+};
+const Named<DensityModel> DensityModels[] = {
+  { "sdf_plus_fbm", DensityModel::SdfPlusFbm },
+  { "fbm_falloff", DensityModel::FbmFalloff },
+  { "constant", DensityModel::Constant },
+};
+const Named<noise::NoiseType> NoiseTypes[] = {
+  { "none", noise::NoiseType::None },
+  { "white", noise::NoiseType::White },
+  { "value", noise::NoiseType::Value },
+  { "perlin", noise::NoiseType::Perlin },
+};
+const Named<ShapeBlend> Blends[] = {
+  { "union", ShapeBlend::Union },
+  { "smooth_union", ShapeBlend::SmoothUnion },
+};
+const Named<ShapeType> ShapeTypes[] = {
+  { "sphere", ShapeType::Sphere },
+  { "box", ShapeType::Box },
+  { "torus", ShapeType::Torus },
+  { "cross", ShapeType::Cross },
+  { "capsule", ShapeType::Capsule },
+};
+const char* const MorphName = "morph";
+
+template <typename E, size_t N>
+std::vector<std::string> NamesOf(const Named<E> (&table)[N])
+{
+  std::vector<std::string> names;
+  for (const Named<E>& entry : table)
+  {
+    names.emplace_back(entry.Name);
+  }
+  return names;
+}
+
+template <typename E, size_t N>
+E ReadName(const Context& c, const json& v, const std::string& key, const Named<E> (&table)[N])
+{
+  if (!v.is_string())
+  {
+    c.Fail(key, "expected a string (one of " + Join(NamesOf(table)) + "), got " + Describe(v));
+  }
+  for (const Named<E>& entry : table)
+  {
+    if (v.get<std::string>() == entry.Name)
+    {
+      return entry.Value;
+    }
+  }
+  c.Fail(key, "unknown name \"" + v.get<std::string>() + "\"; allowed: " + Join(NamesOf(table)));
+}
+
+// Keys of an object section, each with the function that reads its value into T.
+template <typename T>
+struct Key
+{
+  const char* Name;
+  void (*Read)(const Context&, const json&, const std::string& key, T&);
+};
+
+template <typename T, size_t N>
+std::vector<std::string> KeyNames(const Key<T> (&table)[N])
+{
+  std::vector<std::string> names;
+  for (const Key<T>& entry : table)
+  {
+    names.emplace_back(entry.Name);
+  }
+  return names;
+}
+
+template <typename T, size_t N>
+const Key<T>* FindKey(const Key<T> (&table)[N], const std::string& name)
+{
+  for (const Key<T>& entry : table)
+  {
+    if (name == entry.Name)
+    {
+      return &entry;
+    }
+  }
+  return nullptr;
+}
+
+// Reads every member of an object through a key table, refusing keys the table lacks.
+template <typename T, size_t N>
+void ReadObject(const Context& c, const json& object, const std::string& key,
+  const Key<T> (&table)[N], T& target)
+{
+  if (!object.is_object())
+  {
+    c.Fail(key, "expected an object, got " + Describe(object));
+  }
+  for (const auto& member : object.items())
+  {
+    const std::string memberKey = key.empty() ? member.key() : key + "." + member.key();
+    const Key<T>* entry = FindKey(table, member.key());
+    if (!entry)
+    {
+      c.Fail(memberKey, "unknown key; allowed keys: " + Join(KeyNames(table)));
+    }
+    entry->Read(c, member.value(), memberKey, target);
+  }
+}
+
+// ---- shapes -------------------------------------------------------------------------------
+
+// Which shape types use a key, as a bit mask over ShapeType.
+constexpr unsigned Bit(ShapeType t)
+{
+  return 1u << static_cast<unsigned>(t);
+}
+constexpr unsigned AllShapes = Bit(ShapeType::Sphere) | Bit(ShapeType::Box) |
+  Bit(ShapeType::Torus) | Bit(ShapeType::Cross) | Bit(ShapeType::Capsule);
+
+struct ShapeKey
+{
+  const char* Name;
+  unsigned UsedBy;
+  void (*Read)(const Context&, const json&, const std::string& key, Shape&);
+};
+const ShapeKey ShapeKeys[] = {
+  { "type", AllShapes, [](const Context&, const json&, const std::string&, Shape&) {} },
+  { "center", AllShapes,
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.Center = ReadVec3(c, v, k, AnyNumber); } },
+  { "rotation", AllShapes,
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.RotationDegrees = ReadVec3(c, v, k, AnyNumber); } },
+  { "scale", AllShapes,
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.Scale = float(ReadNumber(c, v, k, Positive)); } },
+  { "radius", Bit(ShapeType::Sphere) | Bit(ShapeType::Capsule),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.Radius = float(ReadNumber(c, v, k, NonNegative)); } },
+  { "half_size", Bit(ShapeType::Box),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.HalfSize = ReadVec3(c, v, k, NonNegative); } },
+  { "major_radius", Bit(ShapeType::Torus),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.MajorRadius = float(ReadNumber(c, v, k, NonNegative)); } },
+  { "minor_radius", Bit(ShapeType::Torus),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.MinorRadius = float(ReadNumber(c, v, k, NonNegative)); } },
+  { "arm_width", Bit(ShapeType::Cross),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.ArmWidth = float(ReadNumber(c, v, k, NonNegative)); } },
+  { "arm_length", Bit(ShapeType::Cross),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.ArmLength = float(ReadNumber(c, v, k, NonNegative)); } },
+  { "end_a", Bit(ShapeType::Capsule),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.EndA = ReadVec3(c, v, k, AnyNumber); } },
+  { "end_b", Bit(ShapeType::Capsule),
+    [](const Context& c, const json& v, const std::string& k, Shape& s)
+    { s.EndB = ReadVec3(c, v, k, AnyNumber); } },
+};
+
+std::string KeysUsedBy(ShapeType type)
+{
+  std::vector<std::string> names;
+  for (const ShapeKey& entry : ShapeKeys)
+  {
+    if (entry.UsedBy & Bit(type))
+    {
+      names.emplace_back(entry.Name);
+    }
+  }
+  return Join(names);
+}
+
+std::vector<std::string> AllShapeNames()
+{
+  std::vector<std::string> names = NamesOf(ShapeTypes);
+  names.emplace_back(MorphName);
+  return names;
+}
+
+// One entry of "shape": a name (that shape with its default parameters) or an object.
+// Returns false for "morph", which is not a Shape but a switch of the whole field.
+bool ReadShape(const Context& c, const json& v, const std::string& key, Shape& shape)
+{
+  if (v.is_string())
+  {
+    if (v.get<std::string>() == MorphName)
+    {
+      return false;
+    }
+    for (const Named<ShapeType>& entry : ShapeTypes)
+    {
+      if (v.get<std::string>() == entry.Name)
+      {
+        shape.Type = entry.Value;
+        return true;
+      }
+    }
+    c.Fail(key, "unknown shape \"" + v.get<std::string>() + "\"; allowed: " + Join(AllShapeNames()));
+  }
+  if (!v.is_object())
+  {
+    c.Fail(key, "expected a shape name (one of " + Join(AllShapeNames()) +
+        "), a shape object or a list of them, got " + Describe(v));
+  }
+  if (!v.contains("type"))
+  {
+    c.Fail(key + ".type", "missing; a shape object needs a type (one of " +
+        Join(NamesOf(ShapeTypes)) + ")");
+  }
+  if (v["type"] == MorphName)
+  {
+    c.Fail(key + ".type", "\"morph\" is not a shape type; write \"shape\": \"morph\" instead");
+  }
+  shape.Type = ReadName(c, v["type"], key + ".type", ShapeTypes);
+  const std::string typeName = v["type"].get<std::string>();
+  for (const auto& member : v.items())
+  {
+    const std::string memberKey = key + "." + member.key();
+    const ShapeKey* found = nullptr;
+    for (const ShapeKey& entry : ShapeKeys)
+    {
+      found = member.key() == entry.Name ? &entry : found;
+    }
+    if (!found)
+    {
+      c.Fail(memberKey, "unknown key; allowed keys for a " + typeName + ": " + KeysUsedBy(shape.Type));
+    }
+    if (!(found->UsedBy & Bit(shape.Type)))
+    {
+      c.Fail(memberKey, "not a parameter of a " + typeName + "; allowed keys for a " + typeName +
+          ": " + KeysUsedBy(shape.Type));
+    }
+    found->Read(c, member.value(), memberKey, shape);
+  }
+  return true;
+}
+
+void ReadShapes(const Context& c, const json& v, const std::string& key, FieldSpec& f)
+{
+  const bool list = v.is_array();
+  if (list && v.empty())
+  {
+    c.Fail(key, "the list of shapes is empty; give at least one shape");
+  }
+  const json items = list ? v : json::array({ v });
+  f.Description.Shapes.clear();
+  f.Description.Morph = false;
+  for (size_t i = 0; i < items.size(); ++i)
+  {
+    const std::string itemKey = list ? key + "[" + std::to_string(i) + "]" : key;
+    Shape shape;
+    if (!ReadShape(c, items[i], itemKey, shape))
+    {
+      if (items.size() > 1)
+      {
+        c.Fail(itemKey, "\"morph\" cannot be combined with other shapes");
+      }
+      f.Description.Morph = true;
+      f.Description.Shapes = { Shape{} };
+      return;
+    }
+    f.Description.Shapes.push_back(shape);
+  }
+}
+
+// ---- the field section -------------------------------------------------------------------
+
+const Key<FieldSpec> FieldKeys[] = {
+  { "file",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    {
+      if (!v.is_string() || v.get<std::string>().empty())
+      {
+        c.Fail(k, "expected the path of a .vti file (a non-empty string), got " + Describe(v));
+      }
+      const std::string path = v.get<std::string>();
+      f.File = path[0] == '/' || c.BaseDirectory.empty() ? path : c.BaseDirectory + "/" + path;
+    } },
+  { "dimensions",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    {
+      const long long maxInt = std::numeric_limits<int>::max();
+      if (v.is_number())
+      {
+        f.Dimensions.fill(int(ReadInteger(c, v, k, 1, maxInt)));
+        return;
+      }
+      if (!v.is_array() || v.size() != 3)
+      {
+        c.Fail(k, "expected an integer or an array of 3 integers, got " + Describe(v));
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        f.Dimensions[a] = int(ReadInteger(c, v[a], k + "[" + std::to_string(a) + "]", 1, maxInt));
+      }
+    } },
+  { "bounds",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    {
+      f.Bounds = ReadNumbers<6>(c, v, k, AnyNumber);
+      for (int a = 0; a < 3; ++a)
+      {
+        if (!(f.Bounds[2 * a] < f.Bounds[2 * a + 1]))
+        {
+          c.Fail(k, std::string("bounds along ") + "xyz"[a] + " must increase (min < max), got [" +
+              FormatNumber(f.Bounds[2 * a]) + ", " + FormatNumber(f.Bounds[2 * a + 1]) + "]");
+        }
+      }
+    } },
+  { "density_model",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Model = ReadName(c, v, k, DensityModels); } },
+  { "density_scale",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.DensityScale = ReadNumber(c, v, k, NonNegative); } },
+  { "falloff_width",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.FalloffWidth = ReadNumber(c, v, k, Positive); } },
+  { "shape", ReadShapes },
+  { "blend",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Blend = ReadName(c, v, k, Blends); } },
+  { "blend_radius",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.BlendRadius = ReadNumber(c, v, k, NonNegative); } },
+  { "noise",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.Type = ReadName(c, v, k, NoiseTypes); } },
+  { "octaves",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.Octaves = int(ReadInteger(c, v, k, 1, 12)); } },
+  { "frequency",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.Frequency = ReadNumber(c, v, k, Range{ 0.0, 1e6, true }); } },
+  { "lacunarity",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.Lacunarity = ReadNumber(c, v, k, Positive); } },
+  { "lacunarity_increment",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.LacunarityIncrement = ReadNumber(c, v, k, AnyNumber); } },
+  { "gain",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.Gain = ReadNumber(c, v, k, NonNegative); } },
+  { "amplitude",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.Amplitude = ReadNumber(c, v, k, NonNegative); } },
+  { "seed",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Description.Noise.Seed = std::uint32_t(ReadInteger(c, v, k, 0, 4294967295LL)); } },
+  { "wind",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    {
+      const std::array<double, 3> w = ReadNumbers<3>(c, v, k, AnyNumber);
+      f.Description.Wind = glm::dvec3(w[0], w[1], w[2]);
+    } },
+  { "time",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Time = ReadNumber(c, v, k, AnyNumber); } },
+};
+
+void ReadField(const Context& c, const json& v, const std::string& key, Scene& scene)
+{
+  if (v.is_object() && v.contains("file") && v.size() > 1)
+  {
+    for (const auto& member : v.items())
+    {
+      if (member.key() != "file")
+      {
+        c.Fail(key + ".file", "cannot be combined with " + key + "." + member.key() +
+            ": a field loaded from a file has no procedural parameters");
+      }
+    }
+  }
+  ReadObject(c, v, key, FieldKeys, scene.Field);
+  if (scene.Field.FromFile())
+  {
+    return;
+  }
+  // The source's own checks, for what only a combination of keys can get wrong (a field too
+  // large for memory, a lacunarity that turns negative after some octaves, noise coordinates
+  // beyond the lattice's range).
+  const std::string problem = ValidateProceduralField(scene.Field);
+  if (!problem.empty())
+  {
+    c.Fail(key, problem);
+  }
+}
+
+// ---- top level: one entry per section -----------------------------------------------------
+
+const Key<Scene> SceneKeys[] = {
+  { "description",
+    [](const Context& c, const json& v, const std::string& k, Scene& s)
+    {
+      if (!v.is_string())
+      {
+        c.Fail(k, "expected a string, got " + Describe(v));
+      }
+      s.Description = v.get<std::string>();
+    } },
+  { "field", ReadField },
+};
+
+std::string DirectoryOf(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos)
+  {
+    return "";
+  }
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+bool IsNumberToken(const std::string& token, double& value)
+{
+  const char* begin = token.c_str();
+  while (*begin == ' ' || *begin == '\t')
+  {
+    ++begin;
+  }
+  if (*begin == '\0')
+  {
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtod(begin, &end);
+  while (*end == ' ' || *end == '\t')
+  {
+    ++end;
+  }
+  return *end == '\0' && end != begin;
+}
+
+} // namespace
+
+Scene DefaultScene()
+{
+  return Scene{};
+}
+
+nlohmann::json ReadSceneDocument(const std::string& path)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+  {
+    throw InputError(path + ": cannot read scene file: it is a directory");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    throw InputError(path + ": cannot read scene file: " + std::strerror(errno));
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  try
+  {
+    return json::parse(text);
+  }
+  catch (const json::parse_error& e)
+  {
+    // The byte offset is where the parser stopped; turn it into the line and column an editor
+    // shows.
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i)
+    {
+      if (text[i] == '\n')
+      {
+        ++line;
+        column = 1;
+      }
+      else
+      {
+        ++column;
+      }
+    }
+    std::string reason = e.what();
+    const auto columnAt = reason.find("column ");
+    const auto colon = reason.find(": ", columnAt == std::string::npos ? 0 : columnAt);
+    if (colon != std::string::npos)
+    {
+      reason.erase(0, colon + 2);
+    }
+    throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
+      ": malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
+      ": " + reason);
+  }
+}
+
+nlohmann::json ParseOverrideValue(const std::string& key, const std::string& text)
+{
+  try
+  {
+    return json::parse(text);
+  }
+  catch (const json::exception&)
+  {
+    // Not JSON: a number list, a non-finite number, or plain text.
+  }
+  if (text.empty())
+  {
+    return text;
+  }
+  std::vector<std::string> tokens;
+  std::string token;
+  std::istringstream in(text);
+  while (std::getline(in, token, ','))
+  {
+    tokens.push_back(token);
+  }
+  if (!text.empty() && text.back() == ',')
+  {
+    tokens.emplace_back();
+  }
+  std::vector<double> numbers;
+  for (const std::string& t : tokens)
+  {
+    double value = 0.0;
+    if (!IsNumberToken(t, value))
+    {
+      return text;
+    }
+    numbers.push_back(value);
+  }
+  json array = json::array();
+  for (double value : numbers)
+  {
+    if (!std::isfinite(value))
+    {
+      throw InputError(
+        key + ": value \"" + text + "\" is not a finite number (NaN and infinity are not allowed)");
+    }
+    // Integral tokens stay integers so integer keys accept them.
+    if (value == std::floor(value) && std::fabs(value) < 9.0e15)
+    {
+      array.push_back(static_cast<long long>(value));
+    }
+    else
+    {
+      array.push_back(value);
+    }
+  }
+  if (array.size() == 1)
+  {
+    return array[0];
+  }
+  return array;
+}
+
+void ApplyOverride(nlohmann::json& document, const std::string& assignment)
+{
+  const auto equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0)
+  {
+    throw UsageError("--set expects KEY=VALUE (for example field.octaves=4), got \"" + assignment + "\"");
+  }
+  const std::string key = assignment.substr(0, equals);
+  std::vector<std::string> parts;
+  std::istringstream in(key);
+  std::string part;
+  while (std::getline(in, part, '.'))
+  {
+    parts.push_back(part);
+  }
+  for (const std::string& p : parts)
+  {
+    if (p.empty() || key.back() == '.')
+    {
+      throw UsageError("--set " + assignment + ": the key \"" + key + "\" has an empty part");
+    }
+  }
+  const json value = ParseOverrideValue(key, assignment.substr(equals + 1));
+  json* node = &document;
+  std::string path;
+  for (const std::string& p : parts)
+  {
+    if (node->is_null())
+    {
+      *node = json::object(); // an intermediate object that did not exist yet
+    }
+    if (!node->is_object())
+    {
+      throw InputError("--set " + key + ": " + (path.empty() ? "the scene" : path) + " is a " +
+        node->type_name() + ", not an object, so it has no key \"" + p + "\"");
+    }
+    path += (path.empty() ? "" : ".") + p;
+    node = &(*node)[p];
+  }
+  *node = value;
+}
+
+Scene SceneFromDocument(const nlohmann::json& document, const std::string& source,
+  const std::string& baseDirectory, const std::vector<std::string>& overriddenKeys)
+{
+  const Context context{ source, baseDirectory, overriddenKeys };
+  if (!document.is_object())
+  {
+    throw InputError(source + ": a scene must be a JSON object, got " + Describe(document));
+  }
+  Scene scene;
+  scene.Source = source;
+  ReadObject(context, document, "", SceneKeys, scene);
+  return scene;
+}
+
+Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments)
+{
+  json document = path.empty() ? json::object() : ReadSceneDocument(path);
+  std::vector<std::string> keys;
+  for (const std::string& assignment : assignments)
+  {
+    ApplyOverride(document, assignment);
+    keys.push_back(assignment.substr(0, assignment.find('=')));
+  }
+  return SceneFromDocument(
+    document, path.empty() ? "default scene" : path, path.empty() ? "" : DirectoryOf(path), keys);
+}
+
+} // namespace cloudvis

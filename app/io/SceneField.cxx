@@ -1,0 +1,61 @@
+// Kept apart from Scene.cxx so that parsing stays free of pipeline objects and this file is the
+// single place that maps scene values onto vtkCloudDensitySource.
+#include "SceneField.h"
+
+#include "Errors.h"
+#include "FieldIO.h"
+#include "VtkMessageCapture.h"
+#include "vtkCloudDensitySource.h"
+
+#include <vtkImageData.h>
+
+namespace cloudvis
+{
+
+vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field)
+{
+  if (field.FromFile())
+  {
+    throw InputError(field.File + ": a field loaded from a file has no procedural source");
+  }
+  auto source = vtkSmartPointer<vtkCloudDensitySource>::New();
+  source->SetDimensions(field.Dimensions.data());
+  source->SetBounds(field.Bounds.data());
+  source->SetField(field.Description);
+  source->SetTime(field.Time);
+  return source;
+}
+
+std::string ValidateProceduralField(const FieldSpec& field)
+{
+  return MakeDensitySource(field)->Validate();
+}
+
+vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene)
+{
+  if (scene.Field.FromFile())
+  {
+    return ReadField(scene.Field.File);
+  }
+  vtkSmartPointer<vtkCloudDensitySource> source = MakeDensitySource(scene.Field);
+  VtkMessageCapture messages;
+  // The scene was validated with the same checks the source applies, so this only fails on
+  // something unforeseen (memory exhausted between validation and allocation, for instance).
+  const std::string problem = source->Validate();
+  if (!problem.empty())
+  {
+    throw InputError(scene.Source + ": field: " + problem);
+  }
+  source->Update();
+  vtkImageData* output = source->GetOutput();
+  if (!output || output->GetNumberOfPoints() == 0 || !messages.Messages().empty())
+  {
+    throw InputError(scene.Source + ": field: generation failed" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+  vtkSmartPointer<vtkImageData> field = vtkSmartPointer<vtkImageData>::New();
+  field->ShallowCopy(output);
+  return field;
+}
+
+} // namespace cloudvis

@@ -1,0 +1,30 @@
+// From a validated scene to the density field it describes: either the procedural source
+// configured from the scene's "field" section (for pipelines that want to connect to it, such
+// as the renderer to come) or the finished vtkImageData (for export and statistics).
+#ifndef cloudvis_SceneField_h
+#define cloudvis_SceneField_h
+
+#include "Scene.h"
+
+#include <vtkSmartPointer.h>
+
+class vtkCloudDensitySource;
+class vtkImageData;
+
+namespace cloudvis
+{
+
+// A source set up with the field's dimensions, bounds, description and time. The field must be
+// procedural (not FromFile()).
+vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field);
+
+// Empty when the source would accept the field, else the problem in the filters' words (the
+// same checks vtkCloudDensitySource::Validate applies before generating).
+std::string ValidateProceduralField(const FieldSpec& field);
+
+// The field of a scene: read from field.file, or generated. Throws InputError on failure.
+vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene);
+
+} // namespace cloudvis
+
+#endif

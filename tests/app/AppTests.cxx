@@ -1,0 +1,442 @@
+// Library-level tests of cloudvisApp: what the command-line tests cannot judge by regex. A
+// generated file must equal, bit for bit, vtkCloudDensitySource configured by hand with the same
+// parameters (which also checks that every scene key lands on the right member); statistics
+// must match analytic answers; overrides and atomic writes must behave as documented.
+#include "AtomicFile.h"
+#include "CommandLine.h"
+#include "Errors.h"
+#include "FieldIO.h"
+#include "FieldStatistics.h"
+#include "Scene.h"
+#include "SceneField.h"
+#include "vtkCloudDensitySource.h"
+
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <dirent.h>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace
+{
+using json = nlohmann::json;
+
+// A fresh directory per test, removed (with its files) afterwards.
+class TemporaryDirectory
+{
+public:
+  TemporaryDirectory()
+  {
+    char pattern[] = "/tmp/cloudvis-app-test-XXXXXX";
+    this->Path = ::mkdtemp(pattern);
+  }
+  ~TemporaryDirectory()
+  {
+    for (const std::string& name : this->Files())
+    {
+      std::remove((this->Path + "/" + name).c_str());
+    }
+    ::rmdir(this->Path.c_str());
+  }
+  std::vector<std::string> Files() const
+  {
+    std::vector<std::string> names;
+    if (DIR* dir = ::opendir(this->Path.c_str()))
+    {
+      while (dirent* entry = ::readdir(dir))
+      {
+        const std::string name = entry->d_name;
+        if (name != "." && name != "..")
+        {
+          names.push_back(name);
+        }
+      }
+      ::closedir(dir);
+    }
+    return names;
+  }
+  std::string File(const std::string& name) const { return this->Path + "/" + name; }
+
+  std::string Path;
+};
+
+void WriteText(const std::string& path, const std::string& text)
+{
+  std::ofstream(path) << text;
+}
+
+std::string ReadText(const std::string& path)
+{
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs the command line in-process; fails the test on a non-zero status.
+std::string RunCloudvis(const std::vector<std::string>& arguments)
+{
+  std::vector<std::string> argv{ "cloudvis" };
+  argv.insert(argv.end(), arguments.begin(), arguments.end());
+  std::ostringstream out, err;
+  const int status = cloudvis::RunCommandLine(argv, out, err);
+  EXPECT_EQ(status, 0) << err.str();
+  return out.str();
+}
+
+vtkSmartPointer<vtkImageData> ReadBack(const std::string& path)
+{
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkSmartPointer<vtkImageData> image = reader->GetOutput();
+  return image;
+}
+
+void ExpectBitIdentical(vtkImageData* expected, vtkImageData* actual)
+{
+  int de[3], da[3];
+  expected->GetDimensions(de);
+  actual->GetDimensions(da);
+  ASSERT_EQ(std::vector<int>(de, de + 3), std::vector<int>(da, da + 3));
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_EQ(expected->GetOrigin()[a], actual->GetOrigin()[a]);
+    EXPECT_EQ(expected->GetSpacing()[a], actual->GetSpacing()[a]);
+  }
+  auto* e = vtkFloatArray::SafeDownCast(expected->GetPointData()->GetArray("density"));
+  auto* a = vtkFloatArray::SafeDownCast(actual->GetPointData()->GetArray("density"));
+  ASSERT_NE(e, nullptr);
+  ASSERT_NE(a, nullptr) << "the written file has no float array \"density\"";
+  ASSERT_EQ(e->GetNumberOfValues(), a->GetNumberOfValues());
+  EXPECT_EQ(0, std::memcmp(e->GetPointer(0), a->GetPointer(0), sizeof(float) * e->GetNumberOfValues()));
+}
+
+vtkSmartPointer<vtkImageData> Generate(vtkCloudDensitySource* source)
+{
+  source->Update();
+  vtkSmartPointer<vtkImageData> image = source->GetOutput();
+  return image;
+}
+
+// ---- generate: files equal the source's output --------------------------------------------
+
+TEST(Generate, DefaultSceneEqualsSourceDefaults)
+{
+  TemporaryDirectory dir;
+  RunCloudvis({ "generate", "--set", "field.dimensions=40", "-o", dir.File("f.vti") });
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetDimensions(40, 40, 40);
+  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+}
+
+TEST(Generate, EveryKeyReachesTheSource)
+{
+  TemporaryDirectory dir;
+  WriteText(dir.File("scene.json"), R"({
+    "description": "every procedural key away from its default",
+    "field": {
+      "dimensions": [20, 24, 28], "bounds": [-1, 2, -3, 1, -2, 2.5],
+      "density_model": "fbm_falloff", "density_scale": 2.5, "falloff_width": 0.4,
+      "shape": [ { "type": "box", "center": [0.2, -0.3, 0.1], "rotation": [10, 20, 30],
+                   "scale": 1.2, "half_size": [0.5, 0.7, 0.3] },
+                 { "type": "capsule", "end_a": [-1, 0, 0], "end_b": [1, 0.5, 0], "radius": 0.4 },
+                 "torus" ],
+      "blend": "smooth_union", "blend_radius": 0.3,
+      "noise": "perlin", "octaves": 3, "frequency": 1.7, "lacunarity": 2.5,
+      "lacunarity_increment": 0.1, "gain": 0.6, "amplitude": 0.8, "seed": 4000000000,
+      "wind": [0.1, 0.2, -0.3], "time": 1.25 } })");
+  RunCloudvis({ "generate", dir.File("scene.json"), "-o", dir.File("f.vti") });
+
+  cloudvis::FieldDescription field;
+  field.Model = cloudvis::DensityModel::FbmFalloff;
+  field.DensityScale = 2.5;
+  field.FalloffWidth = 0.4;
+  cloudvis::Shape box;
+  box.Type = cloudvis::ShapeType::Box;
+  box.Center = glm::vec3(0.2f, -0.3f, 0.1f);
+  box.RotationDegrees = glm::vec3(10, 20, 30);
+  box.Scale = 1.2f;
+  box.HalfSize = glm::vec3(0.5f, 0.7f, 0.3f);
+  cloudvis::Shape capsule;
+  capsule.Type = cloudvis::ShapeType::Capsule;
+  capsule.EndA = glm::vec3(-1, 0, 0);
+  capsule.EndB = glm::vec3(1, 0.5f, 0);
+  capsule.Radius = 0.4f;
+  cloudvis::Shape torus;
+  torus.Type = cloudvis::ShapeType::Torus;
+  field.Shapes = { box, capsule, torus };
+  field.Blend = cloudvis::ShapeBlend::SmoothUnion;
+  field.BlendRadius = 0.3;
+  field.Noise.Type = cloudvis::noise::NoiseType::Perlin;
+  field.Noise.Octaves = 3;
+  field.Noise.Frequency = 1.7;
+  field.Noise.Lacunarity = 2.5;
+  field.Noise.LacunarityIncrement = 0.1;
+  field.Noise.Gain = 0.6;
+  field.Noise.Amplitude = 0.8;
+  field.Noise.Seed = 4000000000u;
+  field.Wind = glm::dvec3(0.1, 0.2, -0.3);
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetDimensions(20, 24, 28);
+  source->SetBounds(-1, 2, -3, 1, -2, 2.5);
+  source->SetField(field);
+  source->SetTime(1.25);
+  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+}
+
+TEST(Generate, MorphSceneEqualsSourceMorph)
+{
+  TemporaryDirectory dir;
+  RunCloudvis({ "generate", CLOUDVIS_SCENES "/morph.json", "--set", "field.dimensions=24", "--set",
+    "field.time=4.5", "-o", dir.File("f.vti") });
+  cloudvis::FieldDescription field;
+  field.Morph = true;
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetDimensions(24, 24, 24);
+  source->SetBounds(-3.5, 3.5, -3.5, 3.5, -3.5, 3.5);
+  source->SetField(field);
+  source->SetTime(4.5);
+  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+}
+
+TEST(Generate, LeavesOnlyTheTarget)
+{
+  TemporaryDirectory dir;
+  RunCloudvis({ "generate", "--set", "field.dimensions=8", "-o", dir.File("f.vti") });
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{ "f.vti" });
+}
+
+// ---- info: statistics with known answers ----------------------------------------------------
+
+json InfoJson(const std::vector<std::string>& arguments)
+{
+  std::vector<std::string> all{ "info" };
+  all.insert(all.end(), arguments.begin(), arguments.end());
+  all.push_back("--json");
+  return json::parse(RunCloudvis(all));
+}
+
+TEST(Info, ConstantSphereMatchesItsVolume)
+{
+  const double scale = 2.5;
+  const json info = InfoJson({ CLOUDVIS_SCENES "/sphere.json", "--set", "field.dimensions=64",
+    "--set", "field.density_scale=" + std::to_string(scale) });
+  EXPECT_EQ(info["range"][0].get<double>(), 0.0);
+  EXPECT_EQ(info["range"][1].get<double>(), scale);
+  // Exactly the lattice points inside the unit sphere are non-empty (counted here independently
+  // of the density code; a handful of points right on the surface may round either way) ...
+  const int n = 64;
+  std::uint64_t inside = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+      {
+        const double x = -2.0 + 4.0 * i / (n - 1), y = -2.0 + 4.0 * j / (n - 1),
+                     z = -2.0 + 4.0 * k / (n - 1);
+        inside += x * x + y * y + z * z < 1.0 ? 1 : 0;
+      }
+  const double fraction = info["non_empty_fraction"].get<double>();
+  EXPECT_NEAR(fraction, double(inside) / (n * n * n), 1e-5);
+  // ... and their share is close to the sphere's volume fraction (4/3 pi) / 64 of the box; at
+  // 64^3 the lattice count falls about 5% short of it.
+  const double volumeFraction = 4.0 / 3.0 * M_PI / 64.0;
+  EXPECT_NEAR(fraction, volumeFraction, 0.06 * volumeFraction);
+  // Constant density: the mean is the scale times the occupied fraction, and every voxel falls
+  // in the first (empty) or last (full) histogram bin.
+  EXPECT_NEAR(info["mean"].get<double>(), scale * fraction, 1e-9);
+  const auto counts = info["histogram"]["counts"].get<std::vector<std::uint64_t>>();
+  ASSERT_EQ(counts.size(), 16u);
+  EXPECT_EQ(counts.back(), info["non_empty_voxels"].get<std::uint64_t>());
+  EXPECT_EQ(counts.front() + counts.back(), 64u * 64u * 64u);
+  EXPECT_EQ(info["histogram"]["edges"].size(), 17u);
+  EXPECT_EQ(info["bounds"], json({ -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 }));
+  EXPECT_NEAR(info["spacing"][0].get<double>(), 4.0 / 63.0, 1e-12);
+}
+
+TEST(Info, UnsignedCharFieldIsConvertedToFloat)
+{
+  vtkSmartPointer<vtkImageData> field = cloudvis::ReadField(CLOUDVIS_TEST_DATA "/uchar-field.vti");
+  auto* density = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
+  ASSERT_NE(density, nullptr);
+  EXPECT_STREQ(density->GetName(), "density");
+  EXPECT_EQ(density->GetValue(7), 40.0f);
+  const cloudvis::FieldStatistics s = cloudvis::ComputeFieldStatistics(field);
+  EXPECT_EQ(s.Mean, 12.5);
+  EXPECT_EQ(s.NonEmptyVoxels, 4u);
+  EXPECT_EQ(s.Histogram.front(), 4u);
+  EXPECT_EQ(s.Histogram.back(), 1u); // 40, the maximum, belongs to the last bin
+}
+
+TEST(Info, OverridesChangeTheField)
+{
+  const json base = InfoJson({ CLOUDVIS_SCENES "/fbm-sphere.json", "--set", "field.dimensions=16" });
+  const json other = InfoJson({ CLOUDVIS_SCENES "/fbm-sphere.json", "--set", "field.dimensions=16",
+    "--set", "field.seed=7" });
+  EXPECT_NE(base["mean"], other["mean"]);
+  const json box = InfoJson({ CLOUDVIS_SCENES "/fbm-sphere.json", "--set", "field.dimensions=20,10,5" });
+  EXPECT_EQ(box["dimensions"], json({ 20, 10, 5 }));
+}
+
+// ---- --set value parsing ------------------------------------------------------------------
+
+TEST(Overrides, ValueParsing)
+{
+  using cloudvis::ParseOverrideValue;
+  EXPECT_EQ(ParseOverrideValue("k", "6"), json(6));
+  EXPECT_EQ(ParseOverrideValue("k", "\"perlin\""), json("perlin"));
+  EXPECT_EQ(ParseOverrideValue("k", "perlin"), json("perlin"));
+  EXPECT_EQ(ParseOverrideValue("k", "128,128,128"), json({ 128, 128, 128 }));
+  EXPECT_EQ(ParseOverrideValue("k", "0.5, -0.1,-0.5"), json({ 0.5, -0.1, -0.5 }));
+  EXPECT_EQ(ParseOverrideValue("k", "[1, 2]"), json({ 1, 2 }));
+  EXPECT_EQ(ParseOverrideValue("k", "1,two"), json("1,two"));
+  EXPECT_EQ(ParseOverrideValue("k", ""), json(""));
+  for (const char* bad : { "nan", "inf", "-inf", "NaN", "Infinity", "1,nan,2", "1e999" })
+  {
+    EXPECT_THROW(ParseOverrideValue("k", bad), cloudvis::InputError) << bad;
+  }
+}
+
+TEST(Overrides, CreateIntermediateObjectsAndRefuseNonObjects)
+{
+  json document = json::object();
+  cloudvis::ApplyOverride(document, "field.shape=box");
+  EXPECT_EQ(document, json::parse(R"({"field": {"shape": "box"}})"));
+  cloudvis::ApplyOverride(document, "field.shape=torus");
+  EXPECT_EQ(document["field"]["shape"], "torus");
+  EXPECT_THROW(cloudvis::ApplyOverride(document, "field.shape.radius=2"), cloudvis::InputError);
+  EXPECT_THROW(cloudvis::ApplyOverride(document, "field.shape"), cloudvis::UsageError);
+  EXPECT_THROW(cloudvis::ApplyOverride(document, "=3"), cloudvis::UsageError);
+  EXPECT_THROW(cloudvis::ApplyOverride(document, "field..x=3"), cloudvis::UsageError);
+}
+
+// ---- scenes ---------------------------------------------------------------------------------
+
+TEST(Scene, DefaultIsTheSourceDefault)
+{
+  const cloudvis::Scene scene = cloudvis::LoadScene("", {});
+  vtkNew<vtkCloudDensitySource> source;
+  EXPECT_EQ(scene.Field.Dimensions, (std::array<int, 3>{ source->GetDimensions()[0],
+                                      source->GetDimensions()[1], source->GetDimensions()[2] }));
+  EXPECT_EQ(scene.Field.Description.Noise.Octaves, source->GetField().Noise.Octaves);
+  EXPECT_FALSE(scene.Field.FromFile());
+}
+
+TEST(Scene, FilePathsAreRelativeToTheScene)
+{
+  const cloudvis::Scene scene = cloudvis::LoadScene(CLOUDVIS_TEST_DATA "/uchar-scene.json", {});
+  EXPECT_EQ(scene.Field.File, CLOUDVIS_TEST_DATA "/uchar-field.vti");
+  EXPECT_EQ(cloudvis::LoadScene("", { "field.file=/abs/f.vti" }).Field.File, "/abs/f.vti");
+}
+
+TEST(Scene, MorphAndShapeLists)
+{
+  EXPECT_TRUE(cloudvis::LoadScene("", { "field.shape=morph" }).Field.Description.Morph);
+  EXPECT_TRUE(cloudvis::LoadScene("", { "field.shape=[\"morph\"]" }).Field.Description.Morph);
+  const cloudvis::Scene two = cloudvis::LoadScene("", { "field.shape=[\"box\",\"cross\"]" });
+  ASSERT_EQ(two.Field.Description.Shapes.size(), 2u);
+  EXPECT_EQ(two.Field.Description.Shapes[1].Type, cloudvis::ShapeType::Cross);
+}
+
+TEST(Scene, EveryShippedSceneHasADescription)
+{
+  for (const char* name : { "sphere", "fbm-sphere", "octave-sweep-1", "octave-sweep-2",
+         "octave-sweep-3", "octave-sweep-4", "white-noise", "value-noise", "perlin-falloff",
+         "morph", "two-lights" })
+  {
+    const cloudvis::Scene scene =
+      cloudvis::LoadScene(std::string(CLOUDVIS_SCENES "/") + name + ".json", {});
+    EXPECT_FALSE(scene.Description.empty()) << name;
+    EXPECT_LE(scene.Field.Dimensions[0], 128) << name;
+  }
+  const auto octaves = [](int n)
+  {
+    return cloudvis::LoadScene(CLOUDVIS_SCENES "/octave-sweep-" + std::to_string(n) + ".json", {})
+      .Field.Description.Noise.Octaves;
+  };
+  for (int n = 1; n <= 4; ++n)
+  {
+    EXPECT_EQ(octaves(n), n);
+  }
+}
+
+// ---- atomic writes --------------------------------------------------------------------------
+
+TEST(AtomicFile, FailureLeavesTargetUntouchedAndNoTemporary)
+{
+  TemporaryDirectory dir;
+  const std::string target = dir.File("f.vti");
+  WriteText(target, "previous");
+  std::string temporary;
+  EXPECT_THROW(cloudvis::WriteFileAtomically(target,
+                 [&temporary](const std::string& path)
+                 {
+                   temporary = path;
+                   WriteText(path, "half a fi");
+                   throw cloudvis::InputError("disk full");
+                 }),
+    cloudvis::InputError);
+  EXPECT_EQ(temporary.rfind(dir.Path + "/", 0), 0u) << "temporary not in the target's directory";
+  EXPECT_EQ(temporary.substr(temporary.size() - 4), ".vti");
+  EXPECT_EQ(ReadText(target), "previous");
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{ "f.vti" });
+}
+
+TEST(AtomicFile, SuccessReplacesTargetWithOrdinaryPermissions)
+{
+  TemporaryDirectory dir;
+  const std::string target = dir.File("f.vti");
+  WriteText(target, "previous");
+  ::chmod(target.c_str(), 0640);
+  cloudvis::WriteFileAtomically(target, [](const std::string& path) { WriteText(path, "new"); });
+  EXPECT_EQ(ReadText(target), "new");
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{ "f.vti" });
+  struct stat info;
+  ASSERT_EQ(::stat(target.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 0777, 0640u) << "a replaced file keeps its permissions";
+
+  const std::string fresh = dir.File("g.vti");
+  cloudvis::WriteFileAtomically(fresh, [](const std::string& path) { WriteText(path, "x"); });
+  ASSERT_EQ(::stat(fresh.c_str(), &info), 0);
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  EXPECT_EQ(info.st_mode & 0777, 0666u & ~mask) << "a new file gets the umask's permissions";
+}
+
+TEST(AtomicFile, RefusesMissingDirectoryBeforeWriting)
+{
+  bool called = false;
+  EXPECT_THROW(cloudvis::WriteFileAtomically("/nonexistent-dir/f.vti",
+                 [&called](const std::string&) { called = true; }),
+    cloudvis::InputError);
+  EXPECT_FALSE(called);
+}
+
+// ---- help documents every option of every command -------------------------------------------
+
+TEST(Help, EveryOptionOfEveryCommand)
+{
+  for (const cloudvis::CommandSpec& command : cloudvis::Commands())
+  {
+    const std::string help = RunCloudvis({ command.Name, "--help" });
+    for (const cloudvis::OptionSpec& option : command.Options)
+    {
+      EXPECT_NE(help.find("--" + option.Long), std::string::npos) << command.Name << " --" << option.Long;
+      EXPECT_NE(help.find(option.Help.substr(0, 20)), std::string::npos) << option.Help;
+    }
+    EXPECT_NE(RunCloudvis({ "--help" }).find(command.Name), std::string::npos);
+  }
+}
+
+} // namespace
