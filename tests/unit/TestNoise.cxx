@@ -58,9 +58,10 @@ TEST_P(NoiseOfEveryType, TheSeedChangesThePattern)
 
 INSTANTIATE_TEST_SUITE_P(AllTypes, NoiseOfEveryType,
   ::testing::Values(NoiseType::White, NoiseType::Value, NoiseType::Perlin),
-  [](const ::testing::TestParamInfo<NoiseType>& info) {
-    return info.param == NoiseType::White ? "White"
-                                          : (info.param == NoiseType::Value ? "Value" : "Perlin");
+  [](const ::testing::TestParamInfo<NoiseType>& parameter) {
+    return parameter.param == NoiseType::White
+      ? "White"
+      : (parameter.param == NoiseType::Value ? "Value" : "Perlin");
   });
 
 TEST(Noise, ValueAndPerlinNoiseAreContinuous)

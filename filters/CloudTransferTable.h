@@ -1,0 +1,74 @@
+// The one transfer function every renderer sees. The GPU mapper uploads TransferTable::RGBA as a
+// 1-D texture, the occupancy filter asks it which density ranges are transparent, and the CPU
+// reference renderer calls Lookup: because all three read the same table, and Lookup reproduces
+// the GPU's linearly filtered fetch, a difference between their images is a difference in the
+// rendering equations, never in how color and opacity were interpreted. The table stores
+// extinction (sigma_t per unit length) rather than VTK's opacity per unit distance, so a
+// renderer composites with exp(-sigma_t * step) whatever its step length.
+#ifndef CloudTransferTable_h
+#define CloudTransferTable_h
+
+#include "cloudvisFiltersModule.h"
+
+#include <glm/vec4.hpp>
+
+#include <string>
+#include <vector>
+
+class vtkPiecewiseFunction;
+class vtkScalarsToColors;
+
+namespace cloudvis
+{
+
+// Color and extinction per density, sampled at Size evenly spaced densities over Range
+// (first entry at Range[0], last at Range[1]).
+struct CLOUDVISFILTERS_EXPORT TransferTable
+{
+  double Range[2] = { 0.0, 1.0 };
+  int Size = 0;
+  // Size * 4 floats: r, g, b (albedo color) and sigma_t (extinction per unit length) in a.
+  std::vector<float> RGBA;
+
+  // The GPU's linearly filtered fetch of a Size-texel 1-D texture (texel centres, clamp to
+  // edge), reproduced on the CPU: t = (density - Range[0]) / (Range[1] - Range[0]) clamped to
+  // [0, 1], x = t * (Size - 1), lerp between entries floor(x) and floor(x) + 1. A degenerate
+  // range (Range[1] <= Range[0]) reads entry 0; NaN reads entry 0; an empty table reads 0.
+  // The GPU's filter weights have only 8 fractional bits, so it may differ from this exact
+  // lerp by up to 1/256 of the step between two neighbouring entries.
+  glm::vec4 Lookup(double density) const;
+
+  // The largest sigma_t among the entries that a linear lookup of any density in
+  // [densityMin, densityMax] can touch: the bracketing entries floor(x(min)) .. ceil(x(max))
+  // and all between, with x as in Lookup. So 0 means every density of the interval is fully
+  // transparent. The arguments may come in either order.
+  float MaxExtinction(double densityMin, double densityMax) const;
+
+  bool operator==(const TransferTable& other) const;
+  bool operator!=(const TransferTable& other) const { return !(*this == other); }
+};
+
+// Samples color and opacity into a table of `size` entries over `range`. The opacity a(d) is
+// VTK's scalar opacity per unitDistance of travel, so sigma_t = -ln(1 - a) / unitDistance, with a
+// clamped to [0, 1 - 1e-4] so that an opacity of 1 still gives a finite extinction; sigma_t is
+// then multiplied by extinctionScale. The color comes from color->GetColor (a
+// vtkColorTransferFunction or any vtkScalarsToColors); a null color means white, a null opacity
+// means fully transparent. Returns an empty table (Size 0) when size < 1, unitDistance or
+// extinctionScale is not finite and > 0 (resp. >= 0), or the range is not finite and
+// non-decreasing: the occupancy filter refuses an empty table, so the mistake shows.
+CLOUDVISFILTERS_EXPORT TransferTable BuildTransferTable(vtkScalarsToColors* color,
+  vtkPiecewiseFunction* opacity, double unitDistance, const double range[2], int size = 1024,
+  double extinctionScale = 1.0);
+
+// Empty when the pair can drive a renderer, else the problem in words: no opacity function or
+// one without points, point positions that are NaN or decrease, opacity values that are NaN or
+// outside [0, 1], midpoint / sharpness outside [0, 1], or a color that is NaN or outside [0, 1].
+// filters/ does not link VTK's rendering modules, so the color is checked through the
+// vtkScalarsToColors interface: sampled at 257 densities across its range and at every opacity
+// point. A null color is valid (white).
+CLOUDVISFILTERS_EXPORT std::string ValidateTransferFunction(
+  vtkPiecewiseFunction* opacity, vtkScalarsToColors* color);
+
+} // namespace cloudvis
+
+#endif
