@@ -1,0 +1,768 @@
+#include "vtkCloudVolumeMapper.h"
+
+#include "CloudBlueNoise.h"
+#include "CloudTransferTable.h"
+#include "vtkCloudOccupancyFilter.h"
+
+#include "CloudCompositeFS.h"
+#include "CloudLightingNone.h"
+#include "CloudMarchFS.h"
+
+#include <vtkColorTransferFunction.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkMatrix3x3.h>
+#include <vtkMatrix4x4.h>
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLCamera.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLQuadHelper.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLShaderCache.h>
+#include <vtkOpenGLState.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkPropCollection.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtkTimerLog.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtk_glew.h>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkCloudVolumeMapper);
+
+namespace
+{
+constexpr int TransferTableSize = 1024;
+constexpr double GoldenRatioFraction = 0.61803398874989484;
+
+// The matrix a vtkMatrix4x4 holds, as GLM (column-major) sees it.
+glm::dmat4 ToGlm(const vtkMatrix4x4* m)
+{
+  glm::dmat4 g;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      g[column][row] = m->GetElement(row, column);
+    }
+  }
+  return g;
+}
+
+void SetMatrix(vtkShaderProgram* program, const char* name, const glm::dmat4& m)
+{
+  glm::mat4 f(m);
+  program->SetUniformMatrix4x4(name, glm::value_ptr(f));
+}
+
+// Scalars as float, the format of the density texture.
+std::vector<float> ToFloat(vtkDataArray* scalars)
+{
+  std::vector<float> values(static_cast<size_t>(scalars->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+  {
+    values[i] = static_cast<float>(scalars->GetComponent(i, 0));
+  }
+  return values;
+}
+}
+
+// What the mapper keeps for one renderer: its targets and its accumulation.
+struct ViewTargets
+{
+  vtkNew<vtkTextureObject> Depth;
+  vtkNew<vtkTextureObject> Color;  // premultiplied radiance and opacity, RGBA32F
+  vtkNew<vtkTextureObject> Counts; // samples taken, useful samples
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  int ViewportSize[2] = { 0, 0 };
+  int MarchSize[2] = { 0, 0 };
+  std::vector<double> Signature; // what the accumulated image depends on
+  int AccumulatedFrames = 0;
+  double SecondsPerPixel = 0.0; // measured march cost, for the interactive scale
+  double MostSamplesPerRay = 1.0; // a ray across the whole volume: full scale of the count view
+
+  void Release(vtkWindow* window)
+  {
+    this->Depth->ReleaseGraphicsResources(window);
+    this->Color->ReleaseGraphicsResources(window);
+    this->Counts->ReleaseGraphicsResources(window);
+    this->Framebuffer->ReleaseGraphicsResources(window);
+    this->ViewportSize[0] = this->ViewportSize[1] = 0;
+    this->MarchSize[0] = this->MarchSize[1] = 0;
+    this->AccumulatedFrames = 0;
+  }
+};
+
+struct vtkCloudVolumeMapper::Internals
+{
+  vtkNew<vtkTextureObject> Density;
+  vtkNew<vtkTextureObject> Transfer;
+  vtkNew<vtkTextureObject> EmptyDistance;
+  vtkNew<vtkTextureObject> Jitter;
+  vtkNew<vtkCloudOccupancyFilter> Occupancy;
+  vtkNew<vtkImageData> OccupancyInput; // the mapped scalars as the active scalars
+  cloudvis::TransferTable Table;
+  vtkMTimeType DensityUploadTime = 0;
+  vtkMTimeType TableTime = 0;
+  double TableExtinctionScale = -1.0;
+  vtkMTimeType EmptyDistanceUploadTime = 0;
+  vtkImageData* UploadedInput = nullptr; // identity only, never dereferenced
+  int BrickCount[3] = { 0, 0, 0 };
+  double OccupiedBrickFraction = 0.0;
+  int JitterSize = 0;
+  std::unique_ptr<vtkOpenGLQuadHelper> March;
+  std::unique_ptr<vtkOpenGLQuadHelper> Composite;
+  std::map<vtkRenderer*, std::unique_ptr<ViewTargets>> Views; // keys are identities only
+  std::string ReportedError; // reported once, until a render succeeds again
+
+  ViewTargets& ViewOf(vtkRenderer* renderer)
+  {
+    auto& view = this->Views[renderer];
+    if (!view)
+    {
+      view = std::make_unique<ViewTargets>();
+    }
+    return *view;
+  }
+};
+
+vtkCloudVolumeMapper::vtkCloudVolumeMapper()
+  : Internal(new Internals)
+{
+}
+
+vtkCloudVolumeMapper::~vtkCloudVolumeMapper() = default;
+
+bool vtkCloudVolumeMapper::Fail(const std::string& message)
+{
+  this->LastError = message;
+  if (message != this->Internal->ReportedError)
+  {
+    vtkErrorMacro(<< message);
+    this->Internal->ReportedError = message;
+  }
+  return false;
+}
+
+int vtkCloudVolumeMapper::GetNumberOfAccumulatedFrames(vtkRenderer* renderer) const
+{
+  auto found = this->Internal->Views.find(renderer);
+  return found == this->Internal->Views.end() ? 0 : found->second->AccumulatedFrames;
+}
+
+vtkImageData* vtkCloudVolumeMapper::ValidInput()
+{
+  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInput());
+  if (!input)
+  {
+    this->Fail("the volume mapper has no input image");
+    return nullptr;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = this->GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!scalars)
+  {
+    this->Fail("the input image has no scalar array to render");
+    return nullptr;
+  }
+  if (cellFlag != 0)
+  {
+    this->Fail("the input's scalars are cell data; the mapper needs point data");
+    return nullptr;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    std::ostringstream message;
+    message << "the input's scalar array \"" << (scalars->GetName() ? scalars->GetName() : "")
+            << "\" has " << scalars->GetNumberOfComponents()
+            << " components; the mapper needs exactly 1";
+    this->Fail(message.str());
+    return nullptr;
+  }
+  const int type = scalars->GetDataType();
+  if (type != VTK_FLOAT && type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT)
+  {
+    this->Fail(std::string("the input's scalars are of type ") + scalars->GetDataTypeAsString() +
+      "; the mapper takes float, unsigned char or unsigned short");
+    return nullptr;
+  }
+  int dimensions[3];
+  input->GetDimensions(dimensions);
+  if (dimensions[0] < 2 || dimensions[1] < 2 || dimensions[2] < 2)
+  {
+    this->Fail("the input image needs at least 2 voxels along each axis");
+    return nullptr;
+  }
+  if (this->SampleDistance < 0.0 || !std::isfinite(this->SampleDistance))
+  {
+    this->Fail("the sample distance (step) must be a positive number");
+    return nullptr;
+  }
+  return input;
+}
+
+bool vtkCloudVolumeMapper::UpdateVolumeTextures(
+  vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input)
+{
+  Internals& in = *this->Internal;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  int cellFlag = 0;
+  vtkDataArray* scalars = this->GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  int dimensions[3];
+  input->GetDimensions(dimensions);
+
+  // The density, uploaded again only when the data change.
+  const vtkMTimeType dataTime = std::max(input->GetMTime(), scalars->GetMTime());
+  if (in.UploadedInput != input || in.DensityUploadTime < dataTime || !in.Density->GetHandle())
+  {
+    const int limit = vtkTextureObject::GetMaximumTextureSize3D(window);
+    if (dimensions[0] > limit || dimensions[1] > limit || dimensions[2] > limit)
+    {
+      std::ostringstream message;
+      message << "the field has " << dimensions[0] << " x " << dimensions[1] << " x "
+              << dimensions[2] << " voxels; this GPU's 3-D textures hold at most " << limit
+              << " per axis";
+      return this->Fail(message.str());
+    }
+    in.Density->SetContext(window);
+    bool uploaded = false;
+    if (scalars->GetDataType() == VTK_FLOAT)
+    {
+      uploaded = in.Density->Create3DFromRaw(dimensions[0], dimensions[1], dimensions[2], 1,
+        VTK_FLOAT, scalars->GetVoidPointer(0));
+    }
+    else
+    {
+      std::vector<float> values = ToFloat(scalars);
+      uploaded = in.Density->Create3DFromRaw(
+        dimensions[0], dimensions[1], dimensions[2], 1, VTK_FLOAT, values.data());
+    }
+    if (!uploaded)
+    {
+      return this->Fail("the GPU could not allocate the 3-D density texture");
+    }
+    in.Density->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.Density->SetWrapT(vtkTextureObject::ClampToEdge);
+    in.Density->SetWrapR(vtkTextureObject::ClampToEdge);
+    in.Density->SetMinificationFilter(vtkTextureObject::Linear);
+    in.Density->SetMagnificationFilter(vtkTextureObject::Linear);
+    in.UploadedInput = input;
+    in.DensityUploadTime = dataTime;
+
+    in.OccupancyInput->Initialize();
+    in.OccupancyInput->SetDimensions(dimensions);
+    in.OccupancyInput->SetOrigin(input->GetOrigin());
+    in.OccupancyInput->SetSpacing(input->GetSpacing());
+    in.OccupancyInput->GetPointData()->SetScalars(scalars);
+    in.Occupancy->SetInputData(in.OccupancyInput);
+  }
+
+  // The transfer table, rebuilt when the property, the data range or the mapper change.
+  vtkVolumeProperty* property = volume->GetProperty();
+  const vtkMTimeType tableTime = std::max(property->GetMTime(), in.DensityUploadTime);
+  if (in.TableTime < tableTime || in.TableExtinctionScale != this->ExtinctionScale ||
+    !in.Transfer->GetHandle())
+  {
+    const std::string problem = cloudvis::ValidateTransferFunction(
+      property->GetScalarOpacity(0), property->GetRGBTransferFunction(0));
+    if (!problem.empty())
+    {
+      return this->Fail("transfer function: " + problem);
+    }
+    double range[2];
+    scalars->GetRange(range, 0);
+    if (!(range[1] > range[0]))
+    {
+      range[1] = range[0] + 1.0;
+    }
+    in.Table = cloudvis::BuildTransferTable(property->GetRGBTransferFunction(0),
+      property->GetScalarOpacity(0), property->GetScalarOpacityUnitDistance(0), range,
+      TransferTableSize, this->ExtinctionScale);
+    in.Transfer->SetContext(window);
+    if (!in.Transfer->Create1DFromRaw(in.Table.Size, 4, VTK_FLOAT, in.Table.RGBA.data()))
+    {
+      return this->Fail("the GPU could not allocate the transfer-function texture");
+    }
+    in.Transfer->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.Transfer->SetMinificationFilter(vtkTextureObject::Linear);
+    in.Transfer->SetMagnificationFilter(vtkTextureObject::Linear);
+    in.Occupancy->SetTransferTable(in.Table);
+    in.TableTime = tableTime;
+    in.TableExtinctionScale = this->ExtinctionScale;
+  }
+
+  // The occupancy map; the filter re-executes only when the density or the table changed.
+  in.Occupancy->SetBrickSize(this->BrickSize);
+  in.Occupancy->Update();
+  vtkImageData* occupancy = in.Occupancy->GetOutput();
+  if (in.EmptyDistanceUploadTime < occupancy->GetMTime() || !in.EmptyDistance->GetHandle())
+  {
+    auto* distance = vtkUnsignedCharArray::SafeDownCast(
+      occupancy->GetPointData()->GetArray("empty_distance"));
+    if (!distance)
+    {
+      return this->Fail("the occupancy filter produced no empty_distance array");
+    }
+    occupancy->GetDimensions(in.BrickCount);
+    in.EmptyDistance->SetContext(window);
+    if (!in.EmptyDistance->Create3DFromRaw(in.BrickCount[0], in.BrickCount[1], in.BrickCount[2],
+          1, VTK_UNSIGNED_CHAR, distance->GetPointer(0)))
+    {
+      return this->Fail("the GPU could not allocate the occupancy texture");
+    }
+    in.EmptyDistance->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.EmptyDistance->SetWrapT(vtkTextureObject::ClampToEdge);
+    in.EmptyDistance->SetWrapR(vtkTextureObject::ClampToEdge);
+    in.EmptyDistance->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.EmptyDistance->SetMagnificationFilter(vtkTextureObject::Nearest);
+    const vtkIdType bricks = distance->GetNumberOfValues();
+    vtkIdType occupied = 0;
+    for (vtkIdType b = 0; b < bricks; ++b)
+    {
+      occupied += distance->GetValue(b) == 0;
+    }
+    in.OccupiedBrickFraction = bricks ? double(occupied) / double(bricks) : 0.0;
+    in.EmptyDistanceUploadTime = occupancy->GetMTime();
+  }
+
+  if (!in.Jitter->GetHandle())
+  {
+    const std::vector<float> mask = cloudvis::BlueNoiseMask(64);
+    in.JitterSize = 64;
+    in.Jitter->SetContext(window);
+    std::vector<float> copy(mask);
+    in.Jitter->Create2DFromRaw(64, 64, 1, VTK_FLOAT, copy.data());
+    in.Jitter->SetWrapS(vtkTextureObject::Repeat);
+    in.Jitter->SetWrapT(vtkTextureObject::Repeat);
+    in.Jitter->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.Jitter->SetMagnificationFilter(vtkTextureObject::Nearest);
+  }
+  return true;
+}
+
+double vtkCloudVolumeMapper::ChooseResolutionScale(vtkRenderer* renderer)
+{
+  const bool interacting =
+    this->InteractiveFrameRate > 0.0 && renderer->GetRenderWindow()->GetDesiredUpdateRate() > 1.0;
+  if (!interacting)
+  {
+    return this->ResolutionScale;
+  }
+  const ViewTargets& view = this->Internal->ViewOf(renderer);
+  int size[2], origin[2];
+  renderer->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
+  if (view.SecondsPerPixel <= 0.0)
+  {
+    return std::min(0.5, this->ResolutionScale);
+  }
+  // The march gets half of the frame period: the composite pass, the depth copy and the rest
+  // of the renderer's frame take the other half.
+  const double budget = 0.5 / this->InteractiveFrameRate;
+  const double scale = std::sqrt(budget / (view.SecondsPerPixel * double(size[0]) * size[1]));
+  return std::max(0.25, std::min(this->ResolutionScale, scale));
+}
+
+void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  this->LastError.clear();
+  vtkImageData* input = this->ValidInput();
+  if (!input || !this->UpdateVolumeTextures(renderer, volume, input))
+  {
+    return;
+  }
+  this->MarchPass(renderer, volume, input);
+  if (this->LastError.empty())
+  {
+    this->CompositePass(renderer);
+  }
+  if (this->LastError.empty())
+  {
+    this->Internal->ReportedError.clear();
+  }
+}
+
+namespace
+{
+// The latest change to anything else the renderer draws: opaque geometry that moves changes
+// where rays end, so the accumulated cloud must start again.
+vtkMTimeType LatestChangeOfOtherProps(vtkRenderer* renderer, vtkVolume* volume)
+{
+  vtkMTimeType latest = 0;
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (prop != volume && prop->GetVisibility())
+    {
+      latest = std::max(latest, prop->GetRedrawMTime());
+    }
+  }
+  return latest;
+}
+}
+
+void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input)
+{
+  Internals& in = *this->Internal;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  vtkOpenGLState* state = window->GetState();
+  ViewTargets& view = in.ViewOf(renderer);
+
+  int viewport[4];
+  renderer->GetTiledSizeAndOrigin(&viewport[2], &viewport[3], &viewport[0], &viewport[1]);
+  const double scale = this->ChooseResolutionScale(renderer);
+  const int marchWidth = std::max(1, int(std::lround(viewport[2] * scale)));
+  const int marchHeight = std::max(1, int(std::lround(viewport[3] * scale)));
+
+  // Targets follow the viewport and the scale.
+  if (view.ViewportSize[0] != viewport[2] || view.ViewportSize[1] != viewport[3] ||
+    !view.Depth->GetHandle())
+  {
+    view.Depth->SetContext(window);
+    view.Depth->AllocateDepth(viewport[2], viewport[3], vtkTextureObject::Float32);
+    view.Depth->SetMinificationFilter(vtkTextureObject::Nearest);
+    view.Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    view.Depth->SetWrapS(vtkTextureObject::ClampToEdge);
+    view.Depth->SetWrapT(vtkTextureObject::ClampToEdge);
+    view.ViewportSize[0] = viewport[2];
+    view.ViewportSize[1] = viewport[3];
+  }
+  if (view.MarchSize[0] != marchWidth || view.MarchSize[1] != marchHeight ||
+    !view.Color->GetHandle())
+  {
+    for (vtkTextureObject* target : { view.Color.Get(), view.Counts.Get() })
+    {
+      target->SetContext(window);
+      target->SetMinificationFilter(vtkTextureObject::Nearest);
+      target->SetMagnificationFilter(vtkTextureObject::Nearest);
+      target->SetWrapS(vtkTextureObject::ClampToEdge);
+      target->SetWrapT(vtkTextureObject::ClampToEdge);
+    }
+    view.Color->SetInternalFormat(GL_RGBA32F);
+    view.Color->SetFormat(GL_RGBA);
+    view.Color->Allocate2D(marchWidth, marchHeight, 4, VTK_FLOAT);
+    view.Counts->SetInternalFormat(GL_RG32F);
+    view.Counts->SetFormat(GL_RG);
+    view.Counts->Allocate2D(marchWidth, marchHeight, 2, VTK_FLOAT);
+    view.Framebuffer->SetContext(window);
+    view.MarchSize[0] = marchWidth;
+    view.MarchSize[1] = marchHeight;
+    view.AccumulatedFrames = 0;
+  }
+  // The opaque scene's depth, which ends the rays.
+  view.Depth->CopyFromFrameBuffer(viewport[0], viewport[1], 0, 0, viewport[2], viewport[3]);
+
+  // Camera and volume placement: normalized device coordinates to world and to voxel indices.
+  auto* camera = static_cast<vtkOpenGLCamera*>(renderer->GetActiveCamera());
+  vtkMatrix4x4 *wcvc, *vcdc, *wcdc;
+  vtkMatrix3x3* normals;
+  camera->GetKeyMatrices(renderer, wcvc, normals, vcdc, wcdc);
+  const glm::dmat4 worldToDevice = glm::transpose(ToGlm(wcdc)); // key matrices are transposed
+  const glm::dmat4 modelToWorld = ToGlm(volume->GetMatrix());
+  const double* origin = input->GetOrigin();
+  const double* spacing = input->GetSpacing();
+  glm::dmat4 indexToModel(1.0);
+  const glm::dmat4 direction = [&] {
+    glm::dmat4 d(1.0);
+    const vtkMatrix3x3* m = input->GetDirectionMatrix();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        d[c][r] = m->GetElement(r, c);
+    return d;
+  }();
+  indexToModel = glm::translate(glm::dmat4(1.0), glm::dvec3(origin[0], origin[1], origin[2])) *
+    direction * glm::scale(glm::dmat4(1.0), glm::dvec3(spacing[0], spacing[1], spacing[2]));
+  const glm::dmat4 deviceToWorld = glm::inverse(worldToDevice);
+  const glm::dmat4 deviceToIndex = glm::inverse(worldToDevice * modelToWorld * indexToModel);
+
+  int dimensions[3];
+  input->GetDimensions(dimensions);
+  const double step = this->SampleDistance > 0.0
+    ? this->SampleDistance
+    : std::min({ spacing[0], spacing[1], spacing[2] });
+  const double* bounds = volume->GetBounds();
+  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  view.MostSamplesPerRay = std::max(1.0, std::ceil(diagonal / step));
+  const int iterations = int(std::ceil(diagonal / step)) +
+    3 * (in.BrickCount[0] + in.BrickCount[1] + in.BrickCount[2]) + 16;
+
+  // Progressive accumulation: continue averaging while everything the image depends on holds.
+  std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
+  signature.insert(signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
+  for (double v : { double(viewport[2]), double(viewport[3]), scale, double(in.DensityUploadTime),
+         double(in.TableTime), double(this->GetMTime()), double(volume->GetMTime()),
+         double(LatestChangeOfOtherProps(renderer, volume)) })
+  {
+    signature.push_back(v);
+  }
+  if (signature != view.Signature)
+  {
+    view.Signature = signature;
+    view.AccumulatedFrames = 0;
+  }
+  if (view.AccumulatedFrames >= this->MaximumAccumulatedFrames)
+  {
+    return; // converged: the composite pass shows the accumulated image again
+  }
+
+  if (!in.March)
+  {
+    std::string source = CloudMarchFS;
+    vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", CloudLightingNone);
+    in.March = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, source.c_str(), "");
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(in.March->Program);
+  }
+  vtkShaderProgram* program = in.March->Program;
+  if (!program || !program->GetCompiled())
+  {
+    this->Fail("the march shader failed to compile or link; the driver's log is above");
+    return;
+  }
+
+  const bool interacting =
+    this->InteractiveFrameRate > 0.0 && window->GetDesiredUpdateRate() > 1.0;
+  const double start = vtkTimerLog::GetUniversalTime();
+  if (interacting)
+  {
+    glFinish(); // time the march alone
+  }
+
+  state->PushFramebufferBindings();
+  view.Framebuffer->Bind();
+  view.Framebuffer->AddColorAttachment(0, view.Color);
+  view.Framebuffer->AddColorAttachment(1, view.Counts);
+  view.Framebuffer->ActivateDrawBuffers(2);
+  if (!view.Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
+  {
+    state->PopFramebufferBindings();
+    this->Fail("the march framebuffer is incomplete on this GPU");
+    return;
+  }
+  vtkOpenGLState::ScopedglViewport savedViewport(state);
+  vtkOpenGLState::ScopedglEnableDisable savedBlend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable savedScissor(state, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate savedBlendFunction(state);
+  state->vtkglViewport(0, 0, marchWidth, marchHeight);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  // Frame n + 1 of an accumulation weighs 1 / (n + 1): a running mean through the blend unit.
+  const int frame = view.AccumulatedFrames;
+  if (frame == 0)
+  {
+    state->vtkglDisable(GL_BLEND);
+  }
+  else
+  {
+    state->vtkglEnable(GL_BLEND);
+    glBlendColor(0.0f, 0.0f, 0.0f, 1.0f / float(frame + 1));
+    state->vtkglBlendFuncSeparate(
+      GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA, GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+  }
+
+  for (vtkTextureObject* texture : { in.Density.Get(), in.Transfer.Get(), in.EmptyDistance.Get(),
+         in.Jitter.Get(), view.Depth.Get() })
+  {
+    texture->Activate();
+  }
+  SetMatrix(program, "DCWCMatrix", deviceToWorld);
+  SetMatrix(program, "DCIndexMatrix", deviceToIndex);
+  const float dims[3] = { float(dimensions[0]), float(dimensions[1]), float(dimensions[2]) };
+  program->SetUniform3f("Dimensions", dims);
+  program->SetUniformi("DensityTexture", in.Density->GetTextureUnit());
+  program->SetUniformi("TransferTexture", in.Transfer->GetTextureUnit());
+  const float tableRange[2] = { float(in.Table.Range[0]), float(in.Table.Range[1]) };
+  program->SetUniform2f("TableRange", tableRange);
+  program->SetUniformf("TableSize", float(in.Table.Size));
+  program->SetUniformi("EmptyDistanceTexture", in.EmptyDistance->GetTextureUnit());
+  const float bricks[3] = { float(in.BrickCount[0]), float(in.BrickCount[1]),
+    float(in.BrickCount[2]) };
+  program->SetUniform3f("BrickCount", bricks);
+  program->SetUniformf("BrickSize", float(this->BrickSize));
+  program->SetUniformi("SkipEmptySpace", this->EmptySpaceSkipping ? 1 : 0);
+  program->SetUniformi("DepthTexture", view.Depth->GetTextureUnit());
+  program->SetUniformi("JitterTexture", in.Jitter->GetTextureUnit());
+  program->SetUniformf("JitterTextureSize", float(in.JitterSize));
+  program->SetUniformf("JitterOffset", float(std::fmod(frame * GoldenRatioFraction, 1.0)));
+  program->SetUniformi("JitterEnabled", this->Jitter ? 1 : 0);
+  program->SetUniformf("StepWorld", float(step));
+  program->SetUniformf("TerminationTransmittance", float(this->TerminationTransmittance));
+  program->SetUniformi("MaximumIterations", iterations);
+  in.March->Render();
+  for (vtkTextureObject* texture : { in.Density.Get(), in.Transfer.Get(), in.EmptyDistance.Get(),
+         in.Jitter.Get(), view.Depth.Get() })
+  {
+    texture->Deactivate();
+  }
+  glBlendColor(0.0f, 0.0f, 0.0f, 0.0f);
+  view.AccumulatedFrames = frame + 1;
+
+  if (this->CollectStatistics)
+  {
+    this->ReadStatistics(renderer);
+  }
+  view.Framebuffer->RemoveColorAttachments(2);
+  state->PopFramebufferBindings();
+
+  if (interacting)
+  {
+    glFinish();
+    const double perPixel =
+      (vtkTimerLog::GetUniversalTime() - start) / (double(marchWidth) * marchHeight);
+    view.SecondsPerPixel =
+      view.SecondsPerPixel > 0.0 ? 0.5 * (view.SecondsPerPixel + perPixel) : perPixel;
+  }
+}
+
+void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
+{
+  ViewTargets& view = this->Internal->ViewOf(renderer);
+  const int w = view.MarchSize[0], h = view.MarchSize[1];
+  std::vector<float> counts(size_t(w) * h * 2);
+  view.Framebuffer->ActivateReadBuffer(1);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, counts.data());
+  FrameStatistics statistics;
+  for (size_t i = 0; i < counts.size(); i += 2)
+  {
+    statistics.SamplesTaken += counts[i];
+    statistics.UsefulSamples += counts[i + 1];
+  }
+  statistics.Width = w;
+  statistics.Height = h;
+  statistics.OccupiedBrickFraction = this->Internal->OccupiedBrickFraction;
+  this->LastStatistics = statistics;
+}
+
+bool vtkCloudVolumeMapper::ReadImage(
+  vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height)
+{
+  auto found = this->Internal->Views.find(renderer);
+  if (found == this->Internal->Views.end() || !found->second->Color->GetHandle())
+  {
+    return false;
+  }
+  ViewTargets& view = *found->second;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  window->MakeCurrent();
+  vtkOpenGLState* state = window->GetState();
+  width = view.MarchSize[0];
+  height = view.MarchSize[1];
+  rgba.resize(size_t(width) * height * 4);
+  state->PushFramebufferBindings();
+  view.Framebuffer->Bind();
+  view.Framebuffer->AddColorAttachment(0, view.Color);
+  view.Framebuffer->ActivateReadBuffer(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+  view.Framebuffer->RemoveColorAttachments(1);
+  state->PopFramebufferBindings();
+  return true;
+}
+
+void vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
+{
+  Internals& in = *this->Internal;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  vtkOpenGLState* state = window->GetState();
+  ViewTargets& view = in.ViewOf(renderer);
+  if (!in.Composite)
+  {
+    in.Composite = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, CloudCompositeFS, "");
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(in.Composite->Program);
+  }
+  vtkShaderProgram* program = in.Composite->Program;
+  if (!program || !program->GetCompiled())
+  {
+    this->Fail("the composite shader failed to compile or link; the driver's log is above");
+    return;
+  }
+
+  int viewport[4];
+  renderer->GetTiledSizeAndOrigin(&viewport[2], &viewport[3], &viewport[0], &viewport[1]);
+  vtkOpenGLState::ScopedglViewport savedViewport(state);
+  vtkOpenGLState::ScopedglEnableDisable savedBlend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate savedBlendFunction(state);
+  vtkOpenGLState::ScopedglDepthMask savedDepthMask(state);
+  state->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglEnable(GL_BLEND);
+  // Premultiplied "over": the cloud in front of what the renderer has drawn.
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+
+  view.Color->Activate();
+  view.Counts->Activate();
+  program->SetUniformi("MarchTexture", view.Color->GetTextureUnit());
+  program->SetUniformi("CountTexture", view.Counts->GetTextureUnit());
+  const float marchSize[2] = { float(view.MarchSize[0]), float(view.MarchSize[1]) };
+  program->SetUniform2f("MarchSize", marchSize);
+  program->SetUniformi(
+    "Upsample", view.MarchSize[0] != viewport[2] || view.MarchSize[1] != viewport[3] ? 1 : 0);
+  program->SetUniformi("ShowSampleCount", this->DisplayMode == SampleCount ? 1 : 0);
+  program->SetUniformf("SampleCountScale", float(1.0 / view.MostSamplesPerRay));
+  in.Composite->Render();
+  view.Color->Deactivate();
+  view.Counts->Deactivate();
+}
+
+void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  Internals& in = *this->Internal;
+  in.Density->ReleaseGraphicsResources(window);
+  in.Transfer->ReleaseGraphicsResources(window);
+  in.EmptyDistance->ReleaseGraphicsResources(window);
+  in.Jitter->ReleaseGraphicsResources(window);
+  for (auto& view : in.Views)
+  {
+    view.second->Release(window);
+  }
+  in.Views.clear();
+  in.March.reset();
+  in.Composite.reset();
+  in.UploadedInput = nullptr;
+  in.DensityUploadTime = in.TableTime = in.EmptyDistanceUploadTime = 0;
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkCloudVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
+  os << indent << "BrickSize: " << this->BrickSize << "\n";
+  os << indent << "Jitter: " << this->Jitter << "\n";
+  os << indent << "TerminationTransmittance: " << this->TerminationTransmittance << "\n";
+  os << indent << "ExtinctionScale: " << this->ExtinctionScale << "\n";
+  os << indent << "ResolutionScale: " << this->ResolutionScale << "\n";
+  os << indent << "InteractiveFrameRate: " << this->InteractiveFrameRate << "\n";
+  os << indent << "MaximumAccumulatedFrames: " << this->MaximumAccumulatedFrames << "\n";
+  os << indent << "DisplayMode: " << this->DisplayMode << "\n";
+  os << indent << "CollectStatistics: " << this->CollectStatistics << "\n";
+}

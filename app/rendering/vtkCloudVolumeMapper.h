@@ -1,0 +1,220 @@
+/**
+ * @class   vtkCloudVolumeMapper
+ * @brief   GPU ray marcher for cloud density fields with empty-space skipping
+ *
+ * vtkCloudVolumeMapper renders vtkImageData with one scalar component (float, unsigned char or
+ * unsigned short) like any VTK volume mapper: vtkVolume + vtkVolumeProperty + vtkRenderer.
+ * Each pixel's ray is clipped to the volume box and to the opaque geometry already in the depth
+ * buffer, then samples the density at fixed steps t0 + k * dt. A brick occupancy structure
+ * (vtkCloudOccupancyFilter) lets rays leap over bricks where the transfer function gives no
+ * extinction; the leap lands on the same lattice of samples, so skipping never changes the
+ * image, only the number of samples taken.
+ *
+ * The transfer functions of the vtkVolumeProperty are read as physical quantities: the scalar
+ * opacity a is opacity per ScalarOpacityUnitDistance u, giving the extinction
+ * sigma_t = -ln(1 - a) / u, and the color is the albedo. Per step a sample absorbs
+ * 1 - exp(-sigma_t dt) of the light behind it, so the image does not depend on the step.
+ *
+ * The march renders into a float target at ResolutionScale times the viewport, which a
+ * composite pass upsamples (Catmull-Rom) and blends over the scene. While nothing changes,
+ * successive frames with different blue-noise jitter are averaged (progressive accumulation).
+ * While the user interacts (the render window's desired update rate is above 1), the scale is
+ * lowered automatically to keep InteractiveFrameRate.
+ *
+ * Errors (no usable scalars, a field beyond the GPU's 3-D texture limit, an invalid transfer
+ * function, a step <= 0, a shader or framebuffer failure) are reported with vtkErrorMacro and
+ * kept in GetLastError(); the volume is then not drawn.
+ */
+#ifndef vtkCloudVolumeMapper_h
+#define vtkCloudVolumeMapper_h
+
+#include "cloudvisRenderingModule.h"
+
+#include <vtkVolumeMapper.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+
+class CLOUDVISRENDERING_EXPORT vtkCloudVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkCloudVolumeMapper* New();
+  vtkTypeMacro(vtkCloudVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Distance between samples along a ray, in world units. 0 means one sample per voxel: the
+   * smallest spacing of the input. Default 0.
+   */
+  vtkSetMacro(SampleDistance, double);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Leap over bricks of empty space. Turning it off changes the sample count, not the image.
+   * Default on.
+   */
+  vtkSetMacro(EmptySpaceSkipping, bool);
+  vtkGetMacro(EmptySpaceSkipping, bool);
+  vtkBooleanMacro(EmptySpaceSkipping, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Edge length of the occupancy bricks, in voxels. Default 8.
+   */
+  vtkSetClampMacro(BrickSize, int, 2, 64);
+  vtkGetMacro(BrickSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Offset each ray's first sample by a fraction of a step read from a blue-noise mask, turning
+   * banding into fine noise. Default on.
+   */
+  vtkSetMacro(Jitter, bool);
+  vtkGetMacro(Jitter, bool);
+  vtkBooleanMacro(Jitter, bool);
+  ///@}
+
+  ///@{
+  /**
+   * A ray stops once the light reaching the eye through it falls below this transmittance.
+   * Default 1/255.
+   */
+  vtkSetClampMacro(TerminationTransmittance, double, 0.0, 1.0);
+  vtkGetMacro(TerminationTransmittance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Multiplies every extinction of the transfer function. Default 1.
+   */
+  vtkSetClampMacro(ExtinctionScale, double, 0.0, 1e6);
+  vtkGetMacro(ExtinctionScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Fraction of the viewport's width and height the march renders at; the composite pass
+   * upsamples with a Catmull-Rom filter. Default 1.
+   */
+  vtkSetClampMacro(ResolutionScale, double, 0.25, 1.0);
+  vtkGetMacro(ResolutionScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * While the render window's desired update rate is above 1 (the interactor sets it during
+   * interaction), lower the resolution scale, down to 0.25, to render at this many frames per
+   * second. 0 disables the adjustment. Default 20.
+   */
+  vtkSetClampMacro(InteractiveFrameRate, double, 0.0, 1000.0);
+  vtkGetMacro(InteractiveFrameRate, double);
+  ///@}
+
+  ///@{
+  /**
+   * Most frames averaged while the view does not change. 1 disables accumulation. Default 1.
+   */
+  vtkSetClampMacro(MaximumAccumulatedFrames, int, 1, 65536);
+  vtkGetMacro(MaximumAccumulatedFrames, int);
+  ///@}
+
+  /**
+   * Frames averaged in the image last drawn in this renderer.
+   */
+  int GetNumberOfAccumulatedFrames(vtkRenderer* renderer) const;
+
+  enum DisplayModes
+  {
+    Radiance = 0,   // the cloud
+    SampleCount = 1 // samples taken per pixel, false colored: the cost of each ray
+  };
+  ///@{
+  /**
+   * What the composite pass shows. Default Radiance.
+   */
+  vtkSetClampMacro(DisplayMode, int, Radiance, SampleCount);
+  vtkGetMacro(DisplayMode, int);
+  ///@}
+
+  ///@{
+  /**
+   * Read back the per-pixel sample counts after each frame to fill the statistics below. Costs
+   * a read-back per frame. Default off.
+   */
+  vtkSetMacro(CollectStatistics, bool);
+  vtkGetMacro(CollectStatistics, bool);
+  vtkBooleanMacro(CollectStatistics, bool);
+  ///@}
+
+  struct FrameStatistics
+  {
+    double SamplesTaken = 0;  // density samples over all pixels
+    double UsefulSamples = 0; // of which the transfer function gave a non-zero extinction
+    int Width = 0;            // size of the march target
+    int Height = 0;
+    double OccupiedBrickFraction = 0;
+  };
+  /**
+   * Statistics of the last frame (with CollectStatistics on).
+   */
+  const FrameStatistics& GetLastFrameStatistics() const { return this->LastStatistics; }
+
+  /**
+   * The image the composite pass last showed in this renderer, before upsampling: premultiplied
+   * linear RGBA floats (alpha = 1 - transmittance), rows bottom to top, width x height of the
+   * march target. Needs the renderer's window to be current. Returns false when the renderer
+   * has drawn no cloud yet.
+   */
+  bool ReadImage(vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height);
+
+  /**
+   * The last error, or an empty string when the last render succeeded.
+   */
+  const std::string& GetLastError() const { return this->LastError; }
+
+  void Render(vtkRenderer* renderer, vtkVolume* volume) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkCloudVolumeMapper();
+  ~vtkCloudVolumeMapper() override;
+
+  double SampleDistance = 0.0;
+  bool EmptySpaceSkipping = true;
+  int BrickSize = 8;
+  bool Jitter = true;
+  double TerminationTransmittance = 1.0 / 255.0;
+  double ExtinctionScale = 1.0;
+  double ResolutionScale = 1.0;
+  double InteractiveFrameRate = 20.0;
+  int MaximumAccumulatedFrames = 1;
+  int DisplayMode = Radiance;
+  bool CollectStatistics = false;
+
+private:
+  vtkCloudVolumeMapper(const vtkCloudVolumeMapper&) = delete;
+  void operator=(const vtkCloudVolumeMapper&) = delete;
+
+  bool Fail(const std::string& message);
+  vtkImageData* ValidInput();
+  bool UpdateVolumeTextures(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
+  double ChooseResolutionScale(vtkRenderer* renderer);
+  void MarchPass(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
+  void CompositePass(vtkRenderer* renderer);
+  void ReadStatistics(vtkRenderer* renderer);
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+  std::string LastError;
+  FrameStatistics LastStatistics;
+};
+
+#endif

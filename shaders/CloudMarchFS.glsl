@@ -1,0 +1,135 @@
+//VTK::System::Dec
+
+// The march pass of vtkCloudVolumeMapper: one fragment per pixel of the march target.
+// A ray from the near to the far plane is clipped to the volume box and to the opaque depth,
+// then samples the density at t = tEnter + (k + jitter) * stepWorld, k = 0, 1, 2, ... Bricks
+// the occupancy map marks empty are leapt over, landing on the same lattice of k. Lighting
+// models plug in by defining SourceTerm() at the lighting tag below, so all share this march.
+// Quantities: t in world units along the ray; p in voxel index space (voxel centres at
+// integers); sigma_t the extinction per world unit; T the transmittance to the eye.
+
+in vec2 texCoord;
+
+uniform mat4 DCWCMatrix;     // normalized device -> world
+uniform mat4 DCIndexMatrix;  // normalized device -> voxel index space
+uniform vec3 Dimensions;     // voxels per axis
+uniform sampler3D DensityTexture;
+uniform sampler1D TransferTexture; // rgb albedo, a = sigma_t
+uniform vec2 TableRange;           // density at the first and last table entries
+uniform float TableSize;
+uniform sampler3D EmptyDistanceTexture; // Chebyshev distance in bricks to occupied space, /255
+uniform vec3 BrickCount;
+uniform float BrickSize;
+uniform int SkipEmptySpace;
+uniform sampler2D DepthTexture; // opaque depth of the viewport, full resolution
+uniform sampler2D JitterTexture; // blue noise, tiled
+uniform float JitterTextureSize;
+uniform float JitterOffset;      // golden-ratio sequence over accumulated frames
+uniform int JitterEnabled;
+uniform float StepWorld;
+uniform float TerminationTransmittance;
+uniform int MaximumIterations;
+
+//VTK::Output::Dec
+
+//CLOUD::Lighting::Dec
+
+// Entry and exit distances of the ray o + t d through the box [lo, hi].
+vec2 IntersectBox(vec3 o, vec3 d, vec3 lo, vec3 hi)
+{
+  // An axis-parallel ray gets a huge finite inverse rather than a division by zero.
+  vec3 safe = mix(d, vec3(1e-30), equal(d, vec3(0.0)));
+  vec3 inv = 1.0 / safe;
+  vec3 t0 = (lo - o) * inv;
+  vec3 t1 = (hi - o) * inv;
+  vec3 tNear = min(t0, t1);
+  vec3 tFar = max(t0, t1);
+  return vec2(max(max(tNear.x, tNear.y), tNear.z), min(min(tFar.x, tFar.y), tFar.z));
+}
+
+float TableCoordinate(float density)
+{
+  float u = clamp((density - TableRange.x) / (TableRange.y - TableRange.x), 0.0, 1.0);
+  return (u * (TableSize - 1.0) + 0.5) / TableSize; // texel centres, as TransferTable::Lookup
+}
+
+vec3 WorldPoint(vec2 ndc, float ndcDepth)
+{
+  vec4 p = DCWCMatrix * vec4(ndc, ndcDepth, 1.0);
+  return p.xyz / p.w;
+}
+
+void main()
+{
+  vec2 ndc = texCoord * 2.0 - 1.0;
+  vec3 nearWorld = WorldPoint(ndc, -1.0);
+  float rayLength = length(WorldPoint(ndc, 1.0) - nearWorld);
+  vec4 nearIndex = DCIndexMatrix * vec4(ndc, -1.0, 1.0);
+  vec4 farIndex = DCIndexMatrix * vec4(ndc, 1.0, 1.0);
+  vec3 origin = nearIndex.xyz / nearIndex.w;
+  vec3 direction = (farIndex.xyz / farIndex.w - origin) / rayLength; // index units per world unit
+
+  float opaqueDepth = texture(DepthTexture, texCoord).r;
+  float tOpaque = length(WorldPoint(ndc, opaqueDepth * 2.0 - 1.0) - nearWorld);
+  vec2 tBox = IntersectBox(origin, direction, vec3(0.0), Dimensions - 1.0);
+  float tEnter = max(tBox.x, 0.0);
+  float tExit = min(min(tBox.y, tOpaque), rayLength);
+
+  vec3 radiance = vec3(0.0);
+  float T = 1.0;
+  float samplesTaken = 0.0;
+  float usefulSamples = 0.0;
+  if (tEnter < tExit)
+  {
+    float jitter = 0.0;
+    if (JitterEnabled != 0)
+    {
+      jitter = fract(texture(JitterTexture, gl_FragCoord.xy / JitterTextureSize).r + JitterOffset);
+    }
+    float k = 0.0;
+    for (int i = 0; i < MaximumIterations; ++i)
+    {
+      float t = tEnter + (k + jitter) * StepWorld;
+      if (t >= tExit)
+      {
+        break;
+      }
+      vec3 p = origin + t * direction;
+      if (SkipEmptySpace != 0)
+      {
+        vec3 brick = clamp(floor(p / BrickSize), vec3(0.0), BrickCount - 1.0);
+        float emptyBricks = floor(texelFetch(EmptyDistanceTexture, ivec3(brick), 0).r * 255.0 + 0.5);
+        if (emptyBricks > 0.0)
+        {
+          // Every brick within Chebyshev distance emptyBricks - 1 is empty: leave that cube
+          // and resume at the first lattice sample beyond it.
+          vec3 lo = (brick - (emptyBricks - 1.0)) * BrickSize;
+          vec3 hi = (brick + emptyBricks) * BrickSize;
+          float tLeave = IntersectBox(origin, direction, lo, hi).y;
+          k = max(k + 1.0, ceil((tLeave - tEnter) / StepWorld - jitter));
+          continue;
+        }
+      }
+      float density = texture(DensityTexture, (p + 0.5) / Dimensions).r;
+      vec4 optical = texture(TransferTexture, TableCoordinate(density));
+      float sigma_t = optical.a;
+      samplesTaken += 1.0;
+      if (sigma_t > 0.0)
+      {
+        usefulSamples += 1.0;
+        float stepT = exp(-sigma_t * StepWorld);
+        // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
+        // constant over the step, so the sum does not depend on the step size.
+        radiance += T * SourceTerm(p, density, optical.rgb) * (1.0 - stepT);
+        T *= stepT;
+        if (T < TerminationTransmittance)
+        {
+          break;
+        }
+      }
+      k += 1.0;
+    }
+  }
+  gl_FragData[0] = vec4(radiance, 1.0 - T); // premultiplied: alpha is the opacity
+  gl_FragData[1] = vec4(samplesTaken, usefulSamples, 0.0, 1.0);
+}

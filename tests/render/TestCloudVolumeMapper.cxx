@@ -1,0 +1,360 @@
+// vtkCloudVolumeMapper against known answers and against VTK's vtkGPUVolumeRayCastMapper.
+#include "RenderFixture.h"
+
+#include <vtkCamera.h>
+#include <vtkGPUVolumeRayCastMapper.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace cloudvis::test;
+
+namespace
+{
+vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step)
+{
+  auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
+  mapper->SetSampleDistance(step);
+  mapper->JitterOff();
+  return mapper;
+}
+}
+
+TEST(CloudVolumeMapper, HomogeneousSphereTransmitsBeerLambert)
+{
+  // Constant density 1 in a sphere of radius 1; opacity 0.5 per unit length 0.5, so
+  // sigma_t = ln 2 / 0.5. Through the centre the path is 2: alpha = 1 - exp(-sigma_t * 2).
+  auto mapper = CloudMapper(0.01);
+  Scene scene(mapper);
+  scene.SetInput(ConstantSphere(1.0));
+  SetUniformMedium(scene.Property, 0.5, 0.5);
+  const Image image = scene.RenderFloat();
+  Dump(image, "homogeneous-sphere");
+  ASSERT_EQ(mapper->GetLastError(), "");
+  const double sigma = std::log(2.0) / 0.5;
+  const double expected = 1.0 - std::exp(-sigma * 2.0);
+  const float alpha = image.At(image.Width / 2, image.Height / 2, 3);
+  EXPECT_NEAR(alpha, expected, 0.01 * expected);
+  // Outside the sphere nothing is drawn.
+  EXPECT_EQ(image.At(2, 2, 3), 0.0f);
+}
+
+namespace
+{
+// VTK's GPU ray caster set up to march exactly like cloudvis: same step, no jitter, no
+// automatic step adjustment.
+vtkSmartPointer<vtkGPUVolumeRayCastMapper> VtkMapper(double step)
+{
+  auto mapper = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
+  mapper->SetSampleDistance(step);
+  mapper->AutoAdjustSampleDistancesOff();
+  mapper->LockSampleDistanceToInputSpacingOff();
+  mapper->SetUseJittering(0);
+  mapper->SetBlendModeToComposite();
+  return mapper;
+}
+
+void ExpectMatchesVtk(vtkImageData* field, const char* name)
+{
+  const double step = 0.02;
+  auto ours = CloudMapper(step);
+  Scene cloud(ours);
+  cloud.SetInput(field);
+  SetRampMedium(cloud.Property, 1.0, 0.6);
+  auto theirs = VtkMapper(step);
+  Scene vtk(theirs);
+  vtk.SetInput(field);
+  SetRampMedium(vtk.Property, 1.0, 0.6);
+  const Image a = cloud.Render(), b = vtk.Render();
+  Dump(a, std::string(name) + "-cloudvis");
+  Dump(b, std::string(name) + "-vtk");
+  ASSERT_EQ(ours->GetLastError(), "");
+  // Both integrate the same emission-absorption sum; they differ where the two place the first
+  // sample inside a voxel at the volume's edge and in 8-bit rounding: a few levels at most.
+  EXPECT_LT(RmsDifference(a, b), 3.0) << name;
+}
+}
+
+TEST(CloudVolumeMapper, MatchesVtkGpuRayCastOnASparseCloud)
+{
+  ExpectMatchesVtk(SparseCloud(64), "sparse");
+}
+
+TEST(CloudVolumeMapper, MatchesVtkGpuRayCastOnADenseField)
+{
+  ExpectMatchesVtk(DenseCloud(64), "dense");
+}
+
+TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
+{
+  auto mapper = CloudMapper(0.02);
+  mapper->CollectStatisticsOn();
+  Scene scene(mapper);
+  scene.SetInput(SparseCloud(96));
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  mapper->EmptySpaceSkippingOff();
+  const Image full = scene.RenderFloat();
+  const double allSamples = mapper->GetLastFrameStatistics().SamplesTaken;
+  mapper->EmptySpaceSkippingOn();
+  const Image skipped = scene.RenderFloat();
+  const auto& statistics = mapper->GetLastFrameStatistics();
+  Dump(skipped, "skipping");
+  EXPECT_LE(MaxDifference(full, skipped), 1.0 / 255.0);
+  EXPECT_LT(statistics.SamplesTaken, 0.8 * allSamples);
+  EXPECT_GT(statistics.UsefulSamples, 0.0);
+}
+
+TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)
+{
+  auto mapper = CloudMapper(0.02);
+  Scene scene(mapper);
+  scene.SetInput(SparseCloud(64));
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  const Image coarse = scene.RenderFloat();
+  mapper->SetSampleDistance(0.01);
+  const Image fine = scene.RenderFloat();
+  // Extinction is per unit length and in-scattering is integrated per step, so only the
+  // quadrature error of the density along the ray remains: well under 1 8-bit level RMS.
+  EXPECT_LT(RmsDifference(coarse, fine), 1.0);
+}
+
+#include <vtkActor.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkSphereSource.h>
+
+namespace
+{
+void AddOpaqueSphere(Scene& scene, double x, double y, double z, double radius)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(x, y, z);
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(48);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(1.0, 0.0, 0.0);
+  actor->GetProperty()->LightingOff();
+  scene.Renderer->AddActor(actor);
+}
+
+int PixelOf(const Image& image, double world, double parallelScale, int size)
+{
+  return int(std::lround((world / parallelScale * 0.5 + 0.5) * size - 0.5));
+  (void)image;
+}
+}
+
+TEST(CloudVolumeMapper, OpaqueGeometryOccludesAndIsOccludedThroughTheDepthBuffer)
+{
+  // A white slab of constant density over z in [-1, 1]; red spheres of radius 0.3 poking out of
+  // its front face, centred inside it, and poking out of its back face. With no light model the
+  // green channel is the cloud's opacity in front of whatever the ray hits.
+  auto mapper = CloudMapper(0.005);
+  Scene scene(mapper, 128, 128);
+  scene.SetInput(ConstantBox(1.0, 96));
+  const double sigma = std::log(2.0) / 0.5;
+  SetUniformMedium(scene.Property, 0.5, 0.5);
+  AddOpaqueSphere(scene, -0.6, 0.0, 1.0, 0.3);
+  AddOpaqueSphere(scene, 0.0, 0.6, 0.0, 0.3);
+  AddOpaqueSphere(scene, 0.6, 0.0, -1.0, 0.3);
+  const Image image = scene.Render();
+  Dump(image, "depth");
+  const auto green = [&](double x, double y) {
+    return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 1);
+  };
+  const auto red = [&](double x, double y) {
+    return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 0);
+  };
+  EXPECT_NEAR(green(-0.6, 0.0), 0.0, 0.02) << "a sphere in front of the cloud is not covered";
+  EXPECT_NEAR(red(-0.6, 0.0), 1.0, 0.02);
+  EXPECT_NEAR(green(0.0, 0.6), 1.0 - std::exp(-sigma * 0.7), 0.03) << "0.7 of cloud in front";
+  EXPECT_NEAR(green(0.6, 0.0), 1.0 - std::exp(-sigma * 1.7), 0.03) << "1.7 of cloud in front";
+  EXPECT_NEAR(green(0.0, -0.6), 1.0 - std::exp(-sigma * 2.0), 0.03) << "the whole slab";
+}
+
+TEST(CloudVolumeMapper, CameraInsideTheVolumeSeesTheCloudAroundIt)
+{
+  auto mapper = CloudMapper(0.005);
+  Scene scene(mapper, 64, 64);
+  scene.SetInput(ConstantBox(1.5, 96));
+  SetUniformMedium(scene.Property, 0.5, 0.5);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetParallelProjection(false);
+  camera->SetPosition(0.0, 0.0, 0.0);
+  camera->SetFocalPoint(0.0, 0.0, -1.0);
+  camera->SetClippingRange(0.1, 10.0);
+  const Image image = scene.RenderFloat();
+  // From the near plane at z = -0.1 to the box face at z = -1.5.
+  const double expected = 1.0 - std::exp(-std::log(2.0) / 0.5 * 1.4);
+  EXPECT_NEAR(image.At(32, 32, 3), expected, 0.01 * expected);
+}
+
+TEST(CloudVolumeMapper, ResizingTheWindowRendersAtTheNewSize)
+{
+  auto mapper = CloudMapper(0.02);
+  Scene scene(mapper, 96, 64);
+  scene.SetInput(SparseCloud(64));
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  scene.Render();
+  scene.Window->SetSize(128, 96);
+  const Image resized = scene.Render();
+  ASSERT_EQ(resized.Width, 128);
+  ASSERT_EQ(resized.Height, 96);
+
+  auto fresh = CloudMapper(0.02);
+  Scene reference(fresh, 128, 96);
+  reference.SetInput(SparseCloud(64));
+  SetRampMedium(reference.Property, 1.0, 0.6);
+  EXPECT_LT(RmsDifference(resized, reference.Render()), 0.5);
+}
+
+TEST(CloudVolumeMapper, OneMapperDrawsTwoViewportsOfAWindow)
+{
+  auto mapper = CloudMapper(0.02);
+  Scene scene(mapper, 256, 128);
+  scene.SetInput(SparseCloud(64));
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  scene.Renderer->SetViewport(0.0, 0.0, 0.5, 1.0);
+  vtkNew<vtkRenderer> right;
+  right->SetViewport(0.5, 0.0, 1.0, 1.0);
+  right->SetActiveCamera(scene.Renderer->GetActiveCamera());
+  right->AddVolume(scene.Volume);
+  scene.Window->AddRenderer(right);
+  const Image both = scene.Render();
+  Dump(both, "viewports");
+
+  auto single = CloudMapper(0.02);
+  Scene reference(single, 128, 128);
+  reference.SetInput(SparseCloud(64));
+  SetRampMedium(reference.Property, 1.0, 0.6);
+  const Image one = reference.Render();
+  for (int half = 0; half < 2; ++half)
+  {
+    Image part;
+    part.Width = 128;
+    part.Height = 128;
+    for (int y = 0; y < 128; ++y)
+      for (int x = 0; x < 128; ++x)
+        for (int c = 0; c < 4; ++c)
+          part.RGBA.push_back(both.At(half * 128 + x, y, c));
+    EXPECT_LT(RmsDifference(part, one), 0.5) << "viewport " << half;
+  }
+}
+
+TEST(CloudVolumeMapper, AccumulationAveragesJitteredFramesUntilTheViewChanges)
+{
+  auto reference = CloudMapper(0.002);
+  Scene fine(reference, 96, 96);
+  fine.SetInput(SparseCloud(64));
+  SetRampMedium(fine.Property, 1.0, 0.6);
+  const Image truth = fine.RenderFloat();
+
+  auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
+  mapper->SetSampleDistance(0.05);
+  mapper->JitterOn();
+  mapper->SetMaximumAccumulatedFrames(16);
+  Scene scene(mapper, 96, 96);
+  scene.SetInput(SparseCloud(64));
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  const Image first = scene.RenderFloat();
+  Image accumulated;
+  for (int i = 1; i < 16; ++i)
+  {
+    accumulated = scene.RenderFloat();
+  }
+  EXPECT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 16);
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 16) << "converged: no more";
+  Dump(first, "jitter-1-frame");
+  Dump(accumulated, "jitter-16-frames");
+  EXPECT_LT(RmsDifference(accumulated, truth), 0.5 * RmsDifference(first, truth));
+
+  scene.Renderer->GetActiveCamera()->Azimuth(5.0);
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 1) << "a camera move restarts";
+}
+
+TEST(CloudVolumeMapper, InteractionLowersTheResolutionAndStillnessRestoresIt)
+{
+  auto mapper = CloudMapper(0.02);
+  Scene scene(mapper, 200, 160);
+  scene.SetInput(SparseCloud(64));
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  scene.Window->SetDesiredUpdateRate(1000.0); // what an interactor asks while dragging
+  const Image moving = scene.RenderFloat();
+  EXPECT_LT(moving.Width, 200);
+  EXPECT_GE(moving.Width, 50);
+  scene.Window->SetDesiredUpdateRate(0.0001); // the still rate at the end of interaction
+  const Image still = scene.RenderFloat();
+  EXPECT_EQ(still.Width, 200);
+  EXPECT_EQ(still.Height, 160);
+}
+
+TEST(CloudVolumeMapper, SampleCountViewShowsTheCostOfEachRay)
+{
+  auto mapper = CloudMapper(0.02);
+  Scene scene(mapper, 96, 96);
+  scene.SetInput(SparseCloud(64));
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  mapper->SetDisplayMode(vtkCloudVolumeMapper::SampleCount);
+  const Image counts = scene.Render();
+  Dump(counts, "sample-count");
+  // Rays through the cloud's middle sample more than rays that miss the bound.
+  const float centre = counts.At(48, 48, 0), corner = counts.At(2, 2, 0);
+  EXPECT_GT(centre, corner);
+}
+
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
+
+namespace
+{
+// Renders a field that the mapper must refuse and returns the error it gives; the window must
+// stay the background color.
+std::string RefusalOf(vtkImageData* field, double step = 0.02, bool emptyOpacity = false)
+{
+  auto mapper = CloudMapper(step);
+  Scene scene(mapper, 32, 32);
+  scene.SetInput(field);
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  if (emptyOpacity)
+  {
+    vtkNew<vtkPiecewiseFunction> none;
+    scene.Property->SetScalarOpacity(none);
+  }
+  const Image image = scene.Render();
+  float brightest = 0.0f;
+  for (size_t i = 0; i < image.RGBA.size(); ++i)
+  {
+    brightest = i % 4 == 3 ? brightest : std::max(brightest, image.RGBA[i]);
+  }
+  EXPECT_EQ(brightest, 0.0f) << "nothing may be drawn from bad input";
+  return mapper->GetLastError();
+}
+}
+
+TEST(CloudVolumeMapper, RefusesBadInputWithAReason)
+{
+  vtkNew<vtkImageData> noScalars;
+  noScalars->SetDimensions(8, 8, 8);
+  EXPECT_NE(RefusalOf(noScalars).find("no scalar array"), std::string::npos);
+
+  vtkNew<vtkImageData> vectors;
+  vectors->SetDimensions(8, 8, 8);
+  vectors->AllocateScalars(VTK_FLOAT, 3);
+  EXPECT_NE(RefusalOf(vectors).find("3 components"), std::string::npos);
+
+  vtkNew<vtkImageData> tooLong;
+  tooLong->SetDimensions(70000, 2, 2);
+  tooLong->AllocateScalars(VTK_FLOAT, 1);
+  EXPECT_NE(RefusalOf(tooLong).find("3-D textures hold at most"), std::string::npos);
+
+  auto field = SparseCloud(16);
+  EXPECT_NE(RefusalOf(field, -0.5).find("sample distance"), std::string::npos);
+  EXPECT_NE(RefusalOf(field, 0.02, true).find("transfer function"), std::string::npos);
+}
