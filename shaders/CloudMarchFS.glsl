@@ -32,8 +32,6 @@ uniform int MaximumIterations;
 
 //VTK::Output::Dec
 
-//CLOUD::Lighting::Dec
-
 // Entry and exit distances of the ray o + t d through the box [lo, hi].
 vec2 IntersectBox(vec3 o, vec3 d, vec3 lo, vec3 hi)
 {
@@ -59,6 +57,23 @@ vec3 WorldPoint(vec2 ndc, float ndcDepth)
   return p.xyz / p.w;
 }
 
+// The brick around index point p, and how many bricks around it are empty (0: occupied).
+vec3 BrickOf(vec3 p)
+{
+  return clamp(floor(p / BrickSize), vec3(0.0), BrickCount - 1.0);
+}
+float EmptyBricksAround(vec3 brick)
+{
+  return floor(texelFetch(EmptyDistanceTexture, ivec3(brick), 0).r * 255.0 + 0.5);
+}
+bool EmptyBrickAt(vec3 p)
+{
+  return EmptyBricksAround(BrickOf(p)) > 0.0;
+}
+
+// The lighting model: SourceTerm(p, density, albedo, d) and what it needs.
+//CLOUD::Lighting::Dec
+
 void main()
 {
   vec2 ndc = texCoord * 2.0 - 1.0;
@@ -67,6 +82,7 @@ void main()
   vec4 nearIndex = DCIndexMatrix * vec4(ndc, -1.0, 1.0);
   vec4 farIndex = DCIndexMatrix * vec4(ndc, 1.0, 1.0);
   vec3 origin = nearIndex.xyz / nearIndex.w;
+  vec3 d = normalize(WorldPoint(ndc, 1.0) - nearWorld); // view direction, world
   vec3 direction = (farIndex.xyz / farIndex.w - origin) / rayLength; // index units per world unit
 
   float opaqueDepth = texture(DepthTexture, texCoord).r;
@@ -97,8 +113,8 @@ void main()
       vec3 p = origin + t * direction;
       if (SkipEmptySpace != 0)
       {
-        vec3 brick = clamp(floor(p / BrickSize), vec3(0.0), BrickCount - 1.0);
-        float emptyBricks = floor(texelFetch(EmptyDistanceTexture, ivec3(brick), 0).r * 255.0 + 0.5);
+        vec3 brick = BrickOf(p);
+        float emptyBricks = EmptyBricksAround(brick);
         if (emptyBricks > 0.0)
         {
           // Every brick within Chebyshev distance emptyBricks - 1 is empty: leave that cube
@@ -120,7 +136,7 @@ void main()
         float stepT = exp(-sigma_t * StepWorld);
         // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
         // constant over the step, so the sum does not depend on the step size.
-        radiance += T * SourceTerm(p, density, optical.rgb) * (1.0 - stepT);
+        radiance += T * SourceTerm(p, density, optical.rgb, d) * (1.0 - stepT);
         T *= stepT;
         if (T < TerminationTransmittance)
         {

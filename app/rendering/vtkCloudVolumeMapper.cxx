@@ -5,12 +5,17 @@
 #include "vtkCloudOccupancyFilter.h"
 
 #include "CloudCompositeFS.h"
+#include "CloudLightingCommon.h"
+#include "CloudLightingDerivative.h"
+#include "CloudLightingMarch.h"
 #include "CloudLightingNone.h"
 #include "CloudMarchFS.h"
 
 #include <vtkColorTransferFunction.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
+#include <vtkLight.h>
+#include <vtkLightCollection.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
 #include <vtkObjectFactory.h>
@@ -124,7 +129,7 @@ struct vtkCloudVolumeMapper::Internals
   int BrickCount[3] = { 0, 0, 0 };
   double OccupiedBrickFraction = 0.0;
   int JitterSize = 0;
-  std::unique_ptr<vtkOpenGLQuadHelper> March;
+  std::unique_ptr<vtkOpenGLQuadHelper> March[3]; // one program per lighting model
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<ViewTargets>> Views; // keys are identities only
   std::string ReportedError; // reported once, until a render succeeds again
@@ -211,6 +216,12 @@ vtkImageData* vtkCloudVolumeMapper::ValidInput()
   if (this->SampleDistance < 0.0 || !std::isfinite(this->SampleDistance))
   {
     this->Fail("the sample distance (step) must be a positive number");
+    return nullptr;
+  }
+  const std::string lightingProblem = cloudvis::ValidateLightingParameters(this->Lighting);
+  if (!lightingProblem.empty())
+  {
+    this->Fail("lighting: " + lightingProblem);
     return nullptr;
   }
   return input;
@@ -378,6 +389,100 @@ double vtkCloudVolumeMapper::ChooseResolutionScale(vtkRenderer* renderer)
   return std::max(0.25, std::min(this->ResolutionScale, scale));
 }
 
+void vtkCloudVolumeMapper::SetLighting(const cloudvis::LightingParameters& lighting)
+{
+  this->Lighting = lighting;
+  this->Modified();
+}
+
+namespace
+{
+// The renderer's switched-on lights as the lighting models see them, at most MAX_LIGHTS.
+std::vector<cloudvis::Light> LightsOf(vtkRenderer* renderer)
+{
+  std::vector<cloudvis::Light> lights;
+  vtkLightCollection* collection = renderer->GetLights();
+  vtkCollectionSimpleIterator it;
+  collection->InitTraversal(it);
+  while (vtkLight* light = collection->GetNextLight(it))
+  {
+    if (!light->GetSwitch() || lights.size() == 8)
+    {
+      continue;
+    }
+    cloudvis::Light l;
+    l.Positional = light->GetPositional() != 0;
+    l.Position = glm::vec3(glm::make_vec3(light->GetTransformedPosition()));
+    l.FocalPoint = glm::vec3(glm::make_vec3(light->GetTransformedFocalPoint()));
+    l.Color = glm::vec3(glm::make_vec3(light->GetDiffuseColor()));
+    l.Intensity = float(light->GetIntensity());
+    l.Attenuation = glm::vec3(glm::make_vec3(light->GetAttenuationValues()));
+    lights.push_back(l);
+  }
+  return lights;
+}
+
+vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer)
+{
+  vtkMTimeType latest = renderer->GetLights()->GetMTime();
+  vtkCollectionSimpleIterator it;
+  renderer->GetLights()->InitTraversal(it);
+  while (vtkLight* light = renderer->GetLights()->GetNextLight(it))
+  {
+    latest = std::max(latest, light->GetMTime());
+  }
+  return latest;
+}
+}
+
+void vtkCloudVolumeMapper::SetLightingUniforms(
+  vtkShaderProgram* program, vtkRenderer* renderer, double smallestSpacing)
+{
+  const cloudvis::LightingParameters& p = this->Lighting;
+  const std::vector<cloudvis::Light> lights = LightsOf(renderer);
+  const int count = static_cast<int>(lights.size());
+  std::vector<int> positional(8, 0);
+  std::vector<float> position(24, 0.0f), direction(24, 0.0f), radiance(24, 0.0f),
+    attenuation(24, 0.0f);
+  for (int i = 0; i < count; ++i)
+  {
+    const cloudvis::Light& l = lights[i];
+    positional[i] = l.Positional ? 1 : 0;
+    // The direction toward a directional light; SampleLight gives the same on the CPU.
+    const glm::vec3 towardLight = cloudvis::SampleLight(l, glm::vec3(0.0f)).Direction;
+    const glm::vec3 e = l.Color * l.Intensity;
+    for (int c = 0; c < 3; ++c)
+    {
+      position[3 * i + c] = l.Position[c];
+      direction[3 * i + c] = l.Positional ? 0.0f : towardLight[c];
+      radiance[3 * i + c] = e[c];
+      attenuation[3 * i + c] = l.Attenuation[c];
+    }
+  }
+  program->SetUniformi("LightCount", count);
+  program->SetUniform1iv("LightPositional", 8, positional.data());
+  program->SetUniform3fv("LightPosition", 8, position.data());
+  program->SetUniform3fv("LightDirection", 8, direction.data());
+  program->SetUniform3fv("LightRadiance", 8, radiance.data());
+  program->SetUniform3fv("LightAttenuation", 8, attenuation.data());
+  const glm::vec3 ambient = p.AmbientColor * p.AmbientStrength;
+  program->SetUniform3f("Ambient", glm::value_ptr(ambient));
+  // Automatic distances are tied to the voxel size (docs/lighting.md).
+  program->SetUniformf("DerivativeDistance",
+    p.DerivativeDistance > 0.0f ? p.DerivativeDistance : float(4.0 * smallestSpacing));
+  program->SetUniformi("LightSteps", p.LightSteps);
+  program->SetUniformf("LightStep", p.LightStep > 0.0f ? p.LightStep : float(2.0 * smallestSpacing));
+  program->SetUniformf("LightStepGrowth", p.LightStepGrowth);
+  program->SetUniformf("PhaseG1", p.PhaseG1);
+  program->SetUniformf("PhaseG2", p.PhaseG2);
+  program->SetUniformf("PhaseLobeWeight", p.PhaseLobeWeight);
+  program->SetUniformi("MultipleScatteringOctaves", p.MultipleScatteringOctaves);
+  program->SetUniformf("ScatteringFalloff", p.ScatteringFalloff);
+  program->SetUniformf("ExtinctionFalloff", p.ExtinctionFalloff);
+  program->SetUniformf("EccentricityFalloff", p.EccentricityFalloff);
+  program->SetUniformf("PowderStrength", p.PowderStrength);
+}
+
 void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   this->LastError.clear();
@@ -510,7 +615,7 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   signature.insert(signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
   for (double v : { double(viewport[2]), double(viewport[3]), scale, double(in.DensityUploadTime),
          double(in.TableTime), double(this->GetMTime()), double(volume->GetMTime()),
-         double(LatestChangeOfOtherProps(renderer, volume)) })
+         double(LatestChangeOfOtherProps(renderer, volume)), double(LatestChangeOfLights(renderer)) })
   {
     signature.push_back(v);
   }
@@ -524,17 +629,23 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     return; // converged: the composite pass shows the accumulated image again
   }
 
-  if (!in.March)
+  // The march is one shader; a lighting model only supplies its source term.
+  const int model = static_cast<int>(this->Lighting.Model);
+  std::unique_ptr<vtkOpenGLQuadHelper>& march = in.March[model];
+  if (!march)
   {
+    static const char* const models[3] = { CloudLightingNone, CloudLightingDerivative,
+      CloudLightingMarch };
     std::string source = CloudMarchFS;
-    vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", CloudLightingNone);
-    in.March = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, source.c_str(), "");
+    vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec",
+      std::string(CloudLightingCommon) + "\n" + models[model]);
+    march = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, source.c_str(), "");
   }
   else
   {
-    window->GetShaderCache()->ReadyShaderProgram(in.March->Program);
+    window->GetShaderCache()->ReadyShaderProgram(march->Program);
   }
-  vtkShaderProgram* program = in.March->Program;
+  vtkShaderProgram* program = march->Program;
   if (!program || !program->GetCompiled())
   {
     this->Fail("the march shader failed to compile or link; the driver's log is above");
@@ -610,7 +721,12 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   program->SetUniformf("StepWorld", float(step));
   program->SetUniformf("TerminationTransmittance", float(this->TerminationTransmittance));
   program->SetUniformi("MaximumIterations", iterations);
-  in.March->Render();
+  this->SetLightingUniforms(program, renderer, std::min({ spacing[0], spacing[1], spacing[2] }));
+  const glm::dmat4 indexToWorld = modelToWorld * indexToModel;
+  SetMatrix(program, "IndexToWorld", indexToWorld);
+  glm::mat3 worldToIndex(glm::inverse(glm::dmat3(indexToWorld)));
+  program->SetUniformMatrix3x3("WorldToIndex", glm::value_ptr(worldToIndex));
+  march->Render();
   for (vtkTextureObject* texture : { in.Density.Get(), in.Transfer.Get(), in.EmptyDistance.Get(),
          in.Jitter.Get(), view.Depth.Get() })
   {
@@ -744,7 +860,10 @@ void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
     view.second->Release(window);
   }
   in.Views.clear();
-  in.March.reset();
+  for (auto& march : in.March)
+  {
+    march.reset();
+  }
   in.Composite.reset();
   in.UploadedInput = nullptr;
   in.DensityUploadTime = in.TableTime = in.EmptyDistanceUploadTime = 0;

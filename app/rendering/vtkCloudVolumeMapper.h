@@ -15,6 +15,12 @@
  * sigma_t = -ln(1 - a) / u, and the color is the albedo. Per step a sample absorbs
  * 1 - exp(-sigma_t dt) of the light behind it, so the image does not depend on the step.
  *
+ * Lighting (docs/lighting.md): none (emission-absorption), derivative (the directional
+ * derivative toward each light) or march (a nested march toward each light with Beer-Lambert
+ * transmittance, a two-lobe Henyey-Greenstein phase and approximate multiple scattering). The
+ * lights are the renderer's switched-on vtkLights (at most 8): directional or positional, with
+ * their diffuse color, intensity and attenuation values.
+ *
  * The march renders into a float target at ResolutionScale times the viewport, which a
  * composite pass upsamples (Catmull-Rom) and blends over the scene. While nothing changes,
  * successive frames with different blue-noise jitter are averaged (progressive accumulation).
@@ -28,6 +34,7 @@
 #ifndef vtkCloudVolumeMapper_h
 #define vtkCloudVolumeMapper_h
 
+#include "CloudLighting.h"
 #include "cloudvisRenderingModule.h"
 
 #include <vtkVolumeMapper.h>
@@ -37,6 +44,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkShaderProgram;
 
 class CLOUDVISRENDERING_EXPORT vtkCloudVolumeMapper : public vtkVolumeMapper
 {
@@ -131,6 +139,15 @@ public:
    */
   int GetNumberOfAccumulatedFrames(vtkRenderer* renderer) const;
 
+  ///@{
+  /**
+   * The lighting model and its parameters (cloudvis::LightingParameters documents each
+   * default). Default: model none.
+   */
+  void SetLighting(const cloudvis::LightingParameters& lighting);
+  const cloudvis::LightingParameters& GetLighting() const { return this->Lighting; }
+  ///@}
+
   enum DisplayModes
   {
     Radiance = 0,   // the cloud
@@ -198,6 +215,7 @@ protected:
   int MaximumAccumulatedFrames = 1;
   int DisplayMode = Radiance;
   bool CollectStatistics = false;
+  cloudvis::LightingParameters Lighting;
 
 private:
   vtkCloudVolumeMapper(const vtkCloudVolumeMapper&) = delete;
@@ -208,6 +226,7 @@ private:
   bool UpdateVolumeTextures(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
   double ChooseResolutionScale(vtkRenderer* renderer);
   void MarchPass(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
+  void SetLightingUniforms(vtkShaderProgram* program, vtkRenderer* renderer, double smallestSpacing);
   void CompositePass(vtkRenderer* renderer);
   void ReadStatistics(vtkRenderer* renderer);
 

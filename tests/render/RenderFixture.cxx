@@ -4,6 +4,7 @@
 
 #include <vtkCamera.h>
 #include <vtkFloatArray.h>
+#include <vtkLight.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkUnsignedCharArray.h>
@@ -184,6 +185,43 @@ void Dump(const Image& image, const std::string& name)
   writer->SetInputData(pixels);
   writer->SetFileName((std::string(directory) + "/" + name + ".png").c_str());
   writer->Write();
+}
+
+void AddDirectionalLight(vtkRenderer* renderer, double fromX, double fromY, double fromZ,
+  double intensity, double r, double g, double b)
+{
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(fromX, fromY, fromZ);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  light->SetDiffuseColor(r, g, b);
+  light->SetIntensity(intensity);
+  renderer->AddLight(light);
+}
+
+void AddPointLight(vtkRenderer* renderer, double x, double y, double z, double intensity,
+  double r, double g, double b)
+{
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(true);
+  light->SetConeAngle(180.0);
+  light->SetPosition(x, y, z);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  light->SetDiffuseColor(r, g, b);
+  light->SetIntensity(intensity);
+  light->SetAttenuationValues(0.0, 0.0, 1.0);
+  renderer->AddLight(light);
+}
+
+double MeanOver(const Image& image, int channel, int x0, int x1)
+{
+  double sum = 0.0;
+  for (int y = 0; y < image.Height; ++y)
+    for (int x = x0; x < x1; ++x)
+      sum += image.At(x, y, channel);
+  return sum / (double(image.Height) * (x1 - x0));
 }
 
 double RmsDifference(const Image& a, const Image& b)

@@ -39,6 +39,16 @@ void SetUniformMedium(vtkVolumeProperty* property, double opacity, double unitDi
 // Opacity rising linearly with density over [0, max] up to `opacity`, with a color ramp.
 void SetRampMedium(vtkVolumeProperty* property, double max, double opacity);
 
+// Scene lights as the lighting docs define them: a directional light arriving from `from`
+// toward the origin, and a point light at `at` with inverse-square falloff.
+void AddDirectionalLight(vtkRenderer* renderer, double fromX, double fromY, double fromZ,
+  double intensity = 1.0, double r = 1, double g = 1, double b = 1);
+void AddPointLight(vtkRenderer* renderer, double x, double y, double z, double intensity = 1.0,
+  double r = 1, double g = 1, double b = 1);
+
+// Mean of one channel (0..3) over the columns [x0, x1) of an image.
+double MeanOver(const struct Image& image, int channel, int x0, int x1);
+
 struct Image
 {
   int Width = 0, Height = 0;

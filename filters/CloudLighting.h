@@ -1,0 +1,162 @@
+// The lighting models' parameters and the functions they share, on the CPU. Each function has
+// a GLSL twin of the same name in shaders/CloudLightingCommon.glsl, .../CloudLightingDerivative
+// .glsl and .../CloudLightingMarch.glsl; the equations are written out in docs/lighting.md.
+//
+// Conventions: world units; l is the unit direction from a sample toward a light; d is the unit
+// direction of the view ray (from the eye into the scene); mu = dot(d, l), so mu = 1 when the
+// eye looks straight at the light through the sample (forward scattering).
+#ifndef CloudLighting_h
+#define CloudLighting_h
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace cloudvis
+{
+
+enum class LightingModel
+{
+  None,       // emission-absorption: a sample emits its transfer-function color
+  Derivative, // directional derivative toward each light, one extra density sample per light
+  March,      // nested march toward each light: Beer-Lambert shadowing and a phase function
+};
+
+// A light as the lighting models see it (the mapper converts vtkLights into these).
+struct Light
+{
+  bool Positional = false;     // false: directional, from Position toward FocalPoint
+  glm::vec3 Position{ 0.0f, 10.0f, 10.0f };
+  glm::vec3 FocalPoint{ 0.0f };
+  glm::vec3 Color{ 1.0f };
+  float Intensity = 1.0f;
+  glm::vec3 Attenuation{ 1.0f, 0.0f, 0.0f }; // positional: 1 / (a0 + a1 r + a2 r^2)
+};
+
+struct LightingParameters
+{
+  LightingModel Model = LightingModel::None;
+  glm::vec3 AmbientColor{ 1.0f };
+  float AmbientStrength = 0.0f;
+
+  // derivative: the finite-difference distance h toward the light, world units; 0 means 4
+  // voxel spacings (the smallest spacing of the field).
+  float DerivativeDistance = 0.0f;
+
+  // march: LightSteps samples toward each light; the first segment is LightStep long (0 means
+  // 2 voxel spacings) and each next one LightStepGrowth times longer (1: uniform steps).
+  int LightSteps = 6;
+  float LightStep = 0.0f;
+  float LightStepGrowth = 1.6f;
+  // Henyey-Greenstein phase, two lobes: w * HG(g1) + (1 - w) * HG(g2). w = 1 is one lobe.
+  float PhaseG1 = 0.6f;
+  float PhaseG2 = -0.3f;
+  float PhaseLobeWeight = 0.8f;
+  // Approximate multiple scattering: octaves n = 1..N added to single scattering (n = 0), each
+  // scaling scattering by a^n, extinction toward the light by b^n, eccentricity by c^n.
+  int MultipleScatteringOctaves = 3;
+  float ScatteringFalloff = 0.5f;   // a
+  float ExtinctionFalloff = 0.5f;   // b
+  float EccentricityFalloff = 0.5f; // c
+  // Non-physical "powder" darkening of thin regions (an artistic term): 0 disables.
+  float PowderStrength = 0.0f;
+};
+
+// Empty when the parameters are usable, else the problem, in words.
+inline std::string ValidateLightingParameters(const LightingParameters& p)
+{
+  const auto finite3 = [](glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  if (!finite3(p.AmbientColor) || !std::isfinite(p.AmbientStrength) || p.AmbientStrength < 0.0f)
+    return "ambient color and strength must be finite, strength >= 0";
+  if (!std::isfinite(p.DerivativeDistance) || p.DerivativeDistance < 0.0f)
+    return "the derivative distance must be >= 0 (0: automatic)";
+  if (p.LightSteps < 1 || p.LightSteps > 64)
+    return "light-march steps must be between 1 and 64";
+  if (!std::isfinite(p.LightStep) || p.LightStep < 0.0f)
+    return "the light-march step must be >= 0 (0: automatic)";
+  if (!std::isfinite(p.LightStepGrowth) || p.LightStepGrowth < 1.0f || p.LightStepGrowth > 4.0f)
+    return "the light-march step growth must be between 1 and 4";
+  if (!(std::abs(p.PhaseG1) < 1.0f) || !(std::abs(p.PhaseG2) < 1.0f))
+    return "phase eccentricities g must be in (-1, 1)";
+  if (!(p.PhaseLobeWeight >= 0.0f && p.PhaseLobeWeight <= 1.0f))
+    return "the phase lobe weight must be in [0, 1]";
+  if (p.MultipleScatteringOctaves < 0 || p.MultipleScatteringOctaves > 8)
+    return "multiple-scattering octaves must be between 0 and 8";
+  for (float f : { p.ScatteringFalloff, p.ExtinctionFalloff, p.EccentricityFalloff })
+    if (!(f >= 0.0f && f <= 1.0f))
+      return "multiple-scattering falloffs must be in [0, 1]";
+  if (!(p.PowderStrength >= 0.0f && p.PowderStrength <= 1.0f))
+    return "the powder strength must be in [0, 1]";
+  return {};
+}
+
+constexpr float Pi = 3.14159265358979f;
+
+// Henyey-Greenstein phase function: (1 / 4 pi) (1 - g^2) / (1 + g^2 - 2 g mu)^(3/2).
+// Integrates to 1 over the sphere; g > 0 scatters forward.
+inline float HenyeyGreenstein(float g, float mu)
+{
+  const float g2 = g * g;
+  const float denominator = 1.0f + g2 - 2.0f * g * mu;
+  return (1.0f - g2) / (4.0f * Pi * denominator * std::sqrt(denominator));
+}
+
+// The two-lobe phase with both eccentricities scaled by `eccentricityScale` (c^n for octave n).
+inline float Phase(const LightingParameters& p, float mu, float eccentricityScale)
+{
+  return p.PhaseLobeWeight * HenyeyGreenstein(p.PhaseG1 * eccentricityScale, mu) +
+    (1.0f - p.PhaseLobeWeight) * HenyeyGreenstein(p.PhaseG2 * eccentricityScale, mu);
+}
+
+// Directional derivative toward a light: positive where density falls toward the light, so the
+// side of a cloud facing the light is bright.
+inline float DerivativeDiffuse(float densityHere, float densityTowardLight, float h)
+{
+  return glm::clamp((densityHere - densityTowardLight) / h, 0.0f, 1.0f);
+}
+
+// Light scattered toward the eye at a sample from one light whose optical depth to the sample
+// is tau: single scattering plus the multiple-scattering octaves (docs/lighting.md).
+inline float ScatteredFraction(const LightingParameters& p, float mu, float tau)
+{
+  float sum = 0.0f;
+  float a = 1.0f, b = 1.0f, c = 1.0f;
+  for (int n = 0; n <= p.MultipleScatteringOctaves; ++n)
+  {
+    sum += a * Phase(p, mu, c) * std::exp(-b * tau);
+    a *= p.ScatteringFalloff;
+    b *= p.ExtinctionFalloff;
+    c *= p.EccentricityFalloff;
+  }
+  // Labelled non-physical: darkens where little material lies toward the light.
+  const float powder = 1.0f - p.PowderStrength * std::exp(-2.0f * tau);
+  return sum * powder;
+}
+
+// Where a light is seen from a world point: unit direction toward it, the distance to it
+// (infinite for directional lights) and its distance falloff.
+struct LightSample
+{
+  glm::vec3 Direction;
+  float Distance;
+  float Falloff;
+};
+inline LightSample SampleLight(const Light& light, glm::vec3 p)
+{
+  if (!light.Positional)
+  {
+    return { glm::normalize(light.Position - light.FocalPoint), INFINITY, 1.0f };
+  }
+  const glm::vec3 toLight = light.Position - p;
+  const float r = glm::length(toLight);
+  const glm::vec3 k = light.Attenuation;
+  return { toLight / std::max(r, 1e-20f), r, 1.0f / std::max(k.x + k.y * r + k.z * r * r, 1e-20f) };
+}
+
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,60 @@
+// What the lighting models share (twins of filters/CloudLighting.h): the lights, the phase
+// function, and density and extinction lookups at any point of the volume.
+// p is a point in voxel index space; WorldPoint(p) and ToIndexDisplacement() convert.
+
+#define MAX_LIGHTS 8
+uniform int LightCount;
+uniform int LightPositional[MAX_LIGHTS];
+uniform vec3 LightPosition[MAX_LIGHTS];  // world; positional lights
+uniform vec3 LightDirection[MAX_LIGHTS]; // world, unit, toward the light; directional lights
+uniform vec3 LightRadiance[MAX_LIGHTS];  // color * intensity
+uniform vec3 LightAttenuation[MAX_LIGHTS];
+uniform vec3 Ambient; // ambient color * strength
+uniform mat4 IndexToWorld;
+uniform mat3 WorldToIndex; // a world displacement in index units
+
+const float Pi = 3.14159265358979;
+
+vec3 WorldOfIndex(vec3 p)
+{
+  return (IndexToWorld * vec4(p, 1.0)).xyz;
+}
+
+float DensityAt(vec3 p)
+{
+  return texture(DensityTexture, (p + 0.5) / Dimensions).r;
+}
+
+float ExtinctionAt(vec3 p)
+{
+  return texture(TransferTexture, TableCoordinate(DensityAt(p))).a;
+}
+
+bool InsideVolume(vec3 p)
+{
+  return all(greaterThanEqual(p, vec3(0.0))) && all(lessThanEqual(p, Dimensions - 1.0));
+}
+
+// Direction toward light i from world point x, the distance to it and its falloff.
+void SampleLight(int i, vec3 x, out vec3 l, out float distance, out float falloff)
+{
+  if (LightPositional[i] == 0)
+  {
+    l = LightDirection[i];
+    distance = 1e30;
+    falloff = 1.0;
+    return;
+  }
+  vec3 toLight = LightPosition[i] - x;
+  distance = length(toLight);
+  l = toLight / max(distance, 1e-20);
+  vec3 k = LightAttenuation[i];
+  falloff = 1.0 / max(k.x + k.y * distance + k.z * distance * distance, 1e-20);
+}
+
+float HenyeyGreenstein(float g, float mu)
+{
+  float g2 = g * g;
+  float denominator = 1.0 + g2 - 2.0 * g * mu;
+  return (1.0 - g2) / (4.0 * Pi * denominator * sqrt(denominator));
+}
