@@ -7,7 +7,9 @@ BUILD_TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc)
 CLOUDVIS := $(BUILD_DIR)/bin/cloudvis
 # Tests and the demo need an X display; without one, run them under a virtual framebuffer.
-HEADLESS := $(if $(DISPLAY),,xvfb-run -a -s "-screen 0 1280x1024x24")
+# -noreset: the server must not restart (and refuse connections) each time its last client,
+# one test process, disconnects.
+HEADLESS := $(if $(DISPLAY),,xvfb-run -a -s "-screen 0 1280x1024x24 -noreset")
 
 .PHONY: all deps configure build demo test bench clean
 

@@ -203,7 +203,8 @@ std::string GeneralHelp()
   help << "Usage: cloudvis [COMMAND [OPTIONS]...]\n\n"
        << "Generate and inspect procedural cloud density fields.\n\n"
        << "Without a command, cloudvis generates the default scene (a unit sphere plus 6 octaves\n"
-       << "of value noise) into out/default.vti and prints its statistics.\n\n"
+       << "of value noise) into out/default.vti, renders it to out/default.png and prints its\n"
+       << "statistics. Rendering needs an X display; headless: xvfb-run -a cloudvis ...\n\n"
        << "Commands:\n";
   for (const CommandSpec& command : Commands())
   {

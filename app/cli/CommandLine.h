@@ -64,8 +64,8 @@ Arguments ParseArguments(const CommandSpec& command, const std::vector<std::stri
 std::string GeneralHelp();
 std::string CommandHelp(const CommandSpec& command);
 
-// What `cloudvis` with no arguments does: generate the default scene into out/default.vti and
-// print its statistics. Will become "render the default scene" once the renderer exists.
+// What `cloudvis` with no arguments does: generate the default scene into out/default.vti, render
+// it to out/default.png and print its statistics. Needs an X display.
 int RunDefault(std::ostream& out);
 
 // The whole program: arguments as main() gets them (arguments[0] is the program name). Prints

@@ -1,6 +1,8 @@
 // The command table and the commands. Each command is a short function over the library:
-// LoadScene -> ProduceField -> WriteField or ComputeFieldStatistics; options shared between
-// commands (--set, --help) are defined once and listed by each command that takes them.
+// LoadScene -> ProduceField -> WriteField, ComputeFieldStatistics or RenderOffscreen + WriteImage;
+// options shared between commands (--set, --help) are defined once and listed by each command
+// that takes them. Options that stand for a scene key (--lighting, --size) become SceneOverrides,
+// so the scene's validation checks them like any other value.
 #include "CommandLine.h"
 
 #include "../analysis/FieldStatistics.h"
@@ -9,11 +11,16 @@
 #include "../io/FieldIO.h"
 #include "../io/Scene.h"
 #include "../io/SceneField.h"
+#include "../render/OffscreenRender.h"
 
 #include <vtkImageData.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
+#include <iomanip>
+#include <numeric>
+#include <regex>
 #include <sys/stat.h>
 
 namespace cloudvis
@@ -30,6 +37,23 @@ const OptionSpec OutputOption{ "output", 'o', "FIELD.vti",
   "write the field to this file (VTK XML image data, zlib-compressed); required", false,
   true };
 const OptionSpec JsonOption{ "json", 0, "", "print the statistics as one JSON object" };
+const OptionSpec ImageOutputOption{ "output", 'o', "IMAGE.png",
+  "write the rendered image to this file (8-bit RGB PNG); required", false, true };
+const OptionSpec SizeOption{ "size", 0, "WxH",
+  "image size in pixels, e.g. 800x600 (each in [16, 16384]); overrides render.size" };
+const OptionSpec BenchmarkOption{ "benchmark", 0, "N",
+  "after the image is made, march N more frames in full and print the mean time per frame as "
+  "'<milliseconds> ms/frame'" };
+
+OptionSpec LightingOption()
+{
+  std::string names;
+  for (const std::string& name : LightingModelNames())
+  {
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  return { "lighting", 0, "MODEL", "lighting model, one of: " + names + "; overrides render.lighting" };
+}
 
 bool EndsWith(const std::string& text, const std::string& suffix)
 {
@@ -58,6 +82,99 @@ int Generate(const Arguments& arguments, std::ostream& out)
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
   WriteField(field, output);
   out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
+  return ExitSuccess;
+}
+
+// --size WxH as the JSON value of render.size; the scene checks the range.
+nlohmann::json ParseSize(const std::string& text)
+{
+  static const std::regex form("([0-9]{1,9})[xX]([0-9]{1,9})");
+  std::smatch match;
+  if (!std::regex_match(text, match, form))
+  {
+    throw UsageError("render: --size expects WIDTHxHEIGHT in pixels (for example 800x600), got \"" +
+      text + "\"");
+  }
+  return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
+}
+
+int ParseFrameCount(const std::string& option, const std::string& text)
+{
+  static const std::regex form("[0-9]{1,6}");
+  if (!std::regex_match(text, form) || std::stoi(text) < 1)
+  {
+    throw UsageError("render: --" + option + " expects a number of frames in [1, 999999], got \"" +
+      text + "\"");
+  }
+  return std::stoi(text);
+}
+
+void MakeDirectory(const std::string& directory)
+{
+  if (::mkdir(directory.c_str(), 0777) != 0 && errno != EEXIST)
+  {
+    throw InputError(directory + ": cannot create the output directory (" + std::strerror(errno) + ")");
+  }
+}
+
+int Render(const Arguments& arguments, std::ostream& out)
+{
+  if (!arguments.Has("output"))
+  {
+    throw UsageError("render: missing the output image: -o IMAGE.png");
+  }
+  const std::string output = arguments.Value("output");
+  const std::string& input = arguments.Operands[0];
+  const int benchmarkFrames =
+    arguments.Has("benchmark") ? ParseFrameCount("benchmark", arguments.Value("benchmark")) : 0;
+  std::vector<SceneOverride> options;
+  if (arguments.Has("lighting"))
+  {
+    options.push_back({ "render.lighting", arguments.Value("lighting"), "--lighting" });
+  }
+  if (arguments.Has("size"))
+  {
+    options.push_back({ "render.size", ParseSize(arguments.Value("size")), "--size" });
+  }
+  const bool fieldFile = EndsWith(input, ".vti");
+  const std::vector<std::string> assignments = arguments.Values("set");
+  if (fieldFile)
+  {
+    for (const std::string& assignment : assignments)
+    {
+      if (assignment.rfind("field", 0) == 0 && (assignment.size() == 5 ||
+            assignment[5] == '.' || assignment[5] == '='))
+      {
+        throw UsageError("render: --set " + assignment.substr(0, assignment.find('=')) +
+          " does not apply to the field file " + input + "; only scenes have field keys");
+      }
+    }
+  }
+  // The cheap checks first: a bad -o, scene value or display should not cost a field.
+  CheckImageOutput(output);
+  Scene scene = LoadScene(fieldFile ? "" : input, assignments, options);
+  RequireDisplay("cloudvis render ...");
+  vtkSmartPointer<vtkImageData> field;
+  if (fieldFile)
+  {
+    scene.Field.File = input;
+    field = ReadField(input);
+  }
+  else
+  {
+    field = ProduceField(scene);
+  }
+  const OffscreenRenderResult result = RenderOffscreen(scene, field, input, benchmarkFrames);
+  WriteImage(result.Image, output);
+  out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
+      << " pixels, " << result.AccumulatedFrames << " frame"
+      << (result.AccumulatedFrames == 1 ? "" : "s") << " averaged)\n";
+  if (benchmarkFrames > 0)
+  {
+    const double total =
+      std::accumulate(result.FrameMilliseconds.begin(), result.FrameMilliseconds.end(), 0.0);
+    out << std::fixed << std::setprecision(2) << total / double(benchmarkFrames) << " ms/frame\n";
+  }
   return ExitSuccess;
 }
 
@@ -95,15 +212,20 @@ int RunDefault(std::ostream& out)
 {
   const std::string directory = "out";
   const std::string output = directory + "/default.vti";
-  if (::mkdir(directory.c_str(), 0777) != 0 && errno != EEXIST)
-  {
-    throw InputError(directory + ": cannot create the output directory (" + std::strerror(errno) + ")");
-  }
+  const std::string image = directory + "/default.png";
+  // Before anything is written: without a display the demo cannot complete.
+  RequireDisplay("cloudvis");
+  MakeDirectory(directory);
   CheckOutputTarget(output);
+  CheckImageOutput(image);
   const Scene scene = LoadScene("", {});
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
   WriteField(field, output);
-  out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n\n";
+  out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
+  const OffscreenRenderResult result = RenderOffscreen(scene, field, scene.Source);
+  WriteImage(result.Image, image);
+  out << "wrote " << image << " (" << result.Image.Width << " x " << result.Image.Height
+      << " pixels)\n\n";
   PrintFieldStatistics(out, ComputeFieldStatistics(field), output);
   return ExitSuccess;
 }
@@ -124,6 +246,15 @@ const std::vector<CommandSpec>& Commands()
       "(n-1) spacing), value range, mean, the fraction of non-empty voxels (density > 0) and a\n"
       "16-bin histogram over [min, max]. --set applies to scenes only.",
       { JsonOption, SetOption, HelpOption }, Info },
+    { "render", "SCENE|FIELD.vti", 1, 1, "render a scene or a .vti field off screen to a PNG image",
+      "An argument ending in .vti is a field file, rendered with the default scene's transfer\n"
+      "function, camera, background and render settings (--set may change those, not field\n"
+      "keys); anything else is a scene file. The image is render.size pixels, the average of\n"
+      "render.accumulate jittered frames, written as 8-bit RGB through a temporary file renamed\n"
+      "over IMAGE.png. Rendering needs an X display: without one, run it under Xvfb,\n"
+      "xvfb-run -a cloudvis render ...",
+      { ImageOutputOption, SizeOption, LightingOption(), BenchmarkOption, SetOption, HelpOption },
+      Render },
   };
   return commands;
 }

@@ -27,17 +27,19 @@ struct Context
 {
   std::string Source;
   std::string BaseDirectory;
-  std::vector<std::string> OverriddenKeys;
+  // Dotted keys set on the command line, each with the option that set it; the last one to
+  // set a key is the one whose value is checked.
+  std::vector<std::pair<std::string, std::string>> OverriddenKeys;
 
   [[noreturn]] void Fail(const std::string& key, const std::string& problem) const
   {
     std::string note;
-    for (const std::string& overridden : this->OverriddenKeys)
+    for (const auto& overridden : this->OverriddenKeys)
     {
-      if (key == overridden || key.rfind(overridden + ".", 0) == 0 ||
-        key.rfind(overridden + "[", 0) == 0)
+      const std::string& k = overridden.first;
+      if (key == k || key.rfind(k + ".", 0) == 0 || key.rfind(k + "[", 0) == 0)
       {
-        note = " (set with --set)";
+        note = " (set with " + overridden.second + ")";
       }
     }
     throw InputError(this->Source + ": " + key + ": " + problem + note);
@@ -74,10 +76,12 @@ struct Range
   double Min = -std::numeric_limits<double>::max();
   double Max = std::numeric_limits<double>::max();
   bool MinOpen = false; // true: Min itself is excluded
+  bool MaxOpen = false; // true: Max itself is excluded
 
   bool Contains(double v) const
   {
-    return (this->MinOpen ? v > this->Min : v >= this->Min) && v <= this->Max;
+    return (this->MinOpen ? v > this->Min : v >= this->Min) &&
+      (this->MaxOpen ? v < this->Max : v <= this->Max);
   }
   std::string Text() const
   {
@@ -86,7 +90,7 @@ struct Range
     if (floored && bounded)
     {
       return std::string(this->MinOpen ? "(" : "[") + FormatNumber(this->Min) + ", " +
-        FormatNumber(this->Max) + "]";
+        FormatNumber(this->Max) + (this->MaxOpen ? ")" : "]");
     }
     if (floored)
     {
@@ -98,6 +102,7 @@ struct Range
 const Range AnyNumber{};
 const Range NonNegative{ 0.0 };
 const Range Positive{ 0.0, std::numeric_limits<double>::max(), true };
+const Range UnitInterval{ 0.0, 1.0 };
 
 double ReadNumber(const Context& c, const json& v, const std::string& key, const Range& range)
 {
@@ -158,6 +163,15 @@ std::array<double, N> ReadNumbers(
   return values;
 }
 
+bool ReadBool(const Context& c, const json& v, const std::string& key)
+{
+  if (!v.is_boolean())
+  {
+    c.Fail(key, "expected true or false, got " + Describe(v));
+  }
+  return v.get<bool>();
+}
+
 glm::vec3 ReadVec3(const Context& c, const json& v, const std::string& key, const Range& range)
 {
   const std::array<double, 3> a = ReadNumbers<3>(c, v, key, range);
@@ -194,6 +208,10 @@ const Named<ShapeType> ShapeTypes[] = {
   { "capsule", ShapeType::Capsule },
 };
 const char* const MorphName = "morph";
+// One line per lighting model; the renderer maps each onto the mapper.
+const Named<LightingModel> LightingModels[] = {
+  { "none", LightingModel::None },
+};
 
 template <typename E, size_t N>
 std::vector<std::string> NamesOf(const Named<E> (&table)[N])
@@ -558,6 +576,129 @@ void ReadField(const Context& c, const json& v, const std::string& key, Scene& s
   }
 }
 
+// ---- the transfer_function section --------------------------------------------------------
+
+// A list of control points [density, v1, .. v(N-1)]: at least one, values in `range`, densities
+// strictly increasing (a transfer function is a function of density).
+template <size_t N>
+std::vector<std::array<double, N>> ReadControlPoints(
+  const Context& c, const json& v, const std::string& key, const Range& range, const char* form)
+{
+  if (!v.is_array())
+  {
+    c.Fail(key, std::string("expected a list of ") + form + " points, got " + Describe(v));
+  }
+  if (v.empty())
+  {
+    c.Fail(key, std::string("the list is empty; give at least one ") + form + " point");
+  }
+  std::vector<std::array<double, N>> points;
+  for (size_t i = 0; i < v.size(); ++i)
+  {
+    const std::string pointKey = key + "[" + std::to_string(i) + "]";
+    if (!v[i].is_array() || v[i].size() != N)
+    {
+      c.Fail(pointKey, std::string("expected a point ") + form + ", got " + Describe(v[i]));
+    }
+    std::array<double, N> point;
+    point[0] = ReadNumber(c, v[i][0], pointKey + "[0]", AnyNumber);
+    for (size_t j = 1; j < N; ++j)
+    {
+      point[j] = ReadNumber(c, v[i][j], pointKey + "[" + std::to_string(j) + "]", range);
+    }
+    if (!points.empty() && !(point[0] > points.back()[0]))
+    {
+      c.Fail(pointKey + "[0]", "densities must increase strictly from point to point: " +
+          FormatNumber(point[0]) + " follows " + FormatNumber(points.back()[0]));
+    }
+    points.push_back(point);
+  }
+  return points;
+}
+
+const Key<TransferFunctionSpec> TransferFunctionKeys[] = {
+  { "opacity",
+    [](const Context& c, const json& v, const std::string& k, TransferFunctionSpec& t)
+    { t.Opacity = ReadControlPoints<2>(c, v, k, UnitInterval, "[density, opacity]"); } },
+  { "color",
+    [](const Context& c, const json& v, const std::string& k, TransferFunctionSpec& t)
+    { t.Color = ReadControlPoints<4>(c, v, k, UnitInterval, "[density, r, g, b]"); } },
+  { "unit_distance",
+    [](const Context& c, const json& v, const std::string& k, TransferFunctionSpec& t)
+    { t.UnitDistance = ReadNumber(c, v, k, Positive); } },
+};
+
+// ---- the camera section -------------------------------------------------------------------
+
+const Key<CameraSpec> CameraKeys[] = {
+  { "position",
+    [](const Context& c, const json& v, const std::string& k, CameraSpec& camera)
+    { camera.Position = ReadNumbers<3>(c, v, k, AnyNumber); } },
+  { "focal_point",
+    [](const Context& c, const json& v, const std::string& k, CameraSpec& camera)
+    { camera.FocalPoint = ReadNumbers<3>(c, v, k, AnyNumber); } },
+  { "view_up",
+    [](const Context& c, const json& v, const std::string& k, CameraSpec& camera)
+    {
+      camera.ViewUp = ReadNumbers<3>(c, v, k, AnyNumber);
+      const std::array<double, 3>& u = camera.ViewUp;
+      if (u[0] * u[0] + u[1] * u[1] + u[2] * u[2] == 0.0)
+      {
+        c.Fail(k, "the view-up vector must not be zero");
+      }
+    } },
+  { "view_angle",
+    [](const Context& c, const json& v, const std::string& k, CameraSpec& camera)
+    { camera.ViewAngle = ReadNumber(c, v, k, Range{ 0.0, 180.0, true, true }); } },
+};
+
+void ReadCamera(const Context& c, const json& v, const std::string& key, Scene& scene)
+{
+  ReadObject(c, v, key, CameraKeys, scene.Camera);
+  // What can be checked before the field is known; the renderer checks the view direction
+  // against view_up once the defaults are filled in.
+  const CameraSpec& camera = scene.Camera;
+  if (camera.Position && camera.FocalPoint && *camera.Position == *camera.FocalPoint)
+  {
+    c.Fail(key + ".position", "the camera position equals the focal point; the view has no direction");
+  }
+}
+
+// ---- the render section -------------------------------------------------------------------
+
+const Key<RenderSpec> RenderKeys[] = {
+  { "lighting",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { r.Lighting = ReadName(c, v, k, LightingModels); } },
+  { "step",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { r.Step = ReadNumber(c, v, k, NonNegative); } },
+  { "jitter",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { r.Jitter = ReadBool(c, v, k); } },
+  { "resolution_scale",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { r.ResolutionScale = ReadNumber(c, v, k, Range{ 0.25, 1.0 }); } },
+  { "accumulate",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { r.Accumulate = int(ReadInteger(c, v, k, 1, 65536)); } },
+  { "skip_empty_space",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { r.SkipEmptySpace = ReadBool(c, v, k); } },
+  { "size",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    {
+      if (!v.is_array() || v.size() != 2)
+      {
+        c.Fail(k, "expected an array of 2 integers [width, height], got " + Describe(v));
+      }
+      for (size_t a = 0; a < 2; ++a)
+      {
+        r.Size[a] = int(ReadInteger(c, v[a], k + "[" + std::to_string(a) + "]", 16, 16384));
+      }
+    } },
+};
+
 // ---- top level: one entry per section -----------------------------------------------------
 
 const Key<Scene> SceneKeys[] = {
@@ -571,6 +712,16 @@ const Key<Scene> SceneKeys[] = {
       s.Description = v.get<std::string>();
     } },
   { "field", ReadField },
+  { "transfer_function",
+    [](const Context& c, const json& v, const std::string& k, Scene& s)
+    { ReadObject(c, v, k, TransferFunctionKeys, s.TransferFunction); } },
+  { "camera", ReadCamera },
+  { "background",
+    [](const Context& c, const json& v, const std::string& k, Scene& s)
+    { s.Background = ReadNumbers<3>(c, v, k, UnitInterval); } },
+  { "render",
+    [](const Context& c, const json& v, const std::string& k, Scene& s)
+    { ReadObject(c, v, k, RenderKeys, s.Render); } },
 };
 
 std::string DirectoryOf(const std::string& path)
@@ -581,6 +732,18 @@ std::string DirectoryOf(const std::string& path)
     return "";
   }
   return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::vector<std::string> SplitKey(const std::string& key)
+{
+  std::vector<std::string> parts;
+  std::istringstream in(key);
+  std::string part;
+  while (std::getline(in, part, '.'))
+  {
+    parts.push_back(part);
+  }
+  return parts;
 }
 
 bool IsNumberToken(const std::string& token, double& value)
@@ -605,6 +768,11 @@ bool IsNumberToken(const std::string& token, double& value)
 }
 
 } // namespace
+
+std::vector<std::string> LightingModelNames()
+{
+  return NamesOf(LightingModels);
+}
 
 Scene DefaultScene()
 {
@@ -728,13 +896,7 @@ void ApplyOverride(nlohmann::json& document, const std::string& assignment)
     throw UsageError("--set expects KEY=VALUE (for example field.octaves=4), got \"" + assignment + "\"");
   }
   const std::string key = assignment.substr(0, equals);
-  std::vector<std::string> parts;
-  std::istringstream in(key);
-  std::string part;
-  while (std::getline(in, part, '.'))
-  {
-    parts.push_back(part);
-  }
+  const std::vector<std::string> parts = SplitKey(key);
   for (const std::string& p : parts)
   {
     if (p.empty() || key.back() == '.')
@@ -742,7 +904,13 @@ void ApplyOverride(nlohmann::json& document, const std::string& assignment)
       throw UsageError("--set " + assignment + ": the key \"" + key + "\" has an empty part");
     }
   }
-  const json value = ParseOverrideValue(key, assignment.substr(equals + 1));
+  SetDocumentValue(document, key, ParseOverrideValue(key, assignment.substr(equals + 1)), "--set");
+}
+
+void SetDocumentValue(
+  nlohmann::json& document, const std::string& key, const nlohmann::json& value, const std::string& option)
+{
+  const std::vector<std::string> parts = SplitKey(key);
   json* node = &document;
   std::string path;
   for (const std::string& p : parts)
@@ -753,7 +921,7 @@ void ApplyOverride(nlohmann::json& document, const std::string& assignment)
     }
     if (!node->is_object())
     {
-      throw InputError("--set " + key + ": " + (path.empty() ? "the scene" : path) + " is a " +
+      throw InputError(option + " " + key + ": " + (path.empty() ? "the scene" : path) + " is a " +
         node->type_name() + ", not an object, so it has no key \"" + p + "\"");
     }
     path += (path.empty() ? "" : ".") + p;
@@ -763,9 +931,18 @@ void ApplyOverride(nlohmann::json& document, const std::string& assignment)
 }
 
 Scene SceneFromDocument(const nlohmann::json& document, const std::string& source,
-  const std::string& baseDirectory, const std::vector<std::string>& overriddenKeys)
+  const std::string& baseDirectory, const std::vector<std::string>& overriddenKeys,
+  const std::vector<SceneOverride>& optionKeys)
 {
-  const Context context{ source, baseDirectory, overriddenKeys };
+  Context context{ source, baseDirectory, {} };
+  for (const std::string& key : overriddenKeys)
+  {
+    context.OverriddenKeys.emplace_back(key, "--set");
+  }
+  for (const SceneOverride& option : optionKeys)
+  {
+    context.OverriddenKeys.emplace_back(option.Key, option.Option);
+  }
   if (!document.is_object())
   {
     throw InputError(source + ": a scene must be a JSON object, got " + Describe(document));
@@ -776,7 +953,8 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   return scene;
 }
 
-Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments)
+Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options)
 {
   json document = path.empty() ? json::object() : ReadSceneDocument(path);
   std::vector<std::string> keys;
@@ -785,8 +963,12 @@ Scene LoadScene(const std::string& path, const std::vector<std::string>& assignm
     ApplyOverride(document, assignment);
     keys.push_back(assignment.substr(0, assignment.find('=')));
   }
-  return SceneFromDocument(
-    document, path.empty() ? "default scene" : path, path.empty() ? "" : DirectoryOf(path), keys);
+  for (const SceneOverride& option : options)
+  {
+    SetDocumentValue(document, option.Key, option.Value, option.Option);
+  }
+  return SceneFromDocument(document, path.empty() ? "default scene" : path,
+    path.empty() ? "" : DirectoryOf(path), keys, options);
 }
 
 } // namespace cloudvis

@@ -1,12 +1,15 @@
 // Library-level tests of cloudvisApp: what the command-line tests cannot judge by regex. A
 // generated file must equal, bit for bit, vtkCloudDensitySource configured by hand with the same
 // parameters (which also checks that every scene key lands on the right member); statistics
-// must match analytic answers; overrides and atomic writes must behave as documented.
+// must match analytic answers; overrides and atomic writes must behave as documented; rendered
+// PNGs must have the requested size, the background where there is no cloud and the cloud where
+// there is one. The Render tests need an X display (Xvfb under `make test`).
 #include "AtomicFile.h"
 #include "CommandLine.h"
 #include "Errors.h"
 #include "FieldIO.h"
 #include "FieldStatistics.h"
+#include "OffscreenRender.h"
 #include "Scene.h"
 #include "SceneField.h"
 #include "vtkCloudDensitySource.h"
@@ -14,12 +17,17 @@
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkCamera.h>
+#include <vtkPNGReader.h>
 #include <vtkPointData.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLImageDataReader.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <dirent.h>
 #include <fstream>
@@ -437,6 +445,235 @@ TEST(Help, EveryOptionOfEveryCommand)
     }
     EXPECT_NE(RunCloudvis({ "--help" }).find(command.Name), std::string::npos);
   }
+}
+
+// ---- scene sections of the renderer ---------------------------------------------------------
+
+TEST(Scene, RenderSectionsReachTheScene)
+{
+  const cloudvis::Scene scene = cloudvis::LoadScene("",
+    { "transfer_function.opacity=[[0,0],[0.2,0.1],[1,0.5]]", "transfer_function.color=[[0,1,0,0.5]]",
+      "transfer_function.unit_distance=0.5", "camera.position=1,2,3", "camera.focal_point=0,1,0",
+      "camera.view_up=1,0,0", "camera.view_angle=45", "background=0,0.5,1", "render.step=0.02",
+      "render.jitter=false", "render.resolution_scale=0.5", "render.accumulate=3",
+      "render.skip_empty_space=false", "render.size=100,50" },
+    { { "render.lighting", "none", "--lighting" }, { "render.size", json({ 120, 60 }), "--size" } });
+  using P2 = std::array<double, 2>;
+  EXPECT_EQ(scene.TransferFunction.Opacity, (std::vector<P2>{ { 0, 0 }, { 0.2, 0.1 }, { 1, 0.5 } }));
+  EXPECT_EQ(scene.TransferFunction.Color, (std::vector<std::array<double, 4>>{ { 0, 1, 0, 0.5 } }));
+  EXPECT_EQ(scene.TransferFunction.UnitDistance, 0.5);
+  EXPECT_EQ(scene.Camera.Position, (std::array<double, 3>{ 1, 2, 3 }));
+  EXPECT_EQ(scene.Camera.FocalPoint, (std::array<double, 3>{ 0, 1, 0 }));
+  EXPECT_EQ(scene.Camera.ViewUp, (std::array<double, 3>{ 1, 0, 0 }));
+  EXPECT_EQ(scene.Camera.ViewAngle, 45.0);
+  EXPECT_EQ(scene.Background, (std::array<double, 3>{ 0, 0.5, 1 }));
+  EXPECT_EQ(scene.Render.Lighting, cloudvis::LightingModel::None);
+  EXPECT_EQ(scene.Render.Step, 0.02);
+  EXPECT_FALSE(scene.Render.Jitter);
+  EXPECT_EQ(scene.Render.ResolutionScale, 0.5);
+  EXPECT_EQ(scene.Render.Accumulate, 3);
+  EXPECT_FALSE(scene.Render.SkipEmptySpace);
+  EXPECT_EQ(scene.Render.Size, (std::array<int, 2>{ 120, 60 })) << "an option overrides --set";
+}
+
+TEST(Scene, ShippedDefaultSceneFileMatchesTheBuiltInDefaults)
+{
+  // fbm-sphere.json writes the default scene out in full (all but the computed camera).
+  const cloudvis::Scene file = cloudvis::LoadScene(CLOUDVIS_SCENES "/fbm-sphere.json", {});
+  const cloudvis::Scene builtIn = cloudvis::DefaultScene();
+  EXPECT_EQ(file.TransferFunction.Opacity, builtIn.TransferFunction.Opacity);
+  EXPECT_EQ(file.TransferFunction.Color, builtIn.TransferFunction.Color);
+  EXPECT_EQ(file.TransferFunction.UnitDistance, builtIn.TransferFunction.UnitDistance);
+  EXPECT_EQ(file.Background, builtIn.Background);
+  EXPECT_EQ(file.Render.Size, builtIn.Render.Size);
+  EXPECT_EQ(file.Render.Accumulate, builtIn.Render.Accumulate);
+  EXPECT_FALSE(builtIn.Camera.Position.has_value());
+  EXPECT_FALSE(builtIn.Camera.FocalPoint.has_value());
+}
+
+TEST(Camera, DefaultsLookAlongMinusZAtTheCentreAndFitTheBounds)
+{
+  vtkNew<vtkRenderer> renderer;
+  const double bounds[6] = { 0, 2, -1, 1, 4, 6 };
+  cloudvis::ApplyCamera(cloudvis::CameraSpec{}, bounds, renderer, "s");
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double* f = camera->GetFocalPoint();
+  const double* p = camera->GetPosition();
+  EXPECT_NEAR(f[0], 1.0, 1e-12);
+  EXPECT_NEAR(f[1], 0.0, 1e-12);
+  EXPECT_NEAR(f[2], 5.0, 1e-12);
+  EXPECT_NEAR(p[0], 1.0, 1e-12);
+  EXPECT_NEAR(p[1], 0.0, 1e-12);
+  // The bounding sphere (radius sqrt(3)) fits the 30-degree view.
+  EXPECT_GE((p[2] - 5.0) * std::sin(15.0 * M_PI / 180.0), std::sqrt(3.0) - 1e-9);
+  EXPECT_EQ(camera->GetViewAngle(), 30.0);
+  EXPECT_NEAR(camera->GetViewUp()[1], 1.0, 1e-12);
+
+  cloudvis::CameraSpec given;
+  given.Position = { { 5, 0, 5 } };
+  given.ViewAngle = 50;
+  cloudvis::ApplyCamera(given, bounds, renderer, "s");
+  EXPECT_NEAR(camera->GetPosition()[0], 5.0, 1e-12);
+  EXPECT_NEAR(camera->GetFocalPoint()[0], 1.0, 1e-12) << "the focal point stays the centre";
+  EXPECT_EQ(camera->GetViewAngle(), 50.0);
+  cloudvis::CameraSpec wide;
+  wide.ViewAngle = 90;
+  cloudvis::ApplyCamera(wide, bounds, renderer, "s");
+  EXPECT_NEAR((camera->GetPosition()[2] - 5.0) * std::sin(M_PI / 4.0), std::sqrt(3.0), 0.1)
+    << "a wider view comes closer, still fitting the bounding sphere";
+
+  cloudvis::CameraSpec parallel;
+  parallel.ViewUp = { { 0, 0, 1 } };
+  EXPECT_THROW(cloudvis::ApplyCamera(parallel, bounds, renderer, "s"), cloudvis::InputError);
+}
+
+// ---- render: pixels (needs an X display; `make test` runs under Xvfb) -----------------------
+
+struct Png
+{
+  int Width = 0, Height = 0, Components = 0;
+  std::vector<unsigned char> Pixels;
+  const unsigned char* At(int x, int y) const
+  {
+    return this->Pixels.data() + size_t(this->Components) * (size_t(y) * this->Width + x);
+  }
+};
+
+Png ReadPng(const std::string& path)
+{
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  Png png;
+  int d[3];
+  reader->GetOutput()->GetDimensions(d);
+  png.Width = d[0];
+  png.Height = d[1];
+  auto* data = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetScalars());
+  if (data)
+  {
+    png.Components = data->GetNumberOfComponents();
+    png.Pixels.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
+  }
+  return png;
+}
+
+// Within one 8-bit step of a color given in [0, 1].
+bool IsColor(const unsigned char* pixel, const std::array<double, 3>& rgb)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    if (std::abs(double(pixel[c]) - 255.0 * rgb[c]) > 1.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(Render, WritesAPngOfTheRequestedSizeWithTheCloudOverTheBackground)
+{
+  TemporaryDirectory dir;
+  const std::string out = RunCloudvis({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "--size",
+    "64x48", "--set", "render.accumulate=2", "--set", "field.dimensions=48", "-o", dir.File("r.png") });
+  EXPECT_NE(out.find("wrote " + dir.File("r.png") + " (64 x 48 pixels, 2 frames averaged)"),
+    std::string::npos) << out;
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{ "r.png" });
+  const Png png = ReadPng(dir.File("r.png"));
+  ASSERT_EQ(png.Width, 64);
+  ASSERT_EQ(png.Height, 48);
+  ASSERT_EQ(png.Components, 3) << "an RGB PNG";
+  const std::array<double, 3> background = cloudvis::DefaultScene().Background;
+  for (const auto& corner : { std::make_pair(0, 0), std::make_pair(63, 0), std::make_pair(0, 47),
+         std::make_pair(63, 47) })
+  {
+    EXPECT_TRUE(IsColor(png.At(corner.first, corner.second), background))
+      << "corner " << corner.first << "," << corner.second;
+  }
+  const unsigned char* centre = png.At(32, 24);
+  EXPECT_FALSE(IsColor(centre, background));
+  // The cloud is white-ish: brighter than the background in every channel.
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_GT(int(centre[c]), int(255.0 * background[c]) + 40) << "channel " << c;
+  }
+}
+
+TEST(Render, BackgroundKeyReachesTheWindow)
+{
+  TemporaryDirectory dir;
+  RunCloudvis({ "render", CLOUDVIS_SCENES "/sphere.json", "--size", "32x16", "--set",
+    "background=1,0,0", "--set", "render.accumulate=1", "--set", "field.dimensions=16", "-o",
+    dir.File("r.png") });
+  const Png png = ReadPng(dir.File("r.png"));
+  ASSERT_EQ(png.Width, 32);
+  ASSERT_EQ(png.Height, 16);
+  EXPECT_TRUE(IsColor(png.At(0, 0), { { 1, 0, 0 } }));
+}
+
+cloudvis::Scene SmallScene()
+{
+  cloudvis::Scene scene = cloudvis::LoadScene("", { "field.dimensions=16" });
+  scene.Render.Size = { { 32, 24 } };
+  return scene;
+}
+
+TEST(Render, AccumulatesTheRequestedFramesAndTimesEachBenchmarkFrame)
+{
+  cloudvis::Scene scene = SmallScene();
+  scene.Render.Accumulate = 3;
+  const vtkSmartPointer<vtkImageData> field = cloudvis::ProduceField(scene);
+  const cloudvis::OffscreenRenderResult result = cloudvis::RenderOffscreen(scene, field, "f", 2);
+  EXPECT_EQ(result.AccumulatedFrames, 3);
+  ASSERT_EQ(result.FrameMilliseconds.size(), 2u);
+  for (double ms : result.FrameMilliseconds)
+  {
+    EXPECT_GT(ms, 0.0);
+  }
+  EXPECT_EQ(result.Image.Width, 32);
+  EXPECT_EQ(result.Image.RGB.size(), 32u * 24u * 3u);
+
+  scene.Render.Jitter = false; // every frame would be the same: one is rendered
+  EXPECT_EQ(cloudvis::RenderOffscreen(scene, field, "f").AccumulatedFrames, 1);
+}
+
+TEST(Render, MapperErrorBecomesTheInputError)
+{
+  vtkNew<vtkImageData> field;
+  field->SetDimensions(4, 4, 4);
+  field->AllocateScalars(VTK_FLOAT, 3);
+  std::fill_n(static_cast<float*>(field->GetScalarPointer()), 4 * 4 * 4 * 3, 0.0f);
+  try
+  {
+    cloudvis::RenderOffscreen(SmallScene(), field, "vectors.vti");
+    FAIL() << "a 3-component field rendered";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("vectors.vti: the input's scalar array", 0), 0u) << message;
+    EXPECT_NE(message.find("has 3 components; the mapper needs exactly 1"), std::string::npos) << message;
+  }
+}
+
+TEST(Render, WithoutDisplayFailsWithTheXvfbHintAndWritesNothing)
+{
+  TemporaryDirectory dir;
+  const char* saved = std::getenv("DISPLAY");
+  const std::string display = saved ? saved : "";
+  ::unsetenv("DISPLAY");
+  std::ostringstream out, err;
+  const int status = cloudvis::RunCommandLine({ "cloudvis", "render", CLOUDVIS_SCENES "/sphere.json",
+                                                "-o", dir.File("r.png") },
+    out, err);
+  if (saved)
+  {
+    ::setenv("DISPLAY", display.c_str(), 1);
+  }
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(err.str().find("cloudvis needs an X display"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("xvfb-run -a cloudvis render"), std::string::npos) << err.str();
+  EXPECT_TRUE(dir.Files().empty());
 }
 
 } // namespace

@@ -6,7 +6,8 @@
 #
 # Called as: cmake -DCLOUDVIS=<binary> -DSPEC=<spec file> -DWORK_DIR=<dir> -P RunCloudvis.cmake
 # The spec file (written by cloudvis_app_test in CMakeLists.txt) sets ARGS, STATUS, STDOUT,
-# STDERR, OUTPUTS and SETUP (pairs of file name and content).
+# STDERR, OUTPUTS, SETUP (pairs of file name and content) and ENV (changes to the environment in
+# the form of `cmake -E env`: NAME=VALUE or --unset=NAME).
 cmake_minimum_required(VERSION 3.16)
 include("${SPEC}")
 
@@ -31,7 +32,7 @@ if(setup_length GREATER 0)
 endif()
 
 execute_process(
-  COMMAND "${CLOUDVIS}" ${ARGS}
+  COMMAND "${CMAKE_COMMAND}" -E env ${ENV} "${CLOUDVIS}" ${ARGS}
   WORKING_DIRECTORY "${WORK_DIR}"
   RESULT_VARIABLE status
   OUTPUT_VARIABLE out

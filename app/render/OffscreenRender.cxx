@@ -1,0 +1,304 @@
+// The window is created per call and thrown away: a still is rendered once, and a fresh window
+// keeps one render from inheriting another's GL state or accumulated frames. Every VTK message
+// raised meanwhile is captured, so a failure reaches the user as one "cloudvis: error:" line built
+// from the mapper's GetLastError().
+#include "OffscreenRender.h"
+
+#include "AtomicFile.h"
+#include "Errors.h"
+#include "VtkMessageCapture.h"
+#include "vtkCloudVolumeMapper.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkImageData.h>
+#include <vtkMath.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace cloudvis
+{
+namespace
+{
+
+// Output formats: one entry per extension (the export work adds ".exr").
+struct ImageFormat
+{
+  const char* Extension;
+  // Writes to `path` (a temporary); `target` names the file in errors.
+  void (*Write)(const RenderedImage& image, const std::string& path, const std::string& target);
+};
+
+void WritePng(const RenderedImage& image, const std::string& path, const std::string& target)
+{
+  vtkNew<vtkImageData> pixels;
+  pixels->SetDimensions(image.Width, image.Height, 1);
+  pixels->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  std::copy(image.RGB.begin(), image.RGB.end(),
+    static_cast<unsigned char*>(pixels->GetScalarPointer()));
+  VtkMessageCapture messages;
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(pixels);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0 || !messages.Messages().empty())
+  {
+    throw InputError(target + ": cannot write the PNG image" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+}
+
+const ImageFormat ImageFormats[] = {
+  { ".png", WritePng },
+};
+
+std::string LowerExtension(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
+  for (char& c : extension)
+  {
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return extension;
+}
+
+const ImageFormat& FormatOf(const std::string& path)
+{
+  const std::string extension = LowerExtension(path);
+  for (const ImageFormat& format : ImageFormats)
+  {
+    if (extension == format.Extension)
+    {
+      return format;
+    }
+  }
+  std::string supported;
+  for (const std::string& e : SupportedImageExtensions())
+  {
+    supported += (supported.empty() ? "" : ", ") + e;
+  }
+  throw InputError(path + ": " +
+    (extension.empty() ? std::string("the file name has no image extension")
+                       : "unsupported image format \"" + extension + "\"") +
+    "; supported: " + supported);
+}
+
+// After every Render(): the mapper's own report, in the user's terms.
+void CheckMapper(vtkCloudVolumeMapper* mapper, const std::string& input)
+{
+  if (!mapper->GetLastError().empty())
+  {
+    throw InputError(input + ": " + mapper->GetLastError());
+  }
+}
+
+} // namespace
+
+vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction)
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  for (const auto& point : transferFunction.Opacity)
+  {
+    opacity->AddPoint(point[0], point[1]);
+  }
+  vtkNew<vtkColorTransferFunction> color;
+  for (const auto& point : transferFunction.Color)
+  {
+    color->AddRGBPoint(point[0], point[1], point[2], point[3]);
+  }
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetScalarOpacityUnitDistance(transferFunction.UnitDistance);
+  property->SetInterpolationTypeToLinear();
+  property->ShadeOff();
+  return property;
+}
+
+void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
+{
+  mapper->SetSampleDistance(render.Step);
+  mapper->SetJitter(render.Jitter);
+  mapper->SetResolutionScale(render.ResolutionScale);
+  mapper->SetMaximumAccumulatedFrames(render.Accumulate);
+  mapper->SetEmptySpaceSkipping(render.SkipEmptySpace);
+  // Only the model comes from the scene for now; the rest keeps the mapper's defaults until the
+  // scene has a lights section.
+  LightingParameters lighting = mapper->GetLighting();
+  lighting.Model = render.Lighting;
+  mapper->SetLighting(lighting);
+}
+
+void ApplyCamera(
+  const CameraSpec& camera, const double bounds[6], vtkRenderer* renderer, const std::string& source)
+{
+  vtkCamera* active = renderer->GetActiveCamera();
+  // ResetCamera keeps the view direction, puts the focal point at the centre of the bounds and
+  // the camera where their bounding sphere fits a 30-degree view (it resets the view angle to
+  // 30); the distance r / sin(angle / 2) is then rescaled to the scene's angle.
+  active->SetFocalPoint(0.0, 0.0, 0.0);
+  active->SetPosition(0.0, 0.0, 1.0);
+  active->SetViewUp(0.0, 1.0, 0.0);
+  renderer->ResetCamera(const_cast<double*>(bounds));
+  const double halfAngle = 0.5 * vtkMath::RadiansFromDegrees(camera.ViewAngle);
+  const double distance =
+    active->GetDistance() * std::sin(vtkMath::RadiansFromDegrees(15.0)) / std::sin(halfAngle);
+  active->SetViewAngle(camera.ViewAngle);
+  double focal[3], position[3];
+  active->GetFocalPoint(focal);
+  if (camera.FocalPoint)
+  {
+    std::copy(camera.FocalPoint->begin(), camera.FocalPoint->end(), focal);
+  }
+  position[0] = focal[0];
+  position[1] = focal[1];
+  position[2] = focal[2] + distance;
+  if (camera.Position)
+  {
+    std::copy(camera.Position->begin(), camera.Position->end(), position);
+  }
+  const double d[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+  const double* u = camera.ViewUp.data();
+  const double dLength = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (dLength == 0.0)
+  {
+    throw InputError(source + ": camera.position: the camera position equals the focal point (" +
+      "the field's centre when camera.focal_point is absent); the view has no direction");
+  }
+  const double cross[3] = { d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2],
+    d[0] * u[1] - d[1] * u[0] };
+  const double uLength = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  if (std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) <=
+    1e-9 * dLength * uLength)
+  {
+    throw InputError(source + ": camera.view_up: parallel to the view direction (from the " +
+      "position to the focal point); choose a view-up across it");
+  }
+  active->SetFocalPoint(focal);
+  active->SetPosition(position);
+  active->SetViewUp(u[0], u[1], u[2]);
+  active->OrthogonalizeViewUp();
+  renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
+}
+
+OffscreenRenderResult RenderOffscreen(
+  const Scene& scene, vtkImageData* field, const std::string& input, int benchmarkFrames)
+{
+  // One connection, opened (and retried) here and handed to the window: VTK opening its own
+  // aborts the process when the server refuses it.
+  const DisplayConnection display("cloudvis ...");
+  VtkMessageCapture messages;
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetDisplayId(display.Get());
+  // VTK calls abort() when it cannot create the GL context unless someone observes ExitEvent;
+  // observing it turns that into "nothing was rendered", reported below with VTK's reason.
+  vtkNew<vtkCallbackCommand> onExit;
+  window->AddObserver(vtkCommand::ExitEvent, onExit);
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(scene.Render.Size[0], scene.Render.Size[1]);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(scene.Background[0], scene.Background[1], scene.Background[2]);
+  window->AddRenderer(renderer);
+
+  vtkNew<vtkCloudVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  ConfigureMapper(mapper, scene.Render);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(MakeVolumeProperty(scene.TransferFunction));
+  renderer->AddVolume(volume);
+  ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
+
+  // Without jitter every frame marches the same samples: one is the converged still.
+  const int frames = scene.Render.Jitter ? scene.Render.Accumulate : 1;
+  for (int frame = 0; frame < frames; ++frame)
+  {
+    window->Render();
+    CheckMapper(mapper, input);
+  }
+  OffscreenRenderResult result;
+  result.AccumulatedFrames = mapper->GetNumberOfAccumulatedFrames(renderer);
+  if (result.AccumulatedFrames == 0)
+  {
+    throw InputError(input + ": nothing was rendered" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff(); // the accumulated frame is in the buffer already
+  grab->Update();
+  vtkImageData* pixels = grab->GetOutput();
+  auto* data = vtkUnsignedCharArray::SafeDownCast(pixels->GetPointData()->GetScalars());
+  int dimensions[3];
+  pixels->GetDimensions(dimensions);
+  if (!data || data->GetNumberOfComponents() != 3 || dimensions[0] != scene.Render.Size[0] ||
+    dimensions[1] != scene.Render.Size[1])
+  {
+    throw InputError(input + ": could not read the rendered image back from the window" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+  result.Image.Width = dimensions[0];
+  result.Image.Height = dimensions[1];
+  result.Image.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
+
+  for (int frame = 0; frame < benchmarkFrames; ++frame)
+  {
+    mapper->Modified(); // else the mapper shows the converged still without marching
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    window->WaitForCompletion();
+    const auto end = std::chrono::steady_clock::now();
+    CheckMapper(mapper, input);
+    result.FrameMilliseconds.push_back(
+      std::chrono::duration<double, std::milli>(end - start).count());
+  }
+  return result;
+}
+
+std::vector<std::string> SupportedImageExtensions()
+{
+  std::vector<std::string> extensions;
+  for (const ImageFormat& format : ImageFormats)
+  {
+    extensions.emplace_back(format.Extension);
+  }
+  return extensions;
+}
+
+void CheckImageOutput(const std::string& path)
+{
+  FormatOf(path);
+  CheckOutputTarget(path);
+}
+
+void WriteImage(const RenderedImage& image, const std::string& path)
+{
+  const ImageFormat& format = FormatOf(path);
+  WriteFileAtomically(path, [&](const std::string& temporary) { format.Write(image, temporary, path); });
+}
+
+} // namespace cloudvis
