@@ -1,0 +1,187 @@
+/**
+ * @class   vtkCloudReferenceRenderer
+ * @brief   CPU reference render of a density field with the GPU mapper's equations
+ *
+ * vtkCloudReferenceRenderer renders a cloud density field on the CPU, one ray per pixel, with
+ * the equations of docs/lighting.md and the order of operations of the GPU march
+ * (shaders/CloudMarchFS.glsl and the lighting models; the per-ray code is in
+ * CloudReferenceMarch.h). It is slow and exact: the oracle the GPU images are tested against.
+ * No jitter, no empty-space skipping (which does not change the sum), no opaque geometry.
+ *
+ * Input: vtkImageData whose active point scalars have one component of float, unsigned char or
+ * unsigned short, at least 2 voxels per axis, positive spacing and an identity direction
+ * matrix. The density is read in its scalar units, as the transfer table's Range expects.
+ *
+ * Output: vtkImageData of ImageSize[0] x ImageSize[1] x 1 points (origin 0, spacing 1) with a
+ * float, 4-component point array "rgba" (the active scalars): premultiplied radiance in r, g, b
+ * and opacity 1 - T in a. Row 0 is the bottom of the image, as in OpenGL.
+ *
+ * The camera follows vtkCamera's conventions exactly, so giving the same numbers to a vtkCamera
+ * and rendering into a viewport of ImageSize pixels shows the same view: pixel (i, j) has
+ * normalized device coordinates ((i + 0.5) / W * 2 - 1, (j + 0.5) / H * 2 - 1) and its ray runs
+ * from the near plane to the far plane through them; t is world distance from the near plane.
+ *
+ * Rows are rendered under vtkSMPTools; each pixel depends only on the input and the
+ * parameters, never on the threads.
+ */
+#ifndef vtkCloudReferenceRenderer_h
+#define vtkCloudReferenceRenderer_h
+
+#include "CloudLighting.h"
+#include "CloudTransferTable.h"
+#include "cloudvisFiltersModule.h"
+
+#include <vtkImageAlgorithm.h>
+
+#include <vector>
+
+class vtkMatrix4x4;
+
+class CLOUDVISFILTERS_EXPORT vtkCloudReferenceRenderer : public vtkImageAlgorithm
+{
+public:
+  static vtkCloudReferenceRenderer* New();
+  vtkTypeMacro(vtkCloudReferenceRenderer, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Output image width and height in pixels, each at least 1. Default 128 x 128.
+   */
+  vtkSetVector2Macro(ImageSize, int);
+  vtkGetVector2Macro(ImageSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * The camera, as vtkCamera's Position, FocalPoint and ViewUp (world). The view up is
+   * orthogonalised against the direction of projection as vtkCamera does. Defaults (0, 0, 1),
+   * (0, 0, 0) and (0, 1, 0), as vtkCamera's.
+   */
+  vtkSetVector3Macro(CameraPosition, double);
+  vtkGetVector3Macro(CameraPosition, double);
+  vtkSetVector3Macro(CameraFocalPoint, double);
+  vtkGetVector3Macro(CameraFocalPoint, double);
+  vtkSetVector3Macro(CameraViewUp, double);
+  vtkGetVector3Macro(CameraViewUp, double);
+  ///@}
+
+  ///@{
+  /**
+   * Vertical view angle in degrees for perspective projection (vtkCamera::ViewAngle), in
+   * (0, 180). Default 30.
+   */
+  vtkSetMacro(ViewAngle, double);
+  vtkGetMacro(ViewAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Parallel (orthographic) instead of perspective projection. Default false.
+   */
+  vtkSetMacro(ParallelProjection, bool);
+  vtkGetMacro(ParallelProjection, bool);
+  vtkBooleanMacro(ParallelProjection, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Half the view height in world units for parallel projection (vtkCamera::ParallelScale),
+   * > 0; the half width is ParallelScale * W / H. Default 1.
+   */
+  vtkSetMacro(ParallelScale, double);
+  vtkGetMacro(ParallelScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Distances of the near and far planes from the camera position along the direction of
+   * projection (vtkCamera::ClippingRange), 0 < near < far. Default (0.1, 100).
+   */
+  vtkSetVector2Macro(ClippingRange, double);
+  vtkGetVector2Macro(ClippingRange, double);
+  ///@}
+
+  ///@{
+  /**
+   * The transfer table (albedo and extinction per density), the one the GPU mapper uploads;
+   * its Range is in the input's scalar units. Setting an equal table does not modify the
+   * filter. Default: an empty table, which the filter refuses with an error.
+   */
+  void SetTransferTable(const cloudvis::TransferTable& table);
+  const cloudvis::TransferTable& GetTransferTable() const { return this->TransferTable; }
+  ///@}
+
+  ///@{
+  /**
+   * The lighting model and its parameters (cloudvis::LightingParameters, whose members state
+   * their defaults; the default model is None). A DerivativeDistance of 0 means 4 times the
+   * smallest voxel spacing and a LightStep of 0 means 2 times it, as on the GPU. Checked with
+   * cloudvis::ValidateLightingParameters when the filter runs.
+   */
+  void SetLighting(const cloudvis::LightingParameters& lighting);
+  const cloudvis::LightingParameters& GetLighting() const { return this->Lighting; }
+  ///@}
+
+  ///@{
+  /**
+   * The lights, at most 8 (the GPU's MAX_LIGHTS); their contributions add up. Ignored by the
+   * None model. Default: no lights.
+   */
+  void SetLights(const std::vector<cloudvis::Light>& lights);
+  const std::vector<cloudvis::Light>& GetLights() const { return this->Lights; }
+  ///@}
+
+  ///@{
+  /**
+   * World distance between samples along a view ray, >= 0; 0 means the smallest voxel spacing
+   * (the mapper's default). Default 0.
+   */
+  vtkSetMacro(SampleDistance, double);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * A ray stops once its transmittance falls below this, in [0, 1]. Default 1/255.
+   */
+  vtkSetMacro(TerminationTransmittance, double);
+  vtkGetMacro(TerminationTransmittance, double);
+  ///@}
+
+  /**
+   * The normalized-device-to-world matrix of the current camera parameters and ImageSize
+   * (aspect W / H): the inverse of vtkCamera::GetCompositeProjectionTransformMatrix(W / H, -1,
+   * 1) for a vtkCamera given the same parameters. Rays start at depth -1 and end at depth 1.
+   * Returns false (and leaves the matrix alone) when the camera parameters are unusable.
+   */
+  bool GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const;
+
+protected:
+  vtkCloudReferenceRenderer();
+  ~vtkCloudReferenceRenderer() override = default;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int ImageSize[2] = { 128, 128 };
+  double CameraPosition[3] = { 0.0, 0.0, 1.0 };
+  double CameraFocalPoint[3] = { 0.0, 0.0, 0.0 };
+  double CameraViewUp[3] = { 0.0, 1.0, 0.0 };
+  double ViewAngle = 30.0;
+  bool ParallelProjection = false;
+  double ParallelScale = 1.0;
+  double ClippingRange[2] = { 0.1, 100.0 };
+  cloudvis::TransferTable TransferTable;
+  cloudvis::LightingParameters Lighting;
+  std::vector<cloudvis::Light> Lights;
+  double SampleDistance = 0.0;
+  double TerminationTransmittance = 1.0 / 255.0;
+
+private:
+  vtkCloudReferenceRenderer(const vtkCloudReferenceRenderer&) = delete;
+  void operator=(const vtkCloudReferenceRenderer&) = delete;
+};
+
+#endif

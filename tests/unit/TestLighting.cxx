@@ -1,0 +1,275 @@
+// The lighting models' shared mathematics (filters/CloudLighting.h) and the pieces of the CPU
+// march that have exact answers (filters/CloudReferenceMarch.h): the phase functions integrate
+// to 1, the scattered fraction behaves as docs/lighting.md says, the trilinear fetch reproduces
+// a linear field and clamps at the edges, and the light march's optical depth through a
+// homogeneous slab is sigma_t * L, so a slab lit from behind transmits exp(-sigma_t L).
+#include "CloudLighting.h"
+#include "CloudReferenceMarch.h"
+#include "CloudTransferTable.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+using namespace cloudvis;
+
+namespace
+{
+// 2 pi * integral over mu in [-1, 1] of f(mu), Simpson's rule: the integral over the sphere of
+// a function of the angle to one axis.
+double IntegrateOverSphere(const std::function<double(float)>& f)
+{
+  const int intervals = 20000; // even; g = 0.9 peaks within ~0.01 of mu = 1
+  const double h = 2.0 / intervals;
+  double sum = f(-1.0f) + f(1.0f);
+  for (int i = 1; i < intervals; ++i)
+  {
+    sum += (i % 2 ? 4.0 : 2.0) * f(static_cast<float>(-1.0 + i * h));
+  }
+  return 2.0 * 3.14159265358979323846 * sum * h / 3.0;
+}
+
+// sigma_t rising linearly from 0 at density 0 to sigma_t at density 1, so the extinction of a
+// trilinear sample is exactly sigma_t times its density.
+TransferTable LinearTable(float sigma_t, glm::vec3 albedo = glm::vec3(1.0f))
+{
+  TransferTable table;
+  table.Size = 2;
+  table.RGBA = { albedo.r, albedo.g, albedo.b, 0.0f, albedo.r, albedo.g, albedo.b, sigma_t };
+  return table;
+}
+
+// A volume of n voxels per axis filled by density(i, j, k), with uniforms for the light march.
+struct Volume
+{
+  std::vector<float> Density;
+  TransferTable Table;
+  MarchUniforms Uniforms;
+
+  Volume(glm::ivec3 n, float spacing, const std::function<float(int, int, int)>& density,
+    float sigma_t)
+    : Table(LinearTable(sigma_t))
+  {
+    for (int k = 0; k < n.z; ++k)
+      for (int j = 0; j < n.y; ++j)
+        for (int i = 0; i < n.x; ++i)
+          this->Density.push_back(density(i, j, k));
+    this->Uniforms.Density = this->Density.data();
+    this->Uniforms.Dimensions = n;
+    this->Uniforms.Spacing = glm::vec3(spacing);
+    this->Uniforms.Table = &this->Table;
+    this->Uniforms.Lighting.LightStep = spacing;
+    this->Uniforms.Lighting.LightStepGrowth = 1.0f;
+    this->Uniforms.Lighting.LightSteps = 64;
+  }
+};
+}
+
+TEST(Lighting, HenyeyGreensteinIntegratesToOne)
+{
+  for (float g : { -0.8f, -0.3f, 0.0f, 0.5f, 0.9f })
+  {
+    EXPECT_NEAR(IntegrateOverSphere([g](float mu) { return HenyeyGreenstein(g, mu); }), 1.0, 1e-3)
+      << "g = " << g;
+  }
+}
+
+TEST(Lighting, HenyeyGreensteinIsIsotropicAtZeroAndForwardForPositiveG)
+{
+  for (float mu : { -1.0f, -0.4f, 0.0f, 0.7f, 1.0f })
+  {
+    EXPECT_FLOAT_EQ(HenyeyGreenstein(0.0f, mu), 1.0f / (4.0f * Pi));
+  }
+  for (float g : { 0.2f, 0.5f, 0.9f })
+  {
+    EXPECT_GT(HenyeyGreenstein(g, 1.0f), HenyeyGreenstein(g, -1.0f)) << g;
+    EXPECT_LT(HenyeyGreenstein(-g, 1.0f), HenyeyGreenstein(-g, -1.0f)) << -g;
+  }
+}
+
+TEST(Lighting, TwoLobePhaseIntegratesToOneForAnyWeight)
+{
+  LightingParameters p;
+  for (float w : { 0.0f, 0.3f, 0.8f, 1.0f })
+  {
+    p.PhaseLobeWeight = w;
+    for (float scale : { 1.0f, 0.5f, 0.125f })
+    {
+      EXPECT_NEAR(IntegrateOverSphere([&](float mu) { return Phase(p, mu, scale); }), 1.0, 1e-3)
+        << "w = " << w << ", eccentricity scale " << scale;
+    }
+  }
+}
+
+TEST(Lighting, ScatteredFractionIsSingleScatteringWithoutOctaves)
+{
+  LightingParameters p;
+  p.MultipleScatteringOctaves = 0;
+  for (float mu : { -1.0f, -0.2f, 0.5f, 1.0f })
+  {
+    EXPECT_FLOAT_EQ(ScatteredFraction(p, mu, 0.0f), Phase(p, mu, 1.0f)) << mu;
+    EXPECT_NEAR(ScatteredFraction(p, mu, 1.5f), Phase(p, mu, 1.0f) * std::exp(-1.5f), 1e-6f);
+  }
+}
+
+TEST(Lighting, ScatteredFractionFallsWithOpticalDepth)
+{
+  LightingParameters p; // three octaves by default
+  for (float mu : { -0.9f, 0.0f, 0.9f })
+  {
+    float previous = ScatteredFraction(p, mu, 0.0f);
+    for (float tau : { 0.1f, 0.5f, 1.0f, 3.0f, 10.0f })
+    {
+      const float f = ScatteredFraction(p, mu, tau);
+      EXPECT_LT(f, previous) << "mu " << mu << ", tau " << tau;
+      previous = f;
+    }
+  }
+}
+
+TEST(Lighting, ScatteredFractionMatchesTheOctaveSum)
+{
+  // docs/lighting.md: F = sum_{n=0..N} a^n P(mu, c^n) exp(-b^n tau), written out independently.
+  LightingParameters p;
+  p.MultipleScatteringOctaves = 4;
+  p.ScatteringFalloff = 0.6f;
+  p.ExtinctionFalloff = 0.4f;
+  p.EccentricityFalloff = 0.7f;
+  for (float tau : { 0.0f, 0.7f, 2.5f })
+  {
+    double expected = 0.0;
+    for (int n = 0; n <= 4; ++n)
+    {
+      expected += std::pow(0.6, n) * Phase(p, 0.3f, float(std::pow(0.7, n))) *
+        std::exp(-std::pow(0.4, n) * tau);
+    }
+    EXPECT_NEAR(ScatteredFraction(p, 0.3f, tau), expected, 1e-5 * expected) << tau;
+  }
+}
+
+TEST(Lighting, PowderZeroChangesNothingAndOneDarkensThinRegionsToZero)
+{
+  LightingParameters p;
+  LightingParameters withPowder = p;
+  for (float tau : { 0.0f, 0.3f, 2.0f })
+  {
+    p.PowderStrength = 0.0f;
+    withPowder.PowderStrength = 1.0f;
+    const float plain = ScatteredFraction(p, 0.4f, tau);
+    EXPECT_FLOAT_EQ(plain, ScatteredFraction(p, 0.4f, tau));
+    EXPECT_NEAR(ScatteredFraction(withPowder, 0.4f, tau), plain * (1.0f - std::exp(-2.0f * tau)),
+      1e-6f);
+    withPowder.PowderStrength = 0.5f;
+    EXPECT_NEAR(ScatteredFraction(withPowder, 0.4f, tau),
+      plain * (1.0f - 0.5f * std::exp(-2.0f * tau)), 1e-6f);
+  }
+  withPowder.PowderStrength = 1.0f;
+  EXPECT_EQ(ScatteredFraction(withPowder, 0.4f, 0.0f), 0.0f);
+}
+
+TEST(Lighting, SampleLightGivesDirectionDistanceAndFalloff)
+{
+  Light sun;
+  sun.Position = glm::vec3(3.0f, 0.0f, 0.0f);
+  sun.FocalPoint = glm::vec3(1.0f, 0.0f, 0.0f);
+  const LightSample s = SampleLight(sun, glm::vec3(5.0f, 5.0f, 5.0f));
+  EXPECT_FLOAT_EQ(s.Direction.x, 1.0f);
+  EXPECT_TRUE(std::isinf(s.Distance));
+  EXPECT_EQ(s.Falloff, 1.0f);
+
+  Light bulb;
+  bulb.Positional = true;
+  bulb.Position = glm::vec3(0.0f, 4.0f, 0.0f);
+  bulb.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f);
+  const LightSample b = SampleLight(bulb, glm::vec3(0.0f, 2.0f, 0.0f));
+  EXPECT_FLOAT_EQ(b.Direction.y, 1.0f);
+  EXPECT_FLOAT_EQ(b.Distance, 2.0f);
+  EXPECT_FLOAT_EQ(b.Falloff, 0.25f);
+}
+
+TEST(ReferenceMarch, TrilinearFetchReproducesALinearFieldAndClampsAtTheEdges)
+{
+  const Volume v({ 5, 6, 7 }, 1.0f, [](int i, int j, int k) { return float(i + 2 * j + 3 * k); },
+    1.0f);
+  for (glm::vec3 p : { glm::vec3(1.25f, 2.5f, 0.75f), glm::vec3(3.9f, 0.1f, 5.5f),
+         glm::vec3(0.0f), glm::vec3(4.0f, 5.0f, 6.0f) })
+  {
+    EXPECT_NEAR(DensityAt(v.Uniforms, p), p.x + 2.0f * p.y + 3.0f * p.z, 1e-4f);
+  }
+  // CLAMP_TO_EDGE: outside the lattice the edge voxels repeat.
+  EXPECT_NEAR(DensityAt(v.Uniforms, glm::vec3(-3.0f, 1.0f, 1.0f)), 0.0f + 2.0f + 3.0f, 1e-5f);
+  EXPECT_NEAR(DensityAt(v.Uniforms, glm::vec3(-0.5f, 1.0f, 1.0f)), 5.0f, 1e-5f);
+  EXPECT_NEAR(DensityAt(v.Uniforms, glm::vec3(4.6f, 9.0f, 1.0f)), 4.0f + 10.0f + 3.0f, 1e-5f);
+  EXPECT_TRUE(InsideVolume(v.Uniforms, glm::vec3(4.0f, 5.0f, 6.0f)));
+  EXPECT_FALSE(InsideVolume(v.Uniforms, glm::vec3(4.01f, 5.0f, 6.0f)));
+  EXPECT_FALSE(InsideVolume(v.Uniforms, glm::vec3(1.0f, -0.01f, 1.0f)));
+}
+
+TEST(ReferenceMarch, IntersectBoxHandlesAxisParallelRays)
+{
+  const glm::vec2 t = IntersectBox(
+    glm::vec3(0.5f, 0.5f, 5.0f), glm::vec3(0.0f, 0.0f, -2.0f), glm::vec3(0.0f), glm::vec3(1.0f));
+  EXPECT_FLOAT_EQ(t.x, 2.0f);
+  EXPECT_FLOAT_EQ(t.y, 2.5f);
+  const glm::vec2 miss = IntersectBox(
+    glm::vec3(1.5f, 0.5f, 5.0f), glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0.0f), glm::vec3(1.0f));
+  EXPECT_GE(miss.x, miss.y);
+}
+
+TEST(ReferenceMarch, LightMarchThroughAHomogeneousSlabGivesSigmaTimesLength)
+{
+  // Density 1 in the slab of voxels 20..30 along x; the trilinear ramps on either side add half
+  // a voxel each, so the slab is L = 11 voxels thick. Half-voxel segments from x = 5 put every
+  // kink of the piecewise-linear profile on a segment boundary: the midpoint rule is exact.
+  const float spacing = 0.05f, sigma_t = 2.0f;
+  Volume v({ 48, 4, 4 }, spacing, [](int i, int, int) { return i >= 20 && i <= 30 ? 1.0f : 0.0f; },
+    sigma_t);
+  v.Uniforms.Lighting.LightStep = 0.5f * spacing;
+  const float L = 11.0f * spacing;
+  const float tau = LightOpticalDepth(v.Uniforms, glm::vec3(5.0f, 1.5f, 1.5f),
+    glm::vec3(1.0f, 0.0f, 0.0f), INFINITY);
+  EXPECT_NEAR(tau, sigma_t * L, 0.01f * sigma_t * L);
+  // The slab lit from behind transmits exp(-sigma_t L) to the sample.
+  EXPECT_NEAR(std::exp(-tau), std::exp(-sigma_t * L), 0.01f * std::exp(-sigma_t * L));
+  // Toward -x there is nothing between the sample and the volume's edge.
+  EXPECT_EQ(LightOpticalDepth(v.Uniforms, glm::vec3(5.0f, 1.5f, 1.5f),
+              glm::vec3(-1.0f, 0.0f, 0.0f), INFINITY),
+    0.0f);
+}
+
+TEST(ReferenceMarch, LightMarchStopsAtTheVolumeEdgeAndAtAPointLight)
+{
+  const float spacing = 0.05f, sigma_t = 2.0f;
+  const Volume v({ 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
+  const glm::vec3 p(5.0f, 1.5f, 1.5f);
+  // One-voxel segments: midpoints 5.5 .. 46.5 are inside, 47.5 is not: 42 voxels to the edge.
+  EXPECT_NEAR(LightOpticalDepth(v.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), INFINITY),
+    sigma_t * 42.0f * spacing, 1e-4f);
+  // A point light 15 voxels away: the midpoint at 15.5 voxels is beyond it.
+  EXPECT_NEAR(LightOpticalDepth(v.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), 15.0f * spacing),
+    sigma_t * 15.0f * spacing, 1e-4f);
+  // No more than LightSteps segments.
+  Volume few({ 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
+  few.Uniforms.Lighting.LightSteps = 6;
+  EXPECT_NEAR(LightOpticalDepth(few.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), INFINITY),
+    sigma_t * 6.0f * spacing, 1e-5f);
+  // Growing segments: 1, 2, 4, 8 voxels (midpoints 0.5, 2, 5, 11 from p) then 16 (midpoint 23,
+  // at x = 28, inside) and 32 (midpoint 47, at x = 52, outside): 31 voxels.
+  few.Uniforms.Lighting.LightStepGrowth = 2.0f;
+  EXPECT_NEAR(LightOpticalDepth(few.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), INFINITY),
+    sigma_t * 31.0f * spacing, 1e-4f);
+}
+
+TEST(ReferenceMarch, AutomaticDistancesAreFourAndTwoVoxels)
+{
+  LightingParameters p;
+  const LightingParameters resolved = ResolveLighting(p, 0.25);
+  EXPECT_FLOAT_EQ(resolved.DerivativeDistance, 1.0f);
+  EXPECT_FLOAT_EQ(resolved.LightStep, 0.5f);
+  p.DerivativeDistance = 0.3f;
+  p.LightStep = 0.1f;
+  EXPECT_FLOAT_EQ(ResolveLighting(p, 0.25).DerivativeDistance, 0.3f);
+  EXPECT_FLOAT_EQ(ResolveLighting(p, 0.25).LightStep, 0.1f);
+}

@@ -1,0 +1,595 @@
+// vtkCloudReferenceRenderer: scenes with known answers (a homogeneous sphere's opacity, a slab
+// lit from behind), the behaviour each lighting model promises (the lit side is bright, lights
+// add up, point lights fall off, the image converges as the steps shrink), the camera's
+// agreement with vtkCamera, the image's orientation, input checks and determinism.
+#include "CloudLighting.h"
+#include "CloudTransferTable.h"
+#include "vtkCloudReferenceRenderer.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCommand.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkSMPTools.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+using namespace cloudvis;
+
+namespace
+{
+// A float field of n^3 voxels over the world box [lo, hi]^3, density(x, y, z) at each voxel.
+vtkSmartPointer<vtkImageData> MakeField(
+  int n, double lo, double hi, const std::function<double(double, double, double)>& density)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  const double spacing = (hi - lo) / (n - 1);
+  image->SetOrigin(lo, lo, lo);
+  image->SetSpacing(spacing, spacing, spacing);
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetName("density");
+  scalars->SetNumberOfTuples(vtkIdType(n) * n * n);
+  vtkIdType v = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        scalars->SetValue(
+          v++, float(density(lo + i * spacing, lo + j * spacing, lo + k * spacing)));
+  image->GetPointData()->SetScalars(scalars);
+  return image;
+}
+
+// A sphere of radius 0.6 around the origin with a soft edge 0.3 wide, in [-1, 1]^3.
+vtkSmartPointer<vtkImageData> SoftSphere(int n = 40)
+{
+  return MakeField(n, -1.0, 1.0, [](double x, double y, double z) {
+    const double r = std::sqrt(x * x + y * y + z * z);
+    return std::min(1.0, std::max(0.0, (0.75 - r) / 0.3));
+  });
+}
+
+// sigma_t rising linearly from 0 at density 0 to sigma_t at density 1.
+TransferTable LinearTable(float sigma_t, glm::vec3 albedo = glm::vec3(1.0f))
+{
+  TransferTable table;
+  table.Size = 2;
+  table.RGBA = { albedo.r, albedo.g, albedo.b, 0.0f, albedo.r, albedo.g, albedo.b, sigma_t };
+  return table;
+}
+
+Light Directional(glm::vec3 towardLight, glm::vec3 color = glm::vec3(1.0f), float intensity = 1.0f)
+{
+  Light light;
+  light.Position = 10.0f * towardLight;
+  light.FocalPoint = glm::vec3(0.0f);
+  light.Color = color;
+  light.Intensity = intensity;
+  return light;
+}
+
+Light Point(glm::vec3 position, float intensity = 1.0f)
+{
+  Light light;
+  light.Positional = true;
+  light.Position = position;
+  light.Intensity = intensity;
+  light.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f); // inverse square
+  return light;
+}
+
+LightingParameters Model(LightingModel model)
+{
+  LightingParameters p;
+  p.Model = model;
+  return p;
+}
+
+struct Image
+{
+  int Width = 0, Height = 0;
+  std::vector<float> RGBA;
+
+  const float* At(int i, int j) const
+  {
+    return &this->RGBA[(std::size_t(j) * this->Width + i) * 4];
+  }
+  float Luminance(int i, int j) const
+  {
+    const float* p = this->At(i, j);
+    return p[0] + p[1] + p[2];
+  }
+  // Mean of r + g + b over columns [i0, i1).
+  double MeanRadiance(int i0, int i1) const
+  {
+    double sum = 0.0;
+    for (int j = 0; j < this->Height; ++j)
+      for (int i = i0; i < i1; ++i)
+        sum += this->Luminance(i, j);
+    return sum / (double(i1 - i0) * this->Height);
+  }
+  double MeanRadiance() const { return this->MeanRadiance(0, this->Width); }
+};
+
+// A renderer looking down -z at the origin, parallel projection framing [-1, 1]^2.
+vtkSmartPointer<vtkCloudReferenceRenderer> FrontView(vtkImageData* field, int size = 32)
+{
+  auto renderer = vtkSmartPointer<vtkCloudReferenceRenderer>::New();
+  renderer->SetInputData(field);
+  renderer->SetImageSize(size, size);
+  renderer->SetCameraPosition(0.0, 0.0, 5.0);
+  renderer->SetCameraFocalPoint(0.0, 0.0, 0.0);
+  renderer->SetCameraViewUp(0.0, 1.0, 0.0);
+  renderer->ParallelProjectionOn();
+  renderer->SetParallelScale(1.0);
+  renderer->SetClippingRange(1.0, 10.0);
+  renderer->SetTransferTable(LinearTable(6.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
+  return renderer;
+}
+
+Image Render(vtkCloudReferenceRenderer* renderer)
+{
+  renderer->Modified();
+  renderer->Update();
+  vtkImageData* output = renderer->GetOutput();
+  Image image;
+  int dims[3];
+  output->GetDimensions(dims);
+  image.Width = dims[0];
+  image.Height = dims[1];
+  auto* rgba = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("rgba"));
+  if (rgba)
+  {
+    image.RGBA.assign(rgba->GetPointer(0), rgba->GetPointer(0) + rgba->GetNumberOfValues());
+  }
+  return image;
+}
+
+Image RenderWith(vtkCloudReferenceRenderer* renderer, const LightingParameters& lighting,
+  const std::vector<Light>& lights)
+{
+  renderer->SetLighting(lighting);
+  renderer->SetLights(lights);
+  return Render(renderer);
+}
+
+int CountErrors(vtkCloudReferenceRenderer* renderer)
+{
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&errors);
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void*) { ++*static_cast<int*>(clientData); });
+  const unsigned long tag = renderer->AddObserver(vtkCommand::ErrorEvent, onError);
+  renderer->Modified();
+  renderer->Update();
+  renderer->RemoveObserver(tag);
+  return errors;
+}
+}
+
+TEST(ReferenceRenderer, CameraMatchesVtkCamera)
+{
+  vtkNew<vtkImageData> field;
+  for (bool parallel : { false, true })
+  {
+    vtkNew<vtkCloudReferenceRenderer> renderer;
+    renderer->SetImageSize(64, 48);
+    renderer->SetCameraPosition(1.0, 2.0, 3.0);
+    renderer->SetCameraFocalPoint(0.2, -0.1, 0.4);
+    renderer->SetCameraViewUp(0.1, 1.0, 0.2);
+    renderer->SetViewAngle(40.0);
+    renderer->SetParallelProjection(parallel);
+    renderer->SetParallelScale(0.7);
+    renderer->SetClippingRange(0.5, 20.0);
+    vtkNew<vtkCamera> camera;
+    camera->SetPosition(1.0, 2.0, 3.0);
+    camera->SetFocalPoint(0.2, -0.1, 0.4);
+    camera->SetViewUp(0.1, 1.0, 0.2);
+    camera->SetViewAngle(40.0);
+    camera->SetParallelProjection(parallel);
+    camera->SetParallelScale(0.7);
+    camera->SetClippingRange(0.5, 20.0);
+
+    vtkNew<vtkMatrix4x4> expected;
+    vtkMatrix4x4::Invert(camera->GetCompositeProjectionTransformMatrix(64.0 / 48.0, -1.0, 1.0),
+      expected);
+    vtkNew<vtkMatrix4x4> actual;
+    ASSERT_TRUE(renderer->GetDeviceToWorldMatrix(actual));
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        EXPECT_NEAR(actual->GetElement(r, c), expected->GetElement(r, c),
+          1e-9 * (1.0 + std::abs(expected->GetElement(r, c))))
+          << (parallel ? "parallel" : "perspective") << " element " << r << ", " << c;
+  }
+}
+
+TEST(ReferenceRenderer, RowZeroIsTheBottomAndColumnZeroTheLeft)
+{
+  // A blob at the upper right of the view appears at high i and high j.
+  auto field = MakeField(24, -1.0, 1.0, [](double x, double y, double z) {
+    const double r = std::sqrt((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5) + z * z);
+    return std::max(0.0, 1.0 - r / 0.3);
+  });
+  auto renderer = FrontView(field, 16);
+  const Image image = Render(renderer);
+  double quadrant[2][2] = { { 0, 0 }, { 0, 0 } };
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i)
+      quadrant[i / 8][j / 8] += image.At(i, j)[3];
+  EXPECT_GT(quadrant[1][1], 0.5);
+  EXPECT_EQ(quadrant[0][0], 0.0);
+  EXPECT_EQ(quadrant[0][1], 0.0);
+  EXPECT_EQ(quadrant[1][0], 0.0);
+}
+
+TEST(ReferenceRenderer, OutputHasTheImageSize)
+{
+  auto renderer = FrontView(SoftSphere(12));
+  renderer->SetImageSize(7, 5);
+  const Image image = Render(renderer);
+  EXPECT_EQ(image.Width, 7);
+  EXPECT_EQ(image.Height, 5);
+  int dims[3];
+  renderer->GetOutput()->GetDimensions(dims);
+  EXPECT_EQ(dims[2], 1);
+  EXPECT_EQ(image.RGBA.size(), std::size_t(7 * 5 * 4));
+  EXPECT_EQ(renderer->GetOutput()->GetPointData()->GetScalars()->GetNumberOfComponents(), 4);
+}
+
+TEST(ReferenceRenderer, HomogeneousSphereHasTheOpacityOfItsDiameter)
+{
+  // Voxels within 15.6 voxels of the centre (23.5, 23.5, 23.5) hold density 1. Along the central
+  // ray that is voxels 8..39; the trilinear ramps add half a voxel at each end, so the chord is
+  // 2r with r = 16 voxels.
+  const int n = 48;
+  const double spacing = 1.0 / (n - 1);
+  const double radius = 15.6 * spacing;
+  auto field = MakeField(n, 0.0, 1.0, [=](double x, double y, double z) {
+    const double dx = x - 0.5, dy = y - 0.5, dz = z - 0.5;
+    return dx * dx + dy * dy + dz * dz <= radius * radius ? 1.0 : 0.0;
+  });
+  const double chord = 2.0 * 16.0 * spacing;
+  const float sigma_t = static_cast<float>(1.2 / chord);
+  const glm::vec3 albedo(0.9f, 0.8f, 0.7f);
+  vtkNew<vtkCloudReferenceRenderer> renderer;
+  renderer->SetInputData(field);
+  renderer->SetImageSize(15, 15); // odd: the centre pixel's ray goes through the centre
+  renderer->SetCameraPosition(0.5, 0.5, 5.0);
+  renderer->SetCameraFocalPoint(0.5, 0.5, 0.5);
+  renderer->ParallelProjectionOn();
+  renderer->SetParallelScale(0.5);
+  renderer->SetClippingRange(1.0, 10.0);
+  renderer->SetTransferTable(LinearTable(sigma_t, albedo));
+  const Image image = Render(renderer);
+
+  const float alpha = 1.0f - std::exp(-1.2f);
+  const float* centre = image.At(7, 7);
+  EXPECT_NEAR(centre[3], alpha, 0.01f * alpha);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(centre[c], albedo[c] * centre[3], 1e-5f); // S = c: radiance = c (1 - T)
+  }
+  for (int corner : { 0, 14 })
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      EXPECT_EQ(image.At(corner, corner)[c], 0.0f);
+      EXPECT_EQ(image.At(corner, 14 - corner)[c], 0.0f);
+    }
+  }
+}
+
+TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
+{
+  // A homogeneous slab of thickness L seen along -z, a directional light straight behind it
+  // (mu = 1), single scattering: T(t) sigma_t E P exp(-sigma_t (L - t)) is constant along the
+  // ray, so L_out = E P(1) sigma_t L exp(-sigma_t L) and alpha = 1 - exp(-sigma_t L).
+  auto field = MakeField(33, 0.0, 1.0, [](double, double, double) { return 1.0; });
+  const float sigma_t = 1.5f, L = 1.0f;
+  vtkNew<vtkCloudReferenceRenderer> renderer;
+  renderer->SetInputData(field);
+  renderer->SetImageSize(1, 1);
+  renderer->SetCameraPosition(0.5, 0.5, 5.0);
+  renderer->SetCameraFocalPoint(0.5, 0.5, 0.5);
+  renderer->ParallelProjectionOn();
+  renderer->SetParallelScale(0.5);
+  renderer->SetClippingRange(1.0, 10.0);
+  renderer->SetTransferTable(LinearTable(sigma_t));
+  renderer->SetSampleDistance(1.0 / 256.0);
+  LightingParameters p = Model(LightingModel::March);
+  p.MultipleScatteringOctaves = 0;
+  p.PhaseLobeWeight = 1.0f;
+  p.PhaseG1 = 0.5f;
+  p.LightStep = 1.0f / 64.0f;
+  p.LightStepGrowth = 1.0f;
+  p.LightSteps = 64;
+  Light behind;
+  behind.Position = glm::vec3(0.5f, 0.5f, -10.0f);
+  behind.FocalPoint = glm::vec3(0.5f);
+  const Image image = RenderWith(renderer, p, { behind });
+  const float expected = HenyeyGreenstein(0.5f, 1.0f) * sigma_t * L * std::exp(-sigma_t * L);
+  EXPECT_NEAR(image.At(0, 0)[0], expected, 0.01f * expected);
+  EXPECT_NEAR(image.At(0, 0)[3], 1.0f - std::exp(-sigma_t * L), 0.01f);
+}
+
+TEST(ReferenceRenderer, LitSideIsBrighterForDerivativeAndMarch)
+{
+  auto renderer = FrontView(SoftSphere());
+  for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
+  {
+    const Image fromRight = RenderWith(renderer, Model(model), { Directional({ 1, 0, 0 }) });
+    EXPECT_GT(fromRight.MeanRadiance(16, 32), 1.5 * fromRight.MeanRadiance(0, 16))
+      << int(model);
+    const Image fromLeft = RenderWith(renderer, Model(model), { Directional({ -1, 0, 0 }) });
+    EXPECT_GT(fromLeft.MeanRadiance(0, 16), 1.5 * fromLeft.MeanRadiance(16, 32)) << int(model);
+    EXPECT_GT(fromLeft.MeanRadiance(), 0.0);
+  }
+}
+
+TEST(ReferenceRenderer, LightsAddUp)
+{
+  auto renderer = FrontView(SoftSphere(), 24);
+  const Light a = Directional({ 1, 0.5f, 0.2f }, { 1.0f, 0.6f, 0.3f }, 0.8f);
+  const Light b = Point({ -0.5f, 1.5f, 1.0f }, 3.0f);
+  for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
+  {
+    const LightingParameters p = Model(model); // ambient strength 0
+    const Image both = RenderWith(renderer, p, { a, b });
+    const Image onlyA = RenderWith(renderer, p, { a });
+    const Image onlyB = RenderWith(renderer, p, { b });
+    ASSERT_EQ(both.RGBA.size(), onlyA.RGBA.size());
+    float largest = 0.0f;
+    for (std::size_t v = 0; v < both.RGBA.size(); ++v)
+    {
+      largest = std::max(largest, both.RGBA[v]);
+      if (v % 4 == 3)
+      {
+        EXPECT_EQ(both.RGBA[v], onlyA.RGBA[v]); // opacity does not depend on the lights
+        continue;
+      }
+      EXPECT_NEAR(both.RGBA[v], onlyA.RGBA[v] + onlyB.RGBA[v], 1e-5f * (1.0f + both.RGBA[v]))
+        << int(model) << " value " << v;
+    }
+    EXPECT_GT(largest, 0.05f);
+    EXPECT_GT(onlyB.MeanRadiance(), 0.0);
+  }
+}
+
+TEST(ReferenceRenderer, PointLightFallsOffWithDistance)
+{
+  auto renderer = FrontView(SoftSphere(), 24);
+  for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
+  {
+    const double nearer = RenderWith(renderer, Model(model), { Point({ 0, 0, 2 }) }).MeanRadiance();
+    const double farther =
+      RenderWith(renderer, Model(model), { Point({ 0, 0, 4 }) }).MeanRadiance();
+    EXPECT_GT(nearer, 0.0);
+    EXPECT_LT(farther, 0.5 * nearer) << int(model);
+  }
+}
+
+TEST(ReferenceRenderer, AmbientLightsEveryVisibleSample)
+{
+  auto renderer = FrontView(SoftSphere(), 24);
+  for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
+  {
+    LightingParameters p = Model(model);
+    p.AmbientColor = glm::vec3(0.5f, 1.0f, 1.0f);
+    p.AmbientStrength = 2.0f;
+    // No lights: S = c A, radiance = c A (1 - T), as emission-absorption with color c A.
+    const Image image = RenderWith(renderer, p, {});
+    const float* centre = image.At(12, 12);
+    EXPECT_NEAR(centre[0], 0.9f * 1.0f * centre[3], 1e-5f) << int(model);
+    EXPECT_NEAR(centre[1], 0.8f * 2.0f * centre[3], 1e-5f) << int(model);
+  }
+}
+
+TEST(ReferenceRenderer, MarchConvergesAsStepsShrink)
+{
+  // Halving the view step and the light step while doubling the light steps (uniform segments,
+  // so the light march covers the same distance) hardly changes the image.
+  auto field = SoftSphere();
+  const double spacing = field->GetSpacing()[0];
+  auto renderer = FrontView(field, 32);
+  renderer->SetTransferTable(LinearTable(3.0f));
+  LightingParameters p = Model(LightingModel::March);
+  p.LightStepGrowth = 1.0f;
+  const std::vector<Light> lights = { Directional({ 1, 1, 0.5f }) };
+
+  renderer->SetSampleDistance(spacing);
+  p.LightStep = float(2.0 * spacing);
+  p.LightSteps = 12;
+  const double coarse = RenderWith(renderer, p, lights).MeanRadiance();
+  renderer->SetSampleDistance(0.5 * spacing);
+  p.LightStep = float(spacing);
+  p.LightSteps = 24;
+  const double fine = RenderWith(renderer, p, lights).MeanRadiance();
+  EXPECT_GT(coarse, 0.0);
+  EXPECT_NEAR(fine, coarse, 0.02 * coarse);
+}
+
+TEST(ReferenceRenderer, ZeroDistancesMeanFourAndTwoVoxels)
+{
+  // The derivative distance 0 is 4 smallest spacings and the first light step 0 is 2.
+  auto field = SoftSphere(24);
+  field->SetSpacing(2.0 / 23.0, 1.5 / 23.0, 2.0 / 23.0);
+  const float smallest = float(1.5 / 23.0);
+  auto renderer = FrontView(field, 16);
+  const std::vector<Light> lights = { Directional({ 1, 0.3f, 0 }) };
+  LightingParameters automatic = Model(LightingModel::Derivative);
+  LightingParameters explicitly = automatic;
+  explicitly.DerivativeDistance = 4.0f * smallest;
+  const Image a = RenderWith(renderer, automatic, lights);
+  EXPECT_EQ(a.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+  explicitly.DerivativeDistance = 8.0f * smallest;
+  EXPECT_NE(a.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+
+  automatic.Model = explicitly.Model = LightingModel::March;
+  explicitly.LightStep = 2.0f * smallest;
+  const Image m = RenderWith(renderer, automatic, lights);
+  EXPECT_EQ(m.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+  explicitly.LightStep = 3.0f * smallest;
+  EXPECT_NE(m.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+}
+
+TEST(ReferenceRenderer, UnsignedCharFieldRendersLikeTheFloatField)
+{
+  auto field = SoftSphere(24);
+  auto bytes = vtkSmartPointer<vtkImageData>::New();
+  bytes->CopyStructure(field);
+  vtkNew<vtkUnsignedCharArray> scalars;
+  auto* source = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
+  scalars->SetNumberOfTuples(source->GetNumberOfTuples());
+  for (vtkIdType v = 0; v < source->GetNumberOfTuples(); ++v)
+  {
+    const float quantised = std::round(source->GetValue(v) * 255.0f);
+    scalars->SetValue(v, static_cast<unsigned char>(quantised));
+    source->SetValue(v, quantised / 255.0f);
+  }
+  bytes->GetPointData()->SetScalars(scalars);
+  auto floatRenderer = FrontView(field, 16);
+  auto byteRenderer = FrontView(bytes, 16);
+  TransferTable table = floatRenderer->GetTransferTable();
+  table.Range[1] = 255.0;
+  byteRenderer->SetTransferTable(table);
+  const std::vector<Light> lights = { Directional({ 1, 0, 0 }) };
+  const Image a = RenderWith(floatRenderer, Model(LightingModel::March), lights);
+  const Image b = RenderWith(byteRenderer, Model(LightingModel::March), lights);
+  ASSERT_EQ(a.RGBA.size(), b.RGBA.size());
+  for (std::size_t v = 0; v < a.RGBA.size(); ++v)
+  {
+    EXPECT_NEAR(a.RGBA[v], b.RGBA[v], 1e-4f) << v;
+  }
+}
+
+TEST(ReferenceRenderer, RefusesBadInput)
+{
+  auto sphere = SoftSphere(12);
+
+  auto noTable = FrontView(sphere, 8);
+  noTable->SetTransferTable(TransferTable());
+  EXPECT_EQ(CountErrors(noTable), 1);
+
+  auto vectors = vtkSmartPointer<vtkImageData>::New();
+  vectors->CopyStructure(sphere);
+  vtkNew<vtkFloatArray> threeComponents;
+  threeComponents->SetNumberOfComponents(3);
+  threeComponents->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  threeComponents->Fill(0.0);
+  vectors->GetPointData()->SetScalars(threeComponents);
+  EXPECT_EQ(CountErrors(FrontView(vectors, 8)), 1);
+
+  auto rotated = vtkSmartPointer<vtkImageData>::New();
+  rotated->DeepCopy(sphere);
+  rotated->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
+  EXPECT_EQ(CountErrors(FrontView(rotated, 8)), 1);
+
+  auto emptyImage = FrontView(sphere, 8);
+  emptyImage->SetImageSize(0, 8);
+  EXPECT_GE(CountErrors(emptyImage), 1);
+
+  auto negativeStep = FrontView(sphere, 8);
+  negativeStep->SetSampleDistance(-0.1);
+  EXPECT_EQ(CountErrors(negativeStep), 1);
+
+  auto badLighting = FrontView(sphere, 8);
+  LightingParameters p = Model(LightingModel::March);
+  p.PhaseG1 = 1.5f;
+  badLighting->SetLighting(p);
+  EXPECT_EQ(CountErrors(badLighting), 1);
+
+  auto tooManyLights = FrontView(sphere, 8);
+  tooManyLights->SetLights(std::vector<Light>(9, Directional({ 1, 0, 0 })));
+  EXPECT_EQ(CountErrors(tooManyLights), 1);
+
+  auto blindCamera = FrontView(sphere, 8);
+  blindCamera->SetCameraFocalPoint(0.0, 0.0, 5.0);
+  EXPECT_EQ(CountErrors(blindCamera), 1);
+
+  // And a good one runs silently.
+  EXPECT_EQ(CountErrors(FrontView(sphere, 8)), 0);
+}
+
+TEST(ReferenceRenderer, ReportsProgressAndStopsWhenAborted)
+{
+  auto renderer = FrontView(SoftSphere(24), 32);
+  std::vector<double> progress;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject* caller, unsigned long, void* clientData, void* data) {
+    auto* seen = static_cast<std::vector<double>*>(clientData);
+    seen->push_back(*static_cast<double*>(data));
+    if (seen->back() > 0.2)
+    {
+      static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn();
+    }
+  });
+  const Image full = Render(renderer);
+  renderer->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  const Image aborted = Render(renderer);
+  ASSERT_GE(progress.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+  EXPECT_LT(progress.back(), 0.5);
+  // The rows below the abort are rendered, the top ones (where the sphere also is) are not.
+  EXPECT_GT(full.Luminance(16, 6), 0.0f);
+  EXPECT_EQ(aborted.Luminance(16, 6), full.Luminance(16, 6));
+  EXPECT_GT(full.Luminance(16, 24), 0.0f);
+  EXPECT_EQ(aborted.Luminance(16, 24), 0.0f);
+}
+
+TEST(ReferenceRenderer, SequentialStdThreadAndTbbBackendsGiveTheSameImage)
+{
+  auto renderer = FrontView(SoftSphere(24), 24);
+  renderer->SetLighting(Model(LightingModel::March));
+  renderer->SetLights({ Directional({ 1, 1, 0 }), Point({ 0, -1.5f, 1 }) });
+  const std::string original = vtkSMPTools::GetBackend();
+  std::vector<Image> images;
+  for (const char* backend : { "Sequential", "STDThread", "TBB" })
+  {
+    ASSERT_TRUE(vtkSMPTools::SetBackend(backend)) << backend;
+    images.push_back(Render(renderer));
+  }
+  vtkSMPTools::SetBackend(original.c_str());
+  EXPECT_EQ(images[1].RGBA, images[0].RGBA);
+  EXPECT_EQ(images[2].RGBA, images[0].RGBA);
+}
+
+// Not a test: how long a 128 x 128 render of a 64^3 field takes per model, for the report.
+// Run with --gtest_also_run_disabled_tests --gtest_filter='*Timing*'.
+TEST(ReferenceRenderer, DISABLED_Timing128x128Of64Cubed)
+{
+  auto renderer = FrontView(SoftSphere(64), 128);
+  renderer->ParallelProjectionOff();
+  renderer->SetCameraPosition(0.0, 0.0, 4.0);
+  const char* names[] = { "none", "derivative", "march" };
+  for (LightingModel model :
+    { LightingModel::None, LightingModel::Derivative, LightingModel::March })
+  {
+    LightingParameters p = Model(model);
+    p.AmbientStrength = 0.2f;
+    renderer->SetLighting(p);
+    renderer->SetLights({ Directional({ 1, 1, 0.5f }) });
+    const auto start = std::chrono::steady_clock::now();
+    renderer->Modified();
+    renderer->Update();
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "128x128 of 64^3, " << names[int(model)] << ": " << seconds * 1000.0 << " ms"
+              << std::endl;
+  }
+}
