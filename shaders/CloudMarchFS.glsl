@@ -30,6 +30,8 @@ uniform float StepWorld;
 uniform float TerminationTransmittance;
 uniform int MaximumIterations;
 
+const float NoDepth = 1e30; // no significant density along the ray
+
 //VTK::Output::Dec
 
 // Entry and exit distances of the ray o + t d through the box [lo, hi].
@@ -95,6 +97,7 @@ void main()
   float T = 1.0;
   float samplesTaken = 0.0;
   float usefulSamples = 0.0;
+  float firstSignificant = NoDepth; // world distance from the near plane where opacity passes 2%
   if (tEnter < tExit)
   {
     float jitter = 0.0;
@@ -138,6 +141,10 @@ void main()
         // constant over the step, so the sum does not depend on the step size.
         radiance += T * SourceTerm(p, density, optical.rgb, d) * (1.0 - stepT);
         T *= stepT;
+        if (firstSignificant == NoDepth && T < 0.98)
+        {
+          firstSignificant = t;
+        }
         if (T < TerminationTransmittance)
         {
           break;
@@ -147,5 +154,5 @@ void main()
     }
   }
   gl_FragData[0] = vec4(radiance, 1.0 - T); // premultiplied: alpha is the opacity
-  gl_FragData[1] = vec4(samplesTaken, usefulSamples, 0.0, 1.0);
+  gl_FragData[1] = vec4(samplesTaken, usefulSamples, firstSignificant, 1.0);
 }

@@ -43,6 +43,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -91,7 +92,7 @@ struct ViewTargets
 {
   vtkNew<vtkTextureObject> Depth;
   vtkNew<vtkTextureObject> Color;  // premultiplied radiance and opacity, RGBA32F
-  vtkNew<vtkTextureObject> Counts; // samples taken, useful samples
+  vtkNew<vtkTextureObject> Counts; // samples taken, useful samples, depth of the cloud
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   int ViewportSize[2] = { 0, 0 };
   int MarchSize[2] = { 0, 0 };
@@ -563,9 +564,9 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     view.Color->SetInternalFormat(GL_RGBA32F);
     view.Color->SetFormat(GL_RGBA);
     view.Color->Allocate2D(marchWidth, marchHeight, 4, VTK_FLOAT);
-    view.Counts->SetInternalFormat(GL_RG32F);
-    view.Counts->SetFormat(GL_RG);
-    view.Counts->Allocate2D(marchWidth, marchHeight, 2, VTK_FLOAT);
+    view.Counts->SetInternalFormat(GL_RGBA32F);
+    view.Counts->SetFormat(GL_RGBA);
+    view.Counts->Allocate2D(marchWidth, marchHeight, 4, VTK_FLOAT);
     view.Framebuffer->SetContext(window);
     view.MarchSize[0] = marchWidth;
     view.MarchSize[1] = marchHeight;
@@ -756,12 +757,12 @@ void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
 {
   ViewTargets& view = this->Internal->ViewOf(renderer);
   const int w = view.MarchSize[0], h = view.MarchSize[1];
-  std::vector<float> counts(size_t(w) * h * 2);
+  std::vector<float> counts(size_t(w) * h * 4);
   view.Framebuffer->ActivateReadBuffer(1);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, counts.data());
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, counts.data());
   FrameStatistics statistics;
-  for (size_t i = 0; i < counts.size(); i += 2)
+  for (size_t i = 0; i < counts.size(); i += 4)
   {
     statistics.SamplesTaken += counts[i];
     statistics.UsefulSamples += counts[i + 1];
@@ -772,8 +773,8 @@ void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
   this->LastStatistics = statistics;
 }
 
-bool vtkCloudVolumeMapper::ReadImage(
-  vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height)
+bool vtkCloudVolumeMapper::ReadTarget(
+  vtkRenderer* renderer, int target, std::vector<float>& rgba, int& width, int& height)
 {
   auto found = this->Internal->Views.find(renderer);
   if (found == this->Internal->Views.end() || !found->second->Color->GetHandle())
@@ -789,12 +790,32 @@ bool vtkCloudVolumeMapper::ReadImage(
   rgba.resize(size_t(width) * height * 4);
   state->PushFramebufferBindings();
   view.Framebuffer->Bind();
-  view.Framebuffer->AddColorAttachment(0, view.Color);
+  view.Framebuffer->AddColorAttachment(0, target == 0 ? view.Color.Get() : view.Counts.Get());
   view.Framebuffer->ActivateReadBuffer(0);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
   view.Framebuffer->RemoveColorAttachments(1);
   state->PopFramebufferBindings();
+  return true;
+}
+
+bool vtkCloudVolumeMapper::ReadImage(
+  vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height)
+{
+  return this->ReadTarget(renderer, 0, rgba, width, height);
+}
+
+bool vtkCloudVolumeMapper::ReadAuxiliary(
+  vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height)
+{
+  if (!this->ReadTarget(renderer, 1, channels, width, height))
+  {
+    return false;
+  }
+  for (size_t i = 2; i < channels.size(); i += 4)
+  {
+    channels[i] = channels[i] >= 1e29f ? std::numeric_limits<float>::infinity() : channels[i];
+  }
   return true;
 }
 

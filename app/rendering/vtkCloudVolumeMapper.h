@@ -193,6 +193,14 @@ public:
   bool ReadImage(vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height);
 
   /**
+   * Per pixel of the same target, four floats: samples taken, useful samples (non-zero
+   * extinction), the cloud's depth (world distance from the near clipping plane along the ray to
+   * where its opacity first exceeds 2%; +infinity where it never does) and 1. Averaged over the
+   * accumulated frames like the image.
+   */
+  bool ReadAuxiliary(vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height);
+
+  /**
    * The last error, or an empty string when the last render succeeded.
    */
   const std::string& GetLastError() const { return this->LastError; }
@@ -229,6 +237,7 @@ private:
   void SetLightingUniforms(vtkShaderProgram* program, vtkRenderer* renderer, double smallestSpacing);
   void CompositePass(vtkRenderer* renderer);
   void ReadStatistics(vtkRenderer* renderer);
+  bool ReadTarget(vtkRenderer* renderer, int target, std::vector<float>& rgba, int& width, int& height);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

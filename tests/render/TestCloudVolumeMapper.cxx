@@ -358,3 +358,23 @@ TEST(CloudVolumeMapper, RefusesBadInputWithAReason)
   EXPECT_NE(RefusalOf(field, -0.5).find("sample distance"), std::string::npos);
   EXPECT_NE(RefusalOf(field, 0.02, true).find("transfer function"), std::string::npos);
 }
+
+TEST(CloudVolumeMapper, AuxiliaryChannelsGiveTheCloudsDepthAndSampleCounts)
+{
+  // A slab from z = 1 down to z = -1, camera at z = 6 with the near plane at 0.1: the cloud's
+  // opacity passes 2% just behind its front face, 4.9 from the near plane.
+  auto mapper = CloudMapper(0.005);
+  Scene scene(mapper, 32, 32);
+  scene.SetInput(ConstantBox(1.0, 64));
+  SetUniformMedium(scene.Property, 0.5, 0.5);
+  scene.RenderFloat();
+  std::vector<float> channels;
+  int w = 0, h = 0;
+  ASSERT_TRUE(mapper->ReadAuxiliary(scene.Renderer, channels, w, h));
+  const float* centre = &channels[(size_t(16) * w + 16) * 4];
+  // useful: 2 units of slab at step 0.005, give or take the faces blurred over a voxel (0.0635)
+  EXPECT_NEAR(centre[1], 400.0f, 13.0f);
+  EXPECT_GE(centre[0], centre[1]);      // taken: also the empty part of the slab's face bricks
+  EXPECT_NEAR(centre[2], 4.9f, 0.05f);
+  EXPECT_TRUE(std::isinf(channels[2])) << "no cloud in the corner: infinite depth";
+}
