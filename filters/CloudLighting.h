@@ -32,7 +32,7 @@ struct Light
   glm::vec3 FocalPoint{ 0.0f };
   glm::vec3 Color{ 1.0f };
   float Intensity = 1.0f;
-  glm::vec3 Attenuation{ 1.0f, 0.0f, 0.0f }; // positional: 1 / (a0 + a1 r + a2 r^2)
+  glm::vec3 Attenuation{ 0.0f, 0.0f, 1.0f }; // positional: 1 / (a0 + a1 r + a2 r^2)
 };
 
 struct LightingParameters
@@ -113,10 +113,12 @@ inline float Phase(const LightingParameters& p, float mu, float eccentricityScal
 }
 
 // Directional derivative toward a light: positive where density falls toward the light, so the
-// side of a cloud facing the light is bright.
-inline float DerivativeDiffuse(float densityHere, float densityTowardLight, float h)
+// side of a cloud facing the light is bright. Densities count in units of the data's density
+// range (max - min), so the term does not depend on the field's units.
+inline float DerivativeDiffuse(
+  float densityHere, float densityTowardLight, float h, float densityRange)
 {
-  return glm::clamp((densityHere - densityTowardLight) / h, 0.0f, 1.0f);
+  return glm::clamp((densityHere - densityTowardLight) / (h * densityRange), 0.0f, 1.0f);
 }
 
 // Light scattered toward the eye at a sample from one light whose optical depth to the sample

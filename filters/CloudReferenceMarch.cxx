@@ -155,7 +155,7 @@ glm::vec3 SourceTermDerivative(
     const LightSample s = SampleLight(source, x);
     const float towardLight = DensityAt(u, p + WorldToIndex(u, h * s.Direction));
     light += source.Color * source.Intensity * s.Falloff *
-      DerivativeDiffuse(density, towardLight, h);
+      DerivativeDiffuse(density, towardLight, h, float(u.Table->Range[1] - u.Table->Range[0]));
   }
   return albedo * light;
 }
@@ -164,14 +164,14 @@ glm::vec3 SourceTermDerivative(
 
 float LightOpticalDepth(const MarchUniforms& u, glm::vec3 p, glm::vec3 l, float maxDistance)
 {
-  const glm::vec3 step = WorldToIndex(u, l); // index units per world unit
+  const glm::vec3 indexStep = WorldToIndex(u, l); // index units per world unit
   float tau = 0.0f;
   float start = 0.0f;
   float segment = u.Lighting.LightStep;
   for (int j = 0; j < u.Lighting.LightSteps; ++j)
   {
     const float s = start + 0.5f * segment;
-    const glm::vec3 q = p + s * step;
+    const glm::vec3 q = p + s * indexStep;
     if (s > maxDistance || !InsideVolume(u, q))
     {
       break;

@@ -36,20 +36,21 @@ bool InsideVolume(vec3 p)
 }
 
 // Direction toward light i from world point x, the distance to it and its falloff.
-void SampleLight(int i, vec3 x, out vec3 l, out float distance, out float falloff)
+void SampleLight(int i, vec3 x, out vec3 l, out float lightDistance, out float falloff)
 {
   if (LightPositional[i] == 0)
   {
     l = LightDirection[i];
-    distance = 1e30;
+    lightDistance = 1e30;
     falloff = 1.0;
     return;
   }
   vec3 toLight = LightPosition[i] - x;
-  distance = length(toLight);
-  l = toLight / max(distance, 1e-20);
+  float r = length(toLight);
+  lightDistance = r;
+  l = toLight / max(r, 1e-20);
   vec3 k = LightAttenuation[i];
-  falloff = 1.0 / max(k.x + k.y * distance + k.z * distance * distance, 1e-20);
+  falloff = 1.0 / max(k.x + k.y * r + k.z * r * r, 1e-20);
 }
 
 float HenyeyGreenstein(float g, float mu)

@@ -3,9 +3,9 @@
 // light, so the side of the cloud facing the light is bright. No shadowing, no phase.
 uniform float DerivativeDistance; // h, world units
 
-float DerivativeDiffuse(float densityHere, float densityTowardLight, float h)
+float DerivativeDiffuse(float densityHere, float densityTowardLight, float h, float densityRange)
 {
-  return clamp((densityHere - densityTowardLight) / h, 0.0, 1.0);
+  return clamp((densityHere - densityTowardLight) / (h * densityRange), 0.0, 1.0);
 }
 
 vec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)
@@ -15,10 +15,11 @@ vec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)
   for (int i = 0; i < LightCount; ++i)
   {
     vec3 l;
-    float distance, falloff;
-    SampleLight(i, x, l, distance, falloff);
+    float lightDistance, falloff;
+    SampleLight(i, x, l, lightDistance, falloff);
     float towardLight = DensityAt(p + WorldToIndex * (DerivativeDistance * l));
-    light += LightRadiance[i] * falloff * DerivativeDiffuse(density, towardLight, DerivativeDistance);
+    light += LightRadiance[i] * falloff *
+      DerivativeDiffuse(density, towardLight, DerivativeDistance, TableRange.y - TableRange.x);
   }
   return albedo * light;
 }

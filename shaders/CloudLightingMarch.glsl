@@ -39,14 +39,14 @@ float ScatteredFraction(float mu, float tau)
 // segment is sampled at its midpoint; empty bricks are passed without reading the density.
 float LightOpticalDepth(vec3 p, vec3 l, float maxDistance)
 {
-  vec3 step = WorldToIndex * l; // index units per world unit
+  vec3 indexStep = WorldToIndex * l; // index units per world unit
   float tau = 0.0;
   float start = 0.0;
   float segment = LightStep;
   for (int j = 0; j < LightSteps; ++j)
   {
     float s = start + 0.5 * segment;
-    vec3 q = p + s * step;
+    vec3 q = p + s * indexStep;
     if (s > maxDistance || !InsideVolume(q))
     {
       break;
@@ -68,9 +68,9 @@ vec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)
   for (int i = 0; i < LightCount; ++i)
   {
     vec3 l;
-    float distance, falloff;
-    SampleLight(i, x, l, distance, falloff);
-    float tau = LightOpticalDepth(p, l, distance);
+    float lightDistance, falloff;
+    SampleLight(i, x, l, lightDistance, falloff);
+    float tau = LightOpticalDepth(p, l, lightDistance);
     light += LightRadiance[i] * falloff * ScatteredFraction(dot(d, l), tau);
   }
   return albedo * light;
