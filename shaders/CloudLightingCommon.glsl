@@ -3,12 +3,15 @@
 // p is a point in voxel index space; WorldPoint(p) and ToIndexDisplacement() convert.
 
 #define MAX_LIGHTS 8
-uniform int LightCount;
 uniform int LightPositional[MAX_LIGHTS];
 uniform vec3 LightPosition[MAX_LIGHTS];  // world; positional lights
 uniform vec3 LightDirection[MAX_LIGHTS]; // world, unit, toward the light; directional lights
 uniform vec3 LightRadiance[MAX_LIGHTS];  // color * intensity
 uniform vec3 LightAttenuation[MAX_LIGHTS];
+// Per directional light, precomputed: its direction in index units per world unit, and the
+// derivative model's offset h l in index units.
+uniform vec3 LightIndexDirection[MAX_LIGHTS];
+uniform vec3 LightIndexOffset[MAX_LIGHTS];
 uniform vec3 Ambient; // ambient color * strength
 uniform mat4 IndexToWorld;
 uniform mat3 WorldToIndex; // a world displacement in index units

@@ -1,6 +1,7 @@
 // Lighting model "march": for each light a nested march toward it sums the optical depth
 // tau = sum sigma_t ds (segments growing by LightStepGrowth, stopping where the volume ends or
-// at a point light); Beer-Lambert gives exp(-tau). A two-lobe Henyey-Greenstein phase and
+// at a point light); Beer-Lambert gives exp(-tau). The mapper calls one term per light with a
+// constant index (see LightTermCalls). A two-lobe Henyey-Greenstein phase and
 // octaves of approximate multiple scattering weigh the light scattered toward the eye.
 uniform int LightSteps;
 uniform float LightStep; // first segment, world units
@@ -35,11 +36,11 @@ float ScatteredFraction(float mu, float tau)
   return sum * powder;
 }
 
-// Optical depth from p toward the light along l (world direction), up to maxDistance. Each
-// segment is sampled at its midpoint; empty bricks are passed without reading the density.
-float LightOpticalDepth(vec3 p, vec3 l, float maxDistance)
+// Optical depth from p toward a light, up to maxDistance (world). indexStep is the direction
+// toward the light in index units per world unit. Each segment is sampled at its midpoint;
+// empty bricks are passed without reading the density.
+float LightOpticalDepth(vec3 p, vec3 indexStep, float maxDistance)
 {
-  vec3 indexStep = WorldToIndex * l; // index units per world unit
   float tau = 0.0;
   float start = 0.0;
   float segment = LightStep;
@@ -61,17 +62,18 @@ float LightOpticalDepth(vec3 p, vec3 l, float maxDistance)
   return tau;
 }
 
-vec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)
+// A directional light: its direction in index units is the same everywhere (precomputed).
+vec3 DirectionalLightTerm(int i, vec3 p, float density, vec3 d)
 {
-  vec3 x = WorldOfIndex(p);
-  vec3 light = Ambient;
-  for (int i = 0; i < LightCount; ++i)
-  {
-    vec3 l;
-    float lightDistance, falloff;
-    SampleLight(i, x, l, lightDistance, falloff);
-    float tau = LightOpticalDepth(p, l, lightDistance);
-    light += LightRadiance[i] * falloff * ScatteredFraction(dot(d, l), tau);
-  }
-  return albedo * light;
+  float tau = LightOpticalDepth(p, LightIndexDirection[i], 1e30);
+  return LightRadiance[i] * ScatteredFraction(dot(d, LightDirection[i]), tau);
+}
+
+vec3 PointLightTerm(int i, vec3 p, float density, vec3 d)
+{
+  vec3 l;
+  float lightDistance, falloff;
+  SampleLight(i, WorldOfIndex(p), l, lightDistance, falloff);
+  float tau = LightOpticalDepth(p, WorldToIndex * l, lightDistance);
+  return LightRadiance[i] * falloff * ScatteredFraction(dot(d, l), tau);
 }

@@ -130,7 +130,9 @@ struct vtkCloudVolumeMapper::Internals
   int BrickCount[3] = { 0, 0, 0 };
   double OccupiedBrickFraction = 0.0;
   int JitterSize = 0;
-  std::unique_ptr<vtkOpenGLQuadHelper> March[3]; // one program per lighting model
+  // One march program per lighting model and kind of lights, e.g. "march:DP" for a directional
+  // and a point light: the light terms are then calls with constant indices.
+  std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> March;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<ViewTargets>> Views; // keys are identities only
   std::string ReportedError; // reported once, until a render succeeds again
@@ -423,6 +425,29 @@ std::vector<cloudvis::Light> LightsOf(vtkRenderer* renderer)
   return lights;
 }
 
+// The lighting model's GLSL: shared helpers, the model's light terms, and a SourceTerm that
+// calls one term per light with a constant index, so no light loop runs per sample.
+std::string LightingSource(cloudvis::LightingModel model, const std::vector<cloudvis::Light>& lights)
+{
+  if (model == cloudvis::LightingModel::None)
+  {
+    return std::string(CloudLightingCommon) + "\n" + CloudLightingNone;
+  }
+  std::ostringstream source;
+  source << CloudLightingCommon << "\n"
+         << (model == cloudvis::LightingModel::Derivative ? CloudLightingDerivative
+                                                          : CloudLightingMarch)
+         << "\nvec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)\n{\n"
+         << "  vec3 light = Ambient;\n";
+  for (size_t i = 0; i < lights.size(); ++i)
+  {
+    source << "  light += " << (lights[i].Positional ? "PointLightTerm" : "DirectionalLightTerm")
+           << "(" << i << ", p, density, d);\n";
+  }
+  source << "  return albedo * light;\n}\n";
+  return source.str();
+}
+
 vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer)
 {
   vtkMTimeType latest = renderer->GetLights()->GetMTime();
@@ -436,15 +461,16 @@ vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer)
 }
 }
 
-void vtkCloudVolumeMapper::SetLightingUniforms(
-  vtkShaderProgram* program, vtkRenderer* renderer, double smallestSpacing)
+void vtkCloudVolumeMapper::SetLightingUniforms(vtkShaderProgram* program,
+  const std::vector<cloudvis::Light>& lights, const glm::mat3& worldToIndex, double smallestSpacing)
 {
   const cloudvis::LightingParameters& p = this->Lighting;
-  const std::vector<cloudvis::Light> lights = LightsOf(renderer);
+  // Automatic distances are tied to the voxel size (docs/lighting.md).
+  const float h = p.DerivativeDistance > 0.0f ? p.DerivativeDistance : float(4.0 * smallestSpacing);
   const int count = static_cast<int>(lights.size());
   std::vector<int> positional(8, 0);
   std::vector<float> position(24, 0.0f), direction(24, 0.0f), radiance(24, 0.0f),
-    attenuation(24, 0.0f);
+    attenuation(24, 0.0f), indexDirection(24, 0.0f), indexOffset(24, 0.0f);
   for (int i = 0; i < count; ++i)
   {
     const cloudvis::Light& l = lights[i];
@@ -452,25 +478,27 @@ void vtkCloudVolumeMapper::SetLightingUniforms(
     // The direction toward a directional light; SampleLight gives the same on the CPU.
     const glm::vec3 towardLight = cloudvis::SampleLight(l, glm::vec3(0.0f)).Direction;
     const glm::vec3 e = l.Color * l.Intensity;
+    const glm::vec3 stepInIndex = worldToIndex * towardLight;
     for (int c = 0; c < 3; ++c)
     {
       position[3 * i + c] = l.Position[c];
       direction[3 * i + c] = l.Positional ? 0.0f : towardLight[c];
       radiance[3 * i + c] = e[c];
       attenuation[3 * i + c] = l.Attenuation[c];
+      indexDirection[3 * i + c] = l.Positional ? 0.0f : stepInIndex[c];
+      indexOffset[3 * i + c] = l.Positional ? 0.0f : h * stepInIndex[c];
     }
   }
-  program->SetUniformi("LightCount", count);
   program->SetUniform1iv("LightPositional", 8, positional.data());
+  program->SetUniform3fv("LightIndexDirection", 8, indexDirection.data());
+  program->SetUniform3fv("LightIndexOffset", 8, indexOffset.data());
   program->SetUniform3fv("LightPosition", 8, position.data());
   program->SetUniform3fv("LightDirection", 8, direction.data());
   program->SetUniform3fv("LightRadiance", 8, radiance.data());
   program->SetUniform3fv("LightAttenuation", 8, attenuation.data());
   const glm::vec3 ambient = p.AmbientColor * p.AmbientStrength;
   program->SetUniform3f("Ambient", glm::value_ptr(ambient));
-  // Automatic distances are tied to the voxel size (docs/lighting.md).
-  program->SetUniformf("DerivativeDistance",
-    p.DerivativeDistance > 0.0f ? p.DerivativeDistance : float(4.0 * smallestSpacing));
+  program->SetUniformf("DerivativeDistance", h);
   program->SetUniformi("LightSteps", p.LightSteps);
   program->SetUniformf("LightStep", p.LightStep > 0.0f ? p.LightStep : float(2.0 * smallestSpacing));
   program->SetUniformf("LightStepGrowth", p.LightStepGrowth);
@@ -631,15 +659,20 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   }
 
   // The march is one shader; a lighting model only supplies its source term.
-  const int model = static_cast<int>(this->Lighting.Model);
-  std::unique_ptr<vtkOpenGLQuadHelper>& march = in.March[model];
+  const std::vector<cloudvis::Light> lights = LightsOf(renderer);
+  std::string key = std::to_string(int(this->Lighting.Model)) + ":";
+  if (this->Lighting.Model != cloudvis::LightingModel::None)
+  {
+    for (const cloudvis::Light& light : lights)
+    {
+      key += light.Positional ? 'P' : 'D';
+    }
+  }
+  std::unique_ptr<vtkOpenGLQuadHelper>& march = in.March[key];
   if (!march)
   {
-    static const char* const models[3] = { CloudLightingNone, CloudLightingDerivative,
-      CloudLightingMarch };
     std::string source = CloudMarchFS;
-    vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec",
-      std::string(CloudLightingCommon) + "\n" + models[model]);
+    vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", LightingSource(this->Lighting.Model, lights));
     march = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, source.c_str(), "");
   }
   else
@@ -722,11 +755,12 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   program->SetUniformf("StepWorld", float(step));
   program->SetUniformf("TerminationTransmittance", float(this->TerminationTransmittance));
   program->SetUniformi("MaximumIterations", iterations);
-  this->SetLightingUniforms(program, renderer, std::min({ spacing[0], spacing[1], spacing[2] }));
   const glm::dmat4 indexToWorld = modelToWorld * indexToModel;
   SetMatrix(program, "IndexToWorld", indexToWorld);
   glm::mat3 worldToIndex(glm::inverse(glm::dmat3(indexToWorld)));
   program->SetUniformMatrix3x3("WorldToIndex", glm::value_ptr(worldToIndex));
+  this->SetLightingUniforms(
+    program, lights, worldToIndex, std::min({ spacing[0], spacing[1], spacing[2] }));
   march->Render();
   for (vtkTextureObject* texture : { in.Density.Get(), in.Transfer.Get(), in.EmptyDistance.Get(),
          in.Jitter.Get(), view.Depth.Get() })
@@ -881,10 +915,7 @@ void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
     view.second->Release(window);
   }
   in.Views.clear();
-  for (auto& march : in.March)
-  {
-    march.reset();
-  }
+  in.March.clear();
   in.Composite.reset();
   in.UploadedInput = nullptr;
   in.DensityUploadTime = in.TableTime = in.EmptyDistanceUploadTime = 0;

@@ -234,7 +234,8 @@ private:
   bool UpdateVolumeTextures(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
   double ChooseResolutionScale(vtkRenderer* renderer);
   void MarchPass(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
-  void SetLightingUniforms(vtkShaderProgram* program, vtkRenderer* renderer, double smallestSpacing);
+  void SetLightingUniforms(vtkShaderProgram* program, const std::vector<cloudvis::Light>& lights,
+    const glm::mat3& worldToIndex, double smallestSpacing);
   void CompositePass(vtkRenderer* renderer);
   void ReadStatistics(vtkRenderer* renderer);
   bool ReadTarget(vtkRenderer* renderer, int target, std::vector<float>& rgba, int& width, int& height);
