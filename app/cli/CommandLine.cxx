@@ -246,8 +246,9 @@ int RunCommandLine(const std::vector<std::string>& arguments, std::ostream& out,
                                       : "unknown command \"" + name + "\"; commands: " + CommandNames());
     }
     hint = "run 'cloudvis " + command->Name + " --help' for usage";
-    const Arguments parsed =
+    Arguments parsed =
       ParseArguments(*command, std::vector<std::string>(arguments.begin() + 2, arguments.end()));
+    parsed.CommandLine = arguments;
     if (parsed.Has("help"))
     {
       out << CommandHelp(*command);

@@ -36,6 +36,7 @@ struct Arguments
 {
   std::vector<std::string> Operands;
   std::map<std::string, std::vector<std::string>> Options; // long name -> values ("" for flags)
+  std::vector<std::string> CommandLine; // the whole command line, as main() got it (metadata)
 
   bool Has(const std::string& option) const { return this->Options.count(option) > 0; }
   std::string Value(const std::string& option) const;              // last value, or ""

@@ -11,15 +11,23 @@
 #include "../io/FieldIO.h"
 #include "../io/Scene.h"
 #include "../io/SceneField.h"
+#include "../render/Compare.h"
+#include "../render/CpuReference.h"
 #include "../render/OffscreenRender.h"
+#include "ExportCommands.h"
+#include "Progress.h"
 
 #include <vtkImageData.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
+#include <iostream>
 #include <numeric>
+#include <optional>
+#include <sstream>
 #include <regex>
 #include <sys/stat.h>
 
@@ -38,12 +46,26 @@ const OptionSpec OutputOption{ "output", 'o', "FIELD.vti",
   true };
 const OptionSpec JsonOption{ "json", 0, "", "print the statistics as one JSON object" };
 const OptionSpec ImageOutputOption{ "output", 'o', "IMAGE.png",
-  "write the rendered image to this file (8-bit RGB PNG); required", false, true };
+  "write the rendered image to this file: .png (8-bit RGB unless --png-bits 16 or "
+  "--transparent) or .exr (float channels, docs/export.md); required", false, true };
 const OptionSpec SizeOption{ "size", 0, "WxH",
   "image size in pixels, e.g. 800x600 (each in [16, 16384]); overrides render.size" };
 const OptionSpec BenchmarkOption{ "benchmark", 0, "N",
   "after the image is made, march N more frames in full and print the mean time per frame as "
   "'<milliseconds> ms/frame'" };
+const OptionSpec CpuReferenceOption{ "cpu-reference", 0, "",
+  "render with the CPU reference renderer (vtkCloudReferenceRenderer) instead of the GPU: the "
+  "same camera, transfer function, lights and step, one exact ray per pixel, no jitter; slow, "
+  "needs no display" };
+const OptionSpec CompareLightingOption{ "lighting", 0, "M1,M2,...",
+  "the lighting models to compare, left to right, each at most once (default "
+  "none,derivative,march)" };
+const OptionSpec DifferenceOption{ "difference", 0, "A,B",
+  "add a panel showing |A - B| of two of the compared models, false colored, labelled with the "
+  "largest difference" };
+const OptionSpec PanelSizeOption{ "size", 0, "WxH",
+  "size of each panel in pixels, e.g. 400x300; overrides render.size (the window is the panels "
+  "side by side)" };
 
 OptionSpec LightingOption()
 {
@@ -117,6 +139,52 @@ void MakeDirectory(const std::string& directory)
   }
 }
 
+// The operand of render and compare, a scene or a .vti field file, validated with its --set
+// assignments and option overrides and turned into its field. The cheap checks come first (field
+// keys set for a field file, a bad -o, scene values, the display when `needsDisplay`): none of
+// them should cost a field's generation.
+struct SceneInput
+{
+  Scene Loaded;
+  vtkSmartPointer<vtkImageData> Field;
+};
+SceneInput LoadSceneInput(const std::string& command, const Arguments& arguments,
+  const std::vector<SceneOverride>& options, const std::string& output, bool needsDisplay,
+  const std::function<void(double)>& generationProgress = {})
+{
+  const std::string& input = arguments.Operands[0];
+  const bool fieldFile = EndsWith(input, ".vti");
+  const std::vector<std::string> assignments = arguments.Values("set");
+  if (fieldFile)
+  {
+    for (const std::string& assignment : assignments)
+    {
+      if (assignment.rfind("field", 0) == 0 && (assignment.size() == 5 ||
+            assignment[5] == '.' || assignment[5] == '='))
+      {
+        throw UsageError(command + ": --set " + assignment.substr(0, assignment.find('=')) +
+          " does not apply to the field file " + input + "; only scenes have field keys");
+      }
+    }
+  }
+  CheckImageOutput(output);
+  SceneInput loaded{ LoadScene(fieldFile ? "" : input, assignments, options), nullptr };
+  if (needsDisplay)
+  {
+    RequireDisplay("cloudvis " + command + " ...");
+  }
+  if (fieldFile)
+  {
+    loaded.Loaded.Field.File = input;
+    loaded.Field = ReadField(input);
+  }
+  else
+  {
+    loaded.Field = ProduceField(loaded.Loaded, generationProgress);
+  }
+  return loaded;
+}
+
 int Render(const Arguments& arguments, std::ostream& out)
 {
   if (!arguments.Has("output"))
@@ -136,36 +204,41 @@ int Render(const Arguments& arguments, std::ostream& out)
   {
     options.push_back({ "render.size", ParseSize(arguments.Value("size")), "--size" });
   }
-  const bool fieldFile = EndsWith(input, ".vti");
-  const std::vector<std::string> assignments = arguments.Values("set");
-  if (fieldFile)
+  AddExportOverrides(arguments, options);
+  const bool cpuReference = arguments.Has("cpu-reference");
+  if (cpuReference && benchmarkFrames > 0)
   {
-    for (const std::string& assignment : assignments)
+    throw UsageError("render: --benchmark times the GPU; it cannot be combined with --cpu-reference");
+  }
+  Progress progress(std::cerr, ShowProgress(arguments));
+  const SceneInput loaded = LoadSceneInput("render", arguments, options, output, !cpuReference,
+    [&](double fraction) { progress.Update("generating", fraction); });
+  const Scene& scene = loaded.Loaded;
+  const vtkSmartPointer<vtkImageData>& field = loaded.Field;
+  // Format details and metadata (docs/export.md).
+  ImageExportOptions exportOptions = MakeExportOptions(arguments, scene, output);
+  exportOptions.SceneJson = ResolvedSceneJson(scene, field);
+  RenderOptions renderOptions;
+  renderOptions.FloatImage = NeedsFloatImage(output, exportOptions);
+  renderOptions.OnFrame = [&](int frame, int frames)
+  { progress.Update("rendering", double(frame) / double(frames)); };
+  if (cpuReference)
+  {
+    if (renderOptions.FloatImage)
     {
-      if (assignment.rfind("field", 0) == 0 && (assignment.size() == 5 ||
-            assignment[5] == '.' || assignment[5] == '='))
-      {
-        throw UsageError("render: --set " + assignment.substr(0, assignment.find('=')) +
-          " does not apply to the field file " + input + "; only scenes have field keys");
-      }
+      throw InputError(output + ": --cpu-reference writes 8-bit PNG images only");
     }
+    const RenderedImage image = RenderCpuReference(scene, field, input);
+    progress.Finish();
+    WriteImage(image, output, exportOptions);
+    out << "wrote " << output << " (" << image.Width << " x " << image.Height
+        << " pixels, CPU reference)\n";
+    return ExitSuccess;
   }
-  // The cheap checks first: a bad -o, scene value or display should not cost a field.
-  CheckImageOutput(output);
-  Scene scene = LoadScene(fieldFile ? "" : input, assignments, options);
-  RequireDisplay("cloudvis render ...");
-  vtkSmartPointer<vtkImageData> field;
-  if (fieldFile)
-  {
-    scene.Field.File = input;
-    field = ReadField(input);
-  }
-  else
-  {
-    field = ProduceField(scene);
-  }
-  const OffscreenRenderResult result = RenderOffscreen(scene, field, input, benchmarkFrames);
-  WriteImage(result.Image, output);
+  const OffscreenRenderResult result =
+    RenderOffscreen(scene, field, input, benchmarkFrames, renderOptions);
+  progress.Finish();
+  WriteImage(result.Image, output, exportOptions);
   out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
       << " pixels, " << result.AccumulatedFrames << " frame"
       << (result.AccumulatedFrames == 1 ? "" : "s") << " averaged)\n";
@@ -174,6 +247,102 @@ int Render(const Arguments& arguments, std::ostream& out)
     const double total =
       std::accumulate(result.FrameMilliseconds.begin(), result.FrameMilliseconds.end(), 0.0);
     out << std::fixed << std::setprecision(2) << total / double(benchmarkFrames) << " ms/frame\n";
+  }
+  return ExitSuccess;
+}
+
+// --lighting of compare: a comma-separated list of distinct model names.
+std::vector<LightingModel> ParseModelList(const std::string& text)
+{
+  std::string allowed;
+  for (const std::string& name : LightingModelNames())
+  {
+    allowed += (allowed.empty() ? "" : ", ") + name;
+  }
+  std::vector<LightingModel> models;
+  std::vector<std::string> names;
+  std::string name;
+  std::istringstream in(text + ",");
+  while (std::getline(in, name, ','))
+  {
+    const std::optional<LightingModel> model = FindLightingModel(name);
+    if (!model)
+    {
+      throw UsageError("compare: --lighting: " +
+        (name.empty() ? std::string("an empty model name") : "unknown model \"" + name + "\"") +
+        " in \"" + text + "\"; allowed: " + allowed);
+    }
+    if (std::find(models.begin(), models.end(), *model) != models.end())
+    {
+      throw UsageError("compare: --lighting: \"" + name + "\" is listed twice");
+    }
+    models.push_back(*model);
+  }
+  return models;
+}
+
+// --difference A,B: two of the compared models, as indices into `models`.
+std::pair<size_t, size_t> ParseDifference(const std::string& text, const std::vector<LightingModel>& models)
+{
+  const auto comma = text.find(',');
+  const std::string names[2] = { text.substr(0, comma),
+    comma == std::string::npos ? "" : text.substr(comma + 1) };
+  size_t indices[2] = { 0, 0 };
+  for (int i = 0; i < 2; ++i)
+  {
+    const std::optional<LightingModel> model = FindLightingModel(names[i]);
+    const auto found = model ? std::find(models.begin(), models.end(), *model) : models.end();
+    if (comma == std::string::npos || found == models.end())
+    {
+      throw UsageError("compare: --difference expects two of the compared models, A,B (for " +
+        std::string("example march,derivative), got \"") + text + "\"");
+    }
+    indices[i] = size_t(found - models.begin());
+  }
+  if (indices[0] == indices[1])
+  {
+    throw UsageError("compare: --difference needs two different models, got \"" + text + "\"");
+  }
+  return { indices[0], indices[1] };
+}
+
+int Compare(const Arguments& arguments, std::ostream& out)
+{
+  if (!arguments.Has("output"))
+  {
+    throw UsageError("compare: missing the output image: -o IMAGE.png");
+  }
+  const std::string output = arguments.Value("output");
+  const std::vector<LightingModel> models =
+    ParseModelList(arguments.Has("lighting") ? arguments.Value("lighting") : "none,derivative,march");
+  std::optional<std::pair<size_t, size_t>> difference;
+  if (arguments.Has("difference"))
+  {
+    difference = ParseDifference(arguments.Value("difference"), models);
+  }
+  std::vector<SceneOverride> options;
+  if (arguments.Has("size"))
+  {
+    options.push_back({ "render.size", ParseSize(arguments.Value("size")), "--size" });
+  }
+  const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
+  const ComparisonResult result = RenderComparison(
+    loaded.Loaded, loaded.Field, arguments.Operands[0], models, difference);
+  WriteImage(result.Image, output);
+  out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
+      << " pixels, " << models.size() + (difference ? 1 : 0) << " panels, "
+      << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
+      << " averaged)\n";
+  for (size_t i = 0; i < models.size(); ++i)
+  {
+    out << LightingModelName(models[i]) << ": " << std::fixed << std::setprecision(2)
+        << result.Milliseconds[i] << " ms/frame\n";
+  }
+  if (difference)
+  {
+    out << "max |" << LightingModelName(models[difference->first]) << " - "
+        << LightingModelName(models[difference->second]) << "|: " << std::setprecision(6)
+        << result.MaxDifference << "\n";
   }
   return ExitSuccess;
 }
@@ -253,8 +422,21 @@ const std::vector<CommandSpec>& Commands()
       "render.accumulate jittered frames, written as 8-bit RGB through a temporary file renamed\n"
       "over IMAGE.png. Rendering needs an X display: without one, run it under Xvfb,\n"
       "xvfb-run -a cloudvis render ...",
-      { ImageOutputOption, SizeOption, LightingOption(), BenchmarkOption, SetOption, HelpOption },
+      { ImageOutputOption, SizeOption, LightingOption(), BenchmarkOption, CpuReferenceOption,
+        PngBitsOption, ExrHalfOption, TransparentOption, QuietOption, SetOption, HelpOption },
       Render },
+    { "compare", "SCENE|FIELD.vti", 1, 1,
+      "render lighting models side by side on one field and camera, with their frame times",
+      "One off-screen window with one panel per model (--lighting), render.size each, all\n"
+      "sharing one camera and jitter sequence; each panel is labelled with the model and its\n"
+      "mean frame time, measured with the other panels hidden. --difference A,B adds a panel\n"
+      "of |A - B|. The scene's render.lighting is not used; everything else is as in render.\n"
+      "Prints each model's time as '<model>: <milliseconds> ms/frame'. Needs an X display:\n"
+      "xvfb-run -a cloudvis compare ...",
+      { ImageOutputOption, PanelSizeOption, CompareLightingOption, DifferenceOption, SetOption,
+        HelpOption },
+      Compare },
+    AnimateCommand(),
   };
   return commands;
 }

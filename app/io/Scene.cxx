@@ -5,6 +5,7 @@
 #include "Scene.h"
 
 #include "Errors.h"
+#include "Presets.h"
 #include "SceneField.h"
 
 #include <cerrno>
@@ -58,7 +59,8 @@ std::string Join(const std::vector<std::string>& names)
 
 std::string Describe(const json& value)
 {
-  const std::string text = value.dump();
+  // replace: a string from --set may hold any bytes, and dump() throws on invalid UTF-8.
+  const std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
   return std::string(value.type_name()) + " " + (text.size() > 40 ? text.substr(0, 37) + "..." : text);
 }
 
@@ -211,6 +213,8 @@ const char* const MorphName = "morph";
 // One line per lighting model; the renderer maps each onto the mapper.
 const Named<LightingModel> LightingModels[] = {
   { "none", LightingModel::None },
+  { "derivative", LightingModel::Derivative },
+  { "march", LightingModel::March },
 };
 
 template <typename E, size_t N>
@@ -626,9 +630,92 @@ const Key<TransferFunctionSpec> TransferFunctionKeys[] = {
   { "unit_distance",
     [](const Context& c, const json& v, const std::string& k, TransferFunctionSpec& t)
     { t.UnitDistance = ReadNumber(c, v, k, Positive); } },
+  // Read first, by ReadTransferFunction, so that the keys above override the preset's.
+  { "preset", [](const Context&, const json&, const std::string&, TransferFunctionSpec&) {} },
+  { "preset_name", [](const Context&, const json&, const std::string&, TransferFunctionSpec&) {} },
 };
 
+// A preset file in cloudvis's format: the transfer function's own keys plus two labels.
+void ReadPresetLabel(const Context& c, const json& v, const std::string& k, TransferFunctionSpec&)
+{
+  if (!v.is_string())
+  {
+    c.Fail(k, "expected a string, got " + Describe(v));
+  }
+}
+void ReadPresetPoints(const Context& c, const json& v, const std::string& k, TransferFunctionSpec& t)
+{
+  FindKey(TransferFunctionKeys, k)->Read(c, v, k, t);
+}
+const Key<TransferFunctionSpec> PresetKeys[] = {
+  { "name", ReadPresetLabel },
+  { "description", ReadPresetLabel },
+  { "opacity", ReadPresetPoints },
+  { "color", ReadPresetPoints },
+  { "unit_distance", ReadPresetPoints },
+};
+
+// transfer_function.preset fills the section first (from the defaults: what a preset leaves out
+// keeps its default), then the section's explicit keys override it.
+void ReadTransferFunction(const Context& c, const json& v, const std::string& key, Scene& scene)
+{
+  if (v.is_object() && v.contains("preset"))
+  {
+    const std::string presetKey = key + ".preset";
+    const json& reference = v["preset"];
+    if (!reference.is_string() || reference.get<std::string>().empty())
+    {
+      c.Fail(presetKey, "expected a preset name or the path of a .json file, got " + Describe(reference));
+    }
+    std::string paraViewName;
+    if (v.contains("preset_name"))
+    {
+      const json& name = v["preset_name"];
+      if (!name.is_string() || name.get<std::string>().empty())
+      {
+        c.Fail(key + ".preset_name", "expected the Name of a preset in the ParaView file, got " +
+            Describe(name));
+      }
+      paraViewName = name.get<std::string>();
+    }
+    std::string problem;
+    try
+    {
+      const PresetDocument preset = ReadPreset(reference.get<std::string>(), c.BaseDirectory, paraViewName);
+      const Context presetContext{ preset.Path, "", {} };
+      TransferFunctionSpec fromPreset;
+      ReadObject(presetContext, preset.Document, "", PresetKeys, fromPreset);
+      scene.TransferFunction = fromPreset;
+    }
+    catch (const InputError& e)
+    {
+      problem = e.what();
+    }
+    if (!problem.empty())
+    {
+      c.Fail(presetKey, problem);
+    }
+  }
+  else if (v.is_object() && v.contains("preset_name"))
+  {
+    c.Fail(key + ".preset_name", "applies only with " + key + ".preset (a ParaView preset file)");
+  }
+  ReadObject(c, v, key, TransferFunctionKeys, scene.TransferFunction);
+}
+
 // ---- the camera section -------------------------------------------------------------------
+
+const Key<OrbitSpec> OrbitKeys[] = {
+  { "azimuth",
+    [](const Context& c, const json& v, const std::string& k, OrbitSpec& o)
+    { o.Azimuth = ReadNumber(c, v, k, AnyNumber); } },
+  { "elevation",
+    [](const Context& c, const json& v, const std::string& k, OrbitSpec& o)
+    { o.Elevation = ReadNumber(c, v, k, Range{ -90.0, 90.0, true, true }); } },
+  { "distance",
+    [](const Context& c, const json& v, const std::string& k, OrbitSpec& o)
+    { o.Distance = ReadNumber(c, v, k, Positive); } },
+};
 
 const Key<CameraSpec> CameraKeys[] = {
   { "position",
@@ -650,6 +737,13 @@ const Key<CameraSpec> CameraKeys[] = {
   { "view_angle",
     [](const Context& c, const json& v, const std::string& k, CameraSpec& camera)
     { camera.ViewAngle = ReadNumber(c, v, k, Range{ 0.0, 180.0, true, true }); } },
+  { "orbit",
+    [](const Context& c, const json& v, const std::string& k, CameraSpec& camera)
+    {
+      OrbitSpec orbit;
+      ReadObject(c, v, k, OrbitKeys, orbit);
+      camera.Orbit = orbit;
+    } },
 };
 
 void ReadCamera(const Context& c, const json& v, const std::string& key, Scene& scene)
@@ -658,13 +752,205 @@ void ReadCamera(const Context& c, const json& v, const std::string& key, Scene& 
   // What can be checked before the field is known; the renderer checks the view direction
   // against view_up once the defaults are filled in.
   const CameraSpec& camera = scene.Camera;
+  if (camera.Position && camera.Orbit)
+  {
+    c.Fail(key + ".orbit", "cannot be combined with " + key + ".position: give either the position " +
+        "or the orbit around the focal point");
+  }
   if (camera.Position && camera.FocalPoint && *camera.Position == *camera.FocalPoint)
   {
     c.Fail(key + ".position", "the camera position equals the focal point; the view has no direction");
   }
 }
 
+// ---- the background section ---------------------------------------------------------------
+
+const Named<BackgroundType> BackgroundTypes[] = {
+  { "solid", BackgroundType::Solid },
+  { "gradient", BackgroundType::Gradient },
+  { "sky", BackgroundType::Sky },
+};
+
+// The keys of a background object besides "type", each with the type that uses it.
+struct BackgroundKey
+{
+  const char* Name;
+  BackgroundType Type;
+  bool Required;
+  void (*Read)(const Context&, const json&, const std::string& key, Scene&);
+};
+void ReadBackgroundColor(const Context& c, const json& v, const std::string& k, Scene& s)
+{
+  s.Background = ReadNumbers<3>(c, v, k, UnitInterval);
+}
+const BackgroundKey BackgroundKeys[] = {
+  { "color", BackgroundType::Solid, true, ReadBackgroundColor },
+  { "top", BackgroundType::Gradient, true,
+    [](const Context& c, const json& v, const std::string& k, Scene& s)
+    { s.BackgroundStyle.Top = ReadNumbers<3>(c, v, k, UnitInterval); } },
+  { "bottom", BackgroundType::Gradient, true, ReadBackgroundColor },
+  { "sun", BackgroundType::Sky, false,
+    [](const Context& c, const json& v, const std::string& k, Scene& s)
+    {
+      std::array<double, 3> sun = ReadNumbers<3>(c, v, k, AnyNumber);
+      const double length = std::sqrt(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
+      if (!(length > 0.0) || !std::isfinite(length))
+      {
+        c.Fail(k, "the direction toward the sun must not be zero");
+      }
+      for (double& x : sun)
+      {
+        x /= length;
+      }
+      s.BackgroundStyle.Sun = sun;
+    } },
+};
+
+// [r, g, b] (a solid color, as before types existed) or {"type": ..., keys of that type}.
+void ReadBackground(const Context& c, const json& v, const std::string& key, Scene& s)
+{
+  s.BackgroundStyle = BackgroundSpec{};
+  if (v.is_array())
+  {
+    ReadBackgroundColor(c, v, key, s);
+    return;
+  }
+  if (!v.is_object())
+  {
+    c.Fail(key, "expected [r, g, b] or an object with a \"type\" (one of " +
+        Join(NamesOf(BackgroundTypes)) + "), got " + Describe(v));
+  }
+  if (!v.contains("type"))
+  {
+    c.Fail(key + ".type", "missing; one of " + Join(NamesOf(BackgroundTypes)));
+  }
+  const BackgroundType type = ReadName(c, v["type"], key + ".type", BackgroundTypes);
+  const std::string typeName = v["type"].get<std::string>();
+  std::vector<std::string> allowed{ "type" };
+  for (const BackgroundKey& entry : BackgroundKeys)
+  {
+    if (entry.Type == type)
+    {
+      allowed.emplace_back(entry.Name);
+    }
+  }
+  for (const auto& member : v.items())
+  {
+    if (member.key() == "type")
+    {
+      continue;
+    }
+    const BackgroundKey* found = nullptr;
+    for (const BackgroundKey& entry : BackgroundKeys)
+    {
+      if (member.key() == entry.Name && entry.Type == type)
+      {
+        found = &entry;
+      }
+    }
+    if (!found)
+    {
+      c.Fail(key + "." + member.key(), "not a key of a " + typeName + " background; allowed keys: " +
+          Join(allowed));
+    }
+    found->Read(c, member.value(), key + "." + member.key(), s);
+  }
+  for (const BackgroundKey& entry : BackgroundKeys)
+  {
+    if (entry.Type == type && entry.Required && !v.contains(entry.Name))
+    {
+      c.Fail(key + "." + entry.Name, "missing; a " + typeName + " background needs " +
+          Join(std::vector<std::string>(allowed.begin() + 1, allowed.end())));
+    }
+  }
+  s.BackgroundStyle.Type = type;
+}
+
+// A sky without background.sun takes its sun from the lights section, which may come after the
+// background in the document: resolved once the whole scene is read.
+void ResolveSkySun(const json& document, Scene& s)
+{
+  BackgroundSpec& background = s.BackgroundStyle;
+  if (background.Type != BackgroundType::Sky || background.Sun)
+  {
+    return;
+  }
+  if (document.contains("lights"))
+  {
+    for (const Light& light : s.Lights)
+    {
+      if (!light.Positional)
+      {
+        const glm::vec3 toward = SampleLight(light, glm::vec3(0.0f)).Direction;
+        background.Sun = std::array<double, 3>{ { toward.x, toward.y, toward.z } };
+        return;
+      }
+    }
+  }
+  const std::array<double, 3>& d = BackgroundSpec::DefaultSun;
+  const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  background.Sun = std::array<double, 3>{ { d[0] / length, d[1] / length, d[2] / length } };
+}
+
 // ---- the render section -------------------------------------------------------------------
+
+// render.derivative and render.march: one entry per member of LightingParameters they set.
+// The ranges are ValidateLightingParameters' (CloudLighting.h), which runs afterwards as well.
+using LightingKey = Key<LightingParameters>;
+const LightingKey DerivativeKeys[] = {
+  { "distance",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.DerivativeDistance = float(ReadNumber(c, v, k, NonNegative)); } },
+};
+const LightingKey MarchKeys[] = {
+  { "light_steps",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.LightSteps = int(ReadInteger(c, v, k, 1, 64)); } },
+  { "light_step",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.LightStep = float(ReadNumber(c, v, k, NonNegative)); } },
+  { "light_step_growth",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.LightStepGrowth = float(ReadNumber(c, v, k, Range{ 1.0, 4.0 })); } },
+  { "g1",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.PhaseG1 = float(ReadNumber(c, v, k, Range{ -1.0, 1.0, true, true })); } },
+  { "g2",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.PhaseG2 = float(ReadNumber(c, v, k, Range{ -1.0, 1.0, true, true })); } },
+  { "lobe_weight",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.PhaseLobeWeight = float(ReadNumber(c, v, k, UnitInterval)); } },
+  { "multiple_scattering",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.MultipleScatteringOctaves = int(ReadInteger(c, v, k, 0, 8)); } },
+  { "scattering_falloff",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.ScatteringFalloff = float(ReadNumber(c, v, k, UnitInterval)); } },
+  { "extinction_falloff",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.ExtinctionFalloff = float(ReadNumber(c, v, k, UnitInterval)); } },
+  { "eccentricity_falloff",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.EccentricityFalloff = float(ReadNumber(c, v, k, UnitInterval)); } },
+  { "powder",
+    [](const Context& c, const json& v, const std::string& k, LightingParameters& p)
+    { p.PowderStrength = float(ReadNumber(c, v, k, UnitInterval)); } },
+};
+
+// Reads render.derivative or render.march, then lets the lighting's own check have its say
+// (a value a float cannot hold, say 0.99999999 for g, passes the double range but not it).
+template <size_t N>
+void ReadLightingKeys(const Context& c, const json& v, const std::string& k,
+  const LightingKey (&table)[N], RenderSpec& r)
+{
+  ReadObject(c, v, k, table, r.Parameters);
+  const std::string problem = ValidateLightingParameters(r.Parameters);
+  if (!problem.empty())
+  {
+    c.Fail(k, problem);
+  }
+}
 
 const Key<RenderSpec> RenderKeys[] = {
   { "lighting",
@@ -697,6 +983,157 @@ const Key<RenderSpec> RenderKeys[] = {
         r.Size[a] = int(ReadInteger(c, v[a], k + "[" + std::to_string(a) + "]", 16, 16384));
       }
     } },
+  { "png_bits",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    {
+      r.PngBits = int(ReadInteger(c, v, k, 8, 16));
+      if (r.PngBits != 8 && r.PngBits != 16)
+      {
+        c.Fail(k, "expected 8 or 16, got " + v.dump());
+      }
+    } },
+  { "exr_type",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    {
+      if (!v.is_string() || (v.get<std::string>() != "half" && v.get<std::string>() != "float"))
+      {
+        c.Fail(k, "expected \"half\" or \"float\", got " + Describe(v));
+      }
+      r.ExrHalf = v.get<std::string>() == "half";
+    } },
+  { "derivative",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { ReadLightingKeys(c, v, k, DerivativeKeys, r); } },
+  { "march",
+    [](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    { ReadLightingKeys(c, v, k, MarchKeys, r); } },
+};
+
+// ---- the lights and ambient sections ------------------------------------------------------
+
+// Light types, as the flag vtkLight and cloudvis::Light call Positional.
+const Named<bool> LightTypes[] = {
+  { "directional", false },
+  { "point", true },
+};
+constexpr unsigned DirectionalLight = 1u, PointLight = 2u;
+struct LightKey
+{
+  const char* Name;
+  unsigned UsedBy;
+  void (*Read)(const Context&, const json&, const std::string& key, Light&);
+};
+const LightKey LightKeys[] = {
+  { "type", DirectionalLight | PointLight,
+    [](const Context&, const json&, const std::string&, Light&) {} },
+  { "position", DirectionalLight | PointLight,
+    [](const Context& c, const json& v, const std::string& k, Light& l)
+    { l.Position = ReadVec3(c, v, k, AnyNumber); } },
+  { "focal_point", DirectionalLight,
+    [](const Context& c, const json& v, const std::string& k, Light& l)
+    { l.FocalPoint = ReadVec3(c, v, k, AnyNumber); } },
+  { "color", DirectionalLight | PointLight,
+    [](const Context& c, const json& v, const std::string& k, Light& l)
+    { l.Color = ReadVec3(c, v, k, UnitInterval); } },
+  { "intensity", DirectionalLight | PointLight,
+    [](const Context& c, const json& v, const std::string& k, Light& l)
+    { l.Intensity = float(ReadNumber(c, v, k, NonNegative)); } },
+  { "attenuation", PointLight,
+    [](const Context& c, const json& v, const std::string& k, Light& l)
+    {
+      l.Attenuation = ReadVec3(c, v, k, NonNegative);
+      if (l.Attenuation == glm::vec3(0.0f))
+      {
+        c.Fail(k, "the attenuation [a0, a1, a2] must not be all zero (the falloff is " +
+            std::string("1 / (a0 + a1 r + a2 r^2))"));
+      }
+    } },
+};
+
+std::string LightKeysOf(unsigned type)
+{
+  std::vector<std::string> names;
+  for (const LightKey& entry : LightKeys)
+  {
+    if (entry.UsedBy & type)
+    {
+      names.emplace_back(entry.Name);
+    }
+  }
+  return Join(names);
+}
+
+Light ReadLight(const Context& c, const json& v, const std::string& key)
+{
+  if (!v.is_object())
+  {
+    c.Fail(key, "expected a light object with a type (one of " + Join(NamesOf(LightTypes)) +
+        "), got " + Describe(v));
+  }
+  for (const char* required : { "type", "position" })
+  {
+    if (!v.contains(required))
+    {
+      c.Fail(key + "." + required, std::string("missing; a light needs a type (one of ") +
+          Join(NamesOf(LightTypes)) + ") and a position");
+    }
+  }
+  Light light;
+  light.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f); // inverse square, as the docs promise
+  light.Positional = ReadName(c, v["type"], key + ".type", LightTypes);
+  const std::string typeName = v["type"].get<std::string>();
+  const unsigned type = light.Positional ? PointLight : DirectionalLight;
+  for (const auto& member : v.items())
+  {
+    const std::string memberKey = key + "." + member.key();
+    const LightKey* found = nullptr;
+    for (const LightKey& entry : LightKeys)
+    {
+      found = member.key() == entry.Name ? &entry : found;
+    }
+    if (!found)
+    {
+      c.Fail(memberKey, "unknown key; allowed keys for a " + typeName + " light: " + LightKeysOf(type));
+    }
+    if (!(found->UsedBy & type))
+    {
+      c.Fail(memberKey, "not a parameter of a " + typeName + " light; allowed keys for a " +
+          typeName + " light: " + LightKeysOf(type));
+    }
+    found->Read(c, member.value(), memberKey, light);
+  }
+  if (!light.Positional && light.Position == light.FocalPoint)
+  {
+    c.Fail(key + ".position", "a directional light's position equals its focal point; the " +
+        std::string("light has no direction"));
+  }
+  return light;
+}
+
+void ReadLights(const Context& c, const json& v, const std::string& key, Scene& s)
+{
+  if (!v.is_array())
+  {
+    c.Fail(key, "expected a list of light objects, got " + Describe(v));
+  }
+  if (v.size() > 8)
+  {
+    c.Fail(key, "at most 8 lights (the renderer's limit), got " + std::to_string(v.size()));
+  }
+  s.Lights.clear();
+  for (size_t i = 0; i < v.size(); ++i)
+  {
+    s.Lights.push_back(ReadLight(c, v[i], key + "[" + std::to_string(i) + "]"));
+  }
+}
+
+const Key<AmbientSpec> AmbientKeys[] = {
+  { "color",
+    [](const Context& c, const json& v, const std::string& k, AmbientSpec& a)
+    { a.Color = ReadVec3(c, v, k, UnitInterval); } },
+  { "strength",
+    [](const Context& c, const json& v, const std::string& k, AmbientSpec& a)
+    { a.Strength = float(ReadNumber(c, v, k, NonNegative)); } },
 };
 
 // ---- top level: one entry per section -----------------------------------------------------
@@ -712,16 +1149,16 @@ const Key<Scene> SceneKeys[] = {
       s.Description = v.get<std::string>();
     } },
   { "field", ReadField },
-  { "transfer_function",
-    [](const Context& c, const json& v, const std::string& k, Scene& s)
-    { ReadObject(c, v, k, TransferFunctionKeys, s.TransferFunction); } },
+  { "transfer_function", ReadTransferFunction },
   { "camera", ReadCamera },
-  { "background",
-    [](const Context& c, const json& v, const std::string& k, Scene& s)
-    { s.Background = ReadNumbers<3>(c, v, k, UnitInterval); } },
+  { "background", ReadBackground },
   { "render",
     [](const Context& c, const json& v, const std::string& k, Scene& s)
     { ReadObject(c, v, k, RenderKeys, s.Render); } },
+  { "lights", ReadLights },
+  { "ambient",
+    [](const Context& c, const json& v, const std::string& k, Scene& s)
+    { ReadObject(c, v, k, AmbientKeys, s.Ambient); } },
 };
 
 std::string DirectoryOf(const std::string& path)
@@ -767,11 +1204,79 @@ bool IsNumberToken(const std::string& token, double& value)
   return *end == '\0' && end != begin;
 }
 
+// Far deeper than any scene nests. nlohmann's parser is iterative, but dump(), copies and
+// comparisons recurse once per level, so a few hundred kilobytes of '[' would overflow the stack
+// in the first message that quotes the value.
+constexpr int MaxJsonDepth = 64;
+
+// json::parse, refusing deeper nesting with an InputError prefixed by `where`.
+json ParseJsonText(const std::string& text, const std::string& where)
+{
+  return json::parse(text,
+    [&where](int depth, json::parse_event_t, json&)
+    {
+      if (depth > MaxJsonDepth)
+      {
+        throw InputError(where + ": JSON nested deeper than " + std::to_string(MaxJsonDepth) +
+          " levels");
+      }
+      return true;
+    });
+}
+
 } // namespace
 
 std::vector<std::string> LightingModelNames()
 {
   return NamesOf(LightingModels);
+}
+
+std::optional<LightingModel> FindLightingModel(const std::string& name)
+{
+  for (const Named<LightingModel>& entry : LightingModels)
+  {
+    if (name == entry.Name)
+    {
+      return entry.Value;
+    }
+  }
+  return std::nullopt;
+}
+
+std::string LightingModelName(LightingModel model)
+{
+  for (const Named<LightingModel>& entry : LightingModels)
+  {
+    if (model == entry.Value)
+    {
+      return entry.Name;
+    }
+  }
+  return "unknown";
+}
+
+std::vector<Light> DefaultLights()
+{
+  Light sun;
+  sun.Positional = false;
+  sun.Position = glm::vec3(6.0f, 8.0f, 4.0f);
+  sun.FocalPoint = glm::vec3(0.0f);
+  sun.Color = glm::vec3(1.0f);
+  // The march's phase is per steradian (an isotropic sample scatters E / 4 pi toward the eye),
+  // so a sun of about 4 pi lights the default cloud fully under the march; the derivative model
+  // has no phase and shows the same sun much brighter (docs/lighting.md, Lights).
+  sun.Intensity = 12.0f;
+  sun.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f);
+  return { sun };
+}
+
+LightingParameters LightingOf(const Scene& scene)
+{
+  LightingParameters lighting = scene.Render.Parameters;
+  lighting.Model = scene.Render.Lighting;
+  lighting.AmbientColor = scene.Ambient.Color;
+  lighting.AmbientStrength = scene.Ambient.Strength;
+  return lighting;
 }
 
 Scene DefaultScene()
@@ -781,22 +1286,27 @@ Scene DefaultScene()
 
 nlohmann::json ReadSceneDocument(const std::string& path)
 {
+  return ReadJsonFile(path, "scene file");
+}
+
+nlohmann::json ReadJsonFile(const std::string& path, const std::string& what)
+{
   struct stat info;
   if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
   {
-    throw InputError(path + ": cannot read scene file: it is a directory");
+    throw InputError(path + ": cannot read " + what + ": it is a directory");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    throw InputError(path + ": cannot read scene file: " + std::strerror(errno));
+    throw InputError(path + ": cannot read " + what + ": " + std::strerror(errno));
   }
   std::ostringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   try
   {
-    return json::parse(text);
+    return ParseJsonText(text, path);
   }
   catch (const json::parse_error& e)
   {
@@ -826,13 +1336,21 @@ nlohmann::json ReadSceneDocument(const std::string& path)
       ": malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
       ": " + reason);
   }
+  catch (const json::exception& e)
+  {
+    // Valid syntax, but a value no double holds (1e999): out_of_range, with no position.
+    std::string reason = e.what();
+    const auto bracket = reason.find("] ");
+    throw InputError(path + ": malformed JSON: " +
+      (bracket == std::string::npos ? reason : reason.substr(bracket + 2)));
+  }
 }
 
 nlohmann::json ParseOverrideValue(const std::string& key, const std::string& text)
 {
   try
   {
-    return json::parse(text);
+    return ParseJsonText(text, key);
   }
   catch (const json::exception&)
   {
@@ -950,6 +1468,8 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   Scene scene;
   scene.Source = source;
   ReadObject(context, document, "", SceneKeys, scene);
+  ResolveSkySun(document, scene);
+  scene.Document = document;
   return scene;
 }
 

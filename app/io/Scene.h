@@ -1,5 +1,5 @@
 // A scene file, parsed and validated: what cloudvis should show or export. A scene is a JSON
-// object of sections (field, transfer_function, camera, background, render; lights to come);
+// object of sections (field, transfer_function, camera, background, render, lights, ambient);
 // each section has one entry in the section table of Scene.cxx and one part of the Scene struct,
 // so a new section is a new entry that does not touch the rest. Overrides from the command line
 // (--set key=value, and options such as --lighting that stand for a key) are applied to the JSON
@@ -55,9 +55,20 @@ struct TransferFunctionSpec
 // The "camera" section. Absent keys are filled when the field is known (see ApplyCamera in
 // render/OffscreenRender.h): the focal point is the field's centre, the position looks at it
 // along -z from the distance vtkRenderer::ResetCamera picks to fit the field's bounds.
+// camera.orbit: the position on a sphere around the focal point, y up. With azimuth az and
+// elevation el in degrees, position = focal + distance * (cos(el) sin(az), sin(el), cos(el) cos(az)),
+// so az = 0, el = 0 is the default view from +z, az = 90 looks from +x, el > 0 looks down.
+struct OrbitSpec
+{
+  double Azimuth = 0.0;   // degrees, any
+  double Elevation = 0.0; // degrees, in (-90, 90)
+  std::optional<double> Distance; // world units, > 0; absent: the distance that fits the field
+};
+
 struct CameraSpec
 {
   std::optional<std::array<double, 3>> Position;
+  std::optional<OrbitSpec> Orbit; // exclusive with Position
   std::optional<std::array<double, 3>> FocalPoint;
   std::array<double, 3> ViewUp{ { 0.0, 1.0, 0.0 } };
   double ViewAngle = 30.0; // degrees, vertical
@@ -67,13 +78,49 @@ struct CameraSpec
 struct RenderSpec
 {
   LightingModel Lighting = LightingModel::None; // names: the LightingModels table of Scene.cxx
+  // render.derivative.* and render.march.*. Its Model and Ambient* members are not read from
+  // here (render.lighting and the ambient section are): LightingOf(scene) assembles all three.
+  LightingParameters Parameters;
   double Step = 0.0; // world units; 0: one voxel (the smallest spacing of the field)
   bool Jitter = true;
   double ResolutionScale = 1.0;
   int Accumulate = 16; // frames averaged into a still
   bool SkipEmptySpace = true;
   std::array<int, 2> Size{ { 800, 600 } }; // pixels, width and height
+  int PngBits = 8;      // 8 or 16 bits per PNG channel (docs/export.md)
+  bool ExrHalf = false; // EXR channels as 16-bit half floats instead of 32-bit floats
 };
+
+// The "background" section beyond a plain color (Scene::Background): a VTK gradient, or the
+// article's sky computed per pixel from the view ray (render/Background.h draws both).
+enum class BackgroundType
+{
+  Solid,    // Scene::Background everywhere
+  Gradient, // Scene::Background at the bottom edge, Top at the top edge
+  Sky,      // the article's sky: a vertical gradient plus a glow around Sun
+};
+
+struct BackgroundSpec
+{
+  BackgroundType Type = BackgroundType::Solid;
+  std::array<double, 3> Top{ { 0.0, 0.0, 0.0 } }; // Gradient: the color at the top edge
+  // Sky: unit direction toward the sun (world). A scene file without background.sun gets, once
+  // read, the direction toward its first directional light when it has a "lights" key, else
+  // normalize(DefaultSun).
+  std::optional<std::array<double, 3>> Sun;
+  static constexpr std::array<double, 3> DefaultSun{ { 0.5, 0.6, 0.6 } };
+};
+
+// The "ambient" section: isotropic, unshadowed light added by the derivative and march models.
+struct AmbientSpec
+{
+  glm::vec3 Color{ 0.6f, 0.6f, 0.75f };
+  float Strength = 0.2f;
+};
+
+// The lights of a scene without a "lights" key: one white directional sun from (6, 8, 4) toward
+// the origin (docs/scene-format.md gives its intensity and why).
+std::vector<Light> DefaultLights();
 
 struct Scene
 {
@@ -83,8 +130,16 @@ struct Scene
   FieldSpec Field;
   TransferFunctionSpec TransferFunction;
   CameraSpec Camera;
+  // The solid color, or the bottom color of a gradient; BackgroundStyle says which is drawn.
   std::array<double, 3> Background{ { 0.1, 0.12, 0.16 } };
+  BackgroundSpec BackgroundStyle;
   RenderSpec Render;
+  // The "lights" section (at most 8; DefaultLights() when the key is absent) and "ambient".
+  std::vector<Light> Lights = DefaultLights();
+  AmbientSpec Ambient;
+  // The validated JSON document, after overrides and before defaults (SceneJson.h builds the
+  // fully resolved document from it for export metadata).
+  nlohmann::json Document;
 };
 
 // A scene value given on the command line by an option that stands for a scene key (--lighting M
@@ -100,6 +155,15 @@ struct SceneOverride
 // The names render.lighting accepts, in the order of the table (for help and messages).
 std::vector<std::string> LightingModelNames();
 
+// The model a render.lighting name stands for (nullopt for an unknown name), and the name of a
+// model; both from the same table as LightingModelNames.
+std::optional<LightingModel> FindLightingModel(const std::string& name);
+std::string LightingModelName(LightingModel model);
+
+// The lighting the renderers use: the model of render.lighting, the parameters of
+// render.derivative and render.march, and the ambient section.
+LightingParameters LightingOf(const Scene& scene);
+
 // The scene used when none is given: the article's cloud (a unit sphere plus 6 octaves of value
 // noise on 128^3 voxels over [-2, 2]^3).
 Scene DefaultScene();
@@ -107,6 +171,9 @@ Scene DefaultScene();
 // Reads a scene file into a JSON document. Throws InputError for an unreadable file (with the
 // OS reason) or malformed JSON (with line and column).
 nlohmann::json ReadSceneDocument(const std::string& path);
+
+// The same for any JSON file cloudvis reads; `what` names it in messages ("preset file").
+nlohmann::json ReadJsonFile(const std::string& path, const std::string& what);
 
 // Applies one "key=value" assignment (the argument of --set) to a document. The key is dotted
 // (field.noise); missing intermediate objects are created. Throws UsageError when the

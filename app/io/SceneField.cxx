@@ -7,7 +7,9 @@
 #include "VtkMessageCapture.h"
 #include "vtkCloudDensitySource.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkImageData.h>
+#include <vtkNew.h>
 
 namespace cloudvis
 {
@@ -31,7 +33,8 @@ std::string ValidateProceduralField(const FieldSpec& field)
   return MakeDensitySource(field)->Validate();
 }
 
-vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene)
+vtkSmartPointer<vtkImageData> ProduceField(
+  const Scene& scene, const std::function<void(double fraction)>& progress)
 {
   if (scene.Field.FromFile())
   {
@@ -45,6 +48,14 @@ vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene)
   if (!problem.empty())
   {
     throw InputError(scene.Source + ": field: " + problem);
+  }
+  vtkNew<vtkCallbackCommand> onProgress;
+  if (progress)
+  {
+    onProgress->SetClientData(const_cast<std::function<void(double)>*>(&progress));
+    onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* fraction)
+      { (*static_cast<std::function<void(double)>*>(client))(*static_cast<double*>(fraction)); });
+    source->AddObserver(vtkCommand::ProgressEvent, onProgress);
   }
   source->Update();
   vtkImageData* output = source->GetOutput();

@@ -8,6 +8,8 @@
 
 #include <vtkSmartPointer.h>
 
+#include <functional>
+
 class vtkCloudDensitySource;
 class vtkImageData;
 
@@ -23,7 +25,9 @@ vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field)
 std::string ValidateProceduralField(const FieldSpec& field);
 
 // The field of a scene: read from field.file, or generated. Throws InputError on failure.
-vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene);
+// `progress`, when given, is called with the generation's fraction done, 0 .. 1.
+vtkSmartPointer<vtkImageData> ProduceField(
+  const Scene& scene, const std::function<void(double fraction)>& progress = {});
 
 } // namespace cloudvis
 

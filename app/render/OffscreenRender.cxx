@@ -5,7 +5,11 @@
 #include "OffscreenRender.h"
 
 #include "AtomicFile.h"
+#include "Background.h"
 #include "Errors.h"
+#include "SceneLighting.h"
+#include "ExportRender.h"
+#include "ImageWriters.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -37,35 +41,18 @@ namespace cloudvis
 namespace
 {
 
-// Output formats: one entry per extension (the export work adds ".exr").
+// Output formats: one entry per extension; the writers are in io/ImageWriters.cxx.
 struct ImageFormat
 {
   const char* Extension;
   // Writes to `path` (a temporary); `target` names the file in errors.
-  void (*Write)(const RenderedImage& image, const std::string& path, const std::string& target);
+  void (*Write)(const RenderedImage& image, const ImageExportOptions& options,
+    const std::string& path, const std::string& target);
 };
 
-void WritePng(const RenderedImage& image, const std::string& path, const std::string& target)
-{
-  vtkNew<vtkImageData> pixels;
-  pixels->SetDimensions(image.Width, image.Height, 1);
-  pixels->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  std::copy(image.RGB.begin(), image.RGB.end(),
-    static_cast<unsigned char*>(pixels->GetScalarPointer()));
-  VtkMessageCapture messages;
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputData(pixels);
-  writer->SetFileName(path.c_str());
-  writer->Write();
-  if (writer->GetErrorCode() != 0 || !messages.Messages().empty())
-  {
-    throw InputError(target + ": cannot write the PNG image" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
-  }
-}
-
 const ImageFormat ImageFormats[] = {
-  { ".png", WritePng },
+  { ".png", WritePngImage },
+  { ".exr", WriteExrImage },
 };
 
 std::string LowerExtension(const std::string& path)
@@ -141,8 +128,8 @@ void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
   mapper->SetResolutionScale(render.ResolutionScale);
   mapper->SetMaximumAccumulatedFrames(render.Accumulate);
   mapper->SetEmptySpaceSkipping(render.SkipEmptySpace);
-  // Only the model comes from the scene for now; the rest keeps the mapper's defaults until the
-  // scene has a lights section.
+  // The model alone; ConfigureLighting (SceneLighting.h) sets the rest of the lighting, which
+  // needs the lights and ambient sections too.
   LightingParameters lighting = mapper->GetLighting();
   lighting.Model = render.Lighting;
   mapper->SetLighting(lighting);
@@ -176,6 +163,16 @@ void ApplyCamera(
   {
     std::copy(camera.Position->begin(), camera.Position->end(), position);
   }
+  if (camera.Orbit)
+  {
+    // On the sphere of the fitting distance (or the orbit's own) around the focal point, y up.
+    const double azimuth = vtkMath::RadiansFromDegrees(camera.Orbit->Azimuth);
+    const double elevation = vtkMath::RadiansFromDegrees(camera.Orbit->Elevation);
+    const double radius = camera.Orbit->Distance.value_or(distance);
+    position[0] = focal[0] + radius * std::cos(elevation) * std::sin(azimuth);
+    position[1] = focal[1] + radius * std::sin(elevation);
+    position[2] = focal[2] + radius * std::cos(elevation) * std::cos(azimuth);
+  }
   const double d[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
   const double* u = camera.ViewUp.data();
   const double dLength = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -200,8 +197,8 @@ void ApplyCamera(
   renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
 }
 
-OffscreenRenderResult RenderOffscreen(
-  const Scene& scene, vtkImageData* field, const std::string& input, int benchmarkFrames)
+OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
+  const std::string& input, int benchmarkFrames, const RenderOptions& options)
 {
   // One connection, opened (and retried) here and handed to the window: VTK opening its own
   // aborts the process when the server refuses it.
@@ -218,17 +215,21 @@ OffscreenRenderResult RenderOffscreen(
   window->SetMultiSamples(0);
   window->SetSize(scene.Render.Size[0], scene.Render.Size[1]);
   vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(scene.Background[0], scene.Background[1], scene.Background[2]);
+  ApplyBackground(scene, renderer);
   window->AddRenderer(renderer);
 
   vtkNew<vtkCloudVolumeMapper> mapper;
   mapper->SetInputData(field);
   ConfigureMapper(mapper, scene.Render);
+  ConfigureLighting(scene, renderer, mapper);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(MakeVolumeProperty(scene.TransferFunction));
   renderer->AddVolume(volume);
   ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
+
+  // Before anything is drawn: the GPU's limit, stated in the message (ExportRender.h).
+  CheckRenderSize(scene.Render.Size, QueryRenderLimits(window), scene.Source);
 
   // Without jitter every frame marches the same samples: one is the converged still.
   const int frames = scene.Render.Jitter ? scene.Render.Accumulate : 1;
@@ -236,6 +237,10 @@ OffscreenRenderResult RenderOffscreen(
   {
     window->Render();
     CheckMapper(mapper, input);
+    if (options.OnFrame)
+    {
+      options.OnFrame(frame + 1, frames);
+    }
   }
   OffscreenRenderResult result;
   result.AccumulatedFrames = mapper->GetNumberOfAccumulatedFrames(renderer);
@@ -264,6 +269,11 @@ OffscreenRenderResult RenderOffscreen(
   result.Image.Width = dimensions[0];
   result.Image.Height = dimensions[1];
   result.Image.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
+  if (options.FloatImage)
+  {
+    ReadFloatImage(mapper, renderer, result.Image, input);
+    ReadBackgroundImage(window, volume, result.Image);
+  }
 
   for (int frame = 0; frame < benchmarkFrames; ++frame)
   {
@@ -297,8 +307,15 @@ void CheckImageOutput(const std::string& path)
 
 void WriteImage(const RenderedImage& image, const std::string& path)
 {
+  WriteImage(image, path, ImageExportOptions{});
+}
+
+void WriteImage(
+  const RenderedImage& image, const std::string& path, const ImageExportOptions& options)
+{
   const ImageFormat& format = FormatOf(path);
-  WriteFileAtomically(path, [&](const std::string& temporary) { format.Write(image, temporary, path); });
+  WriteFileAtomically(
+    path, [&](const std::string& temporary) { format.Write(image, options, temporary, path); });
 }
 
 } // namespace cloudvis

@@ -11,6 +11,7 @@
 
 #include <vtkSmartPointer.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,14 @@ struct RenderedImage
   int Width = 0;
   int Height = 0;
   std::vector<unsigned char> RGB; // Width * Height * 3
+
+  // Kept only when RenderOptions::FloatImage asks for them (exports: ImageWriters.h), same size
+  // and row order: the mapper's premultiplied linear RGBA (alpha = 1 - transmittance); per pixel
+  // samples taken, useful samples, the cloud's distance from the camera and 1 (ExportRender.h);
+  // and the window's pixels without the cloud.
+  std::vector<float> Radiance;
+  std::vector<float> Auxiliary;
+  std::vector<unsigned char> BackgroundRGB;
 
   const unsigned char* Pixel(int x, int y) const
   {
@@ -70,8 +79,9 @@ private:
 // color, linear interpolation of the density, no VTK shading (lighting is the mapper's).
 vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction);
 
-// Sets the mapper's step, jitter, resolution scale, accumulation and empty-space skipping (and,
-// as the models arrive, its lighting) from the render section.
+// Sets the mapper's step, jitter, resolution scale, accumulation and empty-space skipping (and
+// the lighting model; ConfigureLighting in SceneLighting.h adds the lights and parameters) from
+// the render section.
 void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render);
 
 // Sets the renderer's active camera from the camera section, filling absent keys for a field
@@ -86,9 +96,15 @@ void ApplyCamera(
 // then captures the window. With benchmarkFrames > 0, renders that many more frames afterwards,
 // forcing a full march each time, and times each up to the GPU's completion. `input` names the
 // field in errors. Throws InputError "<input>: <problem>" when the mapper reports an error (a
-// field it cannot draw, an invalid transfer function, a GPU failure) or when nothing was drawn.
-OffscreenRenderResult RenderOffscreen(
-  const Scene& scene, vtkImageData* field, const std::string& input, int benchmarkFrames = 0);
+// field it cannot draw, an invalid transfer function, a GPU failure) or when nothing was drawn,
+// and before drawing when render.size is beyond the GPU's limit (ExportRender.h).
+struct RenderOptions
+{
+  bool FloatImage = false; // keep RenderedImage's float image, auxiliary channels and background
+  std::function<void(int frame, int frames)> OnFrame; // after each accumulated frame (progress)
+};
+OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
+  const std::string& input, int benchmarkFrames = 0, const RenderOptions& options = {});
 
 // The image formats the renderer writes, as lower-case extensions with the dot (".png").
 std::vector<std::string> SupportedImageExtensions();
@@ -99,6 +115,10 @@ void CheckImageOutput(const std::string& path);
 
 // Writes the image in the format its extension names, atomically (WriteFileAtomically).
 void WriteImage(const RenderedImage& image, const std::string& path);
+// The same with export options and metadata (io/ImageWriters.h).
+struct ImageExportOptions;
+void WriteImage(
+  const RenderedImage& image, const std::string& path, const ImageExportOptions& options);
 
 } // namespace cloudvis
 

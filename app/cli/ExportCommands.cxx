@@ -1,0 +1,262 @@
+// Export options and `cloudvis animate`. Everything is validated before the first field is
+// generated and before the output directory is created, so a bad command leaves nothing behind.
+#include "ExportCommands.h"
+
+#include "../io/Errors.h"
+#include "../render/Animate.h"
+#include "../render/ExportRender.h"
+#include "../render/OffscreenRender.h"
+
+#include <vtkImageData.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <regex>
+
+namespace cloudvis
+{
+
+const OptionSpec PngBitsOption{ "png-bits", 0, "8|16",
+  "bits per PNG channel; 16 composites the float render itself instead of reading the window "
+  "(docs/export.md); overrides render.png_bits" };
+const OptionSpec ExrHalfOption{ "exr-half", 0, "",
+  "write EXR channels as 16-bit half floats instead of 32-bit floats; overrides render.exr_type" };
+const OptionSpec TransparentOption{ "transparent", 0, "",
+  "PNG with an alpha channel: straight color and alpha = the cloud's opacity, no background" };
+const OptionSpec QuietOption{ "quiet", 'q', "",
+  "no progress bar (it is shown only when stderr is a terminal)" };
+
+namespace
+{
+
+const OptionSpec DirectoryOption{ "output", 'o', "DIR/",
+  "write the frames into this directory as frame_0000.png, frame_0001.png, ... (created if "
+  "missing); required",
+  false, true };
+const OptionSpec FramesOption{ "frames", 0, "N", "number of frames, in [1, 999999]; required",
+  false, true };
+const OptionSpec TurntableOption{ "turntable", 0, "",
+  "orbit the camera 360 degrees about the focal point, around the view-up, over the frames" };
+const OptionSpec TimeOption{ "time", 0, "T0:T1",
+  "generate the field again for each frame i at time T0 + i (T1 - T0) / (N - 1) (seconds: "
+  "wind and morph)" };
+const OptionSpec FormatOption{ "format", 0, "png|exr", "frame format (default png)" };
+const OptionSpec AnimateSizeOption{ "size", 0, "WxH",
+  "frame size in pixels, e.g. 800x600; overrides render.size" };
+const OptionSpec AnimateSetOption{ "set", 0, "KEY=VALUE",
+  "override a scene value before validation (see docs/scene-format.md)", true };
+const OptionSpec AnimateHelpOption{ "help", 'h', "", "show this help and exit" };
+
+// A decimal number that is all of `text`, or nothing.
+bool ParseNumber(const std::string& text, double& value)
+{
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
+  {
+    return false;
+  }
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return *end == '\0' && std::isfinite(value);
+}
+
+int ParseFrames(const std::string& text)
+{
+  static const std::regex form("[0-9]{1,6}");
+  if (!std::regex_match(text, form) || std::stoi(text) < 1)
+  {
+    throw UsageError(
+      "animate: --frames expects a number of frames in [1, 999999], got \"" + text + "\"");
+  }
+  return std::stoi(text);
+}
+
+void ParseTimeRange(const std::string& text, AnimationRequest& request)
+{
+  const auto colon = text.find(':');
+  if (colon == std::string::npos || !ParseNumber(text.substr(0, colon), request.TimeBegin) ||
+    !ParseNumber(text.substr(colon + 1), request.TimeEnd))
+  {
+    throw UsageError("animate: --time expects T0:T1, two numbers of seconds (for example 0:12), "
+                     "got \"" + text + "\"");
+  }
+}
+
+nlohmann::json ParseSizeOption(const std::string& command, const std::string& text)
+{
+  static const std::regex form("([0-9]{1,9})[xX]([0-9]{1,9})");
+  std::smatch match;
+  if (!std::regex_match(text, match, form))
+  {
+    throw UsageError(command + ": --size expects WIDTHxHEIGHT in pixels (for example 800x600), "
+                               "got \"" + text + "\"");
+  }
+  return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
+}
+
+int Animate(const Arguments& arguments, std::ostream& out)
+{
+  if (!arguments.Has("output"))
+  {
+    throw UsageError("animate: missing the output directory: -o DIR/");
+  }
+  if (!arguments.Has("frames"))
+  {
+    throw UsageError("animate: missing the number of frames: --frames N");
+  }
+  AnimationRequest request;
+  request.Frames = ParseFrames(arguments.Value("frames"));
+  if (arguments.Has("turntable") == arguments.Has("time"))
+  {
+    throw UsageError("animate: give exactly one motion: --turntable or --time T0:T1");
+  }
+  request.Turntable = arguments.Has("turntable");
+  if (!request.Turntable)
+  {
+    ParseTimeRange(arguments.Value("time"), request);
+  }
+  const std::string format = arguments.Has("format") ? arguments.Value("format") : "png";
+  if (format != "png" && format != "exr")
+  {
+    throw UsageError("animate: --format expects png or exr, got \"" + format + "\"");
+  }
+  request.Extension = "." + format;
+  const std::string& input = arguments.Operands[0];
+  if (input.size() >= 4 && input.compare(input.size() - 4, 4, ".vti") == 0)
+  {
+    throw UsageError("animate: " + input + " is a field file; animate takes a scene (a field " +
+      "file can be named in the scene's field.file)");
+  }
+  std::string directory = arguments.Value("output");
+  while (directory.size() > 1 && directory.back() == '/')
+  {
+    directory.pop_back();
+  }
+  request.Directory = directory;
+
+  std::vector<SceneOverride> overrides;
+  if (arguments.Has("lighting"))
+  {
+    overrides.push_back({ "render.lighting", arguments.Value("lighting"), "--lighting" });
+  }
+  if (arguments.Has("size"))
+  {
+    overrides.push_back(
+      { "render.size", ParseSizeOption("animate", arguments.Value("size")), "--size" });
+  }
+  AddExportOverrides(arguments, overrides);
+  CheckAnimationDirectory(request.Directory);
+  const Scene scene = LoadScene(input, arguments.Values("set"), overrides);
+  if (!request.Turntable && scene.Field.FromFile())
+  {
+    throw InputError(scene.Source + ": field.file: --time generates the field again at each " +
+      "time; a field read from a file has no time");
+  }
+  request.Export = MakeExportOptions(arguments, scene, FrameFileName(request, 0));
+  RequireDisplay("cloudvis animate ...");
+
+  Progress progress(std::cerr, ShowProgress(arguments));
+  const int written = RenderAnimation(scene, input, request,
+    [&](const std::string& label, double fraction) { progress.Update(label, fraction); });
+  progress.Finish();
+  out << "wrote " << written << " frame" << (written == 1 ? "" : "s") << " to " << request.Directory
+      << "/ (" << FrameFileName(request, 0).substr(request.Directory.size() + 1) << " .. "
+      << FrameFileName(request, written - 1).substr(request.Directory.size() + 1) << ", "
+      << scene.Render.Size[0] << " x " << scene.Render.Size[1] << " pixels)\n";
+  return ExitSuccess;
+}
+
+} // namespace
+
+void AddExportOverrides(const Arguments& arguments, std::vector<SceneOverride>& overrides)
+{
+  if (arguments.Has("png-bits"))
+  {
+    const std::string text = arguments.Value("png-bits");
+    double bits = 0.0;
+    // A number goes in as a number, anything else as text, for the scene to refuse by key.
+    overrides.push_back({ "render.png_bits",
+      ParseNumber(text, bits) ? nlohmann::json(bits == std::floor(bits) ? nlohmann::json(int(bits))
+                                                                        : nlohmann::json(bits))
+                              : nlohmann::json(text),
+      "--png-bits" });
+  }
+  if (arguments.Has("exr-half"))
+  {
+    overrides.push_back({ "render.exr_type", "half", "--exr-half" });
+  }
+}
+
+ImageExportOptions MakeExportOptions(
+  const Arguments& arguments, const Scene& scene, const std::string& output)
+{
+  ImageExportOptions options;
+  options.PngBits = scene.Render.PngBits;
+  options.ExrHalf = scene.Render.ExrHalf;
+  options.Transparent = arguments.Has("transparent");
+  options.CommandLine = QuoteCommandLine(arguments.CommandLine);
+  if (NeedsFloatImage(output, options) && scene.Render.ResolutionScale != 1.0)
+  {
+    throw InputError(scene.Source + ": render.resolution_scale: EXR, 16-bit and transparent " +
+      "PNG exports are made from the float render at full size; set it to 1");
+  }
+  return options;
+}
+
+bool ShowProgress(const Arguments& arguments)
+{
+  return !arguments.Has("quiet") && Progress::StderrIsTerminal();
+}
+
+std::string QuoteCommandLine(const std::vector<std::string>& arguments)
+{
+  static const std::regex plain("[A-Za-z0-9_@%+=:,./-]+");
+  std::string line;
+  for (size_t i = 0; i < arguments.size(); ++i)
+  {
+    // The program as a user types it, not the path it was started from.
+    std::string argument = arguments[i];
+    if (i == 0)
+    {
+      argument = argument.substr(argument.find_last_of('/') + 1);
+    }
+    if (!std::regex_match(argument, plain))
+    {
+      std::string quoted = "'";
+      for (char c : argument)
+      {
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+      }
+      argument = quoted + "'";
+    }
+    line += (line.empty() ? "" : " ") + argument;
+  }
+  return line;
+}
+
+CommandSpec AnimateCommand()
+{
+  std::string models;
+  for (const std::string& name : LightingModelNames())
+  {
+    models += (models.empty() ? "" : ", ") + name;
+  }
+  const OptionSpec lighting{ "lighting", 0, "MODEL",
+    "lighting model, one of: " + models + "; overrides render.lighting" };
+  return { "animate", "SCENE", 1, 1,
+    "render a numbered sequence of frames: a turntable or the field over time",
+    "Each frame is the still `cloudvis render` makes of the scene with that frame's camera or\n"
+    "time (render.size pixels, render.accumulate frames averaged), written atomically as\n"
+    "DIR/frame_0000.png, frame_0001.png, ... (more digits when N needs them) and carrying its own\n"
+    "scene as metadata. --turntable orbits the camera about the focal point around the view-up,\n"
+    "frame i at 360 i / N degrees (the sequence loops). --time T0:T1 generates the field at\n"
+    "t_i = T0 + i (T1 - T0) / (N - 1) for each frame. DIR is created when the first frame is\n"
+    "written; a failure part-way keeps the frames written before it. Needs an X display\n"
+    "(xvfb-run -a cloudvis animate ...).",
+    { DirectoryOption, FramesOption, TurntableOption, TimeOption, AnimateSizeOption, FormatOption,
+      lighting, PngBitsOption, ExrHalfOption, TransparentOption, QuietOption, AnimateSetOption,
+      AnimateHelpOption },
+    Animate };
+}
+
+} // namespace cloudvis

@@ -1,0 +1,53 @@
+// `cloudvis compare`: the lighting models side by side on one field. One window holds one
+// viewport per model, render.size each, left to right in the order given, plus an optional
+// difference panel; every viewport shares one vtkCamera (the one ApplyCamera sets up) and the
+// mappers start from the same jitter frame, so the panels differ only by their model. Each panel
+// has its own vtkVolume and vtkCloudVolumeMapper (ConfigureMapper, ConfigureLighting with the
+// panel's model) and a label with the model's name and its measured frame time.
+#ifndef cloudvis_Compare_h
+#define cloudvis_Compare_h
+
+#include "OffscreenRender.h"
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cloudvis
+{
+
+struct ComparisonResult
+{
+  RenderedImage Image;
+  std::vector<double> Milliseconds; // per model, in the order given: mean full-window frame time
+  int AccumulatedFrames = 0;        // frames averaged into each panel
+  double MaxDifference = 0.0;       // with a difference panel: max over pixels of |A - B|
+};
+
+// The widest window compare opens, in pixels (render.size's own limit per axis).
+constexpr int MaximumComparisonWidth = 16384;
+
+// Renders `field` once per model into one off-screen window of (models + 1 if `difference`) x
+// render.size[0] by render.size[1] pixels and captures it. Per model, first `timingFrames`
+// frames are marched in full with the other panels' volumes hidden and timed up to the GPU's
+// completion (after one untimed frame of all panels that compiles the shaders and uploads the
+// textures); the mean labels the panel. Then all panels render render.accumulate jittered frames
+// together (one without jitter), like `render`.
+//
+// `difference` (indices into `models`) adds a last panel: the per-pixel max over r, g, b of
+// |A - B| between the two models' accumulated float radiances (vtkCloudVolumeMapper::ReadImage),
+// scaled so the largest difference is the top of a black-purple-orange-yellow ramp, labelled
+// "|A - B|" with that largest difference. The scene's render.lighting is not used.
+// Throws InputError naming `input` for a window wider than MaximumComparisonWidth, a mapper
+// error, or nothing drawn.
+ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const std::string& input,
+  const std::vector<LightingModel>& models,
+  const std::optional<std::pair<size_t, size_t>>& difference, int timingFrames = 3);
+
+// The ramp of the difference panel: t in [0, 1] (clamped) to RGB in [0, 1].
+std::array<double, 3> DifferenceColor(double t);
+
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,99 @@
+#include "CpuReference.h"
+
+#include "Errors.h"
+#include "VtkMessageCapture.h"
+#include "vtkCloudReferenceRenderer.h"
+
+#include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkDataArray.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkRenderer.h>
+#include <vtkVolumeProperty.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cloudvis
+{
+
+void SetReferenceCamera(vtkCloudReferenceRenderer* reference, vtkCamera* camera)
+{
+  reference->SetCameraPosition(camera->GetPosition());
+  reference->SetCameraFocalPoint(camera->GetFocalPoint());
+  reference->SetCameraViewUp(camera->GetViewUp());
+  reference->SetViewAngle(camera->GetViewAngle());
+  reference->SetParallelProjection(camera->GetParallelProjection() != 0);
+  reference->SetParallelScale(camera->GetParallelScale());
+  reference->SetClippingRange(camera->GetClippingRange());
+}
+
+TransferTable SceneTransferTable(const TransferFunctionSpec& transferFunction, vtkImageData* field)
+{
+  const vtkSmartPointer<vtkVolumeProperty> property = MakeVolumeProperty(transferFunction);
+  double range[2] = { 0.0, 1.0 };
+  if (vtkDataArray* scalars = field->GetPointData()->GetScalars())
+  {
+    scalars->GetRange(range, 0);
+  }
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0; // as vtkCloudVolumeMapper does for a constant field
+  }
+  return BuildTransferTable(property->GetRGBTransferFunction(0), property->GetScalarOpacity(0),
+    property->GetScalarOpacityUnitDistance(0), range, 1024);
+}
+
+RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const std::string& input)
+{
+  const int width = scene.Render.Size[0];
+  const int height = scene.Render.Size[1];
+  // The camera exactly as RenderOffscreen's: ApplyCamera on a renderer of the image's aspect.
+  // The renderer is never drawn and has no window, so it keeps the aspect it is given.
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetAspect(double(width) / double(height), 1.0);
+  ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
+
+  VtkMessageCapture messages;
+  vtkNew<vtkCloudReferenceRenderer> reference;
+  reference->SetInputData(field);
+  reference->SetImageSize(width, height);
+  SetReferenceCamera(reference, renderer->GetActiveCamera());
+  reference->SetTransferTable(SceneTransferTable(scene.TransferFunction, field));
+  reference->SetLighting(LightingOf(scene));
+  reference->SetLights(scene.Lights);
+  reference->SetSampleDistance(scene.Render.Step);
+  reference->Update();
+
+  vtkImageData* output = reference->GetOutput();
+  auto* rgba = vtkFloatArray::SafeDownCast(output->GetPointData()->GetScalars());
+  if (!messages.Messages().empty() || !rgba || rgba->GetNumberOfComponents() != 4 ||
+    rgba->GetNumberOfTuples() != vtkIdType(width) * height)
+  {
+    throw InputError(input + ": CPU reference: " +
+      (messages.Messages().empty() ? std::string("no image was produced") : messages.Messages()[0]));
+  }
+
+  RenderedImage image;
+  image.Width = width;
+  image.Height = height;
+  image.RGB.resize(size_t(width) * size_t(height) * 3);
+  const float* pixels = rgba->GetPointer(0);
+  for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
+  {
+    const float* p = pixels + 4 * i;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double value = p[c] + (1.0 - p[3]) * scene.Background[c];
+      image.RGB[3 * i + c] =
+        static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, value))));
+    }
+  }
+  return image;
+}
+
+} // namespace cloudvis

@@ -1,0 +1,62 @@
+// The pieces of RenderOffscreen that exports need beyond the window's 8-bit pixels: the GPU's
+// size limit, checked before anything is drawn; the mapper's float image and auxiliary channels
+// with the cloud's depth turned into a distance from the camera; the background alone (for
+// compositing the float image at 16 bits); and the camera the renderer placed, for the scene
+// metadata and for the turntable.
+#ifndef cloudvis_ExportRender_h
+#define cloudvis_ExportRender_h
+
+#include "OffscreenRender.h"
+#include "SceneJson.h"
+
+#include <array>
+#include <string>
+
+class vtkImageData;
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkVolume;
+
+namespace cloudvis
+{
+
+// The largest image the GPU can render into in one piece: the smallest of GL_MAX_TEXTURE_SIZE
+// (the mapper's float targets), GL_MAX_RENDERBUFFER_SIZE (the window's off-screen framebuffer)
+// and GL_MAX_VIEWPORT_DIMS, per axis.
+struct RenderLimits
+{
+  int MaximumWidth = 0;
+  int MaximumHeight = 0;
+};
+
+// Initialises `window` (at its current size) and reads the limits from its GL context.
+RenderLimits QueryRenderLimits(vtkRenderWindow* window);
+
+// Throws InputError "<source>: render.size: W x H pixels is beyond this GPU's limit of MW x MH
+// pixels" when `size` exceeds `limits`.
+void CheckRenderSize(
+  const std::array<int, 2>& size, const RenderLimits& limits, const std::string& source);
+
+// Fills image.Radiance and image.Auxiliary from the mapper's last accumulated frame, rows bottom
+// to top like image.RGB. Auxiliary channel 2 becomes the distance along each pixel's ray from
+// the camera position (for a parallel projection: from the plane through the camera position
+// across the view direction) to where the cloud's opacity first passes 2%; +infinity where it
+// never does in some accumulated frame. Throws InputError (naming `input`) when the mapper has
+// no image or its image is not the window's size (render.resolution_scale below 1).
+void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, RenderedImage& image,
+  const std::string& input);
+
+// Renders the window once more with `volume` hidden and fills image.BackgroundRGB with what is
+// left (the background as the renderer draws it, display values); shows the volume again.
+void ReadBackgroundImage(vtkRenderWindow* window, vtkVolume* volume, RenderedImage& image);
+
+// The camera ApplyCamera places for the scene and a field with these bounds.
+ResolvedCamera ResolveCamera(const Scene& scene, const double fieldBounds[6]);
+
+// The resolved scene of `scene` rendered over `field` (SceneToJson with the placed camera), as
+// exports embed it: compact JSON, ASCII only (non-ASCII characters escaped, as PNG text needs).
+std::string ResolvedSceneJson(const Scene& scene, vtkImageData* field);
+
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# Renders the pictures of docs/user-guide.md with cloudvis itself, so the guide shows what the
+# program really draws. Every command here is one the guide prints; rerun this script after a
+# change to the renderer, look at the images, and commit them.
+#
+#   docs/scripts/make-guide-images.sh [-s WxH] [-a FRAMES] [-d VOXELS] [CLOUDVIS [OUTPUT_DIR]]
+#
+# CLOUDVIS defaults to ./build/bin/cloudvis, OUTPUT_DIR to docs/images (both relative to the
+# current directory). -s sets the image size (default 480x360; compare panels are half as wide
+# and high), -a the frames accumulated (default 8), -d overrides field.dimensions (default: the
+# scenes' own, 128). The tests run it at a tiny size into a scratch folder. Without $DISPLAY it
+# runs itself again under xvfb-run.
+set -euo pipefail
+
+size=480x360
+accumulate=8
+dimensions=""
+usage() { sed -n '6,13p' "$0" | sed 's/^# \{0,1\}//'; }
+while getopts "s:a:d:h" option; do
+  case "$option" in
+    s) size=$OPTARG ;;
+    a) accumulate=$OPTARG ;;
+    d) dimensions=$OPTARG ;;
+    h) usage; exit 0 ;;
+    *) usage >&2; exit 2 ;;
+  esac
+done
+shift $((OPTIND - 1))
+cloudvis=${1:-./build/bin/cloudvis}
+out=${2:-docs/images}
+
+if [[ -z "${DISPLAY:-}" ]]; then
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" "$@" -s "$size" -a "$accumulate" \
+    ${dimensions:+-d "$dimensions"}
+fi
+if [[ ! -x "$cloudvis" ]]; then
+  echo "make-guide-images.sh: no cloudvis at $cloudvis (build it first: make build)" >&2
+  exit 1
+fi
+
+scenes=$(cd "$(dirname "$0")/../../data/scenes" && pwd)
+mkdir -p "$out"
+common=(--set "render.accumulate=$accumulate")
+if [[ -n "$dimensions" ]]; then
+  common+=(--set "field.dimensions=$dimensions")
+fi
+width=${size%x*}
+height=${size#*x}
+half="$((width / 2))x$((height / 2))"
+
+# render NAME SCENE [OPTIONS...]: one picture, $out/NAME.png.
+render() {
+  local name=$1 scene=$2
+  shift 2
+  "$cloudvis" render "$scenes/$scene" -o "$out/$name.png" --size "$size" "${common[@]}" "$@"
+}
+
+# The picture at the top of the guide (and the README): the lit cloud under the article's sky.
+render hero sky.json
+
+# The tour: the article's cloud as its scene says (the directional derivative), closer than the
+# default camera, then with the other two lighting models, then all three side by side.
+closer=(--set 'camera.orbit={"distance": 6}')
+render tour-render fbm-sphere.json "${closer[@]}"
+render tour-none fbm-sphere.json "${closer[@]}" --lighting none
+render tour-march fbm-sphere.json "${closer[@]}" --lighting march
+if "$cloudvis" --help | grep -q '^  compare '; then
+  "$cloudvis" compare "$scenes/fbm-sphere.json" -o "$out/tour-compare.png" --size "$half" \
+    --lighting none,derivative,march "${closer[@]}" "${common[@]}"
+fi
+
+# Transfer-function presets. fbm-sphere.json spells out its transfer function, and a scene's own
+# keys win over a preset's, so the whole section is replaced.
+for preset in cloud-dusk thin-haze paraview-example; do
+  render "preset-$preset" fbm-sphere.json "${closer[@]}" \
+    --set "transfer_function={\"preset\": \"$preset\"}"
+done
+render preset-density-heat fbm-sphere.json "${closer[@]}" --lighting none \
+  --set 'transfer_function={"preset": "density-heat"}'
+
+# Backgrounds and the camera orbit.
+render background-gradient fbm-sphere.json "${closer[@]}" \
+  --set 'background={"type": "gradient", "top": [0.1, 0.2, 0.45], "bottom": [0.8, 0.6, 0.5]}'
+render background-sky fbm-sphere.json \
+  --set 'background={"type": "sky"}' \
+  --set 'camera.orbit={"azimuth": 35, "elevation": -12, "distance": 7}'
+render camera-orbit fbm-sphere.json \
+  --set 'camera.orbit={"azimuth": 60, "elevation": 35, "distance": 6}'
+
+# Pictures are committed: keep them small.
+for image in "$out"/*.png; do
+  bytes=$(stat -c %s "$image")
+  if ((bytes > 150 * 1024)); then
+    echo "make-guide-images.sh: warning: $image is $((bytes / 1024)) KB (keep guide images under 150 KB)" >&2
+  fi
+done

@@ -1,0 +1,336 @@
+// The lighting side of the application: the lights, ambient, render.derivative and render.march
+// sections reach LightingParameters and vtkLights with their documented defaults; the models
+// change the rendered pixels; --cpu-reference agrees with the GPU render of the same scene; and
+// compare lays its panels side by side. The render and compare tests need an X display (Xvfb).
+#include "CommandLine.h"
+#include "Errors.h"
+#include "Scene.h"
+#include "SceneLighting.h"
+#include "vtkCloudVolumeMapper.h"
+
+#include <vtkImageData.h>
+#include <vtkLight.h>
+#include <vtkLightCollection.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPointData.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace
+{
+using cloudvis::LightingModel;
+
+cloudvis::Scene SceneWith(const std::vector<std::string>& assignments)
+{
+  return cloudvis::LoadScene("", assignments);
+}
+
+// The message of the InputError a scene with these assignments raises ("" when none).
+std::string ErrorOf(const std::vector<std::string>& assignments)
+{
+  try
+  {
+    SceneWith(assignments);
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneLights, TypesAndDefaults)
+{
+  const cloudvis::Scene scene = SceneWith({ R"(lights=[
+      {"type": "directional", "position": [1, 2, 3]},
+      {"type": "point", "position": [-1, 0, 2], "color": [1, 0.5, 0.25], "intensity": 3,
+       "attenuation": [1, 0.5, 0]},
+      {"type": "directional", "position": [0, 5, 0], "focal_point": [0, 1, 0]},
+      {"type": "point", "position": [0, 0, 4]}])" });
+  ASSERT_EQ(scene.Lights.size(), 4u);
+  const cloudvis::Light& sun = scene.Lights[0];
+  EXPECT_FALSE(sun.Positional);
+  EXPECT_EQ(sun.Position, glm::vec3(1, 2, 3));
+  EXPECT_EQ(sun.FocalPoint, glm::vec3(0.0f)) << "focal_point defaults to the origin";
+  EXPECT_EQ(sun.Color, glm::vec3(1.0f));
+  EXPECT_EQ(sun.Intensity, 1.0f);
+  const cloudvis::Light& lamp = scene.Lights[1];
+  EXPECT_TRUE(lamp.Positional);
+  EXPECT_EQ(lamp.Color, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_EQ(lamp.Intensity, 3.0f);
+  EXPECT_EQ(lamp.Attenuation, glm::vec3(1.0f, 0.5f, 0.0f));
+  EXPECT_EQ(scene.Lights[2].FocalPoint, glm::vec3(0, 1, 0));
+  EXPECT_EQ(scene.Lights[3].Attenuation, glm::vec3(0, 0, 1)) << "inverse square by default";
+
+  EXPECT_TRUE(SceneWith({ "lights=[]" }).Lights.empty()) << "an empty list means no lights";
+}
+
+TEST(SceneLights, WithoutTheKeyASunFromSixEightFour)
+{
+  const cloudvis::Scene scene = cloudvis::DefaultScene();
+  ASSERT_EQ(scene.Lights.size(), 1u);
+  EXPECT_FALSE(scene.Lights[0].Positional);
+  EXPECT_EQ(scene.Lights[0].Position, glm::vec3(6, 8, 4));
+  EXPECT_EQ(scene.Lights[0].FocalPoint, glm::vec3(0.0f));
+  EXPECT_EQ(scene.Lights[0].Color, glm::vec3(1.0f));
+  EXPECT_GT(scene.Lights[0].Intensity, 1.0f);
+  EXPECT_EQ(scene.Ambient.Color, glm::vec3(0.6f, 0.6f, 0.75f));
+  EXPECT_EQ(scene.Ambient.Strength, 0.2f);
+}
+
+TEST(SceneLights, Errors)
+{
+  EXPECT_NE(ErrorOf({ R"(lights=[{"type": "spot", "position": [1, 1, 1]}])" })
+              .find("lights[0].type: unknown name \"spot\"; allowed: directional, point"),
+    std::string::npos);
+  const auto pointLights = [](int count) {
+    std::string list = "lights=[";
+    for (int i = 0; i < count; ++i)
+    {
+      list += std::string(i ? "," : "") + R"({"type": "point", "position": [1, 1, 1]})";
+    }
+    return list + "]";
+  };
+  EXPECT_NE(ErrorOf({ pointLights(9) }).find("lights: at most 8 lights"), std::string::npos);
+  EXPECT_EQ(ErrorOf({ pointLights(8) }), "") << "8 are allowed";
+  EXPECT_NE(ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "intensity": -1}])" })
+              .find("lights[0].intensity: value -1 is out of range: allowed >= 0"),
+    std::string::npos);
+  EXPECT_NE(
+    ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "focal_point": [0, 0, 0]}])" })
+      .find("lights[0].focal_point: not a parameter of a point light"),
+    std::string::npos);
+  EXPECT_NE(ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "attenuation": [0, 0, 0]}])" })
+              .find("lights[0].attenuation: the attenuation [a0, a1, a2] must not be all zero"),
+    std::string::npos);
+  EXPECT_NE(ErrorOf({ R"(lights=[{"position": [1, 1, 1]}])" }).find("lights[0].type: missing"),
+    std::string::npos);
+}
+
+TEST(SceneLighting, RenderSectionsAndAmbientReachLightingParameters)
+{
+  const cloudvis::Scene scene = SceneWith({ "render.lighting=march", "render.derivative.distance=0.3",
+    "render.march.light_steps=9", "render.march.light_step=0.07", "render.march.light_step_growth=1.25",
+    "render.march.g1=0.7", "render.march.g2=-0.2", "render.march.lobe_weight=0.6",
+    "render.march.multiple_scattering=5", "render.march.scattering_falloff=0.4",
+    "render.march.extinction_falloff=0.3", "render.march.eccentricity_falloff=0.2",
+    "render.march.powder=0.1", "ambient.color=0.1,0.2,0.3", "ambient.strength=1.5" });
+  const cloudvis::LightingParameters p = cloudvis::LightingOf(scene);
+  EXPECT_EQ(p.Model, LightingModel::March);
+  EXPECT_EQ(p.DerivativeDistance, 0.3f);
+  EXPECT_EQ(p.LightSteps, 9);
+  EXPECT_EQ(p.LightStep, 0.07f);
+  EXPECT_EQ(p.LightStepGrowth, 1.25f);
+  EXPECT_EQ(p.PhaseG1, 0.7f);
+  EXPECT_EQ(p.PhaseG2, -0.2f);
+  EXPECT_EQ(p.PhaseLobeWeight, 0.6f);
+  EXPECT_EQ(p.MultipleScatteringOctaves, 5);
+  EXPECT_EQ(p.ScatteringFalloff, 0.4f);
+  EXPECT_EQ(p.ExtinctionFalloff, 0.3f);
+  EXPECT_EQ(p.EccentricityFalloff, 0.2f);
+  EXPECT_EQ(p.PowderStrength, 0.1f);
+  EXPECT_EQ(p.AmbientColor, glm::vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(p.AmbientStrength, 1.5f);
+
+  // Absent keys keep LightingParameters' defaults.
+  const cloudvis::LightingParameters defaults = cloudvis::LightingOf(cloudvis::DefaultScene());
+  const cloudvis::LightingParameters documented;
+  EXPECT_EQ(defaults.LightSteps, documented.LightSteps);
+  EXPECT_EQ(defaults.PhaseG1, documented.PhaseG1);
+  EXPECT_EQ(defaults.MultipleScatteringOctaves, documented.MultipleScatteringOctaves);
+  EXPECT_EQ(defaults.PowderStrength, 0.0f);
+}
+
+TEST(SceneLighting, ConfigureLightingAddsSceneLightsAndNoHeadlight)
+{
+  const cloudvis::Scene scene = SceneWith({ R"(lights=[
+      {"type": "directional", "position": [1, 2, 3], "color": [1, 0.5, 0], "intensity": 2},
+      {"type": "point", "position": [-1, 0, 2], "attenuation": [1, 0.5, 0]}])",
+    "render.lighting=derivative" });
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCloudVolumeMapper> mapper;
+  cloudvis::ConfigureLighting(scene, renderer, mapper);
+  EXPECT_FALSE(renderer->GetAutomaticLightCreation());
+  ASSERT_EQ(renderer->GetLights()->GetNumberOfItems(), 2);
+  auto* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  auto* lamp = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(1));
+  EXPECT_TRUE(sun->LightTypeIsSceneLight());
+  EXPECT_FALSE(sun->GetPositional());
+  EXPECT_EQ(sun->GetPosition()[2], 3.0);
+  EXPECT_EQ(sun->GetDiffuseColor()[1], 0.5);
+  EXPECT_EQ(sun->GetIntensity(), 2.0);
+  EXPECT_TRUE(lamp->GetPositional());
+  EXPECT_EQ(lamp->GetConeAngle(), 180.0);
+  EXPECT_EQ(lamp->GetAttenuationValues()[1], 0.5);
+  EXPECT_EQ(mapper->GetLighting().Model, LightingModel::Derivative);
+
+  cloudvis::ConfigureLighting(SceneWith({ "lights=[]" }), renderer, mapper);
+  EXPECT_EQ(renderer->GetLights()->GetNumberOfItems(), 0) << "replaced, not added to";
+}
+
+// ---- pixels -------------------------------------------------------------------------------
+
+struct Png
+{
+  int Width = 0, Height = 0;
+  std::vector<unsigned char> RGB;
+  double At(int x, int y, int c) const { return this->RGB[3 * (size_t(y) * this->Width + x) + c]; }
+};
+
+Png ReadPng(const std::string& path)
+{
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  Png png;
+  int d[3];
+  reader->GetOutput()->GetDimensions(d);
+  auto* data = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetScalars());
+  if (data && data->GetNumberOfComponents() == 3)
+  {
+    png.Width = d[0];
+    png.Height = d[1];
+    png.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
+  }
+  return png;
+}
+
+// RMS difference in 8-bit levels between the columns [ax, ax + width) of a and [bx, bx + width)
+// of b, over the bottom `rows` rows (all when 0).
+double RmsLevels(const Png& a, int ax, const Png& b, int bx, int width, int rows = 0)
+{
+  rows = rows > 0 ? rows : a.Height;
+  double sum = 0.0;
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c)
+      {
+        const double d = a.At(ax + x, y, c) - b.At(bx + x, y, c);
+        sum += d * d;
+      }
+  return std::sqrt(sum / (3.0 * rows * width));
+}
+
+class Output
+{
+public:
+  explicit Output(const std::string& name)
+    : Path("/tmp/cloudvis-lighting-" + std::to_string(::getpid()) + "-" + name)
+  {
+  }
+  ~Output() { std::remove(this->Path.c_str()); }
+  std::string Path;
+};
+
+void RunCloudvis(const std::vector<std::string>& arguments)
+{
+  std::vector<std::string> argv{ "cloudvis" };
+  argv.insert(argv.end(), arguments.begin(), arguments.end());
+  std::ostringstream out, err;
+  ASSERT_EQ(cloudvis::RunCommandLine(argv, out, err), 0) << err.str();
+}
+
+// Small, exact renders: no jitter, one frame, a coarse field.
+const std::vector<std::string> Small = { "--set", "field.dimensions=32", "--set", "render.jitter=false",
+  "--set", "render.accumulate=1" };
+
+std::vector<std::string> With(std::vector<std::string> arguments)
+{
+  arguments.insert(arguments.end(), Small.begin(), Small.end());
+  return arguments;
+}
+
+TEST(LightingRender, DerivativeAndMarchDifferFromNone)
+{
+  Png images[3];
+  const char* models[3] = { "none", "derivative", "march" };
+  for (int i = 0; i < 3; ++i)
+  {
+    const Output png(std::string(models[i]) + ".png");
+    RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "48x40", "--lighting",
+      models[i], "-o", png.Path }));
+    images[i] = ReadPng(png.Path);
+    ASSERT_EQ(images[i].Width, 48);
+  }
+  EXPECT_GT(RmsLevels(images[0], 0, images[1], 0, 48), 5.0);
+  EXPECT_GT(RmsLevels(images[0], 0, images[2], 0, 48), 5.0);
+  EXPECT_GT(RmsLevels(images[1], 0, images[2], 0, 48), 5.0);
+}
+
+class CpuReferenceMatchesRender : public ::testing::TestWithParam<const char*>
+{
+};
+
+TEST_P(CpuReferenceMatchesRender, WithinTwoLevelsRms)
+{
+  // A wide image, so that a camera fitted for the wrong aspect would show.
+  const Output gpu("gpu.png"), cpu("cpu.png");
+  const std::vector<std::string> common = { "render", CLOUDVIS_SCENES "/two-lights.json", "--size",
+    "72x40", "--lighting", GetParam() };
+  std::vector<std::string> gpuArguments = With(common), cpuArguments = With(common);
+  gpuArguments.insert(gpuArguments.end(), { "-o", gpu.Path });
+  cpuArguments.insert(cpuArguments.end(), { "--cpu-reference", "-o", cpu.Path });
+  RunCloudvis(gpuArguments);
+  RunCloudvis(cpuArguments);
+  const Png a = ReadPng(gpu.Path), b = ReadPng(cpu.Path);
+  ASSERT_EQ(a.Width, 72);
+  ASSERT_EQ(b.Width, 72);
+  ASSERT_EQ(b.Height, 40);
+  const double rms = RmsLevels(a, 0, b, 0, 72);
+  std::cout << GetParam() << ": GPU vs --cpu-reference RMS " << rms << " levels\n";
+  // Both round the same radiance to 8 bits; what differs is float arithmetic (see
+  // tests/render/TestGpuMatchesCpuReference.cxx): well under 2 levels.
+  EXPECT_LT(rms, 2.0);
+  // And the cloud is there (not both empty).
+  const Output empty("empty.png");
+  RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "72x40", "--set",
+    "transfer_function.opacity=[[0,0]]", "-o", empty.Path }));
+  EXPECT_GT(RmsLevels(ReadPng(empty.Path), 0, b, 0, 72), 5.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, CpuReferenceMatchesRender,
+  ::testing::Values("none", "derivative", "march"));
+
+TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
+{
+  const Output png("compare.png");
+  RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "-o", png.Path }));
+  const Png image = ReadPng(png.Path);
+  ASSERT_EQ(image.Width, 120);
+  ASSERT_EQ(image.Height, 32);
+  // Panel i is the render of model i; the labels, which differ anyway, are in the top rows.
+  const int belowLabels = 16;
+  EXPECT_GT(RmsLevels(image, 0, image, 40, 40, belowLabels), 3.0);
+  EXPECT_GT(RmsLevels(image, 0, image, 80, 40, belowLabels), 3.0);
+  EXPECT_GT(RmsLevels(image, 40, image, 80, 40, belowLabels), 3.0);
+}
+
+TEST(Compare, DifferenceAddsAPanel)
+{
+  const Output png("difference.png");
+  RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "--lighting",
+    "none,march", "--difference", "none,march", "-o", png.Path }));
+  const Png image = ReadPng(png.Path);
+  ASSERT_EQ(image.Width, 120);
+  // The difference panel is black where the models agree (the empty corners) and bright where
+  // they differ most.
+  double brightest = 0.0;
+  for (int y = 0; y < image.Height; ++y)
+    for (int x = 80; x < 120; ++x)
+      brightest = std::max(brightest, image.At(x, y, 0) + image.At(x, y, 1) + image.At(x, y, 2));
+  EXPECT_GT(brightest, 300.0);
+  EXPECT_EQ(image.At(81, 1, 0) + image.At(81, 1, 1) + image.At(81, 1, 2), 0.0);
+}
+
+} // namespace
