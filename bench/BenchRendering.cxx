@@ -8,13 +8,23 @@
 // samples taken) and its frame rate while interacting (automatic reduced resolution).
 //
 // Usage: cloudvis-bench-rendering [--size N] [--frames F] [--width W --height H]
+// Environment, for narrower measurements:
+//   CLOUDVIS_BENCH_LIGHTING_ONLY=1  only the lighting comparison
+//   CLOUDVIS_BENCH_OCCUPANCY=1      only the occupancy recomputation time per brick size
+//   CLOUDVIS_BENCH_ONE_MODEL=0|1|2  only cloudvis with lighting none|derivative|march (one sun),
+//                                   e.g. under `valgrind --tool=callgrind` with LP_NUM_THREADS=0
+//                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts
+//   CLOUDVIS_BENCH_BRICK=N          the brick size of that run
+#include "CloudTransferTable.h"
 #include "vtkCloudDensitySource.h"
+#include "vtkCloudOccupancyFilter.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkImageData.h>
+#include <vtkLight.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
@@ -185,6 +195,62 @@ void Compare(const char* name, vtkImageData* field, const Options& options)
 }
 }
 
+// Issue 4's figures: the cost of each lighting model on the sparse cloud with one sun, against
+// VTK's mapper with shading on.
+void CompareLighting(vtkImageData* field, const Options& options)
+{
+  const double step = 4.0 / (options.Size - 1);
+  const auto addSun = [](vtkRenderer* renderer) {
+    vtkNew<vtkLight> sun;
+    sun->SetLightTypeToSceneLight();
+    sun->SetPositional(false);
+    sun->SetPosition(6.0, 8.0, 4.0);
+    sun->SetFocalPoint(0.0, 0.0, 0.0);
+    sun->SetIntensity(12.6);
+    renderer->AddLight(sun);
+  };
+
+  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
+  vtkMapper->SetSampleDistance(step);
+  vtkMapper->AutoAdjustSampleDistancesOff();
+  vtkMapper->LockSampleDistanceToInputSpacingOff();
+  vtkMapper->SetUseJittering(0);
+  View vtk(vtkMapper, field, options);
+  vtk.Property->ShadeOn();
+  addSun(vtk.Renderer);
+  const double vtkShadedMs = vtk.MillisecondsPerFrame(options.Frames, [] {});
+
+  std::printf("lighting on the sparse field (%d^3, %dx%d, one light):\n", options.Size,
+    options.Width, options.Height);
+  double noneMs = 0.0;
+  for (cloudvis::LightingModel model : { cloudvis::LightingModel::None,
+         cloudvis::LightingModel::Derivative, cloudvis::LightingModel::March })
+  {
+    vtkNew<vtkCloudVolumeMapper> mapper;
+    mapper->SetSampleDistance(step);
+    mapper->JitterOff();
+    cloudvis::LightingParameters lighting;
+    lighting.Model = model;
+    mapper->SetLighting(lighting);
+    View cloud(mapper, field, options);
+    addSun(cloud.Renderer);
+    const double ms = cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); });
+    const char* name = model == cloudvis::LightingModel::None
+      ? "none"
+      : (model == cloudvis::LightingModel::Derivative ? "derivative" : "march");
+    if (model == cloudvis::LightingModel::None)
+    {
+      noneMs = ms;
+    }
+    std::printf("  %-10s %8.1f ms/frame  (%.2f x none)\n", name, ms, ms / noneMs);
+    if (model == cloudvis::LightingModel::March)
+    {
+      std::printf("  vtkGPUVolumeRayCastMapper shaded %8.1f ms/frame\n", vtkShadedMs);
+      std::printf("  march vs VTK shaded speed-up ratio: %.2f\n", vtkShadedMs / ms);
+    }
+  }
+}
+
 int main(int argc, char* argv[])
 {
   Options options;
@@ -205,7 +271,56 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "usage: %s [--size N>=8] [--frames F>=1] [--width W --height H]\n", argv[0]);
     return 2;
   }
-  Compare("sparse", Field(options.Size, false), options);
-  Compare("dense", Field(options.Size, true), options);
+  const auto sparse = Field(options.Size, false);
+  if (std::getenv("CLOUDVIS_BENCH_OCCUPANCY"))
+  {
+    vtkNew<vtkPiecewiseFunction> opacity;
+    opacity->AddPoint(0.0, 0.0);
+    opacity->AddPoint(0.05, 0.0);
+    opacity->AddPoint(1.0, 0.8);
+    double range[2];
+    sparse->GetPointData()->GetScalars()->GetRange(range);
+    for (int brick : { 2, 3, 4, 8 })
+    {
+      vtkNew<vtkCloudOccupancyFilter> occupancy;
+      occupancy->SetInputData(sparse);
+      occupancy->SetBrickSize(brick);
+      occupancy->SetTransferTable(cloudvis::BuildTransferTable(nullptr, opacity, 0.1, range));
+      const double start = vtkTimerLog::GetUniversalTime();
+      occupancy->Update();
+      std::printf("occupancy brick %d: %.1f ms\n", brick, 1000.0 * (vtkTimerLog::GetUniversalTime() - start));
+    }
+    return 0;
+  }
+  if (const char* only = std::getenv("CLOUDVIS_BENCH_ONE_MODEL"))
+  {
+    vtkNew<vtkCloudVolumeMapper> mapper;
+    if (const char* brick = std::getenv("CLOUDVIS_BENCH_BRICK"))
+      mapper->SetBrickSize(std::atoi(brick));
+    mapper->SetSampleDistance(4.0 / (options.Size - 1));
+    mapper->JitterOff();
+    cloudvis::LightingParameters lighting;
+    lighting.Model = cloudvis::LightingModel(std::atoi(only));
+    mapper->SetLighting(lighting);
+    View cloud(mapper, sparse, options);
+    vtkNew<vtkLight> sun;
+    sun->SetPosition(6.0, 8.0, 4.0);
+    sun->SetFocalPoint(0.0, 0.0, 0.0);
+    cloud.Renderer->AddLight(sun);
+    std::printf("%.1f ms\n", cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); }));
+    mapper->CollectStatisticsOn();
+    mapper->Modified();
+    cloud.Window->Render();
+    const vtkCloudVolumeMapper::FrameStatistics& st = mapper->GetLastFrameStatistics();
+    std::printf("useful-sample fraction %.1f%% of %.3g samples\n",
+      100.0 * st.UsefulSamples / st.SamplesTaken, st.SamplesTaken);
+    return 0;
+  }
+  if (!std::getenv("CLOUDVIS_BENCH_LIGHTING_ONLY"))
+  {
+    Compare("sparse", sparse, options);
+    Compare("dense", Field(options.Size, true), options);
+  }
+  CompareLighting(sparse, options);
   return 0;
 }

@@ -74,7 +74,9 @@ public:
 
   ///@{
   /**
-   * Edge length of the occupancy bricks, in voxels. Default 8.
+   * Edge length of the occupancy bricks, in voxels. Smaller bricks fit the cloud more tightly
+   * (fewer wasted samples) but cost more to recompute when the density or the transfer function
+   * changes; frame time hardly depends on it (docs/performance.md). Default 3.
    */
   vtkSetClampMacro(BrickSize, int, 2, 64);
   vtkGetMacro(BrickSize, int);
@@ -214,7 +216,7 @@ protected:
 
   double SampleDistance = 0.0;
   bool EmptySpaceSkipping = true;
-  int BrickSize = 8;
+  int BrickSize = 3;
   bool Jitter = true;
   double TerminationTransmittance = 1.0 / 255.0;
   double ExtinctionScale = 1.0;
