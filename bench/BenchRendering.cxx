@@ -206,7 +206,7 @@ void CompareLighting(vtkImageData* field, const Options& options)
     sun->SetPositional(false);
     sun->SetPosition(6.0, 8.0, 4.0);
     sun->SetFocalPoint(0.0, 0.0, 0.0);
-    sun->SetIntensity(12.6);
+    sun->SetIntensity(1.0);
     renderer->AddLight(sun);
   };
 

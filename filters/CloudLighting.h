@@ -96,6 +96,12 @@ inline std::string ValidateLightingParameters(const LightingParameters& p)
 
 constexpr float Pi = 3.14159265358979f;
 
+// The march weighs a light with a phase function, a density per steradian (1 / 4 pi when
+// isotropic). Multiplying by 4 pi makes a light's color x intensity mean the same in every
+// model: what an unshadowed sample of albedo 1 sends toward the eye when it scatters
+// isotropically (the derivative model: a face lit head-on, D = 1).
+constexpr float PhaseToRadiance = 4.0f * Pi;
+
 // Henyey-Greenstein phase function: (1 / 4 pi) (1 - g^2) / (1 + g^2 - 2 g mu)^(3/2).
 // Integrates to 1 over the sphere; g > 0 scatters forward.
 inline float HenyeyGreenstein(float g, float mu)

@@ -193,7 +193,7 @@ glm::vec3 SourceTermMarch(
   {
     const LightSample s = SampleLight(source, x);
     const float tau = LightOpticalDepth(u, p, s.Direction, s.Distance);
-    light += source.Color * source.Intensity * s.Falloff *
+    light += source.Color * source.Intensity * s.Falloff * PhaseToRadiance *
       ScatteredFraction(u.Lighting, glm::dot(d, s.Direction), tau);
   }
   return albedo * light;

@@ -15,6 +15,10 @@ uniform float ExtinctionFalloff;   // b
 uniform float EccentricityFalloff; // c
 uniform float PowderStrength;
 
+// A light's intensity means the same in every model (filters/CloudLighting.h): the phase,
+// per steradian, is scaled so an isotropic, unshadowed sample scatters color x intensity.
+const float PhaseToRadiance = 4.0 * Pi;
+
 float Phase(float mu, float eccentricityScale)
 {
   return PhaseLobeWeight * HenyeyGreenstein(PhaseG1 * eccentricityScale, mu) +
@@ -66,7 +70,7 @@ float LightOpticalDepth(vec3 p, vec3 indexStep, float maxDistance)
 vec3 DirectionalLightTerm(int i, vec3 p, float density, vec3 d)
 {
   float tau = LightOpticalDepth(p, LightIndexDirection[i], 1e30);
-  return LightRadiance[i] * ScatteredFraction(dot(d, LightDirection[i]), tau);
+  return LightRadiance[i] * PhaseToRadiance * ScatteredFraction(dot(d, LightDirection[i]), tau);
 }
 
 vec3 PointLightTerm(int i, vec3 p, float density, vec3 d)
@@ -75,5 +79,5 @@ vec3 PointLightTerm(int i, vec3 p, float density, vec3 d)
   float lightDistance, falloff;
   SampleLight(i, WorldOfIndex(p), l, lightDistance, falloff);
   float tau = LightOpticalDepth(p, WorldToIndex * l, lightDistance);
-  return LightRadiance[i] * falloff * ScatteredFraction(dot(d, l), tau);
+  return LightRadiance[i] * falloff * PhaseToRadiance * ScatteredFraction(dot(d, l), tau);
 }

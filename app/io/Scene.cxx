@@ -1262,10 +1262,8 @@ std::vector<Light> DefaultLights()
   sun.Position = glm::vec3(6.0f, 8.0f, 4.0f);
   sun.FocalPoint = glm::vec3(0.0f);
   sun.Color = glm::vec3(1.0f);
-  // The march's phase is per steradian (an isotropic sample scatters E / 4 pi toward the eye),
-  // so a sun of about 4 pi lights the default cloud fully under the march; the derivative model
-  // has no phase and shows the same sun much brighter (docs/lighting.md, Lights).
-  sun.Intensity = 12.0f;
+  // An intensity means the same light in every model (docs/lighting.md, Lights).
+  sun.Intensity = 1.0f;
   sun.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f);
   return { sun };
 }

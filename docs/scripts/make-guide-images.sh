@@ -30,8 +30,9 @@ cloudvis=${1:-./build/bin/cloudvis}
 out=${2:-docs/images}
 
 if [[ -z "${DISPLAY:-}" ]]; then
-  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" "$@" -s "$size" -a "$accumulate" \
-    ${dimensions:+-d "$dimensions"}
+  # Options before the operands: getopts stops at the first operand.
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" -s "$size" -a "$accumulate" \
+    ${dimensions:+-d "$dimensions"} "$@"
 fi
 if [[ ! -x "$cloudvis" ]]; then
   echo "make-guide-images.sh: no cloudvis at $cloudvis (build it first: make build)" >&2

@@ -84,7 +84,7 @@ TEST(SceneLights, WithoutTheKeyASunFromSixEightFour)
   EXPECT_EQ(scene.Lights[0].Position, glm::vec3(6, 8, 4));
   EXPECT_EQ(scene.Lights[0].FocalPoint, glm::vec3(0.0f));
   EXPECT_EQ(scene.Lights[0].Color, glm::vec3(1.0f));
-  EXPECT_GT(scene.Lights[0].Intensity, 1.0f);
+  EXPECT_EQ(scene.Lights[0].Intensity, 1.0f); // the same light in every model
   EXPECT_EQ(scene.Ambient.Color, glm::vec3(0.6f, 0.6f, 0.75f));
   EXPECT_EQ(scene.Ambient.Strength, 0.2f);
 }

@@ -32,8 +32,7 @@ double RightMinusLeft(LightingModel model, double lightX)
   Scene scene(mapper, 64, 64);
   scene.SetInput(SparseCloud(48));
   SetRampMedium(scene.Property, 1.0, 0.6);
-  // The march's phase function is per steradian: intensity 4 pi lights an isotropic sample fully.
-  AddDirectionalLight(scene.Renderer, lightX, 0.0, 0.0, model == LightingModel::March ? 12.6 : 1.0);
+  AddDirectionalLight(scene.Renderer, lightX, 0.0, 0.0, 1.0);
   const Image image = scene.RenderFloat();
   Dump(image, std::string("lit-from-") + (lightX > 0 ? "right-" : "left-") +
       (model == LightingModel::March ? "march" : "derivative"));
@@ -137,9 +136,9 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
     vtkNew<vtkColorTransferFunction> white;
     white->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
     scene.Property->SetColor(white);
-    AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, model == LightingModel::March ? 20.0 : 0.8,
+    AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, model == LightingModel::March ? 1.6 : 0.8,
       1.0, model == LightingModel::Derivative ? 0.6 : 1.0, model == LightingModel::Derivative ? 0.3 : 1.0);
-    AddPointLight(scene.Renderer, -2.2, -0.5, 1.5, model == LightingModel::March ? 30.0 : 2.0,
+    AddPointLight(scene.Renderer, -2.2, -0.5, 1.5, 2.0,
       1.0, 0.4, 0.7);
     const Image image = scene.Render();
     Dump(image, std::string("seed-") +

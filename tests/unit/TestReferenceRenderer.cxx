@@ -297,8 +297,8 @@ TEST(ReferenceRenderer, HomogeneousSphereHasTheOpacityOfItsDiameter)
 TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
 {
   // A homogeneous slab of thickness L seen along -z, a directional light straight behind it
-  // (mu = 1), single scattering: T(t) sigma_t E P exp(-sigma_t (L - t)) is constant along the
-  // ray, so L_out = E P(1) sigma_t L exp(-sigma_t L) and alpha = 1 - exp(-sigma_t L).
+  // (mu = 1), single scattering: T(t) sigma_t 4 pi E P exp(-sigma_t (L - t)) is constant along
+  // the ray, so L_out = 4 pi E P(1) sigma_t L exp(-sigma_t L) and alpha = 1 - exp(-sigma_t L).
   auto field = MakeField(33, 0.0, 1.0, [](double, double, double) { return 1.0; });
   const float sigma_t = 1.5f, L = 1.0f;
   vtkNew<vtkCloudReferenceRenderer> renderer;
@@ -322,7 +322,8 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   behind.Position = glm::vec3(0.5f, 0.5f, -10.0f);
   behind.FocalPoint = glm::vec3(0.5f);
   const Image image = RenderWith(renderer, p, { behind });
-  const float expected = HenyeyGreenstein(0.5f, 1.0f) * sigma_t * L * std::exp(-sigma_t * L);
+  const float expected =
+    PhaseToRadiance * HenyeyGreenstein(0.5f, 1.0f) * sigma_t * L * std::exp(-sigma_t * L);
   EXPECT_NEAR(image.At(0, 0)[0], expected, 0.01f * expected);
   EXPECT_NEAR(image.At(0, 0)[3], 1.0f - std::exp(-sigma_t * L), 0.01f);
 }
