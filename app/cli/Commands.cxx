@@ -377,24 +377,43 @@ int Info(const Arguments& arguments, std::ostream& out)
 
 } // namespace
 
+// The demo's scene is the shipped seed scene of the thesis chapter's figure: the fbm sphere
+// under a white sun and a pink point light, light march.
+static std::string DemoScenePath()
+{
+  const char* overridden = std::getenv("CLOUDVIS_SCENE_DIR");
+  return std::string(overridden && *overridden ? overridden : CLOUDVIS_SCENE_DIRECTORY) +
+    "/two-lights.json";
+}
+
 int RunDefault(std::ostream& out)
 {
   const std::string directory = "out";
   const std::string output = directory + "/default.vti";
   const std::string image = directory + "/default.png";
+  const std::string comparison = directory + "/compare.png";
   // Before anything is written: without a display the demo cannot complete.
   RequireDisplay("cloudvis");
   MakeDirectory(directory);
   CheckOutputTarget(output);
   CheckImageOutput(image);
-  const Scene scene = LoadScene("", {});
+  CheckImageOutput(comparison);
+  const Scene scene = LoadScene(DemoScenePath(), {});
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
   WriteField(field, output);
   out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
   const OffscreenRenderResult result = RenderOffscreen(scene, field, scene.Source);
   WriteImage(result.Image, image);
   out << "wrote " << image << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels)\n\n";
+      << " pixels, lighting " << LightingModelName(scene.Render.Lighting) << ")\n";
+  // The three lighting models side by side, each panel half the render's size.
+  Scene halfSize = scene;
+  halfSize.Render.Size[0] = std::max(16, scene.Render.Size[0] / 2);
+  halfSize.Render.Size[1] = std::max(16, scene.Render.Size[1] / 2);
+  const ComparisonResult compared = RenderComparison(halfSize, field, scene.Source,
+    { LightingModel::None, LightingModel::Derivative, LightingModel::March }, std::nullopt);
+  WriteImage(compared.Image, comparison);
+  out << "wrote " << comparison << " (none, derivative and march side by side)\n\n";
   PrintFieldStatistics(out, ComputeFieldStatistics(field), output);
   return ExitSuccess;
 }
