@@ -1,5 +1,7 @@
 #include "CloudFieldGeometry.h"
 
+#include <vtkDataArray.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -43,6 +45,28 @@ std::uint64_t AvailableMemoryBytes()
   }
   const long pages = sysconf(_SC_AVPHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
   return pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0u;
+}
+
+std::string ValidateDensityScalars(vtkDataArray* scalars)
+{
+  if (!scalars)
+  {
+    return "the input has no scalar array to use as density";
+  }
+  const std::string name = std::string("the scalar array \"") +
+    (scalars->GetName() ? scalars->GetName() : "") + "\"";
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    return name + " has " + std::to_string(scalars->GetNumberOfComponents()) +
+      " components; a density has exactly 1";
+  }
+  const int type = scalars->GetDataType();
+  if (type != VTK_FLOAT && type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT)
+  {
+    return name + " is of type " + scalars->GetDataTypeAsString() +
+      "; a density is float, unsigned char or unsigned short";
+  }
+  return {};
 }
 
 std::string FormatBytes(double bytes)

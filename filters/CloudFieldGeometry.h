@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <string>
 
+class vtkDataArray;
+
 namespace cloudvis
 {
 
@@ -24,6 +26,10 @@ CLOUDVISFILTERS_EXPORT std::uint64_t AvailableMemoryBytes();
 // memory available (stating how much it needs).
 CLOUDVISFILTERS_EXPORT std::string ValidateFieldGeometry(
   const int dimensions[3], const double bounds[6], int bytesPerVoxel = 4);
+
+// Empty when `scalars` can be rendered as a density (one component of float, unsigned char or
+// unsigned short), else the problem, naming the array.
+CLOUDVISFILTERS_EXPORT std::string ValidateDensityScalars(vtkDataArray* scalars);
 
 // "1.5 GiB", "300 MiB": sizes people can read in messages.
 CLOUDVISFILTERS_EXPORT std::string FormatBytes(double bytes);

@@ -1,5 +1,7 @@
 #include "vtkCloudOccupancyFilter.h"
 
+#include "CloudFieldGeometry.h"
+
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -239,24 +241,13 @@ int vtkCloudOccupancyFilter::RequestData(
     return 0;
   }
   vtkDataArray* scalars = input ? input->GetPointData()->GetScalars() : nullptr;
-  if (!scalars)
+  const std::string scalarProblem = cloudvis::ValidateDensityScalars(scalars);
+  if (!scalarProblem.empty())
   {
-    vtkErrorMacro(<< "the input has no point scalars");
-    return 0;
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    vtkErrorMacro(<< "the input scalars have " << scalars->GetNumberOfComponents()
-                  << " components; one is needed");
+    vtkErrorMacro(<< scalarProblem);
     return 0;
   }
   const int type = scalars->GetDataType();
-  if (type != VTK_FLOAT && type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT)
-  {
-    vtkErrorMacro(<< "input scalars of type " << scalars->GetDataTypeAsString()
-                  << " are not supported: use float, unsigned char or unsigned short");
-    return 0;
-  }
 
   int inExtent[6];
   input->GetExtent(inExtent);

@@ -2,6 +2,8 @@
 
 #include "CloudReferenceMarch.h"
 
+#include "CloudFieldGeometry.h"
+
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -271,24 +273,13 @@ int vtkCloudReferenceRenderer::RequestData(
 
   // The input.
   vtkDataArray* scalars = input ? input->GetPointData()->GetScalars() : nullptr;
-  if (!scalars)
+  const std::string scalarProblem = cloudvis::ValidateDensityScalars(scalars);
+  if (!scalarProblem.empty())
   {
-    vtkErrorMacro(<< "the input has no point scalars");
-    return 0;
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    vtkErrorMacro(<< "the input scalars have " << scalars->GetNumberOfComponents()
-                  << " components; one is needed");
+    vtkErrorMacro(<< scalarProblem);
     return 0;
   }
   const int type = scalars->GetDataType();
-  if (type != VTK_FLOAT && type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT)
-  {
-    vtkErrorMacro(<< "input scalars of type " << scalars->GetDataTypeAsString()
-                  << " are not supported: use float, unsigned char or unsigned short");
-    return 0;
-  }
   int extent[6];
   input->GetExtent(extent);
   const int n[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,

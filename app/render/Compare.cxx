@@ -104,33 +104,6 @@ vtkSmartPointer<vtkImageData> DifferenceImage(const std::vector<float>& a,
   return image;
 }
 
-RenderedImage CaptureWindow(vtkRenderWindow* window, const std::string& input,
-  const VtkMessageCapture& messages)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff(); // the accumulated frame is in the buffer already
-  grab->Update();
-  vtkImageData* pixels = grab->GetOutput();
-  auto* data = vtkUnsignedCharArray::SafeDownCast(pixels->GetPointData()->GetScalars());
-  int dimensions[3];
-  pixels->GetDimensions(dimensions);
-  const int* size = window->GetSize();
-  if (!data || data->GetNumberOfComponents() != 3 || dimensions[0] != size[0] ||
-    dimensions[1] != size[1])
-  {
-    throw InputError(input + ": could not read the rendered image back from the window" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
-  }
-  RenderedImage image;
-  image.Width = dimensions[0];
-  image.Height = dimensions[1];
-  image.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
-  return image;
-}
-
 } // namespace
 
 std::array<double, 3> DifferenceColor(double t)

@@ -197,6 +197,33 @@ void ApplyCamera(
   renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
 }
 
+RenderedImage CaptureWindow(vtkRenderWindow* window, const std::string& input,
+  const VtkMessageCapture& messages)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff(); // the accumulated frame is in the buffer already
+  grab->Update();
+  vtkImageData* pixels = grab->GetOutput();
+  auto* data = vtkUnsignedCharArray::SafeDownCast(pixels->GetPointData()->GetScalars());
+  int dimensions[3];
+  pixels->GetDimensions(dimensions);
+  const int* size = window->GetSize();
+  if (!data || data->GetNumberOfComponents() != 3 || dimensions[0] != size[0] ||
+    dimensions[1] != size[1])
+  {
+    throw InputError(input + ": could not read the rendered image back from the window" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+  RenderedImage image;
+  image.Width = dimensions[0];
+  image.Height = dimensions[1];
+  image.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
+  return image;
+}
+
 OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const std::string& input, int benchmarkFrames, const RenderOptions& options)
 {
@@ -250,25 +277,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
       (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
   }
 
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff(); // the accumulated frame is in the buffer already
-  grab->Update();
-  vtkImageData* pixels = grab->GetOutput();
-  auto* data = vtkUnsignedCharArray::SafeDownCast(pixels->GetPointData()->GetScalars());
-  int dimensions[3];
-  pixels->GetDimensions(dimensions);
-  if (!data || data->GetNumberOfComponents() != 3 || dimensions[0] != scene.Render.Size[0] ||
-    dimensions[1] != scene.Render.Size[1])
-  {
-    throw InputError(input + ": could not read the rendered image back from the window" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
-  }
-  result.Image.Width = dimensions[0];
-  result.Image.Height = dimensions[1];
-  result.Image.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
+  result.Image = CaptureWindow(window, input, messages);
   if (options.FloatImage)
   {
     ReadFloatImage(mapper, renderer, result.Image, input);

@@ -17,11 +17,13 @@
 
 class vtkCloudVolumeMapper;
 class vtkImageData;
+class vtkRenderWindow;
 class vtkRenderer;
 class vtkVolumeProperty;
 
 namespace cloudvis
 {
+class VtkMessageCapture;
 
 // 8-bit RGB pixels as the window showed them, rows from bottom to top (VTK's order).
 struct RenderedImage
@@ -107,6 +109,11 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const std::string& input, int benchmarkFrames = 0, const RenderOptions& options = {});
 
 // The image formats the renderer writes, as lower-case extensions with the dot (".png").
+// The window's pixels after the last render, as RenderedImage (8-bit RGB, bottom to top); throws
+// InputError naming `input` (and what VTK said, from `messages`) if they cannot be read.
+RenderedImage CaptureWindow(
+  vtkRenderWindow* window, const std::string& input, const VtkMessageCapture& messages);
+
 std::vector<std::string> SupportedImageExtensions();
 
 // Throws InputError unless `path` ends in a supported extension (the message lists them) and can

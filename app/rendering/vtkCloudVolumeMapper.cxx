@@ -1,6 +1,7 @@
 #include "vtkCloudVolumeMapper.h"
 
 #include "CloudBlueNoise.h"
+#include "CloudFieldGeometry.h"
 #include "CloudTransferTable.h"
 #include "vtkCloudOccupancyFilter.h"
 
@@ -183,30 +184,15 @@ vtkImageData* vtkCloudVolumeMapper::ValidInput()
   int cellFlag = 0;
   vtkDataArray* scalars = this->GetScalars(
     input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
-  if (!scalars)
+  const std::string scalarProblem = cloudvis::ValidateDensityScalars(scalars);
+  if (!scalarProblem.empty())
   {
-    this->Fail("the input image has no scalar array to render");
+    this->Fail(scalarProblem);
     return nullptr;
   }
   if (cellFlag != 0)
   {
     this->Fail("the input's scalars are cell data; the mapper needs point data");
-    return nullptr;
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    std::ostringstream message;
-    message << "the input's scalar array \"" << (scalars->GetName() ? scalars->GetName() : "")
-            << "\" has " << scalars->GetNumberOfComponents()
-            << " components; the mapper needs exactly 1";
-    this->Fail(message.str());
-    return nullptr;
-  }
-  const int type = scalars->GetDataType();
-  if (type != VTK_FLOAT && type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT)
-  {
-    this->Fail(std::string("the input's scalars are of type ") + scalars->GetDataTypeAsString() +
-      "; the mapper takes float, unsigned char or unsigned short");
     return nullptr;
   }
   int dimensions[3];

@@ -651,8 +651,8 @@ TEST(Render, MapperErrorBecomesTheInputError)
   catch (const cloudvis::InputError& e)
   {
     const std::string message = e.what();
-    EXPECT_EQ(message.rfind("vectors.vti: the input's scalar array", 0), 0u) << message;
-    EXPECT_NE(message.find("has 3 components; the mapper needs exactly 1"), std::string::npos) << message;
+    EXPECT_EQ(message.rfind("vectors.vti: the scalar array", 0), 0u) << message;
+    EXPECT_NE(message.find("has 3 components; a density has exactly 1"), std::string::npos) << message;
   }
 }
 
