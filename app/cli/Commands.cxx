@@ -14,6 +14,7 @@
 #include "../render/Compare.h"
 #include "../render/CpuReference.h"
 #include "../render/OffscreenRender.h"
+#include "../view/Viewer.h"
 #include "ExportCommands.h"
 #include "Progress.h"
 
@@ -456,6 +457,7 @@ const std::vector<CommandSpec>& Commands()
         HelpOption },
       Compare },
     AnimateCommand(),
+    ViewCommand(),
   };
   return commands;
 }

@@ -1,0 +1,353 @@
+// Recorded sessions of `cloudvis view`, replayed headless (Xvfb) on a small window and a small
+// field: each builds the viewer, plays a recording from tests/recordings (vtkInteractorEventRecorder's
+// text format, written by hand) and checks what the session changed: the viewer's state, the
+// scene it saves, the files it writes and the images it shows. Window 480 x 400: the 3D view is
+// 480 x 300 above the editor's 480 x 100.
+#include "CommandLine.h"
+#include "Errors.h"
+#include "Scene.h"
+#include "SceneField.h"
+#include "Viewer.h"
+
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPointData.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace cloudvis
+{
+namespace
+{
+
+const std::string Recordings = CLOUDVIS_RECORDINGS;
+const std::string WorkRoot = CLOUDVIS_WORK_DIR;
+
+std::string FreshDirectory(const std::string& name)
+{
+  const std::string directory = WorkRoot + "/" + name;
+  const std::string command = "rm -rf '" + directory + "' && mkdir -p '" + directory + "'";
+  EXPECT_EQ(std::system(command.c_str()), 0);
+  return directory;
+}
+
+bool Exists(const std::string& path)
+{
+  struct stat info;
+  return ::stat(path.c_str(), &info) == 0;
+}
+
+nlohmann::json ReadJson(const std::string& path)
+{
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << path;
+  return nlohmann::json::parse(in);
+}
+
+struct Pixels
+{
+  int Width = 0, Height = 0;
+  std::vector<double> Values;
+};
+
+Pixels ReadPng(const std::string& path)
+{
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  Pixels pixels;
+  int dimensions[3];
+  reader->GetOutput()->GetDimensions(dimensions);
+  pixels.Width = dimensions[0];
+  pixels.Height = dimensions[1];
+  vtkDataArray* data = reader->GetOutput()->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; data && i < data->GetNumberOfValues(); ++i)
+  {
+    pixels.Values.push_back(data->GetVariantValue(i).ToDouble());
+  }
+  return pixels;
+}
+
+// Root-mean-square difference in 8-bit levels; infinite when the sizes differ.
+double Rms(const Pixels& a, const Pixels& b)
+{
+  if (a.Values.size() != b.Values.size() || a.Values.empty())
+  {
+    return INFINITY;
+  }
+  double sum = 0.0;
+  for (size_t i = 0; i < a.Values.size(); ++i)
+  {
+    sum += (a.Values[i] - b.Values[i]) * (a.Values[i] - b.Values[i]);
+  }
+  return std::sqrt(sum / double(a.Values.size()));
+}
+
+// The default cloud on 48^3 voxels, seen from above and to the side so that every slice plane
+// shows its face; accumulation kept short.
+Scene SmallScene(const std::vector<std::string>& extra = {})
+{
+  std::vector<std::string> assignments = { "field.dimensions=48", "render.accumulate=4",
+    "camera.orbit={\"azimuth\":35,\"elevation\":30}" };
+  assignments.insert(assignments.end(), extra.begin(), extra.end());
+  return LoadScene("", assignments);
+}
+
+struct Session
+{
+  std::ostringstream Messages;
+  std::unique_ptr<Viewer> View;
+
+  explicit Session(const std::string& directory, const Scene& scene = SmallScene())
+  {
+    ViewerOptions options;
+    options.WindowSize = { { 480, 400 } };
+    options.OutputDirectory = directory;
+    options.Messages = &this->Messages;
+    this->View = std::make_unique<Viewer>(scene, ProduceField(scene), options);
+  }
+};
+
+TEST(Interaction, LayoutScreenshot)
+{
+  const std::string directory = FreshDirectory("layout");
+  Session session(directory);
+  session.View->PressKey("x", 'x');
+  session.View->PressKey("z", 'z');
+  session.View->PressKey("o", 'o');
+  session.View->PressKey("h", 'h');
+  session.View->SaveWindowImage(directory + "/window.png");
+  const Pixels window = ReadPng(directory + "/window.png");
+  ASSERT_EQ(window.Width, 480);
+  ASSERT_EQ(window.Height, 400);
+  const ViewerState state = session.View->State();
+  EXPECT_TRUE(state.SliceVisible[0]);
+  EXPECT_FALSE(state.SliceVisible[1]);
+  EXPECT_TRUE(state.SliceVisible[2]);
+  EXPECT_TRUE(state.ObliqueVisible);
+  EXPECT_GT(state.ObliqueCutPoints, 100);
+  EXPECT_TRUE(state.HelpVisible);
+  EXPECT_EQ(state.ViewSize[0], 480);
+  EXPECT_EQ(state.ViewSize[1], 300);
+}
+
+TEST(Interaction, SliceDragMovesThePlaneAndTheProbe)
+{
+  const std::string directory = FreshDirectory("slice-drag");
+  Session session(directory);
+  const double before = session.View->State().SlicePosition[2];
+  std::ifstream in(Recordings + "/slice-drag.log");
+  std::stringstream text;
+  text << in.rdbuf();
+  // The cursor shows the value under it while the left button is down: probe the slice's
+  // centre, move the slice with the middle button, probe the same pixel again.
+  const std::string all = text.str();
+  const size_t release = all.find("LeftButtonReleaseEvent");
+  const size_t middle = all.find("MiddleButtonPressEvent");
+  ASSERT_NE(release, std::string::npos);
+  ASSERT_NE(middle, std::string::npos);
+  session.View->PlayString(all.substr(0, release));
+  const ViewerState probed = session.View->State();
+  session.View->SaveWindowImage(directory + "/probed.png");
+  EXPECT_TRUE(probed.SliceVisible[2]);
+  ASSERT_FALSE(std::isnan(probed.ProbedValue[2])) << "the left click did not probe the z slice";
+  session.View->PlayString("# StreamVersion 1.1\n" + all.substr(release));
+  session.View->PlayString("# StreamVersion 1.1\nMouseMoveEvent 240 250 0 0 0 0\n"
+                           "LeftButtonPressEvent 240 250 0 0 0 0\n");
+  const ViewerState moved = session.View->State();
+  EXPECT_GT(std::abs(moved.SlicePosition[2] - before), 0.05)
+    << "the middle drag did not move the z slice from " << before;
+  EXPECT_NE(moved.ProbedValue[2], probed.ProbedValue[2]);
+  session.View->SaveWindowImage(directory + "/window.png");
+  session.View->PlayString("# StreamVersion 1.1\nLeftButtonReleaseEvent 240 250 0 0 0 0\n");
+}
+
+TEST(Interaction, TransferFunctionPointChangesFunctionAndImage)
+{
+  const std::string directory = FreshDirectory("tf-point");
+  Session session(directory);
+  const TransferFunctionSpec before = session.View->State().TransferFunction;
+  session.View->PlayFile(Recordings + "/tf-point.log");
+  const ViewerState after = session.View->State();
+  EXPECT_EQ(after.TransferFunction.Opacity.size(), before.Opacity.size() + 1)
+    << session.Messages.str();
+  const nlohmann::json saved = session.View->CurrentSceneJson();
+  EXPECT_NE(saved["transfer_function"]["opacity"], nlohmann::json(before.Opacity));
+  const Pixels first = ReadPng(directory + "/cloudvis-screenshot-001.png");
+  const Pixels second = ReadPng(directory + "/cloudvis-screenshot-002.png");
+  EXPECT_GT(Rms(first, second), 1.0);
+  session.View->SaveWindowImage(directory + "/window.png");
+}
+
+TEST(Interaction, LightingModelCyclesAndChangesTheImage)
+{
+  const std::string directory = FreshDirectory("lighting");
+  Session session(directory);
+  EXPECT_EQ(session.View->State().Lighting, LightingModel::None);
+  session.View->PlayFile(Recordings + "/keys-lighting.log");
+  EXPECT_EQ(session.View->State().Lighting, LightingModel::Derivative);
+  const nlohmann::json saved = ReadJson(directory + "/cloudvis-view-001.json");
+  EXPECT_EQ(saved["render"]["lighting"], "derivative");
+  const Pixels none = ReadPng(directory + "/cloudvis-screenshot-001.png");
+  const Pixels derivative = ReadPng(directory + "/cloudvis-screenshot-002.png");
+  EXPECT_GT(Rms(none, derivative), 2.0);
+  // Two more presses: march, then none again.
+  session.View->PressKey("m", 'm');
+  EXPECT_EQ(session.View->State().Lighting, LightingModel::March);
+  session.View->PressKey("m", 'm');
+  EXPECT_EQ(session.View->State().Lighting, LightingModel::None);
+}
+
+TEST(Interaction, ScreenshotWritesReadablePngAndExr)
+{
+  const std::string directory = FreshDirectory("screenshot");
+  Session session(directory);
+  session.View->PressKey("s", 's');
+  const Pixels png = ReadPng(directory + "/cloudvis-screenshot-001.png");
+  EXPECT_EQ(png.Width, 480);
+  EXPECT_EQ(png.Height, 300);
+  Imf::InputFile exr((directory + "/cloudvis-screenshot-001.exr").c_str());
+  const Imath::Box2i window = exr.header().dataWindow();
+  EXPECT_EQ(window.max.x - window.min.x + 1, 480);
+  EXPECT_EQ(window.max.y - window.min.y + 1, 300);
+  // The next one takes the next number.
+  session.View->PressKey("s", 's');
+  EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-002.png"));
+  EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-002.exr"));
+}
+
+TEST(Interaction, SavedSceneRerendersToTheScreenshot)
+{
+  const std::string directory = FreshDirectory("rerender");
+  {
+    Session session(directory);
+    session.View->PlayFile(Recordings + "/rotate-save.log");
+  }
+  const std::string scene = directory + "/cloudvis-view-001.json";
+  const nlohmann::json saved = ReadJson(scene);
+  EXPECT_EQ(saved["render"]["size"], nlohmann::json({ 480, 300 }));
+  std::ostringstream out, err;
+  ASSERT_EQ(RunCommandLine({ "cloudvis", "render", scene, "-o", directory + "/render.png" }, out, err),
+    0)
+    << err.str();
+  const double rms =
+    Rms(ReadPng(directory + "/cloudvis-screenshot-001.png"), ReadPng(directory + "/render.png"));
+  EXPECT_LT(rms, 2.0);
+}
+
+TEST(Interaction, MalformedPresetsKeepTheSession)
+{
+  const std::string directory = FreshDirectory("bad-presets");
+  const std::string presets = directory + "/presets";
+  ASSERT_EQ(::mkdir(presets.c_str(), 0777), 0);
+  std::ofstream(presets + "/a-malformed.json") << "{\"opacity\": [[0, 0], [1, 1]";
+  std::ofstream(presets + "/b-empty.json") << "{\"opacity\": [], \"color\": [[0, 1, 1, 1]]}";
+  ::setenv("CLOUDVIS_PRESET_DIR", presets.c_str(), 1);
+  Session session(directory);
+  const TransferFunctionSpec before = session.View->State().TransferFunction;
+  session.View->PlayFile(Recordings + "/presets.log");
+  ::unsetenv("CLOUDVIS_PRESET_DIR");
+  const ViewerState after = session.View->State();
+  EXPECT_EQ(after.TransferFunction.Opacity, before.Opacity);
+  EXPECT_EQ(after.Lighting, LightingModel::Derivative); // the keys after the errors still work
+  EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-001.png"));
+  const std::string messages = session.Messages.str();
+  EXPECT_NE(messages.find("cloudvis: error: "), std::string::npos) << messages;
+  EXPECT_NE(messages.find("a-malformed.json"), std::string::npos) << messages;
+  EXPECT_NE(messages.find("b-empty.json"), std::string::npos) << messages;
+  EXPECT_NE(messages.find("the transfer function is unchanged"), std::string::npos) << messages;
+}
+
+TEST(Interaction, ShippedPresetsLoad)
+{
+  const std::string directory = FreshDirectory("presets");
+  Session session(directory);
+  session.View->PressKey("p", 'p');
+  const ViewerState state = session.View->State();
+  EXPECT_FALSE(state.Preset.empty()) << session.Messages.str();
+  session.View->PressKey("P", 'P');
+  const nlohmann::json preset = ReadJson(directory + "/cloudvis-preset-001.json");
+  EXPECT_EQ(preset["opacity"].size(), state.TransferFunction.Opacity.size());
+}
+
+TEST(Interaction, UnwritableScreenshotDirectoryKeepsTheSession)
+{
+  const std::string directory = FreshDirectory("unwritable") + "/missing";
+  Session session(directory);
+  session.View->PressKey("s", 's');
+  session.View->PressKey("w", 'w');
+  session.View->PressKey("m", 'm');
+  const ViewerState state = session.View->State();
+  EXPECT_EQ(state.Lighting, LightingModel::Derivative);
+  EXPECT_TRUE(state.SavedFiles.empty());
+  const std::string messages = session.Messages.str();
+  EXPECT_NE(messages.find("cloudvis: error: " + directory + "/cloudvis-screenshot-001.png: cannot write"),
+    std::string::npos)
+    << messages;
+  EXPECT_NE(messages.find("cloudvis-view-001.json: cannot write"), std::string::npos) << messages;
+}
+
+TEST(Interaction, KeysChangeStepResolutionLightAndHistogram)
+{
+  const std::string directory = FreshDirectory("keys");
+  Session session(directory);
+  const ViewerState before = session.View->State();
+  session.View->PressKey("plus", '+');
+  session.View->PressKey("bracketleft", '[');
+  session.View->PressKey("Left", 0);
+  session.View->PressKey("Up", 0);
+  session.View->PressKey("l", 'l');
+  session.View->PressKey("f", 'f');
+  const ViewerState after = session.View->State();
+  EXPECT_NEAR(after.Step, 1.25 * 4.0 / 47.0, 1e-9);
+  EXPECT_DOUBLE_EQ(after.ResolutionScale, 0.875);
+  EXPECT_NE(after.FirstLightPosition, before.FirstLightPosition);
+  EXPECT_FALSE(after.LogHistogram);
+  // f: the function's ends sit on the field's range.
+  EXPECT_DOUBLE_EQ(after.TransferFunction.Opacity.front()[0], after.EditorRange[0]);
+  EXPECT_DOUBLE_EQ(after.TransferFunction.Opacity.back()[0], after.EditorRange[1]);
+  // The saved scene carries them.
+  const Scene scene = session.View->CurrentScene();
+  const nlohmann::json saved = session.View->CurrentSceneJson();
+  EXPECT_DOUBLE_EQ(saved["render"]["step"].get<double>(), after.Step);
+  EXPECT_DOUBLE_EQ(saved["render"]["resolution_scale"].get<double>(), 0.875);
+  EXPECT_EQ(saved["lights"][0]["position"][0].get<double>(), double(scene.Lights[0].Position.x));
+  // It reads back as a valid scene.
+  EXPECT_NO_THROW(SceneFromDocument(saved, "saved", ""));
+  // No EXR below resolution scale 1: the PNG is written and the message says why.
+  session.View->PressKey("s", 's');
+  EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-001.png"));
+  EXPECT_FALSE(Exists(directory + "/cloudvis-screenshot-001.exr"));
+}
+
+TEST(Interaction, CommandLinePlaySavesTheSceneOnExit)
+{
+  const std::string directory = FreshDirectory("command-line");
+  const std::string saved = directory + "/end.json";
+  std::ostringstream out, err;
+  ASSERT_EQ(RunCommandLine({ "cloudvis", "view", "--set", "field.dimensions=32", "--size",
+              "320x240", "--output-dir", directory, "--play",
+              Recordings + "/keys-lighting.log", "--save-scene-on-exit", saved },
+              out, err),
+    0)
+    << err.str();
+  EXPECT_NE(out.str().find("wrote " + saved), std::string::npos);
+  const nlohmann::json scene = ReadJson(saved);
+  EXPECT_EQ(scene["render"]["lighting"], "derivative");
+  EXPECT_EQ(scene["render"]["size"], nlohmann::json({ 320, 180 }));
+  EXPECT_TRUE(Exists(directory + "/cloudvis-view-001.json"));
+}
+
+} // namespace
+} // namespace cloudvis
