@@ -1,13 +1,21 @@
 // POSIX implementation of the write-then-rename protocol: mkstemps creates a uniquely named
-// temporary in the target's directory, rename(2) replaces the target atomically.
+// temporary in the target's directory, rename(2) replaces the target atomically. The temporaries
+// alive at any moment are also listed in a fixed table of slots that the SIGINT/SIGTERM handler
+// reads: a handler may only call async-signal-safe functions (unlink, _exit) and must not touch
+// std::string or the heap, so each slot is a char buffer guarded by a lock-free atomic state.
 #include "AtomicFile.h"
 
 #include "Errors.h"
 
+#include <atomic>
 #include <cerrno>
+#include <climits>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -32,13 +40,96 @@ std::string SystemReason()
   return std::strerror(errno);
 }
 
+// ---- temporaries the signal handler removes -----------------------------------------------
+// A slot is Free, being Claimed by a thread that is copying a path in, or Registered (the
+// handler unlinks its path). More temporaries alive at once than slots (several threads
+// exporting concurrently) are simply not registered: their cleanup on a signal is lost, nothing
+// else.
+constexpr int SlotCount = 8;
+enum SlotState : int
+{
+  Free,
+  Claimed,
+  Registered
+};
+struct Slot
+{
+  std::atomic<int> State{ Free };
+  char Path[PATH_MAX] = {};
+};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
+Slot Slots[SlotCount];
+
+extern "C" void RemoveTemporariesAndExit(int signal)
+{
+  for (Slot& slot : Slots)
+  {
+    if (slot.State.load() == Registered)
+    {
+      ::unlink(slot.Path);
+    }
+  }
+  ::_exit(128 + signal);
+}
+
+// Returns the slot now holding `path`, or -1 when none is free or the path does not fit.
+int RegisterTemporary(const char* path)
+{
+  const size_t length = std::strlen(path);
+  if (length >= PATH_MAX)
+  {
+    return -1;
+  }
+  for (int i = 0; i < SlotCount; ++i)
+  {
+    int expected = Free;
+    if (Slots[i].State.compare_exchange_strong(expected, Claimed))
+    {
+      std::memcpy(Slots[i].Path, path, length + 1);
+      Slots[i].State.store(Registered); // publishes the path to the handler
+      return i;
+    }
+  }
+  return -1;
+}
+
+void UnregisterTemporary(int slot)
+{
+  if (slot >= 0)
+  {
+    Slots[slot].State.store(Free);
+  }
+}
+
+// Blocks SIGINT and SIGTERM in this thread for its lifetime: between mkstemps creating the
+// temporary and its registration, a signal would otherwise leave it behind.
+class ScopedInterruptBlock
+{
+public:
+  ScopedInterruptBlock()
+  {
+    sigset_t block;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &block, &this->Previous);
+  }
+  ~ScopedInterruptBlock() { pthread_sigmask(SIG_SETMASK, &this->Previous, nullptr); }
+  ScopedInterruptBlock(const ScopedInterruptBlock&) = delete;
+  ScopedInterruptBlock& operator=(const ScopedInterruptBlock&) = delete;
+
+private:
+  sigset_t Previous;
+};
+
 // Removes the temporary unless it has been renamed: covers exceptions from the writer as well as
-// our own failures.
+// our own failures. Registered for the signal handler while it exists.
 class TemporaryFile
 {
 public:
   explicit TemporaryFile(std::string path)
     : Path(std::move(path))
+    , SlotIndex(RegisterTemporary(this->Path.c_str()))
   {
   }
   ~TemporaryFile()
@@ -47,14 +138,23 @@ public:
     {
       std::remove(this->Path.c_str());
     }
+    // After the removal: a signal in between unlinks a name that is already gone, harmlessly.
+    UnregisterTemporary(this->SlotIndex);
   }
   TemporaryFile(const TemporaryFile&) = delete;
   TemporaryFile& operator=(const TemporaryFile&) = delete;
-  void Release() { this->Path.clear(); }
+  // Called once the temporary has been renamed over the target: nothing left to remove.
+  void Release()
+  {
+    this->Path.clear();
+    UnregisterTemporary(this->SlotIndex);
+    this->SlotIndex = -1;
+  }
   const std::string& GetPath() const { return this->Path; }
 
 private:
   std::string Path;
+  int SlotIndex;
 };
 
 // mkstemps creates files readable only by their owner; a finished output should get the
@@ -72,6 +172,33 @@ mode_t FinalMode(const std::string& target)
 }
 
 } // namespace
+
+void InstallInterruptCleanup()
+{
+  static const bool installed = []
+  {
+    struct sigaction action;
+    std::memset(&action, 0, sizeof(action));
+    action.sa_handler = RemoveTemporariesAndExit;
+    sigemptyset(&action.sa_mask);
+    // One handler at a time: a SIGTERM arriving during the SIGINT cleanup waits for it.
+    sigaddset(&action.sa_mask, SIGINT);
+    sigaddset(&action.sa_mask, SIGTERM);
+    for (int signal : { SIGINT, SIGTERM })
+    {
+      struct sigaction previous;
+      // A signal that is ignored (nohup, a background job of a non-interactive shell) stays
+      // ignored, and one that someone else handles keeps its handler.
+      if (::sigaction(signal, nullptr, &previous) == 0 && previous.sa_handler == SIG_DFL &&
+        !(previous.sa_flags & SA_SIGINFO))
+      {
+        ::sigaction(signal, &action, nullptr);
+      }
+    }
+    return true;
+  }();
+  (void)installed;
+}
 
 void CheckOutputTarget(const std::string& target)
 {
@@ -114,13 +241,20 @@ void WriteFileAtomically(
   std::string pattern = directory + "/." + name + ".tmp-XXXXXX" + extension;
   std::vector<char> buffer(pattern.begin(), pattern.end());
   buffer.push_back('\0');
-  const int fd = ::mkstemps(buffer.data(), static_cast<int>(extension.size()));
-  if (fd < 0)
+  InstallInterruptCleanup();
+  int fd = -1;
+  std::unique_ptr<TemporaryFile> created;
   {
-    throw InputError(target + ": cannot create a temporary file in " + directory + " (" +
-      SystemReason() + ")");
+    ScopedInterruptBlock noInterruptUntilRegistered;
+    fd = ::mkstemps(buffer.data(), static_cast<int>(extension.size()));
+    if (fd < 0)
+    {
+      throw InputError(target + ": cannot create a temporary file in " + directory + " (" +
+        SystemReason() + ")");
+    }
+    created = std::make_unique<TemporaryFile>(buffer.data());
   }
-  TemporaryFile temporary(buffer.data());
+  TemporaryFile& temporary = *created;
   const mode_t mode = FinalMode(target);
   const bool modeSet = ::fchmod(fd, mode) == 0;
   ::close(fd);

@@ -5,16 +5,24 @@
 #include "Errors.h"
 #include "VtkMessageCapture.h"
 
+#include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
+
 #include <vtkDataArray.h>
+#include <vtkInformation.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <limits>
 #include <cstring>
+#include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <sys/stat.h>
 
@@ -45,6 +53,164 @@ vtkDataArray* DensityArray(vtkImageData* image)
   return points->GetScalars();
 }
 
+// Refuses a header whose whole extent is empty, or whose point arrays (counted as 4 bytes per
+// voxel each, plus the float copy ReadField makes) would not fit in the memory available.
+void CheckExtentFitsInMemory(const std::string& path, vtkXMLImageDataReader* reader)
+{
+  vtkInformation* information = reader->GetOutputInformation(0);
+  if (!information || !information->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    Fail(path, "the image data header states no extent");
+  }
+  int extent[6];
+  information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  double voxels = 1.0;
+  int dimensions[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    // In double: a corrupt extent such as "-2147483648 2147483647" overflows int.
+    const double size = double(extent[2 * a + 1]) - double(extent[2 * a]) + 1.0;
+    if (size < 1.0)
+    {
+      Fail(path, "the image has no voxels (whole extent " + std::to_string(extent[2 * a]) + " to " +
+          std::to_string(extent[2 * a + 1]) + " along axis " + std::to_string(a) + ")");
+    }
+    if (size > double(std::numeric_limits<int>::max()))
+    {
+      Fail(path, "the image's extent along axis " + std::to_string(a) + " is too large");
+    }
+    dimensions[a] = int(size);
+    voxels *= size;
+  }
+  const int arrays = std::max(1, reader->GetNumberOfPointArrays());
+  const double needed = voxels * 4.0 * (arrays + 1);
+  const std::uint64_t available = AvailableMemoryBytes();
+  if (voxels >= double(std::numeric_limits<vtkIdType>::max()))
+  {
+    Fail(path, "the image's extent holds more voxels than can be addressed");
+  }
+  if (available > 0 && needed > double(available))
+  {
+    Fail(path, "an image of " + std::to_string(dimensions[0]) + " x " +
+        std::to_string(dimensions[1]) + " x " + std::to_string(dimensions[2]) +
+        " voxels needs at least " + FormatBytes(needed) + " but only " +
+        FormatBytes(double(available)) + " of memory is available");
+  }
+}
+
+// VTK's reader sizes buffers from the binary headers of appended arrays (a byte count, or a
+// block count followed by that many block sizes) before it reads them, so a corrupt count makes
+// it allocate gigabytes while reading the header (found by the fuzzer). For raw appended data,
+// each header must at least fit in the file; base64 and inline data are left to VTK.
+void CheckAppendedHeaders(const std::string& path, std::ifstream& file, std::uint64_t fileSize)
+{
+  // The XML part: up to the '_' that starts the raw appended bytes (1 MiB is far more than the
+  // markup of any image file needs).
+  std::string xml(std::size_t(std::min<std::uint64_t>(fileSize, 1 << 20)), '\0');
+  file.read(&xml[0], std::streamsize(xml.size()));
+  xml.resize(std::size_t(file.gcount()));
+  const auto header = xml.find("<VTKFile");
+  const auto appended = xml.find("<AppendedData");
+  // VTK 9.1 dereferences a null array when an element of FieldData, PointData or CellData is not
+  // an array of a type it knows (found by the fuzzer: a FieldData array without type=, and an
+  // element of another name, crash vtkXMLReader::ReadXMLInformation). So every start tag in those
+  // sections, other than the InformationKey/Value entries VTK nests in arrays, needs a known type.
+  const auto markupEnd = appended == std::string::npos ? xml.size() : appended;
+  static const char* const types[] = { "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32",
+    "Int64", "UInt64", "Float32", "Float64", "String", "Bit", "IdType", "Char" };
+  const auto hasKnownType = [](const std::string& tag)
+  {
+    for (const char* type : types)
+    {
+      for (const char* space : { " ", "\n", "\t", "\r" })
+      {
+        if (tag.find(std::string(space) + "type=\"" + type + "\"") != std::string::npos)
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  };
+  for (const char* section : { "FieldData", "PointData", "CellData" })
+  {
+    const std::string open = std::string("<") + section;
+    const std::string close = std::string("</") + section;
+    for (auto start = xml.find(open); start < markupEnd; start = xml.find(open, start + 1))
+    {
+      const auto sectionTagEnd = xml.find('>', start);
+      if (sectionTagEnd == std::string::npos || xml[sectionTagEnd - 1] == '/')
+      {
+        continue; // cut off by the 1 MiB window, or an empty <PointData/>
+      }
+      const auto end = std::min(xml.find(close, sectionTagEnd), markupEnd);
+      for (auto at = xml.find('<', sectionTagEnd); at < end; at = xml.find('<', at + 1))
+      {
+        const auto tagEnd = xml.find('>', at);
+        if (tagEnd == std::string::npos)
+        {
+          break; // VTK's parser reports an unterminated tag itself
+        }
+        const std::string tag = xml.substr(at, tagEnd - at);
+        if (tag[1] == '/' || tag[1] == '!' || tag[1] == '?' || tag.rfind("<InformationKey", 0) == 0 ||
+          tag.rfind("<Value", 0) == 0 || hasKnownType(tag))
+        {
+          continue;
+        }
+        Fail(path, std::string("an element of ") + section +
+            " is not an array of a known type (" +
+            (tag.size() > 60 ? tag.substr(0, 57) + "..." : tag) + ">)");
+      }
+    }
+  }
+  const auto appendedEnd = appended == std::string::npos ? appended : xml.find('>', appended);
+  if (header == std::string::npos || appendedEnd == std::string::npos ||
+    xml.substr(appended, appendedEnd - appended).find("encoding=\"raw\"") == std::string::npos)
+  {
+    return;
+  }
+  const auto underscore = xml.find('_', appendedEnd);
+  if (underscore == std::string::npos)
+  {
+    return;
+  }
+  // Only white space may come before the '_' that marks the data: VTK does not insist, and then
+  // takes stray bytes for a header (found by the fuzzer).
+  if (xml.find_first_not_of(" \t\r\n", appendedEnd + 1) != underscore)
+  {
+    Fail(path, "unexpected bytes between <AppendedData> and the '_' that starts its data");
+  }
+  const std::string fileTag = xml.substr(header, xml.find('>', header) - header);
+  const std::uint64_t word = fileTag.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
+  const bool compressed = fileTag.find("compressor=") != std::string::npos;
+  const std::uint64_t start = underscore + 1;
+  const std::uint64_t available = fileSize > start ? fileSize - start : 0;
+  // Every offset="N" before the appended data is the position of an array's header.
+  for (auto at = xml.find("offset=\"", header); at != std::string::npos && at < appended;
+       at = xml.find("offset=\"", at + 1))
+  {
+    const std::uint64_t offset = std::strtoull(xml.c_str() + at + 8, nullptr, 10);
+    const std::uint64_t words = compressed ? 3 : 1;
+    if (offset > available || (available - offset) / word < words)
+    {
+      Fail(path, "the appended data ends before the header of the array at offset " +
+          std::to_string(offset));
+    }
+    if (compressed)
+    {
+      std::uint64_t blocks = 0; // little endian, as cloudvis writes and reads
+      file.clear();
+      file.seekg(std::streamoff(start + offset));
+      file.read(reinterpret_cast<char*>(&blocks), std::streamsize(word));
+      if (!file || blocks > (available - offset) / word - 3)
+      {
+        Fail(path, "the header of the array at offset " + std::to_string(offset) + " claims " +
+            std::to_string(blocks) + " compressed blocks, more than the file holds");
+      }
+    }
+  }
+}
+
 } // namespace
 
 vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
@@ -58,10 +224,12 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
   {
     Fail(path, "cannot read field: it is a directory");
   }
-  if (!std::ifstream(path, std::ios::binary))
+  std::ifstream file(path, std::ios::binary);
+  if (!file)
   {
     Fail(path, std::string("cannot read field: ") + std::strerror(errno));
   }
+  CheckAppendedHeaders(path, file, std::uint64_t(info.st_size));
 
   VtkMessageCapture messages;
   vtkNew<vtkXMLImageDataReader> reader;
@@ -72,6 +240,14 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
     Fail(path, WithVtkReason("not a VTK XML image data file (.vti)", messages));
   }
   reader->SetFileName(path.c_str());
+  // The header states the extent; VTK allocates every point array for it before reading a value,
+  // so a file of a few bytes can claim petabytes. Check the claim against memory first.
+  reader->UpdateInformation();
+  if (reader->GetErrorCode() != 0 || !messages.Messages().empty())
+  {
+    Fail(path, WithVtkReason("cannot read VTK XML image data", messages));
+  }
+  CheckExtentFitsInMemory(path, reader);
   reader->Update();
   vtkImageData* image = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
