@@ -118,7 +118,6 @@ std::string ValidateNoiseRange(const FieldDescription& field, const double bound
 
 DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
   : Field(field)
-  , Time(time)
   , NoiseOffset(field.Wind * time)
   , Octaves(noise::OctaveSchedule(field.Noise))
 {

@@ -93,7 +93,6 @@ private:
     double y, double z, float* sum, RowScratch& scratch) const;
 
   FieldDescription Field;
-  double Time;
   glm::dvec3 NoiseOffset; // wind * time
   std::vector<PlacedShape> Shapes;
   MorphTimeline::Phase MorphPhase{ 0, 1, 0.0f };

@@ -65,14 +65,6 @@ std::string FormatMilliseconds(double ms)
   return text;
 }
 
-void CheckMapper(vtkCloudVolumeMapper* mapper, const std::string& input)
-{
-  if (!mapper->GetLastError().empty())
-  {
-    throw InputError(input + ": " + mapper->GetLastError());
-  }
-}
-
 // The difference image of two float radiances (premultiplied RGBA, same size): per pixel the
 // largest |A - B| over r, g, b, colored through DifferenceColor scaled to the largest difference.
 vtkSmartPointer<vtkImageData> DifferenceImage(const std::vector<float>& a,
@@ -189,7 +181,7 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
     window->Render();
     for (const auto& panel : panels)
     {
-      CheckMapper(panel->Mapper, input);
+      CheckMapper(panel->Mapper, input, messages);
     }
   };
 
@@ -211,7 +203,7 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
       window->WaitForCompletion();
       total += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                  .count();
-      CheckMapper(panels[i]->Mapper, input);
+      CheckMapper(panels[i]->Mapper, input, messages);
     }
     result.Milliseconds.push_back(timingFrames > 0 ? total / timingFrames : 0.0);
     panels[i]->Label->SetInput(

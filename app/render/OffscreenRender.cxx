@@ -90,15 +90,18 @@ const ImageFormat& FormatOf(const std::string& path)
 }
 
 // After every Render(): the mapper's own report, in the user's terms.
-void CheckMapper(vtkCloudVolumeMapper* mapper, const std::string& input)
+} // namespace
+
+void CheckMapper(
+  vtkCloudVolumeMapper* mapper, const std::string& input, const VtkMessageCapture& messages)
 {
   if (!mapper->GetLastError().empty())
   {
-    throw InputError(input + ": " + mapper->GetLastError());
+    // VTK's own words (a shader's compile log, say) were captured, not printed: pass them on.
+    throw InputError(input + ": " + mapper->GetLastError() +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
   }
 }
-
-} // namespace
 
 vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction)
 {
@@ -263,7 +266,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   for (int frame = 0; frame < frames; ++frame)
   {
     window->Render();
-    CheckMapper(mapper, input);
+    CheckMapper(mapper, input, messages);
     if (options.OnFrame)
     {
       options.OnFrame(frame + 1, frames);
@@ -291,7 +294,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
     window->Render();
     window->WaitForCompletion();
     const auto end = std::chrono::steady_clock::now();
-    CheckMapper(mapper, input);
+    CheckMapper(mapper, input, messages);
     result.FrameMilliseconds.push_back(
       std::chrono::duration<double, std::milli>(end - start).count());
   }

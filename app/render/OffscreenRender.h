@@ -109,6 +109,10 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const std::string& input, int benchmarkFrames = 0, const RenderOptions& options = {});
 
 // The image formats the renderer writes, as lower-case extensions with the dot (".png").
+// Throws InputError naming `input` with the mapper's last error, if any, and what VTK said.
+void CheckMapper(
+  vtkCloudVolumeMapper* mapper, const std::string& input, const VtkMessageCapture& messages);
+
 // The window's pixels after the last render, as RenderedImage (8-bit RGB, bottom to top); throws
 // InputError naming `input` (and what VTK said, from `messages`) if they cannot be read.
 RenderedImage CaptureWindow(

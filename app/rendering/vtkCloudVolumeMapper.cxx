@@ -668,7 +668,8 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   vtkShaderProgram* program = march->Program;
   if (!program || !program->GetCompiled())
   {
-    this->Fail("the march shader failed to compile or link; the driver's log is above");
+    this->Fail("the march shader failed to compile or link (the driver's log is in VTK's error "
+               "output)");
     return;
   }
 
@@ -856,7 +857,8 @@ void vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
   vtkShaderProgram* program = in.Composite->Program;
   if (!program || !program->GetCompiled())
   {
-    this->Fail("the composite shader failed to compile or link; the driver's log is above");
+    this->Fail("the composite shader failed to compile or link (the driver's log is in VTK's "
+               "error output)");
     return;
   }
 

@@ -36,6 +36,11 @@ if ! grep -q "the march shader failed to compile or link" stderr.txt; then
   cat stderr.txt >&2
   failed=1
 fi
+if ! grep -q "(VTK: .*shader" stderr.txt; then
+  echo "FAIL: stderr does not quote VTK's report of the failed shader:" >&2
+  cat stderr.txt >&2
+  failed=1
+fi
 if [ -e r.png ]; then
   echo "FAIL: an image was written although the shader failed" >&2
   failed=1
