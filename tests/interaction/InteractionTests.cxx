@@ -351,3 +351,58 @@ TEST(Interaction, CommandLinePlaySavesTheSceneOnExit)
 
 } // namespace
 } // namespace cloudvis
+
+namespace cloudvis
+{
+namespace
+{
+
+TEST(Interaction, RecordedSessionsReplayToTheSameState)
+{
+  // --record writes what the interactor saw; replaying that file into a fresh viewer must leave
+  // it in the same state: the lighting model cycled by a key and the camera turned by a drag.
+  const std::string directory = FreshDirectory("record");
+  const std::string recording = directory + "/session.log";
+  ViewerState recorded;
+  nlohmann::json recordedScene;
+  {
+    ViewerOptions options;
+    options.WindowSize = { { 480, 400 } };
+    options.OutputDirectory = directory;
+    options.RecordFile = recording;
+    std::ostringstream messages;
+    options.Messages = &messages;
+    const Scene scene = SmallScene();
+    Viewer view(scene, ProduceField(scene), options);
+    view.PlayString("# StreamVersion 1.1\n"
+                    "KeyPressEvent 240 250 0 109 1 m\n"
+                    "MouseMoveEvent 200 200 0 0 0 0\n"
+                    "LeftButtonPressEvent 200 200 0 0 0 0\n"
+                    "MouseMoveEvent 230 210 0 0 0 0\n"
+                    "MouseMoveEvent 260 220 0 0 0 0\n"
+                    "LeftButtonReleaseEvent 260 220 0 0 0 0\n");
+    recorded = view.State();
+    recordedScene = view.CurrentSceneJson();
+  } // the viewer stops recording and closes the file
+  std::ifstream file(recording);
+  std::stringstream text;
+  text << file.rdbuf();
+  ASSERT_NE(text.str().find("KeyPressEvent"), std::string::npos) << text.str();
+  ASSERT_NE(text.str().find("LeftButtonPressEvent"), std::string::npos) << text.str();
+  EXPECT_EQ(recorded.Lighting, LightingModel::Derivative);
+
+  Session replay(FreshDirectory("record-replay"));
+  replay.View->PlayFile(recording);
+  EXPECT_EQ(replay.View->State().Lighting, recorded.Lighting);
+  const nlohmann::json replayedScene = replay.View->CurrentSceneJson();
+  const nlohmann::json defaultCamera = Session(FreshDirectory("record-none")).View->CurrentSceneJson()["camera"];
+  EXPECT_NE(recordedScene["camera"]["position"], defaultCamera["position"]) << "the drag turned the camera";
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(replayedScene["camera"]["position"][c].get<double>(),
+      recordedScene["camera"]["position"][c].get<double>(), 1e-6) << c;
+  }
+}
+
+} // namespace
+} // namespace cloudvis
