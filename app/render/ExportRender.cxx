@@ -4,6 +4,8 @@
 // the clipping range the renderer happened to choose.
 #include "ExportRender.h"
 
+#include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
+
 #include "Errors.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -43,6 +45,8 @@ RenderLimits QueryRenderLimits(vtkRenderWindow* window)
   RenderLimits limits;
   limits.MaximumWidth = std::min({ int(texture), int(renderbuffer), int(viewport[0]) });
   limits.MaximumHeight = std::min({ int(texture), int(renderbuffer), int(viewport[1]) });
+  // llvmpipe renders in host memory; on a GPU the read-back of an export still lands there.
+  limits.AvailableBytes = double(AvailableMemoryBytes());
   return limits;
 }
 
@@ -55,6 +59,14 @@ void CheckRenderSize(
       std::to_string(size[1]) + " pixels is beyond this GPU's limit of " +
       std::to_string(limits.MaximumWidth) + " x " + std::to_string(limits.MaximumHeight) +
       " pixels; choose a smaller size");
+  }
+  const double needed = double(size[0]) * double(size[1]) * RenderBytesPerPixel;
+  if (limits.AvailableBytes > 0.0 && needed > limits.AvailableBytes)
+  {
+    throw InputError(source + ": render.size: " + std::to_string(size[0]) + " x " +
+      std::to_string(size[1]) + " pixels needs " + FormatBytes(needed) +
+      " of memory for its render targets but only " + FormatBytes(limits.AvailableBytes) +
+      " is available; choose a smaller size");
   }
 }
 

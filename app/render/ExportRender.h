@@ -27,13 +27,20 @@ struct RenderLimits
 {
   int MaximumWidth = 0;
   int MaximumHeight = 0;
+  double AvailableBytes = 0.0; // memory the render targets may take; 0 when unknown
 };
+
+// Memory one pixel of a render takes at the most: the mapper's two RGBA32F targets and float
+// depth (36 bytes), the window's color and depth (8) and the float read-back of an export
+// (radiance and auxiliary channels, 32).
+constexpr double RenderBytesPerPixel = 76.0;
 
 // Initialises `window` (at its current size) and reads the limits from its GL context.
 RenderLimits QueryRenderLimits(vtkRenderWindow* window);
 
 // Throws InputError "<source>: render.size: W x H pixels is beyond this GPU's limit of MW x MH
-// pixels" when `size` exceeds `limits`.
+// pixels" when `size` exceeds `limits`, or "... needs N of memory but only M is available" when
+// its render targets would not fit.
 void CheckRenderSize(
   const std::array<int, 2>& size, const RenderLimits& limits, const std::string& source);
 
