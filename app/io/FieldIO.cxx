@@ -17,6 +17,7 @@
 #include <vtkXMLImageDataWriter.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <limits>
@@ -102,6 +103,28 @@ void CheckExtentFitsInMemory(const std::string& path, vtkXMLImageDataReader* rea
 // block count followed by that many block sizes) before it reads them, so a corrupt count makes
 // it allocate gigabytes while reading the header (found by the fuzzer). For raw appended data,
 // each header must at least fit in the file; base64 and inline data are left to VTK.
+// VTK loops for minutes over a NumberOfComponents it misreads (found by the fuzzer:
+// "1888888888888cii"). An array's component count must be a plain integer from 1 to 1024.
+void CheckComponentCount(const std::string& path, const std::string& tag)
+{
+  const std::string attribute = "NumberOfComponents=\"";
+  const auto at = tag.find(attribute);
+  if (at == std::string::npos)
+  {
+    return; // VTK's default: 1
+  }
+  const auto begin = at + attribute.size();
+  const auto end = tag.find('"', begin);
+  const std::string value = tag.substr(begin, end == std::string::npos ? end : end - begin);
+  const bool digits = !value.empty() && value.size() <= 4 &&
+    value.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits || std::stoi(value) < 1 || std::stoi(value) > 1024)
+  {
+    Fail(path, "an array's NumberOfComponents is not an integer from 1 to 1024 (\"" +
+        (value.size() > 20 ? value.substr(0, 17) + "..." : value) + "\")");
+  }
+}
+
 void CheckAppendedHeaders(const std::string& path, std::ifstream& file, std::uint64_t fileSize)
 {
   // The XML part: up to the '_' that starts the raw appended bytes (1 MiB is far more than the
@@ -153,12 +176,26 @@ void CheckAppendedHeaders(const std::string& path, std::ifstream& file, std::uin
         }
         const std::string tag = xml.substr(at, tagEnd - at);
         if (tag[1] == '/' || tag[1] == '!' || tag[1] == '?' || tag.rfind("<InformationKey", 0) == 0 ||
-          tag.rfind("<Value", 0) == 0 || hasKnownType(tag))
+          tag.rfind("<Value", 0) == 0)
         {
           continue;
         }
+        // VTK reads any element here as an array, whatever its name; its writers only ever put
+        // DataArray (and Array, for non-numeric arrays) here. Another name with a known type
+        // (a PointData nested in PointData, found by the fuzzer) slipped past the header checks
+        // below and made VTK allocate 17 GB.
+        const auto named = [&tag](const char* name) {
+          const std::string prefix = std::string("<") + name;
+          return tag.rfind(prefix, 0) == 0 && tag.size() > prefix.size() &&
+            std::isspace(static_cast<unsigned char>(tag[prefix.size()]));
+        };
+        if ((named("DataArray") || named("Array")) && hasKnownType(tag))
+        {
+          CheckComponentCount(path, tag);
+          continue;
+        }
         Fail(path, std::string("an element of ") + section +
-            " is not an array of a known type (" +
+            " is not a DataArray of a known type (" +
             (tag.size() > 60 ? tag.substr(0, 57) + "..." : tag) + ">)");
       }
     }
@@ -172,7 +209,9 @@ void CheckAppendedHeaders(const std::string& path, std::ifstream& file, std::uin
   const auto underscore = xml.find('_', appendedEnd);
   if (underscore == std::string::npos)
   {
-    return;
+    // Without the marker VTK takes whatever follows for the array headers (found by the fuzzer:
+    // a block count read from text made it allocate 7.8 GB).
+    Fail(path, "the appended data has no '_' marking where its bytes start");
   }
   // Only white space may come before the '_' that marks the data: VTK does not insist, and then
   // takes stray bytes for a header (found by the fuzzer).
