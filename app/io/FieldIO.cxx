@@ -261,6 +261,11 @@ void CheckAppendedHeaders(const std::string& path, std::ifstream& file, std::uin
 // found so far; this closes the family: the file is first read in a forked child under an
 // address-space and a time limit, and only a file VTK read there without complaint is read
 // here. The cost is reading a field twice.
+// How the isolated reader's child ends; any other exit status, or a signal, is a failure.
+constexpr int ChildReadCleanly = 0;
+constexpr int ChildVtkComplained = 3;
+constexpr int ChildOutOfMemory = 4;
+
 void ReadInIsolation(const std::string& path, std::uint64_t fileSize)
 {
   const unsigned seconds = 60u + unsigned(fileSize / (10u << 20)); // 60 s + 1 s per 10 MiB
@@ -294,7 +299,7 @@ void ReadInIsolation(const std::string& path, std::uint64_t fileSize)
     }
 #endif
     ::alarm(seconds);
-    int code = 1;
+    int code = ChildVtkComplained;
     try
     {
       VtkMessageCapture messages;
@@ -303,12 +308,13 @@ void ReadInIsolation(const std::string& path, std::uint64_t fileSize)
       {
         reader->SetFileName(path.c_str());
         reader->Update();
-        code = reader->GetErrorCode() == 0 && messages.Messages().empty() ? 0 : 1;
+        code = reader->GetErrorCode() == 0 && messages.Messages().empty() ? ChildReadCleanly
+                                                                          : ChildVtkComplained;
       }
     }
     catch (...)
     {
-      code = 2; // std::bad_alloc under the limit, most likely
+      code = ChildOutOfMemory; // std::bad_alloc under the limit, most likely
     }
     ::_exit(code);
   }
@@ -316,13 +322,15 @@ void ReadInIsolation(const std::string& path, std::uint64_t fileSize)
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
   {
   }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 1)
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code == ChildReadCleanly || code == ChildVtkComplained)
   {
-    return; // VTK reported errors: the read below reports them in its own words
+    return; // read it here; VTK's complaints are then reported in its own words
   }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+  if (code == ChildOutOfMemory)
   {
-    return;
+    Fail(path, "VTK's reader ran out of memory on this file: it claims more than the " +
+        FormatBytes(double(AvailableMemoryBytes())) + " available");
   }
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
   {
@@ -334,8 +342,9 @@ void ReadInIsolation(const std::string& path, std::uint64_t fileSize)
     Fail(path, "VTK's reader crashed on this file (" + std::string(strsignal(WTERMSIG(status))) +
         "): it is malformed");
   }
-  Fail(path, "VTK's reader ran out of memory on this file: it claims more than the " +
-      FormatBytes(double(AvailableMemoryBytes())) + " available");
+  // Another status: a sanitizer (in sanitized builds) caught VTK doing something fatal.
+  Fail(path, "VTK's reader failed on this file (exit status " + std::to_string(code) +
+      "): it is malformed");
 }
 
 vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
