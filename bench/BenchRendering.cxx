@@ -149,15 +149,22 @@ double RmsLevels(const std::vector<unsigned char>& a, const std::vector<unsigned
   return std::sqrt(sum / double(std::max<size_t>(1, a.size())));
 }
 
+// VTK's GPU ray caster marching like cloudvis: the same step, no jitter, no automatic changes.
+vtkSmartPointer<vtkGPUVolumeRayCastMapper> MatchedVtkMapper(double step)
+{
+  auto mapper = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
+  mapper->SetSampleDistance(step);
+  mapper->AutoAdjustSampleDistancesOff();
+  mapper->LockSampleDistanceToInputSpacingOff();
+  mapper->SetUseJittering(0);
+  return mapper;
+}
+
 void Compare(const char* name, vtkImageData* field, const Options& options)
 {
   const double step = 4.0 / (options.Size - 1); // one voxel
 
-  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
-  vtkMapper->SetSampleDistance(step);
-  vtkMapper->AutoAdjustSampleDistancesOff();
-  vtkMapper->LockSampleDistanceToInputSpacingOff();
-  vtkMapper->SetUseJittering(0);
+  auto vtkMapper = MatchedVtkMapper(step);
   View vtk(vtkMapper, field, options);
   const double vtkMs = vtk.MillisecondsPerFrame(options.Frames, [] {});
 
@@ -210,11 +217,7 @@ void CompareLighting(vtkImageData* field, const Options& options)
     renderer->AddLight(sun);
   };
 
-  vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
-  vtkMapper->SetSampleDistance(step);
-  vtkMapper->AutoAdjustSampleDistancesOff();
-  vtkMapper->LockSampleDistanceToInputSpacingOff();
-  vtkMapper->SetUseJittering(0);
+  auto vtkMapper = MatchedVtkMapper(step);
   View vtk(vtkMapper, field, options);
   vtk.Property->ShadeOn();
   addSun(vtk.Renderer);

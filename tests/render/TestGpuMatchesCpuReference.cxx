@@ -15,6 +15,7 @@
 // The point-light cases cover what a directional light cannot: per-sample light directions and
 // the distance falloff (with only a directional light, a model that ignored positional lights
 // would pass).
+#include "CpuReference.h"
 #include "RenderFixture.h"
 
 #include "CloudTransferTable.h"
@@ -118,7 +119,7 @@ TEST_P(GpuMatchesCpuReference, WithinTolerance)
   mapper->SetSampleDistance(step);
   mapper->JitterOff();
   mapper->SetLighting(lighting);
-  Scene scene(mapper, Size, Size);
+  test::Scene scene(mapper, Size, Size);
   const vtkSmartPointer<vtkImageData> field = c.Cloud ? SparseCloud(48) : ConstantSphere(1.2, 40);
   scene.SetInput(field);
   if (c.Cloud)
@@ -151,13 +152,7 @@ TEST_P(GpuMatchesCpuReference, WithinTolerance)
   vtkNew<vtkCloudReferenceRenderer> reference;
   reference->SetInputData(field);
   reference->SetImageSize(Size, Size);
-  reference->SetCameraPosition(camera->GetPosition());
-  reference->SetCameraFocalPoint(camera->GetFocalPoint());
-  reference->SetCameraViewUp(camera->GetViewUp());
-  reference->SetViewAngle(camera->GetViewAngle());
-  reference->SetParallelProjection(camera->GetParallelProjection() != 0);
-  reference->SetParallelScale(camera->GetParallelScale());
-  reference->SetClippingRange(camera->GetClippingRange());
+  SetReferenceCamera(reference, camera); // as render --cpu-reference does
   double range[2];
   field->GetPointData()->GetScalars()->GetRange(range, 0);
   vtkVolumeProperty* property = scene.Property;
