@@ -83,6 +83,12 @@ bool TransferTable::operator==(const TransferTable& other) const
     this->Size == other.Size && this->RGBA == other.RGBA;
 }
 
+double Extinction(double opacity, double unitDistance, double extinctionScale)
+{
+  const double a = std::min(std::max(opacity, 0.0), MaxOpacity);
+  return -std::log1p(-a) / unitDistance * extinctionScale;
+}
+
 TransferTable BuildTransferTable(vtkScalarsToColors* color, vtkPiecewiseFunction* opacity,
   double unitDistance, const double range[2], int size, double extinctionScale)
 {
@@ -107,8 +113,8 @@ TransferTable BuildTransferTable(vtkScalarsToColors* color, vtkPiecewiseFunction
     {
       color->GetColor(density, rgb);
     }
-    const double a = opacity ? std::min(std::max(opacity->GetValue(density), 0.0), MaxOpacity) : 0.0;
-    const double sigma_t = -std::log1p(-a) / unitDistance * extinctionScale;
+    const double sigma_t =
+      Extinction(opacity ? opacity->GetValue(density) : 0.0, unitDistance, extinctionScale);
     float* entry = &table.RGBA[std::size_t(i) * 4];
     entry[0] = static_cast<float>(rgb[0]);
     entry[1] = static_cast<float>(rgb[1]);
@@ -116,6 +122,52 @@ TransferTable BuildTransferTable(vtkScalarsToColors* color, vtkPiecewiseFunction
     entry[3] = static_cast<float>(sigma_t);
   }
   return table;
+}
+
+bool TransferFunctionRange(vtkPiecewiseFunction* opacity,
+  vtkScalarsToColors* color,
+  double range[2])
+{
+  if (!opacity || opacity->GetSize() == 0)
+  {
+    return false;
+  }
+  double node[4];
+  opacity->GetNodeValue(0, node);
+  range[0] = range[1] = node[0];
+  const auto include = [range](double density)
+  {
+    range[0] = std::min(range[0], density);
+    range[1] = std::max(range[1], density);
+  };
+  opacity->GetNodeValue(opacity->GetSize() - 1, node);
+  include(node[0]);
+  // A vtkColorTransferFunction's range is that of its points (filters/ does not link the
+  // rendering module that defines the class, so the interface is all it can ask).
+  if (color)
+  {
+    include(color->GetRange()[0]);
+    include(color->GetRange()[1]);
+  }
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  return true;
+}
+
+TransferTable TabulateTransferFunction(vtkScalarsToColors* color,
+  vtkPiecewiseFunction* opacity,
+  double unitDistance,
+  int size,
+  double extinctionScale)
+{
+  double range[2];
+  if (!TransferFunctionRange(opacity, color, range))
+  {
+    return TransferTable();
+  }
+  return BuildTransferTable(color, opacity, unitDistance, range, size, extinctionScale);
 }
 
 std::string ValidateTransferFunction(vtkPiecewiseFunction* opacity, vtkScalarsToColors* color)

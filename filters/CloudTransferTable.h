@@ -48,6 +48,32 @@ struct CLOUDVISFILTERS_EXPORT TransferTable
   bool operator!=(const TransferTable& other) const { return !(*this == other); }
 };
 
+// The extinction per unit length of an opacity per unitDistance, -ln(1 - a) / unitDistance, times
+// extinctionScale, with a clamped to [0, 1 - 1e-4] so that an opacity of 1 still gives a finite
+// extinction (about 9.2 / unitDistance). What every table entry holds.
+CLOUDVISFILTERS_EXPORT double Extinction(double opacity,
+  double unitDistance,
+  double extinctionScale = 1.0);
+
+// The densities the pair defines: from the first to the last point of the opacity function and
+// of the color function (its GetRange(), which for a vtkColorTransferFunction spans its points),
+// together. A function whose points all lie at one density v gives [v, v + 1], so the table has a
+// width (it is constant anyway: outside its points a function keeps its end values). False when
+// the opacity function is missing or has no points.
+CLOUDVISFILTERS_EXPORT bool TransferFunctionRange(vtkPiecewiseFunction* opacity,
+  vtkScalarsToColors* color,
+  double range[2]);
+
+// The table the renderers use: BuildTransferTable over TransferFunctionRange, so the table
+// resolves what the transfer function says wherever the data's values lie (an outlier voxel
+// cannot starve it), and a density outside the function's points reads the end entries, as VTK
+// clamps. An empty table when the range is unusable (see BuildTransferTable).
+CLOUDVISFILTERS_EXPORT TransferTable TabulateTransferFunction(vtkScalarsToColors* color,
+  vtkPiecewiseFunction* opacity,
+  double unitDistance,
+  int size = 1024,
+  double extinctionScale = 1.0);
+
 // Samples color and opacity into a table of `size` entries over `range`. The opacity a(d) is
 // VTK's scalar opacity per unitDistance of travel, so sigma_t = -ln(1 - a) / unitDistance, with a
 // clamped to [0, 1 - 1e-4] so that an opacity of 1 still gives a finite extinction; sigma_t is

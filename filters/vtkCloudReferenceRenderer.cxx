@@ -28,16 +28,9 @@ vtkStandardNewMacro(vtkCloudReferenceRenderer);
 
 namespace
 {
-// The GPU's MAX_LIGHTS (shaders/CloudLightingCommon.glsl).
-constexpr std::size_t MaxLights = 8;
-
 bool Finite3(const double v[3])
 {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
-bool Finite3(glm::vec3 v)
-{
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 // A row-major 4x4 (m[row][col], as vtkMatrix4x4 and VTK's transforms write them) as GLM.
@@ -63,6 +56,7 @@ struct RenderRows
 {
   const cloudvis::MarchUniforms* Uniforms;
   glm::dmat4 DeviceToWorld;
+  const cloudvis::LocalFrame* Frame;
   int Width;
   int Height;
   float* RGBA;
@@ -75,9 +69,13 @@ struct RenderRows
       {
         const glm::dvec2 ndc((i + 0.5) / this->Width * 2.0 - 1.0,
           (double(j) + 0.5) / this->Height * 2.0 - 1.0);
-        const glm::dvec3 nearWorld = WorldPoint(this->DeviceToWorld, ndc, -1.0);
-        const glm::dvec3 farWorld = WorldPoint(this->DeviceToWorld, ndc, 1.0);
-        const glm::vec4 rgba = cloudvis::MarchRay(*this->Uniforms, nearWorld, farWorld);
+        // The GLSL gets the two points straight from DCLocalMatrix; here they go through the
+        // world in double, which holds them as exactly.
+        const glm::dvec3 nearPoint =
+          this->Frame->ToLocal(WorldPoint(this->DeviceToWorld, ndc, -1.0));
+        const glm::dvec3 farPoint = this->Frame->ToLocal(WorldPoint(this->DeviceToWorld, ndc, 1.0));
+        const glm::vec4 rgba =
+          cloudvis::MarchRay(*this->Uniforms, glm::vec3(nearPoint), glm::vec3(farPoint));
         float* out = this->RGBA + (std::size_t(j) * this->Width + i) * 4;
         out[0] = rgba.r;
         out[1] = rgba.g;
@@ -114,6 +112,23 @@ void vtkCloudReferenceRenderer::SetLights(const std::vector<cloudvis::Light>& li
 {
   this->Lights = lights;
   this->Modified();
+}
+
+void vtkCloudReferenceRenderer::SetVolumeMatrix(vtkMatrix4x4* matrix)
+{
+  vtkNew<vtkMatrix4x4> copy;
+  if (matrix)
+  {
+    copy->DeepCopy(matrix);
+  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      if (copy->GetElement(r, c) != this->VolumeMatrix->GetElement(r, c))
+      {
+        this->VolumeMatrix->DeepCopy(copy);
+        this->Modified();
+        return;
+      }
 }
 
 bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const
@@ -230,38 +245,6 @@ int vtkCloudReferenceRenderer::RequestData(
     vtkErrorMacro(<< "the image size must be at least 1 x 1, not " << width << " x " << height);
     return 0;
   }
-  if (!(this->SampleDistance >= 0.0 && std::isfinite(this->SampleDistance)))
-  {
-    vtkErrorMacro(<< "the sample distance must be >= 0 (0: the smallest voxel spacing)");
-    return 0;
-  }
-  if (!(this->TerminationTransmittance >= 0.0 && this->TerminationTransmittance <= 1.0))
-  {
-    vtkErrorMacro(<< "the termination transmittance must be in [0, 1]");
-    return 0;
-  }
-  const std::string lightingProblem = cloudvis::ValidateLightingParameters(this->Lighting);
-  if (!lightingProblem.empty())
-  {
-    vtkErrorMacro(<< "lighting: " << lightingProblem);
-    return 0;
-  }
-  if (this->Lights.size() > MaxLights)
-  {
-    vtkErrorMacro(<< this->Lights.size() << " lights; the renderers take at most " << MaxLights);
-    return 0;
-  }
-  for (const cloudvis::Light& light : this->Lights)
-  {
-    if (!Finite3(light.Position) || !Finite3(light.FocalPoint) || !Finite3(light.Color) ||
-      !Finite3(light.Attenuation) || !std::isfinite(light.Intensity) ||
-      (!light.Positional && light.Position == light.FocalPoint))
-    {
-      vtkErrorMacro(<< "a light has a non-finite value, or is directional with its position "
-                       "on its focal point");
-      return 0;
-    }
-  }
   vtkNew<vtkMatrix4x4> deviceToWorldMatrix;
   if (!this->GetDeviceToWorldMatrix(deviceToWorldMatrix))
   {
@@ -279,32 +262,43 @@ int vtkCloudReferenceRenderer::RequestData(
     vtkErrorMacro(<< scalarProblem);
     return 0;
   }
+  const std::string valueProblem = cloudvis::ValidateDensityValues(scalars);
+  if (!valueProblem.empty())
+  {
+    vtkErrorMacro(<< valueProblem);
+    return 0;
+  }
   const int type = scalars->GetDataType();
   int extent[6];
   input->GetExtent(extent);
-  const int n[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
-    extent[5] - extent[4] + 1 };
-  if (n[0] < 2 || n[1] < 2 || n[2] < 2)
-  {
-    vtkErrorMacro(<< "the input needs at least 2 voxels along each axis");
-    return 0;
-  }
-  if (scalars->GetNumberOfTuples() != vtkIdType(n[0]) * n[1] * n[2])
+  const vtkIdType voxels = vtkIdType(extent[1] - extent[0] + 1) * (extent[3] - extent[2] + 1) *
+    (extent[5] - extent[4] + 1);
+  if (scalars->GetNumberOfTuples() != voxels)
   {
     vtkErrorMacro(<< "the input scalars do not match the input extent");
     return 0;
   }
-  const double* origin = input->GetOrigin();
-  const double* spacing = input->GetSpacing();
-  if (!(spacing[0] > 0.0 && spacing[1] > 0.0 && spacing[2] > 0.0) || !Finite3(spacing) ||
-    !Finite3(origin))
+  const std::string geometryProblem = cloudvis::ValidateVolumeGeometry(input, this->VolumeMatrix);
+  if (!geometryProblem.empty())
   {
-    vtkErrorMacro(<< "the input needs a finite origin and a positive spacing");
+    vtkErrorMacro(<< geometryProblem);
     return 0;
   }
-  if (!input->GetDirectionMatrix()->IsIdentity())
+
+  // The uniforms the mapper would set, and its refusals.
+  cloudvis::MarchSetup setup;
+  setup.Geometry = cloudvis::GeometryOf(input, this->VolumeMatrix);
+  setup.Table = &table;
+  setup.SampleDistance = this->SampleDistance;
+  setup.TerminationTransmittance = this->TerminationTransmittance;
+  setup.Lighting = this->Lighting;
+  setup.Lights = this->Lights;
+  cloudvis::MarchUniforms uniforms;
+  cloudvis::LocalFrame frame;
+  const cloudvis::MarchProblem problem = cloudvis::SetUpMarch(setup, uniforms, &frame);
+  if (problem)
   {
-    vtkErrorMacro(<< "the input has a rotated direction matrix; only the identity is supported");
+    vtkErrorMacro(<< problem.Message);
     return 0;
   }
 
@@ -325,34 +319,7 @@ int vtkCloudReferenceRenderer::RequestData(
     density = converted.data();
   }
 
-  // The uniforms the mapper would set.
-  const double smallestSpacing = std::min({ spacing[0], spacing[1], spacing[2] });
-  const double step = this->SampleDistance > 0.0 ? this->SampleDistance : smallestSpacing;
-  double diagonal = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    diagonal += (n[a] - 1) * spacing[a] * (n[a] - 1) * spacing[a];
-  }
-  diagonal = std::sqrt(diagonal);
-  cloudvis::MarchUniforms uniforms;
   uniforms.Density = density;
-  uniforms.Dimensions = glm::ivec3(n[0], n[1], n[2]);
-  uniforms.IndexOrigin = glm::vec3(glm::dvec3(origin[0] + extent[0] * spacing[0],
-    origin[1] + extent[2] * spacing[1], origin[2] + extent[4] * spacing[2]));
-  uniforms.Spacing = glm::vec3(glm::dvec3(spacing[0], spacing[1], spacing[2]));
-  uniforms.Table = &table;
-  uniforms.StepWorld = static_cast<float>(step);
-  uniforms.TerminationTransmittance = static_cast<float>(this->TerminationTransmittance);
-  uniforms.MaximumIterations =
-    static_cast<int>(std::min(std::ceil(diagonal / step) + 16.0, double(INT_MAX)));
-  uniforms.Lighting = cloudvis::ResolveLighting(this->Lighting, smallestSpacing);
-  uniforms.Lights = this->Lights;
-  uniforms.Ambient = this->Lighting.AmbientColor * this->Lighting.AmbientStrength;
-  if (!(uniforms.StepWorld > 0.0f))
-  {
-    vtkErrorMacro(<< "the sample distance is too small for float");
-    return 0;
-  }
 
   // The image.
   int outExtent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
@@ -370,7 +337,7 @@ int vtkCloudReferenceRenderer::RequestData(
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
       deviceToWorld[c][r] = deviceToWorldMatrix->GetElement(r, c);
-  RenderRows render{ &uniforms, deviceToWorld, width, height, rgba->GetPointer(0) };
+  RenderRows render{ &uniforms, deviceToWorld, &frame, width, height, rgba->GetPointer(0) };
   // Blocks of rows, so progress and abort are handled on this thread between them.
   const int blocks = std::min(height, 16);
   this->UpdateProgress(0.0);
@@ -412,6 +379,8 @@ void vtkCloudReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
      << l.ExtinctionFalloff << ", " << l.EccentricityFalloff << "), powder " << l.PowderStrength
      << "\n";
   os << indent << "Lights: " << this->Lights.size() << "\n";
+  os << indent << "VolumeMatrix:\n";
+  this->VolumeMatrix->PrintSelf(os, indent.GetNextIndent());
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "TerminationTransmittance: " << this->TerminationTransmittance << "\n";
 }

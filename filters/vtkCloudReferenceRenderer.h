@@ -9,8 +9,12 @@
  * No jitter, no empty-space skipping (which does not change the sum), no opaque geometry.
  *
  * Input: vtkImageData whose active point scalars have one component of float, unsigned char or
- * unsigned short, at least 2 voxels per axis, positive spacing and an identity direction
- * matrix. The density is read in its scalar units, as the transfer table's Range expects.
+ * unsigned short, finite values and at least 2 voxels per axis. Its whole geometry counts, as
+ * VTK's volume mappers read it: extent (which need not start at 0), origin, spacing and
+ * direction matrix, placed in the world by VolumeMatrix (a vtkVolume's matrix). The density is
+ * read in its scalar units, as the transfer table's Range expects. The march computes in the
+ * local frame of CloudMarchUniforms.h, like the GPU, and SetUpMarch refuses, with the GPU's
+ * words, what float arithmetic cannot render faithfully.
  *
  * Output: vtkImageData of ImageSize[0] x ImageSize[1] x 1 points (origin 0, spacing 1) with a
  * float, 4-component point array "rgba" (the active scalars): premultiplied radiance in r, g, b
@@ -32,10 +36,10 @@
 #include "cloudvisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
 
 #include <vector>
-
-class vtkMatrix4x4;
 
 class CLOUDVISFILTERS_EXPORT vtkCloudReferenceRenderer : public vtkImageAlgorithm
 {
@@ -125,8 +129,8 @@ public:
 
   ///@{
   /**
-   * The lights, at most 8 (the GPU's MAX_LIGHTS); their contributions add up. Ignored by the
-   * None model. Default: no lights.
+   * The lights, at most cloudvis::MaxLights (8, the GPU's MAX_LIGHTS); their contributions add
+   * up. Ignored by the None model. Default: no lights.
    */
   void SetLights(const std::vector<cloudvis::Light>& lights);
   const std::vector<cloudvis::Light>& GetLights() const { return this->Lights; }
@@ -134,8 +138,19 @@ public:
 
   ///@{
   /**
-   * World distance between samples along a view ray, >= 0; 0 means the smallest voxel spacing
-   * (the mapper's default). Default 0.
+   * The volume's model-to-world matrix, as vtkProp3D::GetMatrix() gives it for a vtkVolume (its
+   * position, orientation, scale, origin and user matrix): the field is drawn where a vtkVolume
+   * with this matrix would draw it. The matrix is copied; null means identity. Default identity.
+   */
+  void SetVolumeMatrix(vtkMatrix4x4* matrix);
+  vtkMatrix4x4* GetVolumeMatrix() { return this->VolumeMatrix; }
+  ///@}
+
+  ///@{
+  /**
+   * World distance between samples along a view ray, >= 0; 0 means the smallest voxel edge in
+   * the world (the mapper's default). A step needing more than cloudvis::MaxSamplesPerRay
+   * samples along the volume's longest ray is refused. Default 0.
    */
   vtkSetMacro(SampleDistance, double);
   vtkGetMacro(SampleDistance, double);
@@ -176,6 +191,7 @@ protected:
   cloudvis::TransferTable TransferTable;
   cloudvis::LightingParameters Lighting;
   std::vector<cloudvis::Light> Lights;
+  vtkNew<vtkMatrix4x4> VolumeMatrix;
   double SampleDistance = 0.0;
   double TerminationTransmittance = 1.0 / 255.0;
 

@@ -2,6 +2,8 @@
 // need the range). Sums are accumulated in double so the mean of a large field stays accurate.
 #include "FieldStatistics.h"
 
+#include "CloudMarchUniforms.h" // GeometryOf
+
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
@@ -19,15 +21,26 @@ FieldStatistics ComputeFieldStatistics(vtkImageData* field, int bins)
   field->GetDimensions(s.Dimensions.data());
   field->GetSpacing(s.Spacing.data());
   field->GetOrigin(s.Origin.data());
-  // The image's own bounds would follow its extent; ours always start at index 0 of the lattice,
-  // which is what a scene's "bounds" describes.
-  int extent[6];
-  field->GetExtent(extent);
+  // Where the renderers put the voxels: the first voxel of the extent (origin, direction and
+  // spacing applied), and the world box around the (possibly rotated) lattice.
+  const VolumeGeometry geometry = GeometryOf(field, nullptr);
+  const glm::dvec3 first(geometry.IndexToWorld[3]);
+  s.Origin = { { first.x, first.y, first.z } };
   for (int a = 0; a < 3; ++a)
   {
-    s.Origin[a] += extent[2 * a] * s.Spacing[a];
-    s.Bounds[2 * a] = s.Origin[a];
-    s.Bounds[2 * a + 1] = s.Origin[a] + (s.Dimensions[a] - 1) * s.Spacing[a];
+    s.Bounds[2 * a] = s.Bounds[2 * a + 1] = first[a];
+  }
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 index((corner & 1) ? s.Dimensions[0] - 1 : 0,
+      (corner & 2) ? s.Dimensions[1] - 1 : 0,
+      (corner & 4) ? s.Dimensions[2] - 1 : 0);
+    const glm::dvec3 world(geometry.IndexToWorld * glm::dvec4(index, 1.0));
+    for (int a = 0; a < 3; ++a)
+    {
+      s.Bounds[2 * a] = std::min(s.Bounds[2 * a], world[a]);
+      s.Bounds[2 * a + 1] = std::max(s.Bounds[2 * a + 1], world[a]);
+    }
   }
   s.Histogram.assign(static_cast<size_t>(std::max(bins, 1)), 0);
   vtkDataArray* values = field->GetPointData()->GetScalars();

@@ -22,8 +22,8 @@ struct FieldStatistics
 {
   std::array<int, 3> Dimensions{};
   std::array<double, 3> Spacing{};
-  std::array<double, 3> Origin{};
-  std::array<double, 6> Bounds{}; // origin .. origin + (n - 1) spacing per axis
+  std::array<double, 3> Origin{}; // the world position of the extent's first voxel
+  std::array<double, 6> Bounds{}; // the world box around the voxels (direction matrix applied)
   std::uint64_t Voxels = 0;
   double Minimum = 0.0;
   double Maximum = 0.0;

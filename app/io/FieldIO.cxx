@@ -8,11 +8,13 @@
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
 #include <vtkDataArray.h>
-#include <vtkInformation.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 
@@ -20,16 +22,17 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <limits>
-#include <cstring>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
-#include <sys/stat.h>
-#include <unistd.h>
-#include <sys/wait.h>
+#include <limits>
+#include <sstream>
 #include <sys/resource.h>
-#include <csignal>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace cloudvis
 {
@@ -347,6 +350,40 @@ void ReadInIsolation(const std::string& path, std::uint64_t fileSize)
       "): it is malformed");
 }
 
+// VTK's reader turns an Origin, Spacing or Direction attribute it cannot parse ("nan", "inf")
+// into its default (origin 0, spacing 1, identity) without a word: the text is checked here.
+void CheckGeometryAttributes(const std::string& path, vtkXMLImageDataReader* reader)
+{
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* image = root ? root->FindNestedElementWithName("ImageData") : nullptr;
+  if (!image)
+  {
+    return;
+  }
+  for (const char* name : { "Origin", "Spacing", "Direction" })
+  {
+    const char* text = image->GetAttribute(name);
+    if (!text)
+    {
+      continue;
+    }
+    std::istringstream in{ std::string(text) };
+    std::string token;
+    while (in >> token)
+    {
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (*end != '\0' || !std::isfinite(value))
+      {
+        Fail(path,
+          std::string("the image's ") + name + " attribute \"" + text + "\" holds \"" + token +
+            "\", not a finite number");
+      }
+    }
+  }
+}
+
 vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
 {
   struct stat info;
@@ -383,6 +420,7 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
     Fail(path, WithVtkReason("cannot read VTK XML image data", messages));
   }
   CheckExtentFitsInMemory(path, reader);
+  CheckGeometryAttributes(path, reader);
   reader->Update();
   vtkImageData* image = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
@@ -438,6 +476,7 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
   field->SetExtent(image->GetExtent());
   field->SetOrigin(image->GetOrigin());
   field->SetSpacing(image->GetSpacing());
+  field->SetDirectionMatrix(image->GetDirectionMatrix());
   field->GetPointData()->SetScalars(density);
   return field;
 }

@@ -4,10 +4,13 @@
 // every message has the same shape: "<source>: <dotted key>: <problem>".
 #include "Scene.h"
 
+#include "CloudMarchUniforms.h" // FloatLimit, MaxLights
+#include "CloudTransferTable.h" // Extinction
 #include "Errors.h"
 #include "Presets.h"
 #include "SceneField.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -178,6 +181,13 @@ glm::vec3 ReadVec3(const Context& c, const json& v, const std::string& key, cons
 {
   const std::array<double, 3> a = ReadNumbers<3>(c, v, key, range);
   return glm::vec3(float(a[0]), float(a[1]), float(a[2]));
+}
+
+// Positions stay double, as VTK keeps them.
+glm::dvec3 ReadPoint(const Context& c, const json& v, const std::string& key)
+{
+  const std::array<double, 3> a = ReadNumbers<3>(c, v, key, AnyNumber);
+  return glm::dvec3(a[0], a[1], a[2]);
 }
 
 // The names scene files use for enumerations.
@@ -881,7 +891,7 @@ void ResolveSkySun(const json& document, Scene& s)
     {
       if (!light.Positional)
       {
-        const glm::vec3 toward = SampleLight(light, glm::vec3(0.0f)).Direction;
+        const glm::dvec3 toward = DirectionTowardLight(light);
         background.Sun = std::array<double, 3>{ { toward.x, toward.y, toward.z } };
         return;
       }
@@ -1024,21 +1034,27 @@ struct LightKey
   void (*Read)(const Context&, const json&, const std::string& key, Light&);
 };
 const LightKey LightKeys[] = {
-  { "type", DirectionalLight | PointLight,
+  { "type",
+    DirectionalLight | PointLight,
     [](const Context&, const json&, const std::string&, Light&) {} },
-  { "position", DirectionalLight | PointLight,
+  { "position",
+    DirectionalLight | PointLight,
     [](const Context& c, const json& v, const std::string& k, Light& l)
-    { l.Position = ReadVec3(c, v, k, AnyNumber); } },
-  { "focal_point", DirectionalLight,
+    { l.Position = ReadPoint(c, v, k); } },
+  { "focal_point",
+    DirectionalLight,
     [](const Context& c, const json& v, const std::string& k, Light& l)
-    { l.FocalPoint = ReadVec3(c, v, k, AnyNumber); } },
-  { "color", DirectionalLight | PointLight,
+    { l.FocalPoint = ReadPoint(c, v, k); } },
+  { "color",
+    DirectionalLight | PointLight,
     [](const Context& c, const json& v, const std::string& k, Light& l)
     { l.Color = ReadVec3(c, v, k, UnitInterval); } },
-  { "intensity", DirectionalLight | PointLight,
+  { "intensity",
+    DirectionalLight | PointLight,
     [](const Context& c, const json& v, const std::string& k, Light& l)
     { l.Intensity = float(ReadNumber(c, v, k, NonNegative)); } },
-  { "attenuation", PointLight,
+  { "attenuation",
+    PointLight,
     [](const Context& c, const json& v, const std::string& k, Light& l)
     {
       l.Attenuation = ReadVec3(c, v, k, NonNegative);
@@ -1118,7 +1134,9 @@ void ReadLights(const Context& c, const json& v, const std::string& key, Scene& 
   }
   if (v.size() > 8)
   {
-    c.Fail(key, "at most 8 lights (the renderer's limit), got " + std::to_string(v.size()));
+    c.Fail(key,
+      "at most " + std::to_string(MaxLights) + " lights (the renderer's limit), got " +
+        std::to_string(v.size()));
   }
   s.Lights.clear();
   for (size_t i = 0; i < v.size(); ++i)
@@ -1259,8 +1277,8 @@ std::vector<Light> DefaultLights()
 {
   Light sun;
   sun.Positional = false;
-  sun.Position = glm::vec3(6.0f, 8.0f, 4.0f);
-  sun.FocalPoint = glm::vec3(0.0f);
+  sun.Position = glm::dvec3(6.0, 8.0, 4.0);
+  sun.FocalPoint = glm::dvec3(0.0);
   sun.Color = glm::vec3(1.0f);
   // An intensity means the same light in every model (docs/lighting.md, Lights).
   sun.Intensity = 1.0f;
@@ -1446,6 +1464,58 @@ void SetDocumentValue(
   *node = value;
 }
 
+// What the renderers would refuse for float range, said here in the scene's keys, before a field
+// is made or read: transfer-function densities beyond float, an extinction beyond float (a unit
+// distance too small) and lights bright enough to overflow the radiance of a sample. (What
+// depends on the field, such as a step too small for it, is checked once the field is known:
+// CheckSceneRenderable in app/render/CpuReference.h.)
+void CheckFloatRanges(const Context& c, const Scene& s)
+{
+  const TransferFunctionSpec& tf = s.TransferFunction;
+  double lo = std::numeric_limits<double>::max(), hi = -lo, opacity = 0.0;
+  for (const auto& point : tf.Opacity)
+  {
+    lo = std::min(lo, point[0]);
+    hi = std::max(hi, point[0]);
+    opacity = std::max(opacity, point[1]);
+  }
+  for (const auto& point : tf.Color)
+  {
+    lo = std::min(lo, point[0]);
+    hi = std::max(hi, point[0]);
+  }
+  if (lo <= hi && !(hi - lo <= double(std::numeric_limits<float>::max())))
+  {
+    c.Fail("transfer_function",
+      "its points span densities [" + FormatNumber(lo) + ", " + FormatNumber(hi) +
+        "], wider than float arithmetic holds (3.4e38)");
+  }
+  const double sigma = Extinction(opacity, tf.UnitDistance);
+  if (!(sigma <= double(std::numeric_limits<float>::max())))
+  {
+    c.Fail("transfer_function.unit_distance",
+      "value " + FormatNumber(tf.UnitDistance) + " is too small: opacity " + FormatNumber(opacity) +
+        " per unit distance is an extinction of " + FormatNumber(sigma) +
+        " per world unit, beyond float range; allowed >= " +
+        FormatNumber(tf.UnitDistance * sigma / double(std::numeric_limits<float>::max())));
+  }
+  const double perLight = PeakRadiancePerLightRadiance(s.Render.Parameters);
+  for (size_t i = 0; i < s.Lights.size(); ++i)
+  {
+    const Light& light = s.Lights[i];
+    const double color = std::max({ light.Color.x, light.Color.y, light.Color.z, 1e-30f });
+    const double peak = double(light.Intensity) * color * perLight;
+    if (!(peak < FloatLimit))
+    {
+      c.Fail("lights[" + std::to_string(i) + "].intensity",
+        "value " + FormatNumber(light.Intensity) +
+          " is too bright for float arithmetic: color x intensity" +
+          " times the march's peak scattering (" + FormatNumber(perLight) + ") reaches " +
+          FormatNumber(peak) + "; allowed < " + FormatNumber(FloatLimit / (color * perLight)));
+    }
+  }
+}
+
 Scene SceneFromDocument(const nlohmann::json& document, const std::string& source,
   const std::string& baseDirectory, const std::vector<std::string>& overriddenKeys,
   const std::vector<SceneOverride>& optionKeys)
@@ -1466,6 +1536,7 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   Scene scene;
   scene.Source = source;
   ReadObject(context, document, "", SceneKeys, scene);
+  CheckFloatRanges(context, scene);
   ResolveSkySun(document, scene);
   scene.Document = document;
   return scene;

@@ -112,9 +112,9 @@ std::string NextFreeBase(const std::string& directory, const std::string& prefix
   throw InputError(JoinPath(directory, prefix) + "NNN: every number is taken");
 }
 
-json Vec3Json(const glm::vec3& v)
+json Vec3Json(const glm::dvec3& v)
 {
-  return json::array({ double(v.x), double(v.y), double(v.z) });
+  return json::array({ v.x, v.y, v.z });
 }
 
 json LightToJson(const Light& light)
@@ -261,14 +261,14 @@ struct Viewer::Internals
       return;
     }
     Light& light = this->Current.Lights[size_t(index)];
-    const glm::dvec3 d = glm::dvec3(light.Position) - glm::dvec3(light.FocalPoint);
+    const glm::dvec3 d = light.Position - light.FocalPoint;
     const double r = glm::length(d);
     double azimuth = std::atan2(d.x, d.z) + azimuthDegrees * ViewerPi / 180.0;
     double elevation = std::asin(std::max(-1.0, std::min(1.0, d.y / r))) + elevationDegrees * ViewerPi / 180.0;
     elevation = std::max(-89.0 * ViewerPi / 180.0, std::min(89.0 * ViewerPi / 180.0, elevation));
     const glm::dvec3 moved(r * std::cos(elevation) * std::sin(azimuth), r * std::sin(elevation),
       r * std::cos(elevation) * std::cos(azimuth));
-    light.Position = glm::vec3(glm::dvec3(light.FocalPoint) + moved);
+    light.Position = light.FocalPoint + moved;
     this->LightsChanged = true;
     this->ApplyLighting();
     char text[128];
@@ -659,7 +659,7 @@ ViewerState Viewer::State() const
   const int light = in.FirstDirectionalLight();
   if (light >= 0)
   {
-    const glm::vec3& p = in.Current.Lights[size_t(light)].Position;
+    const glm::dvec3& p = in.Current.Lights[size_t(light)].Position;
     state.FirstLightPosition = { { p.x, p.y, p.z } };
   }
   state.Preset = in.Preset;

@@ -61,8 +61,8 @@ TEST(SceneLights, TypesAndDefaults)
   ASSERT_EQ(scene.Lights.size(), 4u);
   const cloudvis::Light& sun = scene.Lights[0];
   EXPECT_FALSE(sun.Positional);
-  EXPECT_EQ(sun.Position, glm::vec3(1, 2, 3));
-  EXPECT_EQ(sun.FocalPoint, glm::vec3(0.0f)) << "focal_point defaults to the origin";
+  EXPECT_EQ(sun.Position, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(sun.FocalPoint, glm::dvec3(0.0)) << "focal_point defaults to the origin";
   EXPECT_EQ(sun.Color, glm::vec3(1.0f));
   EXPECT_EQ(sun.Intensity, 1.0f);
   const cloudvis::Light& lamp = scene.Lights[1];
@@ -70,7 +70,7 @@ TEST(SceneLights, TypesAndDefaults)
   EXPECT_EQ(lamp.Color, glm::vec3(1.0f, 0.5f, 0.25f));
   EXPECT_EQ(lamp.Intensity, 3.0f);
   EXPECT_EQ(lamp.Attenuation, glm::vec3(1.0f, 0.5f, 0.0f));
-  EXPECT_EQ(scene.Lights[2].FocalPoint, glm::vec3(0, 1, 0));
+  EXPECT_EQ(scene.Lights[2].FocalPoint, glm::dvec3(0, 1, 0));
   EXPECT_EQ(scene.Lights[3].Attenuation, glm::vec3(0, 0, 1)) << "inverse square by default";
 
   EXPECT_TRUE(SceneWith({ "lights=[]" }).Lights.empty()) << "an empty list means no lights";
@@ -81,8 +81,8 @@ TEST(SceneLights, WithoutTheKeyASunFromSixEightFour)
   const cloudvis::Scene scene = cloudvis::DefaultScene();
   ASSERT_EQ(scene.Lights.size(), 1u);
   EXPECT_FALSE(scene.Lights[0].Positional);
-  EXPECT_EQ(scene.Lights[0].Position, glm::vec3(6, 8, 4));
-  EXPECT_EQ(scene.Lights[0].FocalPoint, glm::vec3(0.0f));
+  EXPECT_EQ(scene.Lights[0].Position, glm::dvec3(6, 8, 4));
+  EXPECT_EQ(scene.Lights[0].FocalPoint, glm::dvec3(0.0));
   EXPECT_EQ(scene.Lights[0].Color, glm::vec3(1.0f));
   EXPECT_EQ(scene.Lights[0].Intensity, 1.0f); // the same light in every model
   EXPECT_EQ(scene.Ambient.Color, glm::vec3(0.6f, 0.6f, 0.75f));

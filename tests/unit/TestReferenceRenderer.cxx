@@ -495,10 +495,12 @@ TEST(ReferenceRenderer, RefusesBadInput)
   vectors->GetPointData()->SetScalars(threeComponents);
   EXPECT_EQ(CountErrors(FrontView(vectors, 8)), 1);
 
-  auto rotated = vtkSmartPointer<vtkImageData>::New();
-  rotated->DeepCopy(sphere);
-  rotated->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
-  EXPECT_EQ(CountErrors(FrontView(rotated, 8)), 1);
+  // A rotated image is drawn (ReferenceRenderer.HonoursTheImageGeometry...); a flattened one
+  // cannot be.
+  auto flattened = vtkSmartPointer<vtkImageData>::New();
+  flattened->DeepCopy(sphere);
+  flattened->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 1, 1, 0);
+  EXPECT_EQ(CountErrors(FrontView(flattened, 8)), 1);
 
   auto emptyImage = FrontView(sphere, 8);
   emptyImage->SetImageSize(0, 8);
