@@ -191,6 +191,17 @@ LocalFrame MakeLocalFrame(const VolumeGeometry& geometry)
   return frame;
 }
 
+glm::dmat4 DeviceToLocal(const LocalFrame& frame,
+  const glm::dmat4& viewToDevice,
+  const glm::dmat3& worldToView,
+  const glm::dvec3& eye)
+{
+  // view = R (world - eye) = R (Unit x + (Anchor - eye)) for a local point x.
+  glm::dmat4 localToView(worldToView * frame.Unit);
+  localToView[3] = glm::dvec4(worldToView * (frame.Anchor - eye), 1.0);
+  return glm::inverse(viewToDevice * localToView);
+}
+
 MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* frameOut)
 {
   // ---- the geometry and its frame

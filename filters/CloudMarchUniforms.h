@@ -84,6 +84,17 @@ struct CLOUDVISFILTERS_EXPORT LocalFrame
 
 CLOUDVISFILTERS_EXPORT LocalFrame MakeLocalFrame(const VolumeGeometry& geometry);
 
+// Normalized device coordinates to the local frame, for a camera given camera-relative: its
+// projection (view coordinates to normalized device coordinates), the rotation from world axes to
+// view axes (rows: right, up, backward), and the eye's world position. Built from
+// Anchor - eye, so no world coordinate enters the matrix: a camera and a volume both 1e10 from
+// the origin keep the precision of the same scene at the origin. The DCLocalMatrix of the march
+// shader; the CPU reference maps its pixels with the same matrix.
+CLOUDVISFILTERS_EXPORT glm::dmat4 DeviceToLocal(const LocalFrame& frame,
+  const glm::dmat4& viewToDevice,
+  const glm::dmat3& worldToView,
+  const glm::dvec3& eye);
+
 // The uniforms of shaders/CloudMarchFS.glsl and the lighting models, by the GLSL's names.
 struct MarchUniforms
 {

@@ -43,11 +43,11 @@ glm::dmat4 FromRows(const double m[4][4])
   return g;
 }
 
-// Where normalized device coordinates (ndc, ndcDepth) lie in the world: the GLSL's WorldPoint
-// with DCWCMatrix.
-glm::dvec3 WorldPoint(const glm::dmat4& deviceToWorld, glm::dvec2 ndc, double ndcDepth)
+// Where normalized device coordinates (ndc, ndcDepth) lie in the local frame: the GLSL's
+// LocalPoint with DCLocalMatrix, in double.
+glm::dvec3 LocalPoint(const glm::dmat4& deviceToLocal, glm::dvec2 ndc, double ndcDepth)
 {
-  const glm::dvec4 p = deviceToWorld * glm::dvec4(ndc, ndcDepth, 1.0);
+  const glm::dvec4 p = deviceToLocal * glm::dvec4(ndc, ndcDepth, 1.0);
   return glm::dvec3(p) / p.w;
 }
 
@@ -55,8 +55,7 @@ glm::dvec3 WorldPoint(const glm::dmat4& deviceToWorld, glm::dvec2 ndc, double nd
 struct RenderRows
 {
   const cloudvis::MarchUniforms* Uniforms;
-  glm::dmat4 DeviceToWorld;
-  const cloudvis::LocalFrame* Frame;
+  glm::dmat4 DeviceToLocal;
   int Width;
   int Height;
   float* RGBA;
@@ -69,11 +68,8 @@ struct RenderRows
       {
         const glm::dvec2 ndc((i + 0.5) / this->Width * 2.0 - 1.0,
           (double(j) + 0.5) / this->Height * 2.0 - 1.0);
-        // The GLSL gets the two points straight from DCLocalMatrix; here they go through the
-        // world in double, which holds them as exactly.
-        const glm::dvec3 nearPoint =
-          this->Frame->ToLocal(WorldPoint(this->DeviceToWorld, ndc, -1.0));
-        const glm::dvec3 farPoint = this->Frame->ToLocal(WorldPoint(this->DeviceToWorld, ndc, 1.0));
+        const glm::dvec3 nearPoint = LocalPoint(this->DeviceToLocal, ndc, -1.0);
+        const glm::dvec3 farPoint = LocalPoint(this->DeviceToLocal, ndc, 1.0);
         const glm::vec4 rgba =
           cloudvis::MarchRay(*this->Uniforms, glm::vec3(nearPoint), glm::vec3(farPoint));
         float* out = this->RGBA + (std::size_t(j) * this->Width + i) * 4;
@@ -131,15 +127,17 @@ void vtkCloudReferenceRenderer::SetVolumeMatrix(vtkMatrix4x4* matrix)
       }
 }
 
-bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const
+bool vtkCloudReferenceRenderer::GetCamera(glm::dmat4& viewToDevice,
+  glm::dmat3& worldToView,
+  glm::dvec3& eye) const
 {
   const double* position = this->CameraPosition;
   const double* focal = this->CameraFocalPoint;
   const double* up = this->CameraViewUp;
   const double* range = this->ClippingRange;
-  if (!deviceToWorld || !Finite3(position) || !Finite3(focal) || !Finite3(up) ||
-    !(range[0] > 0.0 && range[1] > range[0] && std::isfinite(range[1])) ||
-    this->ImageSize[0] < 1 || this->ImageSize[1] < 1)
+  if (!Finite3(position) || !Finite3(focal) || !Finite3(up) ||
+    !(range[0] > 0.0 && range[1] > range[0] && std::isfinite(range[1])) || this->ImageSize[0] < 1 ||
+    this->ImageSize[1] < 1)
   {
     return false;
   }
@@ -150,7 +148,7 @@ bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWor
   }
   // vtkPerspectiveTransform::SetupCamera: the rows of the rotation are the sideways, the
   // orthogonalised up and the view plane normal (from the focal point toward the camera).
-  const glm::dvec3 eye(position[0], position[1], position[2]);
+  eye = glm::dvec3(position[0], position[1], position[2]);
   const glm::dvec3 toCamera = eye - glm::dvec3(focal[0], focal[1], focal[2]);
   const glm::dvec3 sidewaysRaw = glm::cross(glm::dvec3(up[0], up[1], up[2]), toCamera);
   if (!(glm::length(toCamera) > 0.0) || !(glm::length(sidewaysRaw) > 0.0))
@@ -160,12 +158,7 @@ bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWor
   const glm::dvec3 viewPlaneNormal = glm::normalize(toCamera);
   const glm::dvec3 sideways = glm::normalize(sidewaysRaw);
   const glm::dvec3 orthoViewUp = glm::cross(viewPlaneNormal, sideways);
-  const double view[4][4] = {
-    { sideways.x, sideways.y, sideways.z, -glm::dot(sideways, eye) },
-    { orthoViewUp.x, orthoViewUp.y, orthoViewUp.z, -glm::dot(orthoViewUp, eye) },
-    { viewPlaneNormal.x, viewPlaneNormal.y, viewPlaneNormal.z, -glm::dot(viewPlaneNormal, eye) },
-    { 0.0, 0.0, 0.0, 1.0 },
-  };
+  worldToView = glm::transpose(glm::dmat3(sideways, orthoViewUp, viewPlaneNormal));
 
   // vtkCamera::ComputeProjectionTransform with the window centred and no shear: Ortho or
   // Frustum, as glOrtho and glFrustum define them.
@@ -193,7 +186,22 @@ bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWor
     projection[2][3] = -2.0 * zNear * zFar / (zFar - zNear);
     projection[3][2] = -1.0;
   }
-  const glm::dmat4 inverse = glm::inverse(FromRows(projection) * FromRows(view));
+  viewToDevice = FromRows(projection);
+  return true;
+}
+
+bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const
+{
+  glm::dmat4 viewToDevice;
+  glm::dmat3 worldToView;
+  glm::dvec3 eye;
+  if (!deviceToWorld || !this->GetCamera(viewToDevice, worldToView, eye))
+  {
+    return false;
+  }
+  glm::dmat4 worldToViewMatrix(worldToView);
+  worldToViewMatrix[3] = glm::dvec4(-(worldToView * eye), 1.0);
+  const glm::dmat4 inverse = glm::inverse(viewToDevice * worldToViewMatrix);
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
       deviceToWorld->SetElement(r, c, inverse[c][r]);
@@ -245,8 +253,10 @@ int vtkCloudReferenceRenderer::RequestData(
     vtkErrorMacro(<< "the image size must be at least 1 x 1, not " << width << " x " << height);
     return 0;
   }
-  vtkNew<vtkMatrix4x4> deviceToWorldMatrix;
-  if (!this->GetDeviceToWorldMatrix(deviceToWorldMatrix))
+  glm::dmat4 viewToDevice;
+  glm::dmat3 worldToView;
+  glm::dvec3 eye;
+  if (!this->GetCamera(viewToDevice, worldToView, eye))
   {
     vtkErrorMacro(<< "unusable camera: it needs a position away from the focal point, a view up "
                      "not along the view direction, 0 < near < far, a view angle in (0, 180) "
@@ -333,11 +343,8 @@ int vtkCloudReferenceRenderer::RequestData(
   rgba->Fill(0.0);
   output->GetPointData()->SetScalars(rgba);
 
-  glm::dmat4 deviceToWorld;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      deviceToWorld[c][r] = deviceToWorldMatrix->GetElement(r, c);
-  RenderRows render{ &uniforms, deviceToWorld, &frame, width, height, rgba->GetPointer(0) };
+  const glm::dmat4 deviceToLocal = cloudvis::DeviceToLocal(frame, viewToDevice, worldToView, eye);
+  RenderRows render{ &uniforms, deviceToLocal, width, height, rgba->GetPointer(0) };
   // Blocks of rows, so progress and abort are handled on this thread between them.
   const int blocks = std::min(height, 16);
   this->UpdateProgress(0.0);

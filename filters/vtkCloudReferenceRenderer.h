@@ -198,6 +198,10 @@ protected:
 private:
   vtkCloudReferenceRenderer(const vtkCloudReferenceRenderer&) = delete;
   void operator=(const vtkCloudReferenceRenderer&) = delete;
+
+  // The camera parameters as DeviceToLocal (CloudMarchUniforms.h) takes them; false when they
+  // are unusable.
+  bool GetCamera(glm::dmat4& viewToDevice, glm::dmat3& worldToView, glm::dvec3& eye) const;
 };
 
 #endif

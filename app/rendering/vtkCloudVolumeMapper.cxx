@@ -620,16 +620,19 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     return;
   }
 
-  // Normalized device coordinates to the local frame, in double: world = deviceToWorld(ndc),
-  // local = (world - Anchor) / Unit. The large coordinates cancel here, not in the shader.
+  // Normalized device coordinates to the local frame, built camera-relative (DeviceToLocal) so
+  // that no world coordinate enters it: the view's rotation and translation, the eye recovered
+  // from them (the camera's position, or where its model transform puts it), the projection.
   auto* camera = static_cast<vtkOpenGLCamera*>(renderer->GetActiveCamera());
   vtkMatrix4x4 *wcvc, *vcdc, *wcdc;
   vtkMatrix3x3* normals;
   camera->GetKeyMatrices(renderer, wcvc, normals, vcdc, wcdc);
-  const glm::dmat4 worldToDevice = glm::transpose(ToGlm(wcdc)); // key matrices are transposed
-  const glm::dmat4 worldToLocal = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0 / localFrame.Unit)) *
-    glm::translate(glm::dmat4(1.0), -localFrame.Anchor);
-  const glm::dmat4 deviceToLocal = worldToLocal * glm::inverse(worldToDevice);
+  const glm::dmat4 worldToView = glm::transpose(ToGlm(wcvc)); // key matrices are transposed
+  const glm::dmat3 rotation(worldToView);
+  const glm::dvec3 eye = -glm::inverse(rotation) * glm::dvec3(worldToView[3]);
+  const glm::dmat4 deviceToLocal =
+    cloudvis::DeviceToLocal(localFrame, glm::transpose(ToGlm(vcdc)), rotation, eye);
+  const glm::dmat4 worldToDevice = glm::transpose(ToGlm(wcdc));
   const glm::dmat4 modelToWorld = ToGlm(volume->GetMatrix());
 
   view.MostSamplesPerRay = std::max(1.0, double(uniforms.MaximumSamples - 16));

@@ -77,6 +77,16 @@ public:
 // Writes the image as <name>.png into $CLOUDVIS_RENDER_DUMP when that is set: for looking.
 void Dump(const Image& image, const std::string& name);
 
+// The difference of two images over the pixels where either shows cloud (a color above 0, the
+// fixture's background being black), in 8-bit levels.
+struct CloudDifference
+{
+  int CloudPixels = 0;
+  double RmsLevels = 0.0;
+  double MaxLevels = 0.0;
+};
+CloudDifference CloudPixelDifference(const Image& a, const Image& b);
+
 // Root mean square difference over the RGB channels, in 8-bit levels.
 double RmsDifference(const Image& a, const Image& b);
 double MaxDifference(const Image& a, const Image& b);
