@@ -291,7 +291,8 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
         " samples along the volume's longest ray (" + Number(frame.LongestChord * frame.Unit) +
         " world units); the most is " + std::to_string(MaxSamplesPerRay) +
         ": use a step of at least " +
-        Number(frame.LongestChord * frame.Unit / MaxSamplesPerRay * (1.0 + 1e-9)));
+        // rounded up in its 6 printed digits, so that the step given is accepted
+        Number(frame.LongestChord * frame.Unit / MaxSamplesPerRay * (1.0 + 1e-5)));
   }
   u.Step = float(step / frame.Unit);
   u.MaximumSamples = int(std::ceil(samples)) + 16;

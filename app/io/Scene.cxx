@@ -1500,6 +1500,12 @@ void CheckFloatRanges(const Context& c, const Scene& s)
         FormatNumber(tf.UnitDistance * sigma / double(std::numeric_limits<float>::max())));
   }
   const double perLight = PeakRadiancePerLightRadiance(s.Render.Parameters);
+  const auto floatText = [](double v) { // light values are floats: 6 digits say them
+    std::ostringstream out;
+    out.precision(6);
+    out << v;
+    return out.str();
+  };
   for (size_t i = 0; i < s.Lights.size(); ++i)
   {
     const Light& light = s.Lights[i];
@@ -1508,10 +1514,10 @@ void CheckFloatRanges(const Context& c, const Scene& s)
     if (!(peak < FloatLimit))
     {
       c.Fail("lights[" + std::to_string(i) + "].intensity",
-        "value " + FormatNumber(light.Intensity) +
+        "value " + floatText(light.Intensity) +
           " is too bright for float arithmetic: color x intensity" +
-          " times the march's peak scattering (" + FormatNumber(perLight) + ") reaches " +
-          FormatNumber(peak) + "; allowed < " + FormatNumber(FloatLimit / (color * perLight)));
+          " times the march's peak scattering (" + floatText(perLight) + ") reaches " +
+          floatText(peak) + "; allowed < " + floatText(FloatLimit / (color * perLight)));
     }
   }
 }

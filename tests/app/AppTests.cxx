@@ -7,6 +7,7 @@
 #include "AtomicFile.h"
 #include "CommandLine.h"
 #include "Errors.h"
+#include "ExportRender.h"
 #include "FieldIO.h"
 #include "FieldStatistics.h"
 #include "OffscreenRender.h"
@@ -677,3 +678,28 @@ TEST(Render, WithoutDisplayFailsWithTheXvfbHintAndWritesNothing)
 }
 
 } // namespace
+
+TEST(Render, ANonFiniteImageIsAnErrorNamingTheLikelyCauseBeforeAnyFileIsWritten)
+{
+  // The check every writing path makes on the float image (render, compare, animate, the
+  // viewer's screenshot, --cpu-reference): the renderers' own validation should leave nothing
+  // for it to find, so it is tested on an image made bad on purpose.
+  std::vector<float> rgba(4 * 6, 0.25f);
+  EXPECT_NO_THROW(cloudvis::CheckFiniteImage(rgba.data(), 6, "cloud.vti"));
+  rgba[5] = std::nanf("");
+  rgba[10] = INFINITY;
+  try
+  {
+    cloudvis::CheckFiniteImage(rgba.data(), 6, "cloud.vti");
+    FAIL() << "a NaN pixel was accepted";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cloud.vti: the rendered image has 2 values that are NaN or infinite, "
+                           "so nothing was written"),
+      std::string::npos)
+      << message;
+    EXPECT_NE(message.find("likely causes"), std::string::npos);
+  }
+}

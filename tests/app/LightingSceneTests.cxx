@@ -19,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -268,39 +269,79 @@ TEST(LightingRender, DerivativeAndMarchDifferFromNone)
   EXPECT_GT(RmsLevels(images[1], 0, images[2], 0, 48), 5.0);
 }
 
-class CpuReferenceMatchesRender : public ::testing::TestWithParam<const char*>
+struct ReferenceCase
+{
+  const char* Name;
+  std::string Input; // a scene, or a field file
+  const char* Lighting;
+};
+
+class CpuReferenceMatchesRender : public ::testing::TestWithParam<ReferenceCase>
 {
 };
 
-TEST_P(CpuReferenceMatchesRender, WithinTwoLevelsRms)
+TEST_P(CpuReferenceMatchesRender, WithinOneLevelOverTheCloud)
 {
   // A wide image, so that a camera fitted for the wrong aspect would show.
-  const Output gpu("gpu.png"), cpu("cpu.png");
-  const std::vector<std::string> common = { "render", CLOUDVIS_SCENES "/two-lights.json", "--size",
-    "72x40", "--lighting", GetParam() };
-  std::vector<std::string> gpuArguments = With(common), cpuArguments = With(common);
+  const ReferenceCase& c = GetParam();
+  const Output gpu("gpu.png"), cpu("cpu.png"), empty("empty.png");
+  const std::vector<std::string> common = {
+    "render", c.Input, "--size", "72x40", "--lighting", c.Lighting
+  };
+  std::vector<std::string> small = With(common);
+  if (c.Input.size() > 4 && c.Input.compare(c.Input.size() - 4, 4, ".vti") == 0)
+  {
+    const auto dimensions = std::find(small.begin(), small.end(), "field.dimensions=32");
+    small.erase(dimensions - 1, dimensions + 1); // a field file has its own voxels
+  }
+  std::vector<std::string> gpuArguments = small, cpuArguments = small, emptyArguments = small;
   gpuArguments.insert(gpuArguments.end(), { "-o", gpu.Path });
   cpuArguments.insert(cpuArguments.end(), { "--cpu-reference", "-o", cpu.Path });
+  emptyArguments.insert(
+    emptyArguments.end(), { "--set", "transfer_function.opacity=[[0,0]]", "-o", empty.Path });
   RunCloudvis(gpuArguments);
   RunCloudvis(cpuArguments);
-  const Png a = ReadPng(gpu.Path), b = ReadPng(cpu.Path);
+  RunCloudvis(emptyArguments);
+  const Png a = ReadPng(gpu.Path), b = ReadPng(cpu.Path), background = ReadPng(empty.Path);
   ASSERT_EQ(a.Width, 72);
   ASSERT_EQ(b.Width, 72);
   ASSERT_EQ(b.Height, 40);
-  const double rms = RmsLevels(a, 0, b, 0, 72);
-  std::cout << GetParam() << ": GPU vs --cpu-reference RMS " << rms << " levels\n";
-  // Both round the same radiance to 8 bits; what differs is float arithmetic (see
-  // tests/render/TestGpuMatchesCpuReference.cxx): well under 2 levels.
-  EXPECT_LT(rms, 2.0);
-  // And the cloud is there (not both empty).
-  const Output empty("empty.png");
-  RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "72x40", "--set",
-    "transfer_function.opacity=[[0,0]]", "-o", empty.Path }));
-  EXPECT_GT(RmsLevels(ReadPng(empty.Path), 0, b, 0, 72), 5.0);
+  // Over the pixels where the reference shows cloud: those that differ from the empty render.
+  double sum = 0.0;
+  int cloud = 0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 72; ++x)
+    {
+      bool shown = false;
+      for (int k = 0; k < 3; ++k)
+        shown = shown || b.At(x, y, k) != background.At(x, y, k);
+      if (!shown)
+        continue;
+      ++cloud;
+      for (int k = 0; k < 3; ++k)
+        sum += (a.At(x, y, k) - b.At(x, y, k)) * (a.At(x, y, k) - b.At(x, y, k));
+    }
+  const double rms = cloud ? std::sqrt(sum / (3.0 * cloud)) : 0.0;
+  std::cout << c.Name << ": GPU vs --cpu-reference RMS " << rms << " levels over " << cloud
+            << " cloud pixels\n";
+  ASSERT_GT(cloud, 72 * 40 / 20) << "the cloud is there (not both empty)";
+  // Both round the same radiance to 8 bits (the GPU's float image differs from the reference's
+  // by about 1e-5 of the peak, tests/render/TestGpuMatchesCpuReference.cxx): what is left is two
+  // roundings, the window's 8-bit blend of the cloud over the background against the
+  // reference's rounding of its composite. Measured 0.37 to 0.50 levels RMS (two independent
+  // roundings give about 0.41); the gate before was 2 levels over the whole image.
+  EXPECT_LT(rms, 1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, CpuReferenceMatchesRender,
-  ::testing::Values("none", "derivative", "march"));
+INSTANTIATE_TEST_SUITE_P(Models,
+  CpuReferenceMatchesRender,
+  ::testing::Values(ReferenceCase{ "none", CLOUDVIS_SCENES "/two-lights.json", "none" },
+    ReferenceCase{ "derivative", CLOUDVIS_SCENES "/two-lights.json", "derivative" },
+    ReferenceCase{ "march", CLOUDVIS_SCENES "/two-lights.json", "march" },
+    // A field file indexed from -2 and rotated by its direction matrix: the whole geometry
+    // reaches both renderers.
+    ReferenceCase{ "rotated_offset_field", CLOUDVIS_APP_DATA "/rotated-offset.vti", "march" }),
+  [](const ::testing::TestParamInfo<ReferenceCase>& parameter) { return parameter.param.Name; });
 
 TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
 {

@@ -467,3 +467,29 @@ TEST(OccupancyFilter, Timing256Cubed)
   EXPECT_GT(filter->GetOccupiedFraction(), 0.0);
   EXPECT_LT(filter->GetOccupiedFraction(), 1.0);
 }
+
+TEST(OccupancyFilter, ValuesBeyondTheTransferFunctionTakeItsEndValues)
+{
+  // The table spans the function (0 .. 1); the data reach far beyond it. A brick of -3.4e38
+  // reads the first entry (transparent), bricks of 1e4 or 3.4e38 the last (opaque): skipping
+  // stays exact because the occupancy clamps exactly as the lookups do.
+  const Index dims = { 17, 9, 9 };
+  auto field = MakeField<vtkFloatArray>(dims, -3.4e38);
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 9; ++y)
+    {
+      SetVoxel(field, { 14, y, z }, 1e4);
+      SetVoxel(field, { 16, y, z }, 3.4e38);
+    }
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.0);
+  opacity->AddPoint(1.0, 0.5);
+  const TransferTable table = TabulateTransferFunction(nullptr, opacity, 1.0);
+  const Bricks bricks = Occupancy(field, table, 4, 0);
+  ASSERT_EQ(bricks.Dims, (Index{ 4, 2, 2 }));
+  for (int x = 0; x < 4; ++x)
+  {
+    EXPECT_EQ(bricks.Occupied({ x, 0, 0 }), x == 3) << "brick " << x;
+  }
+  EXPECT_FLOAT_EQ(bricks.MaxExtinction[bricks.At({ 3, 1, 1 })], float(Extinction(0.5, 1.0)));
+}

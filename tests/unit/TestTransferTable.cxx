@@ -309,3 +309,46 @@ TEST(ValidateTransferFunction, PointPositionsMustBeNumbersInOrder)
   opacity->SetNodeValue(0, nan);
   EXPECT_EQ(ValidateTransferFunction(opacity, nullptr), "opacity point 0 is not a number");
 }
+
+TEST(TransferTable, SpansTheTransferFunctionNotTheData)
+{
+  // The opacity's points and the color map's range together; the data's extremes play no part.
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.1, 0.0);
+  opacity->AddPoint(0.9, 0.6);
+  vtkNew<vtkLookupTable> color;
+  color->SetTableRange(0.0, 0.5);
+  double range[2];
+  ASSERT_TRUE(TransferFunctionRange(opacity, color, range));
+  EXPECT_EQ(range[0], 0.0);
+  EXPECT_EQ(range[1], 0.9);
+  ASSERT_TRUE(TransferFunctionRange(opacity, nullptr, range));
+  EXPECT_EQ(range[0], 0.1);
+  EXPECT_EQ(range[1], 0.9);
+
+  // Outside its points a function keeps its end values, as VTK clamps: so does the table.
+  const TransferTable table = TabulateTransferFunction(nullptr, opacity, 1.0);
+  ASSERT_EQ(table.Size, 1024);
+  EXPECT_EQ(table.Lookup(1e4), table.Lookup(0.9));
+  EXPECT_EQ(table.Lookup(3.4e38), table.Lookup(0.9));
+  EXPECT_EQ(table.Lookup(-3.4e38).a, 0.0f);
+  EXPECT_NEAR(table.Lookup(0.5).a, Extinction(0.3, 1.0), 1e-3);
+}
+
+TEST(TransferTable, ASinglePointFunctionGivesAConstantTableOfWidthOne)
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(2.0, 0.4);
+  double range[2];
+  ASSERT_TRUE(TransferFunctionRange(opacity, nullptr, range));
+  EXPECT_EQ(range[0], 2.0);
+  EXPECT_EQ(range[1], 3.0);
+  const TransferTable table = TabulateTransferFunction(nullptr, opacity, 0.5);
+  for (double density : { -1e30, 0.0, 2.0, 2.5, 1e30 })
+  {
+    EXPECT_FLOAT_EQ(table.Lookup(density).a, float(Extinction(0.4, 0.5))) << density;
+  }
+  vtkNew<vtkPiecewiseFunction> none;
+  EXPECT_FALSE(TransferFunctionRange(none, nullptr, range));
+  EXPECT_EQ(TabulateTransferFunction(nullptr, none, 1.0).Size, 0);
+}
