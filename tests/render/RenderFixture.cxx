@@ -282,7 +282,12 @@ double MaxDifference(const Image& a, const Image& b)
   double largest = 0.0;
   for (size_t i = 0; i < a.RGBA.size(); ++i)
   {
-    largest = std::max(largest, double(std::abs(a.RGBA[i] - b.RGBA[i])));
+    const double d = std::abs(double(a.RGBA[i]) - double(b.RGBA[i]));
+    if (std::isnan(d))
+    {
+      return d; // a NaN pixel is no match for anything (std::max would drop it)
+    }
+    largest = std::max(largest, d);
   }
   return largest;
 }

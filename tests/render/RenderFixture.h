@@ -89,6 +89,7 @@ CloudDifference CloudPixelDifference(const Image& a, const Image& b);
 
 // Root mean square difference over the RGB channels, in 8-bit levels.
 double RmsDifference(const Image& a, const Image& b);
+// The largest difference of any channel; NaN when either image holds a NaN.
 double MaxDifference(const Image& a, const Image& b);
 
 } // namespace test

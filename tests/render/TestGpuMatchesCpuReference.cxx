@@ -228,6 +228,12 @@ bool OnLlvmpipe(const std::string& capabilities)
   return capabilities.find("llvmpipe") != std::string::npos;
 }
 
+// The test's name in ctest's list, rather than the parameter's bytes.
+void PrintTo(const Case& c, std::ostream* out)
+{
+  *out << c.Name;
+}
+
 class GpuMatchesCpuReference : public ::testing::TestWithParam<Case>
 {
 };
@@ -376,7 +382,7 @@ std::vector<Case> Cases()
   cases.push_back(far);
   Case huge;
   huge.Name = "HugeField";
-  huge.World.Scale = 1e17; // a field 4e17 units wide
+  huge.World.Scale = 1e19; // a field 4e19 units wide: its squared lengths overflow float
   huge.PointLight = true;
   cases.push_back(huge);
   return cases;
@@ -399,7 +405,7 @@ TEST(GpuMatchesCpuReference, FarAwayAndHugeFieldsRenderLikeTheSameFieldAtTheOrig
   const Rendered atOrigin = RenderBoth(base);
   const bool llvmpipe = OnLlvmpipe(atOrigin.Renderer);
   for (const Similarity world : { Similarity{ 1.0, 1e10 },
-         Similarity{ 1e17, 0.0 },
+         Similarity{ 1e19, 0.0 },
          Similarity{ std::ldexp(1.0, 60), 0.0 },
          Similarity{ 1e-12, -3e-9 } })
   {
@@ -420,9 +426,10 @@ TEST(GpuMatchesCpuReference, FarAwayAndHugeFieldsRenderLikeTheSameFieldAtTheOrig
     ASSERT_GT(gpu.CloudPixels, Size * Size / 10) << "an empty window proves nothing";
     ASSERT_GT(gpu.Brightest, 0.05);
     // Measured on llvmpipe: 0 for the offset and the power-of-two scale (the same floats),
-    // 1.4e-5 (GPU) and 3.4e-6 (CPU) for the others, where the scaled spacing rounds differently.
-    EXPECT_LT(gpu.MaxColor, (llvmpipe ? 5e-5 : 5e-4) * gpu.Brightest);
-    EXPECT_LT(reference.MaxColor, 2e-5 * reference.Brightest);
+    // up to 2.9e-5 (GPU) and 3.3e-6 (CPU) of the peak for the others, where the scaled spacing
+    // rounds differently.
+    EXPECT_LT(gpu.MaxColor, (llvmpipe ? 1e-4 : 1e-3) * gpu.Brightest);
+    EXPECT_LT(reference.MaxColor, 1e-5 * reference.Brightest);
     if (world.Scale == std::ldexp(1.0, 60) || world.Scale == 1.0)
     {
       EXPECT_EQ(gpu.MaxColor, 0.0) << "a power-of-two scale and an exact offset change no float";
