@@ -32,6 +32,9 @@ vtkSmartPointer<vtkImageData> ConstantBox(double halfSize, int size = 64, double
 vtkSmartPointer<vtkImageData> SparseCloud(int size = 64);
 vtkSmartPointer<vtkImageData> DenseCloud(int size = 64);
 
+// cloudvis's mapper at a fixed step, jitter off: every sample where the tests expect it.
+vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step);
+
 // A property whose opacity per unit length is `opacity` for densities >= 0.5 (0 below), with
 // the given unit distance and a uniform color.
 void SetUniformMedium(vtkVolumeProperty* property, double opacity, double unitDistance,

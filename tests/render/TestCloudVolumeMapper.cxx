@@ -14,17 +14,6 @@
 using namespace cloudvis;
 using namespace cloudvis::test;
 
-namespace
-{
-vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step)
-{
-  auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
-  mapper->SetSampleDistance(step);
-  mapper->JitterOff();
-  return mapper;
-}
-}
-
 TEST(CloudVolumeMapper, HomogeneousSphereTransmitsBeerLambert)
 {
   // Constant density 1 in a sphere of radius 1; opacity 0.5 per unit length 0.5, so

@@ -25,14 +25,6 @@ using namespace cloudvis::test;
 
 namespace
 {
-vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step)
-{
-  auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
-  mapper->SetSampleDistance(step);
-  mapper->JitterOff();
-  return mapper;
-}
-
 // Renders `field` after `setup` has changed the scene; returns the mapper's error, and checks
 // that nothing but the black background was drawn when there is one.
 std::string ErrorOf(
