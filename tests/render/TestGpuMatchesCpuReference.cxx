@@ -15,7 +15,7 @@
 // density and the transfer-table lookup; the CPU interpolates exactly) and its matrix products
 // round differently, which moves a sample by a few ulps; where the density is sharp (the
 // constant sphere's surface) that can add or drop a whole sample at the edge. Gates per platform,
-// about 3x what was measured (docs/reliability.md lists the figures).
+// 3 to 5 times what was measured on llvmpipe (docs/reliability.md lists the figures).
 #include "CpuReference.h"
 #include "RenderFixture.h"
 
@@ -268,12 +268,15 @@ TEST_P(GpuMatchesCpuReference, WithinTolerance)
   // Not an empty window: the cloud covers a good part of the image, and is bright.
   ASSERT_GT(d.CloudPixels, Size * Size / 10) << "the scene must show a cloud to compare";
   ASSERT_GT(d.Brightest, 0.05) << "the scene must show a cloud to compare";
+  // Measured on llvmpipe over all cases: RMS 0.06e-6 .. 3.5e-6 and max 0.5e-6 .. 2.1e-5 of the
+  // peak, alpha max up to 2.3e-5. Elsewhere (not measured yet) ten times looser, and the constant
+  // sphere's max at 5%: another GPU's rounding may add or drop a whole sample on its surface.
   const bool llvmpipe = OnLlvmpipe(r.Renderer);
-  const double rmsGate = llvmpipe ? 3e-5 : 3e-4;
-  const double maxGate = c.Cloud ? (llvmpipe ? 3e-4 : 3e-3) : 0.05;
+  const double rmsGate = llvmpipe ? 1e-5 : 1e-4;
+  const double maxGate = llvmpipe ? 1e-4 : c.Cloud ? 1e-3 : 0.05;
   EXPECT_LT(d.RmsColor, rmsGate * d.Brightest);
   EXPECT_LT(d.MaxColor, maxGate * d.Brightest);
-  EXPECT_LT(d.MaxAlpha, c.Cloud ? maxGate : 0.05);
+  EXPECT_LT(d.MaxAlpha, maxGate);
 }
 
 namespace
