@@ -245,8 +245,14 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
     return Problem(MarchInput::TransferFunction, "no transfer table");
   }
   const double densityUnit = table->Range[1] - table->Range[0];
-  if (!FitsFloat(table->Range[0]) || !FitsFloat(table->Range[1]) || !FitsFloat(densityUnit) ||
-    !(densityUnit > 0.0))
+  if (!(densityUnit > 0.0))
+  {
+    // The GPU's lookup divides by the width (TransferFunctionRange never gives 0).
+    return Problem(MarchInput::TransferFunction,
+      "the transfer table spans no densities (from " + Number(table->Range[0]) + " to " +
+        Number(table->Range[1]) + ")");
+  }
+  if (!FitsFloat(table->Range[0]) || !FitsFloat(table->Range[1]) || !FitsFloat(densityUnit))
   {
     return Problem(MarchInput::TransferFunction,
       "the transfer function spans densities [" + Number(table->Range[0]) + ", " +
