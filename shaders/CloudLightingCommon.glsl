@@ -3,7 +3,9 @@
 // p is a point in voxel index space; LocalOfIndex(p) gives it in the local frame, where the
 // lights are (cloudvis::LocalLight), and LocalToIndex turns a local displacement into index units.
 
-#define MAX_LIGHTS 8 // cloudvis::MaxLights
+// The mapper defines MAX_LIGHTS here as cloudvis::MaxLights (filters/CloudLighting.h), the one
+// limit the scene reader, the mapper and the CPU reference all enforce.
+//CLOUD::MaxLights::Dec
 uniform int LightPositional[MAX_LIGHTS];
 uniform vec3 LightPosition[MAX_LIGHTS];  // local; positional lights
 uniform vec3 LightDirection[MAX_LIGHTS]; // unit, toward the light; directional lights

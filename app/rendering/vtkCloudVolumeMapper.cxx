@@ -420,12 +420,15 @@ std::vector<cloudvis::Light> LightsOf(vtkRenderer* renderer)
 std::string LightingSource(cloudvis::LightingModel model,
   const std::vector<cloudvis::LocalLight>& lights)
 {
+  std::string common = CloudLightingCommon;
+  vtkShaderProgram::Substitute(
+    common, "//CLOUD::MaxLights::Dec", "#define MAX_LIGHTS " + std::to_string(cloudvis::MaxLights));
   if (model == cloudvis::LightingModel::None)
   {
-    return std::string(CloudLightingCommon) + "\n" + CloudLightingNone;
+    return common + "\n" + CloudLightingNone;
   }
   std::ostringstream source;
-  source << CloudLightingCommon << "\n"
+  source << common << "\n"
          << (model == cloudvis::LightingModel::Derivative ? CloudLightingDerivative
                                                           : CloudLightingMarch)
          << "\nvec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)\n{\n"
