@@ -5,18 +5,20 @@
 // so the scene's validation checks them like any other value.
 #include "CommandLine.h"
 
-#include "../analysis/FieldStatistics.h"
-#include "../io/AtomicFile.h"
-#include "../io/Errors.h"
-#include "../io/FieldIO.h"
-#include "../io/Scene.h"
-#include "../io/SceneField.h"
-#include "../render/Compare.h"
-#include "../render/CpuReference.h"
-#include "../render/OffscreenRender.h"
-#include "../view/Viewer.h"
+#include "AtomicFile.h"
+#include "CommandSupport.h"
+#include "Compare.h"
+#include "CpuReference.h"
+#include "Display.h"
+#include "Errors.h"
 #include "ExportCommands.h"
+#include "FieldIO.h"
+#include "FieldStatistics.h"
+#include "ImageWriters.h"
+#include "OffscreenRender.h"
 #include "Progress.h"
+#include "Scene.h"
+#include "SceneField.h"
 
 #include <vtkImageData.h>
 
@@ -34,14 +36,59 @@
 
 namespace cloudvis
 {
-namespace
-{
 
 const OptionSpec SetOption{ "set", 0, "KEY=VALUE",
   "override a scene value before validation, e.g. --set field.octaves=4 or "
   "--set field.dimensions=64,64,64 (see docs/scene-format.md)",
   true };
 const OptionSpec HelpOption{ "help", 'h', "", "show this help and exit" };
+
+OptionSpec LightingOption()
+{
+  std::string names;
+  for (const std::string& name : LightingModelNames())
+  {
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  return { "lighting", 0, "MODEL", "lighting model, one of: " + names + "; overrides render.lighting" };
+}
+
+nlohmann::json ParseSizeOption(const std::string& command, const std::string& text)
+{
+  static const std::regex form("([0-9]{1,9})[xX]([0-9]{1,9})");
+  std::smatch match;
+  if (!std::regex_match(text, match, form))
+  {
+    throw UsageError(command + ": --size expects WIDTHxHEIGHT in pixels (for example 800x600), "
+                               "got \"" + text + "\"");
+  }
+  return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
+}
+
+bool IsFieldFile(const std::string& operand)
+{
+  const std::string suffix = ".vti";
+  return operand.size() >= suffix.size() &&
+    operand.compare(operand.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+void RefuseFieldKeys(const std::string& command, const std::string& fieldFile,
+  const std::vector<std::string>& assignments)
+{
+  for (const std::string& assignment : assignments)
+  {
+    if (assignment.rfind("field", 0) == 0 &&
+      (assignment.size() == 5 || assignment[5] == '.' || assignment[5] == '='))
+    {
+      throw UsageError(command + ": --set " + assignment.substr(0, assignment.find('=')) +
+        " does not apply to the field file " + fieldFile + "; only scenes have field keys");
+    }
+  }
+}
+
+namespace
+{
+
 const OptionSpec OutputOption{ "output", 'o', "FIELD.vti",
   "write the field to this file (VTK XML image data, zlib-compressed); required", false,
   true };
@@ -68,22 +115,6 @@ const OptionSpec PanelSizeOption{ "size", 0, "WxH",
   "size of each panel in pixels, e.g. 400x300; overrides render.size (the window is the panels "
   "side by side)" };
 
-OptionSpec LightingOption()
-{
-  std::string names;
-  for (const std::string& name : LightingModelNames())
-  {
-    names += (names.empty() ? "" : ", ") + name;
-  }
-  return { "lighting", 0, "MODEL", "lighting model, one of: " + names + "; overrides render.lighting" };
-}
-
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() &&
-    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 std::string DescribeDimensions(vtkImageData* field)
 {
   int d[3];
@@ -106,19 +137,6 @@ int Generate(const Arguments& arguments, std::ostream& out)
   WriteField(field, output);
   out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
   return ExitSuccess;
-}
-
-// --size WxH as the JSON value of render.size; the scene checks the range.
-nlohmann::json ParseSize(const std::string& text)
-{
-  static const std::regex form("([0-9]{1,9})[xX]([0-9]{1,9})");
-  std::smatch match;
-  if (!std::regex_match(text, match, form))
-  {
-    throw UsageError("render: --size expects WIDTHxHEIGHT in pixels (for example 800x600), got \"" +
-      text + "\"");
-  }
-  return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
 }
 
 int ParseFrameCount(const std::string& option, const std::string& text)
@@ -154,19 +172,11 @@ SceneInput LoadSceneInput(const std::string& command, const Arguments& arguments
   const std::function<void(double)>& generationProgress = {})
 {
   const std::string& input = arguments.Operands[0];
-  const bool fieldFile = EndsWith(input, ".vti");
+  const bool fieldFile = IsFieldFile(input);
   const std::vector<std::string> assignments = arguments.Values("set");
   if (fieldFile)
   {
-    for (const std::string& assignment : assignments)
-    {
-      if (assignment.rfind("field", 0) == 0 && (assignment.size() == 5 ||
-            assignment[5] == '.' || assignment[5] == '='))
-      {
-        throw UsageError(command + ": --set " + assignment.substr(0, assignment.find('=')) +
-          " does not apply to the field file " + input + "; only scenes have field keys");
-      }
-    }
+    RefuseFieldKeys(command, input, assignments);
   }
   CheckImageOutput(output);
   SceneInput loaded{ LoadScene(fieldFile ? "" : input, assignments, options), nullptr };
@@ -203,7 +213,7 @@ int Render(const Arguments& arguments, std::ostream& out)
   }
   if (arguments.Has("size"))
   {
-    options.push_back({ "render.size", ParseSize(arguments.Value("size")), "--size" });
+    options.push_back({ "render.size", ParseSizeOption("render", arguments.Value("size")), "--size" });
   }
   AddExportOverrides(arguments, options);
   const bool cpuReference = arguments.Has("cpu-reference");
@@ -324,7 +334,7 @@ int Compare(const Arguments& arguments, std::ostream& out)
   std::vector<SceneOverride> options;
   if (arguments.Has("size"))
   {
-    options.push_back({ "render.size", ParseSize(arguments.Value("size")), "--size" });
+    options.push_back({ "render.size", ParseSizeOption("compare", arguments.Value("size")), "--size" });
   }
   const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
   const ComparisonResult result = RenderComparison(
@@ -352,7 +362,7 @@ int Info(const Arguments& arguments, std::ostream& out)
 {
   const std::string& input = arguments.Operands[0];
   vtkSmartPointer<vtkImageData> field;
-  if (EndsWith(input, ".vti"))
+  if (IsFieldFile(input))
   {
     if (arguments.Has("set"))
     {

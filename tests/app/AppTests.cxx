@@ -1,4 +1,4 @@
-// Library-level tests of cloudvisApp: what the command-line tests cannot judge by regex. A
+// Library-level tests of the application layers: what the command-line tests cannot judge by regex. A
 // generated file must equal, bit for bit, vtkCloudDensitySource configured by hand with the same
 // parameters (which also checks that every scene key lands on the right member); statistics
 // must match analytic answers; overrides and atomic writes must behave as documented; rendered

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # An export interrupted by a signal: starts `cloudvis generate` on a field large enough that
 # writing it takes a while, waits until its temporary file (.NAME.tmp-XXXXXX.vti, see
-# app/io/AtomicFile.h) appears, sends the signal, then checks that cloudvis exited with
+# app/common/public/AtomicFile.h) appears, sends the signal, then checks that cloudvis exited with
 # 128 + signal, that no temporary is left, and that the target holds what it held before
 # (the previous file, or nothing).
 # usage: InterruptExport.sh CLOUDVIS WORK_DIR SIGNAL(INT|TERM) EXPECTED_STATUS previous|none

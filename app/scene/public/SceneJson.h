@@ -19,7 +19,7 @@
 namespace cloudvis
 {
 
-// The camera as the renderer placed it (render/ExportRender.h ResolveCamera): position, focal
+// The camera as the renderer placed it (export/ExportRender.h ResolveCamera): position, focal
 // point and the scene's view-up as given (the renderer orthogonalises it itself).
 struct ResolvedCamera
 {

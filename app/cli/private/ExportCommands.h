@@ -41,9 +41,6 @@ bool ShowProgress(const Arguments& arguments);
 // The command line quoted for a POSIX shell where needed, as stored in "cloudvis.command".
 std::string QuoteCommandLine(const std::vector<std::string>& arguments);
 
-// `cloudvis animate`, for the command table.
-CommandSpec AnimateCommand();
-
 } // namespace cloudvis
 
 #endif

@@ -1,6 +1,6 @@
 // `cloudvis view`: the interactive viewer. One vtkRenderWindow (no Qt) holds the 3D view of the
 // cloud in the upper three quarters, drawn exactly as `render` draws it (the configuration
-// functions of render/OffscreenRender.h, SceneLighting.h and Background.h), with the slice
+// functions of export/OffscreenRender.h, SceneLighting.h and Background.h), with the slice
 // widgets of SlicePlanes.h; the transfer-function editor (TransferFunctionEditor.h) in the
 // bottom quarter; and a text overlay for help and messages over the 3D view. Keys change the
 // lighting, step, resolution and presets, save screenshots and scenes (docs/viewer.md lists them);
@@ -11,7 +11,6 @@
 #ifndef cloudvis_Viewer_h
 #define cloudvis_Viewer_h
 
-#include "CommandLine.h"
 #include "Scene.h"
 
 #include <vtkSmartPointer.h>
@@ -105,9 +104,6 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Internal;
 };
-
-// `cloudvis view`, for the command table.
-CommandSpec ViewCommand();
 
 } // namespace cloudvis
 

@@ -148,7 +148,7 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
         frame = FrameScene(scene, request, index, start);
       }
       RenderOptions options;
-      options.FloatImage = NeedsFloatImage(request.Extension, request.Export);
+      options.FloatImage = NeedsFloatImage(FrameFileName(request, index), request.Export);
       options.OnFrame = [&](int f, int frames)
       { report(index, "rendering", generationShare + (1.0 - generationShare) * f / frames); };
       const OffscreenRenderResult result = RenderOffscreen(frame, field, input, 0, options);

@@ -5,6 +5,7 @@
 #include "Compare.h"
 
 #include "Background.h"
+#include "Display.h"
 #include "Errors.h"
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"

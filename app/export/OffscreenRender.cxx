@@ -6,6 +6,7 @@
 
 #include "AtomicFile.h"
 #include "Background.h"
+#include "Display.h"
 #include "Errors.h"
 #include "SceneLighting.h"
 #include "ExportRender.h"
@@ -40,54 +41,6 @@ namespace cloudvis
 {
 namespace
 {
-
-// Output formats: one entry per extension; the writers are in io/ImageWriters.cxx.
-struct ImageFormat
-{
-  const char* Extension;
-  // Writes to `path` (a temporary); `target` names the file in errors.
-  void (*Write)(const RenderedImage& image, const ImageExportOptions& options,
-    const std::string& path, const std::string& target);
-};
-
-const ImageFormat ImageFormats[] = {
-  { ".png", WritePngImage },
-  { ".exr", WriteExrImage },
-};
-
-std::string LowerExtension(const std::string& path)
-{
-  const auto slash = path.find_last_of('/');
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const auto dot = name.find_last_of('.');
-  std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
-  for (char& c : extension)
-  {
-    c = char(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension;
-}
-
-const ImageFormat& FormatOf(const std::string& path)
-{
-  const std::string extension = LowerExtension(path);
-  for (const ImageFormat& format : ImageFormats)
-  {
-    if (extension == format.Extension)
-    {
-      return format;
-    }
-  }
-  std::string supported;
-  for (const std::string& e : SupportedImageExtensions())
-  {
-    supported += (supported.empty() ? "" : ", ") + e;
-  }
-  throw InputError(path + ": " +
-    (extension.empty() ? std::string("the file name has no image extension")
-                       : "unsupported image format \"" + extension + "\"") +
-    "; supported: " + supported);
-}
 
 // After every Render(): the mapper's own report, in the user's terms.
 } // namespace
@@ -299,35 +252,6 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
       std::chrono::duration<double, std::milli>(end - start).count());
   }
   return result;
-}
-
-std::vector<std::string> SupportedImageExtensions()
-{
-  std::vector<std::string> extensions;
-  for (const ImageFormat& format : ImageFormats)
-  {
-    extensions.emplace_back(format.Extension);
-  }
-  return extensions;
-}
-
-void CheckImageOutput(const std::string& path)
-{
-  FormatOf(path);
-  CheckOutputTarget(path);
-}
-
-void WriteImage(const RenderedImage& image, const std::string& path)
-{
-  WriteImage(image, path, ImageExportOptions{});
-}
-
-void WriteImage(
-  const RenderedImage& image, const std::string& path, const ImageExportOptions& options)
-{
-  const ImageFormat& format = FormatOf(path);
-  WriteFileAtomically(
-    path, [&](const std::string& temporary) { format.Write(image, options, temporary, path); });
 }
 
 } // namespace cloudvis

@@ -4,6 +4,7 @@
 // first, so the EXR writer hands OpenEXR one line at a time, from the last in memory.
 #include "ImageWriters.h"
 
+#include "AtomicFile.h"
 #include "Errors.h"
 #include "VtkMessageCapture.h"
 
@@ -34,14 +35,6 @@ namespace cloudvis
 {
 namespace
 {
-
-bool IsExr(const std::string& path)
-{
-  std::string tail = path.size() >= 4 ? path.substr(path.size() - 4) : path;
-  std::transform(tail.begin(), tail.end(), tail.begin(),
-    [](unsigned char c) { return char(std::tolower(c)); });
-  return tail == ".exr";
-}
 
 // A display value in [0, 1] as an n-bit sample.
 template <typename T>
@@ -128,6 +121,54 @@ void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& opt
   }
 }
 
+// Output formats: one entry per extension, with the writer below.
+struct ImageFormat
+{
+  const char* Extension;
+  // Writes to `path` (a temporary); `target` names the file in errors.
+  void (*Write)(const RenderedImage& image, const ImageExportOptions& options,
+    const std::string& path, const std::string& target);
+};
+
+const ImageFormat ImageFormats[] = {
+  { ".png", WritePngImage },
+  { ".exr", WriteExrImage },
+};
+
+std::string LowerExtension(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
+  for (char& c : extension)
+  {
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return extension;
+}
+
+const ImageFormat& FormatOf(const std::string& path)
+{
+  const std::string extension = LowerExtension(path);
+  for (const ImageFormat& format : ImageFormats)
+  {
+    if (extension == format.Extension)
+    {
+      return format;
+    }
+  }
+  std::string supported;
+  for (const std::string& e : SupportedImageExtensions())
+  {
+    supported += (supported.empty() ? "" : ", ") + e;
+  }
+  throw InputError(path + ": " +
+    (extension.empty() ? std::string("the file name has no image extension")
+                       : "unsupported image format \"" + extension + "\"") +
+    "; supported: " + supported);
+}
+
 } // namespace
 
 std::string CloudvisVersion()
@@ -137,7 +178,7 @@ std::string CloudvisVersion()
 
 bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options)
 {
-  return IsExr(path) || options.PngBits == 16 || options.Transparent;
+  return LowerExtension(path) == ".exr" || options.PngBits == 16 || options.Transparent;
 }
 
 void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,
@@ -213,6 +254,35 @@ void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options
   {
     throw InputError(target + ": cannot write the EXR image (OpenEXR: " + e.what() + ")");
   }
+}
+
+std::vector<std::string> SupportedImageExtensions()
+{
+  std::vector<std::string> extensions;
+  for (const ImageFormat& format : ImageFormats)
+  {
+    extensions.emplace_back(format.Extension);
+  }
+  return extensions;
+}
+
+void CheckImageOutput(const std::string& path)
+{
+  FormatOf(path);
+  CheckOutputTarget(path);
+}
+
+void WriteImage(const RenderedImage& image, const std::string& path)
+{
+  WriteImage(image, path, ImageExportOptions{});
+}
+
+void WriteImage(
+  const RenderedImage& image, const std::string& path, const ImageExportOptions& options)
+{
+  const ImageFormat& format = FormatOf(path);
+  WriteFileAtomically(
+    path, [&](const std::string& temporary) { format.Write(image, options, temporary, path); });
 }
 
 } // namespace cloudvis

@@ -1,6 +1,5 @@
 // The image formats cloudvis exports (docs/export.md), each a function from a RenderedImage to
-// one file, called by WriteImage (render/OffscreenRender.h) on the temporary path that
-// WriteFileAtomically hands it:
+// one file, called by WriteImage below on the temporary path that WriteFileAtomically hands it:
 //   PNG, 8-bit RGB (default): the window's pixels as they were shown;
 //   PNG, 16-bit and/or transparent: the mapper's float image composited by the same "over" the
 //     window applies (cloud + (1 - alpha) * background, in the window's display values), or with
@@ -11,9 +10,10 @@
 #ifndef cloudvis_ImageWriters_h
 #define cloudvis_ImageWriters_h
 
-#include "OffscreenRender.h"
+#include "RenderedImage.h"
 
 #include <string>
+#include <vector>
 
 namespace cloudvis
 {
@@ -40,6 +40,19 @@ void WritePngImage(const RenderedImage& image, const ImageExportOptions& options
   const std::string& path, const std::string& target);
 void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options,
   const std::string& path, const std::string& target);
+
+// The image formats cloudvis writes, as lower-case extensions with the dot (".png").
+std::vector<std::string> SupportedImageExtensions();
+
+// Throws InputError unless `path` ends in a supported extension (the message lists them) and can
+// be written (CheckOutputTarget). Called before any rendering.
+void CheckImageOutput(const std::string& path);
+
+// Writes the image in the format its extension names, atomically (WriteFileAtomically), with
+// default or given export options and metadata.
+void WriteImage(const RenderedImage& image, const std::string& path);
+void WriteImage(
+  const RenderedImage& image, const std::string& path, const ImageExportOptions& options);
 
 } // namespace cloudvis
 

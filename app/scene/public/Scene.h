@@ -53,7 +53,7 @@ struct TransferFunctionSpec
 };
 
 // The "camera" section. Absent keys are filled when the field is known (see ApplyCamera in
-// render/OffscreenRender.h): the focal point is the field's centre, the position looks at it
+// export/OffscreenRender.h): the focal point is the field's centre, the position looks at it
 // along -z from the distance vtkRenderer::ResetCamera picks to fit the field's bounds.
 // camera.orbit: the position on a sphere around the focal point, y up. With azimuth az and
 // elevation el in degrees, position = focal + distance * (cos(el) sin(az), sin(el), cos(el) cos(az)),
@@ -92,7 +92,7 @@ struct RenderSpec
 };
 
 // The "background" section beyond a plain color (Scene::Background): a VTK gradient, or the
-// article's sky computed per pixel from the view ray (render/Background.h draws both).
+// article's sky computed per pixel from the view ray (export/Background.h draws both).
 enum class BackgroundType
 {
   Solid,    // Scene::Background everywhere

@@ -1,6 +1,6 @@
 // Kept in its own file because Xlib.h defines macros (None, Status, Bool) that collide with
 // ordinary C++ names elsewhere in the renderer.
-#include "OffscreenRender.h"
+#include "Display.h"
 
 #include "Errors.h"
 
