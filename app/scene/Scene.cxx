@@ -5,8 +5,11 @@
 #include "Scene.h"
 
 #include "Errors.h"
+#include "FieldIO.h"
+#include "InputFiles.h"
 #include "Presets.h"
 #include "SceneField.h"
+#include "Utf8.h"
 
 #include <cerrno>
 #include <cmath>
@@ -59,8 +62,8 @@ std::string Join(const std::vector<std::string>& names)
 
 std::string Describe(const json& value)
 {
-  // replace: a string from --set may hold any bytes, and dump() throws on invalid UTF-8.
-  const std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+  // A string from --set may hold any bytes, and dump() throws on invalid UTF-8.
+  const std::string text = WithValidUtf8(value).dump();
   return std::string(value.type_name()) + " " + (text.size() > 40 ? text.substr(0, 37) + "..." : text);
 }
 
@@ -465,9 +468,17 @@ const Key<FieldSpec> FieldKeys[] = {
     {
       if (!v.is_string() || v.get<std::string>().empty())
       {
-        c.Fail(k, "expected the path of a .vti file (a non-empty string), got " + Describe(v));
+        c.Fail(k,
+          "expected the path of a field file (" + FieldFileExtensions() +
+            ", a non-empty string), got " + Describe(v));
       }
       const std::string path = v.get<std::string>();
+      if (!IsFieldFile(path))
+      {
+        c.Fail(k,
+          "\"" + path + "\" is not a field file: supported extensions (in any case) are " +
+            FieldFileExtensions());
+      }
       f.File = path[0] == '/' || c.BaseDirectory.empty() ? path : c.BaseDirectory + "/" + path;
     } },
   { "dimensions",
@@ -524,8 +535,9 @@ const Key<FieldSpec> FieldKeys[] = {
     [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
     { f.Description.Noise.Octaves = int(ReadInteger(c, v, k, 1, 12)); } },
   { "frequency",
-    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
-    { f.Description.Noise.Frequency = ReadNumber(c, v, k, Range{ 0.0, 1e6, true }); } },
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f) {
+      f.Description.Noise.Frequency = ReadNumber(c, v, k, Range{ 0.0, 1e6, true });
+    } },
   { "lacunarity",
     [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
     { f.Description.Noise.Lacunarity = ReadNumber(c, v, k, Positive); } },
@@ -1289,19 +1301,7 @@ nlohmann::json ReadSceneDocument(const std::string& path)
 
 nlohmann::json ReadJsonFile(const std::string& path, const std::string& what)
 {
-  struct stat info;
-  if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
-  {
-    throw InputError(path + ": cannot read " + what + ": it is a directory");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-  {
-    throw InputError(path + ": cannot read " + what + ": " + std::strerror(errno));
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = RegularInputFile(path, what).ReadAll(MaximumJsonFileBytes);
   try
   {
     return ParseJsonText(text, path);
@@ -1342,6 +1342,31 @@ nlohmann::json ReadJsonFile(const std::string& path, const std::string& what)
     throw InputError(path + ": malformed JSON: " +
       (bracket == std::string::npos ? reason : reason.substr(bracket + 2)));
   }
+}
+
+nlohmann::json WithValidUtf8(nlohmann::json value)
+{
+  if (value.is_string())
+  {
+    return EscapeInvalidUtf8(value.get<std::string>());
+  }
+  if (value.is_array())
+  {
+    for (json& element : value)
+    {
+      element = WithValidUtf8(std::move(element));
+    }
+  }
+  else if (value.is_object())
+  {
+    json escaped = json::object();
+    for (auto& member : value.items())
+    {
+      escaped[EscapeInvalidUtf8(member.key())] = WithValidUtf8(std::move(member.value()));
+    }
+    return escaped;
+  }
+  return value;
 }
 
 nlohmann::json ParseOverrideValue(const std::string& key, const std::string& text)

@@ -195,7 +195,8 @@ nlohmann::json SceneToJson(const Scene& scene, const ResolvedCamera& camera)
     resolved["description"] = scene.Description;
   }
   Overlay(document, resolved);
-  return document;
+  // Paths and --set strings may hold bytes that are not UTF-8; escaped, every dump() succeeds.
+  return WithValidUtf8(std::move(document));
 }
 
 } // namespace cloudvis
