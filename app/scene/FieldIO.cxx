@@ -161,11 +161,11 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
 
 void CheckFieldOutput(const std::string& path)
 {
+  CheckOutputTarget(path); // first: "it is a directory" says more than a missing extension
   if (LowerCaseExtension(path) != ".vti")
   {
     Fail(path, "fields are written as VTK XML image data: give the output a .vti name");
   }
-  CheckOutputTarget(path);
 }
 
 void WriteField(vtkImageData* field, const std::string& path)

@@ -47,8 +47,8 @@ std::string FieldFileExtensions();
 // format has.
 vtkSmartPointer<vtkImageData> ReadField(const std::string& path);
 
-// Throws InputError unless `path` can take a field: its extension must be .vti (any case), and
-// its directory writable (CheckOutputTarget).
+// Throws InputError unless `path` can take a field: its directory writable (CheckOutputTarget),
+// and its extension .vti (any case).
 void CheckFieldOutput(const std::string& path);
 
 // Writes a field as binary VTK XML image data, zlib-compressed, atomically (see AtomicFile.h).
