@@ -21,9 +21,12 @@ const std::string& InputDirectory()
     const std::string path =
       std::string(tmp && *tmp ? tmp : "/tmp") + "/cloudvis-fuzz-" + std::to_string(::getpid());
     std::filesystem::create_directories(path);
-    std::atexit([] { std::filesystem::remove_all(InputDirectory()); });
     return path;
   }();
+  // Registered once `directory` is complete, so it runs before the string is destroyed.
+  static const bool removedAtExit =
+    std::atexit([] { std::filesystem::remove_all(InputDirectory()); }) == 0;
+  (void)removedAtExit;
   return directory;
 }
 
