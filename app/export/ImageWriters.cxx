@@ -21,7 +21,6 @@
 #include <vtkPNGWriter.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <exception>

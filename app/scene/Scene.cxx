@@ -15,10 +15,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <sstream>
-#include <sys/stat.h>
 
 namespace cloudvis
 {
