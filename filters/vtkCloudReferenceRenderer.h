@@ -33,9 +33,14 @@
 
 #include <vtkImageAlgorithm.h>
 
+#include <functional>
 #include <vector>
 
 class vtkMatrix4x4;
+namespace cloudvis
+{
+struct MarchUniforms;
+}
 
 class CLOUDVISFILTERS_EXPORT vtkCloudReferenceRenderer : public vtkImageAlgorithm
 {
@@ -164,6 +169,28 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /**
+   * Renders the image once RequestData has checked the parameters and the input and set the
+   * output's extent: `uniforms` describe the field, the table, the lighting and the lights,
+   * `deviceToWorld` the camera. This class marches each pixel's ray (cloudvis::MarchRay);
+   * vtkCloudPathTracer path-traces it. Returns false (after an error message) when it cannot.
+   */
+  virtual bool RenderImage(const cloudvis::MarchUniforms& uniforms,
+    const glm::dmat4& deviceToWorld, vtkImageData* input, vtkImageData* output);
+
+  /**
+   * The view ray of pixel (i, j) of an image of width x height pixels: its points on the near
+   * and far planes.
+   */
+  static void PixelRay(const glm::dmat4& deviceToWorld, int i, int j, int width, int height,
+    glm::dvec3& nearWorld, glm::dvec3& farWorld);
+
+  /**
+   * Calls renderRows(firstRow, endRow) over the image's rows under vtkSMPTools, in blocks of
+   * rows so that progress is reported and AbortExecute honoured between blocks.
+   */
+  void RenderRowBlocks(int height, const std::function<void(vtkIdType, vtkIdType)>& renderRows);
 
   int ImageSize[2] = { 128, 128 };
   double CameraPosition[3] = { 0.0, 0.0, 1.0 };

@@ -1,0 +1,154 @@
+// The volumetric path tracer that is cloudvis's ground truth: an unbiased Monte Carlo estimate
+// of the light a pixel receives from the same medium the lighting models approximate (extinction
+// and albedo from the transfer table, the two-lobe Henyey-Greenstein phase, the same lights and
+// ambient), with every order of scattering. The equations are in docs/lighting.md ("The path
+// tracer"); vtkCloudPathTracer renders images with it.
+//
+// Written to be twinned by a GLSL 1.50 fragment shader, function for function and line for line:
+// free functions with the shader's arguments (what the shader reads from uniforms and textures
+// comes in MarchUniforms and PathTraceUniforms), plain loops (no recursion, no callbacks, no
+// virtual calls), float arithmetic, and random numbers that are a pure function of
+// (pixel, sample, dimension, seed) computed with 32-bit unsigned integer operations that GLSL
+// reproduces bit for bit. A pixel's samples therefore depend neither on threads nor on the order
+// in which pixels are rendered, and the GPU can draw the very same paths.
+//
+// The field is reached only through the accessors of CloudReferenceMarch.h (DensityAt,
+// ExtinctionAt, WorldOfIndex, WorldToIndex, IntersectBox...), so the path tracer follows any
+// change of the field's geometry. Positions p are voxel index points; directions d are unit
+// world vectors, and `direction` their index-space image (index units per world unit), so a ray
+// is p + t * direction with t in world units, as in the march.
+#ifndef CloudPathTrace_h
+#define CloudPathTrace_h
+
+#include "CloudReferenceMarch.h"
+#include "cloudvisFiltersModule.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace cloudvis
+{
+
+// ---- Random numbers ----
+
+// Where a random number comes from: the pixel (j * width + i), the sample index within the
+// pixel, the seed, and the dimension: the count of random numbers this sample has drawn so far.
+struct RandomStream
+{
+  std::uint32_t Pixel = 0;
+  std::uint32_t Sample = 0;
+  std::uint32_t Seed = 0;
+  std::uint32_t Dimension = 0;
+};
+
+// The 4-D PCG hash of Jarzynski and Olano ("Hash Functions for GPU Rendering", JCGT 2020):
+// an LCG step per component and two rounds of cross-multiplication, in uint arithmetic modulo
+// 2^32, which GLSL's uint reproduces exactly.
+CLOUDVISFILTERS_EXPORT glm::uvec4 Pcg4d(glm::uvec4 v);
+
+// The next uniform number in [0, 1) of a stream: the top 24 bits of
+// Pcg4d(pixel, sample, dimension, seed).x, exact in float; the dimension then advances.
+CLOUDVISFILTERS_EXPORT float NextRandom(RandomStream& rng);
+
+// ---- What the path-trace shader reads besides the march's uniforms ----
+
+struct CLOUDVISFILTERS_EXPORT PathTraceUniforms
+{
+  // The majorant grid: per occupancy brick, the largest sigma_t any trilinear sample in it can
+  // have (vtkCloudOccupancyFilter's "max_extinction"), BrickCount.x * .y * .z values, x fastest.
+  // Brick b covers index points [b * BrickSize, (b + 1) * BrickSize) along each axis.
+  const float* BrickMajorant = nullptr;
+  glm::ivec3 BrickCount{ 0 };
+  float BrickSize = 1.0f;
+  // Scattering events a path may have (1: single scattering); the path ends at the next one.
+  int MaxBounces = 1;
+  // Russian roulette from this many scattering events on, with the survival probability the
+  // largest component of the throughput (so an albedo-1 path is never killed by it).
+  int RouletteBounces = 3;
+};
+
+// Ratio tracking plays Russian roulette once its running transmittance falls below this: a
+// path in deep shadow stops early, unbiased (it survives with probability T / threshold and
+// then carries the threshold).
+constexpr float RatioTrackingRouletteThreshold = 0.1f;
+
+// Free-flight and ratio tracking leave a brick when no face is crossed closer than this.
+constexpr float NoCrossing = 1e30f;
+
+// ---- The majorant walk: a 3-D DDA through the bricks along a ray ----
+
+struct BrickWalk
+{
+  glm::ivec3 Brick; // the brick the walk is in
+  glm::ivec3 Step;  // -1, 0 or +1 per axis: the direction's sign
+  glm::vec3 TNext;  // ray parameter at which the walk crosses the next face, per axis
+  glm::vec3 TDelta; // ray parameter across one brick, per axis
+};
+
+// The walk along p + t * direction from parameter t (p + t direction inside the volume, up to
+// rounding: the brick is clamped to the grid).
+CLOUDVISFILTERS_EXPORT BrickWalk BeginBrickWalk(
+  const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 direction, float t);
+// Where the walk leaves its brick.
+CLOUDVISFILTERS_EXPORT float BrickExit(const BrickWalk& walk);
+// Into the next brick; false when it has left the grid.
+CLOUDVISFILTERS_EXPORT bool AdvanceBrickWalk(const PathTraceUniforms& pt, BrickWalk& walk);
+CLOUDVISFILTERS_EXPORT float BrickMajorant(const PathTraceUniforms& pt, glm::ivec3 brick);
+
+// ---- Tracking through the medium ----
+
+// Delta tracking: samples the distance to the next real collision along p + t * direction
+// between tStart and tEnd, with tentative collisions at rate majorant per brick (empty bricks
+// are crossed without a sample), each accepted with probability sigma_t / majorant. Returns the
+// collision's t, or tEnd or more when the ray leaves the segment without one (probability: the
+// transmittance of the segment).
+CLOUDVISFILTERS_EXPORT float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt,
+  glm::vec3 p, glm::vec3 direction, float tStart, float tEnd, RandomStream& rng);
+
+// Ratio tracking: an unbiased estimate of the transmittance exp(-integral of sigma_t) from tStart
+// to tEnd: the product of (1 - sigma_t / majorant) over tentative collisions at rate majorant,
+// with Russian roulette below RatioTrackingRouletteThreshold.
+CLOUDVISFILTERS_EXPORT float RatioTrackTransmittance(const MarchUniforms& u,
+  const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 direction, float tStart, float tEnd,
+  RandomStream& rng);
+
+// ---- Phase-function sampling ----
+
+// The cosine mu of a scattering angle drawn from HG(g, mu) by inverting its distribution with
+// xi in [0, 1): mu = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g xi))^2) / (2 g); uniform for |g| < 1e-3.
+CLOUDVISFILTERS_EXPORT float SampleHenyeyGreensteinCosine(float g, float xi);
+
+// The unit vector at cosine mu to the unit vector axis, at azimuth phi around it.
+CLOUDVISFILTERS_EXPORT glm::vec3 DirectionAround(glm::vec3 axis, float mu, float phi);
+
+// A new direction of travel after scattering light travelling along d: a lobe (the first with
+// probability PhaseLobeWeight), then its HG cosine, then a uniform azimuth. Its density is
+// exactly Phase(lighting, dot(d, new), 1), so a path's weight needs no phase / pdf factor.
+CLOUDVISFILTERS_EXPORT glm::vec3 SamplePhaseDirection(
+  const LightingParameters& lighting, glm::vec3 d, RandomStream& rng);
+
+// ---- Paths ----
+
+// The index point of a world point (composed from WorldOfIndex and WorldToIndex).
+CLOUDVISFILTERS_EXPORT glm::vec3 IndexOfWorldPoint(const MarchUniforms& u, glm::vec3 w);
+
+// Next-event estimation at a scattering point p for light arriving along the unit world
+// direction d: sum over lights of E_i f_i 4 pi Phase(dot(d, l_i)) T_i, with T_i ratio-tracked
+// to the light (a point light) or out of the volume (a directional light). The 4 pi is the
+// march's PhaseToRadiance: a light's color x intensity is what an unshadowed isotropic sample of
+// albedo 1 sends toward the eye in every model.
+CLOUDVISFILTERS_EXPORT glm::vec3 DirectLight(
+  const MarchUniforms& u, const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 d, RandomStream& rng);
+
+// One sample of the pixel whose view ray runs from nearWorld to farWorld: the radiance of one
+// path in rgb (premultiplied: the background is composited later, as for the other renderers,
+// so a ray that crosses the medium without scattering brings nothing) and one estimate of the
+// pixel's opacity 1 - T in a (T ratio-tracked along the view ray). A path that leaves the volume
+// after scattering brings the ambient radiance (u.Ambient: a uniform environment).
+CLOUDVISFILTERS_EXPORT glm::vec4 TracePath(const MarchUniforms& u, const PathTraceUniforms& pt,
+  const glm::dvec3& nearWorld, const glm::dvec3& farWorld, RandomStream& rng);
+
+} // namespace cloudvis
+
+#endif
