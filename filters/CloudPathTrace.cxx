@@ -65,11 +65,38 @@ bool AdvanceBrickWalk(const PathTraceUniforms& pt, BrickWalk& walk)
     glm::all(glm::lessThan(walk.Brick, pt.BrickCount));
 }
 
-float BrickMajorant(const PathTraceUniforms& pt, glm::ivec3 brick)
+glm::vec2 BrickExtinctionBounds(const PathTraceUniforms& pt, glm::ivec3 brick)
 {
   const std::size_t index =
     (std::size_t(brick.z) * pt.BrickCount.y + brick.y) * pt.BrickCount.x + brick.x;
-  return pt.BrickMajorant[index];
+  return glm::vec2(pt.BrickMinorant[index], pt.BrickMajorant[index]);
+}
+
+float EmptyBricksAround(const PathTraceUniforms& pt, glm::ivec3 brick)
+{
+  const std::size_t index =
+    (std::size_t(brick.z) * pt.BrickCount.y + brick.y) * pt.BrickCount.x + brick.x;
+  return float(pt.BrickEmptyDistance[index]);
+}
+
+bool LeapEmptyBricks(
+  const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 direction, BrickWalk& walk, float& t)
+{
+  const float emptyBricks = EmptyBricksAround(pt, walk.Brick);
+  if (emptyBricks < 2.0f)
+  {
+    return false; // occupied, or next to an occupied brick: the walk steps one brick
+  }
+  const glm::vec3 lo = (glm::vec3(walk.Brick) - (emptyBricks - 1.0f)) * pt.BrickSize;
+  const glm::vec3 hi = (glm::vec3(walk.Brick) + emptyBricks) * pt.BrickSize;
+  const float tLeap = IntersectBox(p, direction, lo, hi).y;
+  if (!(tLeap > BrickExit(walk)))
+  {
+    return false; // rounding: no further than the next face
+  }
+  t = tLeap;
+  walk = BeginBrickWalk(pt, p, direction, t);
+  return true;
 }
 
 // ---- Tracking through the medium ----
@@ -82,7 +109,12 @@ float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt, glm:
   while (t < tEnd)
   {
     const float tLeave = std::min(BrickExit(walk), tEnd);
-    const float majorant = BrickMajorant(pt, walk.Brick);
+    const glm::vec2 bounds = BrickExtinctionBounds(pt, walk.Brick);
+    const float majorant = bounds.y;
+    if (majorant == 0.0f && LeapEmptyBricks(pt, p, direction, walk, t))
+    {
+      continue;
+    }
     if (majorant > 0.0f)
     {
       // Tentative collisions at rate majorant; exponential distances are memoryless, so the
@@ -94,7 +126,8 @@ float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt, glm:
         {
           break;
         }
-        if (NextRandom(rng) * majorant < ExtinctionAt(u, p + t * direction))
+        const float threshold = NextRandom(rng) * majorant;
+        if (threshold < bounds.x || threshold < ExtinctionAt(u, p + t * direction))
         {
           return t; // a real collision
         }
@@ -109,6 +142,16 @@ float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt, glm:
   return tEnd; // no collision before the end of the segment
 }
 
+float RouletteTransmittance(float T, RandomStream& rng)
+{
+  if (T >= RatioTrackingRouletteThreshold)
+  {
+    return T;
+  }
+  return NextRandom(rng) * RatioTrackingRouletteThreshold < T ? RatioTrackingRouletteThreshold
+                                                              : 0.0f;
+}
+
 float RatioTrackTransmittance(const MarchUniforms& u, const PathTraceUniforms& pt, glm::vec3 p,
   glm::vec3 direction, float tStart, float tEnd, RandomStream& rng)
 {
@@ -118,25 +161,36 @@ float RatioTrackTransmittance(const MarchUniforms& u, const PathTraceUniforms& p
   while (t < tEnd)
   {
     const float tLeave = std::min(BrickExit(walk), tEnd);
-    const float majorant = BrickMajorant(pt, walk.Brick);
-    if (majorant > 0.0f)
+    const glm::vec2 bounds = BrickExtinctionBounds(pt, walk.Brick);
+    const float control = bounds.x;
+    const float residual = bounds.y - bounds.x;
+    if (bounds.y == 0.0f && LeapEmptyBricks(pt, p, direction, walk, t))
+    {
+      continue;
+    }
+    if (bounds.y > 0.0f)
+    {
+      T = RouletteTransmittance(T * std::exp(-control * (tLeave - t)), rng);
+      if (T == 0.0f)
+      {
+        return 0.0f;
+      }
+    }
+    if (residual > 0.0f)
     {
       for (;;)
       {
-        t -= std::log(1.0f - NextRandom(rng)) / majorant;
+        t -= std::log(1.0f - NextRandom(rng)) / residual;
         if (t >= tLeave)
         {
           break;
         }
-        // The majorant bounds sigma_t up to the rounding of a sample position: clamp at 0.
-        T *= std::max(1.0f - ExtinctionAt(u, p + t * direction) / majorant, 0.0f);
-        if (T < RatioTrackingRouletteThreshold)
+        // The bounds hold up to the rounding of a sample position: clamp at 0.
+        const float sigma_t = ExtinctionAt(u, p + t * direction);
+        T = RouletteTransmittance(T * std::max(1.0f - (sigma_t - control) / residual, 0.0f), rng);
+        if (T == 0.0f)
         {
-          if (NextRandom(rng) * RatioTrackingRouletteThreshold >= T)
-          {
-            return 0.0f;
-          }
-          T = RatioTrackingRouletteThreshold;
+          return 0.0f;
         }
       }
     }

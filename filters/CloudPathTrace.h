@@ -55,10 +55,15 @@ CLOUDVISFILTERS_EXPORT float NextRandom(RandomStream& rng);
 
 struct CLOUDVISFILTERS_EXPORT PathTraceUniforms
 {
-  // The majorant grid: per occupancy brick, the largest sigma_t any trilinear sample in it can
-  // have (vtkCloudOccupancyFilter's "max_extinction"), BrickCount.x * .y * .z values, x fastest.
-  // Brick b covers index points [b * BrickSize, (b + 1) * BrickSize) along each axis.
+  // The bounds of sigma_t per occupancy brick: the largest (the majorant, vtkCloudOccupancyFilter's
+  // "max_extinction") and the smallest (the minorant, "min_extinction") any trilinear sample in
+  // the brick can have; BrickCount.x * .y * .z values each, x fastest. Brick b covers index
+  // points [b * BrickSize, (b + 1) * BrickSize) along each axis.
   const float* BrickMajorant = nullptr;
+  const float* BrickMinorant = nullptr;
+  // Per brick, the Chebyshev distance in bricks to the nearest occupied one ("empty_distance"):
+  // a walk in an empty brick at distance k leaps out of the (2k - 1)^3 empty block around it.
+  const unsigned char* BrickEmptyDistance = nullptr;
   glm::ivec3 BrickCount{ 0 };
   float BrickSize = 1.0f;
   // Scattering events a path may have (1: single scattering); the path ends at the next one.
@@ -72,6 +77,9 @@ struct CLOUDVISFILTERS_EXPORT PathTraceUniforms
 // path in deep shadow stops early, unbiased (it survives with probability T / threshold and
 // then carries the threshold).
 constexpr float RatioTrackingRouletteThreshold = 0.1f;
+
+// That roulette: T unchanged above the threshold, else the threshold or 0.
+CLOUDVISFILTERS_EXPORT float RouletteTransmittance(float T, RandomStream& rng);
 
 // Free-flight and ratio tracking leave a brick when no face is crossed closer than this.
 constexpr float NoCrossing = 1e30f;
@@ -94,21 +102,32 @@ CLOUDVISFILTERS_EXPORT BrickWalk BeginBrickWalk(
 CLOUDVISFILTERS_EXPORT float BrickExit(const BrickWalk& walk);
 // Into the next brick; false when it has left the grid.
 CLOUDVISFILTERS_EXPORT bool AdvanceBrickWalk(const PathTraceUniforms& pt, BrickWalk& walk);
-CLOUDVISFILTERS_EXPORT float BrickMajorant(const PathTraceUniforms& pt, glm::ivec3 brick);
+// How many bricks around this one are empty (0: it is occupied), as the march shader reads it.
+CLOUDVISFILTERS_EXPORT float EmptyBricksAround(const PathTraceUniforms& pt, glm::ivec3 brick);
+// In an empty brick whose empty block reaches beyond it, moves the walk (at ray parameter t)
+// to where the ray leaves the block, and returns true; else leaves both alone.
+CLOUDVISFILTERS_EXPORT bool LeapEmptyBricks(
+  const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 direction, BrickWalk& walk, float& t);
+// The brick's (minorant, majorant) of sigma_t.
+CLOUDVISFILTERS_EXPORT glm::vec2 BrickExtinctionBounds(
+  const PathTraceUniforms& pt, glm::ivec3 brick);
 
 // ---- Tracking through the medium ----
 
 // Delta tracking: samples the distance to the next real collision along p + t * direction
 // between tStart and tEnd, with tentative collisions at rate majorant per brick (empty bricks
-// are crossed without a sample), each accepted with probability sigma_t / majorant. Returns the
-// collision's t, or tEnd or more when the ray leaves the segment without one (probability: the
+// are crossed without a sample), each accepted with probability sigma_t / majorant (without
+// reading the density when the random number falls below minorant / majorant). Returns the
+// collision's t, or tEnd when the ray leaves the segment without one (probability: the
 // transmittance of the segment).
 CLOUDVISFILTERS_EXPORT float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt,
   glm::vec3 p, glm::vec3 direction, float tStart, float tEnd, RandomStream& rng);
 
-// Ratio tracking: an unbiased estimate of the transmittance exp(-integral of sigma_t) from tStart
-// to tEnd: the product of (1 - sigma_t / majorant) over tentative collisions at rate majorant,
-// with Russian roulette below RatioTrackingRouletteThreshold.
+// Residual ratio tracking: an unbiased estimate of the transmittance exp(-integral of sigma_t)
+// from tStart to tEnd. Per brick, the minorant is a control extinction integrated exactly, and
+// the rest is ratio-tracked: the product of (1 - (sigma_t - minorant) / (majorant - minorant))
+// over tentative collisions at rate majorant - minorant. A homogeneous brick costs no density
+// read and adds no noise. Russian roulette below RatioTrackingRouletteThreshold.
 CLOUDVISFILTERS_EXPORT float RatioTrackTransmittance(const MarchUniforms& u,
   const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 direction, float tStart, float tEnd,
   RandomStream& rng);

@@ -9,6 +9,7 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkUnsignedCharArray.h>
 
 vtkStandardNewMacro(vtkCloudPathTracer);
 
@@ -40,7 +41,8 @@ bool vtkCloudPathTracer::RenderImage(const cloudvis::MarchUniforms& uniforms,
     return false;
   }
 
-  // The majorants: the occupancy filter's largest extinction per brick, for the same table.
+  // The majorants, minorants and empty distances of the occupancy filter's bricks, for the same
+  // table.
   vtkNew<vtkImageData> field;
   field->ShallowCopy(input);
   vtkNew<vtkCloudOccupancyFilter> occupancy;
@@ -50,16 +52,22 @@ bool vtkCloudPathTracer::RenderImage(const cloudvis::MarchUniforms& uniforms,
   occupancy->Update();
   vtkImageData* bricks = occupancy->GetOutput();
   auto* majorant = vtkFloatArray::SafeDownCast(bricks->GetPointData()->GetArray("max_extinction"));
+  auto* minorant = vtkFloatArray::SafeDownCast(bricks->GetPointData()->GetArray("min_extinction"));
+  auto* emptyDistance =
+    vtkUnsignedCharArray::SafeDownCast(bricks->GetPointData()->GetArray("empty_distance"));
   int brickCount[3];
   bricks->GetDimensions(brickCount);
-  if (!majorant ||
-    majorant->GetNumberOfTuples() != vtkIdType(brickCount[0]) * brickCount[1] * brickCount[2])
+  const vtkIdType brickTotal = vtkIdType(brickCount[0]) * brickCount[1] * brickCount[2];
+  if (!majorant || !minorant || !emptyDistance || majorant->GetNumberOfTuples() != brickTotal ||
+    minorant->GetNumberOfTuples() != brickTotal || emptyDistance->GetNumberOfTuples() != brickTotal)
   {
     vtkErrorMacro(<< "the occupancy bricks of the input could not be computed");
     return false;
   }
   cloudvis::PathTraceUniforms pt;
   pt.BrickMajorant = majorant->GetPointer(0);
+  pt.BrickMinorant = minorant->GetPointer(0);
+  pt.BrickEmptyDistance = emptyDistance->GetPointer(0);
   pt.BrickCount = glm::ivec3(brickCount[0], brickCount[1], brickCount[2]);
   pt.BrickSize = float(this->BrickSize);
   pt.MaxBounces = this->MaxBounces;

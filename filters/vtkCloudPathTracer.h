@@ -69,7 +69,8 @@ public:
   /**
    * Cells per edge of the majorant bricks (vtkCloudOccupancyFilter's BrickSize), at least 1.
    * Smaller bricks give tighter majorants (fewer rejected tentative collisions) and more bricks
-   * to cross; the image does not depend on it beyond the noise. Default 4.
+   * to cross; the image does not depend on it beyond the noise. Default 8 (the fastest on the
+   * shipped scenes, docs/performance.md).
    */
   vtkSetMacro(BrickSize, int);
   vtkGetMacro(BrickSize, int);
@@ -85,7 +86,7 @@ protected:
   int SamplesPerPixel = 64;
   unsigned int Seed = 0;
   int MaxBounces = 1024;
-  int BrickSize = 4;
+  int BrickSize = 8;
 
 private:
   vtkCloudPathTracer(const vtkCloudPathTracer&) = delete;

@@ -119,6 +119,42 @@ double LargestBlockZ(const Image& image, int blockSize,
   }
   return largest;
 }
+
+// Seen along `view`, the opacity of each pixel of the field over [0, 1]^3 is 1 - exp(-optical
+// depth), the depth integrated by the march (emission-absorption with a step of 1/32 voxel,
+// whose quadrature error is far below the noise).
+void ExpectOpacityOfTheOpticalDepth(
+  vtkImageData* field, const TransferTable& table, int brickSize, glm::dvec3 view)
+{
+  auto tracer = Tracer(field, 24, table);
+  SetParallelView(tracer, glm::dvec3(0.5), view, 0.5);
+  tracer->SetSamplesPerPixel(64);
+  tracer->SetBrickSize(brickSize);
+  const Image traced = Render(tracer);
+  vtkNew<vtkCloudReferenceRenderer> march;
+  march->SetInputData(field);
+  march->SetImageSize(24, 24);
+  SetParallelView(march, glm::dvec3(0.5), view, 0.5);
+  march->SetTransferTable(table);
+  march->SetSampleDistance(field->GetSpacing()[0] / 32.0);
+  march->SetTerminationTransmittance(0.0);
+  const Image exact = Render(march);
+  const auto difference = [&](std::size_t p) { return traced.At(p, 3) - exact.At(p, 3); };
+  const auto variance = [&](std::size_t p) { return traced.VarianceAt(p, 3); };
+  int blocks = 0;
+  EXPECT_LT(LargestBlockZ(
+              traced, 3, difference, variance, [&](std::size_t p) { return exact.At(p, 3) > 0.0f; },
+              blocks),
+    Sigmas);
+  EXPECT_GE(blocks, 8);
+  const Estimate overall = MeanOverPixels(traced, difference, variance);
+  EXPECT_NEAR(overall.Mean, 0.0, Sigmas * overall.StandardError);
+  EXPECT_LT(overall.StandardError,
+    0.01 *
+      MeanOverPixels(
+        traced, [&](std::size_t p) { return exact.At(p, 3); }, variance)
+        .Mean);
+}
 }
 
 TEST(PathTracer, RandomNumbersAreThePcg4dHashOfPixelSampleDimensionAndSeed)
@@ -247,13 +283,18 @@ TEST(PathTracer, HenyeyGreensteinSamplesHaveMeanCosineG)
 
 TEST(PathTracer, SlabTransmittanceIsExpOfMinusSigmaTimesPath)
 {
-  // A slab of constant sigma_t between z = -1/4 and 1/4, seen obliquely (cos 0.8 to its normal,
-  // not along a voxel axis): every pixel's opacity is 1 - exp(-sigma_t L / 0.8). The pixels are
-  // independent estimates of the same value, so the scatter of their means also checks the
-  // variance the tracer reports.
-  const double thickness = 0.5;
+  // Voxels with |z| <= 1/4 hold density 1, the others 0, at spacing 1/16 along z: with the
+  // trilinear ramps of half a voxel on each side the slab's optical thickness is sigma_t L,
+  // L = 9 / 16, everywhere. Seen obliquely (cosine 0.8 to its normal, not along a voxel axis),
+  // every pixel's opacity is 1 - exp(-sigma_t L / 0.8). The homogeneous bricks inside are
+  // integrated exactly, the ramps' bricks ratio-tracked. The pixels are independent estimates
+  // of the same value, so the scatter of their means also checks the variance the tracer
+  // reports.
+  const double thickness = 9.0 / 16.0;
   const float sigma_t = 2.5f;
-  auto tracer = Tracer(ConstantSlab(thickness), 32, LinearTable(sigma_t));
+  auto slab = MakeBoxField({ 17, 17, 33 }, { -2.0, -2.0, -1.0 }, { 2.0, 2.0, 1.0 },
+    [](double, double, double z) { return std::abs(z) <= 0.25 + 1e-9 ? 1.0 : 0.0; });
+  auto tracer = Tracer(slab, 32, LinearTable(sigma_t));
   SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(-0.6, 0.0, -0.8), 0.5);
   tracer->SetSamplesPerPixel(16);
   const Image image = Render(tracer);
@@ -303,31 +344,29 @@ TEST(PathTracer, SphereTransmittanceAlongItsDiameterAndEverywhereAsTheOpticalDep
   EXPECT_NEAR(mean.Mean, 1.0 - std::exp(-1.2), Sigmas * mean.StandardError);
   EXPECT_LT(mean.StandardError, 0.01);
 
-  // Across the whole sphere, seen from an oblique direction: the opacity of each pixel is
-  // 1 - exp(-optical depth), the depth integrated by the march (emission-absorption with a
-  // step of 1/32 voxel, whose quadrature error is far below the noise).
-  auto whole = Tracer(field, 24, LinearTable(sigma_t));
-  SetParallelView(whole, glm::dvec3(0.5), glm::dvec3(-0.3, -0.4, -0.85), 0.5);
-  whole->SetSamplesPerPixel(64);
-  const Image traced = Render(whole);
-  vtkNew<vtkCloudReferenceRenderer> march;
-  march->SetInputData(field);
-  march->SetImageSize(24, 24);
-  SetParallelView(march, glm::dvec3(0.5), glm::dvec3(-0.3, -0.4, -0.85), 0.5);
-  march->SetTransferTable(LinearTable(sigma_t));
-  march->SetSampleDistance(spacing / 32.0);
-  march->SetTerminationTransmittance(0.0);
-  const Image exact = Render(march);
-  const auto difference = [&](std::size_t p) { return traced.At(p, 3) - exact.At(p, 3); };
-  const auto variance = [&](std::size_t p) { return traced.VarianceAt(p, 3); };
-  int blocks = 0;
-  EXPECT_LT(LargestBlockZ(
-              traced, 4, difference, variance, [&](std::size_t p) { return exact.At(p, 3) > 0.0f; },
-              blocks),
-    Sigmas);
-  EXPECT_GE(blocks, 12);
-  const Estimate overall = MeanOverPixels(traced, difference, variance);
-  EXPECT_NEAR(overall.Mean, 0.0, Sigmas * overall.StandardError);
+  // Across the whole sphere, seen from an oblique direction.
+  ExpectOpacityOfTheOpticalDepth(field, LinearTable(sigma_t), 8, { -0.3, 0.4, -0.85 });
+}
+
+TEST(PathTracer, EmptySpaceIsLeaptWithoutMissingTheCloud)
+{
+  // Three small homogeneous balls far apart in a large empty box: walks leap over blocks of
+  // empty bricks, yet every ray's opacity is that of the balls it crosses.
+  const int n = 64;
+  const std::vector<glm::dvec3> centres = { { 0.25, 0.3, 0.7 }, { 0.7, 0.65, 0.3 },
+    { 0.45, 0.5, 0.5 } };
+  auto field = MakeBoxField({ n, n, n }, glm::dvec3(0.0), glm::dvec3(1.0),
+    [&](double x, double y, double z)
+    {
+      // Sharp edges: the first occupied brick a walk meets holds dense voxels.
+      for (const glm::dvec3& c : centres)
+        if (glm::length(glm::dvec3(x, y, z) - c) < 0.12)
+          return 1.0;
+      return 0.0;
+    });
+  // Along a direction and its opposite: walks leave the empty blocks by every kind of face.
+  ExpectOpacityOfTheOpticalDepth(field, LinearTable(8.0f), 2, { -0.3, 0.4, -0.85 });
+  ExpectOpacityOfTheOpticalDepth(field, LinearTable(8.0f), 2, { 0.3, -0.4, 0.85 });
 }
 
 TEST(PathTracer, SingleScatteringOfASlabMatchesItsClosedForm)
@@ -589,4 +628,66 @@ TEST(PathTracer, RefusesBadParameters)
   noTable->SetTransferTable(TransferTable());
   EXPECT_EQ(CountErrors(noTable), 1); // the reference renderer's checks apply
   EXPECT_EQ(CountErrors(tracer()), 0);
+}
+
+TEST(PathTracer, NextEventEstimationIsTheShadowedLightFromEachSource)
+{
+  // At a point of a homogeneous medium filling the box [0, 2]^3, the light from a point light at
+  // distance r inside it is E f(r) 4 pi P(mu) exp(-sigma_t r) (the shadow stops at the light),
+  // and from a directional light E 4 pi P(mu) exp(-sigma_t s), s the distance to the box's face.
+  const glm::ivec3 n(17);
+  std::vector<float> density(std::size_t(n.x) * n.y * n.z, 1.0f);
+  const float sigma_t = 1.5f;
+  const TransferTable table = LinearTable(sigma_t);
+  MarchUniforms u;
+  u.Density = density.data();
+  u.Dimensions = n;
+  u.Spacing = glm::vec3(2.0f / 16.0f);
+  u.Table = &table;
+  const std::vector<float> majorants(8, sigma_t);
+  const std::vector<float> noMinorants(8, 0.0f);
+  PathTraceUniforms pt;
+  const std::vector<unsigned char> occupied(8, 0);
+  pt.BrickMajorant = majorants.data();
+  pt.BrickEmptyDistance = occupied.data();
+  pt.BrickCount = glm::ivec3(2);
+  pt.BrickSize = 8.0f;
+
+  const glm::vec3 x(0.5f, 0.6f, 0.7f); // world
+  const glm::vec3 p = IndexOfWorldPoint(u, x);
+  const glm::vec3 d = glm::normalize(glm::vec3(0.2f, 0.1f, -1.0f));
+  Light point = PointLight({ 1.3f, 1.1f, 1.5f }, 2.0f);
+  point.Attenuation = glm::vec3(0.5f, 0.2f, 1.0f);
+  const Light sun = DirectionalLight(glm::normalize(glm::vec3(-1.0f, 0.0f, -0.5f)), 1.5f);
+  const float r = glm::length(point.Position - x);
+  const glm::vec3 toSun = glm::normalize(glm::vec3(-1.0f, 0.0f, -0.5f));
+  const float s = x.x / -toSun.x; // it leaves through the face x = 0
+  const double expected[2] = { 2.0 / (0.5 + 0.2 * r + r * r) * PhaseToRadiance *
+      Phase(u.Lighting, glm::dot(d, (point.Position - x) / r), 1.0f) * std::exp(-sigma_t * r),
+    1.5 * PhaseToRadiance * Phase(u.Lighting, glm::dot(d, toSun), 1.0f) * std::exp(-sigma_t * s) };
+  for (int light = 0; light < 2; ++light)
+  {
+    u.Lights = { light == 0 ? point : sun };
+    // Minorants 0: plain ratio tracking, an unbiased estimate with noise.
+    pt.BrickMinorant = noMinorants.data();
+    const int samples = 100000;
+    double sum = 0.0, sumSquares = 0.0;
+    for (int k = 0; k < samples; ++k)
+    {
+      RandomStream rng;
+      rng.Sample = std::uint32_t(k);
+      const double value = DirectLight(u, pt, p, d, rng).g;
+      sum += value;
+      sumSquares += value * value;
+    }
+    const double mean = sum / samples;
+    const double standardError = std::sqrt((sumSquares / samples - mean * mean) / samples);
+    EXPECT_NEAR(mean, expected[light], Sigmas * standardError) << "light " << light;
+    EXPECT_LT(standardError, 0.01 * expected[light]) << "light " << light;
+    // Minorants sigma_t: residual ratio tracking integrates the homogeneous bricks exactly.
+    pt.BrickMinorant = majorants.data();
+    RandomStream rng;
+    EXPECT_NEAR(DirectLight(u, pt, p, d, rng).g, expected[light], 1e-5 * expected[light])
+      << "light " << light;
+  }
 }

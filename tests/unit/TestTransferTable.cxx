@@ -218,6 +218,45 @@ TEST(TransferTable, MaxExtinctionBoundsEveryLookupInTheInterval)
   }
 }
 
+TEST(TransferTable, MinExtinctionBoundsEveryLookupInTheIntervalFromBelow)
+{
+  // Mostly opaque with isolated holes: the case where missing a bracket entry shows. The path
+  // tracer integrates this bound exactly and ratio-tracks the rest, so a bound above one lookup
+  // would bias its transmittance.
+  TransferTable table;
+  table.Range[0] = -0.5;
+  table.Range[1] = 1.5;
+  table.Size = 64;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> sigma(1.0f, 10.0f);
+  for (int i = 0; i < table.Size; ++i)
+  {
+    const float s = (i % 9 == 0) ? 0.0f : sigma(rng);
+    table.RGBA.insert(table.RGBA.end(), { 1.0f, 1.0f, 1.0f, s });
+  }
+  std::uniform_real_distribution<double> u(-1.0, 2.0);
+  int positive = 0;
+  for (int n = 0; n < 2000; ++n)
+  {
+    const double a = u(rng), b = u(rng);
+    const float bound = table.MinExtinction(a, b);
+    EXPECT_EQ(bound, table.MinExtinction(b, a));
+    EXPECT_LE(bound, table.MaxExtinction(a, b));
+    positive += bound > 0.0f;
+    for (int k = 0; k <= 40; ++k)
+    {
+      const double density = a + (b - a) * k / 40.0;
+      ASSERT_GE(table.Lookup(density).a, bound) << "density " << density << " in [" << a << ", "
+                                                << b << "]";
+    }
+  }
+  EXPECT_GT(positive, 20); // a bound of 0 everywhere would be useless, not wrong
+  // One density on an entry: both bounds are that entry.
+  const double onEntry = table.Range[0] + 5.0 * (table.Range[1] - table.Range[0]) / 63.0;
+  EXPECT_EQ(table.MinExtinction(onEntry, onEntry), table.RGBA[5 * 4 + 3]);
+  EXPECT_EQ(TransferTable().MinExtinction(0.0, 1.0), 0.0f);
+}
+
 TEST(TransferTable, MaxExtinctionIsZeroWhereTheOpacityIsZeroAroundTheInterval)
 {
   vtkNew<vtkPiecewiseFunction> opacity;
