@@ -162,6 +162,14 @@ public:
    */
   bool GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const;
 
+  /**
+   * The view ray of pixel (i, j) of an image of width x height pixels: its points on the near
+   * and far planes, for the normalized-device-to-world matrix deviceToWorld (GLM's column-major
+   * layout of GetDeviceToWorldMatrix's).
+   */
+  static void PixelRay(const glm::dmat4& deviceToWorld, int i, int j, int width, int height,
+    glm::dvec3& nearWorld, glm::dvec3& farWorld);
+
 protected:
   vtkCloudReferenceRenderer();
   ~vtkCloudReferenceRenderer() override = default;
@@ -178,13 +186,6 @@ protected:
    */
   virtual bool RenderImage(const cloudvis::MarchUniforms& uniforms,
     const glm::dmat4& deviceToWorld, vtkImageData* input, vtkImageData* output);
-
-  /**
-   * The view ray of pixel (i, j) of an image of width x height pixels: its points on the near
-   * and far planes.
-   */
-  static void PixelRay(const glm::dmat4& deviceToWorld, int i, int j, int width, int height,
-    glm::dvec3& nearWorld, glm::dvec3& farWorld);
 
   /**
    * Calls renderRows(firstRow, endRow) over the image's rows under vtkSMPTools, in blocks of

@@ -1,14 +1,17 @@
-// Scenes with known answers for the path tracer's tests (TestPathTracer.cxx): fields on a box
-// from a density function, linear transfer tables, lights, and the rendered image with its
-// per-pixel variance. Statistical checks take their tolerance from the variance the path tracer
-// reports, so they are as tight as the noise allows and still fail only by a > 4 sigma fluke.
-#ifndef PathTraceTestScenes_h
-#define PathTraceTestScenes_h
+// What the renderers' unit tests share (TestPathTracer.cxx, TestReferenceRenderer.cxx): fields
+// on a box from a density function, linear transfer tables, lights, a parallel view, the
+// rendered image with its per-pixel variance, means with their standard errors, and counting
+// an algorithm's errors. Statistical checks take their tolerance from the variance the path
+// tracer reports, so they are as tight as the noise allows.
+#ifndef RendererTestSupport_h
+#define RendererTestSupport_h
 
 #include "CloudLighting.h"
 #include "CloudTransferTable.h"
 #include "vtkCloudPathTracer.h"
 
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -122,6 +125,21 @@ inline Image Render(vtkCloudReferenceRenderer* renderer)
   copy("rgba", image.RGBA);
   copy("rgba_variance", image.Variance);
   return image;
+}
+
+// How many errors an algorithm reports when it updates.
+inline int CountErrors(vtkAlgorithm* algorithm)
+{
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&errors);
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void*) { ++*static_cast<int*>(clientData); });
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::ErrorEvent, onError);
+  algorithm->Modified();
+  algorithm->Update();
+  algorithm->RemoveObserver(tag);
+  return errors;
 }
 
 // A mean and the standard error of it.
