@@ -106,6 +106,7 @@ float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt, glm:
 {
   BrickWalk walk = BeginBrickWalk(pt, p, direction, tStart);
   float t = tStart;
+  int tentative = 0;
   while (t < tEnd)
   {
     const float tLeave = std::min(BrickExit(walk), tEnd);
@@ -125,6 +126,10 @@ float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt, glm:
         if (t >= tLeave)
         {
           break;
+        }
+        if (++tentative > MaxTentativeCollisions)
+        {
+          return GaveUp;
         }
         const float threshold = NextRandom(rng) * majorant;
         if (threshold < bounds.x || threshold < ExtinctionAt(u, p + t * direction))
@@ -158,6 +163,7 @@ float RatioTrackTransmittance(const MarchUniforms& u, const PathTraceUniforms& p
   BrickWalk walk = BeginBrickWalk(pt, p, direction, tStart);
   float T = 1.0f;
   float t = tStart;
+  int tentative = 0;
   while (t < tEnd)
   {
     const float tLeave = std::min(BrickExit(walk), tEnd);
@@ -184,6 +190,10 @@ float RatioTrackTransmittance(const MarchUniforms& u, const PathTraceUniforms& p
         if (t >= tLeave)
         {
           break;
+        }
+        if (++tentative > MaxTentativeCollisions)
+        {
+          return 0.0f;
         }
         // The bounds hold up to the rounding of a sample position: clamp at 0.
         const float sigma_t = ExtinctionAt(u, p + t * direction);
@@ -284,6 +294,10 @@ glm::vec4 TracePath(const MarchUniforms& u, const PathTraceUniforms& pt,
   for (int bounce = 0; bounce <= pt.MaxBounces; ++bounce)
   {
     const float t = SampleFreeFlight(u, pt, p, direction, tStart, tEnd, rng);
+    if (t == GaveUp)
+    {
+      break; // an extinction too large for float: the path ends with what it has
+    }
     if (t >= tEnd)
     {
       // Out of the volume: into the uniform environment (the view ray itself brings nothing:

@@ -81,8 +81,16 @@ constexpr float RatioTrackingRouletteThreshold = 0.1f;
 // That roulette: T unchanged above the threshold, else the threshold or 0.
 CLOUDVISFILTERS_EXPORT float RouletteTransmittance(float T, RandomStream& rng);
 
-// Free-flight and ratio tracking leave a brick when no face is crossed closer than this.
+// The ray parameter of the faces a walk never crosses (its direction is parallel to them).
 constexpr float NoCrossing = 1e30f;
+
+// A bound on the tentative collisions of one tracking call. Real media stay far below it (the
+// shipped scenes need at most a few hundred: majorant minus minorant times the length); an
+// extinction so large that float t cannot advance (a majorant above ~1e7 / t) would otherwise
+// loop forever. Beyond it, free flight gives up (GaveUp) and ends the path, and ratio tracking
+// returns a transmittance of 0: the ray is treated as opaque.
+constexpr int MaxTentativeCollisions = 1 << 16;
+constexpr float GaveUp = -1.0f;
 
 // ---- The majorant walk: a 3-D DDA through the bricks along a ray ----
 
@@ -119,7 +127,7 @@ CLOUDVISFILTERS_EXPORT glm::vec2 BrickExtinctionBounds(
 // are crossed without a sample), each accepted with probability sigma_t / majorant (without
 // reading the density when the random number falls below minorant / majorant). Returns the
 // collision's t, or tEnd when the ray leaves the segment without one (probability: the
-// transmittance of the segment).
+// transmittance of the segment), or GaveUp after MaxTentativeCollisions.
 CLOUDVISFILTERS_EXPORT float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt,
   glm::vec3 p, glm::vec3 direction, float tStart, float tEnd, RandomStream& rng);
 

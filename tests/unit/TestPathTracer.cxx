@@ -596,6 +596,25 @@ TEST(PathTracer, SameSeedSameImageUnderEverySmpBackend)
   EXPECT_EQ(Render(tracer).RGBA, images[0].RGBA);
 }
 
+TEST(PathTracer, AnExtinctionTooLargeForFloatStillEndsEveryPath)
+{
+  // One voxel of extinction 1e9 per unit length in an otherwise empty field of one brick: its
+  // majorant spaces tentative collisions 1e-9 apart, which cannot move a float t of order 1,
+  // and nearly all are rejected. The render still ends, and quickly (the tracking gives up
+  // after MaxTentativeCollisions: the ray is opaque, the path ends).
+  auto field = MakeBoxField({ 5, 5, 5 }, glm::dvec3(-1.0), glm::dvec3(1.0),
+    [](double x, double y, double z) { return x == 0.0 && y == 0.0 && z == 0.0 ? 1.0 : 0.0; });
+  auto tracer = Tracer(field, 2, LinearTable(1e9f));
+  SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), 0.5);
+  tracer->SetLights({ DirectionalLight({ 1.0f, 0.0f, 0.0f }) });
+  tracer->SetSamplesPerPixel(2);
+  const Image image = Render(tracer);
+  ASSERT_EQ(image.Pixels(), 4u);
+  for (std::size_t p = 0; p < image.Pixels(); ++p)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_TRUE(image.At(p, c) >= 0.0f && image.At(p, c) <= 1e3f) << p << ", " << c;
+}
+
 TEST(PathTracer, RefusesBadParameters)
 {
   auto field = SoftSphere(12);
