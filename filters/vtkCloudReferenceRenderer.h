@@ -23,6 +23,9 @@
  *
  * Rows are rendered under vtkSMPTools; each pixel depends only on the input and the
  * parameters, never on the threads.
+ *
+ * vtkCloudPathTracer is the same renderer with a Monte Carlo path tracer in place of the march
+ * (RenderImage): the same input checks, camera, table, lighting and lights.
  */
 #ifndef vtkCloudReferenceRenderer_h
 #define vtkCloudReferenceRenderer_h
