@@ -1,5 +1,5 @@
 // The path tracer (vtkCloudPathTracer): how fast it converges on the shipped scenes, and how far
-// each lighting model of the march is from it. Three commands:
+// each lighting model of the march is from it. Four commands:
 //
 //   speed  [--size WxH] [--spp N] [--bounces B] [--brick N] [SCENE.json ...]
 //     Renders each scene (default: data/scenes/fbm-sphere.json, two-lights.json, sphere.json)
@@ -390,10 +390,13 @@ TransferTable WithAlbedo(TransferTable table, float albedo)
 
 int Speed(const Options& options)
 {
-  std::vector<std::string> scenes = options.Scenes;
-  if (scenes.empty())
-    scenes = { "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json",
+  std::vector<std::string> files = options.Scenes;
+  if (files.empty())
+    files = { "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json",
       "data/scenes/sphere.json" };
+  std::vector<BenchScene> scenes;
+  for (const std::string& file : files)
+    scenes.push_back(ReadScene(file)); // every scene checked before anything is printed
   std::printf("%d x %d, %d paths per pixel, bounce cap %d, bricks of %d voxels, vtkSMPTools %s "
               "with %d threads\n\n",
     options.Width, options.Height, options.Samples, options.Bounces, options.BrickSize,
@@ -402,9 +405,8 @@ int Speed(const Options& options)
               "standard error | time to 1%% at 800x600 | CPU march (%s) | one path per pixel "
               "costs |\n|---|---|---|---|---|---|---|---|\n",
     "scene's model");
-  for (const std::string& path : scenes)
+  for (const BenchScene& scene : scenes)
   {
-    const BenchScene scene = ReadScene(path);
     const vtkSmartPointer<vtkImageData> field = MakeField(scene);
     const TransferTable table = MakeTable(scene, field);
 
