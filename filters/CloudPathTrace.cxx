@@ -101,48 +101,62 @@ bool LeapEmptyBricks(
 
 // ---- Tracking through the medium ----
 
+bool NextOccupiedSegment(const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 direction, float tEnd,
+  BrickWalk& walk, float& t, float& tLeave, glm::vec2& bounds)
+{
+  while (t < tEnd)
+  {
+    if (t >= BrickExit(walk))
+    {
+      if (!AdvanceBrickWalk(pt, walk))
+      {
+        return false;
+      }
+      continue;
+    }
+    bounds = BrickExtinctionBounds(pt, walk.Brick);
+    if (bounds.y > 0.0f)
+    {
+      tLeave = std::min(BrickExit(walk), tEnd);
+      return true;
+    }
+    if (!LeapEmptyBricks(pt, p, direction, walk, t))
+    {
+      t = std::min(BrickExit(walk), tEnd);
+    }
+  }
+  return false;
+}
+
 float SampleFreeFlight(const MarchUniforms& u, const PathTraceUniforms& pt, glm::vec3 p,
   glm::vec3 direction, float tStart, float tEnd, RandomStream& rng)
 {
   BrickWalk walk = BeginBrickWalk(pt, p, direction, tStart);
-  float t = tStart;
+  float t = tStart, tLeave;
+  glm::vec2 bounds;
   int tentative = 0;
-  while (t < tEnd)
+  while (NextOccupiedSegment(pt, p, direction, tEnd, walk, t, tLeave, bounds))
   {
-    const float tLeave = std::min(BrickExit(walk), tEnd);
-    const glm::vec2 bounds = BrickExtinctionBounds(pt, walk.Brick);
-    const float majorant = bounds.y;
-    if (majorant == 0.0f && LeapEmptyBricks(pt, p, direction, walk, t))
+    // Tentative collisions at rate majorant; exponential distances are memoryless, so the next
+    // brick starts afresh from its face.
+    for (;;)
     {
-      continue;
-    }
-    if (majorant > 0.0f)
-    {
-      // Tentative collisions at rate majorant; exponential distances are memoryless, so the
-      // next brick starts afresh from its face.
-      for (;;)
+      t -= std::log(1.0f - NextRandom(rng)) / bounds.y;
+      if (t >= tLeave)
       {
-        t -= std::log(1.0f - NextRandom(rng)) / majorant;
-        if (t >= tLeave)
-        {
-          break;
-        }
-        if (++tentative > MaxTentativeCollisions)
-        {
-          return GaveUp;
-        }
-        const float threshold = NextRandom(rng) * majorant;
-        if (threshold < bounds.x || threshold < ExtinctionAt(u, p + t * direction))
-        {
-          return t; // a real collision
-        }
+        break;
+      }
+      if (++tentative > MaxTentativeCollisions)
+      {
+        return GaveUp;
+      }
+      const float threshold = NextRandom(rng) * bounds.y;
+      if (threshold < bounds.x || threshold < ExtinctionAt(u, p + t * direction))
+      {
+        return t; // a real collision
       }
     }
     t = tLeave;
-    if (!AdvanceBrickWalk(pt, walk))
-    {
-      break;
-    }
   }
   return tEnd; // no collision before the end of the segment
 }
@@ -162,25 +176,17 @@ float RatioTrackTransmittance(const MarchUniforms& u, const PathTraceUniforms& p
 {
   BrickWalk walk = BeginBrickWalk(pt, p, direction, tStart);
   float T = 1.0f;
-  float t = tStart;
+  float t = tStart, tLeave;
+  glm::vec2 bounds;
   int tentative = 0;
-  while (t < tEnd)
+  while (NextOccupiedSegment(pt, p, direction, tEnd, walk, t, tLeave, bounds))
   {
-    const float tLeave = std::min(BrickExit(walk), tEnd);
-    const glm::vec2 bounds = BrickExtinctionBounds(pt, walk.Brick);
     const float control = bounds.x;
     const float residual = bounds.y - bounds.x;
-    if (bounds.y == 0.0f && LeapEmptyBricks(pt, p, direction, walk, t))
+    T = RouletteTransmittance(T * std::exp(-control * (tLeave - t)), rng);
+    if (T == 0.0f)
     {
-      continue;
-    }
-    if (bounds.y > 0.0f)
-    {
-      T = RouletteTransmittance(T * std::exp(-control * (tLeave - t)), rng);
-      if (T == 0.0f)
-      {
-        return 0.0f;
-      }
+      return 0.0f;
     }
     if (residual > 0.0f)
     {
@@ -205,10 +211,6 @@ float RatioTrackTransmittance(const MarchUniforms& u, const PathTraceUniforms& p
       }
     }
     t = tLeave;
-    if (!AdvanceBrickWalk(pt, walk))
-    {
-      break;
-    }
   }
   return T;
 }

@@ -116,6 +116,12 @@ CLOUDVISFILTERS_EXPORT float EmptyBricksAround(const PathTraceUniforms& pt, glm:
 // to where the ray leaves the block, and returns true; else leaves both alone.
 CLOUDVISFILTERS_EXPORT bool LeapEmptyBricks(
   const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 direction, BrickWalk& walk, float& t);
+// Moves the walk (at ray parameter t) on to the next occupied brick, leaping over blocks of
+// empty ones, and gives the part [t, tLeave] of the ray inside it (tLeave <= tEnd) and its
+// (minorant, majorant); false when the ray reaches tEnd or leaves the grid first. A tracking
+// loop handles [t, tLeave] and sets t = tLeave before the next call.
+CLOUDVISFILTERS_EXPORT bool NextOccupiedSegment(const PathTraceUniforms& pt, glm::vec3 p,
+  glm::vec3 direction, float tEnd, BrickWalk& walk, float& t, float& tLeave, glm::vec2& bounds);
 // The brick's (minorant, majorant) of sigma_t.
 CLOUDVISFILTERS_EXPORT glm::vec2 BrickExtinctionBounds(
   const PathTraceUniforms& pt, glm::ivec3 brick);
