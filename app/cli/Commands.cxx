@@ -429,6 +429,12 @@ int RunDefault(std::ostream& out)
   return ExitSuccess;
 }
 
+int Schema(const Arguments&, std::ostream& out)
+{
+  out << SceneReferenceMarkdown();
+  return ExitSuccess;
+}
+
 const std::vector<CommandSpec>& Commands()
 {
   static const std::vector<CommandSpec> commands = {
@@ -468,6 +474,11 @@ const std::vector<CommandSpec>& Commands()
       Compare },
     AnimateCommand(),
     ViewCommand(),
+    { "schema", "", 0, 0, "print the reference tables of the scene file format (Markdown)",
+      "Prints every key a scene file may hold, with its type, default and allowed values, as\n"
+      "the Markdown tables of docs/scene-format.md, which are generated from this output (the\n"
+      "test app.scene_docs fails when the two differ; `make docs` writes them in).",
+      { HelpOption }, Schema },
   };
   return commands;
 }
