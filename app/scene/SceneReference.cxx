@@ -98,23 +98,36 @@ struct Table
 };
 
 // key | type | default | allowed: the keys of `keys` that `keep` accepts, named with `prefix`.
+// For a typed object (a shape, a light), `types` are the values of its "type": a column after
+// the key says which of them take it.
 template<typename S>
 Table KeyTable(const std::string& name,
   const Keys<S>& keys,
   const S& defaults,
   const std::string& prefix = "",
-  bool (*keep)(const std::string&) = nullptr)
+  bool (*keep)(const std::string&) = nullptr,
+  const std::vector<Name>* types = nullptr)
 {
   Table table{ name, { "key", "type", "default", "allowed" }, {} };
+  if (types)
+  {
+    table.Header.insert(table.Header.begin() + 1, "types");
+  }
   for (const Key<S>& key : keys)
   {
-    if (!keep || keep(key.Name))
+    if (keep && !keep(key.Name))
     {
-      table.Rows.push_back({ Code(prefix + key.Name),
-        TypeWords(key.Type),
-        DefaultWords(key, defaults),
-        JoinNonEmpty({ AllowedWords(key.Type), key.Help }) });
+      continue;
     }
+    std::vector<std::string> row{ Code(prefix + key.Name),
+      TypeWords(key.Type),
+      DefaultWords(key, defaults),
+      JoinNonEmpty({ AllowedWords(key.Type), key.Help }) };
+    if (types)
+    {
+      row.insert(row.begin() + 1, TypesWords(key.UsedBy, *types));
+    }
+    table.Rows.push_back(row);
   }
   return table;
 }
@@ -142,18 +155,7 @@ std::vector<Table> ReferenceTables()
   tables.push_back(KeyTable(
     "field", FieldKeys(), scene.Field, "", [](const std::string& key) { return key != "file"; }));
 
-  Table shapes{ "field.shape", { "key", "types", "type", "default", "allowed" }, {} };
-  const Shape shape;
-  for (const Key<Shape>& key : ShapeKeys())
-  {
-    shapes.Rows.push_back({ Code(key.Name),
-      TypesWords(key.UsedBy, ShapeTypes()),
-      TypeWords(key.Type),
-      DefaultWords(key, shape),
-      JoinNonEmpty({ AllowedWords(key.Type), key.Help }) });
-  }
-  tables.push_back(shapes);
-
+  tables.push_back(KeyTable("field.shape", ShapeKeys(), Shape{}, "", nullptr, &ShapeTypes()));
   tables.push_back(KeyTable("transfer_function", TransferFunctionKeys(), scene.TransferFunction));
   tables.push_back(KeyTable("camera", CameraKeys(), scene.Camera));
   tables.push_back(KeyTable("camera.orbit", OrbitKeys(), OrbitSpec{}));
@@ -181,17 +183,7 @@ std::vector<Table> ReferenceTables()
   lighting.Rows.insert(lighting.Rows.end(), march.Rows.begin(), march.Rows.end());
   tables.push_back(lighting);
 
-  Table lights{ "lights", { "key", "types", "type", "default", "allowed" }, {} };
-  const Light light;
-  for (const Key<Light>& key : LightKeys())
-  {
-    lights.Rows.push_back({ Code(key.Name),
-      TypesWords(key.UsedBy, LightTypes()),
-      TypeWords(key.Type),
-      DefaultWords(key, light),
-      JoinNonEmpty({ AllowedWords(key.Type), key.Help }) });
-  }
-  tables.push_back(lights);
+  tables.push_back(KeyTable("lights", LightKeys(), Light{}, "", nullptr, &LightTypes()));
   tables.push_back(KeyTable("ambient", AmbientKeys(), scene.Ambient));
   return tables;
 }

@@ -87,6 +87,18 @@ vtkSmartPointer<vtkImageData> Generate(vtkCloudDensitySource* source)
   return image;
 }
 
+// The field file `path` is, bit for bit, what vtkCloudDensitySource makes of these settings.
+void ExpectSourceField(const std::string& path, const std::array<int, 3>& dimensions,
+  const std::array<double, 6>& bounds, const cloudvis::FieldDescription& field, double time)
+{
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetDimensions(dimensions.data());
+  source->SetBounds(bounds.data());
+  source->SetField(field);
+  source->SetTime(time);
+  ExpectBitIdentical(Generate(source), ReadBack(path));
+}
+
 // ---- generate: files equal the source's output --------------------------------------------
 
 TEST(Generate, DefaultSceneEqualsSourceDefaults)
@@ -145,12 +157,7 @@ TEST(Generate, EveryKeyReachesTheSource)
   field.Noise.Amplitude = 0.8;
   field.Noise.Seed = 4000000000u;
   field.Wind = glm::dvec3(0.1, 0.2, -0.3);
-  vtkNew<vtkCloudDensitySource> source;
-  source->SetDimensions(20, 24, 28);
-  source->SetBounds(-1, 2, -3, 1, -2, 2.5);
-  source->SetField(field);
-  source->SetTime(1.25);
-  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+  ExpectSourceField(dir.File("f.vti"), { { 20, 24, 28 } }, { { -1, 2, -3, 1, -2, 2.5 } }, field, 1.25);
 }
 
 TEST(Generate, MorphSceneEqualsSourceMorph)
@@ -160,12 +167,8 @@ TEST(Generate, MorphSceneEqualsSourceMorph)
     "field.time=4.5", "-o", dir.File("f.vti") });
   cloudvis::FieldDescription field;
   field.Morph = true;
-  vtkNew<vtkCloudDensitySource> source;
-  source->SetDimensions(24, 24, 24);
-  source->SetBounds(-3.5, 3.5, -3.5, 3.5, -3.5, 3.5);
-  source->SetField(field);
-  source->SetTime(4.5);
-  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+  ExpectSourceField(
+    dir.File("f.vti"), { { 24, 24, 24 } }, { { -3.5, 3.5, -3.5, 3.5, -3.5, 3.5 } }, field, 4.5);
 }
 
 TEST(Generate, LeavesOnlyTheTarget)

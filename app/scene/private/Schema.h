@@ -256,24 +256,30 @@ json ToJson(E m)
   return static_cast<int>(m);
 }
 template<typename T, size_t N>
-json ToJson(const std::array<T, N>& m)
+json ToJson(const std::array<T, N>& m);
+template<typename T>
+json ToJson(const std::vector<T>& m);
+// A container of members as a JSON array (the overloads above, declared first so that an array
+// of arrays finds them).
+template<typename Container>
+json ToJsonArray(const Container& members)
 {
   json a = json::array();
-  for (const T& x : m)
+  for (const auto& x : members)
   {
     a.push_back(ToJson(x));
   }
   return a;
 }
+template<typename T, size_t N>
+json ToJson(const std::array<T, N>& m)
+{
+  return ToJsonArray(m);
+}
 template<typename T>
 json ToJson(const std::vector<T>& m)
 {
-  json a = json::array();
-  for (const T& x : m)
-  {
-    a.push_back(ToJson(x));
-  }
-  return a;
+  return ToJsonArray(m);
 }
 template<typename T>
 json ToJson(const std::optional<T>& m)
