@@ -39,7 +39,7 @@ namespace cloudvis
 
 const OptionSpec SetOption{ "set", 0, "KEY=VALUE",
   "override a scene value before validation, e.g. --set field.octaves=4 or "
-  "--set field.dimensions=64,64,64 (see docs/scene-format.md)",
+  "--set field.dimensions=64,64,64 (every key: cloudvis schema, or docs/scene-format.md)",
   true };
 const OptionSpec HelpOption{ "help", 'h', "", "show this help and exit" };
 
