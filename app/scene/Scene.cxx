@@ -6,15 +6,14 @@
 #include "Scene.h"
 
 #include "Errors.h"
+#include "InputFiles.h"
 #include "SceneSchema.h"
+#include "Utf8.h"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <sstream>
-#include <sys/stat.h>
 
 namespace cloudvis
 {
@@ -144,19 +143,7 @@ nlohmann::json ReadSceneDocument(const std::string& path)
 
 nlohmann::json ReadJsonFile(const std::string& path, const std::string& what)
 {
-  struct stat info;
-  if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
-  {
-    throw InputError(path + ": cannot read " + what + ": it is a directory");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-  {
-    throw InputError(path + ": cannot read " + what + ": " + std::strerror(errno));
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = RegularInputFile(path, what).ReadAll(MaximumJsonFileBytes);
   try
   {
     return ParseJsonText(text, path);
@@ -197,6 +184,31 @@ nlohmann::json ReadJsonFile(const std::string& path, const std::string& what)
     throw InputError(path + ": malformed JSON: " +
       (bracket == std::string::npos ? reason : reason.substr(bracket + 2)));
   }
+}
+
+nlohmann::json WithValidUtf8(nlohmann::json value)
+{
+  if (value.is_string())
+  {
+    return EscapeInvalidUtf8(value.get<std::string>());
+  }
+  if (value.is_array())
+  {
+    for (json& element : value)
+    {
+      element = WithValidUtf8(std::move(element));
+    }
+  }
+  else if (value.is_object())
+  {
+    json escaped = json::object();
+    for (auto& member : value.items())
+    {
+      escaped[EscapeInvalidUtf8(member.key())] = WithValidUtf8(std::move(member.value()));
+    }
+    return escaped;
+  }
+  return value;
 }
 
 nlohmann::json ParseOverrideValue(const std::string& key, const std::string& text)

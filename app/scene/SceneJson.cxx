@@ -22,7 +22,8 @@ nlohmann::json SceneToJson(const Scene& scene, const ResolvedCamera& camera)
   {
     document.erase("description");
   }
-  return document;
+  // Paths and --set strings may hold bytes that are not UTF-8; escaped, every dump() succeeds.
+  return WithValidUtf8(std::move(document));
 }
 
 } // namespace cloudvis

@@ -10,6 +10,7 @@
 #include "SceneSchema.h"
 
 #include "Errors.h"
+#include "FieldIO.h"
 #include "Presets.h"
 #include "SceneField.h"
 
@@ -541,10 +542,22 @@ const Keys<FieldSpec>& FieldKeys()
   using N = noise::FbmParameters;
   static const Keys<F> keys = {
     { "file",
-      Path("the path of a .vti file (a non-empty string)").DefaultIs("none"),
+      Path("the path of a field file (" + FieldFileExtensions() + ", a non-empty string)")
+        .DefaultIs("none")
+        .CheckedBy(
+          [](const json& v) -> std::string
+          {
+            const std::string path = v.get<std::string>();
+            return IsFieldFile(path)
+              ? ""
+              : "\"" + path + "\" is not a field file: supported extensions (in any case) are " +
+                FieldFileExtensions();
+          }),
       &F::File,
-      "path of a VTK XML image data file (`.vti`); a relative path is relative to the folder of "
-      "the scene file (to the current directory for the default scene)" },
+      "path of a field file: VTK XML image data (`.vti`, either byte order) or VTK XML parallel "
+      "image data (`.pvti` and its pieces, as ParaView writes them); the extension in any case "
+      "(`.VTI`); a relative path is relative to the folder of the scene file (to the current "
+      "directory for the default scene)" },
     { "dimensions",
       IntegerOrIntegersIn(3, 1, std::numeric_limits<int>::max(), "[nx, ny, nz]"),
       &F::Dimensions,

@@ -3,6 +3,7 @@
 #include "Schema.h"
 
 #include "Errors.h"
+#include "Scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,8 +42,8 @@ std::string Join(const std::vector<std::string>& names, const std::string& separ
 
 std::string Describe(const json& value)
 {
-  // replace: a string from --set may hold any bytes, and dump() throws on invalid UTF-8.
-  const std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+  // A string from --set may hold any bytes, and dump() throws on invalid UTF-8.
+  const std::string text = WithValidUtf8(value).dump();
   return std::string(value.type_name()) + " " +
     (text.size() > 40 ? text.substr(0, 37) + "..." : text);
 }
@@ -143,6 +144,13 @@ ValueType ValueType::Mandatory() const
 {
   ValueType t = *this;
   t.Required = true;
+  return t;
+}
+
+ValueType ValueType::CheckedBy(ValueCheck refuse) const
+{
+  ValueType t = *this;
+  t.Refuse = refuse;
   return t;
 }
 
@@ -372,9 +380,7 @@ json CheckPoints(const Context& c, const json& v, const std::string& key, const 
   return points;
 }
 
-} // namespace
-
-json Check(const Context& c, const ValueType& t, const json& v, const std::string& key)
+json CheckKind(const Context& c, const ValueType& t, const json& v, const std::string& key)
 {
   switch (t.Type)
   {
@@ -442,6 +448,19 @@ json Check(const Context& c, const ValueType& t, const json& v, const std::strin
       break;
   }
   return v;
+}
+
+} // namespace
+
+json Check(const Context& c, const ValueType& t, const json& v, const std::string& key)
+{
+  json checked = CheckKind(c, t, v, key);
+  const std::string problem = t.Refuse ? t.Refuse(v) : std::string();
+  if (!problem.empty())
+  {
+    c.Fail(key, problem);
+  }
+  return checked;
 }
 
 json Present(const ValueType& t, const json& value)

@@ -18,6 +18,7 @@
 #include "ExportRender.h"
 #include "FieldIO.h"
 #include "ImageWriters.h"
+#include "InputFiles.h"
 #include "OffscreenRender.h"
 #include "Presets.h"
 #include "SceneField.h"
@@ -25,6 +26,7 @@
 #include "SceneLighting.h"
 #include "SlicePlanes.h"
 #include "TransferFunctionEditor.h"
+#include "Utf8.h"
 #include "vtkCloudViewerInteractorStyle.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -173,8 +175,10 @@ struct Viewer::Internals
     this->Window->Render();
   }
 
-  void Show(const std::string& text, bool error)
+  void Show(const std::string& message, bool error)
   {
+    // Messages quote paths and user text, which may hold bytes that are not UTF-8.
+    const std::string text = EscapeInvalidUtf8(message);
     this->MessageLog.push_back(text);
     this->Message->SetInput(text.c_str());
     this->Message->GetTextProperty()->SetColor(error ? 1.0 : 0.85, error ? 0.45 : 0.95, error ? 0.4 : 0.85);
@@ -485,14 +489,7 @@ Viewer::~Viewer()
 
 void Viewer::PlayFile(const std::string& path)
 {
-  std::ifstream file(path);
-  if (!file)
-  {
-    throw InputError(path + ": cannot read the recording");
-  }
-  std::stringstream text;
-  text << file.rdbuf();
-  this->PlayString(text.str());
+  this->PlayString(RegularInputFile(path, "recording").ReadAll(MaximumRecordingBytes));
 }
 
 void Viewer::PlayString(const std::string& events)

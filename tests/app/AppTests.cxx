@@ -9,11 +9,15 @@
 #include "Errors.h"
 #include "FieldIO.h"
 #include "FieldStatistics.h"
+#include "FileNames.h"
+#include "InputFiles.h"
 #include "OffscreenRender.h"
 #include "Scene.h"
 #include "SceneField.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
+#include "Utf8.h"
+#include "VtkWrittenFields.h"
 #include "vtkCloudDensitySource.h"
 
 #include <vtkFloatArray.h>
@@ -29,9 +33,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <dirent.h>
-#include <fstream>
-#include <sstream>
+#include <random>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -587,6 +589,208 @@ TEST(Render, WithoutDisplayFailsWithTheXvfbHintAndWritesNothing)
   EXPECT_NE(run.Err.find("cloudvis needs an X display"), std::string::npos) << run.Err;
   EXPECT_NE(run.Err.find("xvfb-run -a cloudvis render"), std::string::npos) << run.Err;
   EXPECT_TRUE(dir.Files().empty());
+}
+
+} // namespace
+
+// ---- inputs and outputs: right or refused (docs/reliability.md) -----------------------------
+
+namespace
+{
+
+// Class "valid files refused": what VTK writes, cloudvis reads, value for value.
+void ExpectSameField(vtkImageData* reference, vtkImageData* read)
+{
+  ASSERT_NE(read, nullptr);
+  int expectedExtent[6], readExtent[6];
+  reference->GetExtent(expectedExtent);
+  read->GetExtent(readExtent);
+  EXPECT_EQ(std::vector<int>(expectedExtent, expectedExtent + 6),
+    std::vector<int>(readExtent, readExtent + 6));
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_EQ(reference->GetOrigin()[a], read->GetOrigin()[a]);
+    EXPECT_EQ(reference->GetSpacing()[a], read->GetSpacing()[a]);
+  }
+  vtkDataArray* expected = reference->GetPointData()->GetScalars();
+  vtkDataArray* density = read->GetPointData()->GetArray("density");
+  ASSERT_NE(density, nullptr);
+  ASSERT_EQ(expected->GetNumberOfTuples(), density->GetNumberOfTuples());
+  vtkIdType different = 0;
+  for (vtkIdType i = 0; i < expected->GetNumberOfTuples(); ++i)
+  {
+    different += expected->GetComponent(i, 0) == density->GetComponent(i, 0) ? 0 : 1;
+  }
+  EXPECT_EQ(different, 0) << "voxels whose value differs from the one VTK wrote";
+}
+
+TEST(FieldFormats, BigEndianFilesWrittenByVtkReadAsWritten)
+{
+  TemporaryDirectory dir;
+  const vtkSmartPointer<vtkImageData> reference = cloudvis::test::ReferenceField();
+  for (const cloudvis::test::BigEndianVariant& variant : cloudvis::test::BigEndianVariants())
+  {
+    SCOPED_TRACE(variant.Name);
+    const std::string path = cloudvis::test::WriteBigEndian(dir.Path, variant);
+    ASSERT_NE(ReadText(path).find("byte_order=\"BigEndian\""), std::string::npos);
+    ExpectSameField(reference, cloudvis::ReadField(path));
+  }
+}
+
+TEST(FieldFormats, ParallelFilesWrittenByVtkAssembleIntoTheWholeField)
+{
+  TemporaryDirectory dir;
+  const vtkSmartPointer<vtkImageData> reference = cloudvis::test::ReferenceField();
+  struct Layout
+  {
+    int Pieces;
+    bool Subdirectory, BigEndian;
+  };
+  for (const Layout& layout : { Layout{ 1, false, false },
+         Layout{ 3, false, false },
+         Layout{ 4, true, true },
+         Layout{ 7, true, false } })
+  {
+    const std::string name = "p" + std::to_string(layout.Pieces) + ".pvti";
+    SCOPED_TRACE(name);
+    const std::string path = cloudvis::test::WriteParallel(
+      dir.Path, name, layout.Pieces, layout.Subdirectory, layout.BigEndian);
+    // The writer really split the field: one <Piece> element per piece.
+    const std::string text = ReadText(path);
+    int pieces = 0;
+    for (auto at = text.find("<Piece "); at != std::string::npos; at = text.find("<Piece ", at + 1))
+    {
+      ++pieces;
+    }
+    EXPECT_EQ(pieces, layout.Pieces);
+    ExpectSameField(reference, cloudvis::ReadField(path));
+  }
+}
+
+TEST(FieldFormats, ExtensionsMatchWithoutRegardToCase)
+{
+  for (const char* path : { "f.vti", "dir/F.VTI", "f.Vti", "f.pvti", "F.PVTI", "dir.d/f.pVtI" })
+  {
+    EXPECT_TRUE(cloudvis::IsFieldFile(path)) << path;
+  }
+  for (const char* path : { "f.json", "f.vtk", "vti", ".vti", "f.vti.bak", "f.vti/scene", "f" })
+  {
+    EXPECT_FALSE(cloudvis::IsFieldFile(path)) << path;
+  }
+  const cloudvis::FieldFormat* parallel = cloudvis::FindFieldFormat("A.PVTI");
+  ASSERT_NE(parallel, nullptr);
+  EXPECT_EQ(parallel->Name, "VTK XML parallel image data");
+  EXPECT_EQ(cloudvis::LowerCaseExtension("dir/Image.EXR"), ".exr");
+  EXPECT_EQ(cloudvis::FieldFileExtensions(), ".vti, .pvti");
+}
+
+// Class "JSON files above the size limit": the limit is the largest size read, inclusive.
+TEST(InputFiles, SizeLimitIsInclusive)
+{
+  TemporaryDirectory dir;
+  const std::string path = dir.File("f.json");
+  WriteText(path, std::string(100, ' '));
+  const cloudvis::RegularInputFile file(path, "test file");
+  EXPECT_EQ(file.ReadAll(100).size(), 100u);
+  try
+  {
+    file.ReadAll(99);
+    FAIL() << "a file one byte above the limit was read";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    EXPECT_STREQ(e.what(),
+      (path +
+        ": cannot read test file: it is 0 MiB (100 bytes), above the "
+        "limit of 0 MiB (99 bytes) for a test file")
+        .c_str());
+  }
+  EXPECT_EQ(file.ReadAt(98, 10), "  ");
+}
+
+// Class "paths that are not UTF-8": the escape must accept exactly what nlohmann::json's dump()
+// accepts, or a path it passes still throws (type_error 316) in a JSON document.
+TEST(Utf8, EscapesExactlyTheBytesJsonRefuses)
+{
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("bad\xff\xfe.vti"), "bad\\xff\\xfe.vti");
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xc0\xaf"), "\\xc0\\xaf");          // overlong '/'
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xed\xa0\x80"), "\\xed\\xa0\\x80"); // a surrogate
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80"); // > U+10FFFF
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xe2\x82"), "\\xe2\\x82");                   // cut short
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8c\xa7"),
+    "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8c\xa7"); // é, €, a cloud: unchanged
+  // Random byte strings rich in lead and continuation bytes, against nlohmann::json itself.
+  std::mt19937 random(10);
+  std::uniform_int_distribution<int> length(0, 8), kind(0, 2), ascii(0x20, 0x7e),
+    continuation(0x80, 0xbf), lead(0xc0, 0xff);
+  int valid = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    std::string text;
+    for (int i = length(random); i > 0; --i)
+    {
+      const int k = kind(random);
+      text += char(k == 0 ? ascii(random) : k == 1 ? continuation(random) : lead(random));
+    }
+    bool jsonAccepts = true;
+    try
+    {
+      (void)json(text).dump();
+    }
+    catch (const json::type_error&)
+    {
+      jsonAccepts = false;
+    }
+    ASSERT_EQ(cloudvis::IsValidUtf8(text), jsonAccepts) << json(cloudvis::EscapeInvalidUtf8(text));
+    valid += jsonAccepts ? 1 : 0;
+    const std::string escaped = cloudvis::EscapeInvalidUtf8(text);
+    ASSERT_NO_THROW((void)json(escaped).dump());
+    if (jsonAccepts)
+    {
+      ASSERT_EQ(escaped, text);
+    }
+  }
+  EXPECT_GT(valid, 2000) << "too few valid strings to test the multi-byte forms";
+}
+
+// Class "temporary names beyond the file-name limit": the temporary of any legal name fits.
+TEST(AtomicFile, TemporaryNamesStayWithinTheFileNameLimit)
+{
+  TemporaryDirectory dir;
+  const long limit = ::pathconf(dir.Path.c_str(), _PC_NAME_MAX);
+  ASSERT_EQ(limit, 255) << "the test's names assume the usual limit";
+  std::string twoByteCharacters;
+  for (int i = 0; i < 125; ++i)
+  {
+    twoByteCharacters += "\xc3\xa9"; // é
+  }
+  const std::string names[] = {
+    std::string(251, 'a') + ".vti", // 255 bytes
+    twoByteCharacters + ".vti",     // 254 bytes: cut between characters
+    "a." + std::string(253, 'x'),   // an extension too long to keep
+    "short.png",
+  };
+  for (const std::string& name : names)
+  {
+    SCOPED_TRACE(name.size());
+    std::string temporary;
+    cloudvis::WriteFileAtomically(dir.File(name),
+      [&temporary](const std::string& path)
+      {
+        temporary = path;
+        WriteText(path, "x");
+      });
+    const std::string temporaryName = cloudvis::FileNameOf(temporary);
+    EXPECT_LE(temporaryName.size(), 255u);
+    EXPECT_EQ(cloudvis::DirectoryOf(temporary), dir.Path) << "not beside the target";
+    EXPECT_EQ(temporaryName.rfind("." + name.substr(0, 4), 0), 0u) << temporaryName;
+    EXPECT_TRUE(cloudvis::IsValidUtf8(temporaryName)) << "a character cut in two";
+    if (cloudvis::LowerCaseExtension(name).size() < 20)
+    {
+      EXPECT_EQ(cloudvis::LowerCaseExtension(temporaryName), cloudvis::LowerCaseExtension(name));
+    }
+    EXPECT_EQ(ReadText(dir.File(name)), "x");
+  }
 }
 
 } // namespace

@@ -205,6 +205,43 @@ TEST(Png, TextChunksNameTheSoftwareSceneAndCommand)
   EXPECT_EQ(scene["render"]["accumulate"], 2);
 }
 
+// Class "paths that are not UTF-8" (docs/reliability.md): nlohmann::json refused to dump such
+// a path (type_error 316), so `info --json` and every export failed. Now the metadata holds the
+// text escaped as \xNN, and stays valid JSON.
+TEST(Metadata, TextThatIsNotUtf8IsEscapedInPngAndExr)
+{
+  TemporaryDirectory dir;
+  const std::string field = dir.File("bad\xff\xfe.vti");
+  const std::string escaped = dir.Path + "/bad\\xff\\xfe.vti";
+  ASSERT_EQ(Cloudvis({ "generate", "--set", "field.dimensions=16", "-o", field }).Status, 0);
+  const CliRun info = Cloudvis({ "info", field, "--json" });
+  ASSERT_EQ(info.Status, 0) << info.Err;
+  EXPECT_EQ(json::parse(info.Out)["field"], escaped);
+  for (const std::string extension : { ".png", ".exr" })
+  {
+    SCOPED_TRACE(extension);
+    const std::string image = dir.File("r" + extension);
+    const CliRun run = Cloudvis({ "render",
+      field,
+      "-o",
+      image,
+      "--size",
+      "32x24",
+      "--set",
+      "render.accumulate=1",
+      "--set",
+      "description=caf\xe9" }); // é in Latin-1
+    ASSERT_EQ(run.Status, 0) << run.Err;
+    const std::map<std::string, std::string> text =
+      extension == ".png" ? ReadPng(image).Text : ReadExr(image).Strings;
+    const json scene = json::parse(text.at("cloudvis.scene"));
+    EXPECT_EQ(scene["field"]["file"], escaped);
+    EXPECT_EQ(scene["description"], "caf\\xe9");
+    EXPECT_NE(text.at("cloudvis.command").find("bad\\xff\\xfe.vti"), std::string::npos)
+      << text.at("cloudvis.command");
+  }
+}
+
 TEST(Png, SixteenBitIsTheSamePictureAsEightBit)
 {
   TemporaryDirectory dir;

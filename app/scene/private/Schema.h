@@ -118,10 +118,14 @@ struct ValueType
   bool OneFillsAll = false;
   std::string Form; // what the array's numbers are: "[width, height]", "[density, opacity]"
   std::vector<Name> Names;
-  std::string Expected;     // Text: "a string", "the path of a .vti file (a non-empty string)"
+  std::string Expected;     // Text: "a string", "a preset name or the path of a .json file"
   bool NonEmpty = false;    // Text: the empty string is refused
   bool IsPath = false;      // Text: a path, relative to the scene file's folder unless absolute
   bool StrictNames = false; // Choice: every refusal reads "expected "a" or "b", got ..."
+  // A check beyond the kind's, on the value as written (a path before it is resolved), run once
+  // the kind's own checks pass: returns the problem, or empty.
+  using ValueCheck = std::string (*)(const json& value);
+  ValueCheck Refuse = nullptr;
 
   // For the docs only.
   std::string Unit;        // "degrees", "world units": added to the type column
@@ -133,6 +137,7 @@ struct ValueType
   ValueType Described(std::string typeText) const;
   ValueType DefaultIs(std::string defaultText) const;
   ValueType Mandatory() const;
+  ValueType CheckedBy(ValueCheck refuse) const;
 };
 
 ValueType NumberIn(const Range& allowed);
@@ -150,9 +155,9 @@ ValueType IntegerOrIntegersIn(size_t count, long long min, long long max, std::s
 ValueType PointsIn(size_t count, const Range& allowed, std::string form);
 ValueType CustomValue(std::string typeText);
 
-// Checks `value` against `type` and returns it in the form members are assigned from: a
-// choice as its integer value, one integer that fills an array as the array, a path resolved
-// against the context's base directory. Fails through `c` naming `key`.
+// Checks `value` against `type` (and its Refuse) and returns it in the form members are assigned
+// from: a choice as its integer value, one integer that fills an array as the array, a path
+// resolved against the context's base directory. Fails through `c` naming `key`.
 json Check(const Context& c, const ValueType& type, const json& value, const std::string& key);
 
 // The value as a scene file writes it: a choice by its name, numbers as they are.

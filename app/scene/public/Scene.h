@@ -175,13 +175,18 @@ Scene DefaultScene();
 // OS reason) or malformed JSON (with line and column).
 nlohmann::json ReadSceneDocument(const std::string& path);
 
-// The same for any JSON file cloudvis reads; `what` names it in messages ("preset file").
+// The same for any JSON file cloudvis reads; `what` names it in messages ("preset file"). The
+// file must be a regular file of at most MaximumJsonFileBytes (InputFiles.h).
 nlohmann::json ReadJsonFile(const std::string& path, const std::string& what);
 
 // The reference tables of docs/scene-format.md, generated from the scene schema: Markdown, each
 // table between the lines "<!-- schema:NAME -->" and "<!-- /schema -->" (`cloudvis schema`
 // prints it; app.scene_docs checks that the docs hold the same tables).
 std::string SceneReferenceMarkdown();
+
+// `value` with every string and object key made valid UTF-8 by EscapeInvalidUtf8 (Utf8.h), so
+// that dump() cannot throw: strings from --set and paths may hold any bytes.
+nlohmann::json WithValidUtf8(nlohmann::json value);
 
 // Applies one "key=value" assignment (the argument of --set) to a document. The key is dotted
 // (field.noise); missing intermediate objects are created. Throws UsageError when the
