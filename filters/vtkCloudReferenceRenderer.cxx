@@ -28,8 +28,7 @@ vtkStandardNewMacro(vtkCloudReferenceRenderer);
 
 namespace
 {
-// The GPU's MAX_LIGHTS (shaders/CloudLightingCommon.glsl).
-constexpr std::size_t MaxLights = 8;
+constexpr std::size_t MaxLights = cloudvis::LightingLimits::MaxLights;
 
 bool Finite3(const double v[3])
 {
