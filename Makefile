@@ -10,8 +10,13 @@ CLOUDVIS := $(BUILD_DIR)/bin/cloudvis
 # -noreset: the server must not restart (and refuse connections) each time its last client,
 # one test process, disconnects.
 HEADLESS := $(if $(DISPLAY),,xvfb-run -a -s "-screen 0 1280x1024x24 -noreset")
+# ccache, when the machine has it, makes rebuilds across clones and build folders cheap; the
+# build does not need it.
+CCACHE := $(shell command -v ccache 2> /dev/null)
+CCACHE_ARGS := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+CCACHE_ENV := CCACHE_BASEDIR=$(CURDIR) CCACHE_NOHASHDIR=1
 
-.PHONY: all deps configure build demo test bench clean
+.PHONY: all deps configure build demo test bench docs clean
 
 all: build
 
@@ -19,12 +24,12 @@ deps:
 	@bash cmake/install-deps.sh
 
 $(BUILD_DIR)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	$(CCACHE_ENV) cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CCACHE_ARGS)
 
 configure: deps $(BUILD_DIR)/CMakeCache.txt
 
 build: configure
-	cmake --build $(BUILD_DIR) -j $(JOBS)
+	$(CCACHE_ENV) cmake --build $(BUILD_DIR) -j $(JOBS)
 
 demo: build
 	$(HEADLESS) $(CLOUDVIS)
@@ -34,6 +39,10 @@ test: build
 
 bench: build
 	$(HEADLESS) $(BUILD_DIR)/bin/cloudvis-bench-generation
+
+# The reference tables of docs/scene-format.md, written from the scene schema (cloudvis schema).
+docs: build
+	cmake -DCLOUDVIS=$(CLOUDVIS) -DDOC=docs/scene-format.md -DUPDATE=ON -P cmake/SceneDocs.cmake
 
 clean:
 	rm -rf $(BUILD_DIR) out
@@ -60,9 +69,6 @@ SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:check_initia
   LSAN_OPTIONS=suppressions=$(SANITIZER_FILES)/lsan.supp:print_suppressions=0 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:suppressions=$(SANITIZER_FILES)/ubsan.supp
 SANITIZER_RUN_ENV := $(SANITIZER_ENV) LD_PRELOAD="$(MESA_PRELOAD)"
-CCACHE := $(shell command -v ccache 2> /dev/null)
-CCACHE_ARGS := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-CCACHE_ENV := CCACHE_BASEDIR=$(CURDIR) CCACHE_NOHASHDIR=1
 
 .PHONY: asan-build test-asan test-asan-unit fuzz soak
 

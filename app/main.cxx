@@ -1,6 +1,7 @@
-// The cloudvis executable: everything lives in the cloudvisApp library (app/cli/CommandLine.h)
+// The cloudvis executable: everything lives in the layers of app/ (the command line is
+// app/cli/public/CommandLine.h)
 // so tests can drive the same code in-process.
-#include "cli/CommandLine.h"
+#include "CommandLine.h"
 
 #include <iostream>
 #include <string>

@@ -252,7 +252,8 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
       "the transfer table spans no densities (from " + Number(table->Range[0]) + " to " +
         Number(table->Range[1]) + ")");
   }
-  if (!FitsFloat(table->Range[0]) || !FitsFloat(table->Range[1]) || !FitsFloat(densityUnit))
+  if (!(std::abs(table->Range[0]) <= MaxTransferDensity &&
+        std::abs(table->Range[1]) <= MaxTransferDensity && densityUnit <= MaxTransferDensity))
   {
     return Problem(MarchInput::TransferFunction,
       "the transfer function spans densities [" + Number(table->Range[0]) + ", " +
@@ -345,12 +346,12 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
   u.Ambient = glm::vec3(ambient);
 
   // ---- the lights
-  if (setup.Lights.size() > std::size_t(MaxLights))
+  if (setup.Lights.size() > std::size_t(LightingLimits::MaxLights))
   {
     return Problem(MarchInput::Light,
       std::to_string(setup.Lights.size()) + " lights; the renderers take at most " +
-        std::to_string(MaxLights),
-      MaxLights);
+        std::to_string(LightingLimits::MaxLights),
+      LightingLimits::MaxLights);
   }
   // Each light's radiance can reach E * falloff * PeakRadiancePerLightRadiance at a sample; the
   // sum over lights, plus the ambient term, bounds what a ray gathers (sum T (1 - T_step) <= 1).

@@ -42,7 +42,7 @@ constexpr int MaxSamplesPerRay = 65536;
 // What float arithmetic holds with room for the sums and products the march makes of a
 // quantity (an accumulated radiance, an optical depth over a few segments): FLT_MAX / 64.
 // Renderers refuse lights, extinctions and geometries whose derived quantities reach it.
-constexpr double FloatLimit = 3.4028234663852886e38 / 64.0;
+constexpr double FloatLimit = FloatMax / 64.0;
 
 // How far from the volume's centre, in local units (about voxels), a point light may be: its
 // squared distance must stay within float range (3.4e38) inside the march.
@@ -157,9 +157,9 @@ struct MarchProblem
 // wider than float arithmetic holds, or whose extinction overflows float within the volume; a
 // step outside [0, infinity) or one that needs more than MaxSamplesPerRay samples (the message
 // gives the smallest step the volume allows); invalid lighting parameters or derived distances
-// that round to 0 or infinity in float; more than MaxLights lights; a light that is not finite,
-// a directional light without direction, a point light beyond MaxPointLightDistance, or lights
-// bright enough to overflow float in the radiance they make a sample send toward the eye.
+// that round to 0 or infinity in float; more than LightingLimits::MaxLights lights; a light that is
+// not finite, a directional light without direction, a point light beyond MaxPointLightDistance, or
+// lights bright enough to overflow float in the radiance they make a sample send toward the eye.
 CLOUDVISFILTERS_EXPORT MarchProblem SetUpMarch(const MarchSetup& setup,
   MarchUniforms& uniforms,
   LocalFrame* frame = nullptr);

@@ -43,6 +43,9 @@ struct CLOUDVISFILTERS_EXPORT TransferTable
   // and all between, with x as in Lookup. So 0 means every density of the interval is fully
   // transparent. The arguments may come in either order.
   float MaxExtinction(double densityMin, double densityMax) const;
+  // The smallest sigma_t among the same entries: no linear lookup of a density in the interval
+  // is below it. 0 for an empty table.
+  float MinExtinction(double densityMin, double densityMax) const;
 
   bool operator==(const TransferTable& other) const;
   bool operator!=(const TransferTable& other) const { return !(*this == other); }
@@ -54,6 +57,19 @@ struct CLOUDVISFILTERS_EXPORT TransferTable
 CLOUDVISFILTERS_EXPORT double Extinction(double opacity,
   double unitDistance,
   double extinctionScale = 1.0);
+
+// The largest finite float (FLT_MAX). A table entry's sigma_t is a float, and the GPU looks up
+// densities in float: the limits below, and the renderers' (CloudMarchUniforms.h), derive from it.
+constexpr double FloatMax = 3.4028234663852886e38;
+
+// The smallest unit distance whose extinctions a float holds whatever the opacity:
+// Extinction(1, MinUnitDistance()) is FloatMax (about 2.7e-38). The scene schema refuses smaller
+// ones; the renderers also refuse an extinction whose optical depth across the volume overflows.
+CLOUDVISFILTERS_EXPORT double MinUnitDistance();
+
+// A transfer function's points must lie within [-MaxTransferDensity, MaxTransferDensity] and span
+// at most MaxTransferDensity, so that a table over them has a width float arithmetic holds.
+constexpr double MaxTransferDensity = FloatMax;
 
 // The densities the pair defines: from the first to the last point of the opacity function and
 // of the color function (its GetRange(), which for a vtkColorTransferFunction spans its points),

@@ -3,8 +3,9 @@
 // p is a point in voxel index space; LocalOfIndex(p) gives it in the local frame, where the
 // lights are (cloudvis::LocalLight), and LocalToIndex turns a local displacement into index units.
 
-// The mapper defines MAX_LIGHTS here as cloudvis::MaxLights (filters/CloudLighting.h), the one
-// limit the scene reader, the mapper and the CPU reference all enforce.
+// The mapper defines MAX_LIGHTS here as cloudvis::LightingLimits::MaxLights
+// (filters/CloudLighting.h), the one limit the scene reader, the mapper and the CPU renderers
+// all enforce.
 //CLOUD::MaxLights::Dec
 uniform int LightPositional[MAX_LIGHTS];
 uniform vec3 LightPosition[MAX_LIGHTS];  // local; positional lights

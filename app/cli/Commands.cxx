@@ -5,18 +5,20 @@
 // so the scene's validation checks them like any other value.
 #include "CommandLine.h"
 
-#include "../analysis/FieldStatistics.h"
-#include "../io/AtomicFile.h"
-#include "../io/Errors.h"
-#include "../io/FieldIO.h"
-#include "../io/Scene.h"
-#include "../io/SceneField.h"
-#include "../render/Compare.h"
-#include "../render/CpuReference.h"
-#include "../render/OffscreenRender.h"
-#include "../view/Viewer.h"
+#include "AtomicFile.h"
+#include "CommandSupport.h"
+#include "Compare.h"
+#include "CpuReference.h"
+#include "Display.h"
+#include "Errors.h"
 #include "ExportCommands.h"
+#include "FieldIO.h"
+#include "FieldStatistics.h"
+#include "ImageWriters.h"
+#include "OffscreenRender.h"
 #include "Progress.h"
+#include "Scene.h"
+#include "SceneField.h"
 
 #include <vtkImageData.h>
 
@@ -34,14 +36,52 @@
 
 namespace cloudvis
 {
-namespace
-{
 
 const OptionSpec SetOption{ "set", 0, "KEY=VALUE",
   "override a scene value before validation, e.g. --set field.octaves=4 or "
-  "--set field.dimensions=64,64,64 (see docs/scene-format.md)",
+  "--set field.dimensions=64,64,64 (every key: cloudvis schema, or docs/scene-format.md)",
   true };
 const OptionSpec HelpOption{ "help", 'h', "", "show this help and exit" };
+
+OptionSpec LightingOption()
+{
+  std::string names;
+  for (const std::string& name : LightingModelNames())
+  {
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  return { "lighting", 0, "MODEL", "lighting model, one of: " + names + "; overrides render.lighting" };
+}
+
+nlohmann::json ParseSizeOption(const std::string& command, const std::string& text)
+{
+  static const std::regex form("([0-9]{1,9})[xX]([0-9]{1,9})");
+  std::smatch match;
+  if (!std::regex_match(text, match, form))
+  {
+    throw UsageError(command + ": --size expects WIDTHxHEIGHT in pixels (for example 800x600), "
+                               "got \"" + text + "\"");
+  }
+  return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
+}
+
+void RefuseFieldKeys(const std::string& command, const std::string& fieldFile,
+  const std::vector<std::string>& assignments)
+{
+  for (const std::string& assignment : assignments)
+  {
+    if (assignment.rfind("field", 0) == 0 &&
+      (assignment.size() == 5 || assignment[5] == '.' || assignment[5] == '='))
+    {
+      throw UsageError(command + ": --set " + assignment.substr(0, assignment.find('=')) +
+        " does not apply to the field file " + fieldFile + "; only scenes have field keys");
+    }
+  }
+}
+
+namespace
+{
+
 const OptionSpec OutputOption{ "output", 'o', "FIELD.vti",
   "write the field to this file (VTK XML image data, zlib-compressed); required", false,
   true };
@@ -68,22 +108,6 @@ const OptionSpec PanelSizeOption{ "size", 0, "WxH",
   "size of each panel in pixels, e.g. 400x300; overrides render.size (the window is the panels "
   "side by side)" };
 
-OptionSpec LightingOption()
-{
-  std::string names;
-  for (const std::string& name : LightingModelNames())
-  {
-    names += (names.empty() ? "" : ", ") + name;
-  }
-  return { "lighting", 0, "MODEL", "lighting model, one of: " + names + "; overrides render.lighting" };
-}
-
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() &&
-    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 std::string DescribeDimensions(vtkImageData* field)
 {
   int d[3];
@@ -99,26 +123,13 @@ int Generate(const Arguments& arguments, std::ostream& out)
   }
   const std::string output = arguments.Value("output");
   // Before the work: a bad -o should not cost a field's generation time.
-  CheckOutputTarget(output);
+  CheckFieldOutput(output);
   const std::string scenePath = arguments.Operands.empty() ? "" : arguments.Operands[0];
   const Scene scene = LoadScene(scenePath, arguments.Values("set"));
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
   WriteField(field, output);
   out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
   return ExitSuccess;
-}
-
-// --size WxH as the JSON value of render.size; the scene checks the range.
-nlohmann::json ParseSize(const std::string& text)
-{
-  static const std::regex form("([0-9]{1,9})[xX]([0-9]{1,9})");
-  std::smatch match;
-  if (!std::regex_match(text, match, form))
-  {
-    throw UsageError("render: --size expects WIDTHxHEIGHT in pixels (for example 800x600), got \"" +
-      text + "\"");
-  }
-  return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
 }
 
 int ParseFrameCount(const std::string& option, const std::string& text)
@@ -154,19 +165,11 @@ SceneInput LoadSceneInput(const std::string& command, const Arguments& arguments
   const std::function<void(double)>& generationProgress = {})
 {
   const std::string& input = arguments.Operands[0];
-  const bool fieldFile = EndsWith(input, ".vti");
+  const bool fieldFile = IsFieldFile(input);
   const std::vector<std::string> assignments = arguments.Values("set");
   if (fieldFile)
   {
-    for (const std::string& assignment : assignments)
-    {
-      if (assignment.rfind("field", 0) == 0 && (assignment.size() == 5 ||
-            assignment[5] == '.' || assignment[5] == '='))
-      {
-        throw UsageError(command + ": --set " + assignment.substr(0, assignment.find('=')) +
-          " does not apply to the field file " + input + "; only scenes have field keys");
-      }
-    }
+    RefuseFieldKeys(command, input, assignments);
   }
   CheckImageOutput(output);
   SceneInput loaded{ LoadScene(fieldFile ? "" : input, assignments, options), nullptr };
@@ -203,7 +206,7 @@ int Render(const Arguments& arguments, std::ostream& out)
   }
   if (arguments.Has("size"))
   {
-    options.push_back({ "render.size", ParseSize(arguments.Value("size")), "--size" });
+    options.push_back({ "render.size", ParseSizeOption("render", arguments.Value("size")), "--size" });
   }
   AddExportOverrides(arguments, options);
   const bool cpuReference = arguments.Has("cpu-reference");
@@ -324,7 +327,7 @@ int Compare(const Arguments& arguments, std::ostream& out)
   std::vector<SceneOverride> options;
   if (arguments.Has("size"))
   {
-    options.push_back({ "render.size", ParseSize(arguments.Value("size")), "--size" });
+    options.push_back({ "render.size", ParseSizeOption("compare", arguments.Value("size")), "--size" });
   }
   const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
   const ComparisonResult result = RenderComparison(
@@ -352,7 +355,7 @@ int Info(const Arguments& arguments, std::ostream& out)
 {
   const std::string& input = arguments.Operands[0];
   vtkSmartPointer<vtkImageData> field;
-  if (EndsWith(input, ".vti"))
+  if (IsFieldFile(input))
   {
     if (arguments.Has("set"))
     {
@@ -419,33 +422,73 @@ int RunDefault(std::ostream& out)
   return ExitSuccess;
 }
 
+int Schema(const Arguments&, std::ostream& out)
+{
+  out << SceneReferenceMarkdown();
+  return ExitSuccess;
+}
+
 const std::vector<CommandSpec>& Commands()
 {
   static const std::vector<CommandSpec> commands = {
-    { "generate", "[SCENE]", 0, 1, "generate a scene's density field and write it to a .vti file",
+    { "generate",
+      "[SCENE]",
+      0,
+      1,
+      "generate a scene's density field and write it to a .vti file",
       "SCENE is a scene file (JSON, see docs/scene-format.md); without it the default scene is\n"
       "used (a unit sphere plus 6 octaves of value noise on 128^3 voxels). If the scene's field\n"
-      "names a .vti file, that file is loaded, checked and written out as a float \"density\"\n"
-      "field. The output is written to a temporary file next to FIELD.vti and renamed over it\n"
-      "once complete: on failure FIELD.vti is left as it was.",
-      { OutputOption, SetOption, HelpOption }, Generate },
-    { "info", "FIELD.vti|SCENE", 1, 1, "print statistics of a .vti field or of a scene's field",
-      "An argument ending in .vti is read as a field; anything else is a scene file whose field\n"
-      "is generated (or loaded). Prints dimensions, spacing, bounds (origin .. origin +\n"
-      "(n-1) spacing), value range, mean, the fraction of non-empty voxels (density > 0) and a\n"
-      "16-bin histogram over [min, max]. --set applies to scenes only.",
-      { JsonOption, SetOption, HelpOption }, Info },
-    { "render", "SCENE|FIELD.vti", 1, 1, "render a scene or a .vti field off screen to a PNG image",
-      "An argument ending in .vti is a field file, rendered with the default scene's transfer\n"
-      "function, camera, background and render settings (--set may change those, not field\n"
-      "keys); anything else is a scene file. The image is render.size pixels, the average of\n"
-      "render.accumulate jittered frames, written as 8-bit RGB through a temporary file renamed\n"
-      "over IMAGE.png. Rendering needs an X display: without one, run it under Xvfb,\n"
-      "xvfb-run -a cloudvis render ...",
-      { ImageOutputOption, SizeOption, LightingOption(), BenchmarkOption, CpuReferenceOption,
-        PngBitsOption, ExrHalfOption, TransparentOption, QuietOption, SetOption, HelpOption },
+      "names a field file (" +
+        FieldFileExtensions() +
+        "), that file is loaded, checked and written\n"
+        "out as a float \"density\" field. The output (a .vti name) is written to a temporary "
+        "file\n"
+        "next to FIELD.vti and renamed over it once complete: on failure FIELD.vti is left as it "
+        "was.",
+      { OutputOption, SetOption, HelpOption },
+      Generate },
+    { "info",
+      "FIELD.vti|SCENE",
+      1,
+      1,
+      "print statistics of a .vti field or of a scene's field",
+      "An argument ending in a field extension (" + FieldFileExtensions() +
+        ", in any case) is\n"
+        "read as a field; anything else is a scene file whose field is generated (or loaded). "
+        "Prints dimensions, spacing, bounds (origin .. origin +\n"
+        "(n-1) spacing), value range, mean, the fraction of non-empty voxels (density > 0) and a\n"
+        "16-bin histogram over [min, max]. --set applies to scenes only.",
+      { JsonOption, SetOption, HelpOption },
+      Info },
+    { "render",
+      "SCENE|FIELD.vti",
+      1,
+      1,
+      "render a scene or a .vti field off screen to a PNG image",
+      "An argument ending in a field extension (" + FieldFileExtensions() +
+        ", in any case) is a\n"
+        "field file, rendered with the default scene's transfer\n"
+        "function, camera, background and render settings (--set may change those, not field\n"
+        "keys); anything else is a scene file. The image is render.size pixels, the average of\n"
+        "render.accumulate jittered frames, written as 8-bit RGB through a temporary file renamed\n"
+        "over IMAGE.png. Rendering needs an X display: without one, run it under Xvfb,\n"
+        "xvfb-run -a cloudvis render ...",
+      { ImageOutputOption,
+        SizeOption,
+        LightingOption(),
+        BenchmarkOption,
+        CpuReferenceOption,
+        PngBitsOption,
+        ExrHalfOption,
+        TransparentOption,
+        QuietOption,
+        SetOption,
+        HelpOption },
       Render },
-    { "compare", "SCENE|FIELD.vti", 1, 1,
+    { "compare",
+      "SCENE|FIELD.vti",
+      1,
+      1,
       "render lighting models side by side on one field and camera, with their frame times",
       "One off-screen window with one panel per model (--lighting), render.size each, all\n"
       "sharing one camera and jitter sequence; each panel is labelled with the model and its\n"
@@ -453,11 +496,20 @@ const std::vector<CommandSpec>& Commands()
       "of |A - B|. The scene's render.lighting is not used; everything else is as in render.\n"
       "Prints each model's time as '<model>: <milliseconds> ms/frame'. Needs an X display:\n"
       "xvfb-run -a cloudvis compare ...",
-      { ImageOutputOption, PanelSizeOption, CompareLightingOption, DifferenceOption, SetOption,
+      { ImageOutputOption,
+        PanelSizeOption,
+        CompareLightingOption,
+        DifferenceOption,
+        SetOption,
         HelpOption },
       Compare },
     AnimateCommand(),
     ViewCommand(),
+    { "schema", "", 0, 0, "print the reference tables of the scene file format (Markdown)",
+      "Prints every key a scene file may hold, with its type, default and allowed values, as\n"
+      "the Markdown tables of docs/scene-format.md, which are generated from this output (the\n"
+      "test app.scene_docs fails when the two differ; `make docs` writes them in).",
+      { HelpOption }, Schema },
   };
   return commands;
 }

@@ -2,10 +2,14 @@
 // generated and before the output directory is created, so a bad command leaves nothing behind.
 #include "ExportCommands.h"
 
-#include "../io/Errors.h"
-#include "../render/Animate.h"
-#include "../render/ExportRender.h"
-#include "../render/OffscreenRender.h"
+#include "Animate.h"
+#include "CommandSupport.h"
+#include "Display.h"
+#include "Errors.h"
+#include "ExportRender.h"
+#include "FieldIO.h"
+#include "OffscreenRender.h"
+#include "Utf8.h"
 
 #include <vtkImageData.h>
 
@@ -44,9 +48,6 @@ const OptionSpec TimeOption{ "time", 0, "T0:T1",
 const OptionSpec FormatOption{ "format", 0, "png|exr", "frame format (default png)" };
 const OptionSpec AnimateSizeOption{ "size", 0, "WxH",
   "frame size in pixels, e.g. 800x600; overrides render.size" };
-const OptionSpec AnimateSetOption{ "set", 0, "KEY=VALUE",
-  "override a scene value before validation (see docs/scene-format.md)", true };
-const OptionSpec AnimateHelpOption{ "help", 'h', "", "show this help and exit" };
 
 // A decimal number that is all of `text`, or nothing.
 bool ParseNumber(const std::string& text, double& value)
@@ -82,18 +83,6 @@ void ParseTimeRange(const std::string& text, AnimationRequest& request)
   }
 }
 
-nlohmann::json ParseSizeOption(const std::string& command, const std::string& text)
-{
-  static const std::regex form("([0-9]{1,9})[xX]([0-9]{1,9})");
-  std::smatch match;
-  if (!std::regex_match(text, match, form))
-  {
-    throw UsageError(command + ": --size expects WIDTHxHEIGHT in pixels (for example 800x600), "
-                               "got \"" + text + "\"");
-  }
-  return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
-}
-
 int Animate(const Arguments& arguments, std::ostream& out)
 {
   if (!arguments.Has("output"))
@@ -122,7 +111,7 @@ int Animate(const Arguments& arguments, std::ostream& out)
   }
   request.Extension = "." + format;
   const std::string& input = arguments.Operands[0];
-  if (input.size() >= 4 && input.compare(input.size() - 4, 4, ".vti") == 0)
+  if (IsFieldFile(input))
   {
     throw UsageError("animate: " + input + " is a field file; animate takes a scene (a field " +
       "file can be named in the scene's field.file)");
@@ -231,18 +220,11 @@ std::string QuoteCommandLine(const std::vector<std::string>& arguments)
     }
     line += (line.empty() ? "" : " ") + argument;
   }
-  return line;
+  return EscapeInvalidUtf8(line); // metadata is text: arguments may hold any bytes
 }
 
 CommandSpec AnimateCommand()
 {
-  std::string models;
-  for (const std::string& name : LightingModelNames())
-  {
-    models += (models.empty() ? "" : ", ") + name;
-  }
-  const OptionSpec lighting{ "lighting", 0, "MODEL",
-    "lighting model, one of: " + models + "; overrides render.lighting" };
   return { "animate", "SCENE", 1, 1,
     "render a numbered sequence of frames: a turntable or the field over time",
     "Each frame is the still `cloudvis render` makes of the scene with that frame's camera or\n"
@@ -254,8 +236,8 @@ CommandSpec AnimateCommand()
     "written; a failure part-way keeps the frames written before it. Needs an X display\n"
     "(xvfb-run -a cloudvis animate ...).",
     { DirectoryOption, FramesOption, TurntableOption, TimeOption, AnimateSizeOption, FormatOption,
-      lighting, PngBitsOption, ExrHalfOption, TransparentOption, QuietOption, AnimateSetOption,
-      AnimateHelpOption },
+      LightingOption(), PngBitsOption, ExrHalfOption, TransparentOption, QuietOption, SetOption,
+      HelpOption },
     Animate };
 }
 

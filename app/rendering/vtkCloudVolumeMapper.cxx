@@ -56,6 +56,8 @@ namespace
 {
 constexpr int TransferTableSize = 1024;
 constexpr double GoldenRatioFraction = 0.61803398874989484;
+// The GLSL's MAX_LIGHTS, substituted into its source: the limit SetUpMarch enforces.
+constexpr int MaxLights = cloudvis::LightingLimits::MaxLights;
 
 // The matrix a vtkMatrix4x4 holds, as GLM (column-major) sees it.
 glm::dmat4 ToGlm(const vtkMatrix4x4* m)
@@ -422,7 +424,7 @@ std::string LightingSource(cloudvis::LightingModel model,
 {
   std::string common = CloudLightingCommon;
   vtkShaderProgram::Substitute(
-    common, "//CLOUD::MaxLights::Dec", "#define MAX_LIGHTS " + std::to_string(cloudvis::MaxLights));
+    common, "//CLOUD::MaxLights::Dec", "#define MAX_LIGHTS " + std::to_string(MaxLights));
   if (model == cloudvis::LightingModel::None)
   {
     return common + "\n" + CloudLightingNone;
@@ -470,11 +472,10 @@ void vtkCloudVolumeMapper::SetMarchUniforms(vtkShaderProgram* program,
   program->SetUniformf("TerminationTransmittance", u.TerminationTransmittance);
 
   const cloudvis::LightingParameters& p = u.Lighting;
-  std::vector<int> positional(cloudvis::MaxLights, 0);
-  std::vector<float> position(3 * cloudvis::MaxLights, 0.0f),
-    direction(3 * cloudvis::MaxLights, 0.0f), radiance(3 * cloudvis::MaxLights, 0.0f),
-    attenuation(3 * cloudvis::MaxLights, 0.0f), indexDirection(3 * cloudvis::MaxLights, 0.0f),
-    indexOffset(3 * cloudvis::MaxLights, 0.0f);
+  std::vector<int> positional(MaxLights, 0);
+  std::vector<float> position(3 * MaxLights, 0.0f), direction(3 * MaxLights, 0.0f),
+    radiance(3 * MaxLights, 0.0f), attenuation(3 * MaxLights, 0.0f),
+    indexDirection(3 * MaxLights, 0.0f), indexOffset(3 * MaxLights, 0.0f);
   for (size_t i = 0; i < u.Lights.size(); ++i)
   {
     const cloudvis::LocalLight& l = u.Lights[i];
@@ -492,13 +493,13 @@ void vtkCloudVolumeMapper::SetMarchUniforms(vtkShaderProgram* program,
       indexOffset[3 * i + c] = l.Positional ? 0.0f : offsetInIndex[c];
     }
   }
-  program->SetUniform1iv("LightPositional", cloudvis::MaxLights, positional.data());
-  program->SetUniform3fv("LightIndexDirection", cloudvis::MaxLights, indexDirection.data());
-  program->SetUniform3fv("LightIndexOffset", cloudvis::MaxLights, indexOffset.data());
-  program->SetUniform3fv("LightPosition", cloudvis::MaxLights, position.data());
-  program->SetUniform3fv("LightDirection", cloudvis::MaxLights, direction.data());
-  program->SetUniform3fv("LightRadiance", cloudvis::MaxLights, radiance.data());
-  program->SetUniform3fv("LightAttenuation", cloudvis::MaxLights, attenuation.data());
+  program->SetUniform1iv("LightPositional", MaxLights, positional.data());
+  program->SetUniform3fv("LightIndexDirection", MaxLights, indexDirection.data());
+  program->SetUniform3fv("LightIndexOffset", MaxLights, indexOffset.data());
+  program->SetUniform3fv("LightPosition", MaxLights, position.data());
+  program->SetUniform3fv("LightDirection", MaxLights, direction.data());
+  program->SetUniform3fv("LightRadiance", MaxLights, radiance.data());
+  program->SetUniform3fv("LightAttenuation", MaxLights, attenuation.data());
   program->SetUniform3f("Ambient", glm::value_ptr(u.Ambient));
   program->SetUniformf("DerivativeDistance", p.DerivativeDistance);
   program->SetUniformf("DerivativeSlopeScale", u.DerivativeSlopeScale);

@@ -24,9 +24,9 @@
  * Lighting (docs/lighting.md): none (emission-absorption), derivative (the directional
  * derivative toward each light) or march (a nested march toward each light with Beer-Lambert
  * transmittance, a two-lobe Henyey-Greenstein phase and approximate multiple scattering). The
- * lights are the renderer's switched-on vtkLights (at most cloudvis::MaxLights, 8; more are
- * refused, not dropped): directional or positional, with their diffuse color, intensity and
- * attenuation values.
+ * lights are the renderer's switched-on vtkLights (at most cloudvis::LightingLimits::MaxLights,
+ * 8; more are refused, not dropped): directional or positional, with their diffuse color,
+ * intensity and attenuation values.
  *
  * The march renders into a float target at ResolutionScale times the viewport, which a
  * composite pass upsamples (Catmull-Rom) and blends over the scene. While nothing changes,

@@ -3,20 +3,14 @@
 // text format, written by hand) and checks what the session changed: the viewer's state, the
 // scene it saves, the files it writes and the images it shows. Window 480 x 400: the 3D view is
 // 480 x 300 above the editor's 480 x 100.
-#include "CommandLine.h"
 #include "Errors.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "SupportImages.h"
+#include "SupportRun.h"
 #include "Viewer.h"
 
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-
-#include <vtkDataArray.h>
 #include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
 
 #include <gtest/gtest.h>
 
@@ -55,43 +49,13 @@ nlohmann::json ReadJson(const std::string& path)
   return nlohmann::json::parse(in);
 }
 
-struct Pixels
-{
-  int Width = 0, Height = 0;
-  std::vector<double> Values;
-};
-
-Pixels ReadPng(const std::string& path)
-{
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  Pixels pixels;
-  int dimensions[3];
-  reader->GetOutput()->GetDimensions(dimensions);
-  pixels.Width = dimensions[0];
-  pixels.Height = dimensions[1];
-  vtkDataArray* data = reader->GetOutput()->GetPointData()->GetScalars();
-  for (vtkIdType i = 0; data && i < data->GetNumberOfValues(); ++i)
-  {
-    pixels.Values.push_back(data->GetVariantValue(i).ToDouble());
-  }
-  return pixels;
-}
+using support::ReadPng;
+using Pixels = support::Image;
 
 // Root-mean-square difference in 8-bit levels; infinite when the sizes differ.
 double Rms(const Pixels& a, const Pixels& b)
 {
-  if (a.Values.size() != b.Values.size() || a.Values.empty())
-  {
-    return INFINITY;
-  }
-  double sum = 0.0;
-  for (size_t i = 0; i < a.Values.size(); ++i)
-  {
-    sum += (a.Values[i] - b.Values[i]) * (a.Values[i] - b.Values[i]);
-  }
-  return std::sqrt(sum / double(a.Values.size()));
+  return support::Compare(a, b).RmsLevels();
 }
 
 // The default cloud on 48^3 voxels, seen from above and to the side so that every slice plane
@@ -217,10 +181,9 @@ TEST(Interaction, ScreenshotWritesReadablePngAndExr)
   const Pixels png = ReadPng(directory + "/cloudvis-screenshot-001.png");
   EXPECT_EQ(png.Width, 480);
   EXPECT_EQ(png.Height, 300);
-  Imf::InputFile exr((directory + "/cloudvis-screenshot-001.exr").c_str());
-  const Imath::Box2i window = exr.header().dataWindow();
-  EXPECT_EQ(window.max.x - window.min.x + 1, 480);
-  EXPECT_EQ(window.max.y - window.min.y + 1, 300);
+  const support::Exr exr = support::ReadExr(directory + "/cloudvis-screenshot-001.exr");
+  EXPECT_EQ(exr.Width, 480);
+  EXPECT_EQ(exr.Height, 300);
   // The next one takes the next number.
   session.View->PressKey("s", 's');
   EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-002.png"));
@@ -237,10 +200,9 @@ TEST(Interaction, SavedSceneRerendersToTheScreenshot)
   const std::string scene = directory + "/cloudvis-view-001.json";
   const nlohmann::json saved = ReadJson(scene);
   EXPECT_EQ(saved["render"]["size"], nlohmann::json({ 480, 300 }));
-  std::ostringstream out, err;
-  ASSERT_EQ(RunCommandLine({ "cloudvis", "render", scene, "-o", directory + "/render.png" }, out, err),
-    0)
-    << err.str();
+  const support::CommandResult render =
+    support::RunCloudvis({ "render", scene, "-o", directory + "/render.png" });
+  ASSERT_EQ(render.Status, 0) << render.Err;
   const double rms =
     Rms(ReadPng(directory + "/cloudvis-screenshot-001.png"), ReadPng(directory + "/render.png"));
   EXPECT_LT(rms, 2.0);
@@ -335,14 +297,19 @@ TEST(Interaction, CommandLinePlaySavesTheSceneOnExit)
 {
   const std::string directory = FreshDirectory("command-line");
   const std::string saved = directory + "/end.json";
-  std::ostringstream out, err;
-  ASSERT_EQ(RunCommandLine({ "cloudvis", "view", "--set", "field.dimensions=32", "--size",
-              "320x240", "--output-dir", directory, "--play",
-              Recordings + "/keys-lighting.log", "--save-scene-on-exit", saved },
-              out, err),
-    0)
-    << err.str();
-  EXPECT_NE(out.str().find("wrote " + saved), std::string::npos);
+  const support::CommandResult run = support::RunCloudvis({ "view",
+    "--set",
+    "field.dimensions=32",
+    "--size",
+    "320x240",
+    "--output-dir",
+    directory,
+    "--play",
+    Recordings + "/keys-lighting.log",
+    "--save-scene-on-exit",
+    saved });
+  ASSERT_EQ(run.Status, 0) << run.Err;
+  EXPECT_NE(run.Out.find("wrote " + saved), std::string::npos);
   const nlohmann::json scene = ReadJson(saved);
   EXPECT_EQ(scene["render"]["lighting"], "derivative");
   EXPECT_EQ(scene["render"]["size"], nlohmann::json({ 320, 180 }));

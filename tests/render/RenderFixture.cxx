@@ -66,14 +66,6 @@ vtkSmartPointer<vtkImageData> DenseCloud(int size)
   return Generate(field, size, 2.0);
 }
 
-vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step)
-{
-  auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
-  mapper->SetSampleDistance(step);
-  mapper->JitterOff();
-  return mapper;
-}
-
 void SetUniformMedium(
   vtkVolumeProperty* property, double opacity, double unitDistance, double r, double g, double b)
 {

@@ -3,6 +3,7 @@
 #ifndef RenderFixture_h
 #define RenderFixture_h
 
+#include "SupportMappers.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkColorTransferFunction.h>
@@ -32,8 +33,10 @@ vtkSmartPointer<vtkImageData> ConstantBox(double halfSize, int size = 64, double
 vtkSmartPointer<vtkImageData> SparseCloud(int size = 64);
 vtkSmartPointer<vtkImageData> DenseCloud(int size = 64);
 
-// cloudvis's mapper at a fixed step, jitter off: every sample where the tests expect it.
-vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step);
+// cloudvis's mapper and VTK's GPU ray caster at a fixed step, jitter off, marching the same
+// way (tests/support): every sample where the tests expect it.
+inline const auto CloudMapper = support::MatchedCloudMapper;
+inline const auto VtkMapper = support::MatchedVtkMapper;
 
 // A property whose opacity per unit length is `opacity` for densities >= 0.5 (0 below), with
 // the given unit distance and a uniform color.

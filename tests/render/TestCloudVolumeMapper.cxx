@@ -2,7 +2,6 @@
 #include "RenderFixture.h"
 
 #include <vtkCamera.h>
-#include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkTransform.h>
 
 #include <gtest/gtest.h>
@@ -35,19 +34,6 @@ TEST(CloudVolumeMapper, HomogeneousSphereTransmitsBeerLambert)
 
 namespace
 {
-// VTK's GPU ray caster set up to march exactly like cloudvis: same step, no jitter, no
-// automatic step adjustment.
-vtkSmartPointer<vtkGPUVolumeRayCastMapper> VtkMapper(double step)
-{
-  auto mapper = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
-  mapper->SetSampleDistance(step);
-  mapper->AutoAdjustSampleDistancesOff();
-  mapper->LockSampleDistanceToInputSpacingOff();
-  mapper->SetUseJittering(0);
-  mapper->SetBlendModeToComposite();
-  return mapper;
-}
-
 // Renders `field` with cloudvis's mapper and with VTK's, both volumes placed by `place` (the
 // camera looks at the volume's centre), and compares the 8-bit images over the pixels where
 // either shows cloud (the background is black).

@@ -1,0 +1,154 @@
+// `cloudvis view`: the command-line side of the interactive viewer (viewer/Viewer.h): its
+// options, the scene or field it opens, and what happens when the window closes.
+#include "CommandSupport.h"
+
+#include "AtomicFile.h"
+#include "Display.h"
+#include "Errors.h"
+#include "ExportCommands.h"
+#include "FieldIO.h"
+#include "InputFiles.h"
+#include "SceneField.h"
+#include "Viewer.h"
+
+#include <vtkImageData.h>
+
+#include <array>
+#include <regex>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace cloudvis
+{
+namespace
+{
+
+std::array<int, 2> ParseWindowSize(const std::string& text)
+{
+  static const std::regex form("([0-9]{1,5})[xX]([0-9]{1,5})");
+  std::smatch match;
+  if (!std::regex_match(text, match, form) || std::stoi(match[1]) < 64 ||
+    std::stoi(match[2]) < 64 || std::stoi(match[1]) > 16384 || std::stoi(match[2]) > 16384)
+  {
+    throw UsageError("view: --size expects WIDTHxHEIGHT in pixels, each in [64, 16384] (for "
+                     "example 800x800), got \"" +
+      text + "\"");
+  }
+  return { { std::stoi(match[1]), std::stoi(match[2]) } };
+}
+
+std::string Absolute(const std::string& path)
+{
+  if (!path.empty() && path[0] == '/')
+  {
+    return path;
+  }
+  char buffer[4096];
+  return ::getcwd(buffer, sizeof(buffer)) ? std::string(buffer) + "/" + path : path;
+}
+
+int View(const Arguments& arguments, std::ostream& out)
+{
+  const std::string input = arguments.Operands.empty() ? "" : arguments.Operands[0];
+  const bool fieldFile = IsFieldFile(input);
+  const std::vector<std::string> assignments = arguments.Values("set");
+  if (fieldFile)
+  {
+    RefuseFieldKeys("view", input, assignments);
+  }
+  ViewerOptions options;
+  const std::string saveOnExit = arguments.Value("save-scene-on-exit");
+  const std::string play = arguments.Value("play");
+  options.RecordFile = arguments.Value("record");
+  options.OutputDirectory = arguments.Has("output-dir") ? arguments.Value("output-dir") : ".";
+  for (const std::string& target : { saveOnExit, options.RecordFile })
+  {
+    if (!target.empty())
+    {
+      CheckOutputTarget(target);
+    }
+  }
+  if (!play.empty())
+  {
+    // Before the window opens; Viewer::PlayFile reads it through the same check.
+    CheckRegularInputFile(play, "recording");
+  }
+  options.CommandLine = QuoteCommandLine(arguments.CommandLine);
+
+  Scene scene = LoadScene(fieldFile ? "" : input, assignments);
+  if (arguments.Has("size"))
+  {
+    options.WindowSize = ParseWindowSize(arguments.Value("size"));
+  }
+  else
+  {
+    // The 3D view at render.size: the window is a third taller for the editor.
+    options.WindowSize = { { scene.Render.Size[0], scene.Render.Size[1] * 4 / 3 } };
+  }
+  RequireDisplay("cloudvis view ...");
+  vtkSmartPointer<vtkImageData> field;
+  if (fieldFile)
+  {
+    // Absolute, so that a saved scene finds the field wherever the scene is kept.
+    scene.Field.File = Absolute(input);
+    field = ReadField(input);
+  }
+  else
+  {
+    field = ProduceField(scene);
+  }
+  Viewer viewer(scene, field, options);
+  if (!play.empty())
+  {
+    viewer.PlayFile(play);
+  }
+  else
+  {
+    viewer.Start();
+  }
+  if (!saveOnExit.empty())
+  {
+    viewer.SaveScene(saveOnExit);
+    out << "wrote " << saveOnExit << "\n";
+  }
+  return ExitSuccess;
+}
+
+} // namespace
+
+CommandSpec ViewCommand()
+{
+  return { "view",
+    "[SCENE|FIELD.vti]",
+    0,
+    1,
+    "open the interactive viewer: the cloud, slices and a transfer-function editor",
+    "One window: the cloud drawn as `render` draws it (top three quarters; trackball camera,\n"
+    "orthogonal and oblique slices) and the transfer-function editor over the density\n"
+    "histogram (bottom quarter). Press h in the window for the keys; docs/viewer.md lists\n"
+    "them. s saves a screenshot (cloudvis-screenshot-NNN.png and .exr), w the scene as\n"
+    "cloudvis-view-NNN.json, which `cloudvis render` turns into the same image. Without\n"
+    "SCENE the default scene is shown. --record writes the session's events, --play replays\n"
+    "such a file and exits at its end. Needs an X display (xvfb-run -a cloudvis view ...).",
+    { { "size",
+        0,
+        "WxH",
+        "window size in pixels (default: render.size widened by a third in height for the "
+        "editor, so the 3D view is render.size)" },
+      { "record", 0, "FILE.log", "record the session's events to FILE.log" },
+      { "play", 0, "FILE.log", "replay a recorded session, then exit" },
+      { "save-scene-on-exit",
+        0,
+        "FILE.json",
+        "write the scene as the window shows it when the window closes or playback ends" },
+      { "output-dir",
+        0,
+        "DIR",
+        "where screenshots, saved scenes and presets go (default: the current directory)" },
+      SetOption,
+      HelpOption },
+    View };
+}
+
+} // namespace cloudvis

@@ -1,0 +1,287 @@
+// The models are timed one at a time in the full window (the others hidden), so a panel's time is
+// what `render --benchmark` would report for that model at render.size, plus the clearing of the
+// other viewports; the picture itself is rendered with every panel visible, after the timing, so
+// the labels can carry the times.
+#include "Compare.h"
+
+#include "Background.h"
+#include "CpuReference.h"
+#include "Display.h"
+#include "Errors.h"
+#include "ExportRender.h"
+#include "SceneLighting.h"
+#include "VtkMessageCapture.h"
+#include "vtkCloudVolumeMapper.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkImageActor.h>
+#include <vtkImageData.h>
+#include <vtkImageMapper3D.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+namespace cloudvis
+{
+namespace
+{
+
+struct Panel
+{
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkCloudVolumeMapper> Mapper;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkTextActor> Label;
+};
+
+// A label in the top-left corner of its viewport, readable on any background.
+void PlaceLabel(vtkTextActor* label, vtkRenderer* renderer, int height)
+{
+  const int fontSize = std::max(10, std::min(24, height / 20));
+  vtkTextProperty* text = label->GetTextProperty();
+  text->SetFontSize(fontSize);
+  text->SetColor(1.0, 1.0, 1.0);
+  text->ShadowOn();
+  text->SetVerticalJustificationToTop();
+  label->SetPosition(0.5 * fontSize, height - 0.5 * fontSize);
+  renderer->AddActor2D(label);
+}
+
+std::string FormatMilliseconds(double ms)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), ms < 10.0 ? "%.2f ms" : ms < 100.0 ? "%.1f ms" : "%.0f ms", ms);
+  return text;
+}
+
+// The difference image of two float radiances (premultiplied RGBA, same size): per pixel the
+// largest |A - B| over r, g, b, colored through DifferenceColor scaled to the largest difference.
+vtkSmartPointer<vtkImageData> DifferenceImage(const std::vector<float>& a,
+  const std::vector<float>& b, int width, int height, double& largest)
+{
+  const size_t pixels = size_t(width) * size_t(height);
+  std::vector<double> difference(pixels, 0.0);
+  largest = 0.0;
+  for (size_t i = 0; i < pixels; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      difference[i] = std::max(difference[i], double(std::abs(a[4 * i + c] - b[4 * i + c])));
+    }
+    largest = std::max(largest, difference[i]);
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(width, height, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* rgb = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (size_t i = 0; i < pixels; ++i)
+  {
+    const std::array<double, 3> color = DifferenceColor(largest > 0.0 ? difference[i] / largest : 0.0);
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[3 * i + c] = static_cast<unsigned char>(std::lround(255.0 * color[c]));
+    }
+  }
+  return image;
+}
+
+} // namespace
+
+std::array<double, 3> DifferenceColor(double t)
+{
+  // Dark where the models agree, bright where they differ; monotonic in lightness.
+  static const double stops[][3] = { { 0.0, 0.0, 0.0 }, { 0.27, 0.05, 0.45 }, { 0.80, 0.20, 0.30 },
+    { 1.0, 0.62, 0.10 }, { 1.0, 1.0, 0.75 } };
+  const int last = int(sizeof(stops) / sizeof(stops[0])) - 1;
+  const double x = std::min(1.0, std::max(0.0, std::isfinite(t) ? t : 0.0)) * last;
+  const int i = std::min(last - 1, int(x));
+  const double f = x - i;
+  return { stops[i][0] + f * (stops[i + 1][0] - stops[i][0]),
+    stops[i][1] + f * (stops[i + 1][1] - stops[i][1]),
+    stops[i][2] + f * (stops[i + 1][2] - stops[i][2]) };
+}
+
+ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const std::string& input,
+  const std::vector<LightingModel>& models,
+  const std::optional<std::pair<size_t, size_t>>& difference, int timingFrames)
+{
+  const int width = scene.Render.Size[0];
+  const int height = scene.Render.Size[1];
+  const int panelCount = int(models.size()) + (difference ? 1 : 0);
+  if (models.empty() || (difference && (difference->first >= models.size() ||
+                                         difference->second >= models.size())))
+  {
+    throw InputError(input + ": compare: no models, or a difference of models not compared");
+  }
+  if (double(panelCount) * width > MaximumComparisonWidth)
+  {
+    throw InputError(input + ": compare: " + std::to_string(panelCount) + " panels of " +
+      std::to_string(width) + " pixels make a window " + std::to_string(panelCount * width) +
+      " pixels wide; the most is " + std::to_string(MaximumComparisonWidth) +
+      ": give a smaller --size");
+  }
+
+  Scene checked = scene;
+  for (LightingModel model : models)
+  {
+    checked.Render.Lighting = model;
+    CheckSceneRenderable(checked, field, input);
+  }
+  const DisplayConnection display("cloudvis compare ...");
+  VtkMessageCapture messages;
+  vtkNew<vtkRenderWindow> window;
+  window->SetDisplayId(display.Get());
+  vtkNew<vtkCallbackCommand> onExit; // see RenderOffscreen: no abort() without a GL context
+  window->AddObserver(vtkCommand::ExitEvent, onExit);
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(panelCount * width, height);
+
+  const vtkSmartPointer<vtkVolumeProperty> property = MakeVolumeProperty(scene.TransferFunction);
+  vtkNew<vtkCamera> camera; // one camera for every panel
+  const int frames = scene.Render.Jitter ? scene.Render.Accumulate : 1;
+  std::vector<std::unique_ptr<Panel>> panels;
+  for (size_t i = 0; i < models.size(); ++i)
+  {
+    panels.push_back(std::make_unique<Panel>());
+    Panel& panel = *panels.back();
+    panel.Renderer->SetViewport(double(i) / panelCount, 0.0, double(i + 1) / panelCount, 1.0);
+    panel.Renderer->SetActiveCamera(camera);
+    window->AddRenderer(panel.Renderer);
+    Scene lit = scene;
+    lit.Render.Lighting = models[i];
+    ConfigureLighting(lit, panel.Renderer, panel.Mapper);
+    ApplyBackground(lit, panel.Renderer);
+    panel.Mapper->SetInputData(field);
+    ConfigureMapper(panel.Mapper, lit.Render);
+    panel.Mapper->SetLighting(LightingOf(lit));
+    panel.Mapper->SetMaximumAccumulatedFrames(frames);
+    panel.Volume->SetMapper(panel.Mapper);
+    panel.Volume->SetProperty(property);
+    panel.Renderer->AddVolume(panel.Volume);
+    PlaceLabel(panel.Label, panel.Renderer, height);
+    panel.Label->SetInput(LightingModelName(models[i]).c_str());
+  }
+  // Every panel has the viewport of a `render` of render.size, so this is render's camera.
+  ApplyCamera(scene.Camera, field->GetBounds(), panels[0]->Renderer, scene.Source);
+  vtkNew<vtkRenderer> differencePanel;
+  if (difference)
+  {
+    differencePanel->SetViewport(double(models.size()) / panelCount, 0.0, 1.0, 1.0);
+    differencePanel->SetBackground(0.0, 0.0, 0.0);
+    window->AddRenderer(differencePanel);
+  }
+
+  const auto renderChecked = [&]() {
+    window->Render();
+    for (const auto& panel : panels)
+    {
+      CheckMapper(panel->Mapper, input, messages);
+    }
+  };
+
+  // Untimed: shader compilation, texture uploads, occupancy.
+  renderChecked();
+  ComparisonResult result;
+  for (size_t i = 0; i < panels.size(); ++i)
+  {
+    for (size_t j = 0; j < panels.size(); ++j)
+    {
+      panels[j]->Volume->SetVisibility(i == j);
+    }
+    double total = 0.0;
+    for (int frame = 0; frame < timingFrames; ++frame)
+    {
+      panels[i]->Mapper->Modified(); // else the mapper shows its converged still without marching
+      const auto start = std::chrono::steady_clock::now();
+      window->Render();
+      window->WaitForCompletion();
+      total += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                 .count();
+      CheckMapper(panels[i]->Mapper, input, messages);
+    }
+    result.Milliseconds.push_back(timingFrames > 0 ? total / timingFrames : 0.0);
+    panels[i]->Label->SetInput(
+      (LightingModelName(models[i]) + "  " + FormatMilliseconds(result.Milliseconds.back())).c_str());
+  }
+
+  // The picture: every panel, accumulated from the same first jitter frame.
+  for (const auto& panel : panels)
+  {
+    panel->Volume->SetVisibility(true);
+    panel->Mapper->Modified();
+  }
+  for (int frame = 0; frame < frames; ++frame)
+  {
+    renderChecked();
+  }
+  result.AccumulatedFrames = panels[0]->Mapper->GetNumberOfAccumulatedFrames(panels[0]->Renderer);
+  if (result.AccumulatedFrames == 0)
+  {
+    throw InputError(input + ": nothing was rendered" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+  window->MakeCurrent();
+  for (const auto& panel : panels)
+  {
+    CheckMapperImageFinite(panel->Mapper, panel->Renderer, input);
+  }
+
+  vtkNew<vtkImageActor> differenceActor;
+  vtkNew<vtkTextActor> differenceLabel;
+  if (difference)
+  {
+    std::vector<float> a, b;
+    int widthA = 0, heightA = 0, widthB = 0, heightB = 0;
+    window->MakeCurrent();
+    Panel& panelA = *panels[difference->first];
+    Panel& panelB = *panels[difference->second];
+    if (!panelA.Mapper->ReadImage(panelA.Renderer, a, widthA, heightA) ||
+      !panelB.Mapper->ReadImage(panelB.Renderer, b, widthB, heightB) || widthA != widthB ||
+      heightA != heightB)
+    {
+      throw InputError(input + ": could not read the models' images back for the difference");
+    }
+    const vtkSmartPointer<vtkImageData> image =
+      DifferenceImage(a, b, widthA, heightA, result.MaxDifference);
+    differenceActor->GetMapper()->SetInputData(image);
+    differenceActor->InterpolateOff();
+    differencePanel->AddActor(differenceActor);
+    // Pixel for pixel when the march ran at full resolution: the image's pixel centres are at
+    // 0 .. w - 1, so it spans [-0.5, w - 0.5]; a parallel scale of half its height fills the
+    // panel, whose aspect is the image's.
+    vtkCamera* flat = differencePanel->GetActiveCamera();
+    flat->ParallelProjectionOn();
+    flat->SetFocalPoint(0.5 * (widthA - 1), 0.5 * (heightA - 1), 0.0);
+    flat->SetPosition(0.5 * (widthA - 1), 0.5 * (heightA - 1), 1.0);
+    flat->SetViewUp(0.0, 1.0, 0.0);
+    flat->SetParallelScale(0.5 * heightA);
+    flat->SetClippingRange(0.5, 1.5);
+    PlaceLabel(differenceLabel, differencePanel, height);
+    char text[96];
+    std::snprintf(text, sizeof(text), "|%s - %s|  max %.4g",
+      LightingModelName(models[difference->first]).c_str(),
+      LightingModelName(models[difference->second]).c_str(), result.MaxDifference);
+    differenceLabel->SetInput(text);
+    // The model panels are converged: this frame shows them again without marching.
+    renderChecked();
+  }
+  result.Image = CaptureWindow(window, input, messages);
+  return result;
+}
+
+} // namespace cloudvis

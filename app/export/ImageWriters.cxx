@@ -1,0 +1,275 @@
+// PNG through vtkPNGWriter (8- or 16-bit samples from unsigned char or unsigned short scalars,
+// tEXt chunks from AddText), EXR through OpenEXR's scan-line Imf::OutputFile. Rows: VTK and the
+// mapper keep them bottom to top, which is what vtkPNGWriter expects; EXR stores the top row
+// first, so the EXR writer hands OpenEXR one line at a time, from the last in memory.
+#include "ImageWriters.h"
+
+#include "AtomicFile.h"
+#include "Errors.h"
+#include "FileNames.h"
+#include "VtkMessageCapture.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <half.h>
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <vector>
+
+#ifndef CLOUDVIS_VERSION
+#error "CLOUDVIS_VERSION must be defined (app/CMakeLists.txt passes the project version)"
+#endif
+
+namespace cloudvis
+{
+namespace
+{
+
+// A display value in [0, 1] as an n-bit sample.
+template <typename T>
+T Quantize(double value, double maximum)
+{
+  return T(std::lround(std::min(std::max(value, 0.0), 1.0) * maximum));
+}
+
+// The float image as display values, per pixel: opaque, the "over" of the cloud on the
+// background the window drew (the computation the GPU's blend does for the 8-bit window, here
+// without its rounding); transparent, the straight color (premultiplied color / alpha) and the
+// alpha. The mapper's radiance goes to the display as it is, with no transfer curve, exactly as
+// the window shows it, so every PNG of a scene shows the same picture (docs/export.md).
+template <typename T>
+void FillDisplayPixels(const RenderedImage& image, bool transparent, T* out)
+{
+  const double maximum = double(std::numeric_limits<T>::max());
+  const size_t pixels = size_t(image.Width) * size_t(image.Height);
+  const int components = transparent ? 4 : 3;
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    const float* c = image.Radiance.data() + 4 * p;
+    const double alpha = std::min(std::max(double(c[3]), 0.0), 1.0);
+    T* o = out + components * p;
+    for (int k = 0; k < 3; ++k)
+    {
+      double value;
+      if (transparent)
+      {
+        value = alpha > 0.0 ? double(c[k]) / alpha : 0.0;
+      }
+      else
+      {
+        value = double(c[k]) + (1.0 - alpha) * image.BackgroundRGB[3 * p + k] / 255.0;
+      }
+      o[k] = Quantize<T>(value, maximum);
+    }
+    if (transparent)
+    {
+      o[3] = Quantize<T>(alpha, maximum);
+    }
+  }
+}
+
+// One scan line at a time through a row buffer per channel (y stride 0: every line of the
+// frame buffer is the same memory), filled from the bottom-up buffers in EXR's top-down order.
+// OpenEXR writes a channel from a slice of its own pixel type only, hence T = float or half.
+template <typename T>
+void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& options,
+  const std::string& path, Imf::PixelType type)
+{
+  const char* const names[] = { "R", "G", "B", "A", "Z", "transmittance", "samples" };
+  constexpr int channels = 7;
+  const size_t width = size_t(image.Width);
+  std::vector<T> row(channels * width);
+  Imf::Header header(image.Width, image.Height);
+  Imf::FrameBuffer frame;
+  for (int c = 0; c < channels; ++c)
+  {
+    header.channels().insert(names[c], Imf::Channel(type));
+    frame.insert(
+      names[c], Imf::Slice(type, reinterpret_cast<char*>(row.data() + c * width), sizeof(T), 0));
+  }
+  header.insert("cloudvis.version", Imf::StringAttribute(CloudvisVersion()));
+  header.insert("cloudvis.scene", Imf::StringAttribute(options.SceneJson));
+  header.insert("cloudvis.command", Imf::StringAttribute(options.CommandLine));
+  Imf::OutputFile file(path.c_str(), header);
+  file.setFrameBuffer(frame);
+  for (int y = image.Height - 1; y >= 0; --y)
+  {
+    const float* radiance = image.Radiance.data() + 4 * width * size_t(y);
+    const float* auxiliary = image.Auxiliary.data() + 4 * width * size_t(y);
+    for (size_t x = 0; x < width; ++x)
+    {
+      for (size_t k = 0; k < 4; ++k)
+      {
+        row[k * width + x] = T(radiance[4 * x + k]);
+      }
+      row[4 * width + x] = T(auxiliary[4 * x + 2]);         // Z
+      row[5 * width + x] = T(1.0f - radiance[4 * x + 3]); // transmittance
+      row[6 * width + x] = T(auxiliary[4 * x + 0]);         // samples
+    }
+    file.writePixels(1);
+  }
+}
+
+// Output formats: one entry per extension, with the writer below.
+struct ImageFormat
+{
+  const char* Extension;
+  // Writes to `path` (a temporary); `target` names the file in errors.
+  void (*Write)(const RenderedImage& image, const ImageExportOptions& options,
+    const std::string& path, const std::string& target);
+};
+
+const ImageFormat ImageFormats[] = {
+  { ".png", WritePngImage },
+  { ".exr", WriteExrImage },
+};
+
+const ImageFormat& FormatOf(const std::string& path)
+{
+  const std::string extension = LowerCaseExtension(path);
+  for (const ImageFormat& format : ImageFormats)
+  {
+    if (extension == format.Extension)
+    {
+      return format;
+    }
+  }
+  std::string supported;
+  for (const std::string& e : SupportedImageExtensions())
+  {
+    supported += (supported.empty() ? "" : ", ") + e;
+  }
+  throw InputError(path + ": " +
+    (extension.empty() ? std::string("the file name has no image extension")
+                       : "unsupported image format \"" + extension + "\"") +
+    "; supported: " + supported);
+}
+
+} // namespace
+
+std::string CloudvisVersion()
+{
+  return CLOUDVIS_VERSION;
+}
+
+bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options)
+{
+  return LowerCaseExtension(path) == ".exr" || options.PngBits == 16 || options.Transparent;
+}
+
+void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,
+  const std::string& path, const std::string& target)
+{
+  vtkNew<vtkImageData> pixels;
+  pixels->SetDimensions(image.Width, image.Height, 1);
+  const bool fromFloat = NeedsFloatImage(path, options);
+  if (fromFloat && (image.Radiance.size() != 4 * size_t(image.Width) * size_t(image.Height) ||
+                     (!options.Transparent && image.BackgroundRGB.size() != image.RGB.size())))
+  {
+    throw InputError(target + ": cannot write the PNG image: the float render was not kept");
+  }
+  const int components = options.Transparent ? 4 : 3;
+  if (options.PngBits == 16)
+  {
+    pixels->AllocateScalars(VTK_UNSIGNED_SHORT, components);
+    FillDisplayPixels(
+      image, options.Transparent, static_cast<std::uint16_t*>(pixels->GetScalarPointer()));
+  }
+  else if (options.Transparent)
+  {
+    pixels->AllocateScalars(VTK_UNSIGNED_CHAR, components);
+    FillDisplayPixels(image, true, static_cast<unsigned char*>(pixels->GetScalarPointer()));
+  }
+  else
+  {
+    pixels->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    std::copy(image.RGB.begin(), image.RGB.end(),
+      static_cast<unsigned char*>(pixels->GetScalarPointer()));
+  }
+  VtkMessageCapture messages;
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(pixels);
+  writer->SetFileName(path.c_str());
+  writer->AddText("Software", ("cloudvis " + CloudvisVersion()).c_str());
+  if (!options.SceneJson.empty())
+  {
+    writer->AddText("cloudvis.scene", options.SceneJson.c_str());
+  }
+  if (!options.CommandLine.empty())
+  {
+    writer->AddText("cloudvis.command", options.CommandLine.c_str());
+  }
+  writer->Write();
+  if (writer->GetErrorCode() != 0 || !messages.Messages().empty())
+  {
+    throw InputError(target + ": cannot write the PNG image" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+}
+
+void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options,
+  const std::string& path, const std::string& target)
+{
+  const size_t pixels = size_t(image.Width) * size_t(image.Height);
+  if (image.Radiance.size() != 4 * pixels || image.Auxiliary.size() != 4 * pixels)
+  {
+    throw InputError(target + ": cannot write the EXR image: the float render was not kept");
+  }
+  try
+  {
+    if (options.ExrHalf)
+    {
+      WriteExrScanLines<half>(image, options, path, Imf::HALF);
+    }
+    else
+    {
+      WriteExrScanLines<float>(image, options, path, Imf::FLOAT);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(target + ": cannot write the EXR image (OpenEXR: " + e.what() + ")");
+  }
+}
+
+std::vector<std::string> SupportedImageExtensions()
+{
+  std::vector<std::string> extensions;
+  for (const ImageFormat& format : ImageFormats)
+  {
+    extensions.emplace_back(format.Extension);
+  }
+  return extensions;
+}
+
+void CheckImageOutput(const std::string& path)
+{
+  FormatOf(path);
+  CheckOutputTarget(path);
+}
+
+void WriteImage(const RenderedImage& image, const std::string& path)
+{
+  WriteImage(image, path, ImageExportOptions{});
+}
+
+void WriteImage(
+  const RenderedImage& image, const std::string& path, const ImageExportOptions& options)
+{
+  const ImageFormat& format = FormatOf(path);
+  WriteFileAtomically(
+    path, [&](const std::string& temporary) { format.Write(image, options, temporary, path); });
+}
+
+} // namespace cloudvis

@@ -1,0 +1,263 @@
+// The window is created per call and thrown away: a still is rendered once, and a fresh window
+// keeps one render from inheriting another's GL state or accumulated frames. Every VTK message
+// raised meanwhile is captured, so a failure reaches the user as one "cloudvis: error:" line built
+// from the mapper's GetLastError().
+#include "OffscreenRender.h"
+
+#include "AtomicFile.h"
+#include "Background.h"
+#include "CpuReference.h"
+#include "Display.h"
+#include "Errors.h"
+#include "ExportRender.h"
+#include "ImageWriters.h"
+#include "SceneLighting.h"
+#include "VtkMessageCapture.h"
+#include "vtkCloudVolumeMapper.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkImageData.h>
+#include <vtkMath.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace cloudvis
+{
+namespace
+{
+
+// After every Render(): the mapper's own report, in the user's terms.
+} // namespace
+
+void CheckMapper(
+  vtkCloudVolumeMapper* mapper, const std::string& input, const VtkMessageCapture& messages)
+{
+  if (!mapper->GetLastError().empty())
+  {
+    // VTK's own words (a shader's compile log, say) were captured, not printed: pass them on.
+    throw InputError(input + ": " + mapper->GetLastError() +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+}
+
+vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction)
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  for (const auto& point : transferFunction.Opacity)
+  {
+    opacity->AddPoint(point[0], point[1]);
+  }
+  vtkNew<vtkColorTransferFunction> color;
+  for (const auto& point : transferFunction.Color)
+  {
+    color->AddRGBPoint(point[0], point[1], point[2], point[3]);
+  }
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetScalarOpacityUnitDistance(transferFunction.UnitDistance);
+  property->SetInterpolationTypeToLinear();
+  property->ShadeOff();
+  return property;
+}
+
+void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
+{
+  mapper->SetSampleDistance(render.Step);
+  mapper->SetJitter(render.Jitter);
+  mapper->SetResolutionScale(render.ResolutionScale);
+  mapper->SetMaximumAccumulatedFrames(render.Accumulate);
+  mapper->SetEmptySpaceSkipping(render.SkipEmptySpace);
+  // The model alone; ConfigureLighting (SceneLighting.h) sets the rest of the lighting, which
+  // needs the lights and ambient sections too.
+  LightingParameters lighting = mapper->GetLighting();
+  lighting.Model = render.Lighting;
+  mapper->SetLighting(lighting);
+}
+
+void ApplyCamera(
+  const CameraSpec& camera, const double bounds[6], vtkRenderer* renderer, const std::string& source)
+{
+  vtkCamera* active = renderer->GetActiveCamera();
+  // ResetCamera keeps the view direction, puts the focal point at the centre of the bounds and
+  // the camera where their bounding sphere fits a 30-degree view (it resets the view angle to
+  // 30); the distance r / sin(angle / 2) is then rescaled to the scene's angle.
+  active->SetFocalPoint(0.0, 0.0, 0.0);
+  active->SetPosition(0.0, 0.0, 1.0);
+  active->SetViewUp(0.0, 1.0, 0.0);
+  renderer->ResetCamera(const_cast<double*>(bounds));
+  const double halfAngle = 0.5 * vtkMath::RadiansFromDegrees(camera.ViewAngle);
+  const double distance =
+    active->GetDistance() * std::sin(vtkMath::RadiansFromDegrees(15.0)) / std::sin(halfAngle);
+  active->SetViewAngle(camera.ViewAngle);
+  double focal[3], position[3];
+  active->GetFocalPoint(focal);
+  if (camera.FocalPoint)
+  {
+    std::copy(camera.FocalPoint->begin(), camera.FocalPoint->end(), focal);
+  }
+  position[0] = focal[0];
+  position[1] = focal[1];
+  position[2] = focal[2] + distance;
+  if (camera.Position)
+  {
+    std::copy(camera.Position->begin(), camera.Position->end(), position);
+  }
+  if (camera.Orbit)
+  {
+    // On the sphere of the fitting distance (or the orbit's own) around the focal point, y up.
+    const double azimuth = vtkMath::RadiansFromDegrees(camera.Orbit->Azimuth);
+    const double elevation = vtkMath::RadiansFromDegrees(camera.Orbit->Elevation);
+    const double radius = camera.Orbit->Distance.value_or(distance);
+    position[0] = focal[0] + radius * std::cos(elevation) * std::sin(azimuth);
+    position[1] = focal[1] + radius * std::sin(elevation);
+    position[2] = focal[2] + radius * std::cos(elevation) * std::cos(azimuth);
+  }
+  const double d[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+  const double* u = camera.ViewUp.data();
+  const double dLength = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (dLength == 0.0)
+  {
+    throw InputError(source + ": camera.position: the camera position equals the focal point (" +
+      "the field's centre when camera.focal_point is absent); the view has no direction");
+  }
+  const double cross[3] = { d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2],
+    d[0] * u[1] - d[1] * u[0] };
+  const double uLength = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  if (std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) <=
+    1e-9 * dLength * uLength)
+  {
+    throw InputError(source + ": camera.view_up: parallel to the view direction (from the " +
+      "position to the focal point); choose a view-up across it");
+  }
+  active->SetFocalPoint(focal);
+  active->SetPosition(position);
+  active->SetViewUp(u[0], u[1], u[2]);
+  active->OrthogonalizeViewUp();
+  renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
+}
+
+RenderedImage CaptureWindow(vtkRenderWindow* window, const std::string& input,
+  const VtkMessageCapture& messages)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff(); // the accumulated frame is in the buffer already
+  grab->Update();
+  vtkImageData* pixels = grab->GetOutput();
+  auto* data = vtkUnsignedCharArray::SafeDownCast(pixels->GetPointData()->GetScalars());
+  int dimensions[3];
+  pixels->GetDimensions(dimensions);
+  const int* size = window->GetSize();
+  if (!data || data->GetNumberOfComponents() != 3 || dimensions[0] != size[0] ||
+    dimensions[1] != size[1])
+  {
+    throw InputError(input + ": could not read the rendered image back from the window" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+  RenderedImage image;
+  image.Width = dimensions[0];
+  image.Height = dimensions[1];
+  image.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
+  return image;
+}
+
+OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
+  const std::string& input, int benchmarkFrames, const RenderOptions& options)
+{
+  CheckSceneRenderable(scene, field, input);
+  // One connection, opened (and retried) here and handed to the window: VTK opening its own
+  // aborts the process when the server refuses it.
+  const DisplayConnection display("cloudvis ...");
+  VtkMessageCapture messages;
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetDisplayId(display.Get());
+  // VTK calls abort() when it cannot create the GL context unless someone observes ExitEvent;
+  // observing it turns that into "nothing was rendered", reported below with VTK's reason.
+  vtkNew<vtkCallbackCommand> onExit;
+  window->AddObserver(vtkCommand::ExitEvent, onExit);
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(scene.Render.Size[0], scene.Render.Size[1]);
+  vtkNew<vtkRenderer> renderer;
+  ApplyBackground(scene, renderer);
+  window->AddRenderer(renderer);
+
+  vtkNew<vtkCloudVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  ConfigureMapper(mapper, scene.Render);
+  ConfigureLighting(scene, renderer, mapper);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(MakeVolumeProperty(scene.TransferFunction));
+  renderer->AddVolume(volume);
+  ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
+
+  // Before anything is drawn: the GPU's limit, stated in the message (ExportRender.h).
+  CheckRenderSize(scene.Render.Size, QueryRenderLimits(window), scene.Source);
+
+  // Without jitter every frame marches the same samples: one is the converged still.
+  const int frames = scene.Render.Jitter ? scene.Render.Accumulate : 1;
+  for (int frame = 0; frame < frames; ++frame)
+  {
+    window->Render();
+    CheckMapper(mapper, input, messages);
+    if (options.OnFrame)
+    {
+      options.OnFrame(frame + 1, frames);
+    }
+  }
+  OffscreenRenderResult result;
+  result.AccumulatedFrames = mapper->GetNumberOfAccumulatedFrames(renderer);
+  if (result.AccumulatedFrames == 0)
+  {
+    throw InputError(input + ": nothing was rendered" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+
+  result.Image = CaptureWindow(window, input, messages);
+  if (options.FloatImage)
+  {
+    ReadFloatImage(mapper, renderer, result.Image, input); // checked for NaN and infinity
+    ReadBackgroundImage(window, volume, result.Image);
+  }
+  else
+  {
+    CheckMapperImageFinite(mapper, renderer, input);
+  }
+
+  for (int frame = 0; frame < benchmarkFrames; ++frame)
+  {
+    mapper->Modified(); // else the mapper shows the converged still without marching
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    window->WaitForCompletion();
+    const auto end = std::chrono::steady_clock::now();
+    CheckMapper(mapper, input, messages);
+    result.FrameMilliseconds.push_back(
+      std::chrono::duration<double, std::milli>(end - start).count());
+  }
+  return result;
+}
+
+} // namespace cloudvis

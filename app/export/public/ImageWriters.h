@@ -1,0 +1,59 @@
+// The image formats cloudvis exports (docs/export.md), each a function from a RenderedImage to
+// one file, called by WriteImage below on the temporary path that WriteFileAtomically hands it:
+//   PNG, 8-bit RGB (default): the window's pixels as they were shown;
+//   PNG, 16-bit and/or transparent: the mapper's float image composited by the same "over" the
+//     window applies (cloud + (1 - alpha) * background, in the window's display values), or with
+//     --transparent not composited at all: straight (un-premultiplied) color and alpha;
+//   OpenEXR: the float image itself, linear and premultiplied, with depth, transmittance and
+//     sample-count channels.
+// Every file carries the cloudvis version, the resolved scene and the command line as metadata.
+#ifndef cloudvis_ImageWriters_h
+#define cloudvis_ImageWriters_h
+
+#include "RenderedImage.h"
+
+#include <string>
+#include <vector>
+
+namespace cloudvis
+{
+
+struct ImageExportOptions
+{
+  int PngBits = 8;          // 8 or 16 (render.png_bits, --png-bits)
+  bool Transparent = false; // PNG: RGBA, alpha = the cloud's opacity, no background (--transparent)
+  bool ExrHalf = false;     // EXR: HALF channels instead of FLOAT (render.exr_type, --exr-half)
+  std::string SceneJson;    // the resolved scene (SceneToJson), embedded as "cloudvis.scene"
+  std::string CommandLine;  // embedded as "cloudvis.command"
+};
+
+// "0.1.0": the CMake project version cloudvis was built as.
+std::string CloudvisVersion();
+
+// Whether writing `path` with `options` needs the float image of RenderedImage (Radiance,
+// Auxiliary, BackgroundRGB): EXR, 16-bit PNG and transparent PNG do.
+bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options);
+
+// The writers of the format table. `path` is the file to create, `target` names the output in
+// errors (InputError).
+void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,
+  const std::string& path, const std::string& target);
+void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options,
+  const std::string& path, const std::string& target);
+
+// The image formats cloudvis writes, as lower-case extensions with the dot (".png").
+std::vector<std::string> SupportedImageExtensions();
+
+// Throws InputError unless `path` ends in a supported extension (the message lists them) and can
+// be written (CheckOutputTarget). Called before any rendering.
+void CheckImageOutput(const std::string& path);
+
+// Writes the image in the format its extension names, atomically (WriteFileAtomically), with
+// default or given export options and metadata.
+void WriteImage(const RenderedImage& image, const std::string& path);
+void WriteImage(
+  const RenderedImage& image, const std::string& path, const ImageExportOptions& options);
+
+} // namespace cloudvis
+
+#endif

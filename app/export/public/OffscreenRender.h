@@ -1,0 +1,78 @@
+// From a validated scene and its field to pixels: the one place that maps a Scene's
+// transfer_function, camera, background and render sections onto VTK's window, renderer, camera,
+// vtkVolumeProperty and vtkCloudVolumeMapper. `render` uses all of it; `compare` will call
+// RenderOffscreen once per lighting model on the same field; the interactive viewer will build
+// its own window and use the configuration pieces (MakeVolumeProperty, ConfigureMapper,
+// ApplyCamera) so that what it shows is what `render` writes.
+#ifndef cloudvis_OffscreenRender_h
+#define cloudvis_OffscreenRender_h
+
+#include "RenderedImage.h"
+#include "Scene.h"
+
+#include <vtkSmartPointer.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkCloudVolumeMapper;
+class vtkImageData;
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkVolumeProperty;
+
+namespace cloudvis
+{
+class VtkMessageCapture;
+
+struct OffscreenRenderResult
+{
+  RenderedImage Image;
+  int AccumulatedFrames = 0;             // frames the mapper averaged into Image
+  std::vector<double> FrameMilliseconds; // wall clock of each benchmark frame, in order
+};
+
+// The volume property of a transfer function: piecewise-linear opacity per unit distance and
+// color, linear interpolation of the density, no VTK shading (lighting is the mapper's).
+vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction);
+
+// Sets the mapper's step, jitter, resolution scale, accumulation and empty-space skipping (and
+// the lighting model; ConfigureLighting in SceneLighting.h adds the lights and parameters) from
+// the render section.
+void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render);
+
+// Sets the renderer's active camera from the camera section, filling absent keys for a field
+// with these bounds (xmin, xmax, ymin, ymax, zmin, zmax): the focal point is the centre, the
+// position looks along -z from the distance vtkRenderer::ResetCamera picks to fit the bounds.
+// Throws InputError (prefixed by `source`) when view_up is parallel to the view direction.
+void ApplyCamera(
+  const CameraSpec& camera, const double bounds[6], vtkRenderer* renderer, const std::string& source);
+
+// Renders `field` as the scene describes, off screen: render.size pixels, the scene's background,
+// render.accumulate frames averaged (one when jitter is off: every frame would be the same),
+// then captures the window. With benchmarkFrames > 0, renders that many more frames afterwards,
+// forcing a full march each time, and times each up to the GPU's completion. `input` names the
+// field in errors. Throws InputError "<input>: <problem>" when the mapper reports an error (a
+// field it cannot draw, an invalid transfer function, a GPU failure) or when nothing was drawn,
+// and before drawing when render.size is beyond the GPU's limit (ExportRender.h).
+struct RenderOptions
+{
+  bool FloatImage = false; // keep RenderedImage's float image, auxiliary channels and background
+  std::function<void(int frame, int frames)> OnFrame; // after each accumulated frame (progress)
+};
+OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
+  const std::string& input, int benchmarkFrames = 0, const RenderOptions& options = {});
+
+// Throws InputError naming `input` with the mapper's last error, if any, and what VTK said.
+void CheckMapper(
+  vtkCloudVolumeMapper* mapper, const std::string& input, const VtkMessageCapture& messages);
+
+// The window's pixels after the last render, as RenderedImage (8-bit RGB, bottom to top); throws
+// InputError naming `input` (and what VTK said, from `messages`) if they cannot be read.
+RenderedImage CaptureWindow(
+  vtkRenderWindow* window, const std::string& input, const VtkMessageCapture& messages);
+
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,35 @@
+// What a render produces, as every exporter and test sees it: the window's 8-bit pixels and,
+// for exports that need them, the mapper's float image, auxiliary channels and the background.
+#ifndef cloudvis_RenderedImage_h
+#define cloudvis_RenderedImage_h
+
+#include <cstddef>
+#include <vector>
+
+namespace cloudvis
+{
+
+// 8-bit RGB pixels as the window showed them, rows from bottom to top (VTK's order).
+struct RenderedImage
+{
+  int Width = 0;
+  int Height = 0;
+  std::vector<unsigned char> RGB; // Width * Height * 3
+
+  // Kept only when RenderOptions::FloatImage asks for them (exports: ImageWriters.h), same size
+  // and row order: the mapper's premultiplied linear RGBA (alpha = 1 - transmittance); per pixel
+  // samples taken, useful samples, the cloud's distance from the camera and 1 (ExportRender.h);
+  // and the window's pixels without the cloud.
+  std::vector<float> Radiance;
+  std::vector<float> Auxiliary;
+  std::vector<unsigned char> BackgroundRGB;
+
+  const unsigned char* Pixel(int x, int y) const
+  {
+    return this->RGB.data() + 3 * (size_t(y) * size_t(this->Width) + size_t(x));
+  }
+};
+
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,362 @@
+// The scene language's entry points: reading a scene file, applying --set and option overrides
+// to its JSON document, and validating the document into a Scene. What a scene may contain (every
+// key, its type, range, default and help) is the schema of SceneSchema.cxx; this file only walks
+// it, so a value from a file and a value from the command line are checked by the same entry and
+// reported in the same shape, "<source>: <dotted key>: <problem>".
+#include "Scene.h"
+
+#include "Errors.h"
+#include "InputFiles.h"
+#include "SceneSchema.h"
+#include "Utf8.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace cloudvis
+{
+namespace
+{
+using json = nlohmann::json;
+
+std::string DirectoryOf(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos)
+  {
+    return "";
+  }
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::vector<std::string> SplitKey(const std::string& key)
+{
+  std::vector<std::string> parts;
+  std::istringstream in(key);
+  std::string part;
+  while (std::getline(in, part, '.'))
+  {
+    parts.push_back(part);
+  }
+  return parts;
+}
+
+bool IsNumberToken(const std::string& token, double& value)
+{
+  const char* begin = token.c_str();
+  while (*begin == ' ' || *begin == '\t')
+  {
+    ++begin;
+  }
+  if (*begin == '\0')
+  {
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtod(begin, &end);
+  while (*end == ' ' || *end == '\t')
+  {
+    ++end;
+  }
+  return *end == '\0' && end != begin;
+}
+
+// Far deeper than any scene nests. nlohmann's parser is iterative, but dump(), copies and
+// comparisons recurse once per level, so a few hundred kilobytes of '[' would overflow the stack
+// in the first message that quotes the value.
+constexpr int MaxJsonDepth = 64;
+
+// json::parse, refusing deeper nesting with an InputError prefixed by `where`.
+json ParseJsonText(const std::string& text, const std::string& where)
+{
+  return json::parse(text,
+    [&where](int depth, json::parse_event_t, json&)
+    {
+      if (depth > MaxJsonDepth)
+      {
+        throw InputError(where + ": JSON nested deeper than " + std::to_string(MaxJsonDepth) +
+          " levels");
+      }
+      return true;
+    });
+}
+
+} // namespace
+
+std::vector<std::string> LightingModelNames()
+{
+  return schema::TextsOf(schema::LightingModels());
+}
+
+std::optional<LightingModel> FindLightingModel(const std::string& name)
+{
+  for (const schema::Name& entry : schema::LightingModels())
+  {
+    if (name == entry.Text)
+    {
+      return static_cast<LightingModel>(entry.Value);
+    }
+  }
+  return std::nullopt;
+}
+
+std::string LightingModelName(LightingModel model)
+{
+  const std::string name = schema::NameOf(schema::LightingModels(), static_cast<int>(model));
+  return name.empty() ? "unknown" : name;
+}
+
+std::vector<Light> DefaultLights()
+{
+  Light sun;
+  sun.Positional = false;
+  sun.Position = glm::dvec3(6.0, 8.0, 4.0);
+  sun.FocalPoint = glm::dvec3(0.0);
+  sun.Color = glm::vec3(1.0f);
+  // An intensity means the same light in every model (docs/lighting.md, Lights).
+  sun.Intensity = 1.0f;
+  sun.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f);
+  return { sun };
+}
+
+LightingParameters LightingOf(const Scene& scene)
+{
+  LightingParameters lighting = scene.Render.Parameters;
+  lighting.Model = scene.Render.Lighting;
+  lighting.AmbientColor = scene.Ambient.Color;
+  lighting.AmbientStrength = scene.Ambient.Strength;
+  return lighting;
+}
+
+Scene DefaultScene()
+{
+  return Scene{};
+}
+
+nlohmann::json ReadSceneDocument(const std::string& path)
+{
+  return ReadJsonFile(path, "scene file");
+}
+
+nlohmann::json ReadJsonFile(const std::string& path, const std::string& what)
+{
+  const std::string text = RegularInputFile(path, what).ReadAll(MaximumJsonFileBytes);
+  try
+  {
+    return ParseJsonText(text, path);
+  }
+  catch (const json::parse_error& e)
+  {
+    // The byte offset is where the parser stopped; turn it into the line and column an editor
+    // shows.
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i)
+    {
+      if (text[i] == '\n')
+      {
+        ++line;
+        column = 1;
+      }
+      else
+      {
+        ++column;
+      }
+    }
+    std::string reason = e.what();
+    const auto columnAt = reason.find("column ");
+    const auto colon = reason.find(": ", columnAt == std::string::npos ? 0 : columnAt);
+    if (colon != std::string::npos)
+    {
+      reason.erase(0, colon + 2);
+    }
+    throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
+      ": malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
+      ": " + reason);
+  }
+  catch (const json::exception& e)
+  {
+    // Valid syntax, but a value no double holds (1e999): out_of_range, with no position.
+    std::string reason = e.what();
+    const auto bracket = reason.find("] ");
+    throw InputError(path + ": malformed JSON: " +
+      (bracket == std::string::npos ? reason : reason.substr(bracket + 2)));
+  }
+}
+
+nlohmann::json WithValidUtf8(nlohmann::json value)
+{
+  if (value.is_string())
+  {
+    return EscapeInvalidUtf8(value.get<std::string>());
+  }
+  if (value.is_array())
+  {
+    for (json& element : value)
+    {
+      element = WithValidUtf8(std::move(element));
+    }
+  }
+  else if (value.is_object())
+  {
+    json escaped = json::object();
+    for (auto& member : value.items())
+    {
+      escaped[EscapeInvalidUtf8(member.key())] = WithValidUtf8(std::move(member.value()));
+    }
+    return escaped;
+  }
+  return value;
+}
+
+nlohmann::json ParseOverrideValue(const std::string& key, const std::string& text)
+{
+  try
+  {
+    return ParseJsonText(text, key);
+  }
+  catch (const json::exception&)
+  {
+    // Not JSON: a number list, a non-finite number, or plain text.
+  }
+  // A key whose value is free text (description, field.file, transfer_function.preset) takes
+  // text that is not JSON as written: description=inf is the string "inf", not a refused number.
+  const schema::ValueType* type = schema::FindType(schema::SceneSections(), key);
+  if (text.empty() || (type && type->Type == schema::ValueType::Text))
+  {
+    return text;
+  }
+  std::vector<std::string> tokens;
+  std::string token;
+  std::istringstream in(text);
+  while (std::getline(in, token, ','))
+  {
+    tokens.push_back(token);
+  }
+  if (!text.empty() && text.back() == ',')
+  {
+    tokens.emplace_back();
+  }
+  std::vector<double> numbers;
+  for (const std::string& t : tokens)
+  {
+    double value = 0.0;
+    if (!IsNumberToken(t, value))
+    {
+      return text;
+    }
+    numbers.push_back(value);
+  }
+  json array = json::array();
+  for (double value : numbers)
+  {
+    if (!std::isfinite(value))
+    {
+      throw InputError(
+        key + ": value \"" + text + "\" is not a finite number (NaN and infinity are not allowed)");
+    }
+    // Integral tokens stay integers so integer keys accept them.
+    if (value == std::floor(value) && std::fabs(value) < 9.0e15)
+    {
+      array.push_back(static_cast<long long>(value));
+    }
+    else
+    {
+      array.push_back(value);
+    }
+  }
+  if (array.size() == 1)
+  {
+    return array[0];
+  }
+  return array;
+}
+
+void ApplyOverride(nlohmann::json& document, const std::string& assignment)
+{
+  const auto equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0)
+  {
+    throw UsageError("--set expects KEY=VALUE (for example field.octaves=4), got \"" + assignment + "\"");
+  }
+  const std::string key = assignment.substr(0, equals);
+  const std::vector<std::string> parts = SplitKey(key);
+  for (const std::string& p : parts)
+  {
+    if (p.empty() || key.back() == '.')
+    {
+      throw UsageError("--set " + assignment + ": the key \"" + key + "\" has an empty part");
+    }
+  }
+  SetDocumentValue(document, key, ParseOverrideValue(key, assignment.substr(equals + 1)), "--set");
+}
+
+void SetDocumentValue(
+  nlohmann::json& document, const std::string& key, const nlohmann::json& value, const std::string& option)
+{
+  const std::vector<std::string> parts = SplitKey(key);
+  json* node = &document;
+  std::string path;
+  for (const std::string& p : parts)
+  {
+    if (node->is_null())
+    {
+      *node = json::object(); // an intermediate object that did not exist yet
+    }
+    if (!node->is_object())
+    {
+      throw InputError(option + " " + key + ": " + (path.empty() ? "the scene" : path) + " is a " +
+        node->type_name() + ", not an object, so it has no key \"" + p + "\"");
+    }
+    path += (path.empty() ? "" : ".") + p;
+    node = &(*node)[p];
+  }
+  *node = value;
+}
+
+Scene SceneFromDocument(const nlohmann::json& document, const std::string& source,
+  const std::string& baseDirectory, const std::vector<std::string>& overriddenKeys,
+  const std::vector<SceneOverride>& optionKeys)
+{
+  schema::Context context{ source, baseDirectory, {} };
+  for (const std::string& key : overriddenKeys)
+  {
+    context.OverriddenKeys.emplace_back(key, "--set");
+  }
+  for (const SceneOverride& option : optionKeys)
+  {
+    context.OverriddenKeys.emplace_back(option.Key, option.Option);
+  }
+  if (!document.is_object())
+  {
+    throw InputError(source + ": a scene must be a JSON object, got " + schema::Describe(document));
+  }
+  Scene scene;
+  scene.Source = source;
+  schema::ReadObject(context, document, "", schema::SceneSections(), scene);
+  schema::ResolveSkySun(document, scene);
+  scene.Document = document;
+  return scene;
+}
+
+Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options)
+{
+  json document = path.empty() ? json::object() : ReadSceneDocument(path);
+  std::vector<std::string> keys;
+  for (const std::string& assignment : assignments)
+  {
+    ApplyOverride(document, assignment);
+    keys.push_back(assignment.substr(0, assignment.find('=')));
+  }
+  for (const SceneOverride& option : options)
+  {
+    SetDocumentValue(document, option.Key, option.Value, option.Option);
+  }
+  return SceneFromDocument(document, path.empty() ? "default scene" : path,
+    path.empty() ? "" : DirectoryOf(path), keys, options);
+}
+
+} // namespace cloudvis

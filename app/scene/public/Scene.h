@@ -1,0 +1,226 @@
+// A scene file, parsed and validated: what cloudvis should show or export. A scene is a JSON
+// object of sections (field, transfer_function, camera, background, render, lights, ambient);
+// every key of every section is one entry of the scene schema (SceneSchema.cxx), which the
+// reader, --set, the resolved scene of SceneJson.h and the reference tables of
+// docs/scene-format.md (SceneReferenceMarkdown) all walk. Defaults are the members' initial
+// values below. Overrides from the command line
+// (--set key=value, and options such as --lighting that stand for a key) are applied to the JSON
+// document before validation, so a value from a file and a value from the command line are
+// checked by the same code and reported with the same dotted key.
+// The schema is documented in docs/scene-format.md.
+#ifndef cloudvis_Scene_h
+#define cloudvis_Scene_h
+
+#include "CloudDensityEvaluator.h"
+#include "CloudLighting.h" // LightingModel
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cloudvis
+{
+
+// The "field" section: either a .vti to load, or where and how to generate a procedural field.
+struct FieldSpec
+{
+  // Path of a .vti to load instead of generating, already resolved against the scene file's
+  // folder; empty for a procedural field (then the members below apply).
+  std::string File;
+  std::array<int, 3> Dimensions{ { 128, 128, 128 } };
+  std::array<double, 6> Bounds{ { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 } };
+  FieldDescription Description;
+  double Time = 0.0;
+
+  bool FromFile() const { return !this->File.empty(); }
+};
+
+// The "transfer_function" section: what density looks like. Opacity is per UnitDistance of
+// world units (the mapper turns it into the extinction sigma_t = -ln(1 - a) / u), color is the
+// albedo. Points are (density, value...) with strictly increasing densities; between points the
+// functions are linear, beyond the ends they hold the end values.
+struct TransferFunctionSpec
+{
+  // Defaults chosen for the default field (densities 0 .. ~0.95, most of the cloud below 0.3):
+  // thin wisps stay translucent, the core builds up without saturating, and the grey-to-white
+  // color gives depth where there is no lighting.
+  std::vector<std::array<double, 2>> Opacity{ { { 0.0, 0.0 } }, { { 0.02, 0.0 } },
+    { { 0.5, 0.5 } }, { { 1.0, 0.8 } } };
+  std::vector<std::array<double, 4>> Color{ { { 0.0, 0.55, 0.58, 0.65 } },
+    { { 0.3, 0.9, 0.9, 0.92 } }, { { 1.0, 1.0, 1.0, 1.0 } } };
+  double UnitDistance = 0.1;
+};
+
+// The "camera" section. Absent keys are filled when the field is known (see ApplyCamera in
+// export/OffscreenRender.h): the focal point is the field's centre, the position looks at it
+// along -z from the distance vtkRenderer::ResetCamera picks to fit the field's bounds.
+// camera.orbit: the position on a sphere around the focal point, y up. With azimuth az and
+// elevation el in degrees, position = focal + distance * (cos(el) sin(az), sin(el), cos(el) cos(az)),
+// so az = 0, el = 0 is the default view from +z, az = 90 looks from +x, el > 0 looks down.
+struct OrbitSpec
+{
+  double Azimuth = 0.0;   // degrees, any
+  double Elevation = 0.0; // degrees, in (-90, 90)
+  std::optional<double> Distance; // world units, > 0; absent: the distance that fits the field
+};
+
+struct CameraSpec
+{
+  std::optional<std::array<double, 3>> Position;
+  std::optional<OrbitSpec> Orbit; // exclusive with Position
+  std::optional<std::array<double, 3>> FocalPoint;
+  std::array<double, 3> ViewUp{ { 0.0, 1.0, 0.0 } };
+  double ViewAngle = 30.0; // degrees, vertical
+};
+
+// The "render" section: how the mapper marches and how large the image is.
+struct RenderSpec
+{
+  LightingModel Lighting = LightingModel::None; // names: LightingModelNames()
+  // render.derivative.* and render.march.*. Its Model and Ambient* members are not read from
+  // here (render.lighting and the ambient section are): LightingOf(scene) assembles all three.
+  LightingParameters Parameters;
+  double Step = 0.0; // world units; 0: one voxel (the smallest spacing of the field)
+  bool Jitter = true;
+  double ResolutionScale = 1.0;
+  int Accumulate = 16; // frames averaged into a still
+  bool SkipEmptySpace = true;
+  std::array<int, 2> Size{ { 800, 600 } }; // pixels, width and height
+  int PngBits = 8;      // 8 or 16 bits per PNG channel (docs/export.md)
+  bool ExrHalf = false; // EXR channels as 16-bit half floats instead of 32-bit floats
+};
+
+// The "background" section beyond a plain color (Scene::Background): a VTK gradient, or the
+// article's sky computed per pixel from the view ray (export/Background.h draws both).
+enum class BackgroundType
+{
+  Solid,    // Scene::Background everywhere
+  Gradient, // Scene::Background at the bottom edge, Top at the top edge
+  Sky,      // the article's sky: a vertical gradient plus a glow around Sun
+};
+
+struct BackgroundSpec
+{
+  BackgroundType Type = BackgroundType::Solid;
+  std::array<double, 3> Top{ { 0.0, 0.0, 0.0 } }; // Gradient: the color at the top edge
+  // Sky: unit direction toward the sun (world). A scene file without background.sun gets, once
+  // read, the direction toward its first directional light when it has a "lights" key, else
+  // normalize(DefaultSun).
+  std::optional<std::array<double, 3>> Sun;
+  static constexpr std::array<double, 3> DefaultSun{ { 0.5, 0.6, 0.6 } };
+};
+
+// The "ambient" section: isotropic, unshadowed light added by the derivative and march models.
+struct AmbientSpec
+{
+  glm::vec3 Color{ 0.6f, 0.6f, 0.75f };
+  float Strength = 0.2f;
+};
+
+// The lights of a scene without a "lights" key: one white directional sun from (6, 8, 4) toward
+// the origin (docs/scene-format.md gives its intensity and why).
+std::vector<Light> DefaultLights();
+
+struct Scene
+{
+  // Where the scene came from, for messages: the scene file's path, or "default scene".
+  std::string Source = "default scene";
+  std::string Description;
+  FieldSpec Field;
+  TransferFunctionSpec TransferFunction;
+  CameraSpec Camera;
+  // The solid color, or the bottom color of a gradient; BackgroundStyle says which is drawn.
+  std::array<double, 3> Background{ { 0.1, 0.12, 0.16 } };
+  BackgroundSpec BackgroundStyle;
+  RenderSpec Render;
+  // The "lights" section (at most LightingLimits::MaxLights; DefaultLights() when the key is
+  // absent) and "ambient".
+  std::vector<Light> Lights = DefaultLights();
+  AmbientSpec Ambient;
+  // The validated JSON document as given, after overrides and before defaults (the fully
+  // resolved one is SceneToJson's, written from the members above).
+  nlohmann::json Document;
+};
+
+// A scene value given on the command line by an option that stands for a scene key (--lighting M
+// is render.lighting = "M"). It is applied to the document like --set, after the --set
+// assignments, and validated with the rest; messages about it name the option.
+struct SceneOverride
+{
+  std::string Key; // dotted
+  nlohmann::json Value;
+  std::string Option; // "--lighting", for messages
+};
+
+// The names render.lighting accepts, in the order of the table (for help and messages).
+std::vector<std::string> LightingModelNames();
+
+// The model a render.lighting name stands for (nullopt for an unknown name), and the name of a
+// model; both from the same table as LightingModelNames.
+std::optional<LightingModel> FindLightingModel(const std::string& name);
+std::string LightingModelName(LightingModel model);
+
+// The lighting the renderers use: the model of render.lighting, the parameters of
+// render.derivative and render.march, and the ambient section.
+LightingParameters LightingOf(const Scene& scene);
+
+// The scene used when none is given: the article's cloud (a unit sphere plus 6 octaves of value
+// noise on 128^3 voxels over [-2, 2]^3).
+Scene DefaultScene();
+
+// Reads a scene file into a JSON document. Throws InputError for an unreadable file (with the
+// OS reason) or malformed JSON (with line and column).
+nlohmann::json ReadSceneDocument(const std::string& path);
+
+// The same for any JSON file cloudvis reads; `what` names it in messages ("preset file"). The
+// file must be a regular file of at most MaximumJsonFileBytes (InputFiles.h).
+nlohmann::json ReadJsonFile(const std::string& path, const std::string& what);
+
+// The reference tables of docs/scene-format.md, generated from the scene schema: Markdown, each
+// table between the lines "<!-- schema:NAME -->" and "<!-- /schema -->" (`cloudvis schema`
+// prints it; app.scene_docs checks that the docs hold the same tables).
+std::string SceneReferenceMarkdown();
+
+// `value` with every string and object key made valid UTF-8 by EscapeInvalidUtf8 (Utf8.h), so
+// that dump() cannot throw: strings from --set and paths may hold any bytes.
+nlohmann::json WithValidUtf8(nlohmann::json value);
+
+// Applies one "key=value" assignment (the argument of --set) to a document. The key is dotted
+// (field.noise); missing intermediate objects are created. Throws UsageError when the
+// assignment has no '=' or an empty key part, InputError when a part of the key names a value
+// that is not an object, or when the value is NaN or infinite.
+void ApplyOverride(nlohmann::json& document, const std::string& assignment);
+
+// Sets a dotted key of a document to a value, creating missing objects on the way. `option`
+// names where the value came from in errors ("--set"). Throws InputError when a part of the
+// key names a value that is not an object.
+void SetDocumentValue(nlohmann::json& document, const std::string& key, const nlohmann::json& value,
+  const std::string& option);
+
+// The value of an assignment: JSON when it parses as JSON (6, "perlin", [1,2,3], true), else a
+// comma-separated list of numbers as an array (128,128,128), else the text as a string (perlin).
+// A key whose schema type is free text (description, field.file, transfer_function.preset) takes
+// text that is not JSON as written, even "inf" or "1,2". `key` names the value in errors.
+nlohmann::json ParseOverrideValue(const std::string& key, const std::string& text);
+
+// Validates a document and turns it into a Scene. `source` prefixes every message,
+// `baseDirectory` resolves relative paths inside the scene (empty: the current directory),
+// `overriddenKeys` are the dotted keys set by --set, so messages about them can say so;
+// `optionKeys` those set by other options (messages name the option). Throws InputError naming
+// the dotted key and the problem.
+Scene SceneFromDocument(const nlohmann::json& document, const std::string& source,
+  const std::string& baseDirectory, const std::vector<std::string>& overriddenKeys = {},
+  const std::vector<SceneOverride>& optionKeys = {});
+
+// All of the above: reads `path` (the default scene when empty), applies the assignments in
+// order, then the option overrides, validates. This is what every command that takes a scene
+// calls.
+Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options = {});
+
+} // namespace cloudvis
+
+#endif
