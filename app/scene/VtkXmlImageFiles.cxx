@@ -457,11 +457,14 @@ void CheckExtentFitsInMemory(const std::string& path, vtkXMLReader* reader, doub
   }
 }
 
-// VTK's readers turn an Origin, Spacing or Direction attribute they cannot parse ("nan", "inf")
-// into its default (origin 0, spacing 1, identity) without a word: the text of the image element
-// (ImageData for a .vti, PImageData for a .pvti, whose pieces' own geometry VTK ignores) is
-// checked here.
-void CheckGeometryAttributes(const std::string& path, vtkXMLReader* reader)
+// VTK's readers turn an Origin, Spacing or Direction attribute they cannot parse ("nan", "inf",
+// too few numbers) into its default (origin 0, spacing 1, identity) without a word: the text of
+// the image element (ImageData for a .vti, PImageData for a .pvti, whose pieces' own geometry VTK
+// ignores) is checked here. Returns the Direction attribute's nine numbers (row by row, as VTK
+// writes them) when there is one: vtkXMLPImageDataReader (VTK 9.1) reads a .pvti's Origin and
+// Spacing but drops its Direction, so ReadChecked sets it.
+std::optional<std::array<double, 9>> CheckGeometryAttributes(const std::string& path,
+  vtkXMLReader* reader)
 {
   vtkXMLDataParser* parser = reader->GetXMLParser();
   vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
@@ -470,31 +473,46 @@ void CheckGeometryAttributes(const std::string& path, vtkXMLReader* reader)
   {
     image = image ? image : (root ? root->FindNestedElementWithName(element) : nullptr);
   }
+  std::optional<std::array<double, 9>> direction;
   if (!image)
   {
-    return;
+    return direction;
   }
-  for (const char* name : { "Origin", "Spacing", "Direction" })
+  for (const auto& [name, count] :
+    { std::pair<const char*, std::size_t>{ "Origin", 3 }, { "Spacing", 3 }, { "Direction", 9 } })
   {
     const char* text = image->GetAttribute(name);
     if (!text)
     {
       continue;
     }
+    const std::string attribute =
+      std::string("the image's ") + name + " attribute \"" + Shorten(text, 80) + "\"";
     std::istringstream in{ std::string(text) };
+    std::vector<double> values;
     std::string token;
     while (in >> token)
     {
       char* end = nullptr;
-      const double value = std::strtod(token.c_str(), &end);
-      if (*end != '\0' || !std::isfinite(value))
+      values.push_back(std::strtod(token.c_str(), &end));
+      if (*end != '\0' || !std::isfinite(values.back()))
       {
-        Fail(path,
-          std::string("the image's ") + name + " attribute \"" + Shorten(text, 80) + "\" holds \"" +
-            Shorten(token, 40) + "\", not a finite number");
+        Fail(path, attribute + " holds \"" + Shorten(token, 40) + "\", not a finite number");
       }
     }
+    if (values.size() != count)
+    {
+      Fail(path,
+        attribute + " holds " + std::to_string(values.size()) + " numbers, not " +
+          std::to_string(count));
+    }
+    if (count == 9)
+    {
+      direction.emplace();
+      std::copy(values.begin(), values.end(), direction->begin());
+    }
   }
+  return direction;
 }
 
 // The read in this process, after layers 1 and 2: the header, the memory check, then the data.
@@ -520,12 +538,16 @@ vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
     Fail(path, WithVtkReason("cannot read " + formatName, messages));
   }
   CheckExtentFitsInMemory(path, reader, extraBytes);
-  CheckGeometryAttributes(path, reader);
+  const std::optional<std::array<double, 9>> direction = CheckGeometryAttributes(path, reader);
   reader->Update();
   vtkSmartPointer<vtkImageData> image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
   {
     Fail(path, WithVtkReason("cannot read " + formatName, messages));
+  }
+  if (direction)
+  {
+    image->SetDirectionMatrix(direction->data());
   }
   return image;
 }
