@@ -15,10 +15,12 @@
 //                                   e.g. under `valgrind --tool=callgrind` with LP_NUM_THREADS=0
 //                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts
 //   CLOUDVIS_BENCH_BRICK=N          the brick size of that run
+#include "CloudLighting.h"
 #include "CloudTransferTable.h"
 #include "SupportImages.h"
 #include "SupportMappers.h"
 #include "vtkCloudDensitySource.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudOccupancyFilter.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -202,7 +204,7 @@ void CompareLighting(vtkImageData* field, const Options& options)
     auto mapper = MatchedCloudMapper(step);
     cloudvis::LightingParameters lighting;
     lighting.Model = model;
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     View cloud(mapper, field, options);
     addSun(cloud.Renderer);
     const double ms = cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); });
@@ -269,7 +271,7 @@ int main(int argc, char* argv[])
       mapper->SetBrickSize(std::atoi(brick));
     cloudvis::LightingParameters lighting;
     lighting.Model = cloudvis::LightingModel(std::atoi(only));
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     View cloud(mapper, sparse, options);
     vtkNew<vtkLight> sun;
     sun->SetPosition(6.0, 8.0, 4.0);

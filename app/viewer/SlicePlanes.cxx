@@ -3,6 +3,8 @@
 // may be the editor's. Their key activation is off: the viewer's keys toggle them.
 #include "SlicePlanes.h"
 
+#include "CloudTransferTable.h"
+
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCutter.h>
@@ -30,10 +32,7 @@ SlicePlanes::SlicePlanes(
 {
   double range[2];
   field->GetScalarRange(range);
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0;
-  }
+  WidenEmptyRange(range);
   // Dark blue through teal to pale yellow: empty space dark, dense cloud bright.
   this->Colors->SetTableRange(range);
   this->Colors->SetHueRange(0.66, 0.14);

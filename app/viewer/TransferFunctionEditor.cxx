@@ -4,6 +4,8 @@
 // select) is switched off, so a mouse button in the editor only ever reaches the control points.
 #include "TransferFunctionEditor.h"
 
+#include "CloudTransferTable.h"
+
 #include <vtkAxis.h>
 #include <vtkBrush.h>
 #include <vtkCallbackCommand.h>
@@ -223,10 +225,10 @@ void TransferFunctionEditor::UpdateRange()
     lo = std::min(lo, p[0]);
     hi = std::max(hi, p[0]);
   }
-  if (!(hi > lo))
-  {
-    hi = lo + 1.0;
-  }
+  double range[2] = { lo, hi };
+  WidenEmptyRange(range);
+  lo = range[0];
+  hi = range[1];
   this->Range = { { lo, hi } };
   for (vtkChartXY* chart : { this->OpacityChart.Get(), this->ColorChart.Get() })
   {

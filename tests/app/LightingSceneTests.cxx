@@ -8,6 +8,7 @@
 #include "SupportBaselines.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkImageData.h>
@@ -173,7 +174,7 @@ TEST(SceneLighting, ConfigureLightingAddsSceneLightsAndNoHeadlight)
   EXPECT_TRUE(lamp->GetPositional());
   EXPECT_EQ(lamp->GetConeAngle(), 180.0);
   EXPECT_EQ(lamp->GetAttenuationValues()[1], 0.5);
-  EXPECT_EQ(mapper->GetLighting().Model, LightingModel::Derivative);
+  EXPECT_EQ(mapper->GetLightingProperty()->GetParameters().Model, LightingModel::Derivative);
 
   cloudvis::ConfigureLighting(SceneWith({ "lights=[]" }), renderer, mapper);
   EXPECT_EQ(renderer->GetLights()->GetNumberOfItems(), 0) << "replaced, not added to";

@@ -1,0 +1,117 @@
+#include "CloudGpuMemory.h"
+
+#include "CloudFieldGeometry.h"
+
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+#include <algorithm>
+
+namespace cloudvis
+{
+namespace
+{
+// Reads and clears GL's error flags (a bounded number: a lost context may keep reporting).
+GLenum TakeError()
+{
+  GLenum first = GL_NO_ERROR;
+  for (int i = 0; i < 16; ++i)
+  {
+    const GLenum error = glGetError();
+    if (error == GL_NO_ERROR)
+    {
+      break;
+    }
+    first = first == GL_NO_ERROR ? error : first;
+  }
+  return first;
+}
+}
+
+long long FreeGpuMemory(vtkOpenGLRenderWindow* window)
+{
+  window->MakeCurrent();
+  GLint kib[4] = { -1, -1, -1, -1 };
+  if (GLEW_NVX_gpu_memory_info)
+  {
+    glGetIntegerv(GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, kib);
+  }
+  else if (GLEW_ATI_meminfo)
+  {
+    glGetIntegerv(GL_TEXTURE_FREE_MEMORY_ATI, kib); // total free in the pool, largest block, ...
+  }
+  return kib[0] >= 0 ? 1024LL * kib[0] : -1;
+}
+
+GpuMemoryBudget::GpuMemoryBudget(vtkOpenGLRenderWindow* window, long long limit, long long held)
+  : Window(window)
+  , Limit(limit)
+  , Held(held)
+{
+}
+
+std::string GpuMemoryBudget::Reserve(const std::string& what, long long bytes, long long released)
+{
+  if (this->Limit > 0 && this->Held - released + bytes > this->Limit)
+  {
+    return what + " needs " + FormatBytes(double(bytes)) + ", which with the " +
+      FormatBytes(double(this->Held - released)) +
+      " the mapper holds already exceeds its GPU "
+      "memory limit of " +
+      FormatBytes(double(this->Limit)) + " (MaximumGPUMemory)";
+  }
+  const long long free = FreeGpuMemory(this->Window);
+  if (free >= 0 && bytes - released > free)
+  {
+    return what + " needs " + FormatBytes(double(bytes)) + " of GPU memory; the GPU reports " +
+      FormatBytes(double(free)) + " free";
+  }
+  TakeError(); // earlier errors are not this allocation's
+  return {};
+}
+
+std::string GpuMemoryBudget::Allocated(const std::string& what, long long bytes, long long released)
+{
+  const GLenum error = TakeError();
+  if (error == GL_OUT_OF_MEMORY)
+  {
+    return "the GPU could not allocate " + FormatBytes(double(bytes)) + " for " + what +
+      " (GL_OUT_OF_MEMORY)";
+  }
+  if (error != GL_NO_ERROR)
+  {
+    return "the GPU refused " + what + " (" + FormatBytes(double(bytes)) + ", GL error " +
+      std::to_string(error) + ")";
+  }
+  this->Held += bytes - released;
+  return {};
+}
+
+long long TextureBytes(vtkTextureObject* texture)
+{
+  if (!texture->GetHandle())
+  {
+    return 0;
+  }
+  const GLenum target = texture->GetTarget();
+  GLint bits = 0;
+  texture->Activate();
+  for (GLenum component : { GL_TEXTURE_RED_SIZE,
+         GL_TEXTURE_GREEN_SIZE,
+         GL_TEXTURE_BLUE_SIZE,
+         GL_TEXTURE_ALPHA_SIZE,
+         GL_TEXTURE_DEPTH_SIZE,
+         GL_TEXTURE_STENCIL_SIZE })
+  {
+    GLint size = 0;
+    glGetTexLevelParameteriv(target, 0, component, &size);
+    bits += size;
+  }
+  texture->Deactivate();
+  const long long texels = (long long)texture->GetWidth() * std::max(1u, texture->GetHeight()) *
+    std::max(1u, texture->GetDepth());
+  return texels * ((bits + 7) / 8);
+}
+
+} // namespace cloudvis
