@@ -3,7 +3,6 @@
 #include "CloudFieldGeometry.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
-#include "vtkCloudLightingProperty.h"
 
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
@@ -64,50 +63,38 @@ struct RowFunctor
 }
 
 vtkCloudReferenceRenderer::vtkCloudReferenceRenderer()
+  : LightingProperty(vtkSmartPointer<vtkCloudLightingProperty>::New())
+  , Lights(vtkSmartPointer<vtkLightCollection>::New())
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
-  this->LightingProperty = vtkCloudLightingProperty::New();
-  this->Lights = vtkLightCollection::New();
 }
 
 vtkCloudReferenceRenderer::~vtkCloudReferenceRenderer()
 {
   this->SetVolumeProperty(nullptr);
-  this->LightingProperty->Delete();
-  this->Lights->Delete();
 }
 
 vtkCxxSetObjectMacro(vtkCloudReferenceRenderer, VolumeProperty, vtkVolumeProperty);
 
 void vtkCloudReferenceRenderer::SetLightingProperty(vtkCloudLightingProperty* property)
 {
-  if (property == this->LightingProperty && property)
+  if (!property || property != this->LightingProperty)
   {
-    return;
+    this->LightingProperty = property ? vtkSmartPointer<vtkCloudLightingProperty>(property)
+                                      : vtkSmartPointer<vtkCloudLightingProperty>::New();
+    this->Modified();
   }
-  this->LightingProperty->Delete();
-  this->LightingProperty = property ? property : vtkCloudLightingProperty::New();
-  if (property)
-  {
-    property->Register(this);
-  }
-  this->Modified();
 }
 
 void vtkCloudReferenceRenderer::SetLights(vtkLightCollection* lights)
 {
-  if (lights == this->Lights && lights)
+  if (!lights || lights != this->Lights)
   {
-    return;
+    this->Lights = lights ? vtkSmartPointer<vtkLightCollection>(lights)
+                          : vtkSmartPointer<vtkLightCollection>::New();
+    this->Modified();
   }
-  this->Lights->Delete();
-  this->Lights = lights ? lights : vtkLightCollection::New();
-  if (lights)
-  {
-    lights->Register(this);
-  }
-  this->Modified();
 }
 
 vtkMTimeType vtkCloudReferenceRenderer::GetMTime()

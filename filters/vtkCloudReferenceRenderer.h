@@ -41,8 +41,10 @@
 #define vtkCloudReferenceRenderer_h
 
 #include "cloudvisFiltersModule.h"
+#include "vtkCloudLightingProperty.h"
 
 #include <vtkImageAlgorithm.h>
+#include <vtkLightCollection.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
@@ -53,8 +55,6 @@
 #include <glm/glm.hpp>
 #endif
 
-class vtkCloudLightingProperty;
-class vtkLightCollection;
 class vtkVolumeProperty;
 namespace cloudvis
 {
@@ -271,8 +271,8 @@ protected:
   double ClippingRange[2] = { 0.1, 100.0 };
   vtkVolumeProperty* VolumeProperty = nullptr;
   double ExtinctionScale = 1.0;
-  vtkCloudLightingProperty* LightingProperty = nullptr;
-  vtkLightCollection* Lights = nullptr;
+  vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
+  vtkSmartPointer<vtkLightCollection> Lights;
   vtkNew<vtkMatrix4x4> VolumeMatrix;
   double SampleDistance = 0.0;
   double TerminationTransmittance = 1.0 / 255.0;

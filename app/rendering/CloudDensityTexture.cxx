@@ -55,49 +55,40 @@ bool DensityTexture::Update(vtkOpenGLRenderWindow* window,
     std::to_string(dimensions[1]) + " x " + std::to_string(dimensions[2]) + " voxels of " +
     TexelFormatName(texels.Format) + ")";
   const long long bytes = voxels * BytesPerTexel(texels.Format);
-  const std::string overBudget = budget.Reserve(what, bytes, this->Bytes);
-  if (!overBudget.empty())
-  {
-    return fail(overBudget);
-  }
-
   this->Texture->SetContext(window);
   this->Texture->ResetFormatAndType();
-  bool created = false;
-  if (texels.Format == TexelFormat::Float16)
-  {
-    const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
-    std::vector<std::uint16_t> halves(static_cast<std::size_t>(voxels));
-    for (std::size_t i = 0; i < halves.size(); ++i)
+  const std::string allocationProblem = budget.Allocate(what,
+    bytes,
+    this->Bytes,
+    [&]()
     {
-      halves[i] = HalfFromFloat(values[i] / texels.Scale);
-    }
-    this->Texture->SetInternalFormat(GL_R16F);
-    this->Texture->SetFormat(GL_RED);
-    this->Texture->SetDataType(GL_HALF_FLOAT);
-    created = this->Texture->Create3DFromRaw(
-      dimensions[0], dimensions[1], dimensions[2], 1, VTK_FLOAT, halves.data());
-  }
-  else
+      if (texels.Format != TexelFormat::Float16)
+      {
+        // The array's own type: its default internal formats are R8, R16 and R32F.
+        return this->Texture->Create3DFromRaw(dimensions[0],
+          dimensions[1],
+          dimensions[2],
+          1,
+          scalars->GetDataType(),
+          scalars->GetVoidPointer(0));
+      }
+      const auto* values = static_cast<const float*>(scalars->GetVoidPointer(0));
+      std::vector<std::uint16_t> halves(static_cast<std::size_t>(voxels));
+      for (std::size_t i = 0; i < halves.size(); ++i)
+      {
+        halves[i] = HalfFromFloat(values[i] / texels.Scale);
+      }
+      this->Texture->SetInternalFormat(GL_R16F);
+      this->Texture->SetFormat(GL_RED);
+      this->Texture->SetDataType(GL_HALF_FLOAT);
+      return this->Texture->Create3DFromRaw(
+        dimensions[0], dimensions[1], dimensions[2], 1, VTK_FLOAT, halves.data());
+    });
+  if (!allocationProblem.empty())
   {
-    // The array's own type: the default internal formats are R8, R16 and R32F.
-    created = this->Texture->Create3DFromRaw(dimensions[0],
-      dimensions[1],
-      dimensions[2],
-      1,
-      scalars->GetDataType(),
-      scalars->GetVoidPointer(0));
+    return fail(allocationProblem);
   }
-  const std::string allocationProblem = budget.Allocated(what, bytes, this->Bytes);
-  if (!created || !allocationProblem.empty())
-  {
-    return fail(allocationProblem.empty() ? "the GPU could not create " + what : allocationProblem);
-  }
-  this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  this->Texture->SetWrapR(vtkTextureObject::ClampToEdge);
-  this->Texture->SetMinificationFilter(vtkTextureObject::Linear);
-  this->Texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  SetSampling(this->Texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
   this->Texels = texels;
   this->Texels.Values = nullptr;
   this->Bytes = TextureBytes(this->Texture);

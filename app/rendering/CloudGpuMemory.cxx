@@ -51,7 +51,10 @@ GpuMemoryBudget::GpuMemoryBudget(vtkOpenGLRenderWindow* window, long long limit,
 {
 }
 
-std::string GpuMemoryBudget::Reserve(const std::string& what, long long bytes, long long released)
+std::string GpuMemoryBudget::Allocate(const std::string& what,
+  long long bytes,
+  long long released,
+  const std::function<bool()>& create)
 {
   if (this->Limit > 0 && this->Held - released + bytes > this->Limit)
   {
@@ -68,18 +71,14 @@ std::string GpuMemoryBudget::Reserve(const std::string& what, long long bytes, l
       FormatBytes(double(free)) + " free";
   }
   TakeError(); // earlier errors are not this allocation's
-  return {};
-}
-
-std::string GpuMemoryBudget::Allocated(const std::string& what, long long bytes, long long released)
-{
+  const bool created = create();
   const GLenum error = TakeError();
   if (error == GL_OUT_OF_MEMORY)
   {
     return "the GPU could not allocate " + FormatBytes(double(bytes)) + " for " + what +
       " (GL_OUT_OF_MEMORY)";
   }
-  if (error != GL_NO_ERROR)
+  if (error != GL_NO_ERROR || !created)
   {
     return "the GPU refused " + what + " (" + FormatBytes(double(bytes)) + ", GL error " +
       std::to_string(error) + ")";
@@ -112,6 +111,15 @@ long long TextureBytes(vtkTextureObject* texture)
   const long long texels = (long long)texture->GetWidth() * std::max(1u, texture->GetHeight()) *
     std::max(1u, texture->GetDepth());
   return texels * ((bits + 7) / 8);
+}
+
+void SetSampling(vtkTextureObject* texture, int filter, int wrap)
+{
+  texture->SetMinificationFilter(filter);
+  texture->SetMagnificationFilter(filter);
+  texture->SetWrapS(wrap);
+  texture->SetWrapT(wrap);
+  texture->SetWrapR(wrap);
 }
 
 } // namespace cloudvis

@@ -5,6 +5,7 @@
 #ifndef CloudGpuMemory_h
 #define CloudGpuMemory_h
 
+#include <functional>
 #include <string>
 
 class vtkOpenGLRenderWindow;
@@ -25,13 +26,14 @@ class GpuMemoryBudget
 public:
   GpuMemoryBudget(vtkOpenGLRenderWindow* window, long long limit, long long held);
 
-  // Empty when `bytes` for `what` (replacing `released` bytes the mapper holds for it) fit, else
-  // why not, with the sizes. Clears GL's error flag for Allocated.
-  std::string Reserve(const std::string& what, long long bytes, long long released);
-
-  // After allocating what Reserve accepted: empty, or the problem when GL reported an error
-  // (GL_OUT_OF_MEMORY: the driver could not allocate it). The reservation then counts as held.
-  std::string Allocated(const std::string& what, long long bytes, long long released);
+  // Allocates `bytes` for `what`, replacing `released` bytes the mapper holds for it: empty when
+  // they fit and `create` (which allocates them, true on success) succeeded without a GL error,
+  // else why not, with the sizes (GL_OUT_OF_MEMORY: the driver could not allocate them; then
+  // `create` has run). The bytes then count as held.
+  std::string Allocate(const std::string& what,
+    long long bytes,
+    long long released,
+    const std::function<bool()>& create);
 
 private:
   vtkOpenGLRenderWindow* Window;
@@ -43,6 +45,10 @@ private:
 // components as the driver reports them (so R8 really is one byte a texel, or the count says
 // otherwise). The texture must have its context current.
 long long TextureBytes(vtkTextureObject* texture);
+
+// How a texture is sampled: `filter` for minification and magnification, `wrap` along every
+// axis (vtkTextureObject's enums).
+void SetSampling(vtkTextureObject* texture, int filter, int wrap);
 
 } // namespace cloudvis
 

@@ -18,27 +18,18 @@ bool JitterTexture::Update(vtkOpenGLRenderWindow* window,
   {
     return true;
   }
-  const std::string what = "the jitter texture";
-  const long long bytes = (long long)Size * Size * sizeof(float);
-  problem = budget.Reserve(what, bytes, 0);
-  if (!problem.empty())
-  {
-    return false;
-  }
   std::vector<float> mask = BlueNoiseMask(Size);
   this->Texture->SetContext(window);
-  const bool created = this->Texture->Create2DFromRaw(Size, Size, 1, VTK_FLOAT, mask.data());
-  problem = budget.Allocated(what, bytes, 0);
-  if (!created || !problem.empty())
+  problem = budget.Allocate("the jitter texture",
+    (long long)Size * Size * sizeof(float),
+    0,
+    [&]() { return this->Texture->Create2DFromRaw(Size, Size, 1, VTK_FLOAT, mask.data()); });
+  if (!problem.empty())
   {
-    problem = problem.empty() ? "the GPU could not create " + what : problem;
     this->Release(window);
     return false;
   }
-  this->Texture->SetWrapS(vtkTextureObject::Repeat);
-  this->Texture->SetWrapT(vtkTextureObject::Repeat);
-  this->Texture->SetMinificationFilter(vtkTextureObject::Nearest);
-  this->Texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  SetSampling(this->Texture, vtkTextureObject::Nearest, vtkTextureObject::Repeat);
   this->Bytes = TextureBytes(this->Texture);
   return true;
 }

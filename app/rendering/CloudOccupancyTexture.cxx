@@ -58,26 +58,21 @@ bool OccupancyTexture::Update(vtkOpenGLRenderWindow* window,
   }
   int bricks[3];
   occupancy->GetDimensions(bricks);
-  const std::string what = "the occupancy texture";
   const long long bytes = (long long)bricks[0] * bricks[1] * bricks[2];
-  const std::string overBudget = budget.Reserve(what, bytes, this->Bytes);
-  if (!overBudget.empty())
-  {
-    return fail(overBudget);
-  }
   this->Texture->SetContext(window);
-  const bool created = this->Texture->Create3DFromRaw(
-    bricks[0], bricks[1], bricks[2], 1, VTK_UNSIGNED_CHAR, distance->GetPointer(0));
-  const std::string allocationProblem = budget.Allocated(what, bytes, this->Bytes);
-  if (!created || !allocationProblem.empty())
+  const std::string allocationProblem = budget.Allocate("the occupancy texture",
+    bytes,
+    this->Bytes,
+    [&]()
+    {
+      return this->Texture->Create3DFromRaw(
+        bricks[0], bricks[1], bricks[2], 1, VTK_UNSIGNED_CHAR, distance->GetPointer(0));
+    });
+  if (!allocationProblem.empty())
   {
-    return fail(allocationProblem.empty() ? "the GPU could not create " + what : allocationProblem);
+    return fail(allocationProblem);
   }
-  this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  this->Texture->SetWrapR(vtkTextureObject::ClampToEdge);
-  this->Texture->SetMinificationFilter(vtkTextureObject::Nearest);
-  this->Texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  SetSampling(this->Texture, vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
   std::copy(bricks, bricks + 3, this->BrickCount);
   const vtkIdType count = distance->GetNumberOfValues();
   vtkIdType occupied = 0;

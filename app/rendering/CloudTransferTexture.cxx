@@ -32,23 +32,17 @@ bool TransferTexture::Update(vtkOpenGLRenderWindow* window,
   {
     return fail(tableProblem);
   }
-  const std::string what = "the transfer-function texture";
   const long long bytes = (long long)table.Size * 4 * sizeof(float);
-  const std::string overBudget = budget.Reserve(what, bytes, this->Bytes);
-  if (!overBudget.empty())
-  {
-    return fail(overBudget);
-  }
   this->Texture->SetContext(window);
-  const bool created = this->Texture->Create1DFromRaw(table.Size, 4, VTK_FLOAT, table.RGBA.data());
-  const std::string allocationProblem = budget.Allocated(what, bytes, this->Bytes);
-  if (!created || !allocationProblem.empty())
+  const std::string allocationProblem = budget.Allocate("the transfer-function texture",
+    bytes,
+    this->Bytes,
+    [&]() { return this->Texture->Create1DFromRaw(table.Size, 4, VTK_FLOAT, table.RGBA.data()); });
+  if (!allocationProblem.empty())
   {
-    return fail(allocationProblem.empty() ? "the GPU could not create " + what : allocationProblem);
+    return fail(allocationProblem);
   }
-  this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  this->Texture->SetMinificationFilter(vtkTextureObject::Linear);
-  this->Texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  SetSampling(this->Texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
   this->Table = std::move(table);
   this->Bytes = TextureBytes(this->Texture);
   this->BuiltFrom = property;

@@ -20,24 +20,19 @@ bool ViewTargets::Resize(vtkOpenGLRenderWindow* window,
   if (this->ViewportSize[0] != viewportWidth || this->ViewportSize[1] != viewportHeight ||
     !this->Depth->GetHandle())
   {
-    const std::string what = "the depth target";
-    const long long bytes = (long long)viewportWidth * viewportHeight * sizeof(float);
-    problem = budget.Reserve(what, bytes, this->DepthBytes);
-    if (problem.empty())
-    {
-      this->Depth->SetContext(window);
-      this->Depth->AllocateDepth(viewportWidth, viewportHeight, vtkTextureObject::Float32);
-      problem = budget.Allocated(what, bytes, this->DepthBytes);
-    }
+    this->Depth->SetContext(window);
+    problem = budget.Allocate("the depth target",
+      (long long)viewportWidth * viewportHeight * sizeof(float),
+      this->DepthBytes,
+      [&]() {
+        return this->Depth->AllocateDepth(viewportWidth, viewportHeight, vtkTextureObject::Float32);
+      });
     if (!problem.empty())
     {
       this->Release(window);
       return false;
     }
-    this->Depth->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
-    this->Depth->SetWrapS(vtkTextureObject::ClampToEdge);
-    this->Depth->SetWrapT(vtkTextureObject::ClampToEdge);
+    SetSampling(this->Depth, vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
     this->DepthBytes = TextureBytes(this->Depth);
     this->ViewportSize[0] = viewportWidth;
     this->ViewportSize[1] = viewportHeight;
@@ -45,31 +40,26 @@ bool ViewTargets::Resize(vtkOpenGLRenderWindow* window,
   if (this->MarchSize[0] != marchWidth || this->MarchSize[1] != marchHeight ||
     !this->ColorTexture->GetHandle())
   {
-    const std::string what = "the march targets";
-    const long long bytes = 2LL * marchWidth * marchHeight * 4 * sizeof(float);
-    problem = budget.Reserve(what, bytes, this->TargetBytes);
-    if (problem.empty())
-    {
-      for (vtkTextureObject* target : { this->ColorTexture.Get(), this->CountTexture.Get() })
+    problem = budget.Allocate("the march targets",
+      2LL * marchWidth * marchHeight * 4 * sizeof(float),
+      this->TargetBytes,
+      [&]()
       {
-        target->SetContext(window);
-        target->SetInternalFormat(GL_RGBA32F);
-        target->SetFormat(GL_RGBA);
-        target->Allocate2D(marchWidth, marchHeight, 4, VTK_FLOAT);
-      }
-      problem = budget.Allocated(what, bytes, this->TargetBytes);
-    }
+        bool allocated = true;
+        for (vtkTextureObject* target : { this->ColorTexture.Get(), this->CountTexture.Get() })
+        {
+          target->SetContext(window);
+          target->SetInternalFormat(GL_RGBA32F);
+          target->SetFormat(GL_RGBA);
+          allocated = target->Allocate2D(marchWidth, marchHeight, 4, VTK_FLOAT) && allocated;
+          SetSampling(target, vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
+        }
+        return allocated;
+      });
     if (!problem.empty())
     {
       this->Release(window);
       return false;
-    }
-    for (vtkTextureObject* target : { this->ColorTexture.Get(), this->CountTexture.Get() })
-    {
-      target->SetMinificationFilter(vtkTextureObject::Nearest);
-      target->SetMagnificationFilter(vtkTextureObject::Nearest);
-      target->SetWrapS(vtkTextureObject::ClampToEdge);
-      target->SetWrapT(vtkTextureObject::ClampToEdge);
     }
     this->TargetBytes = TextureBytes(this->ColorTexture) + TextureBytes(this->CountTexture);
     this->Framebuffer->SetContext(window);

@@ -9,7 +9,6 @@
 #include "CloudOccupancyTexture.h"
 #include "CloudTransferTexture.h"
 #include "CloudViewTargets.h"
-#include "vtkCloudLightingProperty.h"
 
 #include "CloudCompositeFS.h"
 
@@ -143,29 +142,21 @@ struct vtkCloudVolumeMapper::Internals
 };
 
 vtkCloudVolumeMapper::vtkCloudVolumeMapper()
-  : Internal(new Internals)
+  : LightingProperty(vtkSmartPointer<vtkCloudLightingProperty>::New())
+  , Internal(new Internals)
 {
-  this->LightingProperty = vtkCloudLightingProperty::New();
 }
 
-vtkCloudVolumeMapper::~vtkCloudVolumeMapper()
-{
-  this->LightingProperty->Delete();
-}
+vtkCloudVolumeMapper::~vtkCloudVolumeMapper() = default;
 
 void vtkCloudVolumeMapper::SetLightingProperty(vtkCloudLightingProperty* property)
 {
-  if (property == this->LightingProperty && property)
+  if (!property || property != this->LightingProperty)
   {
-    return;
+    this->LightingProperty = property ? vtkSmartPointer<vtkCloudLightingProperty>(property)
+                                      : vtkSmartPointer<vtkCloudLightingProperty>::New();
+    this->Modified();
   }
-  this->LightingProperty->Delete();
-  this->LightingProperty = property ? property : vtkCloudLightingProperty::New();
-  if (property)
-  {
-    property->Register(this);
-  }
-  this->Modified();
 }
 
 vtkMTimeType vtkCloudVolumeMapper::GetMTime()

@@ -58,14 +58,15 @@
 #define vtkCloudVolumeMapper_h
 
 #include "cloudvisRenderingModule.h"
+#include "vtkCloudLightingProperty.h"
 
+#include <vtkSmartPointer.h>
 #include <vtkVolumeMapper.h>
 
 #include <memory>
 #include <string>
 #include <vector>
 
-class vtkCloudLightingProperty;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
 namespace cloudvis
@@ -324,7 +325,7 @@ protected:
   bool CollectStatistics = false;
   bool HalfFloatDensity = false;
   vtkTypeInt64 MaximumGPUMemory = 0;
-  vtkCloudLightingProperty* LightingProperty = nullptr;
+  vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
 
 private:
   vtkCloudVolumeMapper(const vtkCloudVolumeMapper&) = delete;

@@ -388,32 +388,29 @@ std::vector<Case> Cases()
   far.PointLight = true;
   cases.push_back(far);
   // The field in the types the mapper uploads natively, the march lighting the cloud.
+  const auto stored = [&](const char* name, int type, bool half, double rms, double max)
+  {
+    Case c;
+    c.Name = name;
+    c.ScalarType = type;
+    c.HalfFloat = half;
+    c.RmsGate = rms;
+    c.MaxGate = max;
+    cases.push_back(c);
+  };
   // Unsigned short texels (R16) filter like floats: the common gates (measured on llvmpipe: RMS
   // 1.9e-6, max 1.5e-5 of the peak, alpha 1.3e-5).
-  Case shorts;
-  shorts.Name = "UnsignedShortCloud";
-  shorts.ScalarType = VTK_UNSIGNED_SHORT;
-  cases.push_back(shorts);
+  stored("UnsignedShortCloud", VTK_UNSIGNED_SHORT, false, 0.0, 0.0);
   // Unsigned char texels (R8): llvmpipe filters them in 8-bit fixed point (the interpolated
   // value comes back rounded to a multiple of 1/255: measured on R8, R16, R32F and R16F
   // textures, only R8 does it), so its density is off the exact interpolation by up to about a
   // byte level, where the CPU's is exact. Measured: RMS 8.7e-4, max 5.5e-3 of the peak, alpha
   // 5.1e-3; gates 3.5x that.
-  Case bytes;
-  bytes.Name = "UnsignedCharCloud";
-  bytes.ScalarType = VTK_UNSIGNED_CHAR;
-  bytes.RmsGate = 3e-3;
-  bytes.MaxGate = 2e-2;
-  cases.push_back(bytes);
+  stored("UnsignedCharCloud", VTK_UNSIGNED_CHAR, false, 3e-3, 2e-2);
   // Half floats (R16F) round each voxel to 11 significant bits before anything is filtered, and
   // the CPU reference reads the full floats: this measures the precision half floats give up.
   // Measured: RMS 1.05e-5, max 7.3e-5 of the peak, alpha 7.3e-5; gates about 4x that.
-  Case halves;
-  halves.Name = "HalfFloatCloud";
-  halves.HalfFloat = true;
-  halves.RmsGate = 4e-5;
-  halves.MaxGate = 3e-4;
-  cases.push_back(halves);
+  stored("HalfFloatCloud", VTK_FLOAT, true, 4e-5, 3e-4);
 
   Case huge;
   huge.Name = "HugeField";
