@@ -313,7 +313,8 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
         Number(frame.LongestChord * frame.Unit / MaxSamplesPerRay * (1.0 + 1e-5)));
   }
   u.Step = float(step / frame.Unit);
-  u.MaximumSamples = int(std::ceil(samples)) + 16;
+  u.LongestRaySamples = int(std::ceil(samples));
+  u.MaximumSamples = u.LongestRaySamples + 16;
   if (!(setup.TerminationTransmittance >= 0.0 && setup.TerminationTransmittance <= 1.0))
   {
     return Problem(MarchInput::Step, "the termination transmittance must be in [0, 1]");

@@ -117,8 +117,9 @@ struct MarchUniforms
   float ExtinctionUnit = 1.0f;
   float Step = 1.0f; // local units between samples along a view ray
   float TerminationTransmittance = 1.0f / 255.0f;
-  // The samples along the longest ray through the volume plus a margin: the CPU's loop bound.
-  // The GPU's adds one iteration per leap over empty bricks.
+  // The samples along the longest ray through the volume, and those plus a margin: the CPU's
+  // loop bound. The GPU's adds one iteration per leap over empty bricks.
+  int LongestRaySamples = 1;
   int MaximumSamples = 1;
 
   // The lighting model and its parameters, with DerivativeDistance and LightStep resolved (0

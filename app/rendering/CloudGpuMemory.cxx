@@ -56,13 +56,14 @@ std::string GpuMemoryBudget::Allocate(const std::string& what,
   long long released,
   const std::function<bool()>& create)
 {
-  if (this->Limit > 0 && this->Held - released + bytes > this->Limit)
+  const long long others = this->Held - released; // what the mapper keeps besides
+  if (this->Limit > 0 && others + bytes > this->Limit)
   {
-    return what + " needs " + FormatBytes(double(bytes)) + ", which with the " +
-      FormatBytes(double(this->Held - released)) +
-      " the mapper holds already exceeds its GPU "
-      "memory limit of " +
-      FormatBytes(double(this->Limit)) + " (MaximumGPUMemory)";
+    return what + " needs " + FormatBytes(double(bytes)) +
+      (others > 0 ? "; with the " + FormatBytes(double(others)) + " the mapper holds, that is"
+                  : ",") +
+      " more than its GPU memory limit of " + FormatBytes(double(this->Limit)) +
+      " (MaximumGPUMemory)";
   }
   const long long free = FreeGpuMemory(this->Window);
   if (free >= 0 && bytes - released > free)

@@ -352,7 +352,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   const glm::dmat4 worldToDevice = glm::transpose(ToGlm(wcdc));
   const glm::dmat4 modelToWorld = ToGlm(volume->GetMatrix());
 
-  view.MostSamplesPerRay = std::max(1.0, double(uniforms.MaximumSamples - 16));
+  view.MostSamplesPerRay = std::max(1.0, double(uniforms.LongestRaySamples));
   // One iteration per sample, and at most about three leaps per brick crossed.
   const int* bricks = in.Occupancy.GetBrickCount();
   const int iterations = uniforms.MaximumSamples + 3 * (bricks[0] + bricks[1] + bricks[2]);
