@@ -1,6 +1,7 @@
 // Routing by viewport. The chart half is VTK's own vtkContextInteractorStyle, which turns the
 // interactor's events into vtkContextMouseEvents for the scene; a subclass takes the interactor
-// without adding observers to it, so it only ever sees the events this style forwards. The
+// without adding observers to it, so it only ever sees the events this style forwards, and asks
+// for a frame through the interactor when the scene changed instead of through a timer. The
 // scene reads event positions in window pixels, which equal its own coordinates because the
 // editor's viewport starts at the window's bottom-left corner.
 #include "vtkCloudViewerInteractorStyle.h"
@@ -23,6 +24,16 @@ public:
   void SetInteractor(vtkRenderWindowInteractor* interactor) override
   {
     this->Interactor = interactor;
+  }
+  // VTK's version renders on a 40 ms one-shot timer, which the viewer's loop does not run: ask
+  // for a frame once the event is handled instead.
+  void OnSceneModified() override
+  {
+    if (this->Scene && this->Scene->GetDirty() && this->ProcessingEvents == 0 && this->Interactor &&
+      this->Interactor->GetInitialized())
+    {
+      this->Interactor->Render();
+    }
   }
 
 protected:
@@ -60,7 +71,6 @@ void vtkCloudViewerInteractorStyle::SetEditor(vtkRenderer* renderer, vtkContextS
 void vtkCloudViewerInteractorStyle::SetInteractor(vtkRenderWindowInteractor* interactor)
 {
   this->Superclass::SetInteractor(interactor);
-  // The chart style renders through the interactor when its scene changes.
   this->Chart->SetInteractor(interactor);
 }
 
@@ -74,62 +84,100 @@ bool vtkCloudViewerInteractorStyle::IsOverEditor() const
   return this->EditorRenderer->IsInViewport(position[0], position[1]) != 0;
 }
 
-bool vtkCloudViewerInteractorStyle::PressGoesToChart()
+bool vtkCloudViewerInteractorStyle::IsDragging() const
 {
-  if (this->Owner == Grab::None)
-  {
-    this->Owner = this->IsOverEditor() ? Grab::Chart : Grab::Camera;
-    if (this->Owner == Grab::Chart && this->ChartDragHandler)
-    {
-      this->ChartDragHandler(true);
-    }
-  }
-  return this->Owner == Grab::Chart;
+  return this->Owner != Grab::None || this->State != VTKIS_NONE;
 }
 
-bool vtkCloudViewerInteractorStyle::ReleaseGoesToChart()
+vtkCloudViewerInteractorStyle::Grab vtkCloudViewerInteractorStyle::Press(int button)
 {
-  const bool chart = this->Owner == Grab::Chart;
+  if (this->Owner != Grab::None)
+  {
+    return Grab::None; // a second button during a drag: the drag's owner keeps the events
+  }
+  const int* position = this->Interactor->GetEventPosition();
+  if (this->IsOverEditor())
+  {
+    this->Owner = Grab::Chart;
+  }
+  else if (this->SliceViewMouse &&
+    this->SliceViewMouse(MouseAction::Press, button, position[0], position[1]))
+  {
+    this->Owner = Grab::SliceView;
+  }
+  else
+  {
+    this->Owner = Grab::Camera;
+  }
+  if (this->Owner != Grab::Camera && this->DragHandler)
+  {
+    this->DragHandler(true);
+  }
+  return this->Owner;
+}
+
+vtkCloudViewerInteractorStyle::Grab vtkCloudViewerInteractorStyle::Release(int button)
+{
+  const Grab owner = this->Owner;
   this->Owner = Grab::None;
-  return chart;
+  if (owner == Grab::SliceView)
+  {
+    const int* position = this->Interactor->GetEventPosition();
+    this->SliceViewMouse(MouseAction::Release, button, position[0], position[1]);
+  }
+  if ((owner == Grab::Chart || owner == Grab::SliceView) && this->DragHandler)
+  {
+    // After the chart has seen the release (the caller forwards it first for the chart).
+    this->DragHandler(false);
+  }
+  return owner;
 }
 
 void vtkCloudViewerInteractorStyle::OnMouseMove()
 {
-  const bool chart = this->Owner == Grab::Chart || (this->Owner == Grab::None && this->IsOverEditor());
-  if (chart)
+  const int* position = this->Interactor->GetEventPosition();
+  switch (this->Owner)
   {
-    this->Chart->OnMouseMove();
-  }
-  else
-  {
-    this->Superclass::OnMouseMove();
+    case Grab::Chart:
+      this->Chart->OnMouseMove();
+      break;
+    case Grab::SliceView:
+      this->SliceViewMouse(MouseAction::Move, 0, position[0], position[1]);
+      break;
+    case Grab::Camera:
+      this->Superclass::OnMouseMove();
+      break;
+    case Grab::None:
+      if (this->IsOverEditor())
+      {
+        this->Chart->OnMouseMove(); // hover highlights
+      }
+      break;
   }
 }
 
 void vtkCloudViewerInteractorStyle::OnLeftButtonDown()
 {
-  if (this->PressGoesToChart())
+  switch (this->Press(1))
   {
-    this->Chart->OnLeftButtonDown();
-  }
-  else
-  {
-    this->Superclass::OnLeftButtonDown();
+    case Grab::Chart:
+      this->Chart->OnLeftButtonDown();
+      break;
+    case Grab::Camera:
+      this->Superclass::OnLeftButtonDown();
+      break;
+    default:
+      break;
   }
 }
 
 void vtkCloudViewerInteractorStyle::OnLeftButtonUp()
 {
-  if (this->ReleaseGoesToChart())
+  if (this->Owner == Grab::Chart)
   {
     this->Chart->OnLeftButtonUp();
-    if (this->ChartDragHandler)
-    {
-      this->ChartDragHandler(false);
-    }
   }
-  else
+  if (this->Release(1) == Grab::Camera)
   {
     this->Superclass::OnLeftButtonUp();
   }
@@ -137,27 +185,26 @@ void vtkCloudViewerInteractorStyle::OnLeftButtonUp()
 
 void vtkCloudViewerInteractorStyle::OnMiddleButtonDown()
 {
-  if (this->PressGoesToChart())
+  switch (this->Press(2))
   {
-    this->Chart->OnMiddleButtonDown();
-  }
-  else
-  {
-    this->Superclass::OnMiddleButtonDown();
+    case Grab::Chart:
+      this->Chart->OnMiddleButtonDown();
+      break;
+    case Grab::Camera:
+      this->Superclass::OnMiddleButtonDown();
+      break;
+    default:
+      break;
   }
 }
 
 void vtkCloudViewerInteractorStyle::OnMiddleButtonUp()
 {
-  if (this->ReleaseGoesToChart())
+  if (this->Owner == Grab::Chart)
   {
     this->Chart->OnMiddleButtonUp();
-    if (this->ChartDragHandler)
-    {
-      this->ChartDragHandler(false);
-    }
   }
-  else
+  if (this->Release(2) == Grab::Camera)
   {
     this->Superclass::OnMiddleButtonUp();
   }
@@ -165,68 +212,75 @@ void vtkCloudViewerInteractorStyle::OnMiddleButtonUp()
 
 void vtkCloudViewerInteractorStyle::OnRightButtonDown()
 {
-  if (this->PressGoesToChart())
+  switch (this->Press(3))
   {
-    this->Chart->OnRightButtonDown();
-  }
-  else
-  {
-    this->Superclass::OnRightButtonDown();
+    case Grab::Chart:
+      this->Chart->OnRightButtonDown();
+      break;
+    case Grab::Camera:
+      this->Superclass::OnRightButtonDown();
+      break;
+    default:
+      break;
   }
 }
 
 void vtkCloudViewerInteractorStyle::OnRightButtonUp()
 {
-  if (this->ReleaseGoesToChart())
+  if (this->Owner == Grab::Chart)
   {
     this->Chart->OnRightButtonUp();
-    if (this->ChartDragHandler)
-    {
-      this->ChartDragHandler(false);
-    }
   }
-  else
+  if (this->Release(3) == Grab::Camera)
   {
     this->Superclass::OnRightButtonUp();
   }
 }
 
-// The wheel dollies the camera in the 3D view; over the editor it does nothing (the charts'
-// zoom is off: their axes always show the transfer function's range).
+// The wheel dollies the camera in the 3D view and steps the slice in a slice view; over the
+// editor it does nothing (the charts' zoom is off: their axes always show the transfer
+// function's range).
 void vtkCloudViewerInteractorStyle::OnMouseWheelForward()
 {
-  if (!this->IsOverEditor())
+  const int* position = this->Interactor->GetEventPosition();
+  if (this->Owner != Grab::None || this->IsOverEditor() ||
+    (this->SliceViewMouse &&
+      this->SliceViewMouse(MouseAction::WheelForward, 0, position[0], position[1])))
   {
-    this->Superclass::OnMouseWheelForward();
+    return;
   }
+  this->Superclass::OnMouseWheelForward();
 }
 
 void vtkCloudViewerInteractorStyle::OnMouseWheelBackward()
 {
-  if (!this->IsOverEditor())
+  const int* position = this->Interactor->GetEventPosition();
+  if (this->Owner != Grab::None || this->IsOverEditor() ||
+    (this->SliceViewMouse &&
+      this->SliceViewMouse(MouseAction::WheelBackward, 0, position[0], position[1])))
   {
-    this->Superclass::OnMouseWheelBackward();
+    return;
   }
+  this->Superclass::OnMouseWheelBackward();
 }
 
 void vtkCloudViewerInteractorStyle::OnKeyPress()
 {
-  if (!this->Interactor)
+  if (!this->Interactor || !this->KeyHandler)
   {
     return;
   }
-  if (this->IsOverEditor())
-  {
-      this->Chart->OnKeyPress();
-  }
   const char* keySym = this->Interactor->GetKeySym();
-  if (this->KeyHandler)
-  {
-    this->KeyHandler(keySym ? keySym : "", this->Interactor->GetKeyCode());
-  }
+  this->KeyHandler(
+    keySym ? keySym : "", this->Interactor->GetKeyCode(), this->Interactor->GetControlKey() != 0);
 }
 
 void vtkCloudViewerInteractorStyle::OnChar()
 {
   // Every key is handled on its key press (OnKeyPress); VTK's default bindings stay off.
+}
+
+void vtkCloudViewerInteractorStyle::OnTimer()
+{
+  // The camera moves with mouse motion only (see the class comment).
 }
