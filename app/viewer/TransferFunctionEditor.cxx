@@ -19,6 +19,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkObjectFactory.h>
 #include <vtkPen.h>
 #include <vtkPiecewiseControlPointsItem.h>
 #include <vtkPiecewiseFunction.h>
@@ -52,6 +53,44 @@ constexpr double LeftMargin = 44.0;
 constexpr double RightMargin = 14.0;
 constexpr double MinimumStrip = 14.0;
 constexpr double MaximumStrip = 30.0;
+
+// Opacity points whose end points move in both directions. VTK's items move an end point along
+// one axis only (x when EndPointsXMovable, the default, else y), so the opacity at the ends of
+// the range could not be dragged up or down.
+class vtkCloudOpacityPointsItem : public vtkPiecewiseControlPointsItem
+{
+public:
+  static vtkCloudOpacityPointsItem* New();
+  vtkTypeMacro(vtkCloudOpacityPointsItem, vtkPiecewiseControlPointsItem);
+
+  bool MouseMoveEvent(const vtkContextMouseEvent& mouse) override
+  {
+    const vtkIdType current = this->GetCurrentPoint();
+    const bool endPoint = current == 0 || current == this->GetNumberOfPoints() - 1;
+    if (mouse.GetButton() != vtkContextMouseEvent::LEFT_BUTTON || current < 0 || !endPoint ||
+      this->GetStrokeMode())
+    {
+      return this->Superclass::MouseMoveEvent(mouse);
+    }
+    // By the motion, not to the pointer: a vertical drag keeps the density exactly where it was.
+    vtkVector2f now, last;
+    this->TransformScreenToData(mouse.GetPos(), now);
+    this->TransformScreenToData(mouse.GetLastPos(), last);
+    double point[4];
+    this->GetControlPoint(current, point);
+    this->StartInteractionIfNotStarted();
+    // Within the valid bounds and the neighbours.
+    this->SetCurrentPointPos(
+      vtkVector2f(float(point[0] + (now[0] - last[0])), float(point[1] + (now[1] - last[1]))));
+    this->Interaction();
+    return true;
+  }
+
+protected:
+  vtkCloudOpacityPointsItem() = default;
+  ~vtkCloudOpacityPointsItem() override = default;
+};
+vtkStandardNewMacro(vtkCloudOpacityPointsItem);
 
 void DisableChartActions(vtkChartXY* chart)
 {
@@ -158,6 +197,7 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   vtkRenderer* renderer)
   : Property(property)
   , Renderer(renderer)
+  , OpacityPoints(vtkSmartPointer<vtkCloudOpacityPointsItem>::New())
 {
   vtkDataArray* scalars = field->GetPointData()->GetScalars();
   if (scalars && scalars->GetNumberOfTuples() > 0)
@@ -433,6 +473,11 @@ void TransferFunctionEditor::EndDrag()
   this->Scene->SetDirty(true);
   this->Record(this->DragStart);
   this->UpdateInfo();
+}
+
+bool TransferFunctionEditor::GetTooltipsVisible() const
+{
+  return this->OpacityPoints->GetShowLabels() || this->ColorPoints->GetShowLabels();
 }
 
 bool TransferFunctionEditor::Undo()

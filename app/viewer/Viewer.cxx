@@ -479,9 +479,10 @@ struct Viewer::Internals
   // A key while typing a point's values: characters of numbers, BackSpace, Enter, Esc.
   void TypeKey(const std::string& keySym, char keyCode)
   {
-    const std::string prompt =
-      std::string(TransferFunctionEditor::FunctionName(this->Editing->GetSelectedFunction())) +
-      " point " + std::to_string(this->Editing->GetSelectedPoint()) + ": ";
+    using Function = TransferFunctionEditor::Function;
+    const Function function = this->Editing->GetSelectedFunction();
+    const std::string what = std::string(TransferFunctionEditor::FunctionName(function)) +
+      " point " + std::to_string(this->Editing->GetSelectedPoint());
     if (keySym == "Escape")
     {
       this->Typing = false;
@@ -499,7 +500,7 @@ struct Viewer::Internals
       }
       this->Typing = false;
       this->Editing->SetEntry("");
-      this->Show(prompt + this->Editing->GetSelectedPointValues(), false);
+      this->Show(what + ": " + this->Editing->GetSelectedPointValues() + " (Ctrl+z undoes)", false);
       return;
     }
     if (keySym == "BackSpace")
@@ -513,7 +514,9 @@ struct Viewer::Internals
     {
       this->Typed += keyCode;
     }
-    this->Editing->SetEntry(prompt + this->Typed + "_   (Enter applies, Esc cancels)");
+    this->Editing->SetEntry(what + " (now " + this->Editing->GetSelectedPointValues() + "), type " +
+      (function == Function::Opacity ? "density opacity" : "density r g b") + ": " + this->Typed +
+      "_   Enter applies, Esc cancels");
   }
 
   void StartTyping()
@@ -524,7 +527,7 @@ struct Viewer::Internals
       return;
     }
     this->Typing = true;
-    this->Typed = this->Editing->GetSelectedPointValues();
+    this->Typed.clear();
     this->TypeKey("", 0);
   }
 
@@ -982,6 +985,7 @@ ViewerState Viewer::State() const
   state.SelectedFunction = TransferFunctionEditor::FunctionName(in.Editing->GetSelectedFunction());
   state.SelectedPoint = in.Editing->GetSelectedPoint();
   state.EditorInfo = in.Editing->GetInfoText();
+  state.EditorTooltips = in.Editing->GetTooltipsVisible();
   state.Typing = in.Typing;
   state.UndoDepth = in.Editing->GetUndoDepth();
   state.RedoDepth = in.Editing->GetRedoDepth();

@@ -84,6 +84,7 @@ json ViewerStateJson(const ViewerState& state)
         { "selected_function", state.SelectedFunction },
         { "selected_point", state.SelectedPoint },
         { "info", state.EditorInfo },
+        { "tooltips_visible", state.EditorTooltips },
         { "typing", state.Typing },
         { "undo_depth", state.UndoDepth },
         { "redo_depth", state.RedoDepth } } },

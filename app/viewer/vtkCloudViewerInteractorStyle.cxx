@@ -161,6 +161,9 @@ void vtkCloudViewerInteractorStyle::OnLeftButtonDown()
   switch (this->Press(1))
   {
     case Grab::Chart:
+      // The charts route the moves of a double click's second press nowhere, so a point grabbed
+      // again within 400 ms of its release would not move: every press is a single one here.
+      this->Interactor->SetRepeatCount(0);
       this->Chart->OnLeftButtonDown();
       break;
     case Grab::Camera:

@@ -83,6 +83,7 @@ public:
   // of the point under the pointer is shown only while the drag lasts.
   void BeginDrag();
   void EndDrag();
+  bool GetTooltipsVisible() const;
 
   // Undo / redo whole edits; false when there is nothing to undo / redo.
   bool Undo();
@@ -155,7 +156,7 @@ private:
   vtkNew<vtkTable> Histogram;
   vtkNew<vtkPlotBar> HistogramBars;
   vtkNew<vtkPiecewiseFunctionItem> OpacityCurve;
-  vtkNew<vtkPiecewiseControlPointsItem> OpacityPoints;
+  vtkSmartPointer<vtkPiecewiseControlPointsItem> OpacityPoints; // end points move in x and y
   vtkNew<vtkColorTransferFunctionItem> ColorBar;
   vtkNew<vtkColorTransferControlPointsItem> ColorPoints;
   vtkNew<vtkTextActor> Info;

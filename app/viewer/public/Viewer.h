@@ -110,8 +110,9 @@ struct ViewerState
   std::array<double, 4> ColorStripPixels{ { 0.0, 0.0, 0.0, 0.0 } };
   std::string SelectedFunction; // "opacity", "color" or empty
   int SelectedPoint = -1;
-  std::string EditorInfo; // the editor's info line (selected point, typed entry)
-  bool Typing = false;    // typing a point's values
+  std::string EditorInfo;      // the editor's info line (selected point, typed entry)
+  bool EditorTooltips = false; // the value tooltip by the point under the pointer
+  bool Typing = false;         // typing a point's values
   int UndoDepth = 0;
   int RedoDepth = 0;
 };
