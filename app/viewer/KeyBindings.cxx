@@ -45,86 +45,73 @@ const std::map<char, std::string>& CharacterNames()
 const std::vector<KeyBinding>& KeyBindings()
 {
   using A = ViewerAction;
+  // clang-format off: one row per binding reads better than what the formatter makes of it.
+  // keys (a variant each), aliases, Control, action, group, description, redraws the cloud
   static const std::vector<KeyBinding> table = {
-    { { "4" },
-      false,
-      A::ToggleLayout,
-      View,
-      "four views (3D, axial, coronal, sagittal) / the 3D view alone" },
-    { { "v" }, false, A::ToggleVolume, View, "show / hide the cloud (the slices stay)" },
-    { { "r" }, false, A::ResetCamera, View, "reset the camera to the scene's" },
-    { { "h" }, false, A::Help, View, "show / hide this help" },
-    { { "q", "Escape" }, false, A::Quit, View, "quit" },
-    { { "x", "y", "z" },
-      false,
-      A::ToggleSlice,
-      Slices,
-      "show / hide the slice across x, y, z in the 3D view" },
-    { { "o" }, false, A::ToggleOblique, Slices, "show / hide the oblique slice" },
-    { { "c" },
-      false,
-      A::CycleSliceColors,
-      Slices,
-      "slice colors: blue-yellow, gray, viridis, the transfer function's colors" },
-    { { "m" }, false, A::CycleLighting, Rendering, "lighting model: none, derivative, march" },
+    { { "4" }, {}, false, A::ToggleLayout, View, "four views / the 3D view alone" },
+    { { "v" }, {}, false, A::ToggleVolume, View, "show / hide the cloud", true },
+    { { "r" }, {}, false, A::ResetCamera, View, "reset the camera", true },
+    { { "h" }, {}, false, A::Help, View, "show / hide this help" },
+    { { "q" }, { "Escape" }, false, A::Quit, View, "quit" },
+    { { "x", "y", "z" }, {}, false, A::ToggleSlice, Slices, "slice across x, y, z in 3D", true },
+    { { "o" }, {}, false, A::ToggleOblique, Slices, "oblique slice in 3D", true },
+    { { "c" }, {}, false, A::CycleSliceColors, Slices, "slice colors: next colormap", true },
+    { { "m" }, {}, false, A::CycleLighting, Rendering, "lighting: none, derivative, march", true },
     { { "Left", "Right" },
+      {},
       false,
       A::MoveLightAzimuth,
       Rendering,
-      "turn the first directional light 10 degrees in azimuth" },
+      "turn the light 10 degrees",
+      true },
     { { "Up", "Down" },
+      {},
       false,
       A::MoveLightElevation,
       Rendering,
-      "raise / lower the first directional light 10 degrees (within +-89)" },
-    { { "plus", "equal", "KP_Add" },
+      "raise / lower the light",
+      true },
+    { { "plus" },
+      { "equal", "KP_Add" },
       false,
       A::StepLarger,
       Rendering,
-      "step size times 1.25 (render.step)" },
-    { { "minus", "KP_Subtract" }, false, A::StepSmaller, Rendering, "step size times 0.8" },
+      "step size x 1.25",
+      true },
+    { { "minus" }, { "KP_Subtract" }, false, A::StepSmaller, Rendering, "step size x 0.8", true },
     { { "bracketleft" },
+      {},
       false,
       A::ResolutionDown,
       Rendering,
-      "resolution scale -0.125 (render.resolution_scale, down to 0.25)" },
-    { { "bracketright" }, false, A::ResolutionUp, Rendering, "resolution scale +0.125 (up to 1)" },
-    { { "p" },
-      false,
-      A::NextPreset,
-      Function,
-      "next preset of the preset directory (data/presets or $CLOUDVIS_PRESET_DIR)" },
-    { { "P" },
-      false,
-      A::SavePreset,
-      Function,
-      "save the transfer function as cloudvis-preset-NNN.json" },
-    { { "l" }, false, A::HistogramScale, Function, "histogram: log / linear" },
-    { { "f" },
-      false,
-      A::FitTransferFunction,
-      Function,
-      "fit: stretch the points over the field's value range" },
+      "resolution scale - 0.125",
+      true },
+    { { "bracketright" }, {}, false, A::ResolutionUp, Rendering, "resolution scale + 0.125", true },
+    { { "p" }, {}, false, A::NextPreset, Function, "next preset", true },
+    { { "P" }, {}, false, A::SavePreset, Function, "save as a preset file" },
+    { { "l" }, {}, false, A::HistogramScale, Function, "histogram: log / linear" },
+    { { "f" }, {}, false, A::FitTransferFunction, Function, "fit the points to the data", true },
     { { "R" },
+      {},
       false,
       A::ResetTransferFunction,
       Function,
-      "reset the transfer function to the scene's" },
-    { { "z" }, true, A::Undo, Function, "undo the last transfer-function edit" },
-    { { "y", "Z" }, true, A::Redo, Function, "redo it" },
-    { { "Delete", "BackSpace" },
+      "back to the scene's function",
+      true },
+    { { "z" }, {}, true, A::Undo, Function, "undo an edit", true },
+    { { "y" }, { "Z" }, true, A::Redo, Function, "redo it", true },
+    { { "Delete" },
+      { "BackSpace" },
       false,
       A::DeletePoint,
       Function,
-      "remove the selected point (not an end point)" },
-    { { "Return", "KP_Enter" },
-      false,
-      A::TypePointValues,
-      Function,
-      "type the selected point's values (Enter applies, Esc cancels)" },
-    { { "s" }, false, A::Screenshot, Files, "screenshot: cloudvis-screenshot-NNN.png and .exr" },
-    { { "w" }, false, A::SaveScene, Files, "save the scene as cloudvis-view-NNN.json" },
+      "remove the selected point",
+      true },
+    { { "Return" }, { "KP_Enter" }, false, A::TypePointValues, Function, "type its values" },
+    { { "s" }, {}, false, A::Screenshot, Files, "screenshot (PNG and EXR)" },
+    { { "w" }, {}, false, A::SaveScene, Files, "save the scene (JSON)" },
   };
+  // clang-format on
   return table;
 }
 
@@ -151,6 +138,10 @@ KeyMatch FindKeyBinding(const std::string& keySym, char keyCode, bool control)
     if (found != binding.Keys.end())
     {
       return { &binding, int(found - binding.Keys.begin()) };
+    }
+    if (std::find(binding.Aliases.begin(), binding.Aliases.end(), sym) != binding.Aliases.end())
+    {
+      return { &binding, 0 };
     }
   }
   return {};
@@ -201,24 +192,39 @@ std::string KeysLabel(const KeyBinding& binding, const char* separator)
 
 std::array<std::string, 2> KeyHelpColumns()
 {
-  std::array<std::ostringstream, 2> columns;
+  // The first three groups on the left; keys padded to the column's widest.
   const auto& groups = Groups();
-  for (size_t g = 0; g < groups.size(); ++g)
+  std::array<std::string, 2> columns;
+  for (size_t column = 0; column < 2; ++column)
   {
-    std::ostringstream& out = columns[g < 2 ? 0 : 1];
-    out << (out.tellp() > 0 ? "\n" : "") << groups[g] << ":\n";
+    const size_t first = column == 0 ? 0 : 3, last = column == 0 ? 3 : groups.size();
+    size_t width = 0;
     for (const KeyBinding& binding : KeyBindings())
     {
-      if (binding.Group == groups[g])
+      for (size_t g = first; g < last; ++g)
       {
-        std::string keys = KeysLabel(binding, " ");
-        keys.resize(std::max<size_t>(keys.size(), 14), ' ');
-        out << "  " << keys << " " << binding.Description << "\n";
+        width =
+          binding.Group == groups[g] ? std::max(width, KeysLabel(binding, " ").size()) : width;
       }
     }
+    std::ostringstream out;
+    for (size_t g = first; g < last; ++g)
+    {
+      out << (g == first ? "" : "\n") << groups[g] << ":\n";
+      for (const KeyBinding& binding : KeyBindings())
+      {
+        if (binding.Group == groups[g])
+        {
+          std::string keys = KeysLabel(binding, " ");
+          keys.resize(width, ' ');
+          out << "  " << keys << "  " << binding.Description << "\n";
+        }
+      }
+    }
+    columns[column] = out.str();
   }
-  columns[0] << "\nmouse: see docs/viewer.md; q or Esc quits";
-  return { { columns[0].str(), columns[1].str() } };
+  columns[1] += "\nmouse: docs/viewer.md lists it";
+  return columns;
 }
 
 std::string ViewerKeysMarkdown()
@@ -232,9 +238,12 @@ std::string ViewerKeysMarkdown()
       if (binding.Group == group)
       {
         std::string keys;
-        for (const std::string& key : binding.Keys)
+        for (const auto* list : { &binding.Keys, &binding.Aliases })
         {
-          keys += (keys.empty() ? "" : ", ") + ("`" + KeyLabel(key, binding.Control) + "`");
+          for (const std::string& key : *list)
+          {
+            keys += (keys.empty() ? "" : ", ") + ("`" + KeyLabel(key, binding.Control) + "`");
+          }
         }
         std::string description = binding.Description;
         // A '|' would end the table cell.

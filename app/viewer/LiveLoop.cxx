@@ -26,10 +26,6 @@ LiveLoop::LiveLoop(vtkRenderWindowInteractor* interactor, Hooks hooks)
 void LiveLoop::Request()
 {
   this->Requested = true;
-  if (!this->Running)
-  {
-    this->Flush();
-  }
 }
 
 void LiveLoop::Flush()

@@ -70,6 +70,7 @@ SliceColors::SliceColors(const std::array<double, 2>& range,
   this->ColorBar->SetLabelFormat("%.3g");
   this->ColorBar->SetBarRatio(0.3);
   this->ColorBar->UnconstrainedFontSizeOn();
+  this->ColorBar->SetVerticalTitleSeparation(6); // the title clear of the top label
   for (vtkTextProperty* text :
     { this->ColorBar->GetTitleTextProperty(), this->ColorBar->GetLabelTextProperty() })
   {

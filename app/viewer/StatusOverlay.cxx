@@ -24,7 +24,8 @@ namespace
 constexpr int MessageFontSize = 14;
 constexpr int MaximumMessageLines = 3;
 constexpr int FadeSteps = 5;
-const char* const HintText = "h: keys   4: four views   x y z: slices   v: cloud";
+const char* const HintText = "h: keys   4: four views";
+constexpr int HelpFontSize = 11;
 
 void StyleBoxedText(vtkTextActor* actor, int fontSize, double opacity)
 {
@@ -35,16 +36,22 @@ void StyleBoxedText(vtkTextActor* actor, int fontSize, double opacity)
   actor->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
 }
 
-int TextWidth(vtkTextProperty* property, const std::string& text, int dpi)
+// The size of `text` drawn with `property`, in pixels: width, height.
+std::array<int, 2> TextSize(vtkTextProperty* property, const std::string& text, int dpi)
 {
   int box[4] = { 0, 0, 0, 0 };
   vtkTextRenderer* renderer = vtkTextRenderer::GetInstance();
   if (!renderer || text.empty() ||
     !renderer->GetBoundingBox(property, vtkStdString(text), box, dpi))
   {
-    return 0;
+    return { { 0, 0 } };
   }
-  return box[1] - box[0];
+  return { { box[1] - box[0], box[3] - box[2] } };
+}
+
+int TextWidth(vtkTextProperty* property, const std::string& text, int dpi)
+{
+  return TextSize(property, text, dpi)[0];
 }
 
 // Greedy word wrap to `width` pixels, at most MaximumMessageLines lines; a word wider than a
@@ -117,7 +124,6 @@ StatusOverlay::StatusOverlay(vtkRenderer* overlay)
     help->GetTextProperty()->SetColor(1.0, 1.0, 0.85);
     help->GetTextProperty()->SetVerticalJustificationToTop();
     help->SetInput(columns[c].c_str());
-    help->SetPosition(c == 0 ? 0.01 : 0.5, 0.9);
     help->VisibilityOff();
     overlay->AddActor2D(help);
   }
@@ -259,18 +265,40 @@ void StatusOverlay::Place(const std::array<double, 4>& view, const std::array<do
 
 void StatusOverlay::LayOut()
 {
-  if (this->MessageText.empty() || !this->Renderer->GetRenderWindow())
+  if (!this->Renderer->GetRenderWindow())
   {
-    this->Message->SetInput(this->MessageText.c_str());
     return;
   }
   int size[2];
   this->Renderer->GetTiledSize(&size[0], &size[1]);
-  const int width = int((this->View[2] - this->View[0]) * size[0]);
   const int dpi = this->Renderer->GetRenderWindow()->GetDPI();
-  const std::string wrapped =
-    Wrap(this->Message->GetTextProperty(), this->MessageText, std::max(40, width - 24), dpi);
+  const int width = int((this->View[2] - this->View[0]) * size[0]);
+  const std::string wrapped = this->MessageText.empty()
+    ? ""
+    : Wrap(this->Message->GetTextProperty(), this->MessageText, std::max(40, width - 24), dpi);
   this->Message->SetInput(wrapped.c_str());
+
+  // The help's two columns side by side over the whole overlay, in the largest font (at most
+  // HelpFontSize) at which they fit under the message line.
+  const int margin = 8, gap = 16, top = 28;
+  std::array<std::array<int, 2>, 2> columns{};
+  int fontSize = HelpFontSize;
+  for (; fontSize > 6; --fontSize)
+  {
+    for (size_t c = 0; c < 2; ++c)
+    {
+      this->Help[c]->GetTextProperty()->SetFontSize(fontSize);
+      columns[c] = TextSize(this->Help[c]->GetTextProperty(), this->Help[c]->GetInput(), dpi);
+    }
+    if (columns[0][0] + columns[1][0] + gap + 2 * margin <= size[0] &&
+      std::max(columns[0][1], columns[1][1]) + top + margin <= size[1])
+    {
+      break;
+    }
+  }
+  const double y = 1.0 - double(top) / std::max(1, size[1]);
+  this->Help[0]->SetPosition(double(margin) / std::max(1, size[0]), y);
+  this->Help[1]->SetPosition(double(margin + columns[0][0] + gap) / std::max(1, size[0]), y);
 }
 
 } // namespace cloudvis

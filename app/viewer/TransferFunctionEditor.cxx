@@ -316,7 +316,6 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   info->SetColor(0.1, 0.1, 0.15);
   info->SetBackgroundColor(1.0, 1.0, 1.0);
   info->SetBackgroundOpacity(0.8);
-  info->SetJustificationToRight();
   info->SetVerticalJustificationToTop();
   this->Info->VisibilityOff();
 
@@ -708,7 +707,8 @@ void TransferFunctionEditor::LayOut()
     float(this->OpacityRect[3])));
   this->ColorChart->GetAxis(vtkAxis::BOTTOM)->SetTitle(titles ? "density" : "");
   this->OpacityChart->GetAxis(vtkAxis::LEFT)->SetTitle(titles ? "opacity" : "");
-  this->Info->SetPosition(w - RightMargin - 2.0, h - top - 2.0);
+  // Top left, where the opacity curve of a cloud is low and rarely has points.
+  this->Info->SetPosition(LeftMargin + 4.0, h - top - 2.0);
 }
 
 std::vector<std::array<double, 2>> TransferFunctionEditor::GetPointPixels(Function function) const

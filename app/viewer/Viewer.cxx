@@ -140,6 +140,8 @@ struct Viewer::Internals
   bool Typing = false; // the keys type a point's values
   std::string Typed;
   int PresetIndex = -1;
+  bool PreviewNext = false;         // the next frame answers a key that changed the cloud
+  bool LastFrameWasPreview = false; // the image is not at full resolution yet
   // Where refinement stood when it last asked for a frame: the frames rendered then and the
   // frames the mapper had accumulated.
   std::pair<long, int> RefinementCheck{ std::numeric_limits<long>::max(), 0 };
@@ -150,10 +152,25 @@ struct Viewer::Internals
   long FramesRendered = 0;
   double LastFrameAt = -1.0;
 
+  // Renders the window. A preview (asked for by a key that changes the cloud, in the live loop)
+  // renders at the interactor's DesiredUpdateRate, so the mapper marches at a resolution that
+  // keeps up with it, and leaves the full-resolution image to the refinement that follows.
   void RenderFrame()
   {
     const double start = MonotonicSeconds();
+    const bool preview = this->PreviewNext && !this->Style->IsDragging() &&
+      this->Window->GetDesiredUpdateRate() <= this->Interactor->GetStillUpdateRate();
+    this->PreviewNext = false;
+    if (preview)
+    {
+      this->Window->SetDesiredUpdateRate(this->Interactor->GetDesiredUpdateRate());
+    }
     this->Window->Render();
+    if (preview)
+    {
+      this->Window->SetDesiredUpdateRate(this->Interactor->GetStillUpdateRate());
+    }
+    this->LastFrameWasPreview = preview;
     ++this->FramesRendered;
     this->LastFrameAt = MonotonicSeconds();
     for (HandledKey& key : this->Keys)
@@ -179,7 +196,8 @@ struct Viewer::Internals
   bool Converged() const
   {
     return !this->Volume->GetVisibility() || !this->Mapper->GetLastError().empty() ||
-      this->Mapper->GetNumberOfAccumulatedFrames(this->View) >= this->FramesToConverge();
+      (!this->LastFrameWasPreview &&
+        this->Mapper->GetNumberOfAccumulatedFrames(this->View) >= this->FramesToConverge());
   }
 
   // Another frame would improve the image: it has not converged, nothing is being dragged, and
@@ -193,7 +211,7 @@ struct Viewer::Internals
       return false;
     }
     const int accumulated = this->Mapper->GetNumberOfAccumulatedFrames(this->View);
-    if (this->FramesRendered > this->RefinementCheck.first &&
+    if (!this->LastFrameWasPreview && this->FramesRendered > this->RefinementCheck.first &&
       accumulated <= this->RefinementCheck.second)
     {
       return false;
@@ -285,12 +303,15 @@ struct Viewer::Internals
     };
     const double ow = overlayView[2] - overlayView[0], oh = overlayView[3] - overlayView[1];
     vtkScalarBarActor* bar = this->Colors->GetColorBar();
-    bar->SetPosition(overlayView[0] + ow * 0.86, overlayView[1] + oh * 0.2);
-    bar->SetPosition2(ow * 0.12, oh * 0.55);
+    bar->SetPosition(overlayView[0] + ow * 0.84, overlayView[1] + oh * 0.2);
+    bar->SetPosition2(ow * 0.1, oh * 0.55);
     bar->SetVisibility(this->ColorBarWanted());
+    // The readout above the orientation marker, or under the slice views.
+    const double overlayHeight = std::max(1.0, (top - bottom) * size[1]);
     this->Status->Place(overlayView,
       this->FourViews ? std::array<double, 2>{ { 0.01, 0.01 } }
-                      : std::array<double, 2>{ { overlayView[0] + (side + 8.0) / size[0], 0.01 } });
+                      : std::array<double, 2>{ { overlayView[0] + 0.01,
+                          overlayView[1] + (side + 6.0) / overlayHeight } });
     this->Views2D->Update();
     this->Status->LayOut();
   }
@@ -754,6 +775,33 @@ Viewer::Viewer(const Scene& scene,
   requested->SetCallback(
     [](vtkObject*, unsigned long, void* data, void*) { static_cast<Internals*>(data)->Request(); });
   interactor->AddObserver(vtkCommand::RenderEvent, requested);
+  // Outside the loop (playback), an input event renders once it has been handled by everyone:
+  // this observer comes after the style's and the widgets'.
+  vtkNew<vtkCallbackCommand> handled;
+  handled->SetClientData(&in);
+  handled->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto& viewer = *static_cast<Internals*>(data);
+      if (!viewer.Loop->IsRunning())
+      {
+        viewer.Loop->Flush();
+      }
+    });
+  for (unsigned long event : { vtkCommand::MouseMoveEvent,
+         vtkCommand::LeftButtonPressEvent,
+         vtkCommand::LeftButtonReleaseEvent,
+         vtkCommand::MiddleButtonPressEvent,
+         vtkCommand::MiddleButtonReleaseEvent,
+         vtkCommand::RightButtonPressEvent,
+         vtkCommand::RightButtonReleaseEvent,
+         vtkCommand::MouseWheelForwardEvent,
+         vtkCommand::MouseWheelBackwardEvent,
+         vtkCommand::KeyPressEvent,
+         vtkCommand::KeyReleaseEvent })
+  {
+    interactor->AddObserver(event, handled, -100.0);
+  }
   in.Style->SetDefaultRenderer(in.View);
   interactor->SetInteractorStyle(in.Style);
 
@@ -872,6 +920,7 @@ void Viewer::PlayString(const std::string& events)
   player->Play();
   player->Stop();
   in.Loop->Flush();
+  this->WriteStateFile();
 }
 
 void Viewer::Start()
@@ -898,6 +947,8 @@ void Viewer::PressKey(const std::string& keySym, char keyCode, bool control)
       return; // not a viewer key
     }
     in.Act(match.Binding->Action, match.Variant, *this);
+    // A preview only in the live loop: replayed sessions and tests see full-resolution frames.
+    in.PreviewNext = in.PreviewNext || (match.Binding->RedrawsCloud && in.Loop->IsRunning());
   }
   in.Keys.push_back({ sym, handled, -1.0 });
   if (in.Keys.size() > KeptKeys)
@@ -907,6 +958,10 @@ void Viewer::PressKey(const std::string& keySym, char keyCode, bool control)
   if (!in.Interactor->GetDone())
   {
     in.Request();
+    if (!in.Loop->IsRunning())
+    {
+      in.Loop->Flush();
+    }
   }
 }
 

@@ -1,8 +1,8 @@
 // Recorded sessions of `cloudvis view`, replayed headless (Xvfb) on a small window and a small
-// field: each builds the viewer, plays a recording from tests/recordings (vtkInteractorEventRecorder's
-// text format, written by hand) and checks what the session changed: the viewer's state, the
-// scene it saves, the files it writes and the images it shows. Window 480 x 400: the 3D view is
-// 480 x 300 above the editor's 480 x 100.
+// field: each builds the viewer, plays a recording from tests/recordings
+// (vtkInteractorEventRecorder's text format, written by hand) and checks what the session changed:
+// the viewer's state, the scene it saves, the files it writes and the images it shows. Window 480 x
+// 400: the 3D view is 480 x 300 above the editor's 480 x 100.
 #include "CommandLine.h"
 #include "Errors.h"
 #include "Scene.h"
@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <sys/stat.h>
 
@@ -98,8 +99,9 @@ double Rms(const Pixels& a, const Pixels& b)
 // shows its face; accumulation kept short.
 Scene SmallScene(const std::vector<std::string>& extra = {})
 {
-  std::vector<std::string> assignments = { "field.dimensions=48", "render.accumulate=4",
-    "camera.orbit={\"azimuth\":35,\"elevation\":30}" };
+  std::vector<std::string> assignments = {
+    "field.dimensions=48", "render.accumulate=4", "camera.orbit={\"azimuth\":35,\"elevation\":30}"
+  };
   assignments.insert(assignments.end(), extra.begin(), extra.end());
   return LoadScene("", assignments);
 }
@@ -109,10 +111,12 @@ struct Session
   std::ostringstream Messages;
   std::unique_ptr<Viewer> View;
 
-  explicit Session(const std::string& directory, const Scene& scene = SmallScene())
+  explicit Session(const std::string& directory,
+    const Scene& scene = SmallScene(),
+    std::array<int, 2> windowSize = { { 480, 400 } })
   {
     ViewerOptions options;
-    options.WindowSize = { { 480, 400 } };
+    options.WindowSize = windowSize;
     options.OutputDirectory = directory;
     options.Messages = &this->Messages;
     this->View = std::make_unique<Viewer>(scene, ProduceField(scene), options);
@@ -238,8 +242,8 @@ TEST(Interaction, SavedSceneRerendersToTheScreenshot)
   const nlohmann::json saved = ReadJson(scene);
   EXPECT_EQ(saved["render"]["size"], nlohmann::json({ 480, 300 }));
   std::ostringstream out, err;
-  ASSERT_EQ(RunCommandLine({ "cloudvis", "render", scene, "-o", directory + "/render.png" }, out, err),
-    0)
+  ASSERT_EQ(
+    RunCommandLine({ "cloudvis", "render", scene, "-o", directory + "/render.png" }, out, err), 0)
     << err.str();
   const double rms =
     Rms(ReadPng(directory + "/cloudvis-screenshot-001.png"), ReadPng(directory + "/render.png"));
@@ -292,7 +296,8 @@ TEST(Interaction, UnwritableScreenshotDirectoryKeepsTheSession)
   EXPECT_EQ(state.Lighting, LightingModel::Derivative);
   EXPECT_TRUE(state.SavedFiles.empty());
   const std::string messages = session.Messages.str();
-  EXPECT_NE(messages.find("cloudvis: error: " + directory + "/cloudvis-screenshot-001.png: cannot write"),
+  EXPECT_NE(
+    messages.find("cloudvis: error: " + directory + "/cloudvis-screenshot-001.png: cannot write"),
     std::string::npos)
     << messages;
   EXPECT_NE(messages.find("cloudvis-view-001.json: cannot write"), std::string::npos) << messages;
@@ -336,10 +341,20 @@ TEST(Interaction, CommandLinePlaySavesTheSceneOnExit)
   const std::string directory = FreshDirectory("command-line");
   const std::string saved = directory + "/end.json";
   std::ostringstream out, err;
-  ASSERT_EQ(RunCommandLine({ "cloudvis", "view", "--set", "field.dimensions=32", "--size",
-              "320x240", "--output-dir", directory, "--play",
-              Recordings + "/keys-lighting.log", "--save-scene-on-exit", saved },
-              out, err),
+  ASSERT_EQ(RunCommandLine({ "cloudvis",
+                             "view",
+                             "--set",
+                             "field.dimensions=32",
+                             "--size",
+                             "320x240",
+                             "--output-dir",
+                             directory,
+                             "--play",
+                             Recordings + "/keys-lighting.log",
+                             "--save-scene-on-exit",
+                             saved },
+              out,
+              err),
     0)
     << err.str();
   EXPECT_NE(out.str().find("wrote " + saved), std::string::npos);
@@ -395,13 +410,145 @@ TEST(Interaction, RecordedSessionsReplayToTheSameState)
   replay.View->PlayFile(recording);
   EXPECT_EQ(replay.View->State().Lighting, recorded.Lighting);
   const nlohmann::json replayedScene = replay.View->CurrentSceneJson();
-  const nlohmann::json defaultCamera = Session(FreshDirectory("record-none")).View->CurrentSceneJson()["camera"];
-  EXPECT_NE(recordedScene["camera"]["position"], defaultCamera["position"]) << "the drag turned the camera";
+  const nlohmann::json defaultCamera =
+    Session(FreshDirectory("record-none")).View->CurrentSceneJson()["camera"];
+  EXPECT_NE(recordedScene["camera"]["position"], defaultCamera["position"])
+    << "the drag turned the camera";
   for (int c = 0; c < 3; ++c)
   {
     EXPECT_NEAR(replayedScene["camera"]["position"][c].get<double>(),
-      recordedScene["camera"]["position"][c].get<double>(), 1e-6) << c;
+      recordedScene["camera"]["position"][c].get<double>(),
+      1e-6)
+      << c;
   }
+}
+
+} // namespace
+} // namespace cloudvis
+
+namespace cloudvis
+{
+namespace
+{
+
+// The key list of docs/viewer.md is the key table's (`cloudvis view --keys` prints it): a key
+// added, removed or described differently in one and not the other fails here.
+TEST(Interaction, KeyTableMatchesTheDocs)
+{
+  std::ifstream in(std::string(CLOUDVIS_SOURCE_DIR) + "/docs/viewer.md");
+  ASSERT_TRUE(in.good());
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string document = text.str();
+  const std::string begin = "<!-- keys: generated by `cloudvis view --keys` -->\n";
+  const std::string end = "<!-- end of keys -->";
+  const size_t from = document.find(begin);
+  const size_t to = document.find(end);
+  ASSERT_NE(from, std::string::npos) << "docs/viewer.md lost the marker " << begin;
+  ASSERT_NE(to, std::string::npos) << "docs/viewer.md lost the marker " << end;
+  EXPECT_EQ(document.substr(from + begin.size(), to - from - begin.size()), ViewerKeysMarkdown())
+    << "docs/viewer.md and the key table disagree: paste the output of `cloudvis view --keys` "
+       "between the markers";
+}
+
+// At every window size the color strip is tall enough to see and grab its points, and both
+// charts put a density at the same x.
+TEST(Interaction, EditorStripAndAxesAtEverySize)
+{
+  for (const std::array<int, 2> size : { std::array<int, 2>{ { 320, 240 } },
+         std::array<int, 2>{ { 480, 400 } },
+         std::array<int, 2>{ { 800, 800 } },
+         std::array<int, 2>{ { 1400, 1000 } } })
+  {
+    Session session(FreshDirectory("editor-size"), SmallScene(), size);
+    const ViewerState state = session.View->State();
+    const double strip = state.ColorStripPixels[3] - state.ColorStripPixels[1];
+    EXPECT_GE(strip, 14.0) << size[0] << "x" << size[1];
+    // Density 0 and 1: the first and last points of both functions.
+    EXPECT_NEAR(state.OpacityPointPixels.front()[0], state.ColorPointPixels.front()[0], 0.01)
+      << size[0] << "x" << size[1];
+    EXPECT_NEAR(state.OpacityPointPixels.back()[0], state.ColorPointPixels.back()[0], 0.01)
+      << size[0] << "x" << size[1];
+    // The color points sit inside the strip.
+    EXPECT_GT(state.ColorPointPixels.front()[1], state.ColorStripPixels[1]);
+    EXPECT_LT(state.ColorPointPixels.front()[1], state.ColorStripPixels[3]);
+  }
+}
+
+// Key 4: the 3D view and three slice views, each a quarter of the views' area; the slice views
+// show the field (not a blank viewport).
+TEST(Interaction, FourViewLayoutShowsTheSlices)
+{
+  const std::string directory = FreshDirectory("four-views");
+  Session session(directory);
+  session.View->PressKey("4", '4');
+  const ViewerState state = session.View->State();
+  EXPECT_TRUE(state.FourViews);
+  std::map<std::string, std::array<int, 4>> viewports(
+    state.Viewports.begin(), state.Viewports.end());
+  for (const char* name : { "3d", "axial", "coronal", "sagittal" })
+  {
+    ASSERT_EQ(viewports.count(name), 1u) << name;
+    EXPECT_EQ(viewports[name][2] - viewports[name][0], 240) << name;
+    EXPECT_EQ(viewports[name][3] - viewports[name][1], 150) << name;
+  }
+  EXPECT_EQ(state.ViewSize[0], 240);
+  EXPECT_TRUE(state.ColorBarVisible);
+  session.View->SaveWindowImage(directory + "/window.png");
+  const Pixels window = ReadPng(directory + "/window.png");
+  // The axial view's pixels (rows from the bottom): a slice of a cloud varies.
+  const auto& axial = viewports["axial"];
+  double sum = 0.0, squares = 0.0;
+  int count = 0;
+  for (int y = axial[1] + 20; y < axial[3] - 20; ++y)
+  {
+    for (int x = axial[0] + 20; x < axial[2] - 20; ++x)
+    {
+      const double v = window.Values[size_t(3 * (y * window.Width + x) + 1)];
+      sum += v;
+      squares += v * v;
+      ++count;
+    }
+  }
+  const double mean = sum / count;
+  EXPECT_GT(std::sqrt(squares / count - mean * mean), 10.0) << "the axial view looks blank";
+  session.View->PressKey("4", '4');
+  EXPECT_FALSE(session.View->State().FourViews);
+  EXPECT_EQ(session.View->State().ViewSize[0], 480);
+}
+
+// A preset, then R (the scene's function), undo and redo between them.
+TEST(Interaction, ResetUndoAndRedoTheTransferFunction)
+{
+  Session session(FreshDirectory("undo"));
+  const TransferFunctionSpec scene = session.View->State().TransferFunction;
+  session.View->PressKey("p", 'p');
+  const TransferFunctionSpec preset = session.View->State().TransferFunction;
+  ASSERT_NE(preset.Color, scene.Color) << session.Messages.str();
+  session.View->PressKey("R", 'R');
+  EXPECT_EQ(session.View->State().TransferFunction.Color, scene.Color);
+  session.View->PressKey("z", 26, true);
+  EXPECT_EQ(session.View->State().TransferFunction.Color, preset.Color);
+  session.View->PressKey("z", 26, true);
+  EXPECT_EQ(session.View->State().TransferFunction.Color, scene.Color);
+  EXPECT_EQ(session.View->State().UndoDepth, 0);
+  session.View->PressKey("y", 25, true);
+  EXPECT_EQ(session.View->State().TransferFunction.Color, preset.Color);
+  EXPECT_EQ(session.View->State().RedoDepth, 1);
+}
+
+// c cycles the slice colors; in "transfer function" colors a density has its transfer
+// function's color on the slices.
+TEST(Interaction, SliceColorsCycleToTheTransferFunction)
+{
+  Session session(FreshDirectory("slice-colors"));
+  EXPECT_EQ(session.View->State().SliceColors, "blue-yellow");
+  session.View->PressKey("c", 'c');
+  session.View->PressKey("c", 'c');
+  session.View->PressKey("c", 'c');
+  EXPECT_EQ(session.View->State().SliceColors, "transfer function");
+  session.View->PressKey("c", 'c');
+  EXPECT_EQ(session.View->State().SliceColors, "blue-yellow");
 }
 
 } // namespace

@@ -115,9 +115,11 @@ double Now()
 
 LiveSession::LiveSession(const std::string& cloudvis,
   const std::vector<std::string>& arguments,
-  const std::string& work)
+  const std::string& work,
+  bool stateFile)
   : Work(work)
   , StatePath(work + "/state.json")
+  , UsesStateFile(stateFile)
 {
   if (std::system(("rm -rf '" + work + "' && mkdir -p '" + work + "'").c_str()) != 0)
   {
@@ -163,7 +165,11 @@ LiveSession::LiveSession(const std::string& cloudvis,
   }
   std::vector<std::string> command = { cloudvis, "view" };
   command.insert(command.end(), arguments.begin(), arguments.end());
-  command.insert(command.end(), { "--state-file", this->StatePath, "--output-dir", work });
+  command.insert(command.end(), { "--output-dir", work });
+  if (stateFile)
+  {
+    command.insert(command.end(), { "--state-file", this->StatePath });
+  }
   this->Viewer = Spawn(command, { "DISPLAY=" + display }, work + "/viewer.log");
 }
 
@@ -273,11 +279,63 @@ int LiveSession::WaitForExit(double timeout)
   return this->Exited ? this->ExitStatus : -1;
 }
 
+namespace
+{
+// The first window named `name` under `parent`, depth first; 0 for none.
+Window FindWindow(Display* display, Window parent, const char* name)
+{
+  char* title = nullptr;
+  if (XFetchName(display, parent, &title) && title)
+  {
+    const bool found = std::strcmp(title, name) == 0;
+    XFree(title);
+    if (found)
+    {
+      return parent;
+    }
+  }
+  Window root, up, *children = nullptr;
+  unsigned int count = 0;
+  Window found = 0;
+  if (XQueryTree(display, parent, &root, &up, &children, &count))
+  {
+    for (unsigned int i = 0; i < count && !found; ++i)
+    {
+      found = FindWindow(display, children[i], name);
+    }
+    if (children)
+    {
+      XFree(children);
+    }
+  }
+  return found;
+}
+} // namespace
+
+unsigned long LiveSession::WindowId() const
+{
+  if (this->UsesStateFile)
+  {
+    const nlohmann::json state = this->State();
+    return state.contains("window") ? state["window"]["id"].get<unsigned long>() : 0;
+  }
+  return FindWindow(this->Connection, DefaultRootWindow(this->Connection), "cloudvis view");
+}
+
+std::array<int, 2> LiveSession::WindowSize() const
+{
+  XWindowAttributes attributes;
+  if (!this->WindowId() || !XGetWindowAttributes(this->Connection, this->WindowId(), &attributes))
+  {
+    return { { 0, 0 } };
+  }
+  return { { attributes.width, attributes.height } };
+}
+
 std::array<int, 2> LiveSession::ToScreen(int x, int y) const
 {
-  const nlohmann::json state = this->State();
-  const Window window = state["window"]["id"].get<unsigned long>();
-  const int height = state["window"]["size"][1].get<int>();
+  const Window window = this->WindowId();
+  const int height = this->WindowSize()[1];
   int rootX = 0, rootY = 0;
   Window child;
   XTranslateCoordinates(
@@ -288,7 +346,7 @@ std::array<int, 2> LiveSession::ToScreen(int x, int y) const
 void LiveSession::Focus()
 {
   // Keys go to the focused window: the viewer's, wherever the pointer is.
-  const Window window = this->State()["window"]["id"].get<unsigned long>();
+  const Window window = this->WindowId();
   XSetInputFocus(this->Connection, window, RevertToPointerRoot, CurrentTime);
 }
 
@@ -383,9 +441,8 @@ void LiveSession::SendKey(const std::string& keySym, bool control)
 
 std::vector<unsigned char> LiveSession::Pixels(const std::array<int, 4>& rectangle)
 {
-  const nlohmann::json state = this->State();
-  const Window window = state["window"]["id"].get<unsigned long>();
-  const int height = state["window"]["size"][1].get<int>();
+  const Window window = this->WindowId();
+  const int height = this->WindowSize()[1];
   const int width = rectangle[2] - rectangle[0], rows = rectangle[3] - rectangle[1];
   XImage* image = XGetImage(this->Connection,
     window,

@@ -33,10 +33,13 @@ class LiveSession
 {
 public:
   // Starts Xvfb and `cloudvis view ARGUMENTS --state-file WORK/state.json` in `work` (created
-  // empty). Throws std::runtime_error when either fails to start.
+  // empty). Without `stateFile` (a cloudvis from before --state-file existed, for benchmarks)
+  // the window is found by its name and State() stays empty. Throws std::runtime_error when
+  // either fails to start.
   LiveSession(const std::string& cloudvis,
     const std::vector<std::string>& arguments,
-    const std::string& work);
+    const std::string& work,
+    bool stateFile = true);
   // Ends the viewer (SIGTERM if it still runs) and the server.
   ~LiveSession();
   LiveSession(const LiveSession&) = delete;
@@ -80,6 +83,10 @@ public:
   // The center of a viewport named in the state ("3d", "editor", "axial", ...).
   std::array<int, 2> Center(const std::string& viewport) const;
 
+  // The viewer's X window (0 until it exists) and its size.
+  unsigned long WindowId() const;
+  std::array<int, 2> WindowSize() const;
+
   const std::string& WorkDirectory() const { return this->Work; }
 
 private:
@@ -93,6 +100,7 @@ private:
   pid_t Server = -1;
   pid_t Viewer = -1;
   Display* Connection = nullptr;
+  bool UsesStateFile = true;
   bool Exited = false;
   int ExitStatus = -1;
 };

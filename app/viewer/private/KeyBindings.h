@@ -46,11 +46,15 @@ enum class ViewerAction
 
 struct KeyBinding
 {
-  std::vector<std::string> Keys; // X key symbols ("x", "plus", "Left", "Delete")
-  bool Control;                  // with the Control key held
+  std::vector<std::string> Keys;    // X key symbols ("x", "plus", "Left", "Delete"), a variant each
+  std::vector<std::string> Aliases; // other keys for the first variant (docs list them, help not)
+  bool Control;                     // with the Control key held
   ViewerAction Action;
   const char* Group;
   const char* Description;
+  // The key changes how the cloud is drawn: the first frame after it renders at interactive
+  // resolution, for a quick answer, and the full-resolution image refines from there.
+  bool RedrawsCloud = false;
 };
 
 // Every binding, in the order help and docs list them.

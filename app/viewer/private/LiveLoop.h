@@ -14,8 +14,9 @@
 // VTK's interactor timers are not run: nothing in the viewer moves by time, so a held mouse
 // button can only move the camera by the motion it reports.
 //
-// Outside Run() (replaying a recording, tests calling the viewer directly) a request renders at
-// once, as VTK's interactor would.
+// Outside Run() (replaying a recording, tests calling the viewer directly) the viewer calls
+// Flush() once an input event or a key has been handled, so a replayed event renders once, after
+// everything it changed, as in the loop.
 #ifndef cloudvis_LiveLoop_h
 #define cloudvis_LiveLoop_h
 
@@ -44,10 +45,10 @@ public:
   // Runs until the interactor's TerminateApp() (q, Esc, the window closed).
   void Run();
 
-  // Asks for a frame: in Run(), after the pending input; outside it, now.
+  // Asks for a frame: in Run(), once the pending input is handled; outside it, at Flush().
   void Request();
 
-  // Renders now if a frame was asked for since the last one (outside Run()).
+  // Renders now if a frame was asked for since the last one.
   void Flush();
 
   bool IsRunning() const { return this->Running; }
