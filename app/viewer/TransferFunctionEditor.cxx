@@ -479,28 +479,28 @@ bool TransferFunctionEditor::GetTooltipsVisible() const
   return this->OpacityPoints->GetShowLabels() || this->ColorPoints->GetShowLabels();
 }
 
-bool TransferFunctionEditor::Undo()
+// Restores the last function of `from`, keeping the present one on `to`.
+bool TransferFunctionEditor::Step(std::vector<TransferFunctionSpec>& from,
+  std::vector<TransferFunctionSpec>& to)
 {
-  if (this->UndoStack.empty())
+  if (from.empty())
   {
     return false;
   }
-  this->RedoStack.push_back(TransferFunctionOf(this->Property));
-  this->Restore(this->UndoStack.back());
-  this->UndoStack.pop_back();
+  to.push_back(TransferFunctionOf(this->Property));
+  this->Restore(from.back());
+  from.pop_back();
   return true;
+}
+
+bool TransferFunctionEditor::Undo()
+{
+  return this->Step(this->UndoStack, this->RedoStack);
 }
 
 bool TransferFunctionEditor::Redo()
 {
-  if (this->RedoStack.empty())
-  {
-    return false;
-  }
-  this->UndoStack.push_back(TransferFunctionOf(this->Property));
-  this->Restore(this->RedoStack.back());
-  this->RedoStack.pop_back();
-  return true;
+  return this->Step(this->RedoStack, this->UndoStack);
 }
 
 vtkControlPointsItem* TransferFunctionEditor::SelectedItem() const

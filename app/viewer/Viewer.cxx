@@ -1023,6 +1023,10 @@ ViewerState Viewer::State() const
   {
     for (int v = 0; v < SliceViews::Count; ++v)
     {
+      if (!in.Views2D->GetRenderer(v)->GetRenderWindow())
+      {
+        continue; // not drawn
+      }
       state.Viewports.push_back(
         { SliceViews::Name(v), in.PixelViewport(in.Views2D->GetRenderer(v)) });
     }

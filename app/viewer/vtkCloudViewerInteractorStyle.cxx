@@ -156,115 +156,128 @@ void vtkCloudViewerInteractorStyle::OnMouseMove()
   }
 }
 
-void vtkCloudViewerInteractorStyle::OnLeftButtonDown()
+void vtkCloudViewerInteractorStyle::ChartButton(int button, bool down)
 {
-  switch (this->Press(1))
+  vtkContextInteractorStyle* chart = this->Chart;
+  switch (button)
+  {
+    case 1:
+      down ? chart->OnLeftButtonDown() : chart->OnLeftButtonUp();
+      break;
+    case 2:
+      down ? chart->OnMiddleButtonDown() : chart->OnMiddleButtonUp();
+      break;
+    default:
+      down ? chart->OnRightButtonDown() : chart->OnRightButtonUp();
+      break;
+  }
+}
+
+void vtkCloudViewerInteractorStyle::CameraButton(int button, bool down)
+{
+  // The trackball's handlers, not this class's overrides.
+  switch (button)
+  {
+    case 1:
+      down ? this->Superclass::OnLeftButtonDown() : this->Superclass::OnLeftButtonUp();
+      break;
+    case 2:
+      down ? this->Superclass::OnMiddleButtonDown() : this->Superclass::OnMiddleButtonUp();
+      break;
+    default:
+      down ? this->Superclass::OnRightButtonDown() : this->Superclass::OnRightButtonUp();
+      break;
+  }
+}
+
+void vtkCloudViewerInteractorStyle::ButtonDown(int button)
+{
+  switch (this->Press(button))
   {
     case Grab::Chart:
-      // The charts route the moves of a double click's second press nowhere, so a point grabbed
-      // again within 400 ms of its release would not move: every press is a single one here.
-      this->Interactor->SetRepeatCount(0);
-      this->Chart->OnLeftButtonDown();
+      if (button == 1)
+      {
+        // The charts route the moves of a double click's second press nowhere, so a point
+        // grabbed again within 400 ms of its release would not move: every press is a single
+        // one here.
+        this->Interactor->SetRepeatCount(0);
+      }
+      this->ChartButton(button, true);
       break;
     case Grab::Camera:
-      this->Superclass::OnLeftButtonDown();
+      this->CameraButton(button, true);
       break;
     default:
       break;
   }
+}
+
+void vtkCloudViewerInteractorStyle::ButtonUp(int button)
+{
+  if (this->Owner == Grab::Chart)
+  {
+    this->ChartButton(button, false);
+  }
+  if (this->Release(button) == Grab::Camera)
+  {
+    this->CameraButton(button, false);
+  }
+}
+
+void vtkCloudViewerInteractorStyle::OnLeftButtonDown()
+{
+  this->ButtonDown(1);
 }
 
 void vtkCloudViewerInteractorStyle::OnLeftButtonUp()
 {
-  if (this->Owner == Grab::Chart)
-  {
-    this->Chart->OnLeftButtonUp();
-  }
-  if (this->Release(1) == Grab::Camera)
-  {
-    this->Superclass::OnLeftButtonUp();
-  }
+  this->ButtonUp(1);
 }
 
 void vtkCloudViewerInteractorStyle::OnMiddleButtonDown()
 {
-  switch (this->Press(2))
-  {
-    case Grab::Chart:
-      this->Chart->OnMiddleButtonDown();
-      break;
-    case Grab::Camera:
-      this->Superclass::OnMiddleButtonDown();
-      break;
-    default:
-      break;
-  }
+  this->ButtonDown(2);
 }
 
 void vtkCloudViewerInteractorStyle::OnMiddleButtonUp()
 {
-  if (this->Owner == Grab::Chart)
-  {
-    this->Chart->OnMiddleButtonUp();
-  }
-  if (this->Release(2) == Grab::Camera)
-  {
-    this->Superclass::OnMiddleButtonUp();
-  }
+  this->ButtonUp(2);
 }
 
 void vtkCloudViewerInteractorStyle::OnRightButtonDown()
 {
-  switch (this->Press(3))
-  {
-    case Grab::Chart:
-      this->Chart->OnRightButtonDown();
-      break;
-    case Grab::Camera:
-      this->Superclass::OnRightButtonDown();
-      break;
-    default:
-      break;
-  }
+  this->ButtonDown(3);
 }
 
 void vtkCloudViewerInteractorStyle::OnRightButtonUp()
 {
-  if (this->Owner == Grab::Chart)
-  {
-    this->Chart->OnRightButtonUp();
-  }
-  if (this->Release(3) == Grab::Camera)
-  {
-    this->Superclass::OnRightButtonUp();
-  }
+  this->ButtonUp(3);
 }
 
 // The wheel dollies the camera in the 3D view and steps the slice in a slice view; over the
 // editor it does nothing (the charts' zoom is off: their axes always show the transfer
 // function's range).
-void vtkCloudViewerInteractorStyle::OnMouseWheelForward()
+bool vtkCloudViewerInteractorStyle::WheelTakenElsewhere(MouseAction action)
 {
   const int* position = this->Interactor->GetEventPosition();
-  if (this->Owner != Grab::None || this->IsOverEditor() ||
-    (this->SliceViewMouse &&
-      this->SliceViewMouse(MouseAction::WheelForward, 0, position[0], position[1])))
+  return this->Owner != Grab::None || this->IsOverEditor() ||
+    (this->SliceViewMouse && this->SliceViewMouse(action, 0, position[0], position[1]));
+}
+
+void vtkCloudViewerInteractorStyle::OnMouseWheelForward()
+{
+  if (!this->WheelTakenElsewhere(MouseAction::WheelForward))
   {
-    return;
+    this->Superclass::OnMouseWheelForward();
   }
-  this->Superclass::OnMouseWheelForward();
 }
 
 void vtkCloudViewerInteractorStyle::OnMouseWheelBackward()
 {
-  const int* position = this->Interactor->GetEventPosition();
-  if (this->Owner != Grab::None || this->IsOverEditor() ||
-    (this->SliceViewMouse &&
-      this->SliceViewMouse(MouseAction::WheelBackward, 0, position[0], position[1])))
+  if (!this->WheelTakenElsewhere(MouseAction::WheelBackward))
   {
-    return;
+    this->Superclass::OnMouseWheelBackward();
   }
-  this->Superclass::OnMouseWheelBackward();
 }
 
 void vtkCloudViewerInteractorStyle::OnKeyPress()

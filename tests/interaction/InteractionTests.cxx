@@ -496,22 +496,23 @@ TEST(Interaction, FourViewLayoutShowsTheSlices)
   EXPECT_TRUE(state.ColorBarVisible);
   session.View->SaveWindowImage(directory + "/window.png");
   const Pixels window = ReadPng(directory + "/window.png");
-  // The axial view's pixels (rows from the bottom): a slice of a cloud varies.
+  // The axial view shows its own picture: its corner is its background, (0.08, 0.08, 0.1) in
+  // 8-bit levels, and its middle the slice, whose colors (blue-yellow: dark blue for empty
+  // space) are all far bluer than that background.
   const auto& axial = viewports["axial"];
-  double sum = 0.0, squares = 0.0;
-  int count = 0;
-  for (int y = axial[1] + 20; y < axial[3] - 20; ++y)
+  const auto pixel = [&](int x, int y, int c)
+  { return window.Values[size_t(3 * (y * window.Width + x) + c)]; };
+  EXPECT_NEAR(pixel(axial[0] + 3, axial[1] + 3, 0), 20.4, 1.0);
+  EXPECT_NEAR(pixel(axial[0] + 3, axial[1] + 3, 2), 25.5, 1.0);
+  int slice = 0, count = 0;
+  for (int y = axial[1] + 40; y < axial[3] - 40; ++y)
   {
-    for (int x = axial[0] + 20; x < axial[2] - 20; ++x)
+    for (int x = axial[0] + 80; x < axial[2] - 80; ++x, ++count)
     {
-      const double v = window.Values[size_t(3 * (y * window.Width + x) + 1)];
-      sum += v;
-      squares += v * v;
-      ++count;
+      slice += pixel(x, y, 2) > 45.0 ? 1 : 0;
     }
   }
-  const double mean = sum / count;
-  EXPECT_GT(std::sqrt(squares / count - mean * mean), 10.0) << "the axial view looks blank";
+  EXPECT_GT(double(slice) / count, 0.9) << "the axial view does not show its slice";
   session.View->PressKey("4", '4');
   EXPECT_FALSE(session.View->State().FourViews);
   EXPECT_EQ(session.View->State().ViewSize[0], 480);
@@ -537,16 +538,47 @@ TEST(Interaction, ResetUndoAndRedoTheTransferFunction)
   EXPECT_EQ(session.View->State().RedoDepth, 1);
 }
 
-// c cycles the slice colors; in "transfer function" colors a density has its transfer
-// function's color on the slices.
+// c cycles the slice colors: gray slices are gray; in "transfer function" colors a density has
+// its transfer function's color (the default's run from (0.55, 0.58, 0.65) at density 0 to white:
+// light, never less blue than red), where blue-yellow is dark blue for empty space.
 TEST(Interaction, SliceColorsCycleToTheTransferFunction)
 {
-  Session session(FreshDirectory("slice-colors"));
+  const std::string directory = FreshDirectory("slice-colors");
+  Session session(directory);
+  session.View->PressKey("4", '4');
+  // The share of the axial view's middle whose pixels pass `test`: 0.947 at most, because the
+  // crosshair lines cross it.
+  const auto share = [&](const std::function<bool(double, double, double)>& test)
+  {
+    session.View->SaveWindowImage(directory + "/window.png");
+    const Pixels window = ReadPng(directory + "/window.png");
+    const ViewerState state = session.View->State();
+    std::map<std::string, std::array<int, 4>> viewports(
+      state.Viewports.begin(), state.Viewports.end());
+    const auto& axial = viewports["axial"];
+    int passed = 0, count = 0;
+    for (int y = axial[1] + 40; y < axial[3] - 40; ++y)
+    {
+      for (int x = axial[0] + 80; x < axial[2] - 80; ++x, ++count)
+      {
+        const size_t at = size_t(3 * (y * window.Width + x));
+        passed += test(window.Values[at], window.Values[at + 1], window.Values[at + 2]) ? 1 : 0;
+      }
+    }
+    return double(passed) / count;
+  };
   EXPECT_EQ(session.View->State().SliceColors, "blue-yellow");
+  EXPECT_GT(share([](double r, double, double b) { return r < 60.0 && b > r + 20.0; }), 0.5);
   session.View->PressKey("c", 'c');
+  EXPECT_EQ(session.View->State().SliceColors, "gray");
+  EXPECT_GT(share([](double r, double g, double b)
+              { return std::abs(r - g) <= 1.0 && std::abs(g - b) <= 1.0; }),
+    0.9);
   session.View->PressKey("c", 'c');
   session.View->PressKey("c", 'c');
   EXPECT_EQ(session.View->State().SliceColors, "transfer function");
+  EXPECT_GT(
+    share([](double r, double g, double b) { return r >= 130.0 && g >= r && b >= g; }), 0.9);
   session.View->PressKey("c", 'c');
   EXPECT_EQ(session.View->State().SliceColors, "blue-yellow");
 }

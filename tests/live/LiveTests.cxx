@@ -105,7 +105,7 @@ TEST(Live, HeldDragTurnsTheCameraOnlyByTheDrag)
     "the camera to turn and the image to converge");
   const double width =
     before["viewports"]["3d"][2].get<double>() - before["viewports"]["3d"][0].get<double>();
-  EXPECT_NEAR(CameraTurn(before, after), 40.0 * 20.0 / width * 10.0, 0.2);
+  EXPECT_NEAR(CameraTurn(before, after), 40.0 * 20.0 / width * 10.0, 0.01);
 }
 
 // Converged and left alone, the viewer renders nothing and uses (almost) no CPU.

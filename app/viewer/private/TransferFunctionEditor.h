@@ -129,6 +129,7 @@ private:
   void UpdateInfo();
   void Record(const TransferFunctionSpec& before);
   void Restore(const TransferFunctionSpec& spec);
+  bool Step(std::vector<TransferFunctionSpec>& from, std::vector<TransferFunctionSpec>& to);
   vtkControlPointsItem* SelectedItem() const;
 
   vtkVolumeProperty* Property;

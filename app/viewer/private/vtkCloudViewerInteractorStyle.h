@@ -126,6 +126,13 @@ private:
   Grab Press(int button);
   // A button came up: returns who owned the drag, and ends it.
   Grab Release(int button);
+  // The press and release of button 1 (left), 2 (middle) or 3 (right), routed.
+  void ChartButton(int button, bool down);
+  void CameraButton(int button, bool down);
+  void ButtonDown(int button);
+  // A wheel turn that the editor (nothing) or a slice view takes from the camera.
+  bool WheelTakenElsewhere(MouseAction action);
+  void ButtonUp(int button);
 };
 
 #endif
