@@ -1,6 +1,14 @@
-// ViewerState as JSON: what `cloudvis view --state-file` writes after every frame and every batch
-// of input, for tests and tools that drive the viewer with real input (docs/viewer.md).
-#include "Viewer.h"
+// The viewer's state (Viewer::State) and as JSON: what `cloudvis view --state-file` writes after
+// every frame and every batch of input, for tests and tools that drive the viewer with real input
+// (docs/viewer.md).
+#include "ViewerInternals.h"
+
+#include "ViewerFiles.h"
+
+#include <vtkCamera.h>
+#include <vtkScalarBarActor.h>
+
+#include <cstdint>
 
 #include <cmath>
 
@@ -92,6 +100,109 @@ json ViewerStateJson(const ViewerState& state)
     { "saved_files", state.SavedFiles },
     { "messages", state.Messages },
   };
+}
+
+ViewerState Viewer::State() const
+{
+  const Internals& in = *this->Internal;
+  ViewerState state;
+  state.Lighting = in.Current.Render.Lighting;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    state.SliceVisible[size_t(axis)] = in.Slices->GetSliceVisible(axis);
+    state.SlicePosition[size_t(axis)] = in.Slices->GetSlicePosition(axis);
+    state.ProbedValue[size_t(axis)] = in.Slices->GetProbedValue(axis);
+    state.SliceIndex[size_t(axis)] = in.Slices->GetSliceIndex(axis);
+  }
+  state.ObliqueVisible = in.Slices->GetObliqueVisible();
+  state.ObliqueOrigin = in.Slices->GetObliqueOrigin();
+  state.ObliqueNormal = in.Slices->GetObliqueNormal();
+  state.ObliqueCutPoints = in.Slices->GetObliqueCutPoints();
+  state.TransferFunction = TransferFunctionOf(in.Property);
+  state.Step = in.Current.Render.Step;
+  state.ResolutionScale = in.Current.Render.ResolutionScale;
+  state.HelpVisible = in.Status->GetHelpVisible();
+  state.LogHistogram = in.Editing->GetLogHistogram();
+  state.EditorRange = in.Editing->GetRange();
+  const int light = in.FirstDirectionalLight();
+  if (light >= 0)
+  {
+    const glm::vec3& p = in.Current.Lights[size_t(light)].Position;
+    state.FirstLightPosition = { { p.x, p.y, p.z } };
+  }
+  state.Preset = in.Preset;
+  state.Messages = in.MessageLog;
+  state.SavedFiles = in.SavedFiles;
+  state.AccumulatedFrames = in.Mapper->GetNumberOfAccumulatedFrames(in.View);
+  state.ViewSize = in.ViewSize();
+
+  state.FramesRendered = in.FramesRendered;
+  state.LastFrameAt = in.LastFrameAt;
+  state.Converged = in.Converged();
+  state.Keys = in.Keys;
+  vtkCamera* camera = const_cast<vtkRenderer*>(in.View.Get())->GetActiveCamera();
+  camera->GetPosition(state.CameraPosition.data());
+  camera->GetFocalPoint(state.CameraFocalPoint.data());
+  camera->GetViewUp(state.CameraViewUp.data());
+  state.FourViews = in.FourViews;
+  state.VolumeVisible = in.Volume->GetVisibility() != 0;
+  state.HintVisible = in.Status->GetHintVisible();
+  state.ColorBarVisible = in.Colors->GetColorBar()->GetVisibility() != 0;
+  state.Message = in.Status->GetMessage();
+  state.Readout = in.Status->GetReadout();
+  state.WindowId = static_cast<unsigned long>(reinterpret_cast<uintptr_t>(
+    const_cast<vtkRenderWindow*>(in.Window.Get())->GetGenericWindowId()));
+  const int* size = const_cast<vtkRenderWindow*>(in.Window.Get())->GetSize();
+  state.WindowSize = { { size[0], size[1] } };
+  state.Viewports.push_back({ "3d", in.PixelViewport(in.View) });
+  state.Viewports.push_back({ "editor", in.PixelViewport(in.Editor) });
+  if (in.FourViews)
+  {
+    for (int v = 0; v < SliceViews::Count; ++v)
+    {
+      if (!in.Views2D->GetRenderer(v)->GetRenderWindow())
+      {
+        continue; // not drawn
+      }
+      state.Viewports.push_back(
+        { SliceViews::Name(v), in.PixelViewport(in.Views2D->GetRenderer(v)) });
+    }
+  }
+  state.SliceWindowLevel = in.Colors->GetWindowLevel();
+  state.SliceColors = in.Colors->GetColormap();
+  const SliceProbe& probe = in.Slices->GetProbe();
+  state.ProbeValid = probe.Valid;
+  state.ProbeIndex = probe.Index;
+  state.ProbeValue = probe.Value;
+  using Function = TransferFunctionEditor::Function;
+  state.OpacityPointPixels = in.Editing->GetPointPixels(Function::Opacity);
+  state.ColorPointPixels = in.Editing->GetPointPixels(Function::Color);
+  state.ColorStripPixels = in.Editing->GetColorStripPixels();
+  state.SelectedFunction = TransferFunctionEditor::FunctionName(in.Editing->GetSelectedFunction());
+  state.SelectedPoint = in.Editing->GetSelectedPoint();
+  state.EditorInfo = in.Editing->GetInfoText();
+  state.EditorTooltips = in.Editing->GetTooltipsVisible();
+  state.Typing = in.Typing;
+  state.UndoDepth = in.Editing->GetUndoDepth();
+  state.RedoDepth = in.Editing->GetRedoDepth();
+  return state;
+}
+
+void Viewer::WriteStateFile() const
+{
+  const Internals& in = *this->Internal;
+  if (in.Options.StateFile.empty())
+  {
+    return;
+  }
+  try
+  {
+    WriteTextFile(in.Options.StateFile, ViewerStateJson(this->State()).dump() + "\n", "the state");
+  }
+  catch (const std::exception& e)
+  {
+    *in.Messages << "cloudvis: error: " << e.what() << std::endl;
+  }
 }
 
 } // namespace cloudvis
