@@ -157,6 +157,7 @@ LiveSession::LiveSession(const std::string& cloudvis,
     throw std::runtime_error("Xvfb did not start: " + ReadFile(work + "/xvfb.log"));
   }
   const std::string display = ":" + number;
+  this->DisplayNameText = display;
   this->Connection = XOpenDisplay(display.c_str());
   int event, error, major, minor;
   if (!this->Connection || !XTestQueryExtension(this->Connection, &event, &error, &major, &minor))

@@ -88,6 +88,8 @@ public:
   std::array<int, 2> WindowSize() const;
 
   const std::string& WorkDirectory() const { return this->Work; }
+  // The server's display name (":N"), for other programs to run on it.
+  const std::string& DisplayName() const { return this->DisplayNameText; }
 
 private:
   std::array<int, 2> ToScreen(int x, int y) const;
@@ -97,6 +99,7 @@ private:
 
   std::string Work;
   std::string StatePath;
+  std::string DisplayNameText;
   pid_t Server = -1;
   pid_t Viewer = -1;
   Display* Connection = nullptr;

@@ -10,6 +10,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <set>
 #include <thread>
 
@@ -106,6 +108,49 @@ TEST(Live, HeldDragTurnsTheCameraOnlyByTheDrag)
   const double width =
     before["viewports"]["3d"][2].get<double>() - before["viewports"]["3d"][0].get<double>();
   EXPECT_NEAR(CameraTurn(before, after), 40.0 * 20.0 / width * 10.0, 0.01);
+}
+
+// A live session recorded with --record (a drag held still, a key) replays with --play to the
+// camera the live session ended with: time passing leaves nothing in the camera that the
+// recorded events do not hold.
+TEST(Live, RecordedLiveSessionReplaysToTheSameCamera)
+{
+  const std::string work = Work("record-live");
+  LiveSession session(Cloudvis,
+    Arguments({ "--record", work + "-session.log", "--save-scene-on-exit", work + "-live.json" }),
+    work);
+  const json before = session.WaitUntilConverged();
+  const auto center = session.Center("3d");
+  session.Move(center[0] - 20, center[1] - 10);
+  session.Press(1);
+  for (int i = 1; i <= 6; ++i)
+  {
+    session.Move(center[0] - 20 + 6 * i, center[1] - 10 + 3 * i);
+  }
+  Pause(2.0); // held still
+  session.Release(1);
+  session.Key("m");
+  session.WaitFor([&](const json& s) { return s["lighting"] == "derivative"; }, "the key");
+  session.Key("q");
+  ASSERT_EQ(session.WaitForExit(), 0) << session.Stderr();
+  const std::string command = "DISPLAY=" + session.DisplayName() + " '" + Cloudvis +
+    "' view --set field.dimensions=48 --set render.accumulate=4 --size 480x400 --play '" + work +
+    "-session.log' --save-scene-on-exit '" + work + "-replay.json' > '" + work +
+    "-replay.log' 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream liveFile(work + "-live.json"), replayFile(work + "-replay.json");
+  const json live = json::parse(liveFile), replay = json::parse(replayFile);
+  EXPECT_NE(live["camera"]["position"], before["camera"]["position"]) << "the drag turned nothing";
+  EXPECT_EQ(replay["render"]["lighting"], "derivative");
+  for (const char* key : { "position", "focal_point", "view_up" })
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(
+        replay["camera"][key][c].get<double>(), live["camera"][key][c].get<double>(), 1e-9)
+        << key << "[" << c << "]";
+    }
+  }
 }
 
 // Converged and left alone, the viewer renders nothing and uses (almost) no CPU.
