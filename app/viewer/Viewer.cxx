@@ -389,6 +389,21 @@ Viewer::Viewer(const Scene& scene,
   requested->SetCallback(
     [](vtkObject*, unsigned long, void* data, void*) { static_cast<Internals*>(data)->Request(); });
   interactor->AddObserver(vtkCommand::RenderEvent, requested);
+  // A resized window lays its views out again: the marker stays square, the slice views fit
+  // their slices, the texts wrap to the new width.
+  vtkNew<vtkCallbackCommand> resized;
+  resized->SetClientData(&in);
+  resized->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto& viewer = *static_cast<Internals*>(data);
+      if (viewer.Views2D)
+      {
+        viewer.ApplyLayout();
+        viewer.Request();
+      }
+    });
+  interactor->AddObserver(vtkCommand::ConfigureEvent, resized);
   // Outside the loop (playback), an input event renders once it has been handled by everyone:
   // this observer comes after the style's and the widgets'.
   vtkNew<vtkCallbackCommand> handled;

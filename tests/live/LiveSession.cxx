@@ -386,6 +386,12 @@ void LiveSession::Drag(int button, std::array<int, 2> from, std::array<int, 2> t
   this->Release(button);
 }
 
+void LiveSession::Resize(int width, int height)
+{
+  XResizeWindow(this->Connection, this->WindowId(), unsigned(width), unsigned(height));
+  this->Sync();
+}
+
 void LiveSession::Wheel(int x, int y, bool forward)
 {
   this->Move(x, y);

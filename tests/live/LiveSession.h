@@ -70,6 +70,8 @@ public:
   // Presses `button` at `from`, moves to `to` in `steps` equal steps, releases.
   void Drag(int button, std::array<int, 2> from, std::array<int, 2> to, int steps = 8);
   void Wheel(int x, int y, bool forward);
+  // Resizes the viewer's window, as a window manager would.
+  void Resize(int width, int height);
   // A key by its X key symbol ("m", "Left", "Delete", "P"); `control` holds Control. Upper-case
   // letters are typed with Shift.
   void Key(const std::string& keySym, bool control = false);

@@ -403,6 +403,32 @@ TEST(Live, FourViewsWheelStepsAndClickMovesTheCrosshair)
   EXPECT_EQ(clicked["probe"]["index"][2].get<int>(), z + 3);
 }
 
+// A resized window lays its views out again: the views and the editor share the new size as
+// before, and a slice view made tall and narrow still fits its whole slice (background on both
+// sides), where a camera fitted to the old shape would cut the slice at the view's edges.
+TEST(Live, ResizedWindowLaysItsViewsOutAgain)
+{
+  LiveSession session(Cloudvis, Arguments({ "--layout", "four" }), Work("resize"));
+  session.WaitUntilConverged();
+  session.Resize(480, 900);
+  const json resized = session.WaitFor(
+    [](const json& s)
+    { return s["window"]["size"] == json::array({ 480, 900 }) && s["converged"].get<bool>(); },
+    "the window to take its new size");
+  EXPECT_EQ(resized["viewports"]["3d"], json::array({ 240, 563, 480, 900 }));
+  EXPECT_EQ(resized["viewports"]["axial"], json::array({ 0, 563, 240, 900 }));
+  EXPECT_EQ(resized["viewports"]["editor"], json::array({ 0, 0, 480, 225 }));
+  const json strip = resized["editor"]["color_strip_pixels"];
+  EXPECT_NEAR(strip[2].get<double>(), 480.0 - 14.0, 0.5) << "the editor did not follow";
+  // The axial view's left and right edges at its middle height: its background.
+  const auto center = session.Center("axial");
+  for (const int x : { 2, 237 })
+  {
+    const auto pixel = session.Pixels({ { x, center[1], x + 1, center[1] + 1 } });
+    EXPECT_NEAR(pixel[2], 25.5, 2.0) << "x " << x << ": the slice reaches the view's edge";
+  }
+}
+
 // A message fades away by itself; the hint line goes once the help has been shown.
 TEST(Live, MessagesFadeAndTheHintGoesAfterTheHelp)
 {
