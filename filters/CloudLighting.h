@@ -64,9 +64,23 @@ struct LightingParameters
   float PowderStrength = 0.0f;
 };
 
+// The limits ValidateLightingParameters puts on LightingParameters, and the number of lights
+// the renderers take (the GPU's MAX_LIGHTS, shaders/CloudLightingCommon.glsl); the scene schema
+// states the same ones from here.
+struct LightingLimits
+{
+  static constexpr int MaxLights = 8;
+  static constexpr int MinLightSteps = 1;
+  static constexpr int MaxLightSteps = 64;
+  static constexpr float MinLightStepGrowth = 1.0f;
+  static constexpr float MaxLightStepGrowth = 4.0f;
+  static constexpr int MaxMultipleScatteringOctaves = 8;
+};
+
 // Empty when the parameters are usable, else the problem, in words.
 inline std::string ValidateLightingParameters(const LightingParameters& p)
 {
+  using L = LightingLimits;
   const auto finite3 = [](glm::vec3 v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
   };
@@ -74,18 +88,22 @@ inline std::string ValidateLightingParameters(const LightingParameters& p)
     return "ambient color and strength must be finite, strength >= 0";
   if (!std::isfinite(p.DerivativeDistance) || p.DerivativeDistance < 0.0f)
     return "the derivative distance must be >= 0 (0: automatic)";
-  if (p.LightSteps < 1 || p.LightSteps > 64)
-    return "light-march steps must be between 1 and 64";
+  if (p.LightSteps < L::MinLightSteps || p.LightSteps > L::MaxLightSteps)
+    return "light-march steps must be between " + std::to_string(L::MinLightSteps) + " and " +
+      std::to_string(L::MaxLightSteps);
   if (!std::isfinite(p.LightStep) || p.LightStep < 0.0f)
     return "the light-march step must be >= 0 (0: automatic)";
-  if (!std::isfinite(p.LightStepGrowth) || p.LightStepGrowth < 1.0f || p.LightStepGrowth > 4.0f)
-    return "the light-march step growth must be between 1 and 4";
+  if (!std::isfinite(p.LightStepGrowth) || p.LightStepGrowth < L::MinLightStepGrowth ||
+    p.LightStepGrowth > L::MaxLightStepGrowth)
+    return "the light-march step growth must be between " +
+      std::to_string(int(L::MinLightStepGrowth)) + " and " + std::to_string(int(L::MaxLightStepGrowth));
   if (!(std::abs(p.PhaseG1) < 1.0f) || !(std::abs(p.PhaseG2) < 1.0f))
     return "phase eccentricities g must be in (-1, 1)";
   if (!(p.PhaseLobeWeight >= 0.0f && p.PhaseLobeWeight <= 1.0f))
     return "the phase lobe weight must be in [0, 1]";
-  if (p.MultipleScatteringOctaves < 0 || p.MultipleScatteringOctaves > 8)
-    return "multiple-scattering octaves must be between 0 and 8";
+  if (p.MultipleScatteringOctaves < 0 || p.MultipleScatteringOctaves > L::MaxMultipleScatteringOctaves)
+    return "multiple-scattering octaves must be between 0 and " +
+      std::to_string(L::MaxMultipleScatteringOctaves);
   for (float f : { p.ScatteringFalloff, p.ExtinctionFalloff, p.EccentricityFalloff })
     if (!(f >= 0.0f && f <= 1.0f))
       return "multiple-scattering falloffs must be in [0, 1]";

@@ -16,8 +16,8 @@ namespace
 // still letting one unit of travel absorb all but 1e-4 of the light.
 constexpr double MaxOpacity = 1.0 - 1e-4;
 
-// Texel-space position of a density, x in [0, size - 1]: where Lookup and MaxExtinction agree
-// on which entries a density touches.
+// Texel-space position of a density, x in [0, size - 1]: where Lookup, MaxExtinction and
+// MinExtinction agree on which entries a density touches.
 double TablePosition(const TransferTable& table, double density)
 {
   const double width = table.Range[1] - table.Range[0];
@@ -27,6 +27,24 @@ double TablePosition(const TransferTable& table, double density)
   }
   const double t = std::min(std::max((density - table.Range[0]) / width, 0.0), 1.0);
   return t * (table.Size - 1);
+}
+
+// The entries first .. last that a linear lookup of any density between the two can touch.
+void EntriesTouched(
+  const TransferTable& table, double densityMin, double densityMax, int& first, int& last)
+{
+  double x0 = TablePosition(table, densityMin);
+  double x1 = TablePosition(table, densityMax);
+  if (x1 < x0)
+  {
+    std::swap(x0, x1);
+  }
+  first = std::min(static_cast<int>(x0), table.Size - 1);
+  // ceil, not floor + 1: a density exactly on an entry gives its neighbour weight 0, and a ramp
+  // that starts at density 0 must leave a field of zeros transparent. The GPU computes the
+  // position in float and quantises the weights to 8 bits, so where it lands a hair past the
+  // entry the neighbour's weight rounds to 0 as well.
+  last = std::min(static_cast<int>(std::ceil(x1)), table.Size - 1);
 }
 
 bool InUnitInterval(double v)
@@ -57,22 +75,28 @@ float TransferTable::MaxExtinction(double densityMin, double densityMax) const
   {
     return 0.0f;
   }
-  double x0 = TablePosition(*this, densityMin);
-  double x1 = TablePosition(*this, densityMax);
-  if (x1 < x0)
-  {
-    std::swap(x0, x1);
-  }
-  const int first = std::min(static_cast<int>(x0), this->Size - 1);
-  // ceil, not floor + 1: a density exactly on an entry gives its neighbour weight 0, and a ramp
-  // that starts at density 0 must leave a field of zeros transparent. The GPU computes the
-  // position in float and quantises the weights to 8 bits, so where it lands a hair past the
-  // entry the neighbour's weight rounds to 0 as well.
-  const int last = std::min(static_cast<int>(std::ceil(x1)), this->Size - 1);
+  int first, last;
+  EntriesTouched(*this, densityMin, densityMax, first, last);
   float sigma_t = 0.0f;
   for (int i = first; i <= last; ++i)
   {
     sigma_t = std::max(sigma_t, this->RGBA[std::size_t(i) * 4 + 3]);
+  }
+  return sigma_t;
+}
+
+float TransferTable::MinExtinction(double densityMin, double densityMax) const
+{
+  if (this->Size < 1 || this->RGBA.size() < std::size_t(this->Size) * 4)
+  {
+    return 0.0f;
+  }
+  int first, last;
+  EntriesTouched(*this, densityMin, densityMax, first, last);
+  float sigma_t = this->RGBA[std::size_t(first) * 4 + 3];
+  for (int i = first + 1; i <= last; ++i)
+  {
+    sigma_t = std::min(sigma_t, this->RGBA[std::size_t(i) * 4 + 3]);
   }
   return sigma_t;
 }

@@ -43,6 +43,9 @@ struct CLOUDVISFILTERS_EXPORT TransferTable
   // and all between, with x as in Lookup. So 0 means every density of the interval is fully
   // transparent. The arguments may come in either order.
   float MaxExtinction(double densityMin, double densityMax) const;
+  // The smallest sigma_t among the same entries: no linear lookup of a density in the interval
+  // is below it. 0 for an empty table.
+  float MinExtinction(double densityMin, double densityMax) const;
 
   bool operator==(const TransferTable& other) const;
   bool operator!=(const TransferTable& other) const { return !(*this == other); }

@@ -28,8 +28,7 @@ vtkStandardNewMacro(vtkCloudReferenceRenderer);
 
 namespace
 {
-// The GPU's MAX_LIGHTS (shaders/CloudLightingCommon.glsl).
-constexpr std::size_t MaxLights = 8;
+constexpr std::size_t MaxLights = cloudvis::LightingLimits::MaxLights;
 
 bool Finite3(const double v[3])
 {
@@ -58,34 +57,11 @@ glm::dvec3 WorldPoint(const glm::dmat4& deviceToWorld, glm::dvec2 ndc, double nd
   return glm::dvec3(p) / p.w;
 }
 
-// One block of image rows: each pixel's ray from the near to the far plane, marched.
-struct RenderRows
+// vtkSMPTools::For wants a functor object.
+struct RowFunctor
 {
-  const cloudvis::MarchUniforms* Uniforms;
-  glm::dmat4 DeviceToWorld;
-  int Width;
-  int Height;
-  float* RGBA;
-
-  void operator()(vtkIdType begin, vtkIdType end) const
-  {
-    for (vtkIdType j = begin; j < end; ++j)
-    {
-      for (int i = 0; i < this->Width; ++i)
-      {
-        const glm::dvec2 ndc((i + 0.5) / this->Width * 2.0 - 1.0,
-          (double(j) + 0.5) / this->Height * 2.0 - 1.0);
-        const glm::dvec3 nearWorld = WorldPoint(this->DeviceToWorld, ndc, -1.0);
-        const glm::dvec3 farWorld = WorldPoint(this->DeviceToWorld, ndc, 1.0);
-        const glm::vec4 rgba = cloudvis::MarchRay(*this->Uniforms, nearWorld, farWorld);
-        float* out = this->RGBA + (std::size_t(j) * this->Width + i) * 4;
-        out[0] = rgba.r;
-        out[1] = rgba.g;
-        out[2] = rgba.b;
-        out[3] = rgba.a;
-      }
-    }
-  }
+  const std::function<void(vtkIdType, vtkIdType)>* Rows;
+  void operator()(vtkIdType begin, vtkIdType end) const { (*this->Rows)(begin, end); }
 };
 }
 
@@ -359,29 +335,65 @@ int vtkCloudReferenceRenderer::RequestData(
   output->SetExtent(outExtent);
   output->SetOrigin(0.0, 0.0, 0.0);
   output->SetSpacing(1.0, 1.0, 1.0);
+  glm::dmat4 deviceToWorld;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      deviceToWorld[c][r] = deviceToWorldMatrix->GetElement(r, c);
+  return this->RenderImage(uniforms, deviceToWorld, input, output) ? 1 : 0;
+}
+
+bool vtkCloudReferenceRenderer::RenderImage(const cloudvis::MarchUniforms& uniforms,
+  const glm::dmat4& deviceToWorld, vtkImageData*, vtkImageData* output)
+{
+  const int width = this->ImageSize[0], height = this->ImageSize[1];
   vtkNew<vtkFloatArray> rgba;
   rgba->SetName("rgba");
   rgba->SetNumberOfComponents(4);
   rgba->SetNumberOfTuples(vtkIdType(width) * height);
   rgba->Fill(0.0);
   output->GetPointData()->SetScalars(rgba);
+  float* pixels = rgba->GetPointer(0);
+  this->RenderRowBlocks(height, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType j = begin; j < end; ++j)
+    {
+      for (int i = 0; i < width; ++i)
+      {
+        glm::dvec3 nearWorld, farWorld;
+        PixelRay(deviceToWorld, i, int(j), width, height, nearWorld, farWorld);
+        const glm::vec4 color = cloudvis::MarchRay(uniforms, nearWorld, farWorld);
+        float* out = pixels + (std::size_t(j) * width + i) * 4;
+        out[0] = color.r;
+        out[1] = color.g;
+        out[2] = color.b;
+        out[3] = color.a;
+      }
+    }
+  });
+  return true;
+}
 
-  glm::dmat4 deviceToWorld;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      deviceToWorld[c][r] = deviceToWorldMatrix->GetElement(r, c);
-  RenderRows render{ &uniforms, deviceToWorld, width, height, rgba->GetPointer(0) };
+void vtkCloudReferenceRenderer::PixelRay(const glm::dmat4& deviceToWorld, int i, int j, int width,
+  int height, glm::dvec3& nearWorld, glm::dvec3& farWorld)
+{
+  const glm::dvec2 ndc((i + 0.5) / width * 2.0 - 1.0, (double(j) + 0.5) / height * 2.0 - 1.0);
+  nearWorld = WorldPoint(deviceToWorld, ndc, -1.0);
+  farWorld = WorldPoint(deviceToWorld, ndc, 1.0);
+}
+
+void vtkCloudReferenceRenderer::RenderRowBlocks(
+  int height, const std::function<void(vtkIdType, vtkIdType)>& renderRows)
+{
   // Blocks of rows, so progress and abort are handled on this thread between them.
+  const RowFunctor functor{ &renderRows };
   const int blocks = std::min(height, 16);
   this->UpdateProgress(0.0);
   for (int b = 0; b < blocks && !this->GetAbortExecute(); ++b)
   {
     const vtkIdType firstRow = vtkIdType(b) * height / blocks;
     const vtkIdType endRow = vtkIdType(b + 1) * height / blocks;
-    vtkSMPTools::For(firstRow, endRow, render);
+    vtkSMPTools::For(firstRow, endRow, functor);
     this->UpdateProgress(double(b + 1) / blocks);
   }
-  return 1;
 }
 
 void vtkCloudReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)

@@ -23,6 +23,9 @@
  *
  * Rows are rendered under vtkSMPTools; each pixel depends only on the input and the
  * parameters, never on the threads.
+ *
+ * vtkCloudPathTracer is the same renderer with a Monte Carlo path tracer in place of the march
+ * (RenderImage): the same input checks, camera, table, lighting and lights.
  */
 #ifndef vtkCloudReferenceRenderer_h
 #define vtkCloudReferenceRenderer_h
@@ -33,9 +36,14 @@
 
 #include <vtkImageAlgorithm.h>
 
+#include <functional>
 #include <vector>
 
 class vtkMatrix4x4;
+namespace cloudvis
+{
+struct MarchUniforms;
+}
 
 class CLOUDVISFILTERS_EXPORT vtkCloudReferenceRenderer : public vtkImageAlgorithm
 {
@@ -157,6 +165,14 @@ public:
    */
   bool GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const;
 
+  /**
+   * The view ray of pixel (i, j) of an image of width x height pixels: its points on the near
+   * and far planes, for the normalized-device-to-world matrix deviceToWorld (GLM's column-major
+   * layout of GetDeviceToWorldMatrix's).
+   */
+  static void PixelRay(const glm::dmat4& deviceToWorld, int i, int j, int width, int height,
+    glm::dvec3& nearWorld, glm::dvec3& farWorld);
+
 protected:
   vtkCloudReferenceRenderer();
   ~vtkCloudReferenceRenderer() override = default;
@@ -164,6 +180,21 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /**
+   * Renders the image once RequestData has checked the parameters and the input and set the
+   * output's extent: `uniforms` describe the field, the table, the lighting and the lights,
+   * `deviceToWorld` the camera. This class marches each pixel's ray (cloudvis::MarchRay);
+   * vtkCloudPathTracer path-traces it. Returns false (after an error message) when it cannot.
+   */
+  virtual bool RenderImage(const cloudvis::MarchUniforms& uniforms,
+    const glm::dmat4& deviceToWorld, vtkImageData* input, vtkImageData* output);
+
+  /**
+   * Calls renderRows(firstRow, endRow) over the image's rows under vtkSMPTools, in blocks of
+   * rows so that progress is reported and AbortExecute honoured between blocks.
+   */
+  void RenderRowBlocks(int height, const std::function<void(vtkIdType, vtkIdType)>& renderRows);
 
   int ImageSize[2] = { 128, 128 };
   double CameraPosition[3] = { 0.0, 0.0, 1.0 };

@@ -4,11 +4,14 @@
 #include "CommandLine.h"
 
 #include "Errors.h"
+#include "Utf8.h"
 
 #include <algorithm>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <sstream>
+#include <streambuf>
 
 namespace cloudvis
 {
@@ -223,8 +226,64 @@ std::string GeneralHelp()
   return help.str();
 }
 
-int RunCommandLine(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err)
+namespace
 {
+
+// What a command prints on standard output, passed on with every byte that is not UTF-8
+// escaped (EscapeInvalidUtf8): commands print paths and scene text, which may hold any bytes.
+// Complete lines are passed on, so a multi-byte character is never split; a flush passes the
+// rest.
+class Utf8Output : public std::streambuf
+{
+public:
+  explicit Utf8Output(std::ostream& target)
+    : Target(target)
+  {
+  }
+  ~Utf8Output() override { this->sync(); }
+
+protected:
+  int_type overflow(int_type c) override
+  {
+    if (!traits_type::eq_int_type(c, traits_type::eof()))
+    {
+      const char character = traits_type::to_char_type(c);
+      this->xsputn(&character, 1);
+    }
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char* text, std::streamsize count) override
+  {
+    this->Pending.append(text, std::size_t(count));
+    const auto lineEnd = this->Pending.rfind('\n');
+    if (std::memchr(text, '\n', std::size_t(count)) && lineEnd != std::string::npos)
+    {
+      this->Target << EscapeInvalidUtf8(this->Pending.substr(0, lineEnd + 1));
+      this->Pending.erase(0, lineEnd + 1);
+    }
+    return count;
+  }
+  int sync() override
+  {
+    this->Target << EscapeInvalidUtf8(this->Pending);
+    this->Pending.clear();
+    this->Target.flush();
+    return this->Target ? 0 : -1;
+  }
+
+private:
+  std::ostream& Target;
+  std::string Pending;
+};
+
+} // namespace
+
+int RunCommandLine(const std::vector<std::string>& arguments,
+  std::ostream& rawOut,
+  std::ostream& err)
+{
+  Utf8Output escaping(rawOut);
+  std::ostream out(&escaping);
   std::string hint = "run 'cloudvis --help' for usage";
   try
   {
@@ -258,12 +317,13 @@ int RunCommandLine(const std::vector<std::string>& arguments, std::ostream& out,
   }
   catch (const UsageError& e)
   {
-    err << "cloudvis: error: " << e.what() << "\n" << "cloudvis: " << hint << "\n";
+    err << "cloudvis: error: " << EscapeInvalidUtf8(e.what()) << "\n"
+        << "cloudvis: " << EscapeInvalidUtf8(hint) << "\n";
     return ExitUsage;
   }
   catch (const InputError& e)
   {
-    err << "cloudvis: error: " << e.what() << "\n";
+    err << "cloudvis: error: " << EscapeInvalidUtf8(e.what()) << "\n";
     return ExitFailure;
   }
   catch (const std::bad_alloc&)
@@ -273,7 +333,7 @@ int RunCommandLine(const std::vector<std::string>& arguments, std::ostream& out,
   }
   catch (const std::exception& e)
   {
-    err << "cloudvis: error: " << e.what() << "\n";
+    err << "cloudvis: error: " << EscapeInvalidUtf8(e.what()) << "\n";
     return ExitFailure;
   }
 }

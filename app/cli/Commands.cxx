@@ -39,7 +39,7 @@ namespace cloudvis
 
 const OptionSpec SetOption{ "set", 0, "KEY=VALUE",
   "override a scene value before validation, e.g. --set field.octaves=4 or "
-  "--set field.dimensions=64,64,64 (see docs/scene-format.md)",
+  "--set field.dimensions=64,64,64 (every key: cloudvis schema, or docs/scene-format.md)",
   true };
 const OptionSpec HelpOption{ "help", 'h', "", "show this help and exit" };
 
@@ -63,13 +63,6 @@ nlohmann::json ParseSizeOption(const std::string& command, const std::string& te
                                "got \"" + text + "\"");
   }
   return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
-}
-
-bool IsFieldFile(const std::string& operand)
-{
-  const std::string suffix = ".vti";
-  return operand.size() >= suffix.size() &&
-    operand.compare(operand.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 void RefuseFieldKeys(const std::string& command, const std::string& fieldFile,
@@ -130,7 +123,7 @@ int Generate(const Arguments& arguments, std::ostream& out)
   }
   const std::string output = arguments.Value("output");
   // Before the work: a bad -o should not cost a field's generation time.
-  CheckOutputTarget(output);
+  CheckFieldOutput(output);
   const std::string scenePath = arguments.Operands.empty() ? "" : arguments.Operands[0];
   const Scene scene = LoadScene(scenePath, arguments.Values("set"));
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
@@ -429,33 +422,73 @@ int RunDefault(std::ostream& out)
   return ExitSuccess;
 }
 
+int Schema(const Arguments&, std::ostream& out)
+{
+  out << SceneReferenceMarkdown();
+  return ExitSuccess;
+}
+
 const std::vector<CommandSpec>& Commands()
 {
   static const std::vector<CommandSpec> commands = {
-    { "generate", "[SCENE]", 0, 1, "generate a scene's density field and write it to a .vti file",
+    { "generate",
+      "[SCENE]",
+      0,
+      1,
+      "generate a scene's density field and write it to a .vti file",
       "SCENE is a scene file (JSON, see docs/scene-format.md); without it the default scene is\n"
       "used (a unit sphere plus 6 octaves of value noise on 128^3 voxels). If the scene's field\n"
-      "names a .vti file, that file is loaded, checked and written out as a float \"density\"\n"
-      "field. The output is written to a temporary file next to FIELD.vti and renamed over it\n"
-      "once complete: on failure FIELD.vti is left as it was.",
-      { OutputOption, SetOption, HelpOption }, Generate },
-    { "info", "FIELD.vti|SCENE", 1, 1, "print statistics of a .vti field or of a scene's field",
-      "An argument ending in .vti is read as a field; anything else is a scene file whose field\n"
-      "is generated (or loaded). Prints dimensions, spacing, bounds (origin .. origin +\n"
-      "(n-1) spacing), value range, mean, the fraction of non-empty voxels (density > 0) and a\n"
-      "16-bin histogram over [min, max]. --set applies to scenes only.",
-      { JsonOption, SetOption, HelpOption }, Info },
-    { "render", "SCENE|FIELD.vti", 1, 1, "render a scene or a .vti field off screen to a PNG image",
-      "An argument ending in .vti is a field file, rendered with the default scene's transfer\n"
-      "function, camera, background and render settings (--set may change those, not field\n"
-      "keys); anything else is a scene file. The image is render.size pixels, the average of\n"
-      "render.accumulate jittered frames, written as 8-bit RGB through a temporary file renamed\n"
-      "over IMAGE.png. Rendering needs an X display: without one, run it under Xvfb,\n"
-      "xvfb-run -a cloudvis render ...",
-      { ImageOutputOption, SizeOption, LightingOption(), BenchmarkOption, CpuReferenceOption,
-        PngBitsOption, ExrHalfOption, TransparentOption, QuietOption, SetOption, HelpOption },
+      "names a field file (" +
+        FieldFileExtensions() +
+        "), that file is loaded, checked and written\n"
+        "out as a float \"density\" field. The output (a .vti name) is written to a temporary "
+        "file\n"
+        "next to FIELD.vti and renamed over it once complete: on failure FIELD.vti is left as it "
+        "was.",
+      { OutputOption, SetOption, HelpOption },
+      Generate },
+    { "info",
+      "FIELD.vti|SCENE",
+      1,
+      1,
+      "print statistics of a .vti field or of a scene's field",
+      "An argument ending in a field extension (" + FieldFileExtensions() +
+        ", in any case) is\n"
+        "read as a field; anything else is a scene file whose field is generated (or loaded). "
+        "Prints dimensions, spacing, bounds (origin .. origin +\n"
+        "(n-1) spacing), value range, mean, the fraction of non-empty voxels (density > 0) and a\n"
+        "16-bin histogram over [min, max]. --set applies to scenes only.",
+      { JsonOption, SetOption, HelpOption },
+      Info },
+    { "render",
+      "SCENE|FIELD.vti",
+      1,
+      1,
+      "render a scene or a .vti field off screen to a PNG image",
+      "An argument ending in a field extension (" + FieldFileExtensions() +
+        ", in any case) is a\n"
+        "field file, rendered with the default scene's transfer\n"
+        "function, camera, background and render settings (--set may change those, not field\n"
+        "keys); anything else is a scene file. The image is render.size pixels, the average of\n"
+        "render.accumulate jittered frames, written as 8-bit RGB through a temporary file renamed\n"
+        "over IMAGE.png. Rendering needs an X display: without one, run it under Xvfb,\n"
+        "xvfb-run -a cloudvis render ...",
+      { ImageOutputOption,
+        SizeOption,
+        LightingOption(),
+        BenchmarkOption,
+        CpuReferenceOption,
+        PngBitsOption,
+        ExrHalfOption,
+        TransparentOption,
+        QuietOption,
+        SetOption,
+        HelpOption },
       Render },
-    { "compare", "SCENE|FIELD.vti", 1, 1,
+    { "compare",
+      "SCENE|FIELD.vti",
+      1,
+      1,
       "render lighting models side by side on one field and camera, with their frame times",
       "One off-screen window with one panel per model (--lighting), render.size each, all\n"
       "sharing one camera and jitter sequence; each panel is labelled with the model and its\n"
@@ -463,11 +496,20 @@ const std::vector<CommandSpec>& Commands()
       "of |A - B|. The scene's render.lighting is not used; everything else is as in render.\n"
       "Prints each model's time as '<model>: <milliseconds> ms/frame'. Needs an X display:\n"
       "xvfb-run -a cloudvis compare ...",
-      { ImageOutputOption, PanelSizeOption, CompareLightingOption, DifferenceOption, SetOption,
+      { ImageOutputOption,
+        PanelSizeOption,
+        CompareLightingOption,
+        DifferenceOption,
+        SetOption,
         HelpOption },
       Compare },
     AnimateCommand(),
     ViewCommand(),
+    { "schema", "", 0, 0, "print the reference tables of the scene file format (Markdown)",
+      "Prints every key a scene file may hold, with its type, default and allowed values, as\n"
+      "the Markdown tables of docs/scene-format.md, which are generated from this output (the\n"
+      "test app.scene_docs fails when the two differ; `make docs` writes them in).",
+      { HelpOption }, Schema },
   };
   return commands;
 }

@@ -7,7 +7,9 @@
 #include "Display.h"
 #include "Errors.h"
 #include "ExportRender.h"
+#include "FieldIO.h"
 #include "OffscreenRender.h"
+#include "Utf8.h"
 
 #include <vtkImageData.h>
 
@@ -218,7 +220,7 @@ std::string QuoteCommandLine(const std::vector<std::string>& arguments)
     }
     line += (line.empty() ? "" : " ") + argument;
   }
-  return line;
+  return EscapeInvalidUtf8(line); // metadata is text: arguments may hold any bytes
 }
 
 CommandSpec AnimateCommand()

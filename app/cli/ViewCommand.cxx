@@ -5,15 +5,16 @@
 #include "AtomicFile.h"
 #include "Display.h"
 #include "Errors.h"
+#include "ExportCommands.h"
 #include "FieldIO.h"
 #include "ImageWriters.h"
+#include "InputFiles.h"
 #include "SceneField.h"
 #include "Viewer.h"
 
 #include <vtkImageData.h>
 
 #include <array>
-#include <fstream>
 #include <regex>
 #include <string>
 #include <unistd.h>
@@ -95,16 +96,10 @@ int View(const Arguments& arguments, std::ostream& out)
   }
   if (!play.empty())
   {
-    std::ifstream probe(play);
-    if (!probe)
-    {
-      throw InputError(play + ": cannot read the recording");
-    }
+    // Before the window opens; Viewer::PlayFile reads it through the same check.
+    CheckRegularInputFile(play, "recording");
   }
-  for (const std::string& argument : arguments.CommandLine)
-  {
-    options.CommandLine += (options.CommandLine.empty() ? "" : " ") + argument;
-  }
+  options.CommandLine = QuoteCommandLine(arguments.CommandLine);
 
   Scene scene = LoadScene(fieldFile ? "" : input, assignments);
   if (arguments.Has("size"))

@@ -1,12 +1,17 @@
 // POSIX implementation of the write-then-rename protocol: mkstemps creates a uniquely named
 // temporary in the target's directory, rename(2) replaces the target atomically. The temporaries
-// alive at any moment are also listed in a fixed table of slots that the SIGINT/SIGTERM handler
-// reads: a handler may only call async-signal-safe functions (unlink, _exit) and must not touch
-// std::string or the heap, so each slot is a char buffer guarded by a lock-free atomic state.
+// alive at any moment are also listed in a fixed table of slots that the signal handler reads: a
+// handler may only call async-signal-safe functions (unlink, sigaction, raise) and must not
+// touch std::string or the heap, so each slot is a char buffer guarded by a lock-free atomic
+// state. The handler covers every signal whose default action ends the process and that can be
+// caught; after removing the temporaries it restores the default action and raises the signal
+// again, so the process ends exactly as it would have without cloudvis's handler.
 #include "AtomicFile.h"
 
 #include "Errors.h"
+#include "FileNames.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <climits>
@@ -24,16 +29,6 @@ namespace cloudvis
 {
 namespace
 {
-
-std::string DirectoryOf(const std::string& path)
-{
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos)
-  {
-    return ".";
-  }
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
 
 std::string SystemReason()
 {
@@ -60,7 +55,51 @@ struct Slot
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
 Slot Slots[SlotCount];
 
-extern "C" void RemoveTemporariesAndExit(int signal)
+// The signals whose default action ends the process (signal(7): "Term" and "Core") and that a
+// handler can catch, apart from the real-time signals, which are added at run time. The first
+// group is raised by the program's own faults (synchronously, in the faulting thread); blocking
+// them is undefined, so ScopedSignalBlock leaves them alone.
+constexpr int FaultSignals[] = { SIGILL, SIGTRAP, SIGABRT, SIGBUS, SIGFPE, SIGSEGV, SIGSYS };
+constexpr int AsynchronousSignals[] = {
+  SIGHUP,
+  SIGINT,
+  SIGQUIT,
+  SIGUSR1,
+  SIGUSR2,
+  SIGPIPE,
+  SIGALRM,
+  SIGTERM,
+  SIGXCPU,
+  SIGXFSZ,
+  SIGVTALRM,
+  SIGPROF,
+  SIGIO,
+#ifdef SIGSTKFLT
+  SIGSTKFLT,
+#endif
+#ifdef SIGPWR
+  SIGPWR,
+#endif
+};
+
+// The asynchronous signals and the real-time ones (SIGRTMIN..SIGRTMAX: the C library keeps a
+// few below SIGRTMIN for itself, and SIGRTMIN is a function call there, hence at run time).
+sigset_t AsynchronousSignalSet()
+{
+  sigset_t set;
+  sigemptyset(&set);
+  for (int signal : AsynchronousSignals)
+  {
+    sigaddset(&set, signal);
+  }
+  for (int signal = SIGRTMIN; signal <= SIGRTMAX; ++signal)
+  {
+    sigaddset(&set, signal);
+  }
+  return set;
+}
+
+extern "C" void RemoveTemporariesAndReraise(int signal)
 {
   for (Slot& slot : Slots)
   {
@@ -69,7 +108,20 @@ extern "C" void RemoveTemporariesAndExit(int signal)
       ::unlink(slot.Path);
     }
   }
-  ::_exit(128 + signal);
+  // End as the default action would: the parent sees "killed by signal" (a shell's $? is
+  // 128 + signal), and a core-dumping signal still dumps core. The signal is blocked while its
+  // handler runs, so it is unblocked for the raise to take effect at once.
+  struct sigaction defaultAction;
+  std::memset(&defaultAction, 0, sizeof(defaultAction));
+  defaultAction.sa_handler = SIG_DFL;
+  sigemptyset(&defaultAction.sa_mask);
+  ::sigaction(signal, &defaultAction, nullptr);
+  sigset_t only;
+  sigemptyset(&only);
+  sigaddset(&only, signal);
+  ::pthread_sigmask(SIG_UNBLOCK, &only, nullptr);
+  ::raise(signal);
+  ::_exit(128 + signal); // not reached: every signal handled here ends the process by default
 }
 
 // Returns the slot now holding `path`, or -1 when none is free or the path does not fit.
@@ -101,22 +153,19 @@ void UnregisterTemporary(int slot)
   }
 }
 
-// Blocks SIGINT and SIGTERM in this thread for its lifetime: between mkstemps creating the
+// Blocks the asynchronous signals in this thread for its lifetime: between mkstemps creating the
 // temporary and its registration, a signal would otherwise leave it behind.
-class ScopedInterruptBlock
+class ScopedSignalBlock
 {
 public:
-  ScopedInterruptBlock()
+  ScopedSignalBlock()
   {
-    sigset_t block;
-    sigemptyset(&block);
-    sigaddset(&block, SIGINT);
-    sigaddset(&block, SIGTERM);
+    const sigset_t block = AsynchronousSignalSet();
     pthread_sigmask(SIG_BLOCK, &block, &this->Previous);
   }
-  ~ScopedInterruptBlock() { pthread_sigmask(SIG_SETMASK, &this->Previous, nullptr); }
-  ScopedInterruptBlock(const ScopedInterruptBlock&) = delete;
-  ScopedInterruptBlock& operator=(const ScopedInterruptBlock&) = delete;
+  ~ScopedSignalBlock() { pthread_sigmask(SIG_SETMASK, &this->Previous, nullptr); }
+  ScopedSignalBlock(const ScopedSignalBlock&) = delete;
+  ScopedSignalBlock& operator=(const ScopedSignalBlock&) = delete;
 
 private:
   sigset_t Previous;
@@ -157,6 +206,38 @@ private:
   int SlotIndex;
 };
 
+// The mkstemps pattern of a target's temporary: DIRECTORY/.NAME.tmp-XXXXXX.EXT, hidden, and named
+// after the target so that a leftover from a killed process is recognisable, with the target's
+// extension for writers that look at it. The temporary's name must fit the directory's file-name
+// limit (pathconf _PC_NAME_MAX, 255 bytes on most file systems) however long the target's name
+// is, so NAME is shortened as far as needed (at a UTF-8 character boundary), and EXT is dropped
+// when it alone would not fit; XXXXXX keeps the name unique.
+struct TemporaryName
+{
+  std::string Pattern;
+  int SuffixLength; // the characters after XXXXXX
+};
+TemporaryName TemporaryNameFor(const std::string& directory, const std::string& name)
+{
+  const long limit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  const std::size_t nameMax = limit > 0 ? std::size_t(limit) : std::size_t(NAME_MAX);
+  const std::string marker = ".tmp-XXXXXX";
+  const auto dot = name.find_last_of('.');
+  std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
+  if (1 + marker.size() + extension.size() > nameMax)
+  {
+    extension.clear();
+  }
+  const std::size_t fixed = 1 + marker.size() + extension.size();
+  std::size_t kept = std::min(name.size(), nameMax > fixed ? nameMax - fixed : 0);
+  // Not in the middle of a multi-byte character: back off over continuation bytes.
+  while (kept > 0 && kept < name.size() && (static_cast<unsigned char>(name[kept]) & 0xC0) == 0x80)
+  {
+    --kept;
+  }
+  return { directory + "/." + name.substr(0, kept) + marker + extension, int(extension.size()) };
+}
+
 // mkstemps creates files readable only by their owner; a finished output should get the
 // permissions an ordinary new file would (or keep those of the file it replaces).
 mode_t FinalMode(const std::string& target)
@@ -177,18 +258,24 @@ void InstallInterruptCleanup()
 {
   static const bool installed = []
   {
+    std::vector<int> signals(std::begin(FaultSignals), std::end(FaultSignals));
+    signals.insert(signals.end(), std::begin(AsynchronousSignals), std::end(AsynchronousSignals));
+    for (int signal = SIGRTMIN; signal <= SIGRTMAX; ++signal)
+    {
+      signals.push_back(signal);
+    }
     struct sigaction action;
     std::memset(&action, 0, sizeof(action));
-    action.sa_handler = RemoveTemporariesAndExit;
-    sigemptyset(&action.sa_mask);
-    // One handler at a time: a SIGTERM arriving during the SIGINT cleanup waits for it.
-    sigaddset(&action.sa_mask, SIGINT);
-    sigaddset(&action.sa_mask, SIGTERM);
-    for (int signal : { SIGINT, SIGTERM })
+    action.sa_handler = RemoveTemporariesAndReraise;
+    // One cleanup at a time: another signal arriving during it waits, and is moot once the
+    // process ends.
+    action.sa_mask = AsynchronousSignalSet();
+    for (int signal : signals)
     {
       struct sigaction previous;
       // A signal that is ignored (nohup, a background job of a non-interactive shell) stays
-      // ignored, and one that someone else handles keeps its handler.
+      // ignored, and one that someone else handles (a sanitizer's SIGSEGV handler, libFuzzer's)
+      // keeps its handler.
       if (::sigaction(signal, nullptr, &previous) == 0 && previous.sa_handler == SIG_DFL &&
         !(previous.sa_flags & SA_SIGINFO))
       {
@@ -198,6 +285,14 @@ void InstallInterruptCleanup()
     return true;
   }();
   (void)installed;
+}
+
+void ForgetTemporariesInChild()
+{
+  for (Slot& slot : Slots)
+  {
+    slot.State.store(Free);
+  }
 }
 
 void CheckOutputTarget(const std::string& target)
@@ -233,20 +328,15 @@ void WriteFileAtomically(
 {
   CheckOutputTarget(target);
   const std::string directory = DirectoryOf(target);
-  const auto slash = target.find_last_of('/');
-  const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
-  const auto dot = name.find_last_of('.');
-  const std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
-  // Hidden, and named after the target, so a leftover from a killed process is recognisable.
-  std::string pattern = directory + "/." + name + ".tmp-XXXXXX" + extension;
-  std::vector<char> buffer(pattern.begin(), pattern.end());
+  const TemporaryName name = TemporaryNameFor(directory, FileNameOf(target));
+  std::vector<char> buffer(name.Pattern.begin(), name.Pattern.end());
   buffer.push_back('\0');
   InstallInterruptCleanup();
   int fd = -1;
   std::unique_ptr<TemporaryFile> created;
   {
-    ScopedInterruptBlock noInterruptUntilRegistered;
-    fd = ::mkstemps(buffer.data(), static_cast<int>(extension.size()));
+    ScopedSignalBlock noSignalUntilRegistered;
+    fd = ::mkstemps(buffer.data(), name.SuffixLength);
     if (fd < 0)
     {
       throw InputError(target + ": cannot create a temporary file in " + directory + " (" +

@@ -6,6 +6,7 @@
 
 #include "AtomicFile.h"
 #include "Errors.h"
+#include "FileNames.h"
 #include "VtkMessageCapture.h"
 
 #include <ImfChannelList.h>
@@ -20,7 +21,6 @@
 #include <vtkPNGWriter.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -135,22 +135,9 @@ const ImageFormat ImageFormats[] = {
   { ".exr", WriteExrImage },
 };
 
-std::string LowerExtension(const std::string& path)
-{
-  const auto slash = path.find_last_of('/');
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const auto dot = name.find_last_of('.');
-  std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
-  for (char& c : extension)
-  {
-    c = char(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension;
-}
-
 const ImageFormat& FormatOf(const std::string& path)
 {
-  const std::string extension = LowerExtension(path);
+  const std::string extension = LowerCaseExtension(path);
   for (const ImageFormat& format : ImageFormats)
   {
     if (extension == format.Extension)
@@ -178,7 +165,7 @@ std::string CloudvisVersion()
 
 bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options)
 {
-  return LowerExtension(path) == ".exr" || options.PngBits == 16 || options.Transparent;
+  return LowerCaseExtension(path) == ".exr" || options.PngBits == 16 || options.Transparent;
 }
 
 void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,

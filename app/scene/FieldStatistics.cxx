@@ -2,6 +2,8 @@
 // need the range). Sums are accumulated in double so the mean of a large field stays accurate.
 #include "FieldStatistics.h"
 
+#include "Utf8.h"
+
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
@@ -109,7 +111,7 @@ nlohmann::json FieldStatisticsToJson(const FieldStatistics& s, const std::string
     edges.push_back(HistogramEdge(s, b));
   }
   return {
-    { "field", name },
+    { "field", EscapeInvalidUtf8(name) }, // a path: any bytes
     { "dimensions", s.Dimensions },
     { "voxels", s.Voxels },
     { "spacing", s.Spacing },
@@ -119,7 +121,8 @@ nlohmann::json FieldStatisticsToJson(const FieldStatistics& s, const std::string
     { "mean", s.Mean },
     { "non_empty_voxels", s.NonEmptyVoxels },
     { "non_empty_fraction", s.NonEmptyFraction },
-    { "histogram", { { "bins", s.Histogram.size() }, { "edges", edges }, { "counts", s.Histogram } } },
+    { "histogram",
+      { { "bins", s.Histogram.size() }, { "edges", edges }, { "counts", s.Histogram } } },
   };
 }
 

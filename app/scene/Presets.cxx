@@ -5,6 +5,7 @@
 #include "Presets.h"
 
 #include "Errors.h"
+#include "FileNames.h"
 #include "Scene.h" // ReadJsonFile
 
 #include <algorithm>
@@ -77,8 +78,7 @@ json ReadFlatPoints(const std::string& where, const json& flat, size_t stride, s
       const std::string element = where + "[" + std::to_string(i + j) + "]";
       if (!flat[i + j].is_number() || !std::isfinite(flat[i + j].get<double>()))
       {
-        throw InputError(element + ": expected a number, got " +
-          flat[i + j].dump(-1, ' ', false, json::error_handler_t::replace));
+        throw InputError(element + ": expected a number, got " + WithValidUtf8(flat[i + j]).dump());
       }
       const double value = flat[i + j].get<double>();
       if (j == 0 && i > 0 && !(value > previous))
@@ -189,10 +189,7 @@ std::vector<std::string> ShippedPresetNames()
 
 bool IsPresetPath(const std::string& reference)
 {
-  const std::string suffix = ".json";
-  return reference.find('/') != std::string::npos ||
-    (reference.size() >= suffix.size() &&
-      reference.compare(reference.size() - suffix.size(), suffix.size(), suffix) == 0);
+  return reference.find('/') != std::string::npos || LowerCaseExtension(reference) == ".json";
 }
 
 PresetDocument ReadPreset(

@@ -18,9 +18,11 @@
 #include "Errors.h"
 #include "ExportRender.h"
 #include "ImageWriters.h"
+#include "InputFiles.h"
 #include "OffscreenRender.h"
 #include "SceneJson.h"
 #include "SceneLighting.h"
+#include "Utf8.h"
 #include "ViewerFiles.h"
 
 #include <vtkCallbackCommand.h>
@@ -34,39 +36,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace cloudvis
 {
 namespace
 {
-using json = nlohmann::json;
-
 // The editor's share of the window, from the bottom; the views have the rest.
 constexpr double EditorHeight = 0.25;
-
-json Vec3Json(const glm::vec3& v)
-{
-  return json::array({ double(v.x), double(v.y), double(v.z) });
-}
-
-json LightToJson(const Light& light)
-{
-  json j = { { "type", light.Positional ? "point" : "directional" },
-    { "position", Vec3Json(light.Position) },
-    { "color", Vec3Json(light.Color) },
-    { "intensity", double(light.Intensity) } };
-  if (light.Positional)
-  {
-    j["attenuation"] = Vec3Json(light.Attenuation);
-  }
-  else
-  {
-    j["focal_point"] = Vec3Json(light.FocalPoint);
-  }
-  return j;
-}
 
 } // namespace
 
@@ -137,8 +113,10 @@ bool Viewer::Internals::RefinementPending()
   return true;
 }
 
-void Viewer::Internals::Show(const std::string& text, bool error)
+void Viewer::Internals::Show(const std::string& message, bool error)
 {
+  // Messages quote paths and user text, which may hold bytes that are not UTF-8.
+  const std::string text = EscapeInvalidUtf8(message);
   this->MessageLog.push_back(text);
   this->Status->ShowMessage(text, error);
   *this->Messages << (error ? "cloudvis: error: " : "cloudvis view: ") << text << std::endl;
@@ -528,14 +506,7 @@ Viewer::~Viewer()
 
 void Viewer::PlayFile(const std::string& path)
 {
-  std::ifstream file(path);
-  if (!file)
-  {
-    throw InputError(path + ": cannot read the recording");
-  }
-  std::stringstream text;
-  text << file.rdbuf();
-  this->PlayString(text.str());
+  this->PlayString(RegularInputFile(path, "recording").ReadAll(MaximumRecordingBytes));
 }
 
 void Viewer::PlayString(const std::string& events)
@@ -575,29 +546,6 @@ Scene Viewer::CurrentScene() const
   scene.Camera.ViewUp = up;
   scene.Camera.Orbit.reset();
   scene.Camera.ViewAngle = camera->GetViewAngle();
-  if (in.LightsChanged)
-  {
-    // SceneToJson keeps the document's lights: write the moved ones there.
-    json lights = json::array();
-    for (const Light& light : scene.Lights)
-    {
-      lights.push_back(LightToJson(light));
-    }
-    if (!scene.Document.is_object())
-    {
-      scene.Document = json::object();
-    }
-    scene.Document["lights"] = lights;
-    // A sky without background.sun follows the first light when the scene is read again: keep
-    // the sun it has now.
-    if (scene.BackgroundStyle.Type == BackgroundType::Sky &&
-      scene.Document.contains("background") && scene.Document["background"].is_object() &&
-      !scene.Document["background"].contains("sun"))
-    {
-      const auto sun = SkySunDirection(scene.BackgroundStyle);
-      scene.Document["background"]["sun"] = { sun[0], sun[1], sun[2] };
-    }
-  }
   return scene;
 }
 

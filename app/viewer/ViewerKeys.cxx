@@ -60,7 +60,6 @@ void Viewer::Internals::MoveLight(double azimuthDegrees, double elevationDegrees
     r * std::sin(elevation),
     r * std::cos(elevation) * std::cos(azimuth));
   light.Position = glm::vec3(glm::dvec3(light.FocalPoint) + moved);
-  this->LightsChanged = true;
   this->ApplyLighting();
   char text[128];
   std::snprintf(text,

@@ -9,19 +9,23 @@
 #include "Errors.h"
 #include "FieldIO.h"
 #include "FieldStatistics.h"
+#include "FileNames.h"
+#include "InputFiles.h"
 #include "OffscreenRender.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "SupportImages.h"
+#include "SupportRun.h"
+#include "Utf8.h"
+#include "VtkWrittenFields.h"
 #include "vtkCloudDensitySource.h"
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkCamera.h>
-#include <vtkPNGReader.h>
 #include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkXMLImageDataReader.h>
 
 #include <gtest/gtest.h>
@@ -29,9 +33,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <dirent.h>
-#include <fstream>
-#include <sstream>
+#include <random>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -40,67 +42,16 @@ namespace
 {
 using json = nlohmann::json;
 
-// A fresh directory per test, removed (with its files) afterwards.
-class TemporaryDirectory
-{
-public:
-  TemporaryDirectory()
-  {
-    char pattern[] = "/tmp/cloudvis-app-test-XXXXXX";
-    this->Path = ::mkdtemp(pattern);
-  }
-  ~TemporaryDirectory()
-  {
-    for (const std::string& name : this->Files())
-    {
-      std::remove((this->Path + "/" + name).c_str());
-    }
-    ::rmdir(this->Path.c_str());
-  }
-  std::vector<std::string> Files() const
-  {
-    std::vector<std::string> names;
-    if (DIR* dir = ::opendir(this->Path.c_str()))
-    {
-      while (dirent* entry = ::readdir(dir))
-      {
-        const std::string name = entry->d_name;
-        if (name != "." && name != "..")
-        {
-          names.push_back(name);
-        }
-      }
-      ::closedir(dir);
-    }
-    return names;
-  }
-  std::string File(const std::string& name) const { return this->Path + "/" + name; }
+using cloudvis::support::ReadText;
+using cloudvis::support::TemporaryDirectory;
+using cloudvis::support::WriteText;
 
-  std::string Path;
-};
-
-void WriteText(const std::string& path, const std::string& text)
-{
-  std::ofstream(path) << text;
-}
-
-std::string ReadText(const std::string& path)
-{
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Runs the command line in-process; fails the test on a non-zero status.
+// Runs the cloudvis binary; fails the test on a non-zero status.
 std::string RunCloudvis(const std::vector<std::string>& arguments)
 {
-  std::vector<std::string> argv{ "cloudvis" };
-  argv.insert(argv.end(), arguments.begin(), arguments.end());
-  std::ostringstream out, err;
-  const int status = cloudvis::RunCommandLine(argv, out, err);
-  EXPECT_EQ(status, 0) << err.str();
-  return out.str();
+  const cloudvis::support::CommandResult run = cloudvis::support::RunCloudvis(arguments);
+  EXPECT_EQ(run.Status, 0) << run.Err;
+  return run.Out;
 }
 
 vtkSmartPointer<vtkImageData> ReadBack(const std::string& path)
@@ -136,6 +87,18 @@ vtkSmartPointer<vtkImageData> Generate(vtkCloudDensitySource* source)
   source->Update();
   vtkSmartPointer<vtkImageData> image = source->GetOutput();
   return image;
+}
+
+// The field file `path` is, bit for bit, what vtkCloudDensitySource makes of these settings.
+void ExpectSourceField(const std::string& path, const std::array<int, 3>& dimensions,
+  const std::array<double, 6>& bounds, const cloudvis::FieldDescription& field, double time)
+{
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetDimensions(dimensions.data());
+  source->SetBounds(bounds.data());
+  source->SetField(field);
+  source->SetTime(time);
+  ExpectBitIdentical(Generate(source), ReadBack(path));
 }
 
 // ---- generate: files equal the source's output --------------------------------------------
@@ -196,12 +159,7 @@ TEST(Generate, EveryKeyReachesTheSource)
   field.Noise.Amplitude = 0.8;
   field.Noise.Seed = 4000000000u;
   field.Wind = glm::dvec3(0.1, 0.2, -0.3);
-  vtkNew<vtkCloudDensitySource> source;
-  source->SetDimensions(20, 24, 28);
-  source->SetBounds(-1, 2, -3, 1, -2, 2.5);
-  source->SetField(field);
-  source->SetTime(1.25);
-  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+  ExpectSourceField(dir.File("f.vti"), { { 20, 24, 28 } }, { { -1, 2, -3, 1, -2, 2.5 } }, field, 1.25);
 }
 
 TEST(Generate, MorphSceneEqualsSourceMorph)
@@ -211,12 +169,8 @@ TEST(Generate, MorphSceneEqualsSourceMorph)
     "field.time=4.5", "-o", dir.File("f.vti") });
   cloudvis::FieldDescription field;
   field.Morph = true;
-  vtkNew<vtkCloudDensitySource> source;
-  source->SetDimensions(24, 24, 24);
-  source->SetBounds(-3.5, 3.5, -3.5, 3.5, -3.5, 3.5);
-  source->SetField(field);
-  source->SetTime(4.5);
-  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+  ExpectSourceField(
+    dir.File("f.vti"), { { 24, 24, 24 } }, { { -3.5, 3.5, -3.5, 3.5, -3.5, 3.5 } }, field, 4.5);
 }
 
 TEST(Generate, LeavesOnlyTheTarget)
@@ -529,41 +483,12 @@ TEST(Camera, DefaultsLookAlongMinusZAtTheCentreAndFitTheBounds)
 
 // ---- render: pixels (needs an X display; `make test` runs under Xvfb) -----------------------
 
-struct Png
-{
-  int Width = 0, Height = 0, Components = 0;
-  std::vector<unsigned char> Pixels;
-  const unsigned char* At(int x, int y) const
-  {
-    return this->Pixels.data() + size_t(this->Components) * (size_t(y) * this->Width + x);
-  }
-};
-
-Png ReadPng(const std::string& path)
-{
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  Png png;
-  int d[3];
-  reader->GetOutput()->GetDimensions(d);
-  png.Width = d[0];
-  png.Height = d[1];
-  auto* data = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetScalars());
-  if (data)
-  {
-    png.Components = data->GetNumberOfComponents();
-    png.Pixels.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
-  }
-  return png;
-}
-
 // Within one 8-bit step of a color given in [0, 1].
-bool IsColor(const unsigned char* pixel, const std::array<double, 3>& rgb)
+bool IsColor(const cloudvis::support::Image& image, int x, int y, const std::array<double, 3>& rgb)
 {
   for (int c = 0; c < 3; ++c)
   {
-    if (std::abs(double(pixel[c]) - 255.0 * rgb[c]) > 1.0)
+    if (std::abs(image.Level(x, y, c) - 255.0 * rgb[c]) > 1.0)
     {
       return false;
     }
@@ -579,7 +504,7 @@ TEST(Render, WritesAPngOfTheRequestedSizeWithTheCloudOverTheBackground)
   EXPECT_NE(out.find("wrote " + dir.File("r.png") + " (64 x 48 pixels, 2 frames averaged)"),
     std::string::npos) << out;
   EXPECT_EQ(dir.Files(), std::vector<std::string>{ "r.png" });
-  const Png png = ReadPng(dir.File("r.png"));
+  const cloudvis::support::Image png = cloudvis::support::ReadPng(dir.File("r.png"));
   ASSERT_EQ(png.Width, 64);
   ASSERT_EQ(png.Height, 48);
   ASSERT_EQ(png.Components, 3) << "an RGB PNG";
@@ -587,15 +512,14 @@ TEST(Render, WritesAPngOfTheRequestedSizeWithTheCloudOverTheBackground)
   for (const auto& corner : { std::make_pair(0, 0), std::make_pair(63, 0), std::make_pair(0, 47),
          std::make_pair(63, 47) })
   {
-    EXPECT_TRUE(IsColor(png.At(corner.first, corner.second), background))
+    EXPECT_TRUE(IsColor(png, corner.first, corner.second, background))
       << "corner " << corner.first << "," << corner.second;
   }
-  const unsigned char* centre = png.At(32, 24);
-  EXPECT_FALSE(IsColor(centre, background));
+  EXPECT_FALSE(IsColor(png, 32, 24, background));
   // The cloud is white-ish: brighter than the background in every channel.
   for (int c = 0; c < 3; ++c)
   {
-    EXPECT_GT(int(centre[c]), int(255.0 * background[c]) + 40) << "channel " << c;
+    EXPECT_GT(int(png.Level(32, 24, c)), int(255.0 * background[c]) + 40) << "channel " << c;
   }
 }
 
@@ -605,10 +529,10 @@ TEST(Render, BackgroundKeyReachesTheWindow)
   RunCloudvis({ "render", CLOUDVIS_SCENES "/sphere.json", "--size", "32x16", "--set",
     "background=1,0,0", "--set", "render.accumulate=1", "--set", "field.dimensions=16", "-o",
     dir.File("r.png") });
-  const Png png = ReadPng(dir.File("r.png"));
+  const cloudvis::support::Image png = cloudvis::support::ReadPng(dir.File("r.png"));
   ASSERT_EQ(png.Width, 32);
   ASSERT_EQ(png.Height, 16);
-  EXPECT_TRUE(IsColor(png.At(0, 0), { { 1, 0, 0 } }));
+  EXPECT_TRUE(IsColor(png, 0, 0, { { 1, 0, 0 } }));
 }
 
 cloudvis::Scene SmallScene()
@@ -659,21 +583,214 @@ TEST(Render, MapperErrorBecomesTheInputError)
 TEST(Render, WithoutDisplayFailsWithTheXvfbHintAndWritesNothing)
 {
   TemporaryDirectory dir;
-  const char* saved = std::getenv("DISPLAY");
-  const std::string display = saved ? saved : "";
-  ::unsetenv("DISPLAY");
-  std::ostringstream out, err;
-  const int status = cloudvis::RunCommandLine({ "cloudvis", "render", CLOUDVIS_SCENES "/sphere.json",
-                                                "-o", dir.File("r.png") },
-    out, err);
-  if (saved)
-  {
-    ::setenv("DISPLAY", display.c_str(), 1);
-  }
-  EXPECT_EQ(status, 1);
-  EXPECT_NE(err.str().find("cloudvis needs an X display"), std::string::npos) << err.str();
-  EXPECT_NE(err.str().find("xvfb-run -a cloudvis render"), std::string::npos) << err.str();
+  const cloudvis::support::CommandResult run = cloudvis::support::RunCloudvis(
+    { "render", CLOUDVIS_SCENES "/sphere.json", "-o", dir.File("r.png") }, { "-DISPLAY" });
+  EXPECT_EQ(run.Status, 1);
+  EXPECT_NE(run.Err.find("cloudvis needs an X display"), std::string::npos) << run.Err;
+  EXPECT_NE(run.Err.find("xvfb-run -a cloudvis render"), std::string::npos) << run.Err;
   EXPECT_TRUE(dir.Files().empty());
+}
+
+} // namespace
+
+// ---- inputs and outputs: right or refused (docs/reliability.md) -----------------------------
+
+namespace
+{
+
+// Class "valid files refused": what VTK writes, cloudvis reads, value for value.
+void ExpectSameField(vtkImageData* reference, vtkImageData* read)
+{
+  ASSERT_NE(read, nullptr);
+  int expectedExtent[6], readExtent[6];
+  reference->GetExtent(expectedExtent);
+  read->GetExtent(readExtent);
+  EXPECT_EQ(std::vector<int>(expectedExtent, expectedExtent + 6),
+    std::vector<int>(readExtent, readExtent + 6));
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_EQ(reference->GetOrigin()[a], read->GetOrigin()[a]);
+    EXPECT_EQ(reference->GetSpacing()[a], read->GetSpacing()[a]);
+  }
+  vtkDataArray* expected = reference->GetPointData()->GetScalars();
+  vtkDataArray* density = read->GetPointData()->GetArray("density");
+  ASSERT_NE(density, nullptr);
+  ASSERT_EQ(expected->GetNumberOfTuples(), density->GetNumberOfTuples());
+  vtkIdType different = 0;
+  for (vtkIdType i = 0; i < expected->GetNumberOfTuples(); ++i)
+  {
+    different += expected->GetComponent(i, 0) == density->GetComponent(i, 0) ? 0 : 1;
+  }
+  EXPECT_EQ(different, 0) << "voxels whose value differs from the one VTK wrote";
+}
+
+TEST(FieldFormats, BigEndianFilesWrittenByVtkReadAsWritten)
+{
+  TemporaryDirectory dir;
+  const vtkSmartPointer<vtkImageData> reference = cloudvis::test::ReferenceField();
+  for (const cloudvis::test::BigEndianVariant& variant : cloudvis::test::BigEndianVariants())
+  {
+    SCOPED_TRACE(variant.Name);
+    const std::string path = cloudvis::test::WriteBigEndian(dir.Path, variant);
+    ASSERT_NE(ReadText(path).find("byte_order=\"BigEndian\""), std::string::npos);
+    ExpectSameField(reference, cloudvis::ReadField(path));
+  }
+}
+
+TEST(FieldFormats, ParallelFilesWrittenByVtkAssembleIntoTheWholeField)
+{
+  TemporaryDirectory dir;
+  const vtkSmartPointer<vtkImageData> reference = cloudvis::test::ReferenceField();
+  struct Layout
+  {
+    int Pieces;
+    bool Subdirectory, BigEndian;
+  };
+  for (const Layout& layout : { Layout{ 1, false, false },
+         Layout{ 3, false, false },
+         Layout{ 4, true, true },
+         Layout{ 7, true, false } })
+  {
+    const std::string name = "p" + std::to_string(layout.Pieces) + ".pvti";
+    SCOPED_TRACE(name);
+    const std::string path = cloudvis::test::WriteParallel(
+      dir.Path, name, layout.Pieces, layout.Subdirectory, layout.BigEndian);
+    // The writer really split the field: one <Piece> element per piece.
+    const std::string text = ReadText(path);
+    int pieces = 0;
+    for (auto at = text.find("<Piece "); at != std::string::npos; at = text.find("<Piece ", at + 1))
+    {
+      ++pieces;
+    }
+    EXPECT_EQ(pieces, layout.Pieces);
+    ExpectSameField(reference, cloudvis::ReadField(path));
+  }
+}
+
+TEST(FieldFormats, ExtensionsMatchWithoutRegardToCase)
+{
+  for (const char* path : { "f.vti", "dir/F.VTI", "f.Vti", "f.pvti", "F.PVTI", "dir.d/f.pVtI" })
+  {
+    EXPECT_TRUE(cloudvis::IsFieldFile(path)) << path;
+  }
+  for (const char* path : { "f.json", "f.vtk", "vti", ".vti", "f.vti.bak", "f.vti/scene", "f" })
+  {
+    EXPECT_FALSE(cloudvis::IsFieldFile(path)) << path;
+  }
+  const cloudvis::FieldFormat* parallel = cloudvis::FindFieldFormat("A.PVTI");
+  ASSERT_NE(parallel, nullptr);
+  EXPECT_EQ(parallel->Name, "VTK XML parallel image data");
+  EXPECT_EQ(cloudvis::LowerCaseExtension("dir/Image.EXR"), ".exr");
+  EXPECT_EQ(cloudvis::FieldFileExtensions(), ".vti, .pvti");
+}
+
+// Class "JSON files above the size limit": the limit is the largest size read, inclusive.
+TEST(InputFiles, SizeLimitIsInclusive)
+{
+  TemporaryDirectory dir;
+  const std::string path = dir.File("f.json");
+  WriteText(path, std::string(100, ' '));
+  const cloudvis::RegularInputFile file(path, "test file");
+  EXPECT_EQ(file.ReadAll(100).size(), 100u);
+  try
+  {
+    file.ReadAll(99);
+    FAIL() << "a file one byte above the limit was read";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    EXPECT_STREQ(e.what(),
+      (path +
+        ": cannot read test file: it is 0 MiB (100 bytes), above the "
+        "limit of 0 MiB (99 bytes) for a test file")
+        .c_str());
+  }
+  EXPECT_EQ(file.ReadAt(98, 10), "  ");
+}
+
+// Class "paths that are not UTF-8": the escape must accept exactly what nlohmann::json's dump()
+// accepts, or a path it passes still throws (type_error 316) in a JSON document.
+TEST(Utf8, EscapesExactlyTheBytesJsonRefuses)
+{
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("bad\xff\xfe.vti"), "bad\\xff\\xfe.vti");
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xc0\xaf"), "\\xc0\\xaf");          // overlong '/'
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xed\xa0\x80"), "\\xed\\xa0\\x80"); // a surrogate
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80"); // > U+10FFFF
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("\xe2\x82"), "\\xe2\\x82");                   // cut short
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8c\xa7"),
+    "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8c\xa7"); // é, €, a cloud: unchanged
+  // Random byte strings rich in lead and continuation bytes, against nlohmann::json itself.
+  std::mt19937 random(10);
+  std::uniform_int_distribution<int> length(0, 8), kind(0, 2), ascii(0x20, 0x7e),
+    continuation(0x80, 0xbf), lead(0xc0, 0xff);
+  int valid = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    std::string text;
+    for (int i = length(random); i > 0; --i)
+    {
+      const int k = kind(random);
+      text += char(k == 0 ? ascii(random) : k == 1 ? continuation(random) : lead(random));
+    }
+    bool jsonAccepts = true;
+    try
+    {
+      (void)json(text).dump();
+    }
+    catch (const json::type_error&)
+    {
+      jsonAccepts = false;
+    }
+    ASSERT_EQ(cloudvis::IsValidUtf8(text), jsonAccepts) << json(cloudvis::EscapeInvalidUtf8(text));
+    valid += jsonAccepts ? 1 : 0;
+    const std::string escaped = cloudvis::EscapeInvalidUtf8(text);
+    ASSERT_NO_THROW((void)json(escaped).dump());
+    if (jsonAccepts)
+    {
+      ASSERT_EQ(escaped, text);
+    }
+  }
+  EXPECT_GT(valid, 2000) << "too few valid strings to test the multi-byte forms";
+}
+
+// Class "temporary names beyond the file-name limit": the temporary of any legal name fits.
+TEST(AtomicFile, TemporaryNamesStayWithinTheFileNameLimit)
+{
+  TemporaryDirectory dir;
+  const long limit = ::pathconf(dir.Path.c_str(), _PC_NAME_MAX);
+  ASSERT_EQ(limit, 255) << "the test's names assume the usual limit";
+  std::string twoByteCharacters;
+  for (int i = 0; i < 125; ++i)
+  {
+    twoByteCharacters += "\xc3\xa9"; // é
+  }
+  const std::string names[] = {
+    std::string(251, 'a') + ".vti", // 255 bytes
+    twoByteCharacters + ".vti",     // 254 bytes: cut between characters
+    "a." + std::string(253, 'x'),   // an extension too long to keep
+    "short.png",
+  };
+  for (const std::string& name : names)
+  {
+    SCOPED_TRACE(name.size());
+    std::string temporary;
+    cloudvis::WriteFileAtomically(dir.File(name),
+      [&temporary](const std::string& path)
+      {
+        temporary = path;
+        WriteText(path, "x");
+      });
+    const std::string temporaryName = cloudvis::FileNameOf(temporary);
+    EXPECT_LE(temporaryName.size(), 255u);
+    EXPECT_EQ(cloudvis::DirectoryOf(temporary), dir.Path) << "not beside the target";
+    EXPECT_EQ(temporaryName.rfind("." + name.substr(0, 4), 0), 0u) << temporaryName;
+    EXPECT_TRUE(cloudvis::IsValidUtf8(temporaryName)) << "a character cut in two";
+    if (cloudvis::LowerCaseExtension(name).size() < 20)
+    {
+      EXPECT_EQ(cloudvis::LowerCaseExtension(temporaryName), cloudvis::LowerCaseExtension(name));
+    }
+    EXPECT_EQ(ReadText(dir.File(name)), "x");
+  }
 }
 
 } // namespace

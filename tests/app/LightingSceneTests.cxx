@@ -2,20 +2,19 @@
 // sections reach LightingParameters and vtkLights with their documented defaults; the models
 // change the rendered pixels; --cpu-reference agrees with the GPU render of the same scene; and
 // compare lays its panels side by side. The render and compare tests need an X display (Xvfb).
-#include "CommandLine.h"
 #include "Errors.h"
 #include "Scene.h"
 #include "SceneLighting.h"
+#include "SupportBaselines.h"
+#include "SupportImages.h"
+#include "SupportRun.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkLightCollection.h>
 #include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkUnsignedCharArray.h>
 
 #include <gtest/gtest.h>
 
@@ -181,64 +180,36 @@ TEST(SceneLighting, ConfigureLightingAddsSceneLightsAndNoHeadlight)
 
 // ---- pixels -------------------------------------------------------------------------------
 
-struct Png
-{
-  int Width = 0, Height = 0;
-  std::vector<unsigned char> RGB;
-  double At(int x, int y, int c) const { return this->RGB[3 * (size_t(y) * this->Width + x) + c]; }
-};
+using cloudvis::support::Crop;
+using cloudvis::support::Image;
+using cloudvis::support::ReadPng;
+using cloudvis::support::Region;
 
-Png ReadPng(const std::string& path)
+// RMS difference in 8-bit levels over the RGB channels between the columns [ax, ax + width) of a
+// and [bx, bx + width) of b, over the bottom `rows` rows (all when 0).
+double RmsLevels(const Image& a, int ax, const Image& b, int bx, int width, int rows = 0)
 {
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  Png png;
-  int d[3];
-  reader->GetOutput()->GetDimensions(d);
-  auto* data = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetScalars());
-  if (data && data->GetNumberOfComponents() == 3)
-  {
-    png.Width = d[0];
-    png.Height = d[1];
-    png.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
-  }
-  return png;
+  return cloudvis::support::Compare(
+    Crop(a, Region{ ax, 0, width, rows }), Crop(b, Region{ bx, 0, width, rows }), 3)
+    .RmsLevels();
 }
 
-// RMS difference in 8-bit levels between the columns [ax, ax + width) of a and [bx, bx + width)
-// of b, over the bottom `rows` rows (all when 0).
-double RmsLevels(const Png& a, int ax, const Png& b, int bx, int width, int rows = 0)
-{
-  rows = rows > 0 ? rows : a.Height;
-  double sum = 0.0;
-  for (int y = 0; y < rows; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 3; ++c)
-      {
-        const double d = a.At(ax + x, y, c) - b.At(bx + x, y, c);
-        sum += d * d;
-      }
-  return std::sqrt(sum / (3.0 * rows * width));
-}
-
+// A file in a folder of its own, removed with it.
 class Output
 {
 public:
   explicit Output(const std::string& name)
-    : Path("/tmp/cloudvis-lighting-" + std::to_string(::getpid()) + "-" + name)
+    : Path(Folder.File(name))
   {
   }
-  ~Output() { std::remove(this->Path.c_str()); }
+  cloudvis::support::TemporaryDirectory Folder{ "cloudvis-lighting" };
   std::string Path;
 };
 
 void RunCloudvis(const std::vector<std::string>& arguments)
 {
-  std::vector<std::string> argv{ "cloudvis" };
-  argv.insert(argv.end(), arguments.begin(), arguments.end());
-  std::ostringstream out, err;
-  ASSERT_EQ(cloudvis::RunCommandLine(argv, out, err), 0) << err.str();
+  const cloudvis::support::CommandResult run = cloudvis::support::RunCloudvis(arguments);
+  ASSERT_EQ(run.Status, 0) << run.Err;
 }
 
 // Small, exact renders: no jitter, one frame, a coarse field.
@@ -253,7 +224,7 @@ std::vector<std::string> With(std::vector<std::string> arguments)
 
 TEST(LightingRender, DerivativeAndMarchDifferFromNone)
 {
-  Png images[3];
+  Image images[3];
   const char* models[3] = { "none", "derivative", "march" };
   for (int i = 0; i < 3; ++i)
   {
@@ -283,7 +254,7 @@ TEST_P(CpuReferenceMatchesRender, WithinTwoLevelsRms)
   cpuArguments.insert(cpuArguments.end(), { "--cpu-reference", "-o", cpu.Path });
   RunCloudvis(gpuArguments);
   RunCloudvis(cpuArguments);
-  const Png a = ReadPng(gpu.Path), b = ReadPng(cpu.Path);
+  const Image a = ReadPng(gpu.Path), b = ReadPng(cpu.Path);
   ASSERT_EQ(a.Width, 72);
   ASSERT_EQ(b.Width, 72);
   ASSERT_EQ(b.Height, 40);
@@ -302,11 +273,26 @@ TEST_P(CpuReferenceMatchesRender, WithinTwoLevelsRms)
 INSTANTIATE_TEST_SUITE_P(Models, CpuReferenceMatchesRender,
   ::testing::Values("none", "derivative", "march"));
 
+// The pictures of the thesis chapter's two-light scene, one per lighting model, against their
+// committed baselines (tests/baselines/two-lights-MODEL.png; tests/support/SupportBaselines.h).
+TEST(Baseline, TwoLightsUnderEachLightingModel)
+{
+  for (const char* model : { "none", "derivative", "march" })
+  {
+    const Output png(std::string(model) + ".png");
+    RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "128x96",
+      "--lighting", model, "-o", png.Path }));
+    const cloudvis::support::BaselineCheck check =
+      cloudvis::support::CompareWithBaseline(ReadPng(png.Path), std::string("two-lights-") + model);
+    EXPECT_TRUE(check) << check.Message;
+  }
+}
+
 TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
 {
   const Output png("compare.png");
   RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "-o", png.Path }));
-  const Png image = ReadPng(png.Path);
+  const Image image = ReadPng(png.Path);
   ASSERT_EQ(image.Width, 120);
   ASSERT_EQ(image.Height, 32);
   // Panel i is the render of model i; the labels, which differ anyway, are in the top rows.
@@ -321,16 +307,17 @@ TEST(Compare, DifferenceAddsAPanel)
   const Output png("difference.png");
   RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "--lighting",
     "none,march", "--difference", "none,march", "-o", png.Path }));
-  const Png image = ReadPng(png.Path);
+  const Image image = ReadPng(png.Path);
   ASSERT_EQ(image.Width, 120);
   // The difference panel is black where the models agree (the empty corners) and bright where
   // they differ most.
   double brightest = 0.0;
   for (int y = 0; y < image.Height; ++y)
     for (int x = 80; x < 120; ++x)
-      brightest = std::max(brightest, image.At(x, y, 0) + image.At(x, y, 1) + image.At(x, y, 2));
+      brightest =
+        std::max(brightest, image.Level(x, y, 0) + image.Level(x, y, 1) + image.Level(x, y, 2));
   EXPECT_GT(brightest, 300.0);
-  EXPECT_EQ(image.At(81, 1, 0) + image.At(81, 1, 1) + image.At(81, 1, 2), 0.0);
+  EXPECT_EQ(image.Level(81, 1, 0) + image.Level(81, 1, 1) + image.Level(81, 1, 2), 0.0);
 }
 
 } // namespace

@@ -6,10 +6,33 @@
 #
 # Called as: cmake -DCLOUDVIS=<binary> -DSPEC=<spec file> -DWORK_DIR=<dir> -P RunCloudvis.cmake
 # The spec file (written by cloudvis_app_test in CMakeLists.txt) sets ARGS, STATUS, STDOUT,
-# STDERR, OUTPUTS, SETUP (pairs of file name and content) and ENV (changes to the environment in
-# the form of `cmake -E env`: NAME=VALUE or --unset=NAME).
+# STDERR, OUTPUTS, SETUP (pairs of file name and content), PREPARE (shell commands run in the
+# working directory before cloudvis, for what file(WRITE) cannot make: FIFOs, sockets, large
+# sparse files, copies; what they make counts as setup) and ENV (changes to the environment in
+# the form of `cmake -E env`: NAME=VALUE or --unset=NAME). In ARGS, SETUP and PREPARE, \xNN
+# stands for the byte NN, for names that are not UTF-8.
 cmake_minimum_required(VERSION 3.16)
 include("${SPEC}")
+
+# \xNN -> the byte NN in each element of the list variable `name`.
+function(decode_bytes name)
+  set(decoded "")
+  foreach(item IN LISTS ${name})
+    string(REGEX MATCHALL "\\\\x[0-9A-Fa-f][0-9A-Fa-f]" escapes "${item}")
+    list(REMOVE_DUPLICATES escapes)
+    foreach(escape IN LISTS escapes)
+      string(SUBSTRING "${escape}" 2 2 hex)
+      math(EXPR code "0x${hex}")
+      string(ASCII ${code} byte)
+      string(REPLACE "${escape}" "${byte}" item "${item}")
+    endforeach()
+    list(APPEND decoded "${item}")
+  endforeach()
+  set(${name} "${decoded}" PARENT_SCOPE)
+endfunction()
+decode_bytes(ARGS)
+decode_bytes(SETUP)
+decode_bytes(PREPARE)
 
 set(failures "")
 macro(fail what)
@@ -30,6 +53,18 @@ if(setup_length GREATER 0)
     list(APPEND setup_names "${name}")
   endforeach()
 endif()
+
+foreach(command IN LISTS PREPARE)
+  execute_process(COMMAND sh -c "${command}" WORKING_DIRECTORY "${WORK_DIR}"
+    RESULT_VARIABLE prepared ERROR_VARIABLE prepare_error)
+  if(NOT prepared EQUAL 0)
+    message(FATAL_ERROR "PREPARE failed: ${command}\n${prepare_error}")
+  endif()
+endforeach()
+# Everything present now is setup, expected to be left in place (FIFOs and sockets included).
+file(GLOB_RECURSE prepared_names LIST_DIRECTORIES false RELATIVE "${WORK_DIR}" "${WORK_DIR}/*")
+list(APPEND setup_names ${prepared_names})
+list(REMOVE_DUPLICATES setup_names)
 
 execute_process(
   COMMAND "${CMAKE_COMMAND}" -E env ${ENV} "${CLOUDVIS}" ${ARGS}

@@ -1,9 +1,9 @@
-// The per-process input file of FuzzInput.h.
+// The per-process input directory of FuzzInput.h.
 #include "FuzzInput.h"
 
 #include <cstdio>
 #include <cstdlib>
-#include <map>
+#include <filesystem>
 #include <unistd.h>
 
 namespace cloudvis
@@ -13,33 +13,28 @@ namespace fuzz
 namespace
 {
 
-std::map<std::string, std::string>& Paths()
+const std::string& InputDirectory()
 {
-  static std::map<std::string, std::string> paths;
-  return paths;
-}
-
-void RemoveInputFiles()
-{
-  for (const auto& entry : Paths())
+  static const std::string directory = []
   {
-    std::remove(entry.second.c_str());
-  }
+    const char* tmp = std::getenv("TMPDIR");
+    const std::string path =
+      std::string(tmp && *tmp ? tmp : "/tmp") + "/cloudvis-fuzz-" + std::to_string(::getpid());
+    std::filesystem::create_directories(path);
+    return path;
+  }();
+  // Registered once `directory` is complete, so it runs before the string is destroyed.
+  static const bool removedAtExit =
+    std::atexit([] { std::filesystem::remove_all(InputDirectory()); }) == 0;
+  (void)removedAtExit;
+  return directory;
 }
 
 } // namespace
 
-const std::string& WriteInputFile(const char* extension, const std::uint8_t* data, std::size_t size)
+std::string WriteInputFile(const std::string& name, const std::uint8_t* data, std::size_t size)
 {
-  std::string& path = Paths()[extension];
-  if (path.empty())
-  {
-    const char* tmp = std::getenv("TMPDIR");
-    path = std::string(tmp && *tmp ? tmp : "/tmp") + "/cloudvis-fuzz-" +
-      std::to_string(::getpid()) + "-input" + extension;
-    static const bool registered = std::atexit(RemoveInputFiles) == 0;
-    (void)registered;
-  }
+  const std::string path = InputDirectory() + "/" + name;
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (!file || (size > 0 && std::fwrite(data, 1, size, file) != size) || std::fclose(file) != 0)
   {
@@ -47,6 +42,11 @@ const std::string& WriteInputFile(const char* extension, const std::uint8_t* dat
     std::abort();
   }
   return path;
+}
+
+void RemoveInputFile(const std::string& name)
+{
+  std::remove((InputDirectory() + "/" + name).c_str());
 }
 
 } // namespace fuzz

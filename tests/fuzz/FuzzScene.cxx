@@ -11,7 +11,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  const std::string& path = cloudvis::fuzz::WriteInputFile(".json", data, size);
+  const std::string& path = cloudvis::fuzz::WriteInputFile("input.json", data, size);
   try
   {
     const cloudvis::Scene scene = cloudvis::LoadScene(path, {});

@@ -3,20 +3,14 @@
 // (vtkInteractorEventRecorder's text format, written by hand) and checks what the session changed:
 // the viewer's state, the scene it saves, the files it writes and the images it shows. Window 480 x
 // 400: the 3D view is 480 x 300 above the editor's 480 x 100.
-#include "CommandLine.h"
 #include "Errors.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "SupportImages.h"
+#include "SupportRun.h"
 #include "Viewer.h"
 
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-
-#include <vtkDataArray.h>
 #include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
 
 #include <gtest/gtest.h>
 
@@ -56,43 +50,13 @@ nlohmann::json ReadJson(const std::string& path)
   return nlohmann::json::parse(in);
 }
 
-struct Pixels
-{
-  int Width = 0, Height = 0;
-  std::vector<double> Values;
-};
-
-Pixels ReadPng(const std::string& path)
-{
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  Pixels pixels;
-  int dimensions[3];
-  reader->GetOutput()->GetDimensions(dimensions);
-  pixels.Width = dimensions[0];
-  pixels.Height = dimensions[1];
-  vtkDataArray* data = reader->GetOutput()->GetPointData()->GetScalars();
-  for (vtkIdType i = 0; data && i < data->GetNumberOfValues(); ++i)
-  {
-    pixels.Values.push_back(data->GetVariantValue(i).ToDouble());
-  }
-  return pixels;
-}
+using support::ReadPng;
+using Pixels = support::Image;
 
 // Root-mean-square difference in 8-bit levels; infinite when the sizes differ.
 double Rms(const Pixels& a, const Pixels& b)
 {
-  if (a.Values.size() != b.Values.size() || a.Values.empty())
-  {
-    return INFINITY;
-  }
-  double sum = 0.0;
-  for (size_t i = 0; i < a.Values.size(); ++i)
-  {
-    sum += (a.Values[i] - b.Values[i]) * (a.Values[i] - b.Values[i]);
-  }
-  return std::sqrt(sum / double(a.Values.size()));
+  return support::Compare(a, b).RmsLevels();
 }
 
 // The default cloud on 48^3 voxels, seen from above and to the side so that every slice plane
@@ -221,10 +185,9 @@ TEST(Interaction, ScreenshotWritesReadablePngAndExr)
   const Pixels png = ReadPng(directory + "/cloudvis-screenshot-001.png");
   EXPECT_EQ(png.Width, 480);
   EXPECT_EQ(png.Height, 300);
-  Imf::InputFile exr((directory + "/cloudvis-screenshot-001.exr").c_str());
-  const Imath::Box2i window = exr.header().dataWindow();
-  EXPECT_EQ(window.max.x - window.min.x + 1, 480);
-  EXPECT_EQ(window.max.y - window.min.y + 1, 300);
+  const support::Exr exr = support::ReadExr(directory + "/cloudvis-screenshot-001.exr");
+  EXPECT_EQ(exr.Width, 480);
+  EXPECT_EQ(exr.Height, 300);
   // The next one takes the next number.
   session.View->PressKey("s", 's');
   EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-002.png"));
@@ -241,10 +204,9 @@ TEST(Interaction, SavedSceneRerendersToTheScreenshot)
   const std::string scene = directory + "/cloudvis-view-001.json";
   const nlohmann::json saved = ReadJson(scene);
   EXPECT_EQ(saved["render"]["size"], nlohmann::json({ 480, 300 }));
-  std::ostringstream out, err;
-  ASSERT_EQ(
-    RunCommandLine({ "cloudvis", "render", scene, "-o", directory + "/render.png" }, out, err), 0)
-    << err.str();
+  const support::CommandResult render =
+    support::RunCloudvis({ "render", scene, "-o", directory + "/render.png" });
+  ASSERT_EQ(render.Status, 0) << render.Err;
   const double rms =
     Rms(ReadPng(directory + "/cloudvis-screenshot-001.png"), ReadPng(directory + "/render.png"));
   EXPECT_LT(rms, 2.0);
@@ -340,24 +302,19 @@ TEST(Interaction, CommandLinePlaySavesTheSceneOnExit)
 {
   const std::string directory = FreshDirectory("command-line");
   const std::string saved = directory + "/end.json";
-  std::ostringstream out, err;
-  ASSERT_EQ(RunCommandLine({ "cloudvis",
-                             "view",
-                             "--set",
-                             "field.dimensions=32",
-                             "--size",
-                             "320x240",
-                             "--output-dir",
-                             directory,
-                             "--play",
-                             Recordings + "/keys-lighting.log",
-                             "--save-scene-on-exit",
-                             saved },
-              out,
-              err),
-    0)
-    << err.str();
-  EXPECT_NE(out.str().find("wrote " + saved), std::string::npos);
+  const support::CommandResult run = support::RunCloudvis({ "view",
+    "--set",
+    "field.dimensions=32",
+    "--size",
+    "320x240",
+    "--output-dir",
+    directory,
+    "--play",
+    Recordings + "/keys-lighting.log",
+    "--save-scene-on-exit",
+    saved });
+  ASSERT_EQ(run.Status, 0) << run.Err;
+  EXPECT_NE(run.Out.find("wrote " + saved), std::string::npos);
   const nlohmann::json scene = ReadJson(saved);
   EXPECT_EQ(scene["render"]["lighting"], "derivative");
   EXPECT_EQ(scene["render"]["size"], nlohmann::json({ 320, 180 }));
@@ -500,8 +457,7 @@ TEST(Interaction, FourViewLayoutShowsTheSlices)
   // 8-bit levels, and its middle the slice, whose colors (blue-yellow: dark blue for empty
   // space) are all far bluer than that background.
   const auto& axial = viewports["axial"];
-  const auto pixel = [&](int x, int y, int c)
-  { return window.Values[size_t(3 * (y * window.Width + x) + c)]; };
+  const auto pixel = [&](int x, int y, int c) { return window.Level(x, y, c); };
   EXPECT_NEAR(pixel(axial[0] + 3, axial[1] + 3, 0), 20.4, 1.0);
   EXPECT_NEAR(pixel(axial[0] + 3, axial[1] + 3, 2), 25.5, 1.0);
   int slice = 0, count = 0;
@@ -561,8 +517,7 @@ TEST(Interaction, SliceColorsCycleToTheTransferFunction)
     {
       for (int x = axial[0] + 80; x < axial[2] - 80; ++x, ++count)
       {
-        const size_t at = size_t(3 * (y * window.Width + x));
-        passed += test(window.Values[at], window.Values[at + 1], window.Values[at + 2]) ? 1 : 0;
+        passed += test(window.Level(x, y, 0), window.Level(x, y, 1), window.Level(x, y, 2)) ? 1 : 0;
       }
     }
     return double(passed) / count;

@@ -1,8 +1,8 @@
 // vtkCloudVolumeMapper against known answers and against VTK's vtkGPUVolumeRayCastMapper.
 #include "RenderFixture.h"
+#include "SupportMappers.h"
 
 #include <vtkCamera.h>
-#include <vtkGPUVolumeRayCastMapper.h>
 
 #include <gtest/gtest.h>
 
@@ -12,13 +12,9 @@ using namespace cloudvis::test;
 
 namespace
 {
-vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step)
-{
-  auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
-  mapper->SetSampleDistance(step);
-  mapper->JitterOff();
-  return mapper;
-}
+// cloudvis's mapper and VTK's GPU ray caster marching the same way (tests/support).
+const auto CloudMapper = cloudvis::support::MatchedCloudMapper;
+const auto VtkMapper = cloudvis::support::MatchedVtkMapper;
 }
 
 TEST(CloudVolumeMapper, HomogeneousSphereTransmitsBeerLambert)
@@ -42,19 +38,6 @@ TEST(CloudVolumeMapper, HomogeneousSphereTransmitsBeerLambert)
 
 namespace
 {
-// VTK's GPU ray caster set up to march exactly like cloudvis: same step, no jitter, no
-// automatic step adjustment.
-vtkSmartPointer<vtkGPUVolumeRayCastMapper> VtkMapper(double step)
-{
-  auto mapper = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
-  mapper->SetSampleDistance(step);
-  mapper->AutoAdjustSampleDistancesOff();
-  mapper->LockSampleDistanceToInputSpacingOff();
-  mapper->SetUseJittering(0);
-  mapper->SetBlendModeToComposite();
-  return mapper;
-}
-
 void ExpectMatchesVtk(vtkImageData* field, const char* name)
 {
   const double step = 0.02;

@@ -4,6 +4,7 @@
 // agreement with vtkCamera, the image's orientation, input checks and determinism.
 #include "CloudLighting.h"
 #include "CloudTransferTable.h"
+#include "RendererTestSupport.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCallbackCommand.h>
@@ -167,19 +168,7 @@ Image RenderWith(vtkCloudReferenceRenderer* renderer, const LightingParameters& 
   return Render(renderer);
 }
 
-int CountErrors(vtkCloudReferenceRenderer* renderer)
-{
-  int errors = 0;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&errors);
-  onError->SetCallback(
-    [](vtkObject*, unsigned long, void* clientData, void*) { ++*static_cast<int*>(clientData); });
-  const unsigned long tag = renderer->AddObserver(vtkCommand::ErrorEvent, onError);
-  renderer->Modified();
-  renderer->Update();
-  renderer->RemoveObserver(tag);
-  return errors;
-}
+using cloudvis::test::CountErrors;
 }
 
 TEST(ReferenceRenderer, CameraMatchesVtkCamera)

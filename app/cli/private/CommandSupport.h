@@ -25,9 +25,6 @@ OptionSpec LightingOption();
 // naming `command` when the text is not of that form.
 nlohmann::json ParseSizeOption(const std::string& command, const std::string& text);
 
-// Whether a command's operand names a field file (.vti) rather than a scene.
-bool IsFieldFile(const std::string& operand);
-
 // Throws UsageError when one of the --set assignments sets a field key: a field file has no
 // procedural parameters, so `command` refuses them.
 void RefuseFieldKeys(const std::string& command,

@@ -38,7 +38,8 @@ ImageExportOptions MakeExportOptions(
 // The progress bar of a command: on stderr when it is a terminal and --quiet is absent.
 bool ShowProgress(const Arguments& arguments);
 
-// The command line quoted for a POSIX shell where needed, as stored in "cloudvis.command".
+// The command line quoted for a POSIX shell where needed, as stored in "cloudvis.command" (by
+// render, animate and the viewer), with bytes that are not UTF-8 escaped as \xNN.
 std::string QuoteCommandLine(const std::vector<std::string>& arguments);
 
 } // namespace cloudvis

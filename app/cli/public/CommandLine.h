@@ -70,7 +70,8 @@ std::string CommandHelp(const CommandSpec& command);
 int RunDefault(std::ostream& out);
 
 // The whole program: arguments as main() gets them (arguments[0] is the program name). Prints
-// results on `out`, errors on `err` as "cloudvis: error: ...", returns the exit status.
+// results on `out`, errors on `err` as "cloudvis: error: ...", returns the exit status. Bytes
+// that are not UTF-8 (in paths, --set values) are printed escaped as \xNN on both (Utf8.h).
 int RunCommandLine(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
 
 } // namespace cloudvis

@@ -2,11 +2,15 @@
 // WriteFileAtomically: the content is written to a temporary file next to the target (same
 // directory, hence same filesystem) and renamed over the target only once it is complete. A
 // reader therefore never sees a half-written file, and a failed or interrupted export leaves the
-// previous target untouched and no temporary behind. "Interrupted" includes SIGINT and SIGTERM:
-// while a temporary exists its path is registered where a signal handler can reach it without
-// allocating or locking; the handlers (installed on the first write, unless the signal is
-// ignored or already handled by someone else) unlink the registered temporaries and end the
-// process with _exit(128 + signal), 130 for SIGINT and 143 for SIGTERM.
+// previous target untouched and no temporary behind. "Interrupted" means any signal whose
+// default action ends the process and that can be caught (SIGHUP, SIGINT, SIGQUIT, SIGPIPE,
+// SIGTERM, SIGUSR1, SIGALRM, SIGXFSZ, the real-time signals, and the fault signals SIGSEGV,
+// SIGABRT, ...): while a temporary exists its path is registered where a signal handler can
+// reach it without allocating or locking; the handler (installed on the first write, for each
+// signal that is neither ignored nor already handled by someone else) unlinks the registered
+// temporaries, restores the default action and raises the signal again, so the process ends by
+// that signal (a shell reports 128 + signal: 129 for SIGHUP, 130 for SIGINT, 143 for SIGTERM).
+// The temporary's name stays within the directory's file-name limit whatever the target's.
 #ifndef cloudvis_AtomicFile_h
 #define cloudvis_AtomicFile_h
 
@@ -28,10 +32,14 @@ void CheckOutputTarget(const std::string& target);
 void WriteFileAtomically(
   const std::string& target, const std::function<void(const std::string& temporaryPath)>& write);
 
-// Installs the SIGINT and SIGTERM handlers that remove registered temporaries (see above); called
-// by WriteFileAtomically, idempotent, and safe to call earlier (at start-up) so that a signal that
-// arrives before the first write also exits with 128 + signal.
+// Installs the signal handler that removes registered temporaries (see above); called by
+// WriteFileAtomically, idempotent, and safe to call earlier (at start-up).
 void InstallInterruptCleanup();
+
+// For a child made by fork(): its copy of the table of temporaries names its parent's files,
+// which a signal ending the child must not remove. Async-signal-safe, as a child of a
+// multi-threaded parent requires.
+void ForgetTemporariesInChild();
 
 } // namespace cloudvis
 

@@ -71,7 +71,6 @@ struct Viewer::Internals
   std::unique_ptr<LiveLoop> Loop;
 
   bool FourViews = false;
-  bool LightsChanged = false;
   bool Typing = false; // the keys type a point's values
   std::string Typed;
   int PresetIndex = -1;

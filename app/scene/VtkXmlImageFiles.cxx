@@ -1,0 +1,593 @@
+// VTK's XML readers trust the file: crafted headers make them crash, loop or allocate gigabytes
+// (docs/reliability.md lists what the fuzzer found). Three layers stand between a file and the
+// cloudvis process:
+//   1. text checks of the markup and of the binary headers of raw appended data (CheckVtiText),
+//      closing the classes the fuzzer found one by one, with messages that say what is wrong;
+//   2. a first read in a forked child under an address-space and a time limit (ReadInIsolation):
+//      a crash, a hang or a runaway allocation in VTK ends the child, not cloudvis;
+//   3. in the process itself, the header's extent checked against the memory available before
+//      VTK allocates the arrays it claims.
+// A .pvti names its pieces; each piece goes through layer 1 as a .vti would, the child reads the
+// whole assembly, and the memory check counts a piece's arrays on top of the output's. (Pieces
+// that leave part of the whole extent uncovered are refused by VTK itself: "No available piece
+// provides data for the following extents".)
+#include "VtkXmlImageFiles.h"
+
+#include "AtomicFile.h"
+#include "Errors.h"
+#include "FileNames.h"
+#include "InputFiles.h"
+#include "VtkMessageCapture.h"
+
+#include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
+
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkNew.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkXMLPImageDataReader.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace cloudvis
+{
+namespace
+{
+
+[[noreturn]] void Fail(const std::string& path, const std::string& problem)
+{
+  throw InputError(path + ": " + problem);
+}
+
+std::string WithVtkReason(const std::string& problem, const VtkMessageCapture& messages)
+{
+  const std::string summary = messages.Summary();
+  return summary.empty() ? problem : problem + " (VTK: " + summary + ")";
+}
+
+using Extent = std::array<int, 6>;
+
+std::string Shorten(const std::string& text, std::size_t length)
+{
+  return text.size() > length ? text.substr(0, length - 3) + "..." : text;
+}
+
+// The value of attribute `name` in a start tag ("<Piece Extent="0 3 0 7 0 5" ...>"), with the
+// XML entities VTK's writers produce decoded; nothing when the tag has no such attribute.
+std::optional<std::string> Attribute(const std::string& tag, const std::string& name)
+{
+  const std::string pattern = name + "=\"";
+  for (auto at = tag.find(pattern); at != std::string::npos; at = tag.find(pattern, at + 1))
+  {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(tag[at - 1])))
+    {
+      continue; // the end of a longer name: WholeExtent when looking for Extent
+    }
+    const auto begin = at + pattern.size();
+    const auto end = tag.find('"', begin);
+    if (end == std::string::npos)
+    {
+      return std::nullopt;
+    }
+    std::string value = tag.substr(begin, end - begin);
+    static const std::pair<const char*, char> entities[] = {
+      { "&quot;", '"' }, { "&apos;", '\'' }, { "&lt;", '<' }, { "&gt;", '>' }, { "&amp;", '&' }
+    };
+    for (const auto& entity : entities)
+    {
+      for (auto e = value.find(entity.first); e != std::string::npos;
+           e = value.find(entity.first, e + 1))
+      {
+        value.replace(e, std::strlen(entity.first), 1, entity.second);
+      }
+    }
+    return value;
+  }
+  return std::nullopt;
+}
+
+// Six integers (an Extent or WholeExtent attribute), or nothing when the text is not that.
+std::optional<Extent> ParseExtent(const std::string& text)
+{
+  Extent extent{};
+  const char* at = text.c_str();
+  for (int& value : extent)
+  {
+    char* end = nullptr;
+    errno = 0;
+    const long parsed = std::strtol(at, &end, 10);
+    if (end == at || errno != 0 || parsed < std::numeric_limits<int>::min() ||
+      parsed > std::numeric_limits<int>::max())
+    {
+      return std::nullopt;
+    }
+    value = int(parsed);
+    at = end;
+  }
+  return extent;
+}
+
+// The start tag beginning at `at` ("<Piece ...>"), without the brackets' contents past it.
+std::string StartTag(const std::string& xml, std::size_t at)
+{
+  const auto end = xml.find('>', at);
+  return xml.substr(at, end == std::string::npos ? std::string::npos : end - at);
+}
+
+// VTK loops for minutes over a NumberOfComponents it misreads (found by the fuzzer:
+// "1888888888888cii"). An array's component count must be a plain integer from 1 to 1024.
+void CheckComponentCount(const std::string& path, const std::string& tag)
+{
+  const std::optional<std::string> value = Attribute(tag, "NumberOfComponents");
+  if (!value)
+  {
+    return; // VTK's default: 1
+  }
+  const bool digits = !value->empty() && value->size() <= 4 &&
+    value->find_first_not_of("0123456789") == std::string::npos;
+  if (!digits || std::stoi(*value) < 1 || std::stoi(*value) > 1024)
+  {
+    Fail(path,
+      "an array's NumberOfComponents is not an integer from 1 to 1024 (\"" + Shorten(*value, 20) +
+        "\")");
+  }
+}
+
+// VTK 9.1 dereferences a null array when an element of FieldData, PointData or CellData is not an
+// array of a type it knows (found by the fuzzer: a FieldData array without type=, and an element
+// of another name, crash vtkXMLReader::ReadXMLInformation). So every start tag in those sections,
+// other than the InformationKey/Value entries VTK nests in arrays, must be a DataArray (or Array,
+// for non-numeric arrays) of a known type: VTK reads any element there as an array, and another
+// name with a known type (a PointData nested in PointData, found by the fuzzer) made it allocate
+// 17 GB.
+void CheckArrayElements(const std::string& path, const std::string& xml, std::size_t markupEnd)
+{
+  static const char* const types[] = { "Int8",
+    "UInt8",
+    "Int16",
+    "UInt16",
+    "Int32",
+    "UInt32",
+    "Int64",
+    "UInt64",
+    "Float32",
+    "Float64",
+    "String",
+    "Bit",
+    "IdType",
+    "Char" };
+  const auto hasKnownType = [](const std::string& tag)
+  {
+    const std::optional<std::string> type = Attribute(tag, "type");
+    return type &&
+      std::any_of(
+        std::begin(types), std::end(types), [&type](const char* known) { return *type == known; });
+  };
+  for (const char* section : { "FieldData", "PointData", "CellData" })
+  {
+    const std::string open = std::string("<") + section;
+    const std::string close = std::string("</") + section;
+    for (auto start = xml.find(open); start < markupEnd; start = xml.find(open, start + 1))
+    {
+      const auto sectionTagEnd = xml.find('>', start);
+      if (sectionTagEnd == std::string::npos || xml[sectionTagEnd - 1] == '/')
+      {
+        continue; // cut off by the 1 MiB window, or an empty <PointData/>
+      }
+      const auto end = std::min(xml.find(close, sectionTagEnd), markupEnd);
+      for (auto at = xml.find('<', sectionTagEnd); at < end; at = xml.find('<', at + 1))
+      {
+        if (xml.find('>', at) == std::string::npos)
+        {
+          break; // VTK's parser reports an unterminated tag itself
+        }
+        const std::string tag = StartTag(xml, at);
+        if (tag[1] == '/' || tag[1] == '!' || tag[1] == '?' ||
+          tag.rfind("<InformationKey", 0) == 0 || tag.rfind("<Value", 0) == 0)
+        {
+          continue;
+        }
+        const auto named = [&tag](const char* name)
+        {
+          const std::string prefix = std::string("<") + name;
+          return tag.rfind(prefix, 0) == 0 && tag.size() > prefix.size() &&
+            std::isspace(static_cast<unsigned char>(tag[prefix.size()]));
+        };
+        if ((named("DataArray") || named("Array")) && hasKnownType(tag))
+        {
+          CheckComponentCount(path, tag);
+          continue;
+        }
+        Fail(path,
+          std::string("an element of ") + section + " is not a DataArray of a known type (" +
+            Shorten(tag, 60) + ">)");
+      }
+    }
+  }
+}
+
+// VTK's reader sizes buffers from the binary headers of raw appended arrays (a byte count, or a
+// block count followed by that many block sizes) before it reads them, so a corrupt count makes
+// it allocate gigabytes while reading the header (found by the fuzzer). Each header must at least
+// fit in the file. The header words are in the file's byte order (byte_order="BigEndian" from a
+// big-endian machine or a writer asked for it: both ParaView and VTK read those).
+void CheckAppendedHeaders(const std::string& path,
+  const RegularInputFile& file,
+  const std::string& xml,
+  std::size_t header,
+  std::size_t appended)
+{
+  const auto appendedEnd = appended == std::string::npos ? appended : xml.find('>', appended);
+  if (header == std::string::npos || appendedEnd == std::string::npos ||
+    Attribute(StartTag(xml, appended), "encoding").value_or("") != "raw")
+  {
+    return; // base64 and inline data are left to VTK (and the isolated read)
+  }
+  const auto underscore = xml.find('_', appendedEnd);
+  if (underscore == std::string::npos)
+  {
+    // Without the marker VTK takes whatever follows for the array headers (found by the fuzzer:
+    // a block count read from text made it allocate 7.8 GB).
+    Fail(path, "the appended data has no '_' marking where its bytes start");
+  }
+  // Only white space may come before the '_' that marks the data: VTK does not insist, and then
+  // takes stray bytes for a header (found by the fuzzer).
+  if (xml.find_first_not_of(" \t\r\n", appendedEnd + 1) != underscore)
+  {
+    Fail(path, "unexpected bytes between <AppendedData> and the '_' that starts its data");
+  }
+  const std::string fileTag = StartTag(xml, header);
+  const std::uint64_t word = Attribute(fileTag, "header_type").value_or("") == "UInt64" ? 8 : 4;
+  const bool bigEndian = Attribute(fileTag, "byte_order").value_or("") == "BigEndian";
+  const bool compressed = Attribute(fileTag, "compressor").has_value();
+  const std::uint64_t start = underscore + 1;
+  const std::uint64_t available = file.Size() > start ? file.Size() - start : 0;
+  // Every offset="N" before the appended data is the position of an array's header.
+  for (auto at = xml.find("offset=\"", header); at != std::string::npos && at < appended;
+       at = xml.find("offset=\"", at + 1))
+  {
+    const std::uint64_t offset = std::strtoull(xml.c_str() + at + 8, nullptr, 10);
+    const std::uint64_t words = compressed ? 3 : 1;
+    if (offset > available || (available - offset) / word < words)
+    {
+      Fail(path,
+        "the appended data ends before the header of the array at offset " +
+          std::to_string(offset));
+    }
+    if (compressed)
+    {
+      const std::string bytes = file.ReadAt(start + offset, std::size_t(word));
+      std::uint64_t blocks = 0;
+      for (std::size_t i = 0; i < bytes.size(); ++i)
+      {
+        const std::uint64_t byte = static_cast<unsigned char>(bytes[i]);
+        blocks |= byte << (8 * (bigEndian ? bytes.size() - 1 - i : i));
+      }
+      if (bytes.size() != word || blocks > (available - offset) / word - 3)
+      {
+        Fail(path,
+          "the header of the array at offset " + std::to_string(offset) + " claims " +
+            std::to_string(blocks) + " compressed blocks, more than the file holds");
+      }
+    }
+  }
+}
+
+// Layer 1 for one .vti file (a field, or a piece of a .pvti).
+void CheckVtiText(const std::string& path, const RegularInputFile& file)
+{
+  // The XML part: up to the '_' that starts the raw appended bytes (1 MiB is far more than the
+  // markup of any image file needs).
+  const std::string xml =
+    file.ReadAt(0, std::size_t(std::min<std::uint64_t>(file.Size(), 1 << 20)));
+  const auto header = xml.find("<VTKFile");
+  const auto appended = xml.find("<AppendedData");
+  CheckArrayElements(path, xml, appended == std::string::npos ? xml.size() : appended);
+  CheckAppendedHeaders(path, file, xml, header, appended);
+}
+
+double VoxelCount(const Extent& e)
+{
+  double voxels = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    voxels *= std::max(0.0, double(e[2 * a + 1]) - double(e[2 * a]) + 1.0);
+  }
+  return voxels;
+}
+
+// Layer 2: the file is first read by `NewReader()` in a forked child under an address-space and a
+// time limit, and only a file VTK read there without crashing, hanging or exhausting memory is
+// read in this process. The cost is reading a field twice.
+// How the child ends; any other exit status, or a signal, is a failure.
+constexpr int ChildReadCleanly = 0;
+constexpr int ChildVtkComplained = 3;
+constexpr int ChildOutOfMemory = 4;
+
+template<typename Reader>
+void ReadInIsolation(const std::string& path, std::uint64_t totalBytes)
+{
+  const unsigned seconds = 60u + unsigned(totalBytes / (10u << 20)); // 60 s + 1 s per 10 MiB
+  const pid_t child = ::fork();
+  if (child < 0)
+  {
+    return; // no isolation to be had: read directly, behind the text checks alone
+  }
+  if (child == 0)
+  {
+    // The temporaries of an export in progress are the parent's: a signal ending the child (the
+    // alarm below) must not remove them.
+    ForgetTemporariesInChild();
+#if !defined(__SANITIZE_ADDRESS__)
+    // The child may use what the process already maps plus the memory still available, so a
+    // header claiming more fails here as an allocation, not in the parent as an OOM kill.
+    // (AddressSanitizer reserves terabytes of shadow memory, so its builds skip the limit.)
+    std::uint64_t mapped = 0;
+    std::ifstream status("/proc/self/status");
+    for (std::string key; status >> key;)
+    {
+      if (key == "VmSize:")
+      {
+        status >> mapped;
+        mapped *= 1024u;
+        break;
+      }
+    }
+    const std::uint64_t available = AvailableMemoryBytes();
+    if (mapped > 0 && available > 0)
+    {
+      const rlimit memory{ rlim_t(mapped + available), rlim_t(mapped + available) };
+      ::setrlimit(RLIMIT_AS, &memory);
+    }
+#endif
+    ::alarm(seconds);
+    int code = ChildVtkComplained;
+    try
+    {
+      VtkMessageCapture messages;
+      vtkNew<Reader> reader;
+      if (reader->CanReadFile(path.c_str()))
+      {
+        reader->SetFileName(path.c_str());
+        reader->Update();
+        code = reader->GetErrorCode() == 0 && messages.Messages().empty() ? ChildReadCleanly
+                                                                          : ChildVtkComplained;
+      }
+    }
+    catch (...)
+    {
+      code = ChildOutOfMemory; // std::bad_alloc under the limit, most likely
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+  {
+  }
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code == ChildReadCleanly || code == ChildVtkComplained)
+  {
+    return; // read it here; VTK's complaints are then reported in its own words
+  }
+  if (code == ChildOutOfMemory)
+  {
+    Fail(path,
+      "VTK's reader ran out of memory on this file: it claims more than the " +
+        FormatBytes(double(AvailableMemoryBytes())) + " available");
+  }
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
+  {
+    Fail(path,
+      "VTK's reader took longer than " + std::to_string(seconds) +
+        " s on this file without finishing: it is malformed");
+  }
+  if (WIFSIGNALED(status))
+  {
+    Fail(path,
+      "VTK's reader crashed on this file (" + std::string(strsignal(WTERMSIG(status))) +
+        "): it is malformed");
+  }
+  // Another status: a sanitizer (in sanitized builds) caught VTK doing something fatal.
+  Fail(path,
+    "VTK's reader failed on this file (exit status " + std::to_string(code) + "): it is malformed");
+}
+
+// Layer 3: refuses a header whose whole extent is empty, or whose point arrays (counted as 4
+// bytes per voxel each, plus the float copy ReadField makes, plus the reader's own `extraBytes`)
+// would not fit in the memory available.
+void CheckExtentFitsInMemory(const std::string& path, vtkXMLReader* reader, double extraBytes)
+{
+  vtkInformation* information = reader->GetOutputInformation(0);
+  if (!information || !information->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    Fail(path, "the image data header states no extent");
+  }
+  Extent extent{};
+  information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent.data());
+  int dimensions[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    // In double: a corrupt extent such as "-2147483648 2147483647" overflows int.
+    const double size = double(extent[2 * a + 1]) - double(extent[2 * a]) + 1.0;
+    if (size < 1.0)
+    {
+      Fail(path,
+        "the image has no voxels (whole extent " + std::to_string(extent[2 * a]) + " to " +
+          std::to_string(extent[2 * a + 1]) + " along axis " + std::to_string(a) + ")");
+    }
+    if (size > double(std::numeric_limits<int>::max()))
+    {
+      Fail(path, "the image's extent along axis " + std::to_string(a) + " is too large");
+    }
+    dimensions[a] = int(size);
+  }
+  const double voxels = VoxelCount(extent);
+  const int arrays = std::max(1, reader->GetNumberOfPointArrays());
+  const double needed = voxels * 4.0 * (arrays + 1) + extraBytes;
+  const std::uint64_t available = AvailableMemoryBytes();
+  if (voxels >= double(std::numeric_limits<vtkIdType>::max()))
+  {
+    Fail(path, "the image's extent holds more voxels than can be addressed");
+  }
+  if (available > 0 && needed > double(available))
+  {
+    Fail(path,
+      "an image of " + std::to_string(dimensions[0]) + " x " + std::to_string(dimensions[1]) +
+        " x " + std::to_string(dimensions[2]) + " voxels needs at least " + FormatBytes(needed) +
+        " but only " + FormatBytes(double(available)) + " of memory is available");
+  }
+}
+
+// The read in this process, after layers 1 and 2: the header, the memory check, then the data.
+template<typename Reader>
+vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
+  const std::string& formatName,
+  double extraBytes = 0.0)
+{
+  VtkMessageCapture messages;
+  vtkNew<Reader> reader;
+  // CanReadFile checks the XML header names VTKFile of the reader's type, before any parsing
+  // that would otherwise fill the output window with errors.
+  if (!reader->CanReadFile(path.c_str()))
+  {
+    Fail(path, WithVtkReason("not a " + formatName + " file", messages));
+  }
+  reader->SetFileName(path.c_str());
+  // The header states the extent; VTK allocates every point array for it before reading a value,
+  // so a file of a few bytes can claim petabytes. Check the claim against memory first.
+  reader->UpdateInformation();
+  if (reader->GetErrorCode() != 0 || !messages.Messages().empty())
+  {
+    Fail(path, WithVtkReason("cannot read " + formatName, messages));
+  }
+  CheckExtentFitsInMemory(path, reader, extraBytes);
+  reader->Update();
+  vtkSmartPointer<vtkImageData> image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
+  {
+    Fail(path, WithVtkReason("cannot read " + formatName, messages));
+  }
+  return image;
+}
+
+// ---- .pvti --------------------------------------------------------------------------------
+
+struct Piece
+{
+  std::string Source; // as the .pvti writes it
+  std::string Path;   // resolved as VTK resolves it
+  Extent Region{};    // the piece's extent, as the .pvti states it
+};
+
+// The markup of a .pvti, read whole (it lists pieces; it holds no data).
+constexpr std::uint64_t MaximumParallelFileBytes = std::uint64_t(16) << 20;
+
+// The <Piece> elements of a .pvti's <PImageData>, with the paths VTK will open: relative to the
+// .pvti's directory unless absolute (vtkXMLPDataObjectReader::CreatePieceFileName).
+std::vector<Piece> ListPieces(const std::string& path, const std::string& xml)
+{
+  std::vector<Piece> pieces;
+  const auto image = xml.find("<PImageData");
+  if (image == std::string::npos)
+  {
+    return pieces; // not a .pvti: CanReadFile says so in VTK's words
+  }
+  const std::string directory = path.find('/') == std::string::npos ? "" : DirectoryOf(path) + "/";
+  for (auto at = xml.find("<Piece", image); at != std::string::npos;
+       at = xml.find("<Piece", at + 1))
+  {
+    const std::string tag = StartTag(xml, at);
+    if (tag.size() <= 6 || !std::isspace(static_cast<unsigned char>(tag[6])))
+    {
+      continue; // another element whose name starts with Piece
+    }
+    const std::string number = "piece " + std::to_string(pieces.size() + 1);
+    const std::optional<std::string> source = Attribute(tag, "Source");
+    if (!source || source->empty())
+    {
+      Fail(path, number + " names no file (no Source attribute)");
+    }
+    const std::optional<std::string> region = Attribute(tag, "Extent");
+    const std::optional<Extent> extent = region ? ParseExtent(*region) : std::nullopt;
+    if (!extent)
+    {
+      Fail(path, number + " (" + *source + ") states no extent of six integers");
+    }
+    pieces.push_back({ *source, (*source)[0] == '/' ? *source : directory + *source, *extent });
+  }
+  if (pieces.empty())
+  {
+    Fail(path, "the parallel image data lists no pieces");
+  }
+  return pieces;
+}
+
+} // namespace
+
+vtkSmartPointer<vtkImageData> ReadVtkXmlImageFile(const std::string& path)
+{
+  std::uint64_t bytes = 0;
+  {
+    const RegularInputFile file(path, "field");
+    bytes = file.Size();
+    CheckVtiText(path, file);
+  }
+  ReadInIsolation<vtkXMLImageDataReader>(path, bytes);
+  return ReadChecked<vtkXMLImageDataReader>(path, "VTK XML image data");
+}
+
+vtkSmartPointer<vtkImageData> ReadVtkXmlParallelImageFile(const std::string& path)
+{
+  std::vector<Piece> listed;
+  {
+    const RegularInputFile file(path, "field");
+    listed = ListPieces(path, file.ReadAll(MaximumParallelFileBytes));
+  }
+  // Every piece as a .vti: a regular file that passes the text checks. Errors name the .pvti,
+  // the piece and what is wrong with it.
+  std::uint64_t totalBytes = 0;
+  double largestPiece = 0.0;
+  for (std::size_t number = 1; number <= listed.size(); ++number)
+  {
+    const Piece& piece = listed[number - 1];
+    try
+    {
+      const RegularInputFile file(piece.Path, "field piece");
+      totalBytes += file.Size();
+      CheckVtiText(piece.Path, file);
+      largestPiece = std::max(largestPiece, VoxelCount(piece.Region));
+    }
+    catch (const InputError& e)
+    {
+      // The piece's own message begins with its path; the .pvti and the Source name it here.
+      std::string problem = e.what();
+      if (problem.rfind(piece.Path + ": ", 0) == 0)
+      {
+        problem.erase(0, piece.Path.size() + 2);
+      }
+      Fail(path, "piece " + std::to_string(number) + " (" + piece.Source + "): " + problem);
+    }
+  }
+  ReadInIsolation<vtkXMLPImageDataReader>(path, totalBytes);
+  // Beyond the output: a piece's arrays while it is copied in (one piece at a time; counted as
+  // two arrays of 4 bytes per voxel).
+  return ReadChecked<vtkXMLPImageDataReader>(
+    path, "VTK XML parallel image data", largestPiece * 8.0);
+}
+
+} // namespace cloudvis
