@@ -21,9 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -56,7 +54,7 @@ void WaitUntilStill(LiveSession& session, double still, double limit = 180.0)
   {
     Pause(0.05);
     const auto now = session.Pixels(Probe(session));
-    if (now != last)
+    if (now.Values != last.Values)
     {
       last = now;
       since = Now();
@@ -85,11 +83,10 @@ struct Figures
 
 Figures Measure(const std::string& cloudvis,
   const std::vector<std::string>& arguments,
-  const std::string& work,
   bool stateFile)
 {
   Figures figures;
-  LiveSession session(cloudvis, arguments, work, stateFile);
+  LiveSession session(cloudvis, arguments, stateFile);
   const double started = Now();
   while (!session.WindowId() && Now() - started < 120.0)
   {
@@ -108,7 +105,7 @@ Figures Measure(const std::string& cloudvis,
     const auto before = session.Pixels(Probe(session));
     const double sent = Now();
     session.Key(i % 2 == 0 ? "Right" : "Left");
-    while (session.Pixels(Probe(session)) == before && Now() - sent < 30.0)
+    while (session.Pixels(Probe(session)).Values == before.Values && Now() - sent < 30.0)
     {
       Pause(0.002);
     }
@@ -184,11 +181,11 @@ int main(int argc, char** argv)
   }
   try
   {
-    const Figures now = Measure(CLOUDVIS_BINARY, arguments, CLOUDVIS_BENCH_WORK "/after", true);
+    const Figures now = Measure(cloudvis::support::CloudvisBinary(), arguments, true);
     Print("cloudvis", now);
     if (!before.empty())
     {
-      const Figures old = Measure(before, arguments, CLOUDVIS_BENCH_WORK "/before", false);
+      const Figures old = Measure(before, arguments, false);
       Print("before", old);
     }
   }

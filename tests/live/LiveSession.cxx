@@ -11,10 +11,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <time.h>
@@ -29,14 +27,6 @@ namespace
 void Pause(double seconds)
 {
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-}
-
-std::string ReadFile(const std::string& path)
-{
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 // fork + exec with `environment` added, stdout and stderr to `log` (if given), `keepOpen` left
@@ -115,16 +105,11 @@ double Now()
 
 LiveSession::LiveSession(const std::string& cloudvis,
   const std::vector<std::string>& arguments,
-  const std::string& work,
   bool stateFile)
-  : Work(work)
-  , StatePath(work + "/state.json")
+  : StatePath(this->Work.File("state.json"))
   , UsesStateFile(stateFile)
 {
-  if (std::system(("rm -rf '" + work + "' && mkdir -p '" + work + "'").c_str()) != 0)
-  {
-    throw std::runtime_error("cannot create " + work);
-  }
+  const std::string& work = this->Work.Path;
   // A private server: Xvfb writes the display number it chose to the pipe once it accepts
   // connections.
   int ready[2];
@@ -154,7 +139,7 @@ LiveSession::LiveSession(const std::string& cloudvis,
   close(ready[0]);
   if (number.empty())
   {
-    throw std::runtime_error("Xvfb did not start: " + ReadFile(work + "/xvfb.log"));
+    throw std::runtime_error("Xvfb did not start: " + support::ReadText(work + "/xvfb.log"));
   }
   const std::string display = ":" + number;
   this->DisplayNameText = display;
@@ -189,7 +174,7 @@ LiveSession::~LiveSession()
 
 nlohmann::json LiveSession::State() const
 {
-  const std::string text = ReadFile(this->StatePath);
+  const std::string text = support::ReadText(this->StatePath);
   if (text.empty())
   {
     return nlohmann::json::object();
@@ -199,7 +184,7 @@ nlohmann::json LiveSession::State() const
 
 std::string LiveSession::Stderr() const
 {
-  return ReadFile(this->Work + "/viewer.log");
+  return support::ReadText(this->Work.File("viewer.log"));
 }
 
 nlohmann::json LiveSession::WaitFor(const std::function<bool(const nlohmann::json&)>& done,
@@ -237,7 +222,7 @@ nlohmann::json LiveSession::WaitUntilConverged(double timeout) const
 
 double LiveSession::CpuSeconds() const
 {
-  const std::string stat = ReadFile("/proc/" + std::to_string(this->Viewer) + "/stat");
+  const std::string stat = support::ReadText("/proc/" + std::to_string(this->Viewer) + "/stat");
   const size_t close = stat.rfind(')');
   if (close == std::string::npos)
   {
@@ -446,7 +431,7 @@ void LiveSession::SendKey(const std::string& keySym, bool control)
   }
 }
 
-std::vector<unsigned char> LiveSession::Pixels(const std::array<int, 4>& rectangle)
+support::Image LiveSession::Pixels(const std::array<int, 4>& rectangle)
 {
   const Window window = this->WindowId();
   const int height = this->WindowSize()[1];
@@ -463,15 +448,21 @@ std::vector<unsigned char> LiveSession::Pixels(const std::array<int, 4>& rectang
   {
     throw std::runtime_error("XGetImage failed");
   }
-  std::vector<unsigned char> pixels;
-  for (int y = 0; y < rows; ++y)
+  support::Image pixels;
+  pixels.Width = width;
+  pixels.Height = rows;
+  pixels.Components = 3;
+  pixels.Bits = 8;
+  pixels.Values.reserve(size_t(width) * size_t(rows) * 3);
+  // XGetImage's rows run from the top; the Image's from the bottom.
+  for (int y = rows - 1; y >= 0; --y)
   {
     for (int x = 0; x < width; ++x)
     {
       const unsigned long pixel = XGetPixel(image, x, y);
-      pixels.push_back((pixel & image->red_mask) >> 16);
-      pixels.push_back((pixel & image->green_mask) >> 8);
-      pixels.push_back(pixel & image->blue_mask);
+      pixels.Values.push_back(double((pixel & image->red_mask) >> 16) / 255.0);
+      pixels.Values.push_back(double((pixel & image->green_mask) >> 8) / 255.0);
+      pixels.Values.push_back(double(pixel & image->blue_mask) / 255.0);
     }
   }
   XDestroyImage(image);

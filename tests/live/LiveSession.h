@@ -3,13 +3,18 @@
 // free display itself: -displayfd), runs the cloudvis binary on it with --state-file, and sends
 // input through the XTEST extension, which the server delivers exactly like a mouse and a
 // keyboard. What the viewer did is read back from its state file (ViewerStateJson, written
-// atomically after every frame and every batch of input) and, for pixels, from the window itself.
+// atomically after every frame and every batch of input) and, for pixels, from the window itself
+// as a support::Image (tests/support: the images, metrics, folders and runner every test shares;
+// only the X server, the background viewer process and XTEST are this harness's own).
 //
 // Each session has its own server, so sessions running side by side (ctest -j2) never move each
 // other's pointer. Nothing waits a fixed time to decide a result: WaitFor polls the state with a
 // generous timeout, for loaded machines.
 #ifndef cloudvis_LiveSession_h
 #define cloudvis_LiveSession_h
+
+#include "SupportImages.h"
+#include "SupportRun.h"
 
 #include <nlohmann/json.hpp>
 
@@ -32,15 +37,14 @@ double Now();
 class LiveSession
 {
 public:
-  // Starts Xvfb and `cloudvis view ARGUMENTS --state-file WORK/state.json` in `work` (created
-  // empty). Without `stateFile` (a cloudvis from before --state-file existed, for benchmarks)
-  // the window is found by its name and State() stays empty. Throws std::runtime_error when
-  // either fails to start.
+  // Starts Xvfb and `cloudvis view ARGUMENTS --output-dir WORK --state-file WORK/state.json`,
+  // WORK a fresh temporary folder. Without `stateFile` (a cloudvis from before --state-file
+  // existed, for benchmarks) the window is found by its name and State() stays empty. Throws
+  // std::runtime_error when either fails to start.
   LiveSession(const std::string& cloudvis,
     const std::vector<std::string>& arguments,
-    const std::string& work,
     bool stateFile = true);
-  // Ends the viewer (SIGTERM if it still runs) and the server.
+  // Ends the viewer (SIGTERM if it still runs) and the server, and removes WORK.
   ~LiveSession();
   LiveSession(const LiveSession&) = delete;
   LiveSession& operator=(const LiveSession&) = delete;
@@ -78,9 +82,10 @@ public:
   // Several keys sent at once, the server synchronised only after the last.
   void Keys(const std::vector<std::string>& keySyms);
 
-  // The window's pixels (RGB, rows from the top) in the rectangle x0, y0, x1, y1 of window pixels
-  // from the bottom left.
-  std::vector<unsigned char> Pixels(const std::array<int, 4>& rectangle);
+  // The window's pixels in the rectangle x0, y0, x1, y1 of window pixels from the bottom left:
+  // 8-bit RGB, rows from the bottom like the rectangle, so that Level(x - x0, y - y0, c) is the
+  // window's pixel (x, y).
+  support::Image Pixels(const std::array<int, 4>& rectangle);
 
   // The center of a viewport named in the state ("3d", "editor", "axial", ...).
   std::array<int, 2> Center(const std::string& viewport) const;
@@ -89,7 +94,7 @@ public:
   unsigned long WindowId() const;
   std::array<int, 2> WindowSize() const;
 
-  const std::string& WorkDirectory() const { return this->Work; }
+  const std::string& WorkDirectory() const { return this->Work.Path; }
   // The server's display name (":N"), for other programs to run on it.
   const std::string& DisplayName() const { return this->DisplayNameText; }
 
@@ -99,7 +104,7 @@ private:
   void Focus();
   void Sync();
 
-  std::string Work;
+  support::TemporaryDirectory Work{ "cloudvis-live" };
   std::string StatePath;
   std::string DisplayNameText;
   pid_t Server = -1;

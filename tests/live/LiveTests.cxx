@@ -10,8 +10,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <set>
 #include <thread>
 
@@ -23,8 +21,7 @@ namespace
 {
 using json = nlohmann::json;
 
-const std::string Cloudvis = CLOUDVIS_BINARY;
-const std::string WorkRoot = CLOUDVIS_LIVE_WORK;
+const std::string Cloudvis = support::CloudvisBinary();
 
 // The default cloud on 48^3 voxels, converging in 4 frames.
 std::vector<std::string> Arguments(const std::vector<std::string>& extra = {})
@@ -34,11 +31,6 @@ std::vector<std::string> Arguments(const std::vector<std::string>& extra = {})
   };
   arguments.insert(arguments.end(), extra.begin(), extra.end());
   return arguments;
-}
-
-std::string Work(const std::string& name)
-{
-  return WorkRoot + "/" + name;
 }
 
 void Pause(double seconds)
@@ -76,22 +68,12 @@ std::array<int, 2> Pixel(const json& point)
   return { { int(std::lround(point[0].get<double>())), int(std::lround(point[1].get<double>())) } };
 }
 
-double MeanDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  double sum = 0.0;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
-  {
-    sum += std::abs(double(a[i]) - double(b[i]));
-  }
-  return a.empty() ? 0.0 : sum / double(a.size());
-}
-
 // A drag held still for three seconds turns the camera by the drag alone: VTK's trackball turns
 // 20 / (view width) degrees per pixel times its motion factor 10, so 40 pixels across a 480-pixel
 // view turn it 16.7 degrees. (The old loop's timer turned it on and on while the button was held.)
 TEST(Live, HeldDragTurnsTheCameraOnlyByTheDrag)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("held-drag"));
+  LiveSession session(Cloudvis, Arguments());
   const json before = session.WaitUntilConverged();
   const auto center = session.Center("3d");
   session.Move(center[0] - 20, center[1]);
@@ -115,10 +97,10 @@ TEST(Live, HeldDragTurnsTheCameraOnlyByTheDrag)
 // recorded events do not hold.
 TEST(Live, RecordedLiveSessionReplaysToTheSameCamera)
 {
-  const std::string work = Work("record-live");
+  const support::TemporaryDirectory files("cloudvis-live-record");
   LiveSession session(Cloudvis,
-    Arguments({ "--record", work + "-session.log", "--save-scene-on-exit", work + "-live.json" }),
-    work);
+    Arguments(
+      { "--record", files.File("session.log"), "--save-scene-on-exit", files.File("live.json") }));
   const json before = session.WaitUntilConverged();
   const auto center = session.Center("3d");
   session.Move(center[0] - 20, center[1] - 10);
@@ -133,13 +115,15 @@ TEST(Live, RecordedLiveSessionReplaysToTheSameCamera)
   session.WaitFor([&](const json& s) { return s["lighting"] == "derivative"; }, "the key");
   session.Key("q");
   ASSERT_EQ(session.WaitForExit(), 0) << session.Stderr();
-  const std::string command = "DISPLAY=" + session.DisplayName() + " '" + Cloudvis +
-    "' view --set field.dimensions=48 --set render.accumulate=4 --size 480x400 --play '" + work +
-    "-session.log' --save-scene-on-exit '" + work + "-replay.json' > '" + work +
-    "-replay.log' 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  std::ifstream liveFile(work + "-live.json"), replayFile(work + "-replay.json");
-  const json live = json::parse(liveFile), replay = json::parse(replayFile);
+  const support::CommandResult replayed = support::RunCloudvis(support::With({ "view" },
+                                                                 Arguments({ "--play",
+                                                                   files.File("session.log"),
+                                                                   "--save-scene-on-exit",
+                                                                   files.File("replay.json") })),
+    { "DISPLAY=" + session.DisplayName() });
+  ASSERT_EQ(replayed.Status, 0) << replayed.Err;
+  const json live = json::parse(support::ReadText(files.File("live.json")));
+  const json replay = json::parse(support::ReadText(files.File("replay.json")));
   EXPECT_NE(live["camera"]["position"], before["camera"]["position"]) << "the drag turned nothing";
   EXPECT_EQ(replay["render"]["lighting"], "derivative");
   for (const char* key : { "position", "focal_point", "view_up" })
@@ -156,7 +140,7 @@ TEST(Live, RecordedLiveSessionReplaysToTheSameCamera)
 // Converged and left alone, the viewer renders nothing and uses (almost) no CPU.
 TEST(Live, IdleViewerUsesNoCpuOnceConverged)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("idle"));
+  LiveSession session(Cloudvis, Arguments());
   const json converged = session.WaitUntilConverged();
   const double cpu = session.CpuSeconds();
   Pause(5.0); // the idle period measured
@@ -171,7 +155,7 @@ TEST(Live, IdleViewerUsesNoCpuOnceConverged)
 // each key, so five keys waited behind four frames).
 TEST(Live, RapidKeysAreHandledInOrderWithoutAFrameEach)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("rapid-keys"));
+  LiveSession session(Cloudvis, Arguments());
   const json before = session.WaitUntilConverged();
   const std::vector<std::string> keys = { "Right", "Right", "m", "Up", "m" };
   session.Keys(keys);
@@ -196,7 +180,7 @@ TEST(Live, RapidKeysAreHandledInOrderWithoutAFrameEach)
 // color point right, the top end color point left. The value tooltip goes with the drag.
 TEST(Live, EditorPointsOfEveryKindMove)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("editor-drag"));
+  LiveSession session(Cloudvis, Arguments());
   json state = session.WaitUntilConverged();
   const auto dragged = [&](const char* function, size_t index, int dx, int dy, const char* what)
   {
@@ -244,7 +228,7 @@ TEST(Live, EditorPointsOfEveryKindMove)
 // removes it again.
 TEST(Live, DeleteRemovesTheSelectedPointAndUndoRestoresIt)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("delete"));
+  LiveSession session(Cloudvis, Arguments());
   const json start = session.WaitUntilConverged();
   const size_t count = start["transfer_function"]["opacity"].size();
   const auto point = Pixel(start["editor"]["opacity_point_pixels"][count - 2]);
@@ -285,7 +269,7 @@ TEST(Live, DeleteRemovesTheSelectedPointAndUndoRestoresIt)
 // Typed values set the selected point; bad text changes nothing and says what is wrong.
 TEST(Live, TypedValuesSetTheSelectedPoint)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("typed"));
+  LiveSession session(Cloudvis, Arguments());
   const json start = session.WaitUntilConverged();
   const size_t inner = start["transfer_function"]["opacity"].size() - 2;
   const auto point = Pixel(start["editor"]["opacity_point_pixels"][inner]);
@@ -319,7 +303,7 @@ TEST(Live, TypedValuesSetTheSelectedPoint)
 // A right drag on a slice changes the window/level of the slices, and the slice image with it.
 TEST(Live, SliceWindowLevelChangesTheSliceImage)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("window-level"));
+  LiveSession session(Cloudvis, Arguments());
   session.WaitUntilConverged();
   session.Key("z");
   const json shown = session.WaitFor([](const json& s)
@@ -341,7 +325,7 @@ TEST(Live, SliceWindowLevelChangesTheSliceImage)
     "the window/level to change");
   EXPECT_GT(after["slices"]["window_level"][0].get<double>(),
     shown["slices"]["window_level"][0].get<double>());
-  EXPECT_GT(MeanDifference(before, session.Pixels(corner)), 5.0)
+  EXPECT_GT(support::Compare(before, session.Pixels(corner)).MeanLevels(), 5.0)
     << "the slice image did not change";
 }
 
@@ -349,7 +333,7 @@ TEST(Live, SliceWindowLevelChangesTheSliceImage)
 // and a left click probes a voxel whose readout stays after the button is released.
 TEST(Live, SliceFacingTheCameraMovesAndItsProbeStays)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("slice-facing"));
+  LiveSession session(Cloudvis, Arguments());
   session.WaitUntilConverged();
   session.Key("z");
   const json shown = session.WaitFor(
@@ -377,7 +361,7 @@ TEST(Live, SliceFacingTheCameraMovesAndItsProbeStays)
 // click moves the other two slices (the crosshair) through the voxel clicked.
 TEST(Live, FourViewsWheelStepsAndClickMovesTheCrosshair)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("four-views"));
+  LiveSession session(Cloudvis, Arguments());
   session.WaitUntilConverged();
   session.Key("4");
   const json four = session.WaitFor([](const json& s)
@@ -408,12 +392,13 @@ TEST(Live, FourViewsWheelStepsAndClickMovesTheCrosshair)
 // sides), where a camera fitted to the old shape would cut the slice at the view's edges.
 TEST(Live, ResizedWindowLaysItsViewsOutAgain)
 {
-  LiveSession session(Cloudvis, Arguments({ "--layout", "four" }), Work("resize"));
+  LiveSession session(Cloudvis, Arguments({ "--layout", "four" }));
   session.WaitUntilConverged();
   session.Resize(480, 900);
   const json resized = session.WaitFor(
-    [](const json& s)
-    { return s["window"]["size"] == json::array({ 480, 900 }) && s["converged"].get<bool>(); },
+    [](const json& s) {
+      return s["window"]["size"] == json::array({ 480, 900 }) && s["converged"].get<bool>();
+    },
     "the window to take its new size");
   EXPECT_EQ(resized["viewports"]["3d"], json::array({ 240, 563, 480, 900 }));
   EXPECT_EQ(resized["viewports"]["axial"], json::array({ 0, 563, 240, 900 }));
@@ -425,14 +410,15 @@ TEST(Live, ResizedWindowLaysItsViewsOutAgain)
   for (const int x : { 2, 237 })
   {
     const auto pixel = session.Pixels({ { x, center[1], x + 1, center[1] + 1 } });
-    EXPECT_NEAR(pixel[2], 25.5, 2.0) << "x " << x << ": the slice reaches the view's edge";
+    EXPECT_NEAR(pixel.Level(0, 0, 2), 25.5, 2.0)
+      << "x " << x << ": the slice reaches the view's edge";
   }
 }
 
 // A message fades away by itself; the hint line goes once the help has been shown.
 TEST(Live, MessagesFadeAndTheHintGoesAfterTheHelp)
 {
-  LiveSession session(Cloudvis, Arguments(), Work("messages"));
+  LiveSession session(Cloudvis, Arguments());
   const json start = session.WaitUntilConverged();
   EXPECT_TRUE(start["hint_visible"].get<bool>());
   session.Key("m");
