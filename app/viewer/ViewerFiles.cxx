@@ -3,6 +3,7 @@
 
 #include "AtomicFile.h"
 #include "Errors.h"
+#include "FileNames.h"
 #include "ImageWriters.h"
 #include "Scene.h"
 
@@ -39,8 +40,7 @@ std::string JoinPath(const std::string& directory, const std::string& name)
 
 std::string FileStem(const std::string& path)
 {
-  const size_t slash = path.find_last_of('/');
-  const std::string name = path.substr(slash == std::string::npos ? 0 : slash + 1);
+  const std::string name = FileNameOf(path);
   return name.substr(0, name.find_last_of('.'));
 }
 } // namespace

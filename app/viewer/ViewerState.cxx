@@ -3,14 +3,14 @@
 // (docs/viewer.md).
 #include "ViewerInternals.h"
 
+#include "Utf8.h"
 #include "ViewerFiles.h"
 
 #include <vtkCamera.h>
 #include <vtkScalarBarActor.h>
 
-#include <cstdint>
-
 #include <cmath>
+#include <cstdint>
 
 namespace cloudvis
 {
@@ -44,7 +44,8 @@ json ViewerStateJson(const ViewerState& state)
   {
     probed.push_back(Number(value));
   }
-  return {
+  // Saved files' paths (from --output-dir) may hold bytes that are not UTF-8, which dump() refuses.
+  return WithValidUtf8({
     { "frames_rendered", state.FramesRendered },
     { "last_frame_at", state.LastFrameAt },
     { "converged", state.Converged },
@@ -99,7 +100,7 @@ json ViewerStateJson(const ViewerState& state)
     { "preset", state.Preset },
     { "saved_files", state.SavedFiles },
     { "messages", state.Messages },
-  };
+  });
 }
 
 ViewerState Viewer::State() const
@@ -201,7 +202,7 @@ void Viewer::WriteStateFile() const
   }
   catch (const std::exception& e)
   {
-    *in.Messages << "cloudvis: error: " << e.what() << std::endl;
+    *in.Messages << "cloudvis: error: " << EscapeInvalidUtf8(e.what()) << std::endl;
   }
 }
 

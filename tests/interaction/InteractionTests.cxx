@@ -16,7 +16,6 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <sys/stat.h>
@@ -45,9 +44,9 @@ bool Exists(const std::string& path)
 
 nlohmann::json ReadJson(const std::string& path)
 {
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  return nlohmann::json::parse(in);
+  const std::string text = support::ReadText(path);
+  EXPECT_FALSE(text.empty()) << path;
+  return nlohmann::json::parse(text);
 }
 
 using support::ReadPng;
@@ -115,12 +114,9 @@ TEST(Interaction, SliceDragMovesThePlaneAndTheProbe)
   const std::string directory = FreshDirectory("slice-drag");
   Session session(directory);
   const double before = session.View->State().SlicePosition[2];
-  std::ifstream in(Recordings + "/slice-drag.log");
-  std::stringstream text;
-  text << in.rdbuf();
   // The cursor shows the value under it while the left button is down: probe the slice's
   // centre, move the slice with the middle button, probe the same pixel again.
-  const std::string all = text.str();
+  const std::string all = support::ReadText(Recordings + "/slice-drag.log");
   const size_t release = all.find("LeftButtonReleaseEvent");
   const size_t middle = all.find("MiddleButtonPressEvent");
   ASSERT_NE(release, std::string::npos);
@@ -194,16 +190,35 @@ TEST(Interaction, ScreenshotWritesReadablePngAndExr)
   EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-002.exr"));
 }
 
+// The saved scene renders what the window showed, after a drag and with the light moved by the
+// arrow keys over a sky whose sun the scene left to the light: the scene file carries the moved
+// light and the sun as it was resolved when the scene was read (the sky does not follow the
+// light when it moves, so a scene without the sun would be rendered under another sky).
 TEST(Interaction, SavedSceneRerendersToTheScreenshot)
 {
   const std::string directory = FreshDirectory("rerender");
+  std::array<double, 3> light;
   {
-    Session session(directory);
+    // The light, and so the sun, ahead of the camera: the sun's glow fills the middle of the view.
+    Session session(directory,
+      SmallScene({ "render.lighting=derivative",
+        "background={\"type\":\"sky\"}",
+        "lights=[{\"type\":\"directional\",\"position\":[-3,-1.5,-4]}]" }));
+    for (const char* key : { "Left", "Left", "Left", "Up" })
+    {
+      session.View->PressKey(key, 0);
+    }
+    light = session.View->State().FirstLightPosition;
     session.View->PlayFile(Recordings + "/rotate-save.log");
   }
   const std::string scene = directory + "/cloudvis-view-001.json";
   const nlohmann::json saved = ReadJson(scene);
   EXPECT_EQ(saved["render"]["size"], nlohmann::json({ 480, 300 }));
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_FLOAT_EQ(saved["lights"][0]["position"][c].get<float>(), float(light[size_t(c)])) << c;
+  }
+  EXPECT_TRUE(saved["background"].contains("sun")) << saved["background"].dump();
   const support::CommandResult render =
     support::RunCloudvis({ "render", scene, "-o", directory + "/render.png" });
   ASSERT_EQ(render.Status, 0) << render.Err;
@@ -217,8 +232,8 @@ TEST(Interaction, MalformedPresetsKeepTheSession)
   const std::string directory = FreshDirectory("bad-presets");
   const std::string presets = directory + "/presets";
   ASSERT_EQ(::mkdir(presets.c_str(), 0777), 0);
-  std::ofstream(presets + "/a-malformed.json") << "{\"opacity\": [[0, 0], [1, 1]";
-  std::ofstream(presets + "/b-empty.json") << "{\"opacity\": [], \"color\": [[0, 1, 1, 1]]}";
+  support::WriteText(presets + "/a-malformed.json", "{\"opacity\": [[0, 0], [1, 1]");
+  support::WriteText(presets + "/b-empty.json", "{\"opacity\": [], \"color\": [[0, 1, 1, 1]]}");
   ::setenv("CLOUDVIS_PRESET_DIR", presets.c_str(), 1);
   Session session(directory);
   const TransferFunctionSpec before = session.View->State().TransferFunction;
@@ -233,6 +248,45 @@ TEST(Interaction, MalformedPresetsKeepTheSession)
   EXPECT_NE(messages.find("a-malformed.json"), std::string::npos) << messages;
   EXPECT_NE(messages.find("b-empty.json"), std::string::npos) << messages;
   EXPECT_NE(messages.find("the transfer function is unchanged"), std::string::npos) << messages;
+}
+
+// A preset file that is a FIFO would block the viewer forever if opened as a file: it is refused
+// by name, like every file cloudvis reads (docs/reliability.md), and the session goes on.
+TEST(Interaction, PresetThatIsNotARegularFileIsRefusedByName)
+{
+  const std::string directory = FreshDirectory("fifo-preset");
+  const std::string presets = directory + "/presets";
+  ASSERT_EQ(::mkdir(presets.c_str(), 0777), 0);
+  ASSERT_EQ(::mkfifo((presets + "/a-pipe.json").c_str(), 0666), 0);
+  ::setenv("CLOUDVIS_PRESET_DIR", presets.c_str(), 1);
+  Session session(directory);
+  const TransferFunctionSpec before = session.View->State().TransferFunction;
+  session.View->PressKey("p", 'p');
+  ::unsetenv("CLOUDVIS_PRESET_DIR");
+  EXPECT_EQ(session.View->State().TransferFunction.Opacity, before.Opacity);
+  const std::string messages = session.Messages.str();
+  EXPECT_NE(messages.find("a-pipe.json: cannot read preset file: it is a FIFO (named pipe), not a "
+                          "regular file; the transfer function is unchanged"),
+    std::string::npos)
+    << messages;
+}
+
+// An output folder whose name is not UTF-8 (Latin-1 "café"): the screenshot is written there, and
+// the message and the state (--state-file's JSON, which could not be written otherwise) show
+// the byte as \xe9.
+TEST(Interaction, OutputFolderThatIsNotUtf8IsEscapedInMessagesAndState)
+{
+  const std::string directory = FreshDirectory("not-utf8") + "/caf\xe9";
+  ASSERT_EQ(::mkdir(directory.c_str(), 0777), 0);
+  Session session(directory);
+  session.View->PressKey("s", 's');
+  EXPECT_TRUE(Exists(directory + "/cloudvis-screenshot-001.png"));
+  const std::string messages = session.Messages.str();
+  EXPECT_NE(messages.find("caf\\xe9/cloudvis-screenshot-001.png"), std::string::npos) << messages;
+  EXPECT_EQ(messages.find("caf\xe9"), std::string::npos) << "a raw byte reached the messages";
+  std::string state;
+  ASSERT_NO_THROW(state = ViewerStateJson(session.View->State()).dump());
+  EXPECT_NE(state.find("caf\\\\xe9/cloudvis-screenshot-001.png"), std::string::npos) << state;
 }
 
 TEST(Interaction, ShippedPresetsLoad)
@@ -321,14 +375,6 @@ TEST(Interaction, CommandLinePlaySavesTheSceneOnExit)
   EXPECT_TRUE(Exists(directory + "/cloudvis-view-001.json"));
 }
 
-} // namespace
-} // namespace cloudvis
-
-namespace cloudvis
-{
-namespace
-{
-
 TEST(Interaction, RecordedSessionsReplayToTheSameState)
 {
   // --record writes what the interactor saw; replaying that file into a fresh viewer must leave
@@ -356,11 +402,9 @@ TEST(Interaction, RecordedSessionsReplayToTheSameState)
     recorded = view.State();
     recordedScene = view.CurrentSceneJson();
   } // the viewer stops recording and closes the file
-  std::ifstream file(recording);
-  std::stringstream text;
-  text << file.rdbuf();
-  ASSERT_NE(text.str().find("KeyPressEvent"), std::string::npos) << text.str();
-  ASSERT_NE(text.str().find("LeftButtonPressEvent"), std::string::npos) << text.str();
+  const std::string text = support::ReadText(recording);
+  ASSERT_NE(text.find("KeyPressEvent"), std::string::npos) << text;
+  ASSERT_NE(text.find("LeftButtonPressEvent"), std::string::npos) << text;
   EXPECT_EQ(recorded.Lighting, LightingModel::Derivative);
 
   Session replay(FreshDirectory("record-replay"));
@@ -380,23 +424,13 @@ TEST(Interaction, RecordedSessionsReplayToTheSameState)
   }
 }
 
-} // namespace
-} // namespace cloudvis
-
-namespace cloudvis
-{
-namespace
-{
-
 // The key list of docs/viewer.md is the key table's (`cloudvis view --keys` prints it): a key
 // added, removed or described differently in one and not the other fails here.
 TEST(Interaction, KeyTableMatchesTheDocs)
 {
-  std::ifstream in(std::string(CLOUDVIS_SOURCE_DIR) + "/docs/viewer.md");
-  ASSERT_TRUE(in.good());
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string document = text.str();
+  const std::string document =
+    support::ReadText(std::string(CLOUDVIS_SOURCE_DIR) + "/docs/viewer.md");
+  ASSERT_FALSE(document.empty());
   const std::string begin = "<!-- keys: generated by `cloudvis view --keys` -->\n";
   const std::string end = "<!-- end of keys -->";
   const size_t from = document.find(begin);

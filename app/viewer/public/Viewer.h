@@ -117,7 +117,8 @@ struct ViewerState
   int RedoDepth = 0;
 };
 
-// The state as JSON (the --state-file format, docs/viewer.md).
+// The state as JSON (the --state-file format, docs/viewer.md); text that is not UTF-8 (a path
+// from --output-dir) is escaped as \xNN.
 nlohmann::json ViewerStateJson(const ViewerState& state);
 
 // The key bindings as the Markdown table docs/viewer.md holds (`cloudvis view --keys`).
