@@ -88,6 +88,7 @@ struct Difference
   double Rms = 0.0, Max = 0.0, Mean = 0.0;
   double RmsLevels() const { return 255.0 * this->Rms; }
   double MaxLevels() const { return 255.0 * this->Max; }
+  double MeanLevels() const { return 255.0 * this->Mean; }
 };
 Difference Compare(const Image& a, const Image& b, int channels = 0, const Mask& mask = {});
 

@@ -83,11 +83,16 @@ std::vector<char*> Pointers(std::vector<std::string>& strings)
 }
 }
 
+std::string CloudvisBinary()
+{
+  return CLOUDVIS_BINARY;
+}
+
 CommandResult RunCloudvis(const std::vector<std::string>& arguments,
   const std::vector<std::string>& environment)
 {
   // argv[0] is "cloudvis", as when a user runs it from the PATH (exports record the command).
-  const std::string binary = CLOUDVIS_BINARY;
+  const std::string binary = CloudvisBinary();
   std::vector<std::string> argv{ "cloudvis" };
   argv.insert(argv.end(), arguments.begin(), arguments.end());
   std::vector<std::string> envp = ChildEnvironment(environment);

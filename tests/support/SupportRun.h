@@ -21,6 +21,10 @@ struct CommandResult
   std::string Err; // stderr
 };
 
+// The path of the cloudvis executable this build made, for programs that start it themselves
+// (the live tests run it in the background on their own X server).
+std::string CloudvisBinary();
+
 // Runs `cloudvis arguments...` and waits for it. `environment` changes the child's environment
 // only: "NAME=VALUE" sets a variable, "-NAME" removes it.
 CommandResult RunCloudvis(const std::vector<std::string>& arguments,
