@@ -203,7 +203,7 @@ TEST(SceneLighting, TheGpuAndTheCpuReachTheSceneAlike)
       {"type": "directional", "position": [1, 2, 3], "color": [1, 0.5, 0], "intensity": 2},
       {"type": "point", "position": [-1, 0, 2], "attenuation": [1, 0.5, 0]}])",
     "render.lighting=march",
-    "render.march.phase_g1=0.7",
+    "render.march.g1=0.7",
     "render.step=0.05",
     "ambient.strength=0.3" });
   vtkNew<vtkRenderer> renderer;
