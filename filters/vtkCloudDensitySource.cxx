@@ -27,6 +27,253 @@ void vtkCloudDensitySource::SetField(const cloudvis::FieldDescription& field)
   this->Modified();
 }
 
+// The wrapped enums name the C++ ones by value.
+static_assert(
+  static_cast<int>(cloudvis::DensityModel::Constant) == vtkCloudDensitySource::ConstantModel,
+  "vtkCloudDensitySource::DensityModels follows cloudvis::DensityModel");
+static_assert(
+  static_cast<int>(cloudvis::ShapeBlend::SmoothUnion) == vtkCloudDensitySource::SmoothUnionBlend,
+  "vtkCloudDensitySource::ShapeBlends follows cloudvis::ShapeBlend");
+static_assert(
+  static_cast<int>(cloudvis::noise::NoiseType::Perlin) == vtkCloudDensitySource::PerlinNoise,
+  "vtkCloudDensitySource::NoiseTypes follows cloudvis::noise::NoiseType");
+
+template<typename T>
+void vtkCloudDensitySource::SetFieldValue(T& member, const T& value)
+{
+  if (!(member == value))
+  {
+    member = value;
+    this->Modified();
+  }
+}
+
+void vtkCloudDensitySource::SetDensityModel(int model)
+{
+  if (model < SdfPlusFbmModel || model > ConstantModel)
+  {
+    vtkErrorMacro(<< "density model " << model << " is not one of 0 (sdf+fbm), 1 (fbm falloff), "
+                  << "2 (constant); it stays " << this->GetDensityModel());
+    return;
+  }
+  this->SetFieldValue(this->Field.Model, static_cast<cloudvis::DensityModel>(model));
+}
+
+int vtkCloudDensitySource::GetDensityModel() const
+{
+  return static_cast<int>(this->Field.Model);
+}
+
+void vtkCloudDensitySource::SetDensityScale(double scale)
+{
+  this->SetFieldValue(this->Field.DensityScale, scale);
+}
+
+void vtkCloudDensitySource::SetFalloffWidth(double width)
+{
+  this->SetFieldValue(this->Field.FalloffWidth, width);
+}
+
+void vtkCloudDensitySource::RemoveAllShapes()
+{
+  if (!this->Field.Shapes.empty())
+  {
+    this->Field.Shapes.clear();
+    this->Modified();
+  }
+}
+
+int vtkCloudDensitySource::AddShape(const cloudvis::Shape& shape)
+{
+  this->Field.Shapes.push_back(shape);
+  this->Modified();
+  return static_cast<int>(this->Field.Shapes.size()) - 1;
+}
+
+int vtkCloudDensitySource::AddSphere(double cx, double cy, double cz, double radius)
+{
+  cloudvis::Shape shape;
+  shape.Type = cloudvis::ShapeType::Sphere;
+  shape.Center = glm::vec3(glm::dvec3(cx, cy, cz));
+  shape.Radius = static_cast<float>(radius);
+  return this->AddShape(shape);
+}
+
+int vtkCloudDensitySource::AddBox(double cx,
+  double cy,
+  double cz,
+  double halfX,
+  double halfY,
+  double halfZ)
+{
+  cloudvis::Shape shape;
+  shape.Type = cloudvis::ShapeType::Box;
+  shape.Center = glm::vec3(glm::dvec3(cx, cy, cz));
+  shape.HalfSize = glm::vec3(glm::dvec3(halfX, halfY, halfZ));
+  return this->AddShape(shape);
+}
+
+int vtkCloudDensitySource::AddTorus(double cx,
+  double cy,
+  double cz,
+  double majorRadius,
+  double minorRadius)
+{
+  cloudvis::Shape shape;
+  shape.Type = cloudvis::ShapeType::Torus;
+  shape.Center = glm::vec3(glm::dvec3(cx, cy, cz));
+  shape.MajorRadius = static_cast<float>(majorRadius);
+  shape.MinorRadius = static_cast<float>(minorRadius);
+  return this->AddShape(shape);
+}
+
+int vtkCloudDensitySource::AddCross(double cx,
+  double cy,
+  double cz,
+  double armWidth,
+  double armLength)
+{
+  cloudvis::Shape shape;
+  shape.Type = cloudvis::ShapeType::Cross;
+  shape.Center = glm::vec3(glm::dvec3(cx, cy, cz));
+  shape.ArmWidth = static_cast<float>(armWidth);
+  shape.ArmLength = static_cast<float>(armLength);
+  return this->AddShape(shape);
+}
+
+int vtkCloudDensitySource::AddCapsule(double ax,
+  double ay,
+  double az,
+  double bx,
+  double by,
+  double bz,
+  double radius)
+{
+  cloudvis::Shape shape;
+  shape.Type = cloudvis::ShapeType::Capsule;
+  shape.EndA = glm::vec3(glm::dvec3(ax, ay, az));
+  shape.EndB = glm::vec3(glm::dvec3(bx, by, bz));
+  shape.Radius = static_cast<float>(radius);
+  return this->AddShape(shape);
+}
+
+cloudvis::Shape* vtkCloudDensitySource::ShapeAt(int shape)
+{
+  if (shape < 0 || shape >= this->GetNumberOfShapes())
+  {
+    vtkErrorMacro(<< "shape " << shape << " does not exist: there are " << this->GetNumberOfShapes()
+                  << " shapes");
+    return nullptr;
+  }
+  return &this->Field.Shapes[static_cast<std::size_t>(shape)];
+}
+
+void vtkCloudDensitySource::SetShapeRotation(int shape, double rx, double ry, double rz)
+{
+  if (cloudvis::Shape* placed = this->ShapeAt(shape))
+  {
+    this->SetFieldValue(placed->RotationDegrees, glm::vec3(glm::dvec3(rx, ry, rz)));
+  }
+}
+
+void vtkCloudDensitySource::SetShapeScale(int shape, double scale)
+{
+  if (cloudvis::Shape* placed = this->ShapeAt(shape))
+  {
+    this->SetFieldValue(placed->Scale, static_cast<float>(scale));
+  }
+}
+
+void vtkCloudDensitySource::SetShapeBlend(int blend)
+{
+  if (blend != UnionBlend && blend != SmoothUnionBlend)
+  {
+    vtkErrorMacro(<< "shape blend " << blend << " is not one of 0 (union), 1 (smooth union); it "
+                  << "stays " << this->GetShapeBlend());
+    return;
+  }
+  this->SetFieldValue(this->Field.Blend, static_cast<cloudvis::ShapeBlend>(blend));
+}
+
+int vtkCloudDensitySource::GetShapeBlend() const
+{
+  return static_cast<int>(this->Field.Blend);
+}
+
+void vtkCloudDensitySource::SetBlendRadius(double radius)
+{
+  this->SetFieldValue(this->Field.BlendRadius, radius);
+}
+
+void vtkCloudDensitySource::SetMorph(bool morph)
+{
+  this->SetFieldValue(this->Field.Morph, morph);
+}
+
+void vtkCloudDensitySource::SetNoiseType(int type)
+{
+  if (type < NoNoise || type > PerlinNoise)
+  {
+    vtkErrorMacro(<< "noise type " << type << " is not one of 0 (none), 1 (white), 2 (value), "
+                  << "3 (perlin); it stays " << this->GetNoiseType());
+    return;
+  }
+  this->SetFieldValue(this->Field.Noise.Type, static_cast<cloudvis::noise::NoiseType>(type));
+}
+
+int vtkCloudDensitySource::GetNoiseType() const
+{
+  return static_cast<int>(this->Field.Noise.Type);
+}
+
+void vtkCloudDensitySource::SetNoiseOctaves(int octaves)
+{
+  this->SetFieldValue(this->Field.Noise.Octaves, octaves);
+}
+
+void vtkCloudDensitySource::SetNoiseFrequency(double frequency)
+{
+  this->SetFieldValue(this->Field.Noise.Frequency, frequency);
+}
+
+void vtkCloudDensitySource::SetNoiseLacunarity(double lacunarity)
+{
+  this->SetFieldValue(this->Field.Noise.Lacunarity, lacunarity);
+}
+
+void vtkCloudDensitySource::SetNoiseLacunarityIncrement(double increment)
+{
+  this->SetFieldValue(this->Field.Noise.LacunarityIncrement, increment);
+}
+
+void vtkCloudDensitySource::SetNoiseGain(double gain)
+{
+  this->SetFieldValue(this->Field.Noise.Gain, gain);
+}
+
+void vtkCloudDensitySource::SetNoiseAmplitude(double amplitude)
+{
+  this->SetFieldValue(this->Field.Noise.Amplitude, amplitude);
+}
+
+void vtkCloudDensitySource::SetNoiseSeed(unsigned int seed)
+{
+  this->SetFieldValue(this->Field.Noise.Seed, static_cast<std::uint32_t>(seed));
+}
+
+void vtkCloudDensitySource::SetWind(double x, double y, double z)
+{
+  this->SetFieldValue(this->Field.Wind, glm::dvec3(x, y, z));
+}
+
+void vtkCloudDensitySource::GetWind(double wind[3]) const
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    wind[i] = this->Field.Wind[i];
+  }
+}
+
 std::string vtkCloudDensitySource::Validate() const
 {
   std::string error = cloudvis::ValidateFieldGeometry(this->Dimensions, this->Bounds);
@@ -45,8 +292,9 @@ std::string vtkCloudDensitySource::Validate() const
   return error;
 }
 
-int vtkCloudDensitySource::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkCloudDensitySource::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   const std::string error = this->Validate();
   if (!error.empty())
@@ -57,8 +305,9 @@ int vtkCloudDensitySource::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   double origin[3], spacing[3];
   cloudvis::LatticeFromBounds(this->Dimensions, this->Bounds, origin, spacing);
-  const int wholeExtent[6] = { 0, this->Dimensions[0] - 1, 0, this->Dimensions[1] - 1, 0,
-    this->Dimensions[2] - 1 };
+  const int wholeExtent[6] = {
+    0, this->Dimensions[0] - 1, 0, this->Dimensions[1] - 1, 0, this->Dimensions[2] - 1
+  };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
@@ -77,8 +326,8 @@ int vtkCloudDensitySource::RequestInformation(
   }
   else
   {
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(),
-      static_cast<int>(steps.size()));
+    outInfo->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(), static_cast<int>(steps.size()));
   }
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), this->TimeRange, 2);
   return 1;
@@ -110,15 +359,22 @@ public:
       const double z = this->Origin[2] + k * this->Spacing[2];
       const vtkIdType offset =
         (vtkIdType(k - this->Extent[4]) * ny + (j - this->Extent[2])) * vtkIdType(nx);
-      this->Evaluator.EvaluateRow(this->Extent[0], nx, this->Origin[0], this->Spacing[0], y, z,
-        this->Density + offset, scratch);
+      this->Evaluator.EvaluateRow(this->Extent[0],
+        nx,
+        this->Origin[0],
+        this->Spacing[0],
+        y,
+        z,
+        this->Density + offset,
+        scratch);
     }
   }
 };
 }
 
-int vtkCloudDensitySource::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkCloudDensitySource::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
@@ -184,6 +440,9 @@ void vtkCloudDensitySource::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << indent << "Shapes: " << this->Field.Shapes.size() << (this->Field.Morph ? " (morph)" : "")
      << "\n";
+  os << indent << "DensityModel: " << this->GetDensityModel() << "\n";
+  os << indent << "DensityScale: " << this->Field.DensityScale << "\n";
+  os << indent << "NoiseType: " << this->GetNoiseType() << "\n";
   os << indent << "Octaves: " << this->Field.Noise.Octaves << "\n";
   os << indent << "Time: " << this->Time << "\n";
   os << indent << "TimeRange: " << this->TimeRange[0] << ", " << this->TimeRange[1] << "\n";

@@ -18,10 +18,15 @@
 #ifndef vtkCloudDensitySource_h
 #define vtkCloudDensitySource_h
 
-#include "CloudDensityEvaluator.h"
 #include "cloudvisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
+
+// VTK's wrappers do not see the C++ field description (its glm types are neither wrappable nor
+// quick for their parser): wrapped languages use the Set/Get methods that expose its values.
+#ifndef __VTK_WRAP__
+#include "CloudDensityEvaluator.h"
+#endif
 
 class CLOUDVISFILTERS_EXPORT vtkCloudDensitySource : public vtkImageAlgorithm
 {
@@ -47,14 +52,184 @@ public:
   vtkGetVector6Macro(Bounds, double);
   ///@}
 
+#ifndef __VTK_WRAP__
   ///@{
   /**
    * Everything that defines the cloud: density model and scale, shapes and how they combine,
    * the morph, the fBm noise and the wind. Default: the article's cloud, a unit sphere plus
-   * 6 octaves of value noise.
+   * 6 octaves of value noise. The Set/Get methods below expose the same values one by one (for
+   * Python and other wrapped languages); the equations are in CloudDensityEvaluator.h.
    */
   void SetField(const cloudvis::FieldDescription& field);
-  const cloudvis::FieldDescription& GetField() const { return this->Field; }
+  const cloudvis::FieldDescription& GetField() const
+  {
+    return this->Field;
+  }
+  ///@}
+#endif
+
+  enum DensityModels
+  {
+    SdfPlusFbmModel = 0, // scale * max(0, -sdf + fbm): the article's cloud
+    FbmFalloffModel = 1, // scale * max(0, fbm) * smooth falloff inside the shapes
+    ConstantModel = 2,   // scale inside the shapes, 0 outside (analytic tests)
+  };
+
+  ///@{
+  /**
+   * The density model: SdfPlusFbmModel, FbmFalloffModel or ConstantModel. Default
+   * SdfPlusFbmModel.
+   */
+  void SetDensityModel(int model);
+  int GetDensityModel() const;
+  void SetDensityModelToSdfPlusFbm()
+  {
+    this->SetDensityModel(SdfPlusFbmModel);
+  }
+  void SetDensityModelToFbmFalloff()
+  {
+    this->SetDensityModel(FbmFalloffModel);
+  }
+  void SetDensityModelToConstant()
+  {
+    this->SetDensityModel(ConstantModel);
+  }
+  ///@}
+
+  ///@{
+  /**
+   * Density multiplier (> 0) and the width of the FbmFalloff model's falloff inside the shapes
+   * (world units, > 0). Defaults 1 and 0.25.
+   */
+  void SetDensityScale(double scale);
+  double GetDensityScale() const
+  {
+    return this->Field.DensityScale;
+  }
+  void SetFalloffWidth(double width);
+  double GetFalloffWidth() const
+  {
+    return this->Field.FalloffWidth;
+  }
+  ///@}
+
+  ///@{
+  /**
+   * The shapes whose signed distance functions bound the cloud. Each Add method appends one
+   * (centre and sizes in world units) and returns its index; SetShapeRotation (degrees about x,
+   * then y, then z) and SetShapeScale (> 0) place shape i. Default: one unit sphere at the origin.
+   * A field needs at least one shape unless Morph is on.
+   */
+  void RemoveAllShapes();
+  int GetNumberOfShapes() const
+  {
+    return static_cast<int>(this->Field.Shapes.size());
+  }
+  int AddSphere(double cx, double cy, double cz, double radius);
+  int AddBox(double cx, double cy, double cz, double halfX, double halfY, double halfZ);
+  int AddTorus(double cx, double cy, double cz, double majorRadius, double minorRadius);
+  int AddCross(double cx, double cy, double cz, double armWidth, double armLength);
+  int AddCapsule(double ax, double ay, double az, double bx, double by, double bz, double radius);
+  void SetShapeRotation(int shape, double rx, double ry, double rz);
+  void SetShapeScale(int shape, double scale);
+  ///@}
+
+  enum ShapeBlends
+  {
+    UnionBlend = 0,       // the minimum of the distances
+    SmoothUnionBlend = 1, // a smooth minimum over BlendRadius
+  };
+
+  ///@{
+  /**
+   * How the shapes combine: UnionBlend or SmoothUnionBlend, with the smooth union's radius
+   * (world units, >= 0). Defaults UnionBlend and 0.25.
+   */
+  void SetShapeBlend(int blend);
+  int GetShapeBlend() const;
+  void SetBlendRadius(double radius);
+  double GetBlendRadius() const
+  {
+    return this->Field.BlendRadius;
+  }
+  ///@}
+
+  ///@{
+  /**
+   * Use the built-in morph timeline (sphere, box, torus, cross, capsule, one every few seconds)
+   * instead of the shapes. Default off.
+   */
+  void SetMorph(bool morph);
+  bool GetMorph() const
+  {
+    return this->Field.Morph;
+  }
+  vtkBooleanMacro(Morph, bool);
+  ///@}
+
+  enum NoiseTypes
+  {
+    NoNoise = 0,     // fBm is 0
+    WhiteNoise = 1,  // an independent random value per lattice cell
+    ValueNoise = 2,  // random lattice values, cubic interpolation
+    PerlinNoise = 3, // random lattice gradients, quintic interpolation
+  };
+
+  ///@{
+  /**
+   * The fBm noise: its type (NoNoise, WhiteNoise, ValueNoise or PerlinNoise), number of octaves
+   * (0 to 12), base frequency (cycles per world unit, > 0), lacunarity (the frequency factor
+   * between octaves) and its growth per octave, gain (the amplitude factor between octaves),
+   * first amplitude and seed. Octave o samples frequency f_o, f_0 = frequency,
+   * f_{o+1} = f_o * (lacunarity + o * increment), with amplitude amplitude * gain^o. Defaults:
+   * ValueNoise, 6 octaves, 1, 2.02, 0.21, 0.5, 0.5 and seed 0.
+   */
+  void SetNoiseType(int type);
+  int GetNoiseType() const;
+  void SetNoiseOctaves(int octaves);
+  int GetNoiseOctaves() const
+  {
+    return this->Field.Noise.Octaves;
+  }
+  void SetNoiseFrequency(double frequency);
+  double GetNoiseFrequency() const
+  {
+    return this->Field.Noise.Frequency;
+  }
+  void SetNoiseLacunarity(double lacunarity);
+  double GetNoiseLacunarity() const
+  {
+    return this->Field.Noise.Lacunarity;
+  }
+  void SetNoiseLacunarityIncrement(double increment);
+  double GetNoiseLacunarityIncrement() const
+  {
+    return this->Field.Noise.LacunarityIncrement;
+  }
+  void SetNoiseGain(double gain);
+  double GetNoiseGain() const
+  {
+    return this->Field.Noise.Gain;
+  }
+  void SetNoiseAmplitude(double amplitude);
+  double GetNoiseAmplitude() const
+  {
+    return this->Field.Noise.Amplitude;
+  }
+  void SetNoiseSeed(unsigned int seed);
+  unsigned int GetNoiseSeed() const
+  {
+    return this->Field.Noise.Seed;
+  }
+  ///@}
+
+  ///@{
+  /**
+   * The drift of the noise with time: the noise is sampled at p + Wind * t (world units per
+   * second). Default (0.5, -0.1, -0.5).
+   */
+  void SetWind(double x, double y, double z);
+  void GetWind(double wind[3]) const;
   ///@}
 
   ///@{
@@ -93,12 +268,23 @@ protected:
 
   int Dimensions[3] = { 128, 128, 128 };
   double Bounds[6] = { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 };
+#ifndef __VTK_WRAP__
   cloudvis::FieldDescription Field;
+#endif
   double Time = 0.0;
   double TimeRange[2] = { 0.0, 12.0 };
   int NumberOfTimeSteps = 49;
 
 private:
+#ifndef __VTK_WRAP__
+  // Assigns one value of Field, Modified() only when it changes.
+  template<typename T>
+  void SetFieldValue(T& member, const T& value);
+  // Appends a shape to Field and returns its index.
+  int AddShape(const cloudvis::Shape& shape);
+  // Shape i of Field, or null (after an error naming the index) when there is none.
+  cloudvis::Shape* ShapeAt(int shape);
+#endif
   vtkCloudDensitySource(const vtkCloudDensitySource&) = delete;
   void operator=(const vtkCloudDensitySource&) = delete;
 };

@@ -46,7 +46,7 @@ void BrickVoxels(int b, int brickSize, int apron, int n, int& first, int& last)
 
 // Per brick, the density range of its apron-extended voxels and the extinction range the table
 // gives it. One work item is a row of bricks along x, so the voxel rows it reads are contiguous.
-template <typename T>
+template<typename T>
 struct BrickExtinction
 {
   const T* Density;
@@ -165,8 +165,24 @@ void vtkCloudOccupancyFilter::SetTransferTable(const cloudvis::TransferTable& ta
   }
 }
 
-int vtkCloudOccupancyFilter::RequestInformation(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkCloudOccupancyFilter::SetTransferFunction(vtkVolumeProperty* property,
+  double extinctionScale)
+{
+  std::string problem;
+  const cloudvis::TransferTable table =
+    cloudvis::TransferTableOf(property, extinctionScale, problem);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return false;
+  }
+  this->SetTransferTable(table);
+  return true;
+}
+
+int vtkCloudOccupancyFilter::RequestInformation(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -218,8 +234,9 @@ int vtkCloudOccupancyFilter::RequestInformation(
   return 1;
 }
 
-int vtkCloudOccupancyFilter::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkCloudOccupancyFilter::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
 {
   // Every brick's range depends on voxels beyond any sub-extent's bricks (the apron), and the
   // distances on all bricks: always ask for the whole input.
@@ -230,8 +247,9 @@ int vtkCloudOccupancyFilter::RequestUpdateExtent(
   return 1;
 }
 
-int vtkCloudOccupancyFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkCloudOccupancyFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -240,7 +258,8 @@ int vtkCloudOccupancyFilter::RequestData(
   if (this->TransferTable.Size < 1 ||
     this->TransferTable.RGBA.size() < std::size_t(this->TransferTable.Size) * 4)
   {
-    vtkErrorMacro(<< "no transfer table: call SetTransferTable before updating");
+    vtkErrorMacro(
+      << "no transfer table: call SetTransferTable (SetTransferFunction) before updating");
     return 0;
   }
   vtkDataArray* scalars = input ? input->GetPointData()->GetScalars() : nullptr;
@@ -288,10 +307,16 @@ int vtkCloudOccupancyFilter::RequestData(
 
   this->UpdateProgress(0.0);
   const vtkIdType brickRows = vtkIdType(bricks[1]) * bricks[2];
-  auto fill = [&](auto* density) {
+  auto fill = [&](auto* density)
+  {
     using T = std::remove_const_t<std::remove_pointer_t<decltype(density)>>;
-    BrickExtinction<T> work{ density, { n[0], n[1], n[2] }, { bricks[0], bricks[1], bricks[2] },
-      this->BrickSize, this->Apron, &this->TransferTable, maxExtinction->GetPointer(0),
+    BrickExtinction<T> work{ density,
+      { n[0], n[1], n[2] },
+      { bricks[0], bricks[1], bricks[2] },
+      this->BrickSize,
+      this->Apron,
+      &this->TransferTable,
+      maxExtinction->GetPointer(0),
       minExtinction->GetPointer(0) };
     vtkSMPTools::For(0, brickRows, work);
   };

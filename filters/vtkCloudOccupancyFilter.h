@@ -34,10 +34,17 @@
 #ifndef vtkCloudOccupancyFilter_h
 #define vtkCloudOccupancyFilter_h
 
-#include "CloudTransferTable.h"
 #include "cloudvisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
+
+// VTK's wrappers do not see the C++ transfer table (glm): wrapped languages give the transfer
+// function as a vtkVolumeProperty (SetTransferFunction).
+#ifndef __VTK_WRAP__
+#include "CloudTransferTable.h"
+#endif
+
+class vtkVolumeProperty;
 
 class CLOUDVISFILTERS_EXPORT vtkCloudOccupancyFilter : public vtkImageAlgorithm
 {
@@ -53,9 +60,22 @@ public:
    * equal table does not modify the filter, so the pipeline does not re-execute. Default: an
    * empty table, which the filter refuses with an error: set it before updating.
    */
+#ifndef __VTK_WRAP__
   void SetTransferTable(const cloudvis::TransferTable& table);
-  const cloudvis::TransferTable& GetTransferTable() const { return this->TransferTable; }
+  const cloudvis::TransferTable& GetTransferTable() const
+  {
+    return this->TransferTable;
+  }
+#endif
   ///@}
+
+  /**
+   * Sets the transfer table the GPU mapper and the CPU renderers build from a vtkVolumeProperty
+   * (cloudvis::TransferTableOf: its first component's color, scalar opacity and unit distance,
+   * every extinction times extinctionScale). Returns false, after an error naming the problem,
+   * and leaves the table alone when the property cannot make one.
+   */
+  bool SetTransferFunction(vtkVolumeProperty* property, double extinctionScale = 1.0);
 
   ///@{
   /**
@@ -88,7 +108,9 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+#ifndef __VTK_WRAP__
   cloudvis::TransferTable TransferTable;
+#endif
   int BrickSize = 8;
   int Apron = 0;
   double OccupiedFraction = 0.0;

@@ -83,10 +83,12 @@ protected:
   vtkCloudPathTracer() = default;
   ~vtkCloudPathTracer() override = default;
 
+#ifndef __VTK_WRAP__
   bool RenderImage(const cloudvis::MarchUniforms& uniforms,
     const glm::dmat4& deviceToLocal,
     vtkImageData* input,
     vtkImageData* output) override;
+#endif
 
   int SamplesPerPixel = 64;
   unsigned int Seed = 0;

@@ -13,17 +13,20 @@
 #include "CloudCompositeFS.h"
 
 #include <vtkDataArray.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkLightCollection.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLCamera.h>
 #include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLState.h>
+#include <vtkPointData.h>
 #include <vtkPropCollection.h>
 #include <vtkRenderer.h>
 #include <vtkShaderProgram.h>
@@ -359,7 +362,8 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
 
   // Progressive accumulation: continue averaging while everything the image depends on holds.
   std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
-  signature.insert(signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
+  signature.insert(
+    signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
   for (double v : { double(viewport[2]),
          double(viewport[3]),
          scale,
@@ -486,16 +490,20 @@ void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
   this->LastStatistics = statistics;
 }
 
-bool vtkCloudVolumeMapper::ReadImage(
-  vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height)
+bool vtkCloudVolumeMapper::ReadImage(vtkRenderer* renderer,
+  std::vector<float>& rgba,
+  int& width,
+  int& height)
 {
   auto found = this->Internal->Views.find(renderer);
   return found != this->Internal->Views.end() &&
     found->second->Read(WindowOf(renderer), cloudvis::ViewTargets::Color, rgba, width, height);
 }
 
-bool vtkCloudVolumeMapper::ReadAuxiliary(
-  vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height)
+bool vtkCloudVolumeMapper::ReadAuxiliary(vtkRenderer* renderer,
+  std::vector<float>& channels,
+  int& width,
+  int& height)
 {
   auto found = this->Internal->Views.find(renderer);
   if (found == this->Internal->Views.end() ||
@@ -514,6 +522,52 @@ bool vtkCloudVolumeMapper::ReadAuxiliary(
     channels[i] = channels[i] >= noDepthInSomeFrame ? std::numeric_limits<float>::infinity()
                                                     : float(double(channels[i]) * unit);
   }
+  return true;
+}
+
+namespace
+{
+// Puts width x height RGBA floats into image as its one 4-component point array `name`.
+void CopyToImage(const std::vector<float>& rgba,
+  int width,
+  int height,
+  const char* name,
+  vtkImageData* image)
+{
+  vtkNew<vtkFloatArray> pixels;
+  pixels->SetName(name);
+  pixels->SetNumberOfComponents(4);
+  pixels->SetNumberOfTuples(vtkIdType(width) * height);
+  std::copy(rgba.begin(), rgba.end(), pixels->GetPointer(0));
+  image->Initialize();
+  image->SetDimensions(width, height, 1);
+  image->GetPointData()->SetScalars(pixels);
+}
+}
+
+bool vtkCloudVolumeMapper::ReadImage(vtkRenderer* renderer, vtkImageData* image)
+{
+  std::vector<float> rgba;
+  int width = 0;
+  int height = 0;
+  if (!image || !this->ReadImage(renderer, rgba, width, height))
+  {
+    return false;
+  }
+  CopyToImage(rgba, width, height, "rgba", image);
+  return true;
+}
+
+bool vtkCloudVolumeMapper::ReadAuxiliary(vtkRenderer* renderer, vtkImageData* image)
+{
+  std::vector<float> channels;
+  int width = 0;
+  int height = 0;
+  if (!image || !this->ReadAuxiliary(renderer, channels, width, height))
+  {
+    return false;
+  }
+  CopyToImage(channels, width, height, "auxiliary", image);
   return true;
 }
 

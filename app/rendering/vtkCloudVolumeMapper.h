@@ -258,7 +258,10 @@ public:
   /**
    * Statistics of the last frame (with CollectStatistics on).
    */
-  const FrameStatistics& GetLastFrameStatistics() const { return this->LastStatistics; }
+  const FrameStatistics& GetLastFrameStatistics() const
+  {
+    return this->LastStatistics;
+  }
 #endif
 
   /**
@@ -281,10 +284,24 @@ public:
   bool ReadAuxiliary(vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height);
 #endif
 
+  ///@{
+  /**
+   * ReadImage and ReadAuxiliary into a vtkImageData (for Python and other wrapped languages):
+   * width x height x 1 points with one 4-component float point array, "rgba" or "auxiliary",
+   * laid out as the reference renderer's output (row 0 at the bottom). The image is left alone
+   * when the method returns false.
+   */
+  bool ReadImage(vtkRenderer* renderer, vtkImageData* image);
+  bool ReadAuxiliary(vtkRenderer* renderer, vtkImageData* image);
+  ///@}
+
   /**
    * The last error, or an empty string when the last render succeeded.
    */
-  const std::string& GetLastError() const { return this->LastError; }
+  const std::string& GetLastError() const
+  {
+    return this->LastError;
+  }
 
   void Render(vtkRenderer* renderer, vtkVolume* volume) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;

@@ -1,0 +1,20 @@
+# `import cloudvis`: cloudvis::Filters and cloudvis::Rendering wrapped for Python with VTK's own
+# wrapping (vtk_module_wrap_python), against Debian's python3-vtk9, so that the wrapped classes
+# are ordinary vtkmodules classes (they import vtkmodules.vtkCommonCore... of Debian, not a second
+# VTK). The package lands in the build tree, laid out like Debian's dist-packages:
+#   <build>/lib/python3/dist-packages/cloudvis/{__init__.py, cloudvisFilters*.so, cloudvisRendering*.so}
+# and is found with PYTHONPATH=<build>/lib/python3/dist-packages (`make python-path` prints it).
+vtk_module_python_default_destination(cloudvis_python_destination)
+vtk_module_wrap_python(
+  MODULES ${cloudvis_modules}
+  TARGET cloudvis::Python
+  WRAPPED_MODULES cloudvis_python_modules
+  PYTHON_PACKAGE cloudvis
+  MODULE_DESTINATION "${cloudvis_python_destination}"
+  LIBRARY_DESTINATION lib
+  INSTALL_HEADERS OFF
+  BUILD_STATIC OFF)
+set(CLOUDVIS_PYTHONPATH "${CMAKE_BINARY_DIR}/${cloudvis_python_destination}"
+  CACHE INTERNAL "Where `import cloudvis` finds the package in the build tree")
+configure_file("${CMAKE_SOURCE_DIR}/app/python/__init__.py"
+  "${CLOUDVIS_PYTHONPATH}/cloudvis/__init__.py" COPYONLY)
