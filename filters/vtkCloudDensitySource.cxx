@@ -292,9 +292,8 @@ std::string vtkCloudDensitySource::Validate() const
   return error;
 }
 
-int vtkCloudDensitySource::RequestInformation(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
+int vtkCloudDensitySource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   const std::string error = this->Validate();
   if (!error.empty())
@@ -305,9 +304,8 @@ int vtkCloudDensitySource::RequestInformation(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   double origin[3], spacing[3];
   cloudvis::LatticeFromBounds(this->Dimensions, this->Bounds, origin, spacing);
-  const int wholeExtent[6] = {
-    0, this->Dimensions[0] - 1, 0, this->Dimensions[1] - 1, 0, this->Dimensions[2] - 1
-  };
+  const int wholeExtent[6] = { 0, this->Dimensions[0] - 1, 0, this->Dimensions[1] - 1, 0,
+    this->Dimensions[2] - 1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
@@ -326,8 +324,8 @@ int vtkCloudDensitySource::RequestInformation(vtkInformation*,
   }
   else
   {
-    outInfo->Set(
-      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(), static_cast<int>(steps.size()));
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(),
+      static_cast<int>(steps.size()));
   }
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), this->TimeRange, 2);
   return 1;
@@ -359,22 +357,15 @@ public:
       const double z = this->Origin[2] + k * this->Spacing[2];
       const vtkIdType offset =
         (vtkIdType(k - this->Extent[4]) * ny + (j - this->Extent[2])) * vtkIdType(nx);
-      this->Evaluator.EvaluateRow(this->Extent[0],
-        nx,
-        this->Origin[0],
-        this->Spacing[0],
-        y,
-        z,
-        this->Density + offset,
-        scratch);
+      this->Evaluator.EvaluateRow(this->Extent[0], nx, this->Origin[0], this->Spacing[0], y, z,
+        this->Density + offset, scratch);
     }
   }
 };
 }
 
-int vtkCloudDensitySource::RequestData(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
+int vtkCloudDensitySource::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);

@@ -46,7 +46,7 @@ void BrickVoxels(int b, int brickSize, int apron, int n, int& first, int& last)
 
 // Per brick, the density range of its apron-extended voxels and the extinction range the table
 // gives it. One work item is a row of bricks along x, so the voxel rows it reads are contiguous.
-template<typename T>
+template <typename T>
 struct BrickExtinction
 {
   const T* Density;
@@ -234,9 +234,8 @@ int vtkCloudOccupancyFilter::RequestInformation(vtkInformation*,
   return 1;
 }
 
-int vtkCloudOccupancyFilter::RequestUpdateExtent(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector*)
+int vtkCloudOccupancyFilter::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // Every brick's range depends on voxels beyond any sub-extent's bricks (the apron), and the
   // distances on all bricks: always ask for the whole input.
@@ -247,9 +246,8 @@ int vtkCloudOccupancyFilter::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-int vtkCloudOccupancyFilter::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkCloudOccupancyFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -307,16 +305,10 @@ int vtkCloudOccupancyFilter::RequestData(vtkInformation*,
 
   this->UpdateProgress(0.0);
   const vtkIdType brickRows = vtkIdType(bricks[1]) * bricks[2];
-  auto fill = [&](auto* density)
-  {
+  auto fill = [&](auto* density) {
     using T = std::remove_const_t<std::remove_pointer_t<decltype(density)>>;
-    BrickExtinction<T> work{ density,
-      { n[0], n[1], n[2] },
-      { bricks[0], bricks[1], bricks[2] },
-      this->BrickSize,
-      this->Apron,
-      &this->TransferTable,
-      maxExtinction->GetPointer(0),
+    BrickExtinction<T> work{ density, { n[0], n[1], n[2] }, { bricks[0], bricks[1], bricks[2] },
+      this->BrickSize, this->Apron, &this->TransferTable, maxExtinction->GetPointer(0),
       minExtinction->GetPointer(0) };
     vtkSMPTools::For(0, brickRows, work);
   };

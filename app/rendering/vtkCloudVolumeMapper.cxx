@@ -362,8 +362,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
 
   // Progressive accumulation: continue averaging while everything the image depends on holds.
   std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
-  signature.insert(
-    signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
+  signature.insert(signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
   for (double v : { double(viewport[2]),
          double(viewport[3]),
          scale,
@@ -490,20 +489,16 @@ void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
   this->LastStatistics = statistics;
 }
 
-bool vtkCloudVolumeMapper::ReadImage(vtkRenderer* renderer,
-  std::vector<float>& rgba,
-  int& width,
-  int& height)
+bool vtkCloudVolumeMapper::ReadImage(
+  vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height)
 {
   auto found = this->Internal->Views.find(renderer);
   return found != this->Internal->Views.end() &&
     found->second->Read(WindowOf(renderer), cloudvis::ViewTargets::Color, rgba, width, height);
 }
 
-bool vtkCloudVolumeMapper::ReadAuxiliary(vtkRenderer* renderer,
-  std::vector<float>& channels,
-  int& width,
-  int& height)
+bool vtkCloudVolumeMapper::ReadAuxiliary(
+  vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height)
 {
   auto found = this->Internal->Views.find(renderer);
   if (found == this->Internal->Views.end() ||

@@ -258,10 +258,7 @@ public:
   /**
    * Statistics of the last frame (with CollectStatistics on).
    */
-  const FrameStatistics& GetLastFrameStatistics() const
-  {
-    return this->LastStatistics;
-  }
+  const FrameStatistics& GetLastFrameStatistics() const { return this->LastStatistics; }
 #endif
 
   /**
@@ -298,10 +295,7 @@ public:
   /**
    * The last error, or an empty string when the last render succeeded.
    */
-  const std::string& GetLastError() const
-  {
-    return this->LastError;
-  }
+  const std::string& GetLastError() const { return this->LastError; }
 
   void Render(vtkRenderer* renderer, vtkVolume* volume) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
