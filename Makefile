@@ -16,7 +16,7 @@ CCACHE := $(shell command -v ccache 2> /dev/null)
 CCACHE_ARGS := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 CCACHE_ENV := CCACHE_BASEDIR=$(CURDIR) CCACHE_NOHASHDIR=1
 
-.PHONY: all deps configure build demo test bench docs clean
+.PHONY: all deps configure build demo test bench docs clean python-path
 
 all: build
 
@@ -46,6 +46,14 @@ docs: build
 
 clean:
 	rm -rf $(BUILD_DIR) out
+
+# Where `import cloudvis` finds the package after `make demo` (docs/python.md):
+#   PYTHONPATH=$(make -s python-path) python3 -c "import cloudvis"
+python-path:
+	@path=$$(sed -n 's/^CLOUDVIS_PYTHONPATH:INTERNAL=//p' $(BUILD_DIR)/CMakeCache.txt 2> /dev/null); \
+	if [ -z "$$path" ]; then \
+	  echo "make python-path: no Python package in $(BUILD_DIR): run make demo first (CLOUDVIS_PYTHON on)" >&2; exit 1; \
+	fi; echo "$$path"
 
 # ---- reliability: sanitizers, fuzzing, soak (docs/reliability.md) ----------------------------
 #   make test-asan        Debug build with AddressSanitizer + UBSan in build-asan, the whole ctest suite

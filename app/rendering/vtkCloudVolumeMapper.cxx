@@ -197,6 +197,19 @@ int vtkCloudVolumeMapper::GetNumberOfAccumulatedFrames(vtkRenderer* renderer) co
 void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   this->LastError.clear();
+  // The march clips its rays at the scene's depth, copied from the framebuffer VTK draws into.
+  // GL cannot copy from a multisampled one (vtkRenderWindow's default, 8 samples where the driver
+  // has them): the copy would fail and the cloud vanish without a word, so such a window is
+  // refused in words instead.
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLES, &samples);
+  if (samples > 1)
+  {
+    this->Fail("the render window is multisampled (" + std::to_string(samples) +
+      " samples): the cloud mapper needs a single-sampled one, call SetMultiSamples(0) on the "
+      "vtkRenderWindow before its first render");
+    return;
+  }
   vtkImageData* input = this->ValidInput(volume);
   if (input && this->UpdateTextures(renderer, volume, input) &&
     this->MarchPass(renderer, volume, input) && this->CompositePass(renderer))
