@@ -535,48 +535,44 @@ bool vtkCloudVolumeMapper::ReadAuxiliary(
 
 namespace
 {
-// Puts width x height RGBA floats into image as its one 4-component point array `name`.
-void CopyToImage(const std::vector<float>& rgba,
-  int width,
-  int height,
+// One of the mapper's read-backs into std::vector (ReadImage, ReadAuxiliary).
+using ReadBack = bool (vtkCloudVolumeMapper::*)(vtkRenderer*, std::vector<float>&, int&, int&);
+
+// Runs a read-back and puts its width x height x 4 floats into image as its one 4-component
+// point array `name`; leaves the image alone when the read-back fails.
+bool ReadIntoImage(vtkCloudVolumeMapper* mapper,
+  ReadBack read,
+  vtkRenderer* renderer,
   const char* name,
   vtkImageData* image)
 {
+  std::vector<float> values;
+  int width = 0;
+  int height = 0;
+  if (!image || !(mapper->*read)(renderer, values, width, height))
+  {
+    return false;
+  }
   vtkNew<vtkFloatArray> pixels;
   pixels->SetName(name);
   pixels->SetNumberOfComponents(4);
   pixels->SetNumberOfTuples(vtkIdType(width) * height);
-  std::copy(rgba.begin(), rgba.end(), pixels->GetPointer(0));
+  std::copy(values.begin(), values.end(), pixels->GetPointer(0));
   image->Initialize();
   image->SetDimensions(width, height, 1);
   image->GetPointData()->SetScalars(pixels);
+  return true;
 }
 }
 
 bool vtkCloudVolumeMapper::ReadImage(vtkRenderer* renderer, vtkImageData* image)
 {
-  std::vector<float> rgba;
-  int width = 0;
-  int height = 0;
-  if (!image || !this->ReadImage(renderer, rgba, width, height))
-  {
-    return false;
-  }
-  CopyToImage(rgba, width, height, "rgba", image);
-  return true;
+  return ReadIntoImage(this, &vtkCloudVolumeMapper::ReadImage, renderer, "rgba", image);
 }
 
 bool vtkCloudVolumeMapper::ReadAuxiliary(vtkRenderer* renderer, vtkImageData* image)
 {
-  std::vector<float> channels;
-  int width = 0;
-  int height = 0;
-  if (!image || !this->ReadAuxiliary(renderer, channels, width, height))
-  {
-    return false;
-  }
-  CopyToImage(channels, width, height, "auxiliary", image);
-  return true;
+  return ReadIntoImage(this, &vtkCloudVolumeMapper::ReadAuxiliary, renderer, "auxiliary", image);
 }
 
 bool vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)

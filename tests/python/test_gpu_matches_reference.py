@@ -12,6 +12,8 @@ rounded: within 1/255 of it (measured 0.5/255, the rounding itself).
 
 import numpy as np
 import pytest
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
 
 from conftest import SIZE, Scene, cloud_field, ramp_medium, sphere_field
 
@@ -63,6 +65,16 @@ def test_gpu_image_is_a_cloud_and_matches_the_cpu_reference(case):
     assert rms < rms_gate * brightest
     assert largest < max_gate * brightest
     assert alpha < max_gate
+
+    # The per-pixel samples and depth reach numpy too: samples were taken and a depth found
+    # wherever the cloud is opaque enough to show.
+    auxiliary = vtk.vtkImageData()
+    assert scene.mapper.ReadAuxiliary(scene.renderer, auxiliary)
+    channels = vtk_to_numpy(auxiliary.GetPointData().GetArray("auxiliary"))
+    assert channels.shape == (SIZE * SIZE, 4)
+    shown_cloud = gpu[:, 3] > 0.1
+    assert (channels[shown_cloud, 0] >= 1).all()
+    assert np.isfinite(channels[shown_cloud, 2]).all()
 
     # What the window shows is that image over the black background, rounded to 8 bits.
     shown = np.clip(gpu[:, :3].astype(np.float64), 0.0, 1.0)
