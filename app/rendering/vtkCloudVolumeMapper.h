@@ -51,6 +51,7 @@
  * GPU's 3-D texture limit or its memory, an invalid transfer function, a step that needs more
  * than cloudvis::MaxSamplesPerRay samples per ray, more than 8 lights, lights or extinctions
  * beyond float range: everything cloudvis::SetUpMarch refuses, in the CPU reference's words; a
+ * multisampled render window, whose depth the march cannot copy: call SetMultiSamples(0); a
  * shader or framebuffer failure) are reported with vtkErrorMacro and kept in GetLastError(); the
  * volume is then not drawn.
  */
