@@ -1,7 +1,11 @@
 """vtkCloudDensitySource from Python, read through numpy: a constant sphere has its density at
 the voxels inside and 0 at those outside, on the lattice its bounds and dimensions define."""
 
+import os
+
 import numpy as np
+import vtkmodules
+import vtkmodules.vtkCommonExecutionModel
 from vtk.util.numpy_support import vtk_to_numpy
 
 import cloudvis
@@ -72,3 +76,16 @@ def test_out_of_range_choices_are_refused_and_leave_the_field_alone(errors):
     assert "density model 7" in errors.messages[0]
     assert "noise type -1" in errors.messages[1]
     assert "shape 5 does not exist" in errors.messages[2]
+
+
+def test_classes_are_ordinary_vtk_classes_of_debians_vtkmodules():
+    # One VTK in the process: Debian's python3-vtk9, whose classes the cloudvis ones derive from
+    # and connect to.
+    assert vtkmodules.__file__.startswith("/usr/lib/python3/dist-packages/vtkmodules/")
+    source = sphere_field()
+    assert isinstance(source, vtkmodules.vtkCommonExecutionModel.vtkImageAlgorithm)
+    assert isinstance(cloudvis.vtkCloudVolumeMapper().GetLightingProperty(),
+                      cloudvis.vtkCloudLightingProperty)
+    # The package is the build's (PYTHONPATH as docs/python.md says), not an installed copy.
+    assert os.path.basename(os.path.dirname(cloudvis.__file__)) == "cloudvis"
+    assert os.path.dirname(os.path.dirname(cloudvis.__file__)) in os.environ["PYTHONPATH"].split(":")
