@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Render a procedural cloud with cloudvis from Python (docs/python.md).
 
-    PYTHONPATH=$(make -s python-path) python3 docs/examples/render_cloud.py cloud.png
+    PYTHONPATH=$(make -s python-path) /usr/bin/python3 docs/examples/render_cloud.py cloud.png
 
 Generates the article's cloud (a sphere plus fBm noise) with vtkCloudDensitySource, looks at its
 densities through numpy, draws it with vtkCloudVolumeMapper and the march lighting model in an
