@@ -51,12 +51,7 @@ std::string Absolute(const std::string& path)
 int View(const Arguments& arguments, std::ostream& out)
 {
   const std::string input = arguments.Operands.empty() ? "" : arguments.Operands[0];
-  const bool fieldFile = IsFieldFile(input);
-  const std::vector<std::string> assignments = arguments.Values("set");
-  if (fieldFile)
-  {
-    RefuseFieldKeys("view", input, assignments);
-  }
+  const bool fieldFile = !input.empty() && IsFieldOperand(input, arguments);
   ViewerOptions options;
   const std::string saveOnExit = arguments.Value("save-scene-on-exit");
   const std::string play = arguments.Value("play");
@@ -76,7 +71,7 @@ int View(const Arguments& arguments, std::ostream& out)
   }
   options.CommandLine = QuoteCommandLine(arguments.CommandLine);
 
-  Scene scene = LoadScene(fieldFile ? "" : input, assignments);
+  Scene scene = LoadOperandScene("view", input, arguments, {});
   if (arguments.Has("size"))
   {
     options.WindowSize = ParseWindowSize(arguments.Value("size"));
@@ -87,17 +82,12 @@ int View(const Arguments& arguments, std::ostream& out)
     options.WindowSize = { { scene.Render.Size[0], scene.Render.Size[1] * 4 / 3 } };
   }
   RequireDisplay("cloudvis view ...");
-  vtkSmartPointer<vtkImageData> field;
   if (fieldFile)
   {
     // Absolute, so that a saved scene finds the field wherever the scene is kept.
     scene.Field.File = Absolute(input);
-    field = ReadField(input);
   }
-  else
-  {
-    field = ProduceField(scene);
-  }
+  const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
   Viewer viewer(scene, field, options);
   if (!play.empty())
   {
@@ -147,6 +137,9 @@ CommandSpec ViewCommand()
         "DIR",
         "where screenshots, saved scenes and presets go (default: the current directory)" },
       SetOption,
+      FieldFileOptions[0],
+      FieldFileOptions[1],
+      FieldFileOptions[2],
       HelpOption },
     View };
 }

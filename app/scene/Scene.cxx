@@ -11,6 +11,7 @@
 #include "SceneField.h"
 #include "Utf8.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -460,7 +461,59 @@ void ReadShapes(const Context& c, const json& v, const std::string& key, FieldSp
 
 // ---- the field section -------------------------------------------------------------------
 
-const Key<FieldSpec> FieldKeys[] = {
+// field.raw: the layout of a raw volume.
+const Key<RawLayout> RawKeys[] = {
+  { "dimensions",
+    [](const Context& c, const json& v, const std::string& k, RawLayout& r)
+    {
+      const long long maxInt = std::numeric_limits<int>::max();
+      if (v.is_number())
+      {
+        r.Dimensions.fill(int(ReadInteger(c, v, k, 1, maxInt)));
+        return;
+      }
+      if (!v.is_array() || v.size() != 3)
+      {
+        c.Fail(k, "expected an integer or an array of 3 integers, got " + Describe(v));
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        r.Dimensions[a] = int(ReadInteger(c, v[a], k + "[" + std::to_string(a) + "]", 1, maxInt));
+      }
+    } },
+  { "type",
+    [](const Context& c, const json& v, const std::string& k, RawLayout& r)
+    {
+      const std::vector<std::string> names = RawTypeNames();
+      if (!v.is_string() ||
+        std::find(names.begin(), names.end(), v.get<std::string>()) == names.end())
+      {
+        c.Fail(k, "expected one of " + Join(names) + ", got " + Describe(v));
+      }
+      r.Type = v.get<std::string>();
+    } },
+  { "byte_order",
+    [](const Context& c, const json& v, const std::string& k, RawLayout& r)
+    {
+      if (!v.is_string() || (v.get<std::string>() != "little" && v.get<std::string>() != "big"))
+      {
+        c.Fail(k, "expected \"little\" or \"big\", got " + Describe(v));
+      }
+      r.BigEndian = v.get<std::string>() == "big";
+    } },
+  { "spacing",
+    [](const Context& c, const json& v, const std::string& k, RawLayout& r)
+    { r.Spacing = ReadNumbers<3>(c, v, k, Positive); } },
+  { "origin",
+    [](const Context& c, const json& v, const std::string& k, RawLayout& r)
+    { r.Origin = ReadNumbers<3>(c, v, k, AnyNumber); } },
+  { "header_bytes",
+    [](const Context& c, const json& v, const std::string& k, RawLayout& r)
+    { r.HeaderBytes = std::uint64_t(ReadInteger(c, v, k, 0, 1LL << 62)); } },
+};
+
+// The keys that say how a field file is read; the first is the file itself.
+const Key<FieldSpec> FieldFileKeys[] = {
   { "file",
     [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
     {
@@ -470,15 +523,51 @@ const Key<FieldSpec> FieldKeys[] = {
           "expected the path of a field file (" + FieldFileExtensions() +
             ", a non-empty string), got " + Describe(v));
       }
+      // Whether the extension names a format is checked with field.format, in ReadField.
       const std::string path = v.get<std::string>();
-      if (!IsFieldFile(path))
-      {
-        c.Fail(k,
-          "\"" + path + "\" is not a field file: supported extensions (in any case) are " +
-            FieldFileExtensions());
-      }
       f.File = path[0] == '/' || c.BaseDirectory.empty() ? path : c.BaseDirectory + "/" + path;
     } },
+  { "format",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    {
+      if (!v.is_string() || !FindFieldFormatById(v.get<std::string>()))
+      {
+        c.Fail(k,
+          (v.is_string() ? "unknown format \"" + v.get<std::string>() + "\""
+                         : "expected a format name, got " + Describe(v)) +
+            "; allowed: " + FieldFormatIds());
+      }
+      f.Read.Format = v.get<std::string>();
+    } },
+  { "array",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    {
+      if (!v.is_string() || v.get<std::string>().empty())
+      {
+        c.Fail(k,
+          "expected the name of a grid, variable or point array (a non-empty string), got " +
+            Describe(v));
+      }
+      f.Read.Array = v.get<std::string>();
+    } },
+  { "time_step",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Read.TimeStep = int(ReadInteger(c, v, k, 0, std::numeric_limits<int>::max())); } },
+  { "max_voxels",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { f.Read.MaximumVoxels = std::uint64_t(ReadInteger(c, v, k, 1, 1LL << 62)); } },
+  { "raw",
+    [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
+    { ReadObject(c, v, k, RawKeys, f.Read.Raw); } },
+};
+
+const Key<FieldSpec> FieldKeys[] = {
+  FieldFileKeys[0],
+  FieldFileKeys[1],
+  FieldFileKeys[2],
+  FieldFileKeys[3],
+  FieldFileKeys[4],
+  FieldFileKeys[5],
   { "dimensions",
     [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
     {
@@ -562,22 +651,38 @@ const Key<FieldSpec> FieldKeys[] = {
     { f.Time = ReadNumber(c, v, k, AnyNumber); } },
 };
 
+bool IsFieldFileKey(const std::string& name)
+{
+  return FindKey(FieldFileKeys, name) != nullptr;
+}
+
 void ReadField(const Context& c, const json& v, const std::string& key, Scene& scene)
 {
-  if (v.is_object() && v.contains("file") && v.size() > 1)
+  if (v.is_object())
   {
     for (const auto& member : v.items())
     {
-      if (member.key() != "file")
+      const bool fileKey = IsFieldFileKey(member.key());
+      if (v.contains("file") && !fileKey && FindKey(FieldKeys, member.key()))
       {
         c.Fail(key + ".file", "cannot be combined with " + key + "." + member.key() +
             ": a field loaded from a file has no procedural parameters");
+      }
+      if (!v.contains("file") && fileKey)
+      {
+        c.Fail(key + "." + member.key(),
+          "says how a field file is read; give " + key +
+            ".file too (or leave it out for a procedural field)");
       }
     }
   }
   ReadObject(c, v, key, FieldKeys, scene.Field);
   if (scene.Field.FromFile())
   {
+    if (const auto problem = CheckFieldReadOptions(scene.Field.File, scene.Field.Read))
+    {
+      c.Fail(key + "." + problem->Key, problem->Problem);
+    }
     return;
   }
   // The source's own checks, for what only a combination of keys can get wrong (a field too
@@ -1494,10 +1599,22 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   return scene;
 }
 
-Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments,
+const std::vector<std::string>& FieldFileKeyNames()
+{
+  static const std::vector<std::string> names = KeyNames(FieldFileKeys);
+  return names;
+}
+
+namespace
+{
+
+// LoadScene and LoadFieldFileScene: the assignments, then the options, applied to `document`.
+Scene SceneWithOverrides(json document,
+  const std::string& source,
+  const std::string& baseDirectory,
+  const std::vector<std::string>& assignments,
   const std::vector<SceneOverride>& options)
 {
-  json document = path.empty() ? json::object() : ReadSceneDocument(path);
   std::vector<std::string> keys;
   for (const std::string& assignment : assignments)
   {
@@ -1508,8 +1625,30 @@ Scene LoadScene(const std::string& path, const std::vector<std::string>& assignm
   {
     SetDocumentValue(document, option.Key, option.Value, option.Option);
   }
-  return SceneFromDocument(document, path.empty() ? "default scene" : path,
-    path.empty() ? "" : DirectoryOf(path), keys, options);
+  return SceneFromDocument(document, source, baseDirectory, keys, options);
+}
+
+} // namespace
+
+Scene LoadScene(const std::string& path,
+  const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options)
+{
+  return SceneWithOverrides(path.empty() ? json::object() : ReadSceneDocument(path),
+    path.empty() ? "default scene" : path,
+    path.empty() ? "" : DirectoryOf(path),
+    assignments,
+    options);
+}
+
+Scene LoadFieldFileScene(const std::string& path,
+  const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options)
+{
+  // The operand is field.file, set last so --set field.file cannot replace it.
+  std::vector<SceneOverride> all = options;
+  all.push_back({ "field.file", path, "the field file operand" });
+  return SceneWithOverrides(json::object(), path, "", assignments, all);
 }
 
 } // namespace cloudvis

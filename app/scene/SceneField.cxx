@@ -33,12 +33,17 @@ std::string ValidateProceduralField(const FieldSpec& field)
   return MakeDensitySource(field)->Validate();
 }
 
-vtkSmartPointer<vtkImageData> ProduceField(
-  const Scene& scene, const std::function<void(double fraction)>& progress)
+vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
+  const std::function<void(double fraction)>& progress,
+  FieldReport* report)
 {
   if (scene.Field.FromFile())
   {
-    return ReadField(scene.Field.File);
+    return ReadField(scene.Field.File, scene.Field.Read, report);
+  }
+  if (report)
+  {
+    *report = FieldReport{ "procedural (generated from the scene's field section)", {} };
   }
   vtkSmartPointer<vtkCloudDensitySource> source = MakeDensitySource(scene.Field);
   VtkMessageCapture messages;

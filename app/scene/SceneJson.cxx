@@ -107,7 +107,36 @@ json FieldToJson(const FieldSpec& f)
 {
   if (f.FromFile())
   {
-    return { { "file", f.File } };
+    // What a scene reading the file again needs: the read options that differ from the defaults.
+    const FieldReadOptions defaults;
+    json field = { { "file", f.File } };
+    if (!f.Read.Format.empty())
+    {
+      field["format"] = f.Read.Format;
+    }
+    if (!f.Read.Array.empty())
+    {
+      field["array"] = f.Read.Array;
+    }
+    if (f.Read.TimeStep)
+    {
+      field["time_step"] = *f.Read.TimeStep;
+    }
+    if (f.Read.MaximumVoxels != defaults.MaximumVoxels)
+    {
+      field["max_voxels"] = f.Read.MaximumVoxels;
+    }
+    if (f.Read.Raw.Dimensions[0] > 0)
+    {
+      const RawLayout& r = f.Read.Raw;
+      field["raw"] = { { "dimensions", r.Dimensions },
+        { "type", r.Type },
+        { "byte_order", r.BigEndian ? "big" : "little" },
+        { "spacing", r.Spacing },
+        { "origin", r.Origin },
+        { "header_bytes", r.HeaderBytes } };
+    }
+    return field;
   }
   const FieldDescription& d = f.Description;
   json shapes = json::array();

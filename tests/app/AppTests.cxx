@@ -765,7 +765,8 @@ TEST(FieldFormats, ExtensionsMatchWithoutRegardToCase)
   ASSERT_NE(parallel, nullptr);
   EXPECT_EQ(parallel->Name, "VTK XML parallel image data");
   EXPECT_EQ(cloudvis::LowerCaseExtension("dir/Image.EXR"), ".exr");
-  EXPECT_EQ(cloudvis::FieldFileExtensions(), ".vti, .pvti");
+  EXPECT_EQ(cloudvis::FieldFileExtensions(),
+    ".vti, .pvti, .vdb, .nc, .nc4, .cdf, .nrrd, .nhdr, .mha, .mhd, .raw");
 }
 
 // Class "JSON files above the size limit": the limit is the largest size read, inclusive.

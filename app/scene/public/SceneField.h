@@ -24,10 +24,12 @@ vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field)
 // same checks vtkCloudDensitySource::Validate applies before generating).
 std::string ValidateProceduralField(const FieldSpec& field);
 
-// The field of a scene: read from field.file, or generated. Throws InputError on failure.
-// `progress`, when given, is called with the generation's fraction done, 0 .. 1.
-vtkSmartPointer<vtkImageData> ProduceField(
-  const Scene& scene, const std::function<void(double fraction)>& progress = {});
+// The field of a scene: read from field.file (with field.format, array, time_step, ...), or
+// generated. Throws InputError on failure. `progress`, when given, is called with the
+// generation's fraction done, 0 .. 1; `report`, when given, receives what was read (FieldIO.h).
+vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
+  const std::function<void(double fraction)>& progress = {},
+  FieldReport* report = nullptr);
 
 } // namespace cloudvis
 
