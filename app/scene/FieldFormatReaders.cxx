@@ -35,6 +35,12 @@ std::string Dimensions(const std::array<double, 3>& d)
   return text.str();
 }
 
+// FormatBytes, with sizes below 1 KiB as whole numbers (FormatBytes prints 500 as "5e+02").
+std::string Bytes(double bytes)
+{
+  return bytes < 1024.0 ? std::to_string(std::uint64_t(bytes)) + " bytes" : FormatBytes(bytes);
+}
+
 } // namespace
 
 const std::vector<RawType>& RawTypes()
@@ -59,9 +65,8 @@ std::string TooManyVoxels(const int dimensions[3], std::uint64_t maximumVoxels)
   };
   std::ostringstream text;
   text << "a field of " << Dimensions(d) << " voxels (" << d[0] * d[1] * d[2] << " voxels, "
-       << FormatBytes(d[0] * d[1] * d[2] * 4.0)
-       << " as float) is more than field.max_voxels allows (" << maximumVoxels
-       << "); raise field.max_voxels if the memory and the GPU can hold it";
+       << Bytes(d[0] * d[1] * d[2] * 4.0) << " as float) is more than field.max_voxels allows ("
+       << maximumVoxels << "); raise field.max_voxels if the memory and the GPU can hold it";
   return text.str();
 }
 
@@ -99,7 +104,7 @@ void CheckFieldSize(const std::string& path,
   if (available > 0 && needed > double(available))
   {
     Fail(path,
-      "a field of " + Dimensions(dimensions) + " voxels needs at least " + FormatBytes(needed) +
+      "a field of " + Dimensions(dimensions) + " voxels needs at least " + Bytes(needed) +
         " to read but only " + FormatBytes(double(available)) + " of memory is available");
   }
 }

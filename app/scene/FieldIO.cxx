@@ -120,6 +120,25 @@ vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path,
         " values that are NaN or infinite");
   }
 
+  // The lattice's axes must be perpendicular unit vectors (a rotation, or a reflection): VTK
+  // accepts any matrix, but a sheared or scaled one is not a lattice the renderers can march.
+  const double* d = image->GetDirectionMatrix()->GetData();
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      const double dot = d[a] * d[b] + d[3 + a] * d[3 + b] + d[6 + a] * d[6 + b];
+      if (!(std::fabs(dot - (a == b ? 1.0 : 0.0)) <= 1e-6))
+      {
+        Fail(path,
+          "the image's direction matrix is not a rotation: its axes must be perpendicular unit "
+          "vectors (axes " +
+            std::to_string(a) + " and " + std::to_string(b) + " have a dot product of " +
+            std::to_string(dot) + ")");
+      }
+    }
+  }
+
   // A new image with just the geometry and the density, so arrays of other meanings in the file
   // do not travel on as if they were ours.
   vtkSmartPointer<vtkImageData> field = vtkSmartPointer<vtkImageData>::New();

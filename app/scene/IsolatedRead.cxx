@@ -8,6 +8,8 @@
 
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
+#include <oneapi/tbb/global_control.h>
+
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -93,6 +95,15 @@ void ProbeReadInIsolation(const std::string& path,
   const std::function<void()>& read)
 {
   const unsigned seconds = 60u + unsigned(fileBytes / (10u << 20)); // 60 s + 1 s per 10 MiB
+  // A child inherits TBB's thread pool without its threads, and the first parallel loop it runs
+  // (OpenVDB frees a tree with one) waits for them forever. So the pool's threads are ended
+  // first; TBB starts new ones when this process next needs them.
+  {
+    oneapi::tbb::task_scheduler_handle scheduler{ oneapi::tbb::attach{} };
+    // False when another part of the process holds the pool (none of cloudvis does): then the
+    // child's time limit is what ends a wait.
+    oneapi::tbb::finalize(scheduler, std::nothrow);
+  }
   const pid_t child = ::fork();
   if (child < 0)
   {

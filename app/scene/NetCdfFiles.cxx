@@ -183,6 +183,155 @@ Variable ChooseVariable(const std::string& path,
   Fail(path, "no variable on 2 or 3 spatial dimensions: nothing to read as a density");
 }
 
+// ---- where a classic file keeps a variable's values
+// ----------------------------------------------
+
+// The netCDF library reads past the end of a truncated classic file (CDF-1, -2, -5) without an
+// error and hands back zeros; so the header is read here as far as the variables' offsets, and a
+// variable whose values for the time step lie beyond the end of the file is refused. (netCDF-4
+// files are HDF5 files, whose library refuses a truncated file itself.)
+class ClassicHeader
+{
+public:
+  explicit ClassicHeader(const std::string& bytes)
+    : Bytes(bytes)
+  {
+  }
+
+  // Where the values of `variable` at record `step` end (0 when not found or not parseable).
+  std::uint64_t EndOf(const std::string& variable, std::uint64_t step);
+
+private:
+  struct Var
+  {
+    std::string Name;
+    std::uint64_t Begin = 0, Size = 0; // Size: of one record for a record variable
+    bool Record = false;
+  };
+
+  std::uint64_t Number(int bytes)
+  {
+    if (this->At + std::size_t(bytes) > this->Bytes.size())
+    {
+      throw std::out_of_range("header");
+    }
+    std::uint64_t value = 0;
+    for (int b = 0; b < bytes; ++b)
+    {
+      value = (value << 8) | static_cast<unsigned char>(this->Bytes[this->At++]);
+    }
+    return value;
+  }
+  std::uint64_t Count() { return this->Number(this->Version == 5 ? 8 : 4); }
+  void Skip(std::uint64_t bytes)
+  {
+    const std::uint64_t padded = (bytes + 3) / 4 * 4;
+    if (padded > this->Bytes.size() - this->At)
+    {
+      throw std::out_of_range("header");
+    }
+    this->At += std::size_t(padded);
+  }
+  std::string Name()
+  {
+    const std::uint64_t length = this->Count();
+    if (length > this->Bytes.size() - this->At)
+    {
+      throw std::out_of_range("header");
+    }
+    const std::string name = this->Bytes.substr(this->At, std::size_t(length));
+    this->Skip(length);
+    return name;
+  }
+  static std::uint64_t TypeBytes(std::uint64_t type)
+  {
+    // NC_BYTE, CHAR, SHORT, INT, FLOAT, DOUBLE, UBYTE, USHORT, UINT, INT64, UINT64
+    static const std::uint64_t sizes[] = { 0, 1, 1, 2, 4, 4, 8, 1, 2, 4, 8, 8 };
+    return type < 12 ? sizes[type] : 0;
+  }
+  void SkipAttributes()
+  {
+    const std::uint64_t tag = this->Number(4);
+    const std::uint64_t count = this->Count();
+    for (std::uint64_t a = 0; tag != 0 && a < count; ++a)
+    {
+      this->Name();
+      const std::uint64_t type = this->Number(4);
+      const std::uint64_t values = this->Count();
+      if (TypeBytes(type) == 0 || values > this->Bytes.size())
+      {
+        throw std::out_of_range("header");
+      }
+      this->Skip(values * TypeBytes(type));
+    }
+  }
+
+  const std::string& Bytes;
+  std::size_t At = 0;
+  int Version = 1;
+};
+
+std::uint64_t ClassicHeader::EndOf(const std::string& variable, std::uint64_t step)
+{
+  try
+  {
+    this->At = 3;
+    this->Version = int(this->Number(1));
+    this->Count(); // the number of records: the time step was checked against the file's times
+    std::vector<std::uint64_t> lengths;
+    this->Number(4); // NC_DIMENSION, or ABSENT
+    for (std::uint64_t d = 0, n = this->Count(); d < n; ++d)
+    {
+      this->Name();
+      lengths.push_back(this->Count());
+    }
+    this->SkipAttributes(); // global attributes
+    std::vector<Var> variables;
+    this->Number(4); // NC_VARIABLE, or ABSENT
+    for (std::uint64_t v = 0, n = this->Count(); v < n; ++v)
+    {
+      Var var;
+      var.Name = this->Name();
+      std::uint64_t values = 1;
+      for (std::uint64_t d = 0, dims = this->Count(); d < dims; ++d)
+      {
+        const std::uint64_t id = this->Count();
+        if (id >= lengths.size())
+        {
+          return 0;
+        }
+        var.Record = var.Record || (d == 0 && lengths[id] == 0);
+        values *= lengths[id] == 0 ? 1 : lengths[id];
+      }
+      this->SkipAttributes();
+      var.Size = values * TypeBytes(this->Number(4));
+      this->Count(); // vsize, which large variables overflow
+      var.Begin = this->Number(this->Version == 1 ? 4 : 8);
+      variables.push_back(var);
+    }
+    // One record holds every record variable's values, each padded to 4 bytes unless it is the
+    // only one.
+    std::uint64_t recordBytes = 0;
+    const auto recordVariables =
+      std::count_if(variables.begin(), variables.end(), [](const Var& v) { return v.Record; });
+    for (const Var& v : variables)
+    {
+      recordBytes += v.Record ? (recordVariables == 1 ? v.Size : (v.Size + 3) / 4 * 4) : 0;
+    }
+    for (const Var& v : variables)
+    {
+      if (v.Name == variable)
+      {
+        return v.Begin + (v.Record ? step * recordBytes : 0) + v.Size;
+      }
+    }
+  }
+  catch (const std::out_of_range&)
+  {
+  }
+  return 0;
+}
+
 // ---- resampling a rectilinear grid -------------------------------------------------------------
 
 // One axis of the output lattice and how it maps onto the file's coordinates.
@@ -307,6 +456,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
 {
   std::uint64_t fileBytes = 0;
   bool classic = false; // CDF-1, -2 and -5 files hold every value uncompressed
+  std::string header;   // of a classic file: its first 16 MiB, more than any header needs
   {
     const RegularInputFile file(path, "field");
     fileBytes = file.Size();
@@ -316,6 +466,10 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     if (!classic && magic != "\x89HDF\r\n\x1a\n")
     {
       Fail(path, "not a NetCDF file (it starts with neither \"CDF\" nor the HDF5 signature)");
+    }
+    if (classic)
+    {
+      header = file.ReadAt(0, std::size_t(std::min<std::uint64_t>(fileBytes, 16u << 20)));
     }
   }
 
@@ -374,15 +528,6 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     // add_offset), then the float copy made here.
     CheckFieldSize(
       path, fileDimensions, std::max(valueBytes, 1) + 8.0 + 4.0, options.MaximumVoxels);
-    if (classic && valueBytes > 0)
-    {
-      CheckFileHoldsData(path,
-        fileBytes,
-        0,
-        fileDimensions[0] * fileDimensions[1] * fileDimensions[2] * valueBytes,
-        "one time step of \"" + chosen.Name + "\"");
-    }
-
     // The time step: field.time_step indexes the file's times (0 when not given).
     FieldFileContents contents;
     const int steps = information->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
@@ -396,6 +541,16 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
           (steps == 0
               ? std::string("no time axis (one step, 0)")
               : std::to_string(steps) + " time steps (0 .. " + std::to_string(steps - 1) + ")"));
+    }
+    if (classic)
+    {
+      const std::uint64_t end = ClassicHeader(header).EndOf(chosen.Name, std::uint64_t(step));
+      if (end > fileBytes)
+      {
+        Fail(path,
+          "the values of \"" + chosen.Name + "\" end at byte " + std::to_string(end) +
+            " but the file holds " + std::to_string(fileBytes) + ": it is truncated");
+      }
     }
     if (steps > 0)
     {

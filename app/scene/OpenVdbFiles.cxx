@@ -7,10 +7,10 @@
 // the box take the grid's background. The grid's transform becomes the image's geometry: a linear
 // map (scale, translation, rotation, or any affine map whose axes are perpendicular) gives the
 // origin, spacing and direction; a frustum or a sheared map is refused, since image data cannot
-// represent it. The size is checked (field.max_voxels, memory) first against the bounding box
-// the file's grid statistics state, before the tree is read, then against the tree's own.
-// OpenVDB parses the file in the isolated child first (IsolatedRead.h); there the copies run
-// without TBB threads, which a forked child does not have.
+// represent it. The size (field.max_voxels, memory) is checked against the tree's active
+// bounding box before the dense copy is allocated. OpenVDB parses the file in the isolated child
+// first (IsolatedRead.h), through a stream that throws at any short read; in the child the copies
+// run without TBB threads, which a forked child does not have.
 //
 // Writing: a FloatGrid "density" of class fog volume, background 0, built from the field with
 // tools::copyFromDense, which stores no voxel equal to the background: empty space costs
@@ -29,11 +29,13 @@
 #include <vtkPointData.h>
 
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Count.h>
 #include <openvdb/tools/Dense.h>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace cloudvis
@@ -180,9 +182,10 @@ std::string Translated(const std::exception& e)
 
 FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOptions& options)
 {
-  const std::uint64_t fileBytes = CheckRegularInputFile(path, "field");
+  std::uint64_t fileBytes = 0;
   {
     const RegularInputFile file(path, "field");
+    fileBytes = file.Size();
     const std::string magic = file.ReadAt(0, 4);
     // OpenVDB's magic number, 0x56444220 ("VDB " in little-endian order).
     if (magic != std::string("\x20\x42\x44\x56", 4))
@@ -196,32 +199,17 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
     const bool threaded = !InIsolatedRead();
     try
     {
-      openvdb::io::File file(path);
-      file.open(false); // read into memory, not through a file mapping
-      const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
+      // OpenVDB's stream reader on a stream that throws at any short read: its file reader goes
+      // on past the end of a truncated file with whatever its buffers held (found by the tests:
+      // each read of the same truncated file gave another result). The stream reader reads
+      // every grid; the one chosen is kept.
+      std::ifstream in(path, std::ios::binary);
+      in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
+      openvdb::io::Stream stream(in, /*delayLoad=*/false);
+      const openvdb::GridPtrVecPtr grids = stream.getGrids();
       std::string others;
-      const openvdb::GridBase::Ptr described = ChooseGrid(path, *grids, options.Array, others);
-      // The bounding box the file's statistics state: large grids are refused before their tree
-      // is read.
-      const openvdb::MetaMap& meta = *described;
-      if (meta.metaValue<openvdb::Vec3i>("file_bbox_min") != openvdb::Vec3i() ||
-        meta.metaValue<openvdb::Vec3i>("file_bbox_max") != openvdb::Vec3i())
-      {
-        const openvdb::CoordBBox stated(
-          openvdb::Coord(meta.metaValue<openvdb::Vec3i>("file_bbox_min")),
-          openvdb::Coord(meta.metaValue<openvdb::Vec3i>("file_bbox_max")));
-        if (!stated.empty())
-        {
-          CheckFieldSize(path, BoxDimensions(stated), 4.0, options.MaximumVoxels);
-        }
-      }
       const openvdb::FloatGrid::Ptr grid =
-        openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(described->getName()));
-      file.close();
-      if (!grid)
-      {
-        Fail(path, "grid \"" + described->getName() + "\" could not be read as a float grid");
-      }
+        openvdb::gridPtrCast<openvdb::FloatGrid>(ChooseGrid(path, *grids, options.Array, others));
       openvdb::CoordBBox box;
       if (!grid->tree().evalActiveVoxelBoundingBox(box))
       {
@@ -270,6 +258,10 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
     catch (const std::bad_alloc&)
     {
       throw;
+    }
+    catch (const std::ios_base::failure&)
+    {
+      Fail(path, "cannot read OpenVDB: the file ends before its grids do: it is truncated");
     }
     catch (const std::exception& e)
     {

@@ -32,6 +32,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
@@ -98,11 +99,10 @@ std::vector<double> Numbers(const std::string& text)
 // the formats' specifications resolve it).
 std::string Beside(const std::string& header, const std::string& name)
 {
-  if (!name.empty() && name[0] == '/')
-  {
-    return name;
-  }
-  return header.find('/') == std::string::npos ? name : DirectoryOf(header) + "/" + name;
+  const std::string path = !name.empty() && name[0] == '/' ? name
+    : header.find('/') == std::string::npos                ? name
+                                                           : DirectoryOf(header) + "/" + name;
+  return std::filesystem::path(path).lexically_normal().string(); // "dir/./data.raw": dir/data.raw
 }
 
 // ---- NRRD ---------------------------------------------------------------------------------

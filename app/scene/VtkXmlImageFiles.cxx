@@ -33,12 +33,14 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 namespace cloudvis
@@ -424,6 +426,28 @@ std::vector<Piece> ListPieces(const std::string& path, const std::string& xml)
   return pieces;
 }
 
+// The Direction attribute (nine numbers) of the first element `tag` ("<PImageData") of `xml`.
+std::optional<std::array<double, 9>> DirectionAttribute(const std::string& xml, const char* tag)
+{
+  const auto at = xml.find(tag);
+  const std::optional<std::string> text =
+    at == std::string::npos ? std::nullopt : Attribute(StartTag(xml, at), "Direction");
+  if (!text)
+  {
+    return std::nullopt;
+  }
+  std::array<double, 9> direction{};
+  std::istringstream in(*text);
+  for (double& value : direction)
+  {
+    if (!(in >> value) || !std::isfinite(value))
+    {
+      return std::nullopt;
+    }
+  }
+  return direction;
+}
+
 // What both readers return: the image, the array field.array names (if any) and the report.
 FieldFileContents Contents(const vtkSmartPointer<vtkImageData>& image,
   const FieldReadOptions& options)
@@ -453,9 +477,12 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
   const FieldReadOptions& options)
 {
   std::vector<Piece> listed;
+  std::optional<std::array<double, 9>> direction;
   {
     const RegularInputFile file(path, "field");
-    listed = ListPieces(path, file.ReadAll(MaximumParallelFileBytes));
+    const std::string xml = file.ReadAll(MaximumParallelFileBytes);
+    listed = ListPieces(path, xml);
+    direction = DirectionAttribute(xml, "<PImageData");
   }
   // Every piece as a .vti: a regular file that passes the text checks. Errors name the .pvti,
   // the piece and what is wrong with it.
@@ -469,6 +496,10 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
       const RegularInputFile file(piece.Path, "field piece");
       totalBytes += file.Size();
       CheckVtiText(piece.Path, file);
+      if (!direction && number == 1)
+      {
+        direction = DirectionAttribute(file.ReadAt(0, 1 << 16), "<ImageData");
+      }
       largestPiece = std::max(largestPiece, VoxelCount(piece.Region));
     }
     catch (const InputError& e)
@@ -491,6 +522,12 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
   };
   ProbeReadInIsolation(path, totalBytes, "VTK's reader", read);
   FieldFileContents contents = Contents(read(), options);
+  // VTK 9.1's parallel reader drops the direction; it is the .pvti's (newer VTK writes it there)
+  // or, as VTK 9.1's parallel writer leaves it out, the pieces'.
+  if (direction)
+  {
+    contents.Image->SetDirectionMatrix(direction->data());
+  }
   contents.Report.Add("pieces", std::to_string(listed.size()));
   return contents;
 }

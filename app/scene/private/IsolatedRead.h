@@ -27,9 +27,9 @@ void ProbeReadInIsolation(const std::string& path,
   const std::string& parser,
   const std::function<void()>& read);
 
-// True inside the child of ProbeReadInIsolation. Code that would start threads (TBB) checks it:
-// a forked child inherits the parent's thread pool state without its threads, and waiting on
-// them would hang until the time limit.
+// True inside the child of ProbeReadInIsolation. The child has a thread pool of its own (TBB's
+// workers are ended before the fork), but its limits are tight and its work thrown away, so code
+// that chooses between serial and threaded loops runs serial there.
 bool InIsolatedRead();
 
 } // namespace cloudvis
