@@ -155,6 +155,18 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   }
   ImageHeader header;
   header.DataFile = path;
+  // VTK's reader reads the header as a C string (up to the first NUL byte) and then line by line
+  // until an empty line; a last line without its line break makes it loop forever (found by the
+  // fuzzer: a NUL byte in a comment). It must therefore end with a line break.
+  const std::string visible = text.substr(0, std::min(text.find('\0'), MaximumHeaderBytes - 1));
+  if (visible.find("\n\n") == std::string::npos && visible.find("\n\r\n") == std::string::npos &&
+    (visible.empty() || visible.back() != '\n'))
+  {
+    Fail(path,
+      text.find('\0') != std::string::npos
+        ? "a NUL byte in the NRRD header, before the empty line that ends it"
+        : "the NRRD header's last line has no line break");
+  }
   // The header ends at the first empty line (VTK's rule too); a detached header (.nhdr) may be
   // the whole file.
   std::size_t end = text.size();

@@ -242,14 +242,23 @@ TEST_F(OpenVdb, NonFiniteValuesAndTruncatedFilesAreRefused)
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
               .find("point array \"density\" holds 2 values that are NaN or infinite"),
     std::string::npos);
-  // Cut anywhere in the tree's data: refused, never a crash.
-  std::ifstream in(path, std::ios::binary);
+  // Cut anywhere in the grid's data: refused as truncated, every time (OpenVDB's file reader
+  // read on with stale buffers: another outcome at each read, or wrong values).
+  const std::string complete = Directory.File("cloud.vdb");
+  cloudvis::WriteField(cloudvis::ProduceField(cloudvis::LoadScene("", { "field.dimensions=24" })),
+    complete);
+  std::ifstream in(complete, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const std::size_t keep : { bytes.size() / 4, bytes.size() / 2, bytes.size() - 10 })
   {
     std::ofstream(Directory.File("cut.vdb"), std::ios::binary) << bytes.substr(0, keep);
-    const std::string message = ErrorOf([&] { cloudvis::ReadField(Directory.File("cut.vdb")); });
-    EXPECT_EQ(message.rfind(Directory.File("cut.vdb") + ": ", 0), 0u) << message;
+    for (int attempt = 0; attempt < 3; ++attempt)
+    {
+      EXPECT_EQ(ErrorOf([&] { cloudvis::ReadField(Directory.File("cut.vdb")); }),
+        Directory.File("cut.vdb") +
+          ": cannot read OpenVDB: the file ends before its grids do: it is truncated")
+        << "cut to " << keep << " of " << bytes.size() << " bytes";
+    }
   }
   std::ofstream(Directory.File("text.vdb")) << "not a grid";
   EXPECT_NE(
