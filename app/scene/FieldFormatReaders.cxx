@@ -22,11 +22,6 @@ namespace cloudvis
 namespace
 {
 
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
-
 std::string Dimensions(const std::array<double, 3>& d)
 {
   std::ostringstream text;
@@ -42,6 +37,19 @@ std::string Bytes(double bytes)
 }
 
 } // namespace
+
+void Fail(const std::string& path, const std::string& problem)
+{
+  throw InputError(path + ": " + problem);
+}
+
+std::string Number(double value)
+{
+  std::ostringstream text;
+  text.precision(6);
+  text << value;
+  return text.str();
+}
 
 const std::vector<RawType>& RawTypes()
 {

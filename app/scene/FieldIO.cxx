@@ -27,11 +27,6 @@ namespace cloudvis
 namespace
 {
 
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
-
 // The array a density is taken from: `name` when the reader named one, else "density" by name,
 // else whatever the file marks as scalars.
 vtkDataArray* DensityArray(const std::string& path, vtkImageData* image, const std::string& name)

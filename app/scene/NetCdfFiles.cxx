@@ -40,19 +40,6 @@ namespace cloudvis
 namespace
 {
 
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
-
-std::string Number(double value)
-{
-  std::ostringstream text;
-  text.precision(6);
-  text << value;
-  return text.str();
-}
-
 // A text attribute of a variable ("" when absent or not text), through the netCDF C API.
 class NetCdfAttributes
 {

@@ -43,19 +43,6 @@ namespace cloudvis
 namespace
 {
 
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
-
-std::string Number(double value)
-{
-  std::ostringstream text;
-  text.precision(6);
-  text << value;
-  return text.str();
-}
-
 std::string BoxText(const openvdb::CoordBBox& box)
 {
   std::ostringstream text;

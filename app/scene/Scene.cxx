@@ -461,26 +461,32 @@ void ReadShapes(const Context& c, const json& v, const std::string& key, FieldSp
 
 // ---- the field section -------------------------------------------------------------------
 
+// Voxels along x, y and z: one integer for a cube, or three.
+std::array<int, 3> ReadDimensions(const Context& c, const json& v, const std::string& key)
+{
+  const long long maxInt = std::numeric_limits<int>::max();
+  std::array<int, 3> dimensions{};
+  if (v.is_number())
+  {
+    dimensions.fill(int(ReadInteger(c, v, key, 1, maxInt)));
+    return dimensions;
+  }
+  if (!v.is_array() || v.size() != 3)
+  {
+    c.Fail(key, "expected an integer or an array of 3 integers, got " + Describe(v));
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    dimensions[a] = int(ReadInteger(c, v[a], key + "[" + std::to_string(a) + "]", 1, maxInt));
+  }
+  return dimensions;
+}
+
 // field.raw: the layout of a raw volume.
 const Key<RawLayout> RawKeys[] = {
   { "dimensions",
     [](const Context& c, const json& v, const std::string& k, RawLayout& r)
-    {
-      const long long maxInt = std::numeric_limits<int>::max();
-      if (v.is_number())
-      {
-        r.Dimensions.fill(int(ReadInteger(c, v, k, 1, maxInt)));
-        return;
-      }
-      if (!v.is_array() || v.size() != 3)
-      {
-        c.Fail(k, "expected an integer or an array of 3 integers, got " + Describe(v));
-      }
-      for (int a = 0; a < 3; ++a)
-      {
-        r.Dimensions[a] = int(ReadInteger(c, v[a], k + "[" + std::to_string(a) + "]", 1, maxInt));
-      }
-    } },
+    { r.Dimensions = ReadDimensions(c, v, k); } },
   { "type",
     [](const Context& c, const json& v, const std::string& k, RawLayout& r)
     {
@@ -570,22 +576,7 @@ const Key<FieldSpec> FieldKeys[] = {
   FieldFileKeys[5],
   { "dimensions",
     [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
-    {
-      const long long maxInt = std::numeric_limits<int>::max();
-      if (v.is_number())
-      {
-        f.Dimensions.fill(int(ReadInteger(c, v, k, 1, maxInt)));
-        return;
-      }
-      if (!v.is_array() || v.size() != 3)
-      {
-        c.Fail(k, "expected an integer or an array of 3 integers, got " + Describe(v));
-      }
-      for (int a = 0; a < 3; ++a)
-      {
-        f.Dimensions[a] = int(ReadInteger(c, v[a], k + "[" + std::to_string(a) + "]", 1, maxInt));
-      }
-    } },
+    { f.Dimensions = ReadDimensions(c, v, k); } },
   { "bounds",
     [](const Context& c, const json& v, const std::string& k, FieldSpec& f)
     {

@@ -41,11 +41,6 @@ namespace cloudvis
 namespace
 {
 
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
-
 // The most a header may hold: VTK's NRRD reader reads 4 MiB at most, MetaImage headers are a few
 // hundred bytes.
 constexpr std::size_t MaximumHeaderBytes = std::size_t(4) << 20;
@@ -105,6 +100,21 @@ std::string Beside(const std::string& header, const std::string& name)
   return std::filesystem::path(path).lexically_normal().string(); // "dir/./data.raw": dir/data.raw
 }
 
+// The bytes per value of the type `name` in a table of a header format's type names; 0 for a
+// name the table lacks (VTK's reader then names the problem).
+template<std::size_t N>
+int BytesOfType(const std::pair<const char*, int> (&types)[N], const std::string& name)
+{
+  for (const auto& known : types)
+  {
+    if (name == known.first)
+    {
+      return known.second;
+    }
+  }
+  return 0;
+}
+
 // ---- NRRD ---------------------------------------------------------------------------------
 
 int NrrdValueBytes(const std::string& type)
@@ -137,14 +147,7 @@ int NrrdValueBytes(const std::string& type)
     { "uint32_t", 4 },
     { "float", 4 },
     { "double", 8 } };
-  for (const auto& known : types)
-  {
-    if (type == known.first)
-    {
-      return known.second;
-    }
-  }
-  return 0;
+  return BytesOfType(types, type);
 }
 
 ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
@@ -322,14 +325,7 @@ int MetaValueBytes(const std::string& type)
     { "MET_UINT", 4 },
     { "MET_FLOAT", 4 },
     { "MET_DOUBLE", 8 } };
-  for (const auto& known : types)
-  {
-    if (type == known.first)
-    {
-      return known.second;
-    }
-  }
-  return 0;
+  return BytesOfType(types, type);
 }
 
 ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& text)

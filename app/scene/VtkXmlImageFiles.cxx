@@ -48,11 +48,6 @@ namespace cloudvis
 namespace
 {
 
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
-
 std::string WithVtkReason(const std::string& problem, const VtkMessageCapture& messages)
 {
   const std::string summary = messages.Summary();

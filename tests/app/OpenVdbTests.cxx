@@ -60,6 +60,18 @@ openvdb::FloatGrid::Ptr KnownGrid(const std::string& name,
   return grid;
 }
 
+// How far apart (largest coordinate difference) the field's point (i, j, k) and the grid's voxel
+// (i, j, k) are in world space.
+double PositionError(vtkImageData* field, const openvdb::GridBase& grid, int i, int j, int k)
+{
+  double world[3];
+  field->TransformIndexToPhysicalPoint(i, j, k, world);
+  const openvdb::Vec3d vdb = grid.indexToWorld(openvdb::Coord(i, j, k));
+  return std::max({ std::fabs(world[0] - vdb.x()),
+    std::fabs(world[1] - vdb.y()),
+    std::fabs(world[2] - vdb.z()) });
+}
+
 void Write(const std::string& path, const openvdb::GridPtrVec& grids)
 {
   openvdb::io::File file(path);
@@ -96,14 +108,7 @@ TEST_F(OpenVdb, ReadsAFloatGridVoxelForVoxelOverItsActiveBox)
         const float expected = openvdb::Coord(i, j, k) == min.offsetBy(1) ? 0.25f : Known(i, j, k);
         wrong += Density(field, i, j, k) == expected ? 0 : 1;
         // The image point and the VDB voxel are at the same world position.
-        double world[3];
-        field->TransformIndexToPhysicalPoint(i, j, k, world);
-        const openvdb::Vec3d vdb = grid->indexToWorld(openvdb::Coord(i, j, k));
-        wrong += std::fabs(world[0] - vdb.x()) + std::fabs(world[1] - vdb.y()) +
-              std::fabs(world[2] - vdb.z()) <
-            1e-12
-          ? 0
-          : 1;
+        wrong += PositionError(field, *grid, i, j, k) < 1e-12 ? 0 : 1;
       }
   EXPECT_EQ(wrong, 0) << "voxels whose value or position differ from the grid's";
   EXPECT_EQ(report.Format, "OpenVDB");
@@ -177,13 +182,7 @@ TEST_F(OpenVdb, ARotatedAffineTransformBecomesTheFieldsDirection)
     for (int j = 0; j <= 3; ++j)
       for (int i = 0; i <= 4; ++i)
       {
-        double world[3];
-        field->TransformIndexToPhysicalPoint(i, j, k, world);
-        const openvdb::Vec3d vdb = grid->indexToWorld(openvdb::Coord(i, j, k));
-        largest = std::max({ largest,
-          std::fabs(world[0] - vdb.x()),
-          std::fabs(world[1] - vdb.y()),
-          std::fabs(world[2] - vdb.z()) });
+        largest = std::max(largest, PositionError(field, *grid, i, j, k));
       }
   EXPECT_LT(largest, 1e-12);
 }
@@ -303,14 +302,7 @@ void ExpectGridHoldsField(const std::string& path, vtkImageData* field)
         nonZero += value != 0.0f ? 1 : 0;
         wrong += accessor.getValue(openvdb::Coord(i, j, k)) == value ? 0 : 1;
         wrong += accessor.isValueOn(openvdb::Coord(i, j, k)) == (value != 0.0f) ? 0 : 1;
-        double world[3];
-        field->TransformIndexToPhysicalPoint(i, j, k, world);
-        const openvdb::Vec3d vdb = grid->indexToWorld(openvdb::Coord(i, j, k));
-        wrong += std::fabs(world[0] - vdb.x()) + std::fabs(world[1] - vdb.y()) +
-              std::fabs(world[2] - vdb.z()) <
-            1e-9
-          ? 0
-          : 1;
+        wrong += PositionError(field, *grid, i, j, k) < 1e-9 ? 0 : 1;
       }
   EXPECT_EQ(wrong, 0) << "voxels whose value, state or position differ";
   EXPECT_EQ(grid->activeVoxelCount(), nonZero) << "only the non-zero voxels are stored";

@@ -35,6 +35,12 @@ void WriteOpenVdbFile(vtkImageData* field, const std::string& path, const FieldM
 
 // ---- shared by the readers (FieldFormatReaders.cxx) ---------------------------------------
 
+// Throws InputError "PATH: PROBLEM": every reader's one way to refuse a file.
+[[noreturn]] void Fail(const std::string& path, const std::string& problem);
+
+// A number in six significant digits, as reports and messages print them.
+std::string Number(double value);
+
 // The scalar types of raw files (field.raw.type), as VTK types.
 struct RawType
 {
