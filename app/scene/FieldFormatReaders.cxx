@@ -3,6 +3,7 @@
 #include "FieldFormatReaders.h"
 
 #include "Errors.h"
+#include "IsolatedRead.h"
 
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
@@ -107,7 +108,10 @@ void CheckFieldSize(const std::string& path,
     const int d[3] = { int(dimensions[0]), int(dimensions[1]), int(dimensions[2]) };
     Fail(path, TooManyVoxels(d, maximumVoxels));
   }
-  const double needed = voxels * (bytesPerVoxel + 4.0) + extraBytes;
+  // In the isolated child (IsolatedRead.h) the parent's copy of what it sends back is alive at
+  // the same time.
+  const double copies = InIsolatedRead() ? 2.0 : 1.0;
+  const double needed = voxels * (copies * bytesPerVoxel + 4.0) + extraBytes;
   const std::uint64_t available = AvailableMemoryBytes();
   if (available > 0 && needed > double(available))
   {

@@ -170,23 +170,26 @@ Variable ChooseVariable(const std::string& path,
   Fail(path, "no variable on 2 or 3 spatial dimensions: nothing to read as a density");
 }
 
-// ---- where a classic file keeps a variable's values
-// ----------------------------------------------
+// ---- the header of a classic file -------------------------------------------------------------
 
-// The netCDF library reads past the end of a truncated classic file (CDF-1, -2, -5) without an
-// error and hands back zeros; so the header is read here as far as the variables' offsets, and a
-// variable whose values for the time step lie beyond the end of the file is refused. (netCDF-4
-// files are HDF5 files, whose library refuses a truncated file itself.)
+// A classic file (CDF-1, -2, -5) begins with a header that lists its dimensions, attributes and
+// variables, each variable with the offset of its values. cloudvis reads it itself, before the
+// netCDF library does, for two reasons. The library sizes its tables from the header's counts
+// before it checks them against the file (found by the fuzzer: one variable claiming 2^31
+// dimensions made it allocate 17 GB), so counts the header's bytes cannot hold are refused.
+// And the library reads past the end of a truncated file without an error, handing back zeros,
+// so a variable whose values for the time step end beyond the file is refused. (netCDF-4 files
+// are HDF5 files, whose library refuses a truncated file itself.)
 class ClassicHeader
 {
 public:
-  explicit ClassicHeader(const std::string& bytes)
-    : Bytes(bytes)
-  {
-  }
+  // Reads the header from `bytes`, the first bytes of a file of `fileBytes`. Empty when it is
+  // sound, or when it goes on beyond the bytes given (a header of more than 16 MiB is not
+  // checked); else the problem.
+  std::string Parse(const std::string& bytes, std::uint64_t fileBytes);
 
-  // Where the values of `variable` at record `step` end (0 when not found or not parseable).
-  std::uint64_t EndOf(const std::string& variable, std::uint64_t step);
+  // Where the values of `variable` at record `step` end; 0 when unknown.
+  std::uint64_t EndOf(const std::string& variable, std::uint64_t step) const;
 
 private:
   struct Var
@@ -195,38 +198,54 @@ private:
     std::uint64_t Begin = 0, Size = 0; // Size: of one record for a record variable
     bool Record = false;
   };
+  struct Problem
+  {
+    std::string Text; // empty: the header goes on beyond the bytes read
+  };
 
+  std::uint64_t Left() const { return this->Bytes->size() - this->At; }
   std::uint64_t Number(int bytes)
   {
-    if (this->At + std::size_t(bytes) > this->Bytes.size())
+    if (std::uint64_t(bytes) > this->Left())
     {
-      throw std::out_of_range("header");
+      throw Problem{};
     }
     std::uint64_t value = 0;
     for (int b = 0; b < bytes; ++b)
     {
-      value = (value << 8) | static_cast<unsigned char>(this->Bytes[this->At++]);
+      value = (value << 8) | static_cast<unsigned char>((*this->Bytes)[this->At++]);
     }
     return value;
   }
   std::uint64_t Count() { return this->Number(this->Version == 5 ? 8 : 4); }
+  // A count of list entries, each taking at least `entryBytes` of the header.
+  std::uint64_t ListCount(const char* what, std::uint64_t entryBytes)
+  {
+    const std::uint64_t count = this->Count();
+    if (count > this->Left() / entryBytes && this->Bytes->size() >= this->FileBytes)
+    {
+      throw Problem{ "the header lists " + std::to_string(count) + " " + what +
+        ", more than its remaining " + std::to_string(this->Left()) + " bytes can hold" };
+    }
+    return count;
+  }
   void Skip(std::uint64_t bytes)
   {
     const std::uint64_t padded = (bytes + 3) / 4 * 4;
-    if (padded > this->Bytes.size() - this->At)
+    if (bytes > this->Left() || padded > this->Left())
     {
-      throw std::out_of_range("header");
+      throw Problem{};
     }
     this->At += std::size_t(padded);
   }
   std::string Name()
   {
     const std::uint64_t length = this->Count();
-    if (length > this->Bytes.size() - this->At)
+    if (length > this->Left())
     {
-      throw std::out_of_range("header");
+      throw Problem{};
     }
-    const std::string name = this->Bytes.substr(this->At, std::size_t(length));
+    const std::string name = this->Bytes->substr(this->At, std::size_t(length));
     this->Skip(length);
     return name;
   }
@@ -238,54 +257,69 @@ private:
   }
   void SkipAttributes()
   {
-    const std::uint64_t tag = this->Number(4);
-    const std::uint64_t count = this->Count();
-    for (std::uint64_t a = 0; tag != 0 && a < count; ++a)
+    this->Number(4); // NC_ATTRIBUTE, or ABSENT
+    for (std::uint64_t a = 0, n = this->ListCount("attributes", 12); a < n; ++a)
     {
       this->Name();
       const std::uint64_t type = this->Number(4);
-      const std::uint64_t values = this->Count();
-      if (TypeBytes(type) == 0 || values > this->Bytes.size())
+      if (TypeBytes(type) == 0)
       {
-        throw std::out_of_range("header");
+        throw Problem{ "an attribute has the unknown type " + std::to_string(type) };
+      }
+      const std::uint64_t values = this->Count();
+      if (values > this->Left() / TypeBytes(type))
+      {
+        throw Problem{};
       }
       this->Skip(values * TypeBytes(type));
     }
   }
 
-  const std::string& Bytes;
+  const std::string* Bytes = nullptr;
+  std::uint64_t FileBytes = 0;
   std::size_t At = 0;
   int Version = 1;
+  std::vector<Var> Variables;
+  std::uint64_t RecordBytes = 0;
 };
 
-std::uint64_t ClassicHeader::EndOf(const std::string& variable, std::uint64_t step)
+std::string ClassicHeader::Parse(const std::string& bytes, std::uint64_t fileBytes)
 {
+  this->Bytes = &bytes;
+  this->FileBytes = fileBytes;
+  this->Variables.clear();
   try
   {
     this->At = 3;
     this->Version = int(this->Number(1));
-    this->Count(); // the number of records: the time step was checked against the file's times
+    this->Count(); // the number of records: the time step is checked against the file's times
     std::vector<std::uint64_t> lengths;
     this->Number(4); // NC_DIMENSION, or ABSENT
-    for (std::uint64_t d = 0, n = this->Count(); d < n; ++d)
+    for (std::uint64_t d = 0, n = this->ListCount("dimensions", 8); d < n; ++d)
     {
       this->Name();
       lengths.push_back(this->Count());
     }
     this->SkipAttributes(); // global attributes
-    std::vector<Var> variables;
-    this->Number(4); // NC_VARIABLE, or ABSENT
-    for (std::uint64_t v = 0, n = this->Count(); v < n; ++v)
+    this->Number(4);        // NC_VARIABLE, or ABSENT
+    for (std::uint64_t v = 0, n = this->ListCount("variables", 24); v < n; ++v)
     {
       Var var;
       var.Name = this->Name();
       std::uint64_t values = 1;
-      for (std::uint64_t d = 0, dims = this->Count(); d < dims; ++d)
+      const std::uint64_t dims = this->Count();
+      if (dims > 1024) // NC_MAX_VAR_DIMS
+      {
+        throw Problem{ "variable \"" + var.Name + "\" has " + std::to_string(dims) +
+          " dimensions; netCDF allows 1024" };
+      }
+      for (std::uint64_t d = 0; d < dims; ++d)
       {
         const std::uint64_t id = this->Count();
         if (id >= lengths.size())
         {
-          return 0;
+          throw Problem{ "variable \"" + var.Name + "\" names dimension " + std::to_string(id) +
+            " of " + std::to_string(lengths.size()) };
         }
         var.Record = var.Record || (d == 0 && lengths[id] == 0);
         values *= lengths[id] == 0 ? 1 : lengths[id];
@@ -294,27 +328,38 @@ std::uint64_t ClassicHeader::EndOf(const std::string& variable, std::uint64_t st
       var.Size = values * TypeBytes(this->Number(4));
       this->Count(); // vsize, which large variables overflow
       var.Begin = this->Number(this->Version == 1 ? 4 : 8);
-      variables.push_back(var);
-    }
-    // One record holds every record variable's values, each padded to 4 bytes unless it is the
-    // only one.
-    std::uint64_t recordBytes = 0;
-    const auto recordVariables =
-      std::count_if(variables.begin(), variables.end(), [](const Var& v) { return v.Record; });
-    for (const Var& v : variables)
-    {
-      recordBytes += v.Record ? (recordVariables == 1 ? v.Size : (v.Size + 3) / 4 * 4) : 0;
-    }
-    for (const Var& v : variables)
-    {
-      if (v.Name == variable)
-      {
-        return v.Begin + (v.Record ? step * recordBytes : 0) + v.Size;
-      }
+      this->Variables.push_back(var);
     }
   }
-  catch (const std::out_of_range&)
+  catch (const Problem& problem)
   {
+    this->Variables.clear();
+    if (!problem.Text.empty())
+    {
+      return problem.Text;
+    }
+    return bytes.size() >= fileBytes ? "the header ends before the lists it announces do" : "";
+  }
+  // One record holds every record variable's values, each padded to 4 bytes unless it is the
+  // only one.
+  const auto recordVariables = std::count_if(
+    this->Variables.begin(), this->Variables.end(), [](const Var& v) { return v.Record; });
+  this->RecordBytes = 0;
+  for (const Var& v : this->Variables)
+  {
+    this->RecordBytes += v.Record ? (recordVariables == 1 ? v.Size : (v.Size + 3) / 4 * 4) : 0;
+  }
+  return "";
+}
+
+std::uint64_t ClassicHeader::EndOf(const std::string& variable, std::uint64_t step) const
+{
+  for (const Var& v : this->Variables)
+  {
+    if (v.Name == variable)
+    {
+      return v.Begin + (v.Record ? step * this->RecordBytes : 0) + v.Size;
+    }
   }
   return 0;
 }
@@ -443,7 +488,8 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
 {
   std::uint64_t fileBytes = 0;
   bool classic = false; // CDF-1, -2 and -5 files hold every value uncompressed
-  std::string header;   // of a classic file: its first 16 MiB, more than any header needs
+  std::string headerBytes; // of a classic file: its first 16 MiB, more than any header needs
+  ClassicHeader header;
   {
     const RegularInputFile file(path, "field");
     fileBytes = file.Size();
@@ -456,7 +502,12 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     }
     if (classic)
     {
-      header = file.ReadAt(0, std::size_t(std::min<std::uint64_t>(fileBytes, 16u << 20)));
+      headerBytes = file.ReadAt(0, std::size_t(std::min<std::uint64_t>(fileBytes, 16u << 20)));
+      const std::string problem = header.Parse(headerBytes, fileBytes);
+      if (!problem.empty())
+      {
+        Fail(path, "malformed NetCDF header: " + problem);
+      }
     }
   }
 
@@ -531,7 +582,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     }
     if (classic)
     {
-      const std::uint64_t end = ClassicHeader(header).EndOf(chosen.Name, std::uint64_t(step));
+      const std::uint64_t end = header.EndOf(chosen.Name, std::uint64_t(step));
       if (end > fileBytes)
       {
         Fail(path,
@@ -717,8 +768,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     contents.Array = chosen.Name;
     return contents;
   };
-  ProbeReadInIsolation(path, fileBytes, "VTK's NetCDF reader", read);
-  return read();
+  return ReadInIsolation(path, fileBytes, "VTK's NetCDF reader", read);
 }
 
 } // namespace cloudvis

@@ -255,8 +255,7 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
       Fail(path, "cannot read OpenVDB: " + Translated(e));
     }
   };
-  ProbeReadInIsolation(path, fileBytes, "OpenVDB's reader", read);
-  return read();
+  return ReadInIsolation(path, fileBytes, "OpenVDB's reader", read);
 }
 
 void WriteOpenVdbFile(vtkImageData* field, const std::string& path, const FieldMetadata& metadata)

@@ -535,8 +535,7 @@ FieldFileContents ReadHeaderedImage(const std::string& path,
     }
     return contents;
   };
-  ProbeReadInIsolation(path, dataBytes, "VTK's " + formatName + " reader", read);
-  return read();
+  return ReadInIsolation(path, dataBytes, "VTK's " + formatName + " reader", read);
 }
 
 // ---- raw ----------------------------------------------------------------------------------

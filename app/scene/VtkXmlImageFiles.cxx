@@ -5,10 +5,10 @@
 // and the cloudvis process:
 //   1. text checks of the markup and of the binary headers of raw appended data (CheckVtiText),
 //      closing the classes the fuzzer found one by one, with messages that say what is wrong;
-//   2. a first read in a forked child under an address-space and a time limit
-//      (ProbeReadInIsolation, IsolatedRead.h): a crash, a hang or a runaway allocation in VTK
-//      ends the child, not cloudvis;
-//   3. in the process itself, the header's extent checked against the memory available and
+//   2. the read itself in a forked child under an address-space and a time limit
+//      (ReadInIsolation, IsolatedRead.h), which sends the image back: a crash, a hang or a
+//      runaway allocation in VTK ends the child, not cloudvis;
+//   3. in that read, the header's extent checked against the memory available and
 //      field.max_voxels before VTK allocates the arrays it claims.
 // A .pvti names its pieces; each piece goes through layer 1 as a .vti would, the child reads the
 // whole assembly, and the memory check counts a piece's arrays on top of the output's. (Pieces
@@ -464,8 +464,7 @@ FieldFileContents ReadVtkXmlImageFile(const std::string& path, const FieldReadOp
   }
   const auto read = [&path, &options]()
   { return ReadChecked<vtkXMLImageDataReader>(path, "VTK XML image data", options.MaximumVoxels); };
-  ProbeReadInIsolation(path, bytes, "VTK's reader", read);
-  return Contents(read(), options);
+  return ReadInIsolation(path, bytes, "VTK's reader", [&] { return Contents(read(), options); });
 }
 
 FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
@@ -515,8 +514,8 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
     return ReadChecked<vtkXMLPImageDataReader>(
       path, "VTK XML parallel image data", options.MaximumVoxels, largestPiece * 8.0);
   };
-  ProbeReadInIsolation(path, totalBytes, "VTK's reader", read);
-  FieldFileContents contents = Contents(read(), options);
+  FieldFileContents contents =
+    ReadInIsolation(path, totalBytes, "VTK's reader", [&] { return Contents(read(), options); });
   // VTK 9.1's parallel reader drops the direction; it is the .pvti's (newer VTK writes it there)
   // or, as VTK 9.1's parallel writer leaves it out, the pieces'.
   if (direction)

@@ -55,9 +55,10 @@ const std::vector<RawType>& RawTypes();
 std::string TooManyVoxels(const int dimensions[3], std::uint64_t maximumVoxels);
 
 // Throws InputError naming `path` unless a field of `dimensions` voxels (each at least 1) fits:
-// at most `maximumVoxels`, and `bytesPerVoxel` (what the reader holds per voxel while reading)
-// plus the 4-byte float copy ReadField makes, plus `extraBytes`, within the memory available.
-// Called before anything of that size is allocated.
+// at most `maximumVoxels`, and `bytesPerVoxel` (what the reader holds per voxel while reading;
+// twice in the isolated child, whose parent receives a copy) plus the 4-byte float copy
+// ReadField makes, plus `extraBytes`, within the memory available. Called before anything of
+// that size is allocated.
 void CheckFieldSize(const std::string& path,
   const std::array<double, 3>& dimensions,
   double bytesPerVoxel,
