@@ -205,6 +205,12 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     }
     else if (field == "sizes")
     {
+      // VTK's reader sizes its list by the dimension read so far (found by the fuzzer: sizes
+      // before the dimension made it read a 1-voxel image and crash).
+      if (dimension == 0)
+      {
+        Fail(path, "the NRRD header gives its sizes before its dimension");
+      }
       sizes = Numbers(value);
     }
     else if (field == "spacings")
