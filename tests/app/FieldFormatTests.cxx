@@ -423,6 +423,23 @@ TEST(NetCdf, TruncatedAndForeignFilesAreRefused)
               .find(": the values of \"qc\" end at byte " + std::to_string(size) +
                 " but the file holds " + std::to_string(size - 100) + ": it is truncated"),
     std::string::npos);
+  // Record variables: each time step is a record holding every variable's values. Cut into the
+  // last record, the last step of "qc" is refused and the first still reads.
+  const std::string records = dir.File("records.nc");
+  WriteNetCdf(records,
+    0,
+    2,
+    EvenAxes,
+    { "qc", "qv" },
+    [](std::size_t v, int t, int i, int j, int k)
+    { return float(Known(i, j, k) + 1000.0 * t + 5000.0 * double(v)); });
+  const std::size_t recordsSize = ReadBytes(records).size();
+  Truncate(records, recordsSize - 60 * 4 - 8); // all of the last "qv", and 8 bytes of "qc"
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(records, WithArray("qc", 1)); })
+              .find("the values of \"qc\" end at byte " + std::to_string(recordsSize - 60 * 4) +
+                " but the file holds " + std::to_string(recordsSize - 60 * 4 - 8)),
+    std::string::npos);
+  ExpectKnownValues(cloudvis::ReadField(records, WithArray("qc", 0)), 0.0);
   WriteBytes(dir.File("text.nc"), "netcdf is text\n");
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(dir.File("text.nc")); })
               .find("not a NetCDF file (it starts with neither \"CDF\" nor the HDF5 signature)"),
