@@ -89,6 +89,20 @@ const std::vector<OptionSpec> FieldFileOptions = {
     "the time step to read from a NetCDF field file, from 0; overrides field.time_step" },
 };
 
+int ParseCount(const std::string& command,
+  const std::string& option,
+  const std::string& text,
+  const std::string& unit)
+{
+  static const std::regex form("[0-9]{1,6}");
+  if (!std::regex_match(text, form) || std::stoi(text) < 1)
+  {
+    throw UsageError(command + ": --" + option + " expects a number of " + unit +
+      " in [1, 999999], got \"" + text + "\"");
+  }
+  return std::stoi(text);
+}
+
 bool IsFieldOperand(const std::string& input, const Arguments& arguments)
 {
   return IsFieldFile(input) || arguments.Has("field-format");
@@ -194,18 +208,6 @@ std::string DescribeDimensions(vtkImageData* field)
   return std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " + std::to_string(d[2]);
 }
 
-// --pieces N: a positive number of pieces.
-int ParsePieces(const std::string& text)
-{
-  static const std::regex form("[0-9]{1,6}");
-  if (!std::regex_match(text, form) || std::stoi(text) < 1)
-  {
-    throw UsageError(
-      "generate: --pieces expects a number of pieces in [1, 999999], got \"" + text + "\"");
-  }
-  return std::stoi(text);
-}
-
 // A procedural field, made one piece (extent) at a time by the scene's source.
 PieceProducer ProceduralPieces(const Scene& scene, FieldLattice& lattice)
 {
@@ -249,7 +251,9 @@ int Generate(const Arguments& arguments, std::ostream& out)
   {
     throw UsageError("generate: --pieces applies to a .pvti output only, not to " + output);
   }
-  const int requestedPieces = arguments.Has("pieces") ? ParsePieces(arguments.Value("pieces")) : 0;
+  const int requestedPieces = arguments.Has("pieces")
+    ? ParseCount("generate", "pieces", arguments.Value("pieces"), "pieces")
+    : 0;
   // MPI, when mpirun started this process: every rank runs this command with the same arguments.
   const ProcessGroup processes;
   if (processes.Size() > 1 && !parallelFile)
@@ -299,17 +303,6 @@ int Generate(const Arguments& arguments, std::ostream& out)
   return ExitSuccess;
 }
 
-int ParseFrameCount(const std::string& option, const std::string& text)
-{
-  static const std::regex form("[0-9]{1,6}");
-  if (!std::regex_match(text, form) || std::stoi(text) < 1)
-  {
-    throw UsageError("render: --" + option + " expects a number of frames in [1, 999999], got \"" +
-      text + "\"");
-  }
-  return std::stoi(text);
-}
-
 void MakeDirectory(const std::string& directory)
 {
   if (::mkdir(directory.c_str(), 0777) != 0 && errno != EEXIST)
@@ -350,8 +343,9 @@ int Render(const Arguments& arguments, std::ostream& out)
   }
   const std::string output = arguments.Value("output");
   const std::string& input = arguments.Operands[0];
-  const int benchmarkFrames =
-    arguments.Has("benchmark") ? ParseFrameCount("benchmark", arguments.Value("benchmark")) : 0;
+  const int benchmarkFrames = arguments.Has("benchmark")
+    ? ParseCount("render", "benchmark", arguments.Value("benchmark"), "frames")
+    : 0;
   std::vector<SceneOverride> options;
   if (arguments.Has("lighting"))
   {

@@ -26,6 +26,13 @@ OptionSpec LightingOption();
 // naming `command` when the text is not of that form.
 nlohmann::json ParseSizeOption(const std::string& command, const std::string& text);
 
+// The value of a count option (--frames, --benchmark, --pieces): an integer in [1, 999999].
+// Throws UsageError "COMMAND: --OPTION expects a number of UNIT in [1, 999999], got ...".
+int ParseCount(const std::string& command,
+  const std::string& option,
+  const std::string& text,
+  const std::string& unit);
+
 // The options that say how a field file operand is read: --field-format, --array, --time-step
 // (field.format, field.array, field.time_step). Every command that takes a field file lists them.
 extern const std::vector<OptionSpec> FieldFileOptions;
