@@ -487,7 +487,7 @@ std::vector<float> ResampleAlong(const std::vector<float>& values,
 FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions& options)
 {
   std::uint64_t fileBytes = 0;
-  bool classic = false; // CDF-1, -2 and -5 files hold every value uncompressed
+  bool classic = false;    // CDF-1, -2 and -5 files hold every value uncompressed
   std::string headerBytes; // of a classic file: its first 16 MiB, more than any header needs
   ClassicHeader header;
   {

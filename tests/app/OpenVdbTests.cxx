@@ -244,8 +244,8 @@ TEST_F(OpenVdb, NonFiniteValuesAndTruncatedFilesAreRefused)
   // Cut anywhere in the grid's data: refused as truncated, every time (OpenVDB's file reader
   // read on with stale buffers: another outcome at each read, or wrong values).
   const std::string complete = Directory.File("cloud.vdb");
-  cloudvis::WriteField(cloudvis::ProduceField(cloudvis::LoadScene("", { "field.dimensions=24" })),
-    complete);
+  cloudvis::WriteField(
+    cloudvis::ProduceField(cloudvis::LoadScene("", { "field.dimensions=24" })), complete);
   std::ifstream in(complete, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const std::size_t keep : { bytes.size() / 4, bytes.size() / 2, bytes.size() - 10 })
