@@ -16,7 +16,7 @@ CCACHE := $(shell command -v ccache 2> /dev/null)
 CCACHE_ARGS := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 CCACHE_ENV := CCACHE_BASEDIR=$(CURDIR) CCACHE_NOHASHDIR=1
 
-.PHONY: all deps configure build demo test bench clean
+.PHONY: all deps configure build demo test bench docs clean
 
 all: build
 
@@ -39,6 +39,10 @@ test: build
 
 bench: build
 	$(HEADLESS) $(BUILD_DIR)/bin/cloudvis-bench-generation
+
+# The reference tables of docs/scene-format.md, written from the scene schema (cloudvis schema).
+docs: build
+	cmake -DCLOUDVIS=$(CLOUDVIS) -DDOC=docs/scene-format.md -DUPDATE=ON -P cmake/SceneDocs.cmake
 
 clean:
 	rm -rf $(BUILD_DIR) out

@@ -16,13 +16,15 @@
 //                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts
 //   CLOUDVIS_BENCH_BRICK=N          the brick size of that run
 #include "CloudTransferTable.h"
+#include "SupportImages.h"
+#include "SupportMappers.h"
 #include "vtkCloudDensitySource.h"
 #include "vtkCloudOccupancyFilter.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
-#include <vtkGPUVolumeRayCastMapper.h>
+#include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkNew.h>
@@ -32,10 +34,8 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkTimerLog.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <cmath>
 #include <cstdio>
@@ -46,6 +46,10 @@
 
 namespace
 {
+using cloudvis::support::GrabWindow;
+using cloudvis::support::MatchedCloudMapper;
+using cloudvis::support::MatchedVtkMapper;
+
 struct Options
 {
   int Size = 256;
@@ -125,40 +129,7 @@ struct View
     }
     return 1000.0 * (vtkTimerLog::GetUniversalTime() - start) / frames;
   }
-
-  std::vector<unsigned char> Pixels()
-  {
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(this->Window);
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    auto* data =
-      vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
-    return std::vector<unsigned char>(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
-  }
 };
-
-double RmsLevels(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  double sum = 0.0;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
-  {
-    const double d = double(a[i]) - double(b[i]);
-    sum += d * d;
-  }
-  return std::sqrt(sum / double(std::max<size_t>(1, a.size())));
-}
-
-// VTK's GPU ray caster marching like cloudvis: the same step, no jitter, no automatic changes.
-vtkSmartPointer<vtkGPUVolumeRayCastMapper> MatchedVtkMapper(double step)
-{
-  auto mapper = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
-  mapper->SetSampleDistance(step);
-  mapper->AutoAdjustSampleDistancesOff();
-  mapper->LockSampleDistanceToInputSpacingOff();
-  mapper->SetUseJittering(0);
-  return mapper;
-}
 
 void Compare(const char* name, vtkImageData* field, const Options& options)
 {
@@ -168,9 +139,7 @@ void Compare(const char* name, vtkImageData* field, const Options& options)
   View vtk(vtkMapper, field, options);
   const double vtkMs = vtk.MillisecondsPerFrame(options.Frames, [] {});
 
-  vtkNew<vtkCloudVolumeMapper> cloudMapper;
-  cloudMapper->SetSampleDistance(step);
-  cloudMapper->JitterOff();
+  auto cloudMapper = MatchedCloudMapper(step);
   View cloud(cloudMapper, field, options);
   // Modified() makes the mapper march again although the view is unchanged.
   const double cloudMs =
@@ -182,7 +151,8 @@ void Compare(const char* name, vtkImageData* field, const Options& options)
   const auto& statistics = cloudMapper->GetLastFrameStatistics();
   const double useful = statistics.UsefulSamples / std::max(1.0, statistics.SamplesTaken);
   cloudMapper->CollectStatisticsOff();
-  const double rms = RmsLevels(cloud.Pixels(), vtk.Pixels());
+  const double rms =
+    cloudvis::support::Compare(GrabWindow(cloud.Window), GrabWindow(vtk.Window)).RmsLevels();
 
   // While interacting the mapper lowers its resolution to keep 20 frames per second.
   cloud.Window->SetDesiredUpdateRate(20.0);
@@ -229,9 +199,7 @@ void CompareLighting(vtkImageData* field, const Options& options)
   for (cloudvis::LightingModel model : { cloudvis::LightingModel::None,
          cloudvis::LightingModel::Derivative, cloudvis::LightingModel::March })
   {
-    vtkNew<vtkCloudVolumeMapper> mapper;
-    mapper->SetSampleDistance(step);
-    mapper->JitterOff();
+    auto mapper = MatchedCloudMapper(step);
     cloudvis::LightingParameters lighting;
     lighting.Model = model;
     mapper->SetLighting(lighting);
@@ -281,14 +249,13 @@ int main(int argc, char* argv[])
     opacity->AddPoint(0.0, 0.0);
     opacity->AddPoint(0.05, 0.0);
     opacity->AddPoint(1.0, 0.8);
-    double range[2];
-    sparse->GetPointData()->GetScalars()->GetRange(range);
     for (int brick : { 2, 3, 4, 8 })
     {
       vtkNew<vtkCloudOccupancyFilter> occupancy;
       occupancy->SetInputData(sparse);
       occupancy->SetBrickSize(brick);
-      occupancy->SetTransferTable(cloudvis::BuildTransferTable(nullptr, opacity, 0.1, range));
+      // The table the mapper builds: over the transfer function's points.
+      occupancy->SetTransferTable(cloudvis::TabulateTransferFunction(nullptr, opacity, 0.1));
       const double start = vtkTimerLog::GetUniversalTime();
       occupancy->Update();
       std::printf("occupancy brick %d: %.1f ms\n", brick, 1000.0 * (vtkTimerLog::GetUniversalTime() - start));
@@ -297,11 +264,9 @@ int main(int argc, char* argv[])
   }
   if (const char* only = std::getenv("CLOUDVIS_BENCH_ONE_MODEL"))
   {
-    vtkNew<vtkCloudVolumeMapper> mapper;
+    auto mapper = MatchedCloudMapper(4.0 / (options.Size - 1));
     if (const char* brick = std::getenv("CLOUDVIS_BENCH_BRICK"))
       mapper->SetBrickSize(std::atoi(brick));
-    mapper->SetSampleDistance(4.0 / (options.Size - 1));
-    mapper->JitterOff();
     cloudvis::LightingParameters lighting;
     lighting.Model = cloudvis::LightingModel(std::atoi(only));
     mapper->SetLighting(lighting);

@@ -20,13 +20,14 @@ std::string ValidateFieldDescription(const FieldDescription& f)
   std::ostringstream error;
   const auto finite = [](double v) { return std::isfinite(v); };
   const noise::FbmParameters& n = f.Noise;
-  if (n.Octaves < 1 || n.Octaves > 12)
+  if (n.Octaves < 1 || n.Octaves > noise::MaxOctaves)
   {
-    error << "octaves must be between 1 and 12, got " << n.Octaves;
+    error << "octaves must be between 1 and " << noise::MaxOctaves << ", got " << n.Octaves;
   }
-  else if (!finite(n.Frequency) || n.Frequency <= 0.0 || n.Frequency > 1e6)
+  else if (!finite(n.Frequency) || n.Frequency <= 0.0 || n.Frequency > noise::MaxFrequency)
   {
-    error << "frequency must be a positive number up to 1e6, got " << n.Frequency;
+    error << "frequency must be a positive number up to " << noise::MaxFrequency << ", got "
+          << n.Frequency;
   }
   else if (!finite(n.Lacunarity) || !finite(n.LacunarityIncrement) ||
     n.Lacunarity + (n.Octaves - 1) * n.LacunarityIncrement <= 0.0)

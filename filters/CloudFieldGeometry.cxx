@@ -69,6 +69,27 @@ std::string ValidateDensityScalars(vtkDataArray* scalars)
   return {};
 }
 
+std::string ValidateDensityValues(vtkDataArray* scalars)
+{
+  if (scalars->GetDataType() != VTK_FLOAT)
+  {
+    return {}; // integers are always finite
+  }
+  const float* values = static_cast<const float*>(scalars->GetVoidPointer(0));
+  const vtkIdType n = scalars->GetNumberOfTuples();
+  vtkIdType nonFinite = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    nonFinite += std::isfinite(values[i]) ? 0 : 1;
+  }
+  if (nonFinite == 0)
+  {
+    return {};
+  }
+  return std::string("the scalar array \"") + (scalars->GetName() ? scalars->GetName() : "") +
+    "\" holds " + std::to_string(nonFinite) + " values that are NaN or infinite";
+}
+
 std::string FormatBytes(double bytes)
 {
   static const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };

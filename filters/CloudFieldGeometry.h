@@ -31,6 +31,11 @@ CLOUDVISFILTERS_EXPORT std::string ValidateFieldGeometry(
 // unsigned short), else the problem, naming the array.
 CLOUDVISFILTERS_EXPORT std::string ValidateDensityScalars(vtkDataArray* scalars);
 
+// Empty when every value of `scalars` (already valid for ValidateDensityScalars) is a finite
+// number, else the problem, naming the array and how many values are NaN or infinite. Renderers
+// call it whenever the data change: a NaN density has no extinction and no color.
+CLOUDVISFILTERS_EXPORT std::string ValidateDensityValues(vtkDataArray* scalars);
+
 // "1.5 GiB", "300 MiB": sizes people can read in messages.
 CLOUDVISFILTERS_EXPORT std::string FormatBytes(double bytes);
 

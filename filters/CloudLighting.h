@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -24,15 +25,38 @@ enum class LightingModel
   March,      // nested march toward each light: Beer-Lambert shadowing and a phase function
 };
 
-// A light as the lighting models see it (the mapper converts vtkLights into these).
+// A light in the world, as a scene or a vtkLight gives it (the mapper converts vtkLights into
+// these). Positions are double, like VTK's: a light beside a volume far from the origin keeps
+// its place, and a directional light may sit at any distance along its direction.
 struct Light
 {
-  bool Positional = false;     // false: directional, from Position toward FocalPoint
-  glm::vec3 Position{ 0.0f, 10.0f, 10.0f };
-  glm::vec3 FocalPoint{ 0.0f };
+  bool Positional = false; // false: directional, from Position toward FocalPoint
+  glm::dvec3 Position{ 0.0, 10.0, 10.0 };
+  glm::dvec3 FocalPoint{ 0.0 };
   glm::vec3 Color{ 1.0f };
   float Intensity = 1.0f;
-  glm::vec3 Attenuation{ 0.0f, 0.0f, 1.0f }; // positional: 1 / (a0 + a1 r + a2 r^2)
+  glm::vec3 Attenuation{ 0.0f, 0.0f, 1.0f }; // positional: 1 / (a0 + a1 r + a2 r^2), world r
+};
+
+// The unit direction toward a directional light, computed in double (so a sun placed at 1e300
+// keeps its direction); the zero vector when its position equals its focal point.
+inline glm::dvec3 DirectionTowardLight(const Light& light)
+{
+  const glm::dvec3 d = light.Position - light.FocalPoint;
+  // Scaled first: the squared length of a vector beyond 1e154 overflows even in double.
+  const double largest = std::max({ std::abs(d.x), std::abs(d.y), std::abs(d.z) });
+  return largest > 0.0 && std::isfinite(largest) ? glm::normalize(d / largest) : glm::dvec3(0.0);
+}
+
+// A light as the march computes with it: in the march's local frame (CloudMarchUniforms.h),
+// whose lengths are world lengths divided by the frame's unit. The uniforms of the GLSL's lights.
+struct LocalLight
+{
+  bool Positional = false;
+  glm::vec3 Position{ 0.0f };    // local coordinates; positional lights
+  glm::vec3 Direction{ 0.0f };   // unit, toward the light; directional lights
+  glm::vec3 Radiance{ 0.0f };    // color * intensity
+  glm::vec3 Attenuation{ 0.0f }; // (a0, a1 unit, a2 unit^2): the falloff of a local distance
 };
 
 struct LightingParameters
@@ -64,9 +88,25 @@ struct LightingParameters
   float PowderStrength = 0.0f;
 };
 
+// The limits ValidateLightingParameters puts on LightingParameters, and the number of lights
+// the renderers take; the scene schema states the same ones from here.
+struct LightingLimits
+{
+  // The GLSL's MAX_LIGHTS (the mapper substitutes it into shaders/CloudLightingCommon.glsl). The
+  // GPU mapper and the CPU renderers refuse more (SetUpMarch), and so does a scene's lights
+  // section.
+  static constexpr int MaxLights = 8;
+  static constexpr int MinLightSteps = 1;
+  static constexpr int MaxLightSteps = 64;
+  static constexpr float MinLightStepGrowth = 1.0f;
+  static constexpr float MaxLightStepGrowth = 4.0f;
+  static constexpr int MaxMultipleScatteringOctaves = 8;
+};
+
 // Empty when the parameters are usable, else the problem, in words.
 inline std::string ValidateLightingParameters(const LightingParameters& p)
 {
+  using L = LightingLimits;
   const auto finite3 = [](glm::vec3 v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
   };
@@ -74,18 +114,22 @@ inline std::string ValidateLightingParameters(const LightingParameters& p)
     return "ambient color and strength must be finite, strength >= 0";
   if (!std::isfinite(p.DerivativeDistance) || p.DerivativeDistance < 0.0f)
     return "the derivative distance must be >= 0 (0: automatic)";
-  if (p.LightSteps < 1 || p.LightSteps > 64)
-    return "light-march steps must be between 1 and 64";
+  if (p.LightSteps < L::MinLightSteps || p.LightSteps > L::MaxLightSteps)
+    return "light-march steps must be between " + std::to_string(L::MinLightSteps) + " and " +
+      std::to_string(L::MaxLightSteps);
   if (!std::isfinite(p.LightStep) || p.LightStep < 0.0f)
     return "the light-march step must be >= 0 (0: automatic)";
-  if (!std::isfinite(p.LightStepGrowth) || p.LightStepGrowth < 1.0f || p.LightStepGrowth > 4.0f)
-    return "the light-march step growth must be between 1 and 4";
+  if (!std::isfinite(p.LightStepGrowth) || p.LightStepGrowth < L::MinLightStepGrowth ||
+    p.LightStepGrowth > L::MaxLightStepGrowth)
+    return "the light-march step growth must be between " +
+      std::to_string(int(L::MinLightStepGrowth)) + " and " + std::to_string(int(L::MaxLightStepGrowth));
   if (!(std::abs(p.PhaseG1) < 1.0f) || !(std::abs(p.PhaseG2) < 1.0f))
     return "phase eccentricities g must be in (-1, 1)";
   if (!(p.PhaseLobeWeight >= 0.0f && p.PhaseLobeWeight <= 1.0f))
     return "the phase lobe weight must be in [0, 1]";
-  if (p.MultipleScatteringOctaves < 0 || p.MultipleScatteringOctaves > 8)
-    return "multiple-scattering octaves must be between 0 and 8";
+  if (p.MultipleScatteringOctaves < 0 || p.MultipleScatteringOctaves > L::MaxMultipleScatteringOctaves)
+    return "multiple-scattering octaves must be between 0 and " +
+      std::to_string(L::MaxMultipleScatteringOctaves);
   for (float f : { p.ScatteringFalloff, p.ExtinctionFalloff, p.EccentricityFalloff })
     if (!(f >= 0.0f && f <= 1.0f))
       return "multiple-scattering falloffs must be in [0, 1]";
@@ -119,12 +163,12 @@ inline float Phase(const LightingParameters& p, float mu, float eccentricityScal
 }
 
 // Directional derivative toward a light: positive where density falls toward the light, so the
-// side of a cloud facing the light is bright. Densities count in units of the data's density
-// range (max - min), so the term does not depend on the field's units.
-inline float DerivativeDiffuse(
-  float densityHere, float densityTowardLight, float h, float densityRange)
+// side of a cloud facing the light is bright. slopeScale is 1 / (h * density unit), h in world
+// units and the density unit the transfer function's span (docs/lighting.md), computed once in
+// double: the term does not depend on the field's density units nor on the march's frame.
+inline float DerivativeDiffuse(float densityHere, float densityTowardLight, float slopeScale)
 {
-  return glm::clamp((densityHere - densityTowardLight) / (h * densityRange), 0.0f, 1.0f);
+  return glm::clamp((densityHere - densityTowardLight) * slopeScale, 0.0f, 1.0f);
 }
 
 // Light scattered toward the eye at a sample from one light whose optical depth to the sample
@@ -145,24 +189,44 @@ inline float ScatteredFraction(const LightingParameters& p, float mu, float tau)
   return sum * powder;
 }
 
-// Where a light is seen from a world point: unit direction toward it, the distance to it
-// (infinite for directional lights) and its distance falloff.
+// Where a light is seen from a point x of the march's local frame: unit direction toward it, the
+// local distance to it (1e30 for directional lights, as in the GLSL) and its distance falloff.
 struct LightSample
 {
   glm::vec3 Direction;
   float Distance;
   float Falloff;
 };
-inline LightSample SampleLight(const Light& light, glm::vec3 p)
+inline LightSample SampleLight(const LocalLight& light, glm::vec3 x)
 {
   if (!light.Positional)
   {
-    return { glm::normalize(light.Position - light.FocalPoint), INFINITY, 1.0f };
+    return { light.Direction, 1e30f, 1.0f };
   }
-  const glm::vec3 toLight = light.Position - p;
+  const glm::vec3 toLight = light.Position - x;
   const float r = glm::length(toLight);
   const glm::vec3 k = light.Attenuation;
   return { toLight / std::max(r, 1e-20f), r, 1.0f / std::max(k.x + k.y * r + k.z * r * r, 1e-20f) };
+}
+
+// The most radiance per unit of a light's color x intensity that one sample can send toward the
+// eye, over the derivative model (D <= 1) and the march (4 pi times the scattered fraction at its
+// peak: every octave's largest phase value, no shadowing), for a falloff of 1. Renderers check
+// their lights against it so that no light can overflow float arithmetic (CloudMarchUniforms.h).
+inline double PeakRadiancePerLightRadiance(const LightingParameters& p)
+{
+  const auto peakHG = [](double g) { // at mu = sign(g): (1 + |g|) / (4 pi (1 - |g|)^2)
+    const double a = std::abs(g);
+    return (1.0 + a) / (4.0 * 3.14159265358979323846 * (1.0 - a) * (1.0 - a));
+  };
+  double sum = 0.0, a = 1.0, c = 1.0;
+  for (int n = 0; n <= p.MultipleScatteringOctaves; ++n)
+  {
+    sum += a * std::max(peakHG(p.PhaseG1 * c), peakHG(p.PhaseG2 * c));
+    a *= p.ScatteringFalloff;
+    c *= p.EccentricityFalloff;
+  }
+  return std::max(1.0, 4.0 * 3.14159265358979323846 * sum);
 }
 
 } // namespace cloudvis

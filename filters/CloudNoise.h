@@ -210,6 +210,11 @@ inline float Evaluate(NoiseType type, double x, double y, double z, std::uint32_
   return 0.0f;
 }
 
+// The limits ValidateFieldDescription (CloudDensityEvaluator.h) puts on FbmParameters; the
+// scene schema states the same ones from here.
+constexpr int MaxOctaves = 12;
+constexpr double MaxFrequency = 1e6;
+
 // fBm: octave o samples noise at frequency f_o with amplitude a_o, where
 // f_0 = Frequency, f_{o+1} = f_o * (Lacunarity + o * LacunarityIncrement), a_o = Amplitude * Gain^o.
 // The defaults are the article's cloud: 6 octaves, amplitude 0.5 halving, factor 2.02 growing

@@ -6,16 +6,6 @@
 namespace cloudvis
 {
 
-LightingParameters ResolveLighting(const LightingParameters& p, double smallestSpacing)
-{
-  // In double and then rounded, as the mapper computes the uniforms.
-  LightingParameters resolved = p;
-  resolved.DerivativeDistance =
-    p.DerivativeDistance > 0.0f ? p.DerivativeDistance : float(4.0 * smallestSpacing);
-  resolved.LightStep = p.LightStep > 0.0f ? p.LightStep : float(2.0 * smallestSpacing);
-  return resolved;
-}
-
 // ---- CloudMarchFS.glsl ----
 
 glm::vec2 IntersectBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi)
@@ -31,18 +21,34 @@ glm::vec2 IntersectBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi)
     std::min(std::min(tFar.x, tFar.y), tFar.z));
 }
 
-glm::vec4 MarchRay(const MarchUniforms& u, const glm::dvec3& nearWorld, const glm::dvec3& farWorld)
+glm::vec4 Optical(const MarchUniforms& u, float density)
 {
-  // The GLSL maps both plane points to index space with DCIndexMatrix; with an identity
-  // direction matrix that is (world - IndexOrigin) / Spacing.
-  const auto indexOf = [&u](const glm::dvec3& w) {
-    return (w - glm::dvec3(u.IndexOrigin)) / glm::dvec3(u.Spacing);
-  };
-  const float rayLength = static_cast<float>(glm::length(farWorld - nearWorld));
-  const glm::vec3 origin(indexOf(nearWorld));
-  const glm::vec3 d(glm::normalize(farWorld - nearWorld)); // view direction, world
-  // index units per world unit
-  const glm::vec3 direction = (glm::vec3(indexOf(farWorld)) - origin) / rayLength;
+  const glm::vec4 optical = u.Table->Lookup(density);
+  return glm::vec4(glm::vec3(optical), optical.a * u.ExtinctionUnit);
+}
+
+glm::vec3 LocalOfIndex(const MarchUniforms& u, glm::vec3 p)
+{
+  return glm::vec3(u.IndexToLocal * glm::vec4(p, 1.0f));
+}
+
+glm::vec3 IndexOfLocal(const MarchUniforms& u, glm::vec3 x)
+{
+  return u.LocalToIndex * (x - glm::vec3(u.IndexToLocal[3]));
+}
+
+glm::vec3 LocalToIndex(const MarchUniforms& u, glm::vec3 w)
+{
+  return u.LocalToIndex * w;
+}
+
+glm::vec4 MarchRay(const MarchUniforms& u, glm::vec3 nearPoint, glm::vec3 farPoint)
+{
+  const glm::vec3 toFar = farPoint - nearPoint;
+  const float rayLength = glm::length(toFar);
+  const glm::vec3 d = toFar / rayLength;               // view direction, unit
+  const glm::vec3 origin = IndexOfLocal(u, nearPoint); // index point at t = 0
+  const glm::vec3 direction = LocalToIndex(u, d);      // index units per local unit
 
   const float tOpaque = rayLength; // no opaque geometry: the depth buffer holds the far plane
   const glm::vec2 tBox =
@@ -54,22 +60,26 @@ glm::vec4 MarchRay(const MarchUniforms& u, const glm::dvec3& nearWorld, const gl
   float T = 1.0f;
   if (tEnter < tExit)
   {
+    // Samples are placed from the entry point, so their spacing keeps its precision however far
+    // the camera is from the volume.
+    const glm::vec3 entry = origin + tEnter * direction;
+    const float span = tExit - tEnter;
     const float jitter = 0.0f;
     float k = 0.0f;
-    for (int i = 0; i < u.MaximumIterations; ++i)
+    for (int i = 0; i < u.MaximumSamples; ++i)
     {
-      const float t = tEnter + (k + jitter) * u.StepWorld;
-      if (t >= tExit)
+      const float s = (k + jitter) * u.Step;
+      if (s >= span)
       {
         break;
       }
-      const glm::vec3 p = origin + t * direction;
+      const glm::vec3 p = entry + s * direction;
       const float density = DensityAt(u, p);
-      const glm::vec4 optical = u.Table->Lookup(density);
+      const glm::vec4 optical = Optical(u, density);
       const float sigma_t = optical.a;
       if (sigma_t > 0.0f)
       {
-        const float stepT = std::exp(-sigma_t * u.StepWorld);
+        const float stepT = std::exp(-sigma_t * u.Step);
         // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
         // constant over the step, so the sum does not depend on the step size.
         radiance += T * SourceTerm(u, p, density, glm::vec3(optical), d) * (1.0f - stepT);
@@ -86,16 +96,6 @@ glm::vec4 MarchRay(const MarchUniforms& u, const glm::dvec3& nearWorld, const gl
 }
 
 // ---- CloudLightingCommon.glsl ----
-
-glm::vec3 WorldOfIndex(const MarchUniforms& u, glm::vec3 p)
-{
-  return u.IndexOrigin + u.Spacing * p;
-}
-
-glm::vec3 WorldToIndex(const MarchUniforms& u, glm::vec3 w)
-{
-  return w / u.Spacing;
-}
 
 float DensityAt(const MarchUniforms& u, glm::vec3 p)
 {
@@ -126,7 +126,7 @@ float DensityAt(const MarchUniforms& u, glm::vec3 p)
 
 float ExtinctionAt(const MarchUniforms& u, glm::vec3 p)
 {
-  return u.Table->Lookup(DensityAt(u, p)).a;
+  return Optical(u, DensityAt(u, p)).a;
 }
 
 bool InsideVolume(const MarchUniforms& u, glm::vec3 p)
@@ -148,14 +148,14 @@ glm::vec3 SourceTermDerivative(
   const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3)
 {
   const float h = u.Lighting.DerivativeDistance;
-  const glm::vec3 x = WorldOfIndex(u, p);
+  const glm::vec3 x = LocalOfIndex(u, p);
   glm::vec3 light = u.Ambient;
-  for (const Light& source : u.Lights)
+  for (const LocalLight& source : u.Lights)
   {
     const LightSample s = SampleLight(source, x);
-    const float towardLight = DensityAt(u, p + WorldToIndex(u, h * s.Direction));
-    light += source.Color * source.Intensity * s.Falloff *
-      DerivativeDiffuse(density, towardLight, h, float(u.Table->Range[1] - u.Table->Range[0]));
+    const float towardLight = DensityAt(u, p + LocalToIndex(u, h * s.Direction));
+    light +=
+      source.Radiance * s.Falloff * DerivativeDiffuse(density, towardLight, u.DerivativeSlopeScale);
   }
   return albedo * light;
 }
@@ -164,7 +164,7 @@ glm::vec3 SourceTermDerivative(
 
 float LightOpticalDepth(const MarchUniforms& u, glm::vec3 p, glm::vec3 l, float maxDistance)
 {
-  const glm::vec3 indexStep = WorldToIndex(u, l); // index units per world unit
+  const glm::vec3 indexStep = LocalToIndex(u, l); // index units per local unit
   float tau = 0.0f;
   float start = 0.0f;
   float segment = u.Lighting.LightStep;
@@ -187,13 +187,13 @@ float LightOpticalDepth(const MarchUniforms& u, glm::vec3 p, glm::vec3 l, float 
 glm::vec3 SourceTermMarch(
   const MarchUniforms& u, glm::vec3 p, float /*density*/, glm::vec3 albedo, glm::vec3 d)
 {
-  const glm::vec3 x = WorldOfIndex(u, p);
+  const glm::vec3 x = LocalOfIndex(u, p);
   glm::vec3 light = u.Ambient;
-  for (const Light& source : u.Lights)
+  for (const LocalLight& source : u.Lights)
   {
     const LightSample s = SampleLight(source, x);
     const float tau = LightOpticalDepth(u, p, s.Direction, s.Distance);
-    light += source.Color * source.Intensity * s.Falloff * PhaseToRadiance *
+    light += source.Radiance * s.Falloff * PhaseToRadiance *
       ScatteredFraction(u.Lighting, glm::dot(d, s.Direction), tau);
   }
   return albedo * light;

@@ -16,8 +16,8 @@ namespace
 // still letting one unit of travel absorb all but 1e-4 of the light.
 constexpr double MaxOpacity = 1.0 - 1e-4;
 
-// Texel-space position of a density, x in [0, size - 1]: where Lookup and MaxExtinction agree
-// on which entries a density touches.
+// Texel-space position of a density, x in [0, size - 1]: where Lookup, MaxExtinction and
+// MinExtinction agree on which entries a density touches.
 double TablePosition(const TransferTable& table, double density)
 {
   const double width = table.Range[1] - table.Range[0];
@@ -27,6 +27,24 @@ double TablePosition(const TransferTable& table, double density)
   }
   const double t = std::min(std::max((density - table.Range[0]) / width, 0.0), 1.0);
   return t * (table.Size - 1);
+}
+
+// The entries first .. last that a linear lookup of any density between the two can touch.
+void EntriesTouched(
+  const TransferTable& table, double densityMin, double densityMax, int& first, int& last)
+{
+  double x0 = TablePosition(table, densityMin);
+  double x1 = TablePosition(table, densityMax);
+  if (x1 < x0)
+  {
+    std::swap(x0, x1);
+  }
+  first = std::min(static_cast<int>(x0), table.Size - 1);
+  // ceil, not floor + 1: a density exactly on an entry gives its neighbour weight 0, and a ramp
+  // that starts at density 0 must leave a field of zeros transparent. The GPU computes the
+  // position in float and quantises the weights to 8 bits, so where it lands a hair past the
+  // entry the neighbour's weight rounds to 0 as well.
+  last = std::min(static_cast<int>(std::ceil(x1)), table.Size - 1);
 }
 
 bool InUnitInterval(double v)
@@ -57,18 +75,8 @@ float TransferTable::MaxExtinction(double densityMin, double densityMax) const
   {
     return 0.0f;
   }
-  double x0 = TablePosition(*this, densityMin);
-  double x1 = TablePosition(*this, densityMax);
-  if (x1 < x0)
-  {
-    std::swap(x0, x1);
-  }
-  const int first = std::min(static_cast<int>(x0), this->Size - 1);
-  // ceil, not floor + 1: a density exactly on an entry gives its neighbour weight 0, and a ramp
-  // that starts at density 0 must leave a field of zeros transparent. The GPU computes the
-  // position in float and quantises the weights to 8 bits, so where it lands a hair past the
-  // entry the neighbour's weight rounds to 0 as well.
-  const int last = std::min(static_cast<int>(std::ceil(x1)), this->Size - 1);
+  int first, last;
+  EntriesTouched(*this, densityMin, densityMax, first, last);
   float sigma_t = 0.0f;
   for (int i = first; i <= last; ++i)
   {
@@ -77,10 +85,37 @@ float TransferTable::MaxExtinction(double densityMin, double densityMax) const
   return sigma_t;
 }
 
+float TransferTable::MinExtinction(double densityMin, double densityMax) const
+{
+  if (this->Size < 1 || this->RGBA.size() < std::size_t(this->Size) * 4)
+  {
+    return 0.0f;
+  }
+  int first, last;
+  EntriesTouched(*this, densityMin, densityMax, first, last);
+  float sigma_t = this->RGBA[std::size_t(first) * 4 + 3];
+  for (int i = first + 1; i <= last; ++i)
+  {
+    sigma_t = std::min(sigma_t, this->RGBA[std::size_t(i) * 4 + 3]);
+  }
+  return sigma_t;
+}
+
 bool TransferTable::operator==(const TransferTable& other) const
 {
   return this->Range[0] == other.Range[0] && this->Range[1] == other.Range[1] &&
     this->Size == other.Size && this->RGBA == other.RGBA;
+}
+
+double Extinction(double opacity, double unitDistance, double extinctionScale)
+{
+  const double a = std::min(std::max(opacity, 0.0), MaxOpacity);
+  return -std::log1p(-a) / unitDistance * extinctionScale;
+}
+
+double MinUnitDistance()
+{
+  return Extinction(1.0, 1.0) / FloatMax;
 }
 
 TransferTable BuildTransferTable(vtkScalarsToColors* color, vtkPiecewiseFunction* opacity,
@@ -107,8 +142,8 @@ TransferTable BuildTransferTable(vtkScalarsToColors* color, vtkPiecewiseFunction
     {
       color->GetColor(density, rgb);
     }
-    const double a = opacity ? std::min(std::max(opacity->GetValue(density), 0.0), MaxOpacity) : 0.0;
-    const double sigma_t = -std::log1p(-a) / unitDistance * extinctionScale;
+    const double sigma_t =
+      Extinction(opacity ? opacity->GetValue(density) : 0.0, unitDistance, extinctionScale);
     float* entry = &table.RGBA[std::size_t(i) * 4];
     entry[0] = static_cast<float>(rgb[0]);
     entry[1] = static_cast<float>(rgb[1]);
@@ -116,6 +151,52 @@ TransferTable BuildTransferTable(vtkScalarsToColors* color, vtkPiecewiseFunction
     entry[3] = static_cast<float>(sigma_t);
   }
   return table;
+}
+
+bool TransferFunctionRange(vtkPiecewiseFunction* opacity,
+  vtkScalarsToColors* color,
+  double range[2])
+{
+  if (!opacity || opacity->GetSize() == 0)
+  {
+    return false;
+  }
+  double node[4];
+  opacity->GetNodeValue(0, node);
+  range[0] = range[1] = node[0];
+  const auto include = [range](double density)
+  {
+    range[0] = std::min(range[0], density);
+    range[1] = std::max(range[1], density);
+  };
+  opacity->GetNodeValue(opacity->GetSize() - 1, node);
+  include(node[0]);
+  // A vtkColorTransferFunction's range is that of its points (filters/ does not link the
+  // rendering module that defines the class, so the interface is all it can ask).
+  if (color)
+  {
+    include(color->GetRange()[0]);
+    include(color->GetRange()[1]);
+  }
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  return true;
+}
+
+TransferTable TabulateTransferFunction(vtkScalarsToColors* color,
+  vtkPiecewiseFunction* opacity,
+  double unitDistance,
+  int size,
+  double extinctionScale)
+{
+  double range[2];
+  if (!TransferFunctionRange(opacity, color, range))
+  {
+    return TransferTable();
+  }
+  return BuildTransferTable(color, opacity, unitDistance, range, size, extinctionScale);
 }
 
 std::string ValidateTransferFunction(vtkPiecewiseFunction* opacity, vtkScalarsToColors* color)

@@ -43,10 +43,52 @@ struct CLOUDVISFILTERS_EXPORT TransferTable
   // and all between, with x as in Lookup. So 0 means every density of the interval is fully
   // transparent. The arguments may come in either order.
   float MaxExtinction(double densityMin, double densityMax) const;
+  // The smallest sigma_t among the same entries: no linear lookup of a density in the interval
+  // is below it. 0 for an empty table.
+  float MinExtinction(double densityMin, double densityMax) const;
 
   bool operator==(const TransferTable& other) const;
   bool operator!=(const TransferTable& other) const { return !(*this == other); }
 };
+
+// The extinction per unit length of an opacity per unitDistance, -ln(1 - a) / unitDistance, times
+// extinctionScale, with a clamped to [0, 1 - 1e-4] so that an opacity of 1 still gives a finite
+// extinction (about 9.2 / unitDistance). What every table entry holds.
+CLOUDVISFILTERS_EXPORT double Extinction(double opacity,
+  double unitDistance,
+  double extinctionScale = 1.0);
+
+// The largest finite float (FLT_MAX). A table entry's sigma_t is a float, and the GPU looks up
+// densities in float: the limits below, and the renderers' (CloudMarchUniforms.h), derive from it.
+constexpr double FloatMax = 3.4028234663852886e38;
+
+// The smallest unit distance whose extinctions a float holds whatever the opacity:
+// Extinction(1, MinUnitDistance()) is FloatMax (about 2.7e-38). The scene schema refuses smaller
+// ones; the renderers also refuse an extinction whose optical depth across the volume overflows.
+CLOUDVISFILTERS_EXPORT double MinUnitDistance();
+
+// A transfer function's points must lie within [-MaxTransferDensity, MaxTransferDensity] and span
+// at most MaxTransferDensity, so that a table over them has a width float arithmetic holds.
+constexpr double MaxTransferDensity = FloatMax;
+
+// The densities the pair defines: from the first to the last point of the opacity function and
+// of the color function (its GetRange(), which for a vtkColorTransferFunction spans its points),
+// together. A function whose points all lie at one density v gives [v, v + 1], so the table has a
+// width (it is constant anyway: outside its points a function keeps its end values). False when
+// the opacity function is missing or has no points.
+CLOUDVISFILTERS_EXPORT bool TransferFunctionRange(vtkPiecewiseFunction* opacity,
+  vtkScalarsToColors* color,
+  double range[2]);
+
+// The table the renderers use: BuildTransferTable over TransferFunctionRange, so the table
+// resolves what the transfer function says wherever the data's values lie (an outlier voxel
+// cannot starve it), and a density outside the function's points reads the end entries, as VTK
+// clamps. An empty table when the range is unusable (see BuildTransferTable).
+CLOUDVISFILTERS_EXPORT TransferTable TabulateTransferFunction(vtkScalarsToColors* color,
+  vtkPiecewiseFunction* opacity,
+  double unitDistance,
+  int size = 1024,
+  double extinctionScale = 1.0);
 
 // Samples color and opacity into a table of `size` entries over `range`. The opacity a(d) is
 // VTK's scalar opacity per unitDistance of travel, so sigma_t = -ln(1 - a) / unitDistance, with a

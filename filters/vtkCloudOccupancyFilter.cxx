@@ -44,8 +44,8 @@ void BrickVoxels(int b, int brickSize, int apron, int n, int& first, int& last)
   last = static_cast<int>(std::min<std::int64_t>(hi, n - 1));
 }
 
-// Per brick, the density range of its apron-extended voxels and the extinction the table gives
-// it. One work item is a row of bricks along x, so the voxel rows it reads are contiguous.
+// Per brick, the density range of its apron-extended voxels and the extinction range the table
+// gives it. One work item is a row of bricks along x, so the voxel rows it reads are contiguous.
 template <typename T>
 struct BrickExtinction
 {
@@ -56,6 +56,7 @@ struct BrickExtinction
   int Apron;
   const cloudvis::TransferTable* Table;
   float* MaxExtinction;
+  float* MinExtinction;
 
   void operator()(vtkIdType begin, vtkIdType end) const
   {
@@ -94,10 +95,12 @@ struct BrickExtinction
           }
         }
       }
-      float* out = this->MaxExtinction + row * nb;
+      float* outMax = this->MaxExtinction + row * nb;
+      float* outMin = this->MinExtinction + row * nb;
       for (int bx = 0; bx < nb; ++bx)
       {
-        out[bx] = this->Table->MaxExtinction(lo[bx], hi[bx]);
+        outMax[bx] = this->Table->MaxExtinction(lo[bx], hi[bx]);
+        outMin[bx] = this->Table->MinExtinction(lo[bx], hi[bx]);
       }
     }
   }
@@ -273,10 +276,14 @@ int vtkCloudOccupancyFilter::RequestData(
   vtkNew<vtkFloatArray> maxExtinction;
   maxExtinction->SetName("max_extinction");
   maxExtinction->SetNumberOfTuples(brickCount);
+  vtkNew<vtkFloatArray> minExtinction;
+  minExtinction->SetName("min_extinction");
+  minExtinction->SetNumberOfTuples(brickCount);
   vtkNew<vtkUnsignedCharArray> emptyDistance;
   emptyDistance->SetName("empty_distance");
   emptyDistance->SetNumberOfTuples(brickCount);
   output->GetPointData()->SetScalars(maxExtinction);
+  output->GetPointData()->AddArray(minExtinction);
   output->GetPointData()->AddArray(emptyDistance);
 
   this->UpdateProgress(0.0);
@@ -284,7 +291,8 @@ int vtkCloudOccupancyFilter::RequestData(
   auto fill = [&](auto* density) {
     using T = std::remove_const_t<std::remove_pointer_t<decltype(density)>>;
     BrickExtinction<T> work{ density, { n[0], n[1], n[2] }, { bricks[0], bricks[1], bricks[2] },
-      this->BrickSize, this->Apron, &this->TransferTable, maxExtinction->GetPointer(0) };
+      this->BrickSize, this->Apron, &this->TransferTable, maxExtinction->GetPointer(0),
+      minExtinction->GetPointer(0) };
     vtkSMPTools::For(0, brickRows, work);
   };
   switch (type)

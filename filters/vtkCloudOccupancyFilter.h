@@ -14,6 +14,9 @@
  *   data). With Apron 0 that is exactly the trilinear footprint of the brick's cells; GPU
  *   rounding of a sample position can at most give a neighbouring voxel a weight below the
  *   filter's 1/256 precision. A brick is occupied when this is > 0.
+ * - "min_extinction" (float): the smallest sigma_t the table can return for any density of the
+ *   same voxels, so no trilinear sample inside the brick has less (the path tracer's control
+ *   extinction for residual ratio tracking).
  * - "empty_distance" (unsigned char): Chebyshev distance in bricks to the nearest occupied
  *   brick (0 occupied, 1 empty but touching an occupied brick, ...), capped at 255. A marcher
  *   at an empty brick with distance k may advance to the boundary of the (2k - 1)^3 block of

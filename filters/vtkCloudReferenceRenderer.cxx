@@ -28,16 +28,9 @@ vtkStandardNewMacro(vtkCloudReferenceRenderer);
 
 namespace
 {
-// The GPU's MAX_LIGHTS (shaders/CloudLightingCommon.glsl).
-constexpr std::size_t MaxLights = 8;
-
 bool Finite3(const double v[3])
 {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
-bool Finite3(glm::vec3 v)
-{
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 // A row-major 4x4 (m[row][col], as vtkMatrix4x4 and VTK's transforms write them) as GLM.
@@ -50,42 +43,19 @@ glm::dmat4 FromRows(const double m[4][4])
   return g;
 }
 
-// Where normalized device coordinates (ndc, ndcDepth) lie in the world: the GLSL's WorldPoint
-// with DCWCMatrix.
-glm::dvec3 WorldPoint(const glm::dmat4& deviceToWorld, glm::dvec2 ndc, double ndcDepth)
+// Where normalized device coordinates (ndc, ndcDepth) lie in the local frame: the GLSL's
+// LocalPoint with DCLocalMatrix, in double.
+glm::dvec3 LocalPoint(const glm::dmat4& deviceToLocal, glm::dvec2 ndc, double ndcDepth)
 {
-  const glm::dvec4 p = deviceToWorld * glm::dvec4(ndc, ndcDepth, 1.0);
+  const glm::dvec4 p = deviceToLocal * glm::dvec4(ndc, ndcDepth, 1.0);
   return glm::dvec3(p) / p.w;
 }
 
-// One block of image rows: each pixel's ray from the near to the far plane, marched.
-struct RenderRows
+// vtkSMPTools::For wants a functor object.
+struct RowFunctor
 {
-  const cloudvis::MarchUniforms* Uniforms;
-  glm::dmat4 DeviceToWorld;
-  int Width;
-  int Height;
-  float* RGBA;
-
-  void operator()(vtkIdType begin, vtkIdType end) const
-  {
-    for (vtkIdType j = begin; j < end; ++j)
-    {
-      for (int i = 0; i < this->Width; ++i)
-      {
-        const glm::dvec2 ndc((i + 0.5) / this->Width * 2.0 - 1.0,
-          (double(j) + 0.5) / this->Height * 2.0 - 1.0);
-        const glm::dvec3 nearWorld = WorldPoint(this->DeviceToWorld, ndc, -1.0);
-        const glm::dvec3 farWorld = WorldPoint(this->DeviceToWorld, ndc, 1.0);
-        const glm::vec4 rgba = cloudvis::MarchRay(*this->Uniforms, nearWorld, farWorld);
-        float* out = this->RGBA + (std::size_t(j) * this->Width + i) * 4;
-        out[0] = rgba.r;
-        out[1] = rgba.g;
-        out[2] = rgba.b;
-        out[3] = rgba.a;
-      }
-    }
-  }
+  const std::function<void(vtkIdType, vtkIdType)>* Rows;
+  void operator()(vtkIdType begin, vtkIdType end) const { (*this->Rows)(begin, end); }
 };
 }
 
@@ -116,15 +86,34 @@ void vtkCloudReferenceRenderer::SetLights(const std::vector<cloudvis::Light>& li
   this->Modified();
 }
 
-bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const
+void vtkCloudReferenceRenderer::SetVolumeMatrix(vtkMatrix4x4* matrix)
+{
+  vtkNew<vtkMatrix4x4> copy;
+  if (matrix)
+  {
+    copy->DeepCopy(matrix);
+  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      if (copy->GetElement(r, c) != this->VolumeMatrix->GetElement(r, c))
+      {
+        this->VolumeMatrix->DeepCopy(copy);
+        this->Modified();
+        return;
+      }
+}
+
+bool vtkCloudReferenceRenderer::GetCamera(glm::dmat4& viewToDevice,
+  glm::dmat3& worldToView,
+  glm::dvec3& eye) const
 {
   const double* position = this->CameraPosition;
   const double* focal = this->CameraFocalPoint;
   const double* up = this->CameraViewUp;
   const double* range = this->ClippingRange;
-  if (!deviceToWorld || !Finite3(position) || !Finite3(focal) || !Finite3(up) ||
-    !(range[0] > 0.0 && range[1] > range[0] && std::isfinite(range[1])) ||
-    this->ImageSize[0] < 1 || this->ImageSize[1] < 1)
+  if (!Finite3(position) || !Finite3(focal) || !Finite3(up) ||
+    !(range[0] > 0.0 && range[1] > range[0] && std::isfinite(range[1])) || this->ImageSize[0] < 1 ||
+    this->ImageSize[1] < 1)
   {
     return false;
   }
@@ -135,7 +124,7 @@ bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWor
   }
   // vtkPerspectiveTransform::SetupCamera: the rows of the rotation are the sideways, the
   // orthogonalised up and the view plane normal (from the focal point toward the camera).
-  const glm::dvec3 eye(position[0], position[1], position[2]);
+  eye = glm::dvec3(position[0], position[1], position[2]);
   const glm::dvec3 toCamera = eye - glm::dvec3(focal[0], focal[1], focal[2]);
   const glm::dvec3 sidewaysRaw = glm::cross(glm::dvec3(up[0], up[1], up[2]), toCamera);
   if (!(glm::length(toCamera) > 0.0) || !(glm::length(sidewaysRaw) > 0.0))
@@ -145,12 +134,7 @@ bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWor
   const glm::dvec3 viewPlaneNormal = glm::normalize(toCamera);
   const glm::dvec3 sideways = glm::normalize(sidewaysRaw);
   const glm::dvec3 orthoViewUp = glm::cross(viewPlaneNormal, sideways);
-  const double view[4][4] = {
-    { sideways.x, sideways.y, sideways.z, -glm::dot(sideways, eye) },
-    { orthoViewUp.x, orthoViewUp.y, orthoViewUp.z, -glm::dot(orthoViewUp, eye) },
-    { viewPlaneNormal.x, viewPlaneNormal.y, viewPlaneNormal.z, -glm::dot(viewPlaneNormal, eye) },
-    { 0.0, 0.0, 0.0, 1.0 },
-  };
+  worldToView = glm::transpose(glm::dmat3(sideways, orthoViewUp, viewPlaneNormal));
 
   // vtkCamera::ComputeProjectionTransform with the window centred and no shear: Ortho or
   // Frustum, as glOrtho and glFrustum define them.
@@ -178,7 +162,22 @@ bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWor
     projection[2][3] = -2.0 * zNear * zFar / (zFar - zNear);
     projection[3][2] = -1.0;
   }
-  const glm::dmat4 inverse = glm::inverse(FromRows(projection) * FromRows(view));
+  viewToDevice = FromRows(projection);
+  return true;
+}
+
+bool vtkCloudReferenceRenderer::GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const
+{
+  glm::dmat4 viewToDevice;
+  glm::dmat3 worldToView;
+  glm::dvec3 eye;
+  if (!deviceToWorld || !this->GetCamera(viewToDevice, worldToView, eye))
+  {
+    return false;
+  }
+  glm::dmat4 worldToViewMatrix(worldToView);
+  worldToViewMatrix[3] = glm::dvec4(-(worldToView * eye), 1.0);
+  const glm::dmat4 inverse = glm::inverse(viewToDevice * worldToViewMatrix);
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
       deviceToWorld->SetElement(r, c, inverse[c][r]);
@@ -230,40 +229,10 @@ int vtkCloudReferenceRenderer::RequestData(
     vtkErrorMacro(<< "the image size must be at least 1 x 1, not " << width << " x " << height);
     return 0;
   }
-  if (!(this->SampleDistance >= 0.0 && std::isfinite(this->SampleDistance)))
-  {
-    vtkErrorMacro(<< "the sample distance must be >= 0 (0: the smallest voxel spacing)");
-    return 0;
-  }
-  if (!(this->TerminationTransmittance >= 0.0 && this->TerminationTransmittance <= 1.0))
-  {
-    vtkErrorMacro(<< "the termination transmittance must be in [0, 1]");
-    return 0;
-  }
-  const std::string lightingProblem = cloudvis::ValidateLightingParameters(this->Lighting);
-  if (!lightingProblem.empty())
-  {
-    vtkErrorMacro(<< "lighting: " << lightingProblem);
-    return 0;
-  }
-  if (this->Lights.size() > MaxLights)
-  {
-    vtkErrorMacro(<< this->Lights.size() << " lights; the renderers take at most " << MaxLights);
-    return 0;
-  }
-  for (const cloudvis::Light& light : this->Lights)
-  {
-    if (!Finite3(light.Position) || !Finite3(light.FocalPoint) || !Finite3(light.Color) ||
-      !Finite3(light.Attenuation) || !std::isfinite(light.Intensity) ||
-      (!light.Positional && light.Position == light.FocalPoint))
-    {
-      vtkErrorMacro(<< "a light has a non-finite value, or is directional with its position "
-                       "on its focal point");
-      return 0;
-    }
-  }
-  vtkNew<vtkMatrix4x4> deviceToWorldMatrix;
-  if (!this->GetDeviceToWorldMatrix(deviceToWorldMatrix))
+  glm::dmat4 viewToDevice;
+  glm::dmat3 worldToView;
+  glm::dvec3 eye;
+  if (!this->GetCamera(viewToDevice, worldToView, eye))
   {
     vtkErrorMacro(<< "unusable camera: it needs a position away from the focal point, a view up "
                      "not along the view direction, 0 < near < far, a view angle in (0, 180) "
@@ -279,32 +248,43 @@ int vtkCloudReferenceRenderer::RequestData(
     vtkErrorMacro(<< scalarProblem);
     return 0;
   }
+  const std::string valueProblem = cloudvis::ValidateDensityValues(scalars);
+  if (!valueProblem.empty())
+  {
+    vtkErrorMacro(<< valueProblem);
+    return 0;
+  }
   const int type = scalars->GetDataType();
   int extent[6];
   input->GetExtent(extent);
-  const int n[3] = { extent[1] - extent[0] + 1, extent[3] - extent[2] + 1,
-    extent[5] - extent[4] + 1 };
-  if (n[0] < 2 || n[1] < 2 || n[2] < 2)
-  {
-    vtkErrorMacro(<< "the input needs at least 2 voxels along each axis");
-    return 0;
-  }
-  if (scalars->GetNumberOfTuples() != vtkIdType(n[0]) * n[1] * n[2])
+  const vtkIdType voxels = vtkIdType(extent[1] - extent[0] + 1) * (extent[3] - extent[2] + 1) *
+    (extent[5] - extent[4] + 1);
+  if (scalars->GetNumberOfTuples() != voxels)
   {
     vtkErrorMacro(<< "the input scalars do not match the input extent");
     return 0;
   }
-  const double* origin = input->GetOrigin();
-  const double* spacing = input->GetSpacing();
-  if (!(spacing[0] > 0.0 && spacing[1] > 0.0 && spacing[2] > 0.0) || !Finite3(spacing) ||
-    !Finite3(origin))
+  const std::string geometryProblem = cloudvis::ValidateVolumeGeometry(input, this->VolumeMatrix);
+  if (!geometryProblem.empty())
   {
-    vtkErrorMacro(<< "the input needs a finite origin and a positive spacing");
+    vtkErrorMacro(<< geometryProblem);
     return 0;
   }
-  if (!input->GetDirectionMatrix()->IsIdentity())
+
+  // The uniforms the mapper would set, and its refusals.
+  cloudvis::MarchSetup setup;
+  setup.Geometry = cloudvis::GeometryOf(input, this->VolumeMatrix);
+  setup.Table = &table;
+  setup.SampleDistance = this->SampleDistance;
+  setup.TerminationTransmittance = this->TerminationTransmittance;
+  setup.Lighting = this->Lighting;
+  setup.Lights = this->Lights;
+  cloudvis::MarchUniforms uniforms;
+  cloudvis::LocalFrame frame;
+  const cloudvis::MarchProblem problem = cloudvis::SetUpMarch(setup, uniforms, &frame);
+  if (problem)
   {
-    vtkErrorMacro(<< "the input has a rotated direction matrix; only the identity is supported");
+    vtkErrorMacro(<< problem.Message);
     return 0;
   }
 
@@ -325,63 +305,77 @@ int vtkCloudReferenceRenderer::RequestData(
     density = converted.data();
   }
 
-  // The uniforms the mapper would set.
-  const double smallestSpacing = std::min({ spacing[0], spacing[1], spacing[2] });
-  const double step = this->SampleDistance > 0.0 ? this->SampleDistance : smallestSpacing;
-  double diagonal = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    diagonal += (n[a] - 1) * spacing[a] * (n[a] - 1) * spacing[a];
-  }
-  diagonal = std::sqrt(diagonal);
-  cloudvis::MarchUniforms uniforms;
   uniforms.Density = density;
-  uniforms.Dimensions = glm::ivec3(n[0], n[1], n[2]);
-  uniforms.IndexOrigin = glm::vec3(glm::dvec3(origin[0] + extent[0] * spacing[0],
-    origin[1] + extent[2] * spacing[1], origin[2] + extent[4] * spacing[2]));
-  uniforms.Spacing = glm::vec3(glm::dvec3(spacing[0], spacing[1], spacing[2]));
-  uniforms.Table = &table;
-  uniforms.StepWorld = static_cast<float>(step);
-  uniforms.TerminationTransmittance = static_cast<float>(this->TerminationTransmittance);
-  uniforms.MaximumIterations =
-    static_cast<int>(std::min(std::ceil(diagonal / step) + 16.0, double(INT_MAX)));
-  uniforms.Lighting = cloudvis::ResolveLighting(this->Lighting, smallestSpacing);
-  uniforms.Lights = this->Lights;
-  uniforms.Ambient = this->Lighting.AmbientColor * this->Lighting.AmbientStrength;
-  if (!(uniforms.StepWorld > 0.0f))
-  {
-    vtkErrorMacro(<< "the sample distance is too small for float");
-    return 0;
-  }
 
   // The image.
   int outExtent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
   output->SetExtent(outExtent);
   output->SetOrigin(0.0, 0.0, 0.0);
   output->SetSpacing(1.0, 1.0, 1.0);
+  const glm::dmat4 deviceToLocal = cloudvis::DeviceToLocal(frame, viewToDevice, worldToView, eye);
+  return this->RenderImage(uniforms, deviceToLocal, input, output) ? 1 : 0;
+}
+
+bool vtkCloudReferenceRenderer::RenderImage(const cloudvis::MarchUniforms& uniforms,
+  const glm::dmat4& deviceToLocal,
+  vtkImageData*,
+  vtkImageData* output)
+{
+  const int width = this->ImageSize[0], height = this->ImageSize[1];
   vtkNew<vtkFloatArray> rgba;
   rgba->SetName("rgba");
   rgba->SetNumberOfComponents(4);
   rgba->SetNumberOfTuples(vtkIdType(width) * height);
   rgba->Fill(0.0);
   output->GetPointData()->SetScalars(rgba);
+  float* pixels = rgba->GetPointer(0);
+  this->RenderRowBlocks(height, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType j = begin; j < end; ++j)
+    {
+      for (int i = 0; i < width; ++i)
+      {
+        glm::dvec3 nearPoint, farPoint;
+        PixelRay(deviceToLocal, i, int(j), width, height, nearPoint, farPoint);
+        const glm::vec4 color =
+          cloudvis::MarchRay(uniforms, glm::vec3(nearPoint), glm::vec3(farPoint));
+        float* out = pixels + (std::size_t(j) * width + i) * 4;
+        out[0] = color.r;
+        out[1] = color.g;
+        out[2] = color.b;
+        out[3] = color.a;
+      }
+    }
+  });
+  return true;
+}
 
-  glm::dmat4 deviceToWorld;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      deviceToWorld[c][r] = deviceToWorldMatrix->GetElement(r, c);
-  RenderRows render{ &uniforms, deviceToWorld, width, height, rgba->GetPointer(0) };
+void vtkCloudReferenceRenderer::PixelRay(const glm::dmat4& deviceToLocal,
+  int i,
+  int j,
+  int width,
+  int height,
+  glm::dvec3& nearPoint,
+  glm::dvec3& farPoint)
+{
+  const glm::dvec2 ndc((i + 0.5) / width * 2.0 - 1.0, (double(j) + 0.5) / height * 2.0 - 1.0);
+  nearPoint = LocalPoint(deviceToLocal, ndc, -1.0);
+  farPoint = LocalPoint(deviceToLocal, ndc, 1.0);
+}
+
+void vtkCloudReferenceRenderer::RenderRowBlocks(
+  int height, const std::function<void(vtkIdType, vtkIdType)>& renderRows)
+{
   // Blocks of rows, so progress and abort are handled on this thread between them.
+  const RowFunctor functor{ &renderRows };
   const int blocks = std::min(height, 16);
   this->UpdateProgress(0.0);
   for (int b = 0; b < blocks && !this->GetAbortExecute(); ++b)
   {
     const vtkIdType firstRow = vtkIdType(b) * height / blocks;
     const vtkIdType endRow = vtkIdType(b + 1) * height / blocks;
-    vtkSMPTools::For(firstRow, endRow, render);
+    vtkSMPTools::For(firstRow, endRow, functor);
     this->UpdateProgress(double(b + 1) / blocks);
   }
-  return 1;
 }
 
 void vtkCloudReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
@@ -412,6 +406,8 @@ void vtkCloudReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
      << l.ExtinctionFalloff << ", " << l.EccentricityFalloff << "), powder " << l.PowderStrength
      << "\n";
   os << indent << "Lights: " << this->Lights.size() << "\n";
+  os << indent << "VolumeMatrix:\n";
+  this->VolumeMatrix->PrintSelf(os, indent.GetNextIndent());
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "TerminationTransmittance: " << this->TerminationTransmittance << "\n";
 }

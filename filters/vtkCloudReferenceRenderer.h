@@ -9,8 +9,12 @@
  * No jitter, no empty-space skipping (which does not change the sum), no opaque geometry.
  *
  * Input: vtkImageData whose active point scalars have one component of float, unsigned char or
- * unsigned short, at least 2 voxels per axis, positive spacing and an identity direction
- * matrix. The density is read in its scalar units, as the transfer table's Range expects.
+ * unsigned short, finite values and at least 2 voxels per axis. Its whole geometry counts, as
+ * VTK's volume mappers read it: extent (which need not start at 0), origin, spacing and
+ * direction matrix, placed in the world by VolumeMatrix (a vtkVolume's matrix). The density is
+ * read in its scalar units, as the transfer table's Range expects. The march computes in the
+ * local frame of CloudMarchUniforms.h, like the GPU, and SetUpMarch refuses, with the GPU's
+ * words, what float arithmetic cannot render faithfully.
  *
  * Output: vtkImageData of ImageSize[0] x ImageSize[1] x 1 points (origin 0, spacing 1) with a
  * float, 4-component point array "rgba" (the active scalars): premultiplied radiance in r, g, b
@@ -19,10 +23,14 @@
  * The camera follows vtkCamera's conventions exactly, so giving the same numbers to a vtkCamera
  * and rendering into a viewport of ImageSize pixels shows the same view: pixel (i, j) has
  * normalized device coordinates ((i + 0.5) / W * 2 - 1, (j + 0.5) / H * 2 - 1) and its ray runs
- * from the near plane to the far plane through them; t is world distance from the near plane.
+ * from the near plane to the far plane through them; t is distance from the near plane in the
+ * march's local units.
  *
  * Rows are rendered under vtkSMPTools; each pixel depends only on the input and the
  * parameters, never on the threads.
+ *
+ * vtkCloudPathTracer is the same renderer with a Monte Carlo path tracer in place of the march
+ * (RenderImage): the same input checks, camera, table, lighting and lights.
  */
 #ifndef vtkCloudReferenceRenderer_h
 #define vtkCloudReferenceRenderer_h
@@ -32,10 +40,16 @@
 #include "cloudvisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
 
+#include <functional>
 #include <vector>
 
-class vtkMatrix4x4;
+namespace cloudvis
+{
+struct MarchUniforms;
+}
 
 class CLOUDVISFILTERS_EXPORT vtkCloudReferenceRenderer : public vtkImageAlgorithm
 {
@@ -125,8 +139,8 @@ public:
 
   ///@{
   /**
-   * The lights, at most 8 (the GPU's MAX_LIGHTS); their contributions add up. Ignored by the
-   * None model. Default: no lights.
+   * The lights, at most cloudvis::LightingLimits::MaxLights (8, the GPU's MAX_LIGHTS); their
+   * contributions add up. Ignored by the None model. Default: no lights.
    */
   void SetLights(const std::vector<cloudvis::Light>& lights);
   const std::vector<cloudvis::Light>& GetLights() const { return this->Lights; }
@@ -134,8 +148,19 @@ public:
 
   ///@{
   /**
-   * World distance between samples along a view ray, >= 0; 0 means the smallest voxel spacing
-   * (the mapper's default). Default 0.
+   * The volume's model-to-world matrix, as vtkProp3D::GetMatrix() gives it for a vtkVolume (its
+   * position, orientation, scale, origin and user matrix): the field is drawn where a vtkVolume
+   * with this matrix would draw it. The matrix is copied; null means identity. Default identity.
+   */
+  void SetVolumeMatrix(vtkMatrix4x4* matrix);
+  vtkMatrix4x4* GetVolumeMatrix() { return this->VolumeMatrix; }
+  ///@}
+
+  ///@{
+  /**
+   * World distance between samples along a view ray, >= 0; 0 means the smallest voxel edge in
+   * the world (the mapper's default). A step needing more than cloudvis::MaxSamplesPerRay
+   * samples along the volume's longest ray is refused. Default 0.
    */
   vtkSetMacro(SampleDistance, double);
   vtkGetMacro(SampleDistance, double);
@@ -157,6 +182,28 @@ public:
    */
   bool GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const;
 
+  /**
+   * The current camera parameters as cloudvis::DeviceToLocal takes them (CloudMarchUniforms.h):
+   * the projection (view to normalized device coordinates), the rotation from world to view axes
+   * and the eye's world position. DeviceToLocal of these and the input's LocalFrame is the matrix
+   * RequestData gives PixelRay. Returns false when the camera parameters are unusable.
+   */
+  bool GetCamera(glm::dmat4& viewToDevice, glm::dmat3& worldToView, glm::dvec3& eye) const;
+
+  /**
+   * The view ray of pixel (i, j) of an image of width x height pixels: its points on the near
+   * and far planes in the march's local frame, for the normalized-device-to-local matrix
+   * deviceToLocal (cloudvis::DeviceToLocal, CloudMarchUniforms.h: camera-relative, so no world
+   * coordinate enters it). The GLSL's LocalPoint with DCLocalMatrix, in double.
+   */
+  static void PixelRay(const glm::dmat4& deviceToLocal,
+    int i,
+    int j,
+    int width,
+    int height,
+    glm::dvec3& nearPoint,
+    glm::dvec3& farPoint);
+
 protected:
   vtkCloudReferenceRenderer();
   ~vtkCloudReferenceRenderer() override = default;
@@ -164,6 +211,24 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /**
+   * Renders the image once RequestData has checked the parameters and the input (SetUpMarch
+   * accepted them) and set the output's extent: `uniforms` describe the field, the table, the
+   * lighting and the lights in the march's local frame, `deviceToLocal` the camera (PixelRay).
+   * This class marches each pixel's ray (cloudvis::MarchRay); vtkCloudPathTracer path-traces
+   * it. Returns false (after an error message) when it cannot.
+   */
+  virtual bool RenderImage(const cloudvis::MarchUniforms& uniforms,
+    const glm::dmat4& deviceToLocal,
+    vtkImageData* input,
+    vtkImageData* output);
+
+  /**
+   * Calls renderRows(firstRow, endRow) over the image's rows under vtkSMPTools, in blocks of
+   * rows so that progress is reported and AbortExecute honoured between blocks.
+   */
+  void RenderRowBlocks(int height, const std::function<void(vtkIdType, vtkIdType)>& renderRows);
 
   int ImageSize[2] = { 128, 128 };
   double CameraPosition[3] = { 0.0, 0.0, 1.0 };
@@ -176,6 +241,7 @@ protected:
   cloudvis::TransferTable TransferTable;
   cloudvis::LightingParameters Lighting;
   std::vector<cloudvis::Light> Lights;
+  vtkNew<vtkMatrix4x4> VolumeMatrix;
   double SampleDistance = 0.0;
   double TerminationTransmittance = 1.0 / 255.0;
 

@@ -1,27 +1,24 @@
-// What the lighting models share (twins of filters/CloudLighting.h): the lights, the phase
-// function, and density and extinction lookups at any point of the volume.
-// p is a point in voxel index space; WorldPoint(p) and ToIndexDisplacement() convert.
+// What the lighting models share (twins of filters/CloudLighting.h and CloudReferenceMarch.h):
+// the lights, the phase function, and density and extinction lookups at any point of the volume.
+// p is a point in voxel index space; LocalOfIndex(p) gives it in the local frame, where the
+// lights are (cloudvis::LocalLight), and LocalToIndex turns a local displacement into index units.
 
-#define MAX_LIGHTS 8
+// The mapper defines MAX_LIGHTS here as cloudvis::LightingLimits::MaxLights
+// (filters/CloudLighting.h), the one limit the scene reader, the mapper and the CPU renderers
+// all enforce.
+//CLOUD::MaxLights::Dec
 uniform int LightPositional[MAX_LIGHTS];
-uniform vec3 LightPosition[MAX_LIGHTS];  // world; positional lights
-uniform vec3 LightDirection[MAX_LIGHTS]; // world, unit, toward the light; directional lights
+uniform vec3 LightPosition[MAX_LIGHTS];  // local; positional lights
+uniform vec3 LightDirection[MAX_LIGHTS]; // unit, toward the light; directional lights
 uniform vec3 LightRadiance[MAX_LIGHTS];  // color * intensity
-uniform vec3 LightAttenuation[MAX_LIGHTS];
-// Per directional light, precomputed: its direction in index units per world unit, and the
+uniform vec3 LightAttenuation[MAX_LIGHTS]; // for local distances
+// Per directional light, precomputed: its direction in index units per local unit, and the
 // derivative model's offset h l in index units.
 uniform vec3 LightIndexDirection[MAX_LIGHTS];
 uniform vec3 LightIndexOffset[MAX_LIGHTS];
 uniform vec3 Ambient; // ambient color * strength
-uniform mat4 IndexToWorld;
-uniform mat3 WorldToIndex; // a world displacement in index units
 
 const float Pi = 3.14159265358979;
-
-vec3 WorldOfIndex(vec3 p)
-{
-  return (IndexToWorld * vec4(p, 1.0)).xyz;
-}
 
 float DensityAt(vec3 p)
 {
@@ -30,7 +27,7 @@ float DensityAt(vec3 p)
 
 float ExtinctionAt(vec3 p)
 {
-  return texture(TransferTexture, TableCoordinate(DensityAt(p))).a;
+  return Optical(DensityAt(p)).a;
 }
 
 bool InsideVolume(vec3 p)
@@ -38,7 +35,7 @@ bool InsideVolume(vec3 p)
   return all(greaterThanEqual(p, vec3(0.0))) && all(lessThanEqual(p, Dimensions - 1.0));
 }
 
-// Direction toward light i from world point x, the distance to it and its falloff.
+// Direction toward light i from local point x, the local distance to it and its falloff.
 void SampleLight(int i, vec3 x, out vec3 l, out float lightDistance, out float falloff)
 {
   if (LightPositional[i] == 0)

@@ -1,10 +1,10 @@
 // Lighting model "march": for each light a nested march toward it sums the optical depth
 // tau = sum sigma_t ds (segments growing by LightStepGrowth, stopping where the volume ends or
 // at a point light); Beer-Lambert gives exp(-tau). The mapper calls one term per light with a
-// constant index (see LightTermCalls). A two-lobe Henyey-Greenstein phase and
+// constant index (see LightingSource). A two-lobe Henyey-Greenstein phase and
 // octaves of approximate multiple scattering weigh the light scattered toward the eye.
 uniform int LightSteps;
-uniform float LightStep; // first segment, world units
+uniform float LightStep; // first segment, local units
 uniform float LightStepGrowth;
 uniform float PhaseG1;
 uniform float PhaseG2;
@@ -40,8 +40,8 @@ float ScatteredFraction(float mu, float tau)
   return sum * powder;
 }
 
-// Optical depth from p toward a light, up to maxDistance (world). indexStep is the direction
-// toward the light in index units per world unit. Each segment is sampled at its midpoint;
+// Optical depth from p toward a light, up to maxDistance (local). indexStep is the direction
+// toward the light in index units per local unit. Each segment is sampled at its midpoint;
 // empty bricks are passed without reading the density.
 float LightOpticalDepth(vec3 p, vec3 indexStep, float maxDistance)
 {
@@ -77,7 +77,7 @@ vec3 PointLightTerm(int i, vec3 p, float density, vec3 d)
 {
   vec3 l;
   float lightDistance, falloff;
-  SampleLight(i, WorldOfIndex(p), l, lightDistance, falloff);
-  float tau = LightOpticalDepth(p, WorldToIndex * l, lightDistance);
+  SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
+  float tau = LightOpticalDepth(p, LocalToIndex * l, lightDistance);
   return LightRadiance[i] * falloff * PhaseToRadiance * ScatteredFraction(dot(d, l), tau);
 }

@@ -2,21 +2,27 @@
 
 // The march pass of vtkCloudVolumeMapper: one fragment per pixel of the march target.
 // A ray from the near to the far plane is clipped to the volume box and to the opaque depth,
-// then samples the density at t = tEnter + (k + jitter) * stepWorld, k = 0, 1, 2, ... Bricks
-// the occupancy map marks empty are leapt over, landing on the same lattice of k. Lighting
-// models plug in by defining SourceTerm() at the lighting tag below, so all share this march.
-// Quantities: t in world units along the ray; p in voxel index space (voxel centres at
-// integers); sigma_t the extinction per world unit; T the transmittance to the eye.
+// then samples the density at s = (k + jitter) * Step past the point where it enters the box,
+// k = 0, 1, 2, ... Bricks the occupancy map marks empty are leapt over, landing on the same
+// lattice of k. Lighting models plug in by defining SourceTerm() at the lighting tag below, so
+// all share this march.
+// Quantities: everything is computed in the local frame of filters/CloudMarchUniforms.h (world
+// translated to the volume's centre and scaled by a power of two near the voxel size), never in
+// world coordinates, so precision does not depend on where the volume is or how large it is.
+// t and s are local distances along the ray; p is a point in voxel index space (voxel centres
+// at integers); sigma_t the extinction per local unit; T the transmittance to the eye.
 
 in vec2 texCoord;
 
-uniform mat4 DCWCMatrix;     // normalized device -> world
-uniform mat4 DCIndexMatrix;  // normalized device -> voxel index space
+uniform mat4 DCLocalMatrix;  // normalized device -> local frame
+uniform mat4 IndexToLocal;
+uniform mat3 LocalToIndex;   // a local displacement in index units
 uniform vec3 Dimensions;     // voxels per axis
 uniform sampler3D DensityTexture;
 uniform sampler1D TransferTexture; // rgb albedo, a = sigma_t
 uniform vec2 TableRange;           // density at the first and last table entries
 uniform float TableSize;
+uniform float ExtinctionUnit; // the table's sigma_t (per world unit) times this: per local unit
 uniform sampler3D EmptyDistanceTexture; // Chebyshev distance in bricks to occupied space, /255
 uniform vec3 BrickCount;
 uniform float BrickSize;
@@ -26,7 +32,7 @@ uniform sampler2D JitterTexture; // blue noise, tiled
 uniform float JitterTextureSize;
 uniform float JitterOffset;      // golden-ratio sequence over accumulated frames
 uniform int JitterEnabled;
-uniform float StepWorld;
+uniform float Step; // local units
 uniform float TerminationTransmittance;
 uniform int MaximumIterations;
 
@@ -53,9 +59,26 @@ float TableCoordinate(float density)
   return (u * (TableSize - 1.0) + 0.5) / TableSize; // texel centres, as TransferTable::Lookup
 }
 
-vec3 WorldPoint(vec2 ndc, float ndcDepth)
+// Albedo in rgb and the extinction per local unit in a.
+vec4 Optical(float density)
 {
-  vec4 p = DCWCMatrix * vec4(ndc, ndcDepth, 1.0);
+  vec4 optical = texture(TransferTexture, TableCoordinate(density));
+  return vec4(optical.rgb, optical.a * ExtinctionUnit);
+}
+
+vec3 LocalOfIndex(vec3 p)
+{
+  return (IndexToLocal * vec4(p, 1.0)).xyz;
+}
+
+vec3 IndexOfLocal(vec3 x)
+{
+  return LocalToIndex * (x - IndexToLocal[3].xyz);
+}
+
+vec3 LocalPoint(vec2 ndc, float ndcDepth)
+{
+  vec4 p = DCLocalMatrix * vec4(ndc, ndcDepth, 1.0);
   return p.xyz / p.w;
 }
 
@@ -79,16 +102,15 @@ bool EmptyBrickAt(vec3 p)
 void main()
 {
   vec2 ndc = texCoord * 2.0 - 1.0;
-  vec3 nearWorld = WorldPoint(ndc, -1.0);
-  float rayLength = length(WorldPoint(ndc, 1.0) - nearWorld);
-  vec4 nearIndex = DCIndexMatrix * vec4(ndc, -1.0, 1.0);
-  vec4 farIndex = DCIndexMatrix * vec4(ndc, 1.0, 1.0);
-  vec3 origin = nearIndex.xyz / nearIndex.w;
-  vec3 d = normalize(WorldPoint(ndc, 1.0) - nearWorld); // view direction, world
-  vec3 direction = (farIndex.xyz / farIndex.w - origin) / rayLength; // index units per world unit
+  vec3 nearPoint = LocalPoint(ndc, -1.0);
+  vec3 toFar = LocalPoint(ndc, 1.0) - nearPoint;
+  float rayLength = length(toFar);
+  vec3 d = toFar / rayLength; // view direction, unit
+  vec3 origin = IndexOfLocal(nearPoint); // index point at t = 0
+  vec3 direction = LocalToIndex * d;              // index units per local unit
 
   float opaqueDepth = texture(DepthTexture, texCoord).r;
-  float tOpaque = length(WorldPoint(ndc, opaqueDepth * 2.0 - 1.0) - nearWorld);
+  float tOpaque = length(LocalPoint(ndc, opaqueDepth * 2.0 - 1.0) - nearPoint);
   vec2 tBox = IntersectBox(origin, direction, vec3(0.0), Dimensions - 1.0);
   float tEnter = max(tBox.x, 0.0);
   float tExit = min(min(tBox.y, tOpaque), rayLength);
@@ -97,9 +119,13 @@ void main()
   float T = 1.0;
   float samplesTaken = 0.0;
   float usefulSamples = 0.0;
-  float firstSignificant = NoDepth; // world distance from the near plane where opacity passes 2%
+  float firstSignificant = NoDepth; // local distance from the near plane where opacity passes 2%
   if (tEnter < tExit)
   {
+    // Samples are placed from the entry point, so their spacing keeps its precision however far
+    // the camera is from the volume.
+    vec3 entry = origin + tEnter * direction;
+    float span = tExit - tEnter;
     float jitter = 0.0;
     if (JitterEnabled != 0)
     {
@@ -108,12 +134,12 @@ void main()
     float k = 0.0;
     for (int i = 0; i < MaximumIterations; ++i)
     {
-      float t = tEnter + (k + jitter) * StepWorld;
-      if (t >= tExit)
+      float s = (k + jitter) * Step;
+      if (s >= span)
       {
         break;
       }
-      vec3 p = origin + t * direction;
+      vec3 p = entry + s * direction;
       if (SkipEmptySpace != 0)
       {
         vec3 brick = BrickOf(p);
@@ -124,26 +150,26 @@ void main()
           // and resume at the first lattice sample beyond it.
           vec3 lo = (brick - (emptyBricks - 1.0)) * BrickSize;
           vec3 hi = (brick + emptyBricks) * BrickSize;
-          float tLeave = IntersectBox(origin, direction, lo, hi).y;
-          k = max(k + 1.0, ceil((tLeave - tEnter) / StepWorld - jitter));
+          float sLeave = IntersectBox(entry, direction, lo, hi).y;
+          k = max(k + 1.0, ceil(sLeave / Step - jitter));
           continue;
         }
       }
       float density = texture(DensityTexture, (p + 0.5) / Dimensions).r;
-      vec4 optical = texture(TransferTexture, TableCoordinate(density));
+      vec4 optical = Optical(density);
       float sigma_t = optical.a;
       samplesTaken += 1.0;
       if (sigma_t > 0.0)
       {
         usefulSamples += 1.0;
-        float stepT = exp(-sigma_t * StepWorld);
+        float stepT = exp(-sigma_t * Step);
         // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
         // constant over the step, so the sum does not depend on the step size.
         radiance += T * SourceTerm(p, density, optical.rgb, d) * (1.0 - stepT);
         T *= stepT;
         if (firstSignificant == NoDepth && T < 0.98)
         {
-          firstSignificant = t;
+          firstSignificant = tEnter + s;
         }
         if (T < TerminationTransmittance)
         {

@@ -46,7 +46,7 @@ namespace cloudvis
 
 const OptionSpec SetOption{ "set", 0, "KEY=VALUE",
   "override a scene value before validation, e.g. --set field.octaves=4 or "
-  "--set field.dimensions=64,64,64 (see docs/scene-format.md)",
+  "--set field.dimensions=64,64,64 (every key: cloudvis schema, or docs/scene-format.md)",
   true };
 const OptionSpec HelpOption{ "help", 'h', "", "show this help and exit" };
 
@@ -559,6 +559,12 @@ int RunDefault(std::ostream& out)
   return ExitSuccess;
 }
 
+int Schema(const Arguments&, std::ostream& out)
+{
+  out << SceneReferenceMarkdown();
+  return ExitSuccess;
+}
+
 const std::vector<CommandSpec>& Commands()
 {
   static const std::vector<CommandSpec> commands = {
@@ -655,6 +661,11 @@ const std::vector<CommandSpec>& Commands()
       Compare },
     AnimateCommand(),
     ViewCommand(),
+    { "schema", "", 0, 0, "print the reference tables of the scene file format (Markdown)",
+      "Prints every key a scene file may hold, with its type, default and allowed values, as\n"
+      "the Markdown tables of docs/scene-format.md, which are generated from this output (the\n"
+      "test app.scene_docs fails when the two differ; `make docs` writes them in).",
+      { HelpOption }, Schema },
   };
   return commands;
 }

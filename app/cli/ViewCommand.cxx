@@ -7,6 +7,7 @@
 #include "Errors.h"
 #include "ExportCommands.h"
 #include "FieldIO.h"
+#include "ImageWriters.h"
 #include "InputFiles.h"
 #include "SceneField.h"
 #include "Viewer.h"
@@ -50,19 +51,43 @@ std::string Absolute(const std::string& path)
 
 int View(const Arguments& arguments, std::ostream& out)
 {
+  if (arguments.Has("keys"))
+  {
+    out << ViewerKeysMarkdown();
+    return ExitSuccess;
+  }
   const std::string input = arguments.Operands.empty() ? "" : arguments.Operands[0];
   const bool fieldFile = !input.empty() && IsFieldOperand(input, arguments);
   ViewerOptions options;
   const std::string saveOnExit = arguments.Value("save-scene-on-exit");
+  const std::string windowImage = arguments.Value("window-image");
   const std::string play = arguments.Value("play");
   options.RecordFile = arguments.Value("record");
   options.OutputDirectory = arguments.Has("output-dir") ? arguments.Value("output-dir") : ".";
-  for (const std::string& target : { saveOnExit, options.RecordFile })
+  options.StateFile = arguments.Value("state-file");
+  if (arguments.Has("layout"))
+  {
+    const std::string layout = arguments.Value("layout");
+    if (layout != "3d" && layout != "four")
+    {
+      throw UsageError("view: --layout expects 3d or four, got \"" + layout + "\"");
+    }
+    options.FourViews = layout == "four";
+  }
+  for (const std::string& target : { saveOnExit, options.RecordFile, options.StateFile })
   {
     if (!target.empty())
     {
       CheckOutputTarget(target);
     }
+  }
+  if (!windowImage.empty())
+  {
+    if (play.empty())
+    {
+      throw UsageError("view: --window-image saves the window when playback ends: it needs --play");
+    }
+    CheckImageOutput(windowImage);
   }
   if (!play.empty())
   {
@@ -97,6 +122,11 @@ int View(const Arguments& arguments, std::ostream& out)
   {
     viewer.Start();
   }
+  if (!windowImage.empty())
+  {
+    viewer.SaveWindowImage(windowImage);
+    out << "wrote " << windowImage << "\n";
+  }
   if (!saveOnExit.empty())
   {
     viewer.SaveScene(saveOnExit);
@@ -115,8 +145,9 @@ CommandSpec ViewCommand()
     1,
     "open the interactive viewer: the cloud, slices and a transfer-function editor",
     "One window: the cloud drawn as `render` draws it (top three quarters; trackball camera,\n"
-    "orthogonal and oblique slices) and the transfer-function editor over the density\n"
-    "histogram (bottom quarter). Press h in the window for the keys; docs/viewer.md lists\n"
+    "orthogonal and oblique slices; key 4 switches to four views: 3D, axial, coronal and\n"
+    "sagittal slices) and the transfer-function editor over the density histogram (bottom\n"
+    "quarter). Press h in the window for the keys; --keys prints them and docs/viewer.md lists\n"
     "them. s saves a screenshot (cloudvis-screenshot-NNN.png and .exr), w the scene as\n"
     "cloudvis-view-NNN.json, which `cloudvis render` turns into the same image. Without\n"
     "SCENE the default scene is shown. --record writes the session's events, --play replays\n"
@@ -128,6 +159,10 @@ CommandSpec ViewCommand()
         "editor, so the 3D view is render.size)" },
       { "record", 0, "FILE.log", "record the session's events to FILE.log" },
       { "play", 0, "FILE.log", "replay a recorded session, then exit" },
+      { "window-image",
+        0,
+        "FILE.png",
+        "with --play: save the whole window (views, editor, texts) when playback ends" },
       { "save-scene-on-exit",
         0,
         "FILE.json",
@@ -136,6 +171,13 @@ CommandSpec ViewCommand()
         0,
         "DIR",
         "where screenshots, saved scenes and presets go (default: the current directory)" },
+      { "layout", 0, "3d|four", "start with the 3D view alone (default) or the four views" },
+      { "state-file",
+        0,
+        "FILE.json",
+        "write the viewer's state as JSON after every frame and every input (for tests and "
+        "tools; docs/viewer.md)" },
+      { "keys", 0, "", "print the key bindings (a Markdown table) and exit" },
       SetOption,
       FieldFileOptions[0],
       FieldFileOptions[1],

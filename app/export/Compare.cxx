@@ -5,8 +5,10 @@
 #include "Compare.h"
 
 #include "Background.h"
+#include "CpuReference.h"
 #include "Display.h"
 #include "Errors.h"
+#include "ExportRender.h"
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudVolumeMapper.h"
@@ -133,6 +135,12 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
       ": give a smaller --size");
   }
 
+  Scene checked = scene;
+  for (LightingModel model : models)
+  {
+    checked.Render.Lighting = model;
+    CheckSceneRenderable(checked, field, input);
+  }
   const DisplayConnection display("cloudvis compare ...");
   VtkMessageCapture messages;
   vtkNew<vtkRenderWindow> window;
@@ -226,6 +234,11 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
   {
     throw InputError(input + ": nothing was rendered" +
       (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+  window->MakeCurrent();
+  for (const auto& panel : panels)
+  {
+    CheckMapperImageFinite(panel->Mapper, panel->Renderer, input);
   }
 
   vtkNew<vtkImageActor> differenceActor;

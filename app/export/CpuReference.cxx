@@ -1,6 +1,8 @@
 #include "CpuReference.h"
 
+#include "CloudMarchUniforms.h"
 #include "Errors.h"
+#include "ExportRender.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudReferenceRenderer.h"
 
@@ -32,24 +34,56 @@ void SetReferenceCamera(vtkCloudReferenceRenderer* reference, vtkCamera* camera)
   reference->SetClippingRange(camera->GetClippingRange());
 }
 
-TransferTable SceneTransferTable(const TransferFunctionSpec& transferFunction, vtkImageData* field)
+TransferTable SceneTransferTable(const TransferFunctionSpec& transferFunction)
 {
   const vtkSmartPointer<vtkVolumeProperty> property = MakeVolumeProperty(transferFunction);
-  double range[2] = { 0.0, 1.0 };
-  if (vtkDataArray* scalars = field->GetPointData()->GetScalars())
+  return TabulateTransferFunction(property->GetRGBTransferFunction(0),
+    property->GetScalarOpacity(0),
+    property->GetScalarOpacityUnitDistance(0),
+    1024);
+}
+
+void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::string& input)
+{
+  const std::string geometryProblem = ValidateVolumeGeometry(field, nullptr);
+  if (!geometryProblem.empty())
   {
-    scalars->GetRange(range, 0);
+    throw InputError(input + ": " + geometryProblem);
   }
-  if (!(range[1] > range[0]))
+  const TransferTable table = SceneTransferTable(scene.TransferFunction);
+  MarchSetup setup;
+  setup.Geometry = GeometryOf(field, nullptr);
+  setup.Table = &table;
+  setup.SampleDistance = scene.Render.Step;
+  setup.Lighting = LightingOf(scene);
+  setup.Lights = scene.Lights;
+  MarchUniforms uniforms;
+  const MarchProblem problem = SetUpMarch(setup, uniforms);
+  switch (problem.Input)
   {
-    range[1] = range[0] + 1.0; // as vtkCloudVolumeMapper does for a constant field
+    case MarchInput::None:
+      return;
+    case MarchInput::Geometry:
+      throw InputError(input + ": " + problem.Message);
+    case MarchInput::TransferFunction:
+      throw InputError(scene.Source + ": transfer_function: " + problem.Message);
+    case MarchInput::Step:
+      throw InputError(scene.Source + ": render.step: " + problem.Message);
+    case MarchInput::Lighting:
+      throw InputError(scene.Source + ": " +
+        (scene.Render.Lighting == LightingModel::None
+            ? std::string("render")
+            : "render." + LightingModelName(scene.Render.Lighting)) +
+        ": " + problem.Message);
+    case MarchInput::Light:
+      throw InputError(
+        scene.Source + ": lights[" + std::to_string(problem.Light) + "]: " + problem.Message);
   }
-  return BuildTransferTable(property->GetRGBTransferFunction(0), property->GetScalarOpacity(0),
-    property->GetScalarOpacityUnitDistance(0), range, 1024);
 }
 
 RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const std::string& input)
 {
+  CheckSceneRenderable(scene, field, input);
   const int width = scene.Render.Size[0];
   const int height = scene.Render.Size[1];
   // The camera exactly as RenderOffscreen's: ApplyCamera on a renderer of the image's aspect.
@@ -63,7 +97,7 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   reference->SetInputData(field);
   reference->SetImageSize(width, height);
   SetReferenceCamera(reference, renderer->GetActiveCamera());
-  reference->SetTransferTable(SceneTransferTable(scene.TransferFunction, field));
+  reference->SetTransferTable(SceneTransferTable(scene.TransferFunction));
   reference->SetLighting(LightingOf(scene));
   reference->SetLights(scene.Lights);
   reference->SetSampleDistance(scene.Render.Step);
@@ -78,11 +112,12 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
       (messages.Messages().empty() ? std::string("no image was produced") : messages.Messages()[0]));
   }
 
+  const float* pixels = rgba->GetPointer(0);
+  CheckFiniteImage(pixels, size_t(width) * size_t(height), input);
   RenderedImage image;
   image.Width = width;
   image.Height = height;
   image.RGB.resize(size_t(width) * size_t(height) * 3);
-  const float* pixels = rgba->GetPointer(0);
   for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
   {
     const float* p = pixels + 4 * i;

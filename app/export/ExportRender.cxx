@@ -85,6 +85,7 @@ void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, Rendere
       std::to_string(height) + " pixels, not the window's " + std::to_string(image.Width) +
       " x " + std::to_string(image.Height) + "; render.resolution_scale must be 1 to export it");
   }
+  CheckFiniteImage(image.Radiance.data(), size_t(width) * size_t(height), input);
 
   // Pixel centre (i, j) -> normalized device coordinates -> the world point on the near plane.
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -96,17 +97,14 @@ void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, Rendere
   camera->GetPosition(eye);
   camera->GetDirectionOfProjection(direction);
   const bool parallel = camera->GetParallelProjection() != 0;
-  // An averaged "no depth" (1e30 in some frames) stays far above any real distance.
-  const float noDepth = 1e24f;
   for (int j = 0; j < height; ++j)
   {
     for (int i = 0; i < width; ++i)
     {
       float& depth = image.Auxiliary[4 * (size_t(j) * size_t(width) + size_t(i)) + 2];
-      if (!(depth < noDepth))
+      if (std::isinf(depth))
       {
-        depth = std::numeric_limits<float>::infinity();
-        continue;
+        continue; // no cloud along this ray (in some accumulated frame)
       }
       const double device[4] = { 2.0 * (i + 0.5) / width - 1.0, 2.0 * (j + 0.5) / height - 1.0,
         -1.0, 1.0 };
@@ -120,6 +118,35 @@ void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, Rendere
       depth = float(double(depth) + toNear);
     }
   }
+}
+
+void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input)
+{
+  size_t bad = 0;
+  for (size_t i = 0; i < 4 * pixels; ++i)
+  {
+    bad += std::isfinite(rgba[i]) ? 0 : 1;
+  }
+  if (bad > 0)
+  {
+    throw InputError(input + ": the rendered image has " + std::to_string(bad) +
+      " values that are NaN or infinite, so nothing was written; likely causes: a light, an "
+      "extinction (unit distance) or a density beyond what float arithmetic holds "
+      "(docs/reliability.md)");
+  }
+}
+
+void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
+  vtkRenderer* renderer,
+  const std::string& input)
+{
+  std::vector<float> rgba;
+  int width = 0, height = 0;
+  if (!mapper->ReadImage(renderer, rgba, width, height))
+  {
+    throw InputError(input + ": the renderer kept no float image to check");
+  }
+  CheckFiniteImage(rgba.data(), size_t(width) * size_t(height), input);
 }
 
 void ReadBackgroundImage(vtkRenderWindow* window, vtkVolume* volume, RenderedImage& image)

@@ -6,11 +6,12 @@
 
 #include "AtomicFile.h"
 #include "Background.h"
+#include "CpuReference.h"
 #include "Display.h"
 #include "Errors.h"
-#include "SceneLighting.h"
 #include "ExportRender.h"
 #include "ImageWriters.h"
+#include "SceneLighting.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -183,6 +184,7 @@ RenderedImage CaptureWindow(vtkRenderWindow* window, const std::string& input,
 OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const std::string& input, int benchmarkFrames, const RenderOptions& options)
 {
+  CheckSceneRenderable(scene, field, input);
   // One connection, opened (and retried) here and handed to the window: VTK opening its own
   // aborts the process when the server refuses it.
   const DisplayConnection display("cloudvis ...");
@@ -236,8 +238,12 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   result.Image = CaptureWindow(window, input, messages);
   if (options.FloatImage)
   {
-    ReadFloatImage(mapper, renderer, result.Image, input);
+    ReadFloatImage(mapper, renderer, result.Image, input); // checked for NaN and infinity
     ReadBackgroundImage(window, volume, result.Image);
+  }
+  else
+  {
+    CheckMapperImageFinite(mapper, renderer, input);
   }
 
   for (int frame = 0; frame < benchmarkFrames; ++frame)

@@ -2,6 +2,7 @@
 
 #include "CloudBlueNoise.h"
 #include "CloudFieldGeometry.h"
+#include "CloudMarchUniforms.h"
 #include "CloudTransferTable.h"
 #include "vtkCloudOccupancyFilter.h"
 
@@ -55,6 +56,8 @@ namespace
 {
 constexpr int TransferTableSize = 1024;
 constexpr double GoldenRatioFraction = 0.61803398874989484;
+// The GLSL's MAX_LIGHTS, substituted into its source: the limit SetUpMarch enforces.
+constexpr int MaxLights = cloudvis::LightingLimits::MaxLights;
 
 // The matrix a vtkMatrix4x4 holds, as GLM (column-major) sees it.
 glm::dmat4 ToGlm(const vtkMatrix4x4* m)
@@ -101,6 +104,7 @@ struct ViewTargets
   int AccumulatedFrames = 0;
   double SecondsPerPixel = 0.0; // measured march cost, for the interactive scale
   double MostSamplesPerRay = 1.0; // a ray across the whole volume: full scale of the count view
+  double LocalUnit = 1.0;         // world units per local unit of the march's frame, for its depths
 
   void Release(vtkWindow* window)
   {
@@ -173,7 +177,7 @@ int vtkCloudVolumeMapper::GetNumberOfAccumulatedFrames(vtkRenderer* renderer) co
   return found == this->Internal->Views.end() ? 0 : found->second->AccumulatedFrames;
 }
 
-vtkImageData* vtkCloudVolumeMapper::ValidInput()
+vtkImageData* vtkCloudVolumeMapper::ValidInput(vtkVolume* volume)
 {
   vtkImageData* input = vtkImageData::SafeDownCast(this->GetInput());
   if (!input)
@@ -202,15 +206,10 @@ vtkImageData* vtkCloudVolumeMapper::ValidInput()
     this->Fail("the input image needs at least 2 voxels along each axis");
     return nullptr;
   }
-  if (this->SampleDistance < 0.0 || !std::isfinite(this->SampleDistance))
+  const std::string geometryProblem = cloudvis::ValidateVolumeGeometry(input, volume->GetMatrix());
+  if (!geometryProblem.empty())
   {
-    this->Fail("the sample distance (step) must be a positive number");
-    return nullptr;
-  }
-  const std::string lightingProblem = cloudvis::ValidateLightingParameters(this->Lighting);
-  if (!lightingProblem.empty())
-  {
-    this->Fail("lighting: " + lightingProblem);
+    this->Fail(geometryProblem);
     return nullptr;
   }
   return input;
@@ -231,6 +230,11 @@ bool vtkCloudVolumeMapper::UpdateVolumeTextures(
   const vtkMTimeType dataTime = std::max(input->GetMTime(), scalars->GetMTime());
   if (in.UploadedInput != input || in.DensityUploadTime < dataTime || !in.Density->GetHandle())
   {
+    const std::string valueProblem = cloudvis::ValidateDensityValues(scalars);
+    if (!valueProblem.empty())
+    {
+      return this->Fail(valueProblem);
+    }
     const int limit = vtkTextureObject::GetMaximumTextureSize3D(window);
     if (dimensions[0] > limit || dimensions[1] > limit || dimensions[2] > limit)
     {
@@ -273,9 +277,10 @@ bool vtkCloudVolumeMapper::UpdateVolumeTextures(
     in.Occupancy->SetInputData(in.OccupancyInput);
   }
 
-  // The transfer table, rebuilt when the property, the data range or the mapper change.
+  // The transfer table, over the transfer function's own densities (not the data's), rebuilt
+  // when the property or the mapper change.
   vtkVolumeProperty* property = volume->GetProperty();
-  const vtkMTimeType tableTime = std::max(property->GetMTime(), in.DensityUploadTime);
+  const vtkMTimeType tableTime = property->GetMTime();
   if (in.TableTime < tableTime || in.TableExtinctionScale != this->ExtinctionScale ||
     !in.Transfer->GetHandle())
   {
@@ -285,15 +290,15 @@ bool vtkCloudVolumeMapper::UpdateVolumeTextures(
     {
       return this->Fail("transfer function: " + problem);
     }
-    double range[2];
-    scalars->GetRange(range, 0);
-    if (!(range[1] > range[0]))
+    in.Table = cloudvis::TabulateTransferFunction(property->GetRGBTransferFunction(0),
+      property->GetScalarOpacity(0),
+      property->GetScalarOpacityUnitDistance(0),
+      TransferTableSize,
+      this->ExtinctionScale);
+    if (in.Table.Size < 1)
     {
-      range[1] = range[0] + 1.0;
+      return this->Fail("transfer function: the unit distance must be a positive finite number");
     }
-    in.Table = cloudvis::BuildTransferTable(property->GetRGBTransferFunction(0),
-      property->GetScalarOpacity(0), property->GetScalarOpacityUnitDistance(0), range,
-      TransferTableSize, this->ExtinctionScale);
     in.Transfer->SetContext(window);
     if (!in.Transfer->Create1DFromRaw(in.Table.Size, 4, VTK_FLOAT, in.Table.RGBA.data()))
     {
@@ -386,7 +391,8 @@ void vtkCloudVolumeMapper::SetLighting(const cloudvis::LightingParameters& light
 
 namespace
 {
-// The renderer's switched-on lights as the lighting models see them, at most MAX_LIGHTS.
+// The renderer's switched-on lights as the lighting models see them, all of them: SetUpMarch
+// refuses more than MaxLights rather than dropping some.
 std::vector<cloudvis::Light> LightsOf(vtkRenderer* renderer)
 {
   std::vector<cloudvis::Light> lights;
@@ -395,14 +401,14 @@ std::vector<cloudvis::Light> LightsOf(vtkRenderer* renderer)
   collection->InitTraversal(it);
   while (vtkLight* light = collection->GetNextLight(it))
   {
-    if (!light->GetSwitch() || lights.size() == 8)
+    if (!light->GetSwitch())
     {
       continue;
     }
     cloudvis::Light l;
     l.Positional = light->GetPositional() != 0;
-    l.Position = glm::vec3(glm::make_vec3(light->GetTransformedPosition()));
-    l.FocalPoint = glm::vec3(glm::make_vec3(light->GetTransformedFocalPoint()));
+    l.Position = glm::make_vec3(light->GetTransformedPosition());
+    l.FocalPoint = glm::make_vec3(light->GetTransformedFocalPoint());
     l.Color = glm::vec3(glm::make_vec3(light->GetDiffuseColor()));
     l.Intensity = float(light->GetIntensity());
     l.Attenuation = glm::vec3(glm::make_vec3(light->GetAttenuationValues()));
@@ -413,14 +419,18 @@ std::vector<cloudvis::Light> LightsOf(vtkRenderer* renderer)
 
 // The lighting model's GLSL: shared helpers, the model's light terms, and a SourceTerm that
 // calls one term per light with a constant index, so no light loop runs per sample.
-std::string LightingSource(cloudvis::LightingModel model, const std::vector<cloudvis::Light>& lights)
+std::string LightingSource(cloudvis::LightingModel model,
+  const std::vector<cloudvis::LocalLight>& lights)
 {
+  std::string common = CloudLightingCommon;
+  vtkShaderProgram::Substitute(
+    common, "//CLOUD::MaxLights::Dec", "#define MAX_LIGHTS " + std::to_string(MaxLights));
   if (model == cloudvis::LightingModel::None)
   {
-    return std::string(CloudLightingCommon) + "\n" + CloudLightingNone;
+    return common + "\n" + CloudLightingNone;
   }
   std::ostringstream source;
-  source << CloudLightingCommon << "\n"
+  source << common << "\n"
          << (model == cloudvis::LightingModel::Derivative ? CloudLightingDerivative
                                                           : CloudLightingMarch)
          << "\nvec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)\n{\n"
@@ -447,46 +457,54 @@ vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer)
 }
 }
 
-void vtkCloudVolumeMapper::SetLightingUniforms(vtkShaderProgram* program,
-  const std::vector<cloudvis::Light>& lights, const glm::mat3& worldToIndex, double smallestSpacing)
+void vtkCloudVolumeMapper::SetMarchUniforms(vtkShaderProgram* program,
+  const cloudvis::MarchUniforms& u)
 {
-  const cloudvis::LightingParameters& p = this->Lighting;
-  // Automatic distances are tied to the voxel size (docs/lighting.md).
-  const float h = p.DerivativeDistance > 0.0f ? p.DerivativeDistance : float(4.0 * smallestSpacing);
-  const int count = static_cast<int>(lights.size());
-  std::vector<int> positional(8, 0);
-  std::vector<float> position(24, 0.0f), direction(24, 0.0f), radiance(24, 0.0f),
-    attenuation(24, 0.0f), indexDirection(24, 0.0f), indexOffset(24, 0.0f);
-  for (int i = 0; i < count; ++i)
+  const float dims[3] = { float(u.Dimensions.x), float(u.Dimensions.y), float(u.Dimensions.z) };
+  program->SetUniform3f("Dimensions", dims);
+  program->SetUniformMatrix4x4("IndexToLocal", const_cast<float*>(glm::value_ptr(u.IndexToLocal)));
+  program->SetUniformMatrix3x3("LocalToIndex", const_cast<float*>(glm::value_ptr(u.LocalToIndex)));
+  const float tableRange[2] = { float(u.Table->Range[0]), float(u.Table->Range[1]) };
+  program->SetUniform2f("TableRange", tableRange);
+  program->SetUniformf("TableSize", float(u.Table->Size));
+  program->SetUniformf("ExtinctionUnit", u.ExtinctionUnit);
+  program->SetUniformf("Step", u.Step);
+  program->SetUniformf("TerminationTransmittance", u.TerminationTransmittance);
+
+  const cloudvis::LightingParameters& p = u.Lighting;
+  std::vector<int> positional(MaxLights, 0);
+  std::vector<float> position(3 * MaxLights, 0.0f), direction(3 * MaxLights, 0.0f),
+    radiance(3 * MaxLights, 0.0f), attenuation(3 * MaxLights, 0.0f),
+    indexDirection(3 * MaxLights, 0.0f), indexOffset(3 * MaxLights, 0.0f);
+  for (size_t i = 0; i < u.Lights.size(); ++i)
   {
-    const cloudvis::Light& l = lights[i];
+    const cloudvis::LocalLight& l = u.Lights[i];
     positional[i] = l.Positional ? 1 : 0;
-    // The direction toward a directional light; SampleLight gives the same on the CPU.
-    const glm::vec3 towardLight = cloudvis::SampleLight(l, glm::vec3(0.0f)).Direction;
-    const glm::vec3 e = l.Color * l.Intensity;
-    const glm::vec3 stepInIndex = worldToIndex * towardLight;
+    // Per directional light, what the CPU twin computes per sample: l and h l in index units.
+    const glm::vec3 stepInIndex = u.LocalToIndex * l.Direction;
+    const glm::vec3 offsetInIndex = u.LocalToIndex * (p.DerivativeDistance * l.Direction);
     for (int c = 0; c < 3; ++c)
     {
       position[3 * i + c] = l.Position[c];
-      direction[3 * i + c] = l.Positional ? 0.0f : towardLight[c];
-      radiance[3 * i + c] = e[c];
+      direction[3 * i + c] = l.Direction[c];
+      radiance[3 * i + c] = l.Radiance[c];
       attenuation[3 * i + c] = l.Attenuation[c];
       indexDirection[3 * i + c] = l.Positional ? 0.0f : stepInIndex[c];
-      indexOffset[3 * i + c] = l.Positional ? 0.0f : h * stepInIndex[c];
+      indexOffset[3 * i + c] = l.Positional ? 0.0f : offsetInIndex[c];
     }
   }
-  program->SetUniform1iv("LightPositional", 8, positional.data());
-  program->SetUniform3fv("LightIndexDirection", 8, indexDirection.data());
-  program->SetUniform3fv("LightIndexOffset", 8, indexOffset.data());
-  program->SetUniform3fv("LightPosition", 8, position.data());
-  program->SetUniform3fv("LightDirection", 8, direction.data());
-  program->SetUniform3fv("LightRadiance", 8, radiance.data());
-  program->SetUniform3fv("LightAttenuation", 8, attenuation.data());
-  const glm::vec3 ambient = p.AmbientColor * p.AmbientStrength;
-  program->SetUniform3f("Ambient", glm::value_ptr(ambient));
-  program->SetUniformf("DerivativeDistance", h);
+  program->SetUniform1iv("LightPositional", MaxLights, positional.data());
+  program->SetUniform3fv("LightIndexDirection", MaxLights, indexDirection.data());
+  program->SetUniform3fv("LightIndexOffset", MaxLights, indexOffset.data());
+  program->SetUniform3fv("LightPosition", MaxLights, position.data());
+  program->SetUniform3fv("LightDirection", MaxLights, direction.data());
+  program->SetUniform3fv("LightRadiance", MaxLights, radiance.data());
+  program->SetUniform3fv("LightAttenuation", MaxLights, attenuation.data());
+  program->SetUniform3f("Ambient", glm::value_ptr(u.Ambient));
+  program->SetUniformf("DerivativeDistance", p.DerivativeDistance);
+  program->SetUniformf("DerivativeSlopeScale", u.DerivativeSlopeScale);
   program->SetUniformi("LightSteps", p.LightSteps);
-  program->SetUniformf("LightStep", p.LightStep > 0.0f ? p.LightStep : float(2.0 * smallestSpacing));
+  program->SetUniformf("LightStep", p.LightStep);
   program->SetUniformf("LightStepGrowth", p.LightStepGrowth);
   program->SetUniformf("PhaseG1", p.PhaseG1);
   program->SetUniformf("PhaseG2", p.PhaseG2);
@@ -501,7 +519,7 @@ void vtkCloudVolumeMapper::SetLightingUniforms(vtkShaderProgram* program,
 void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   this->LastError.clear();
-  vtkImageData* input = this->ValidInput();
+  vtkImageData* input = this->ValidInput(volume);
   if (!input || !this->UpdateVolumeTextures(renderer, volume, input))
   {
     return;
@@ -589,41 +607,42 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   // The opaque scene's depth, which ends the rays.
   view.Depth->CopyFromFrameBuffer(viewport[0], viewport[1], 0, 0, viewport[2], viewport[3]);
 
-  // Camera and volume placement: normalized device coordinates to world and to voxel indices.
+  // The march's uniforms, the same SetUpMarch computes for the CPU reference, and its refusals.
+  cloudvis::MarchSetup setup;
+  setup.Geometry = cloudvis::GeometryOf(input, volume->GetMatrix());
+  setup.Table = &in.Table;
+  setup.SampleDistance = this->SampleDistance;
+  setup.TerminationTransmittance = this->TerminationTransmittance;
+  setup.Lighting = this->Lighting;
+  setup.Lights = LightsOf(renderer);
+  cloudvis::MarchUniforms uniforms;
+  cloudvis::LocalFrame localFrame;
+  const cloudvis::MarchProblem problem = cloudvis::SetUpMarch(setup, uniforms, &localFrame);
+  if (problem)
+  {
+    this->Fail(problem.Message);
+    return;
+  }
+
+  // Normalized device coordinates to the local frame, built camera-relative (DeviceToLocal) so
+  // that no world coordinate enters it: the view's rotation and translation, the eye recovered
+  // from them (the camera's position, or where its model transform puts it), the projection.
   auto* camera = static_cast<vtkOpenGLCamera*>(renderer->GetActiveCamera());
   vtkMatrix4x4 *wcvc, *vcdc, *wcdc;
   vtkMatrix3x3* normals;
   camera->GetKeyMatrices(renderer, wcvc, normals, vcdc, wcdc);
-  const glm::dmat4 worldToDevice = glm::transpose(ToGlm(wcdc)); // key matrices are transposed
+  const glm::dmat4 worldToView = glm::transpose(ToGlm(wcvc)); // key matrices are transposed
+  const glm::dmat3 rotation(worldToView);
+  const glm::dvec3 eye = -glm::inverse(rotation) * glm::dvec3(worldToView[3]);
+  const glm::dmat4 deviceToLocal =
+    cloudvis::DeviceToLocal(localFrame, glm::transpose(ToGlm(vcdc)), rotation, eye);
+  const glm::dmat4 worldToDevice = glm::transpose(ToGlm(wcdc));
   const glm::dmat4 modelToWorld = ToGlm(volume->GetMatrix());
-  const double* origin = input->GetOrigin();
-  const double* spacing = input->GetSpacing();
-  glm::dmat4 indexToModel(1.0);
-  const glm::dmat4 direction = [&] {
-    glm::dmat4 d(1.0);
-    const vtkMatrix3x3* m = input->GetDirectionMatrix();
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        d[c][r] = m->GetElement(r, c);
-    return d;
-  }();
-  indexToModel = glm::translate(glm::dmat4(1.0), glm::dvec3(origin[0], origin[1], origin[2])) *
-    direction * glm::scale(glm::dmat4(1.0), glm::dvec3(spacing[0], spacing[1], spacing[2]));
-  const glm::dmat4 deviceToWorld = glm::inverse(worldToDevice);
-  const glm::dmat4 deviceToIndex = glm::inverse(worldToDevice * modelToWorld * indexToModel);
 
-  int dimensions[3];
-  input->GetDimensions(dimensions);
-  const double step = this->SampleDistance > 0.0
-    ? this->SampleDistance
-    : std::min({ spacing[0], spacing[1], spacing[2] });
-  const double* bounds = volume->GetBounds();
-  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  view.MostSamplesPerRay = std::max(1.0, std::ceil(diagonal / step));
-  const int iterations = int(std::ceil(diagonal / step)) +
-    3 * (in.BrickCount[0] + in.BrickCount[1] + in.BrickCount[2]) + 16;
+  view.MostSamplesPerRay = std::max(1.0, double(uniforms.MaximumSamples - 16));
+  // One iteration per sample, and at most about three leaps per brick crossed.
+  const int iterations =
+    uniforms.MaximumSamples + 3 * (in.BrickCount[0] + in.BrickCount[1] + in.BrickCount[2]);
 
   // Progressive accumulation: continue averaging while everything the image depends on holds.
   std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
@@ -645,11 +664,11 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   }
 
   // The march is one shader; a lighting model only supplies its source term.
-  const std::vector<cloudvis::Light> lights = LightsOf(renderer);
+  const std::vector<cloudvis::LocalLight>& lights = uniforms.Lights;
   std::string key = std::to_string(int(this->Lighting.Model)) + ":";
   if (this->Lighting.Model != cloudvis::LightingModel::None)
   {
-    for (const cloudvis::Light& light : lights)
+    for (const cloudvis::LocalLight& light : lights)
     {
       key += light.Positional ? 'P' : 'D';
     }
@@ -719,15 +738,10 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     texture->Activate();
   }
-  SetMatrix(program, "DCWCMatrix", deviceToWorld);
-  SetMatrix(program, "DCIndexMatrix", deviceToIndex);
-  const float dims[3] = { float(dimensions[0]), float(dimensions[1]), float(dimensions[2]) };
-  program->SetUniform3f("Dimensions", dims);
+  SetMatrix(program, "DCLocalMatrix", deviceToLocal);
+  this->SetMarchUniforms(program, uniforms);
   program->SetUniformi("DensityTexture", in.Density->GetTextureUnit());
   program->SetUniformi("TransferTexture", in.Transfer->GetTextureUnit());
-  const float tableRange[2] = { float(in.Table.Range[0]), float(in.Table.Range[1]) };
-  program->SetUniform2f("TableRange", tableRange);
-  program->SetUniformf("TableSize", float(in.Table.Size));
   program->SetUniformi("EmptyDistanceTexture", in.EmptyDistance->GetTextureUnit());
   const float bricks[3] = { float(in.BrickCount[0]), float(in.BrickCount[1]),
     float(in.BrickCount[2]) };
@@ -739,15 +753,7 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   program->SetUniformf("JitterTextureSize", float(in.JitterSize));
   program->SetUniformf("JitterOffset", float(std::fmod(frame * GoldenRatioFraction, 1.0)));
   program->SetUniformi("JitterEnabled", this->Jitter ? 1 : 0);
-  program->SetUniformf("StepWorld", float(step));
-  program->SetUniformf("TerminationTransmittance", float(this->TerminationTransmittance));
   program->SetUniformi("MaximumIterations", iterations);
-  const glm::dmat4 indexToWorld = modelToWorld * indexToModel;
-  SetMatrix(program, "IndexToWorld", indexToWorld);
-  glm::mat3 worldToIndex(glm::inverse(glm::dmat3(indexToWorld)));
-  program->SetUniformMatrix3x3("WorldToIndex", glm::value_ptr(worldToIndex));
-  this->SetLightingUniforms(
-    program, lights, worldToIndex, std::min({ spacing[0], spacing[1], spacing[2] }));
   march->Render();
   for (vtkTextureObject* texture : { in.Density.Get(), in.Transfer.Get(), in.EmptyDistance.Get(),
          in.Jitter.Get(), view.Depth.Get() })
@@ -756,6 +762,7 @@ void vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   }
   glBlendColor(0.0f, 0.0f, 0.0f, 0.0f);
   view.AccumulatedFrames = frame + 1;
+  view.LocalUnit = localFrame.Unit;
 
   if (this->CollectStatistics)
   {
@@ -833,9 +840,13 @@ bool vtkCloudVolumeMapper::ReadAuxiliary(
   {
     return false;
   }
+  // The march writes local distances, and NoDepth (1e30) where the cloud never passes 2%: an
+  // average over frames that holds it in any one of them is still above 1e30 / 65536.
+  const double unit = this->Internal->ViewOf(renderer).LocalUnit;
   for (size_t i = 2; i < channels.size(); i += 4)
   {
-    channels[i] = channels[i] >= 1e29f ? std::numeric_limits<float>::infinity() : channels[i];
+    channels[i] = channels[i] >= 1e24f ? std::numeric_limits<float>::infinity()
+                                       : float(double(channels[i]) * unit);
   }
   return true;
 }

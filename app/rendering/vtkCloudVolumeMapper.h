@@ -3,7 +3,11 @@
  * @brief   GPU ray marcher for cloud density fields with empty-space skipping
  *
  * vtkCloudVolumeMapper renders vtkImageData with one scalar component (float, unsigned char or
- * unsigned short) like any VTK volume mapper: vtkVolume + vtkVolumeProperty + vtkRenderer.
+ * unsigned short) like any VTK volume mapper: vtkVolume + vtkVolumeProperty + vtkRenderer. It
+ * honours the image's whole geometry (extent, which need not start at 0, origin, spacing and
+ * direction matrix) and the vtkVolume's matrix (position, orientation, scale, origin, user
+ * matrix). The march computes in a local frame around the volume (CloudMarchUniforms.h), so
+ * its precision does not depend on where the volume sits in the world or how large it is.
  * Each pixel's ray is clipped to the volume box and to the opaque geometry already in the depth
  * buffer, then samples the density at fixed steps t0 + k * dt. A brick occupancy structure
  * (vtkCloudOccupancyFilter) lets rays leap over bricks where the transfer function gives no
@@ -13,13 +17,16 @@
  * The transfer functions of the vtkVolumeProperty are read as physical quantities: the scalar
  * opacity a is opacity per ScalarOpacityUnitDistance u, giving the extinction
  * sigma_t = -ln(1 - a) / u, and the color is the albedo. Per step a sample absorbs
- * 1 - exp(-sigma_t dt) of the light behind it, so the image does not depend on the step.
+ * 1 - exp(-sigma_t dt) of the light behind it, so the image does not depend on the step. The
+ * functions are tabulated over their own points (not the data's range), and densities outside
+ * them take the end values, as in VTK.
  *
  * Lighting (docs/lighting.md): none (emission-absorption), derivative (the directional
  * derivative toward each light) or march (a nested march toward each light with Beer-Lambert
  * transmittance, a two-lobe Henyey-Greenstein phase and approximate multiple scattering). The
- * lights are the renderer's switched-on vtkLights (at most 8): directional or positional, with
- * their diffuse color, intensity and attenuation values.
+ * lights are the renderer's switched-on vtkLights (at most cloudvis::LightingLimits::MaxLights,
+ * 8; more are refused, not dropped): directional or positional, with their diffuse color,
+ * intensity and attenuation values.
  *
  * The march renders into a float target at ResolutionScale times the viewport, which a
  * composite pass upsamples (Catmull-Rom) and blends over the scene. While nothing changes,
@@ -27,14 +34,18 @@
  * While the user interacts (the render window's desired update rate is above 1), the scale is
  * lowered automatically to keep InteractiveFrameRate.
  *
- * Errors (no usable scalars, a field beyond the GPU's 3-D texture limit, an invalid transfer
- * function, a step <= 0, a shader or framebuffer failure) are reported with vtkErrorMacro and
- * kept in GetLastError(); the volume is then not drawn.
+ * Errors (no usable scalars, NaN or infinite densities, an unusable geometry, a field beyond the
+ * GPU's 3-D texture limit, an invalid transfer function, a step that needs more than
+ * cloudvis::MaxSamplesPerRay samples per ray, more than 8 lights, lights or extinctions beyond
+ * float range: everything cloudvis::SetUpMarch refuses, in the CPU reference's words; a shader
+ * or framebuffer failure) are reported with vtkErrorMacro and kept in GetLastError(); the
+ * volume is then not drawn.
  */
 #ifndef vtkCloudVolumeMapper_h
 #define vtkCloudVolumeMapper_h
 
 #include "CloudLighting.h"
+#include "CloudMarchUniforms.h"
 #include "cloudvisRenderingModule.h"
 
 #include <vtkVolumeMapper.h>
@@ -56,7 +67,8 @@ public:
   ///@{
   /**
    * Distance between samples along a ray, in world units. 0 means one sample per voxel: the
-   * smallest spacing of the input. Default 0.
+   * smallest edge of a voxel in the world. A step that needs more than cloudvis::MaxSamplesPerRay
+   * samples along the volume's longest ray is refused. Default 0.
    */
   vtkSetMacro(SampleDistance, double);
   vtkGetMacro(SampleDistance, double);
@@ -197,8 +209,8 @@ public:
   /**
    * Per pixel of the same target, four floats: samples taken, useful samples (non-zero
    * extinction), the cloud's depth (world distance from the near clipping plane along the ray to
-   * where its opacity first exceeds 2%; +infinity where it never does) and 1. Averaged over the
-   * accumulated frames like the image.
+   * where its opacity first exceeds 2%; +infinity where it never does in some accumulated frame)
+   * and 1. Averaged over the accumulated frames like the image.
    */
   bool ReadAuxiliary(vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height);
 
@@ -232,12 +244,11 @@ private:
   void operator=(const vtkCloudVolumeMapper&) = delete;
 
   bool Fail(const std::string& message);
-  vtkImageData* ValidInput();
+  vtkImageData* ValidInput(vtkVolume* volume);
   bool UpdateVolumeTextures(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
   double ChooseResolutionScale(vtkRenderer* renderer);
   void MarchPass(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
-  void SetLightingUniforms(vtkShaderProgram* program, const std::vector<cloudvis::Light>& lights,
-    const glm::mat3& worldToIndex, double smallestSpacing);
+  void SetMarchUniforms(vtkShaderProgram* program, const cloudvis::MarchUniforms& uniforms);
   void CompositePass(vtkRenderer* renderer);
   void ReadStatistics(vtkRenderer* renderer);
   bool ReadTarget(vtkRenderer* renderer, int target, std::vector<float>& rgba, int& width, int& height);

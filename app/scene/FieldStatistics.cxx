@@ -2,6 +2,7 @@
 // need the range). Sums are accumulated in double so the mean of a large field stays accurate.
 #include "FieldStatistics.h"
 
+#include "CloudMarchUniforms.h" // GeometryOf
 #include "Utf8.h"
 
 #include <vtkDataArray.h>
@@ -11,7 +12,6 @@
 
 #include <algorithm>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 
 namespace cloudvis
@@ -27,25 +27,21 @@ FieldStatistics ComputeFieldStatistics(vtkImageData* field, int bins)
   {
     s.Direction[std::size_t(i)] = field->GetDirectionMatrix()->GetData()[i];
   }
-  // The world positions of the corner voxels (index space to world: origin + D diag(spacing) ijk);
-  // reported from the first voxel, which is what a scene's "bounds" describes.
-  int extent[6];
-  field->GetExtent(extent);
-  double first[3];
-  field->TransformContinuousIndexToPhysicalPoint(extent[0], extent[2], extent[4], first);
-  s.Origin = { { first[0], first[1], first[2] } };
+  // Where the renderers put the voxels: the first voxel of the extent (origin, direction and
+  // spacing applied), and the world box around the (possibly rotated) lattice.
+  const VolumeGeometry geometry = GeometryOf(field, nullptr);
+  const glm::dvec3 first(geometry.IndexToWorld[3]);
+  s.Origin = { { first.x, first.y, first.z } };
   for (int a = 0; a < 3; ++a)
   {
-    s.Bounds[2 * a] = std::numeric_limits<double>::max();
-    s.Bounds[2 * a + 1] = -std::numeric_limits<double>::max();
+    s.Bounds[2 * a] = s.Bounds[2 * a + 1] = first[a];
   }
   for (int corner = 0; corner < 8; ++corner)
   {
-    double world[3];
-    field->TransformContinuousIndexToPhysicalPoint(extent[(corner & 1) ? 1 : 0],
-      extent[(corner & 2) ? 3 : 2],
-      extent[(corner & 4) ? 5 : 4],
-      world);
+    const glm::dvec3 index((corner & 1) ? s.Dimensions[0] - 1 : 0,
+      (corner & 2) ? s.Dimensions[1] - 1 : 0,
+      (corner & 4) ? s.Dimensions[2] - 1 : 0);
+    const glm::dvec3 world(geometry.IndexToWorld * glm::dvec4(index, 1.0));
     for (int a = 0; a < 3; ++a)
     {
       s.Bounds[2 * a] = std::min(s.Bounds[2 * a], world[a]);

@@ -9,7 +9,9 @@
 //      (ReadInIsolation, IsolatedRead.h), which sends the image back: a crash, a hang or a
 //      runaway allocation in VTK ends the child, not cloudvis;
 //   3. in that read, the header's extent checked against the memory available and
-//      field.max_voxels before VTK allocates the arrays it claims.
+//      field.max_voxels before VTK allocates the arrays it claims, and the image's Origin,
+//      Spacing and Direction attributes checked (VTK silently replaces one it cannot parse by
+//      its default); the Direction is set on the image where VTK 9.1 drops it (.pvti).
 // A .pvti names its pieces; each piece goes through layer 1 as a .vti would, the child reads the
 // whole assembly, and the memory check counts a piece's arrays on top of the output's. (Pieces
 // that leave part of the whole extent uncovered are refused by VTK itself: "No available piece
@@ -26,6 +28,8 @@
 #include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLPImageDataReader.h>
 
@@ -336,12 +340,90 @@ void CheckExtentFitsInMemory(const std::string& path,
   CheckFieldSize(path, dimensions, 4.0 * arrays, maximumVoxels, extraBytes);
 }
 
-// The read in this process, after layers 1 and 2: the header, the memory check, then the data.
+// VTK's readers turn an Origin, Spacing or Direction attribute they cannot parse ("nan", "inf",
+// too few numbers) into its default (origin 0, spacing 1, identity) without a word: the text of
+// the image element (ImageData for a .vti or a piece, PImageData for a .pvti) is checked here, as
+// VTK's own XML parser read it. Returns the Direction attribute's nine numbers (row by row, as VTK
+// writes them) when there is one, for ReadChecked to set where VTK drops it.
+std::optional<std::array<double, 9>> CheckGeometryAttributes(const std::string& path,
+  vtkXMLReader* reader)
+{
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* image = nullptr;
+  for (const char* element : { "ImageData", "PImageData" })
+  {
+    image = image ? image : (root ? root->FindNestedElementWithName(element) : nullptr);
+  }
+  std::optional<std::array<double, 9>> direction;
+  if (!image)
+  {
+    return direction;
+  }
+  for (const auto& [name, count] :
+    { std::pair<const char*, std::size_t>{ "Origin", 3 }, { "Spacing", 3 }, { "Direction", 9 } })
+  {
+    const char* text = image->GetAttribute(name);
+    if (!text)
+    {
+      continue;
+    }
+    const std::string attribute =
+      std::string("the image's ") + name + " attribute \"" + Shorten(text, 80) + "\"";
+    std::istringstream in{ std::string(text) };
+    std::vector<double> values;
+    std::string token;
+    while (in >> token)
+    {
+      char* end = nullptr;
+      values.push_back(std::strtod(token.c_str(), &end));
+      if (*end != '\0' || !std::isfinite(values.back()))
+      {
+        Fail(path, attribute + " holds \"" + Shorten(token, 40) + "\", not a finite number");
+      }
+    }
+    if (values.size() != count)
+    {
+      Fail(path,
+        attribute + " holds " + std::to_string(values.size()) + " numbers, not " +
+          std::to_string(count));
+    }
+    if (count == 9)
+    {
+      direction.emplace();
+      std::copy(values.begin(), values.end(), direction->begin());
+    }
+  }
+  return direction;
+}
+
+// The Direction of a .pvti: vtkXMLPImageDataReader (VTK 9.1) reads the PImageData's Origin and
+// Spacing but drops its Direction, and VTK 9.1's parallel writer leaves the Direction out of the
+// .pvti altogether, writing it only in each piece. So the direction is the .pvti's when it states
+// one (cloudvis and newer VTK write it there), else its first piece's (checked the same way).
+std::optional<std::array<double, 9>> ParallelImageDirection(vtkXMLReader* reader,
+  const std::string& path,
+  const std::string& firstPiece)
+{
+  if (std::optional<std::array<double, 9>> direction = CheckGeometryAttributes(path, reader))
+  {
+    return direction;
+  }
+  vtkNew<vtkXMLImageDataReader> piece;
+  piece->SetFileName(firstPiece.c_str());
+  piece->UpdateInformation();
+  return CheckGeometryAttributes(firstPiece, piece);
+}
+
+// The read in the isolated child, after layer 1: the header, the memory check, the geometry
+// attributes, then the data, with the Direction set on the image (`firstPiece`: a .pvti's, see
+// ParallelImageDirection).
 template<typename Reader>
 vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
   const std::string& formatName,
   std::uint64_t maximumVoxels,
-  double extraBytes = 0.0)
+  double extraBytes = 0.0,
+  const std::string& firstPiece = "")
 {
   VtkMessageCapture messages;
   vtkNew<Reader> reader;
@@ -360,11 +442,18 @@ vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
     Fail(path, WithVtkReason("cannot read " + formatName, messages));
   }
   CheckExtentFitsInMemory(path, reader, maximumVoxels, extraBytes);
+  const std::optional<std::array<double, 9>> direction = firstPiece.empty()
+    ? CheckGeometryAttributes(path, reader)
+    : ParallelImageDirection(reader, path, firstPiece);
   reader->Update();
   vtkSmartPointer<vtkImageData> image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
   {
     Fail(path, WithVtkReason("cannot read " + formatName, messages));
+  }
+  if (direction)
+  {
+    image->SetDirectionMatrix(direction->data());
   }
   return image;
 }
@@ -421,28 +510,6 @@ std::vector<Piece> ListPieces(const std::string& path, const std::string& xml)
   return pieces;
 }
 
-// The Direction attribute (nine numbers) of the first element `tag` ("<PImageData") of `xml`.
-std::optional<std::array<double, 9>> DirectionAttribute(const std::string& xml, const char* tag)
-{
-  const auto at = xml.find(tag);
-  const std::optional<std::string> text =
-    at == std::string::npos ? std::nullopt : Attribute(StartTag(xml, at), "Direction");
-  if (!text)
-  {
-    return std::nullopt;
-  }
-  std::array<double, 9> direction{};
-  std::istringstream in(*text);
-  for (double& value : direction)
-  {
-    if (!(in >> value) || !std::isfinite(value))
-    {
-      return std::nullopt;
-    }
-  }
-  return direction;
-}
-
 // What both readers return: the image, the array field.array names (if any) and the report.
 FieldFileContents Contents(const vtkSmartPointer<vtkImageData>& image,
   const FieldReadOptions& options)
@@ -471,12 +538,9 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
   const FieldReadOptions& options)
 {
   std::vector<Piece> listed;
-  std::optional<std::array<double, 9>> direction;
   {
     const RegularInputFile file(path, "field");
-    const std::string xml = file.ReadAll(MaximumParallelFileBytes);
-    listed = ListPieces(path, xml);
-    direction = DirectionAttribute(xml, "<PImageData");
+    listed = ListPieces(path, file.ReadAll(MaximumParallelFileBytes));
   }
   // Every piece as a .vti: a regular file that passes the text checks. Errors name the .pvti,
   // the piece and what is wrong with it.
@@ -490,10 +554,6 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
       const RegularInputFile file(piece.Path, "field piece");
       totalBytes += file.Size();
       CheckVtiText(piece.Path, file);
-      if (!direction && number == 1)
-      {
-        direction = DirectionAttribute(file.ReadAt(0, 1 << 16), "<ImageData");
-      }
       largestPiece = std::max(largestPiece, VoxelCount(piece.Region));
     }
     catch (const InputError& e)
@@ -509,19 +569,16 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
   }
   // Beyond the output: a piece's arrays while it is copied in (one piece at a time; counted as
   // two arrays of 4 bytes per voxel).
-  const auto read = [&path, &options, largestPiece]()
+  const auto read = [&path, &options, &listed, largestPiece]()
   {
-    return ReadChecked<vtkXMLPImageDataReader>(
-      path, "VTK XML parallel image data", options.MaximumVoxels, largestPiece * 8.0);
+    return ReadChecked<vtkXMLPImageDataReader>(path,
+      "VTK XML parallel image data",
+      options.MaximumVoxels,
+      largestPiece * 8.0,
+      listed.front().Path);
   };
   FieldFileContents contents =
     ReadInIsolation(path, totalBytes, "VTK's reader", [&] { return Contents(read(), options); });
-  // VTK 9.1's parallel reader drops the direction; it is the .pvti's (newer VTK writes it there)
-  // or, as VTK 9.1's parallel writer leaves it out, the pieces'.
-  if (direction)
-  {
-    contents.Image->SetDirectionMatrix(direction->data());
-  }
   contents.Report.Add("pieces", std::to_string(listed.size()));
   return contents;
 }

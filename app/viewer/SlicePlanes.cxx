@@ -1,51 +1,143 @@
 // The slice widgets are placed in the 3D renderer explicitly (SetCurrentRenderer): left to
 // themselves they would attach to whichever renderer is under the pointer when enabled, which
 // may be the editor's. Their key activation is off: the viewer's keys toggle them.
+//
+// Two behaviours of vtkImagePlaneWidget are replaced:
+// - its middle-button push moves the plane by the mouse motion projected on the plane's normal,
+//   which is nothing when the plane faces the camera; here the motion is measured along the
+//   normal's image on screen, or vertically when that image is too short to follow;
+// - its window/level with a shared (user controlled) lookup table only reports the new values;
+//   here the drag sets them on SliceColors, so every slice changes.
 #include "SlicePlanes.h"
+
+#include "SliceColors.h"
 
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
 #include <vtkCutter.h>
 #include <vtkImageData.h>
 #include <vtkImagePlaneWidget.h>
 #include <vtkImplicitPlaneRepresentation.h>
 #include <vtkImplicitPlaneWidget2.h>
 #include <vtkLookupTable.h>
+#include <vtkObjectFactory.h>
 #include <vtkPlane.h>
+#include <vtkPlaneSource.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace cloudvis
 {
-
-SlicePlanes::SlicePlanes(
-  vtkImageData* field, vtkRenderer* renderer, vtkRenderWindowInteractor* interactor)
-  : Renderer(renderer)
+namespace
 {
-  double range[2];
-  field->GetScalarRange(range);
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0;
-  }
-  // Dark blue through teal to pale yellow: empty space dark, dense cloud bright.
-  this->Colors->SetTableRange(range);
-  this->Colors->SetHueRange(0.66, 0.14);
-  this->Colors->SetSaturationRange(0.85, 0.45);
-  this->Colors->SetValueRange(0.25, 1.0);
-  this->Colors->Build();
+// An orthogonal slice plane whose middle-button drag works from every view direction and moves
+// the plane from voxel layer to voxel layer.
+class vtkCloudSlicePlaneWidget : public vtkImagePlaneWidget
+{
+public:
+  static vtkCloudSlicePlaneWidget* New();
+  vtkTypeMacro(vtkCloudSlicePlaneWidget, vtkImagePlaneWidget);
 
+protected:
+  vtkCloudSlicePlaneWidget() = default;
+  ~vtkCloudSlicePlaneWidget() override = default;
+
+  void OnMiddleButtonDown() override
+  {
+    this->Superclass::OnMiddleButtonDown();
+    this->PushStart = this->GetSlicePosition();
+    this->Pushed = 0.0;
+  }
+
+  void OnMouseMove() override
+  {
+    if (this->State != vtkImagePlaneWidget::Pushing || !this->CurrentRenderer)
+    {
+      this->Superclass::OnMouseMove();
+      return;
+    }
+    vtkRenderer* renderer = this->CurrentRenderer;
+    const int* now = this->Interactor->GetEventPosition();
+    const int* last = this->Interactor->GetLastEventPosition();
+    const double move[2] = { double(now[0] - last[0]), double(now[1] - last[1]) };
+    double center[3], normal[3];
+    this->PlaneSource->GetCenter(center);
+    this->PlaneSource->GetNormal(normal);
+    // The normal's image on screen (pixels per world unit) and the world size of a pixel there.
+    double a[3], b[3], up[4];
+    ComputeWorldToDisplay(renderer, center[0], center[1], center[2], a);
+    ComputeWorldToDisplay(
+      renderer, center[0] + normal[0], center[1] + normal[1], center[2] + normal[2], b);
+    ComputeDisplayToWorld(renderer, a[0], a[1] + 1.0, a[2], up);
+    const double unitsPerPixel = std::sqrt(vtkMath::Distance2BetweenPoints(center, up));
+    const double n[2] = { b[0] - a[0], b[1] - a[1] };
+    const double n2 = n[0] * n[0] + n[1] * n[1];
+    double distance = 0.0;
+    // Followable when the normal is more than about 17 degrees off the view direction.
+    if (std::sqrt(n2) * unitsPerPixel > 0.3)
+    {
+      distance = (move[0] * n[0] + move[1] * n[1]) / n2;
+    }
+    else
+    {
+      // Facing the camera: moving the mouse up brings the slice toward the viewer.
+      double eye[3];
+      renderer->GetActiveCamera()->GetPosition(eye);
+      const double toward = (eye[0] - center[0]) * normal[0] + (eye[1] - center[1]) * normal[1] +
+        (eye[2] - center[2]) * normal[2];
+      distance = move[1] * unitsPerPixel * (toward >= 0.0 ? 1.0 : -1.0);
+    }
+    this->Pushed += distance;
+    // Snap to the nearest voxel layer.
+    double origin[3], spacing[3];
+    this->ImageData->GetOrigin(origin);
+    this->ImageData->GetSpacing(spacing);
+    const int axis = this->PlaneOrientation;
+    const int index =
+      int(std::lround((this->PushStart + this->Pushed - origin[axis]) / spacing[axis]));
+    int extent[6];
+    this->ImageData->GetExtent(extent);
+    this->SetSliceIndex(std::clamp(index, extent[2 * axis], extent[2 * axis + 1]));
+    this->EventCallbackCommand->SetAbortFlag(1);
+    this->InvokeEvent(vtkCommand::InteractionEvent, nullptr);
+    this->Interactor->Render();
+  }
+
+private:
+  double PushStart = 0.0;
+  double Pushed = 0.0;
+};
+vtkStandardNewMacro(vtkCloudSlicePlaneWidget);
+
+struct PlaneObserver
+{
+  SlicePlanes* Owner;
+  int Axis;
+};
+} // namespace
+
+SlicePlanes::SlicePlanes(vtkImageData* field,
+  vtkRenderer* renderer,
+  vtkRenderWindowInteractor* interactor,
+  SliceColors& colors)
+  : Field(field)
+  , Renderer(renderer)
+  , Interactor(interactor)
+  , Colors(colors)
+{
   int dimensions[3];
   field->GetDimensions(dimensions);
   for (int axis = 0; axis < 3; ++axis)
   {
-    auto slice = vtkSmartPointer<vtkImagePlaneWidget>::New();
+    auto slice = vtkSmartPointer<vtkCloudSlicePlaneWidget>::New();
     slice->SetInteractor(interactor);
     slice->SetCurrentRenderer(renderer);
     slice->KeyPressActivationOff();
@@ -54,12 +146,31 @@ SlicePlanes::SlicePlanes(
     slice->SetPlaneOrientation(axis);
     slice->SetSliceIndex(dimensions[axis] / 2);
     slice->UserControlledLookupTableOn();
-    slice->SetLookupTable(this->Colors);
-    slice->DisplayTextOn();
+    slice->SetLookupTable(colors.GetTable());
+    slice->DisplayTextOff();    // the viewer's readout shows the probe, and keeps it
+    slice->SetMarginSizeX(0.0); // no margins: the middle button always pushes, never tilts
+    slice->SetMarginSizeY(0.0);
     slice->TextureInterpolateOn();
     slice->SetResliceInterpolateToLinear();
     const double outline[3][3] = { { 1.0, 0.35, 0.35 }, { 0.35, 1.0, 0.35 }, { 0.4, 0.55, 1.0 } };
     slice->GetPlaneProperty()->SetColor(outline[axis][0], outline[axis][1], outline[axis][2]);
+    vtkNew<vtkCallbackCommand> observer;
+    observer->SetClientData(new PlaneObserver{ this, axis });
+    observer->SetClientDataDeleteCallback(
+      [](void* data) { delete static_cast<PlaneObserver*>(data); });
+    observer->SetCallback(
+      [](vtkObject*, unsigned long event, void* data, void*)
+      {
+        auto* self = static_cast<PlaneObserver*>(data);
+        self->Owner->OnPlaneEvent(self->Axis, event);
+      });
+    for (unsigned long event : { vtkCommand::StartInteractionEvent,
+           vtkCommand::InteractionEvent,
+           vtkCommand::StartWindowLevelEvent,
+           vtkCommand::WindowLevelEvent })
+    {
+      slice->AddObserver(event, observer);
+    }
     this->Slices[size_t(axis)] = slice;
   }
 
@@ -89,7 +200,7 @@ SlicePlanes::SlicePlanes(
   this->ObliqueCutter->SetCutFunction(this->ObliquePlane);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputConnection(this->ObliqueCutter->GetOutputPort());
-  mapper->SetLookupTable(this->Colors);
+  mapper->SetLookupTable(colors.GetTable());
   mapper->UseLookupTableScalarRangeOn();
   mapper->ScalarVisibilityOn();
   this->ObliqueActor->SetMapper(mapper);
@@ -105,11 +216,49 @@ SlicePlanes::~SlicePlanes()
   for (auto& slice : this->Slices)
   {
     slice->Off();
+    slice->RemoveAllObservers();
     slice->SetInteractor(nullptr);
   }
   this->ObliqueWidget->Off();
   this->ObliqueWidget->SetInteractor(nullptr);
   this->Renderer->RemoveActor(this->ObliqueActor);
+}
+
+void SlicePlanes::OnPlaneEvent(int axis, unsigned long event)
+{
+  vtkImagePlaneWidget* slice = this->Slices[size_t(axis)];
+  const int* position = this->Interactor->GetEventPosition();
+  if (event == vtkCommand::StartWindowLevelEvent)
+  {
+    this->Colors.BeginWindowLevelDrag(position[0], position[1]);
+    return;
+  }
+  if (event == vtkCommand::WindowLevelEvent)
+  {
+    const int* size = this->Renderer->GetSize();
+    this->Colors.DragWindowLevel(position[0], position[1], size[0], size[1]);
+  }
+  else if (slice->GetCursorDataStatus())
+  {
+    double xyzv[4];
+    slice->GetCursorData(xyzv);
+    SliceProbe probe;
+    probe.Valid = true;
+    double origin[3], spacing[3];
+    this->Field->GetOrigin(origin);
+    this->Field->GetSpacing(spacing);
+    for (int c = 0; c < 3; ++c)
+    {
+      probe.Index[size_t(c)] = int(std::lround(xyzv[c]));
+      probe.Position[size_t(c)] = origin[c] + probe.Index[size_t(c)] * spacing[c];
+    }
+    probe.Value = xyzv[3];
+    this->Probe = probe;
+  }
+  if (this->Changed)
+  {
+    this->Changed();
+  }
 }
 
 void SlicePlanes::SetSliceVisible(int axis, bool visible)
@@ -122,6 +271,26 @@ bool SlicePlanes::GetSliceVisible(int axis) const
   return this->Slices[size_t(axis)]->GetEnabled() != 0;
 }
 
+void SlicePlanes::SetSliceIndex(int axis, int index)
+{
+  int extent[6];
+  this->Field->GetExtent(extent);
+  this->Slices[size_t(axis)]->SetSliceIndex(
+    std::clamp(index, extent[2 * axis], extent[2 * axis + 1]));
+}
+
+int SlicePlanes::GetSliceIndex(int axis) const
+{
+  return this->Slices[size_t(axis)]->GetSliceIndex();
+}
+
+int SlicePlanes::GetNumberOfSlices(int axis) const
+{
+  int dimensions[3];
+  this->Field->GetDimensions(dimensions);
+  return dimensions[axis];
+}
+
 double SlicePlanes::GetSlicePosition(int axis) const
 {
   return this->Slices[size_t(axis)]->GetSlicePosition();
@@ -132,6 +301,31 @@ double SlicePlanes::GetProbedValue(int axis) const
   const double value = this->Slices[size_t(axis)]->GetCurrentImageValue();
   // VTK_DOUBLE_MAX until the cursor has been over the slice.
   return value >= 1e299 ? std::numeric_limits<double>::quiet_NaN() : value;
+}
+
+bool SlicePlanes::ProbeAt(const std::array<double, 3>& position)
+{
+  double origin[3], spacing[3];
+  int extent[6];
+  this->Field->GetOrigin(origin);
+  this->Field->GetSpacing(spacing);
+  this->Field->GetExtent(extent);
+  SliceProbe probe;
+  probe.Valid = true;
+  for (int c = 0; c < 3; ++c)
+  {
+    const int index = int(std::lround((position[size_t(c)] - origin[c]) / spacing[c]));
+    if (index < extent[2 * c] || index > extent[2 * c + 1])
+    {
+      return false;
+    }
+    probe.Index[size_t(c)] = index;
+    probe.Position[size_t(c)] = origin[c] + index * spacing[c];
+  }
+  probe.Value =
+    this->Field->GetScalarComponentAsDouble(probe.Index[0], probe.Index[1], probe.Index[2], 0);
+  this->Probe = probe;
+  return true;
 }
 
 void SlicePlanes::SetObliqueVisible(bool visible)

@@ -7,6 +7,7 @@
 #include "AtomicFile.h"
 #include "CommandLine.h"
 #include "Errors.h"
+#include "ExportRender.h"
 #include "FieldIO.h"
 #include "FieldStatistics.h"
 #include "FileNames.h"
@@ -14,6 +15,8 @@
 #include "OffscreenRender.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "SupportImages.h"
+#include "SupportRun.h"
 #include "Utf8.h"
 #include "VtkWrittenFields.h"
 #include "vtkCloudDensitySource.h"
@@ -22,10 +25,8 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkCamera.h>
-#include <vtkPNGReader.h>
 #include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkXMLImageDataReader.h>
 
 #include <gtest/gtest.h>
@@ -33,11 +34,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <dirent.h>
-#include <filesystem>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -46,60 +43,16 @@ namespace
 {
 using json = nlohmann::json;
 
-// A fresh directory per test, removed (with its files) afterwards.
-class TemporaryDirectory
-{
-public:
-  TemporaryDirectory()
-  {
-    char pattern[] = "/tmp/cloudvis-app-test-XXXXXX";
-    this->Path = ::mkdtemp(pattern);
-  }
-  ~TemporaryDirectory() { std::filesystem::remove_all(this->Path); }
-  std::vector<std::string> Files() const
-  {
-    std::vector<std::string> names;
-    if (DIR* dir = ::opendir(this->Path.c_str()))
-    {
-      while (dirent* entry = ::readdir(dir))
-      {
-        const std::string name = entry->d_name;
-        if (name != "." && name != "..")
-        {
-          names.push_back(name);
-        }
-      }
-      ::closedir(dir);
-    }
-    return names;
-  }
-  std::string File(const std::string& name) const { return this->Path + "/" + name; }
+using cloudvis::support::ReadText;
+using cloudvis::support::TemporaryDirectory;
+using cloudvis::support::WriteText;
 
-  std::string Path;
-};
-
-void WriteText(const std::string& path, const std::string& text)
-{
-  std::ofstream(path) << text;
-}
-
-std::string ReadText(const std::string& path)
-{
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Runs the command line in-process; fails the test on a non-zero status.
+// Runs the cloudvis binary; fails the test on a non-zero status.
 std::string RunCloudvis(const std::vector<std::string>& arguments)
 {
-  std::vector<std::string> argv{ "cloudvis" };
-  argv.insert(argv.end(), arguments.begin(), arguments.end());
-  std::ostringstream out, err;
-  const int status = cloudvis::RunCommandLine(argv, out, err);
-  EXPECT_EQ(status, 0) << err.str();
-  return out.str();
+  const cloudvis::support::CommandResult run = cloudvis::support::RunCloudvis(arguments);
+  EXPECT_EQ(run.Status, 0) << run.Err;
+  return run.Out;
 }
 
 vtkSmartPointer<vtkImageData> ReadBack(const std::string& path)
@@ -135,6 +88,18 @@ vtkSmartPointer<vtkImageData> Generate(vtkCloudDensitySource* source)
   source->Update();
   vtkSmartPointer<vtkImageData> image = source->GetOutput();
   return image;
+}
+
+// The field file `path` is, bit for bit, what vtkCloudDensitySource makes of these settings.
+void ExpectSourceField(const std::string& path, const std::array<int, 3>& dimensions,
+  const std::array<double, 6>& bounds, const cloudvis::FieldDescription& field, double time)
+{
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetDimensions(dimensions.data());
+  source->SetBounds(bounds.data());
+  source->SetField(field);
+  source->SetTime(time);
+  ExpectBitIdentical(Generate(source), ReadBack(path));
 }
 
 // ---- generate: files equal the source's output --------------------------------------------
@@ -195,12 +160,7 @@ TEST(Generate, EveryKeyReachesTheSource)
   field.Noise.Amplitude = 0.8;
   field.Noise.Seed = 4000000000u;
   field.Wind = glm::dvec3(0.1, 0.2, -0.3);
-  vtkNew<vtkCloudDensitySource> source;
-  source->SetDimensions(20, 24, 28);
-  source->SetBounds(-1, 2, -3, 1, -2, 2.5);
-  source->SetField(field);
-  source->SetTime(1.25);
-  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+  ExpectSourceField(dir.File("f.vti"), { { 20, 24, 28 } }, { { -1, 2, -3, 1, -2, 2.5 } }, field, 1.25);
 }
 
 TEST(Generate, MorphSceneEqualsSourceMorph)
@@ -210,12 +170,8 @@ TEST(Generate, MorphSceneEqualsSourceMorph)
     "field.time=4.5", "-o", dir.File("f.vti") });
   cloudvis::FieldDescription field;
   field.Morph = true;
-  vtkNew<vtkCloudDensitySource> source;
-  source->SetDimensions(24, 24, 24);
-  source->SetBounds(-3.5, 3.5, -3.5, 3.5, -3.5, 3.5);
-  source->SetField(field);
-  source->SetTime(4.5);
-  ExpectBitIdentical(Generate(source), ReadBack(dir.File("f.vti")));
+  ExpectSourceField(
+    dir.File("f.vti"), { { 24, 24, 24 } }, { { -3.5, 3.5, -3.5, 3.5, -3.5, 3.5 } }, field, 4.5);
 }
 
 TEST(Generate, LeavesOnlyTheTarget)
@@ -528,41 +484,12 @@ TEST(Camera, DefaultsLookAlongMinusZAtTheCentreAndFitTheBounds)
 
 // ---- render: pixels (needs an X display; `make test` runs under Xvfb) -----------------------
 
-struct Png
-{
-  int Width = 0, Height = 0, Components = 0;
-  std::vector<unsigned char> Pixels;
-  const unsigned char* At(int x, int y) const
-  {
-    return this->Pixels.data() + size_t(this->Components) * (size_t(y) * this->Width + x);
-  }
-};
-
-Png ReadPng(const std::string& path)
-{
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  Png png;
-  int d[3];
-  reader->GetOutput()->GetDimensions(d);
-  png.Width = d[0];
-  png.Height = d[1];
-  auto* data = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetScalars());
-  if (data)
-  {
-    png.Components = data->GetNumberOfComponents();
-    png.Pixels.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
-  }
-  return png;
-}
-
 // Within one 8-bit step of a color given in [0, 1].
-bool IsColor(const unsigned char* pixel, const std::array<double, 3>& rgb)
+bool IsColor(const cloudvis::support::Image& image, int x, int y, const std::array<double, 3>& rgb)
 {
   for (int c = 0; c < 3; ++c)
   {
-    if (std::abs(double(pixel[c]) - 255.0 * rgb[c]) > 1.0)
+    if (std::abs(image.Level(x, y, c) - 255.0 * rgb[c]) > 1.0)
     {
       return false;
     }
@@ -578,7 +505,7 @@ TEST(Render, WritesAPngOfTheRequestedSizeWithTheCloudOverTheBackground)
   EXPECT_NE(out.find("wrote " + dir.File("r.png") + " (64 x 48 pixels, 2 frames averaged)"),
     std::string::npos) << out;
   EXPECT_EQ(dir.Files(), std::vector<std::string>{ "r.png" });
-  const Png png = ReadPng(dir.File("r.png"));
+  const cloudvis::support::Image png = cloudvis::support::ReadPng(dir.File("r.png"));
   ASSERT_EQ(png.Width, 64);
   ASSERT_EQ(png.Height, 48);
   ASSERT_EQ(png.Components, 3) << "an RGB PNG";
@@ -586,15 +513,14 @@ TEST(Render, WritesAPngOfTheRequestedSizeWithTheCloudOverTheBackground)
   for (const auto& corner : { std::make_pair(0, 0), std::make_pair(63, 0), std::make_pair(0, 47),
          std::make_pair(63, 47) })
   {
-    EXPECT_TRUE(IsColor(png.At(corner.first, corner.second), background))
+    EXPECT_TRUE(IsColor(png, corner.first, corner.second, background))
       << "corner " << corner.first << "," << corner.second;
   }
-  const unsigned char* centre = png.At(32, 24);
-  EXPECT_FALSE(IsColor(centre, background));
+  EXPECT_FALSE(IsColor(png, 32, 24, background));
   // The cloud is white-ish: brighter than the background in every channel.
   for (int c = 0; c < 3; ++c)
   {
-    EXPECT_GT(int(centre[c]), int(255.0 * background[c]) + 40) << "channel " << c;
+    EXPECT_GT(int(png.Level(32, 24, c)), int(255.0 * background[c]) + 40) << "channel " << c;
   }
 }
 
@@ -604,10 +530,10 @@ TEST(Render, BackgroundKeyReachesTheWindow)
   RunCloudvis({ "render", CLOUDVIS_SCENES "/sphere.json", "--size", "32x16", "--set",
     "background=1,0,0", "--set", "render.accumulate=1", "--set", "field.dimensions=16", "-o",
     dir.File("r.png") });
-  const Png png = ReadPng(dir.File("r.png"));
+  const cloudvis::support::Image png = cloudvis::support::ReadPng(dir.File("r.png"));
   ASSERT_EQ(png.Width, 32);
   ASSERT_EQ(png.Height, 16);
-  EXPECT_TRUE(IsColor(png.At(0, 0), { { 1, 0, 0 } }));
+  EXPECT_TRUE(IsColor(png, 0, 0, { { 1, 0, 0 } }));
 }
 
 cloudvis::Scene SmallScene()
@@ -658,24 +584,40 @@ TEST(Render, MapperErrorBecomesTheInputError)
 TEST(Render, WithoutDisplayFailsWithTheXvfbHintAndWritesNothing)
 {
   TemporaryDirectory dir;
-  const char* saved = std::getenv("DISPLAY");
-  const std::string display = saved ? saved : "";
-  ::unsetenv("DISPLAY");
-  std::ostringstream out, err;
-  const int status = cloudvis::RunCommandLine({ "cloudvis", "render", CLOUDVIS_SCENES "/sphere.json",
-                                                "-o", dir.File("r.png") },
-    out, err);
-  if (saved)
-  {
-    ::setenv("DISPLAY", display.c_str(), 1);
-  }
-  EXPECT_EQ(status, 1);
-  EXPECT_NE(err.str().find("cloudvis needs an X display"), std::string::npos) << err.str();
-  EXPECT_NE(err.str().find("xvfb-run -a cloudvis render"), std::string::npos) << err.str();
+  const cloudvis::support::CommandResult run = cloudvis::support::RunCloudvis(
+    { "render", CLOUDVIS_SCENES "/sphere.json", "-o", dir.File("r.png") }, { "-DISPLAY" });
+  EXPECT_EQ(run.Status, 1);
+  EXPECT_NE(run.Err.find("cloudvis needs an X display"), std::string::npos) << run.Err;
+  EXPECT_NE(run.Err.find("xvfb-run -a cloudvis render"), std::string::npos) << run.Err;
   EXPECT_TRUE(dir.Files().empty());
 }
 
 } // namespace
+
+TEST(Render, ANonFiniteImageIsAnErrorNamingTheLikelyCauseBeforeAnyFileIsWritten)
+{
+  // The check every writing path makes on the float image (render, compare, animate, the
+  // viewer's screenshot, --cpu-reference): the renderers' own validation should leave nothing
+  // for it to find, so it is tested on an image made bad on purpose.
+  std::vector<float> rgba(4 * 6, 0.25f);
+  EXPECT_NO_THROW(cloudvis::CheckFiniteImage(rgba.data(), 6, "cloud.vti"));
+  rgba[5] = std::nanf("");
+  rgba[10] = INFINITY;
+  try
+  {
+    cloudvis::CheckFiniteImage(rgba.data(), 6, "cloud.vti");
+    FAIL() << "a NaN pixel was accepted";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cloud.vti: the rendered image has 2 values that are NaN or infinite, "
+                           "so nothing was written"),
+      std::string::npos)
+      << message;
+    EXPECT_NE(message.find("likely causes"), std::string::npos);
+  }
+}
 
 // ---- inputs and outputs: right or refused (docs/reliability.md) -----------------------------
 

@@ -1,12 +1,11 @@
-// Tests of export (docs/export.md): the files are read back with independent readers (OpenEXR's
-// Imf::InputFile, vtkPNGReader) and compared with the float render the mapper produced in this
-// process for the same scene, so a test fails when a channel is missing, flipped, converted or
-// rounded wrongly, when metadata is absent or does not reproduce the image, when an animation
-// frame is not the still it claims to be, or when a refused command leaves a file behind. The
-// scenes are small (<= 64^3 voxels, <= 160 x 120 pixels, few frames) apart from one large-size
-// render. Needs an X display (Xvfb under ctest).
+// Tests of export (docs/export.md): the cloudvis binary writes the files, which are read back with
+// independent readers (OpenEXR's Imf::InputFile, vtkPNGReader; tests/support) and compared with
+// the float render the mapper produced in this process for the same scene, so a test fails when a
+// channel is missing, flipped, converted or rounded wrongly, when metadata is absent or does not
+// reproduce the image, when an animation frame is not the still it claims to be, or when a
+// refused command leaves a file behind. The scenes are small (<= 64^3 voxels, <= 160 x 120
+// pixels, few frames) apart from one large-size render. Needs an X display (Xvfb under ctest).
 #include "Animate.h"
-#include "CommandLine.h"
 #include "Errors.h"
 #include "ExportRender.h"
 #include "ImageWriters.h"
@@ -15,18 +14,11 @@
 #include "Scene.h"
 #include "SceneField.h"
 #include "SceneJson.h"
-
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-#include <ImfStringAttribute.h>
+#include "SupportImages.h"
+#include "SupportRun.h"
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
-#include <vtkDataArray.h>
 #include <vtkRenderWindow.h>
 
 #include <gtest/gtest.h>
@@ -45,60 +37,23 @@ namespace
 {
 using json = nlohmann::json;
 
-class TemporaryDirectory
-{
-public:
-  TemporaryDirectory()
-  {
-    char pattern[] = "/tmp/cloudvis-export-test-XXXXXX";
-    this->Path = ::mkdtemp(pattern);
-  }
-  ~TemporaryDirectory() { std::system(("rm -rf '" + this->Path + "'").c_str()); }
-  std::vector<std::string> Files(const std::string& sub = "") const
-  {
-    std::vector<std::string> names;
-    if (DIR* dir = ::opendir((this->Path + sub).c_str()))
-    {
-      while (dirent* entry = ::readdir(dir))
-      {
-        const std::string name = entry->d_name;
-        if (name != "." && name != "..")
-        {
-          names.push_back(name);
-        }
-      }
-      ::closedir(dir);
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-  std::string File(const std::string& name) const { return this->Path + "/" + name; }
-  std::string Path;
-};
+using cloudvis::support::Exr;
+using cloudvis::support::ReadExr;
+using cloudvis::support::ReadPng;
+using cloudvis::support::TemporaryDirectory;
+using cloudvis::support::With;
+using CliRun = cloudvis::support::CommandResult;
+using Png = cloudvis::support::Image;
 
-struct CliRun
-{
-  int Status;
-  std::string Out, Err;
-};
+// The cloudvis binary of this build (tests/support).
 CliRun Cloudvis(const std::vector<std::string>& arguments)
 {
-  std::vector<std::string> argv{ "cloudvis" };
-  argv.insert(argv.end(), arguments.begin(), arguments.end());
-  std::ostringstream out, err;
-  const int status = cloudvis::RunCommandLine(argv, out, err);
-  return { status, out.str(), err.str() };
+  return cloudvis::support::RunCloudvis(arguments);
 }
 
 // The small test scene: the fbm sphere at 32^3, 64 x 48 pixels, 2 accumulated frames.
 const std::vector<std::string> Small = { "--set", "field.dimensions=32", "--set",
   "render.accumulate=2", "--size", "64x48" };
-std::vector<std::string> With(std::vector<std::string> a, const std::vector<std::string>& b)
-{
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
-
 cloudvis::Scene SmallScene()
 {
   return cloudvis::LoadScene(CLOUDVIS_SCENES "/fbm-sphere.json",
@@ -110,93 +65,6 @@ cloudvis::OffscreenRenderResult RenderFloat(const cloudvis::Scene& scene)
   cloudvis::RenderOptions options;
   options.FloatImage = true;
   return cloudvis::RenderOffscreen(scene, cloudvis::ProduceField(scene), "test", 0, options);
-}
-
-struct Exr
-{
-  int Width = 0, Height = 0;
-  std::map<std::string, Imf::PixelType> Types;
-  std::map<std::string, std::vector<float>> Channels; // rows top to bottom, as stored
-  std::map<std::string, std::string> Strings;
-  // Channel value at (x, y) with y counted from the bottom, like VTK and the mapper.
-  float At(const std::string& name, int x, int y) const
-  {
-    return this->Channels.at(name)[size_t(this->Height - 1 - y) * size_t(this->Width) + size_t(x)];
-  }
-};
-Exr ReadExr(const std::string& path)
-{
-  Imf::InputFile file(path.c_str());
-  const Imath::Box2i window = file.header().dataWindow();
-  Exr exr;
-  exr.Width = window.max.x - window.min.x + 1;
-  exr.Height = window.max.y - window.min.y + 1;
-  Imf::FrameBuffer frame;
-  for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c)
-  {
-    exr.Types[c.name()] = c.channel().type;
-    std::vector<float>& data = exr.Channels[c.name()];
-    data.resize(size_t(exr.Width) * size_t(exr.Height));
-    frame.insert(c.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.data()),
-      sizeof(float), sizeof(float) * size_t(exr.Width)));
-  }
-  file.setFrameBuffer(frame);
-  file.readPixels(window.min.y, window.max.y);
-  for (auto a = file.header().begin(); a != file.header().end(); ++a)
-  {
-    if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&a.attribute()))
-    {
-      exr.Strings[a.name()] = text->value();
-    }
-  }
-  return exr;
-}
-
-struct Png
-{
-  int Width = 0, Height = 0, Components = 0, ScalarType = 0;
-  std::vector<double> Values; // per component, in [0, 1], rows bottom to top
-  std::map<std::string, std::string> Text;
-  double At(int x, int y, int c) const
-  {
-    return this->Values[(size_t(y) * size_t(this->Width) + size_t(x)) * size_t(this->Components) +
-      size_t(c)];
-  }
-};
-Png ReadPng(const std::string& path)
-{
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
-  Png png;
-  int d[3];
-  image->GetDimensions(d);
-  png.Width = d[0];
-  png.Height = d[1];
-  png.Components = image->GetNumberOfScalarComponents();
-  png.ScalarType = image->GetScalarType();
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  const double maximum = png.ScalarType == VTK_UNSIGNED_SHORT ? 65535.0 : 255.0;
-  for (vtkIdType i = 0; i < scalars->GetNumberOfValues(); ++i)
-  {
-    png.Values.push_back(scalars->GetVariantValue(i).ToDouble() / maximum);
-  }
-  for (size_t i = 0; i < reader->GetNumberOfTextChunks(); ++i)
-  {
-    png.Text[reader->GetTextKey(int(i))] = reader->GetTextValue(int(i));
-  }
-  return png;
-}
-
-double MeanAbsoluteDifference(const Png& a, const Png& b)
-{
-  double sum = 0.0;
-  for (size_t i = 0; i < a.Values.size(); ++i)
-  {
-    sum += std::fabs(a.Values[i] - b.Values[i]);
-  }
-  return sum / double(a.Values.size());
 }
 
 // ---- EXR ----------------------------------------------------------------------------------
@@ -384,8 +252,8 @@ TEST(Png, SixteenBitIsTheSamePictureAsEightBit)
   ASSERT_EQ(run.Status, 0) << run.Err;
   const Png eight = ReadPng(dir.File("8.png"));
   const Png sixteen = ReadPng(dir.File("16.png"));
-  EXPECT_EQ(eight.ScalarType, VTK_UNSIGNED_CHAR);
-  EXPECT_EQ(sixteen.ScalarType, VTK_UNSIGNED_SHORT) << "a 16-bit PNG";
+  EXPECT_EQ(eight.Bits, 8);
+  EXPECT_EQ(sixteen.Bits, 16) << "a 16-bit PNG";
   ASSERT_EQ(sixteen.Components, 3);
   ASSERT_EQ(sixteen.Values.size(), eight.Values.size());
   double worst = 0.0;
@@ -409,7 +277,7 @@ TEST(Png, TransparentAlphaIsTheCloudsOpacity)
   ASSERT_EQ(run.Status, 0) << run.Err;
   const Png png = ReadPng(dir.File("t.png"));
   ASSERT_EQ(png.Components, 4);
-  EXPECT_EQ(png.ScalarType, VTK_UNSIGNED_CHAR);
+  EXPECT_EQ(png.Bits, 8);
   for (const auto& corner : { std::make_pair(0, 0), std::make_pair(63, 47) })
   {
     EXPECT_EQ(png.At(corner.first, corner.second, 3), 0.0);
@@ -509,33 +377,33 @@ TEST(Size, LargeRenderIsCompleteAndMatchesASmallOne)
   EXPECT_LT(sum / (250.0 * 180.0 * 3.0), 0.01);
 }
 
+// The message of the InputError CheckRenderSize throws ("" when it throws none).
+std::string SizeRefusal(int width, int height, const cloudvis::RenderLimits& limits)
+{
+  try
+  {
+    cloudvis::CheckRenderSize({ { width, height } }, limits, "s.json");
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(Size, BeyondTheGpuLimitIsRefusedWithTheLimit)
 {
   cloudvis::RenderLimits limits{ 4096, 2048 };
-  EXPECT_NO_THROW(cloudvis::CheckRenderSize({ { 4096, 2048 } }, limits, "s.json"));
-  try
-  {
-    cloudvis::CheckRenderSize({ { 4097, 100 } }, limits, "s.json");
-    FAIL() << "no error";
-  }
-  catch (const cloudvis::InputError& e)
-  {
-    EXPECT_STREQ(e.what(), "s.json: render.size: 4097 x 100 pixels is beyond this GPU's limit "
-                           "of 4096 x 2048 pixels; choose a smaller size");
-  }
+  EXPECT_EQ(SizeRefusal(4096, 2048, limits), "");
+  EXPECT_EQ(SizeRefusal(4097, 100, limits), "s.json: render.size: 4097 x 100 pixels is beyond "
+                                            "this GPU's limit of 4096 x 2048 pixels; choose a "
+                                            "smaller size");
   // Render targets that would not fit in the memory available are refused with their size.
   const cloudvis::RenderLimits small{ 4096, 2048, 64.0 * 1024 * 1024 };
-  EXPECT_NO_THROW(cloudvis::CheckRenderSize({ { 800, 600 } }, small, "s.json"));
-  try
-  {
-    cloudvis::CheckRenderSize({ { 4000, 2000 } }, small, "s.json");
-    FAIL() << "no error";
-  }
-  catch (const cloudvis::InputError& e)
-  {
-    EXPECT_STREQ(e.what(), "s.json: render.size: 4000 x 2000 pixels needs 580 MiB of memory for "
-                           "its render targets but only 64 MiB is available; choose a smaller size");
-  }
+  EXPECT_EQ(SizeRefusal(800, 600, small), "");
+  EXPECT_EQ(SizeRefusal(4000, 2000, small), "s.json: render.size: 4000 x 2000 pixels needs 580 "
+                                            "MiB of memory for its render targets but only 64 MiB "
+                                            "is available; choose a smaller size");
   // This GPU renders what the scene accepts up to the large test above, at least.
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -565,7 +433,7 @@ TEST(Animate, TurntableWritesNumberedFramesStartingWithThePlainRender)
   const Png first = ReadPng(dir.File("frames/frame_0000.png"));
   const Png last = ReadPng(dir.File("frames/frame_0003.png"));
   EXPECT_EQ(first.Values, plain.Values) << "frame 0 is the scene's own view";
-  EXPECT_GT(MeanAbsoluteDifference(first, last), 0.005) << "the camera moved";
+  EXPECT_GT(cloudvis::support::Compare(first, last).Mean, 0.005) << "the camera moved";
   // Frame 2 is the half turn: the camera stands opposite, as its metadata says.
   const json half = json::parse(ReadPng(dir.File("frames/frame_0002.png")).Text.at("cloudvis.scene"));
   const json start = json::parse(first.Text.at("cloudvis.scene"));

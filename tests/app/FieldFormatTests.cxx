@@ -769,7 +769,7 @@ TEST(FieldReadOptions, OptionsThatDoNotSuitTheFormatAreRefusedByKey)
   EXPECT_NE(problem({ "field.file=f.dat" }).find("field.file: \"f.dat\" is not a field file"),
     std::string::npos);
   EXPECT_NE(problem({ "field.file=f.dat", "field.format=grib" })
-              .find("field.format: unknown format \"grib\"; allowed: vti, pvti, vdb, netcdf, "
+              .find("field.format: unknown name \"grib\"; allowed: vti, pvti, vdb, netcdf, "
                     "nrrd, metaimage, raw"),
     std::string::npos);
   EXPECT_NE(problem({ "field.array=qc" })

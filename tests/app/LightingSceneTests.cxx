@@ -2,23 +2,23 @@
 // sections reach LightingParameters and vtkLights with their documented defaults; the models
 // change the rendered pixels; --cpu-reference agrees with the GPU render of the same scene; and
 // compare lays its panels side by side. The render and compare tests need an X display (Xvfb).
-#include "CommandLine.h"
 #include "Errors.h"
 #include "Scene.h"
 #include "SceneLighting.h"
+#include "SupportBaselines.h"
+#include "SupportImages.h"
+#include "SupportRun.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkLightCollection.h>
 #include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkUnsignedCharArray.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -61,8 +61,8 @@ TEST(SceneLights, TypesAndDefaults)
   ASSERT_EQ(scene.Lights.size(), 4u);
   const cloudvis::Light& sun = scene.Lights[0];
   EXPECT_FALSE(sun.Positional);
-  EXPECT_EQ(sun.Position, glm::vec3(1, 2, 3));
-  EXPECT_EQ(sun.FocalPoint, glm::vec3(0.0f)) << "focal_point defaults to the origin";
+  EXPECT_EQ(sun.Position, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(sun.FocalPoint, glm::dvec3(0.0)) << "focal_point defaults to the origin";
   EXPECT_EQ(sun.Color, glm::vec3(1.0f));
   EXPECT_EQ(sun.Intensity, 1.0f);
   const cloudvis::Light& lamp = scene.Lights[1];
@@ -70,7 +70,7 @@ TEST(SceneLights, TypesAndDefaults)
   EXPECT_EQ(lamp.Color, glm::vec3(1.0f, 0.5f, 0.25f));
   EXPECT_EQ(lamp.Intensity, 3.0f);
   EXPECT_EQ(lamp.Attenuation, glm::vec3(1.0f, 0.5f, 0.0f));
-  EXPECT_EQ(scene.Lights[2].FocalPoint, glm::vec3(0, 1, 0));
+  EXPECT_EQ(scene.Lights[2].FocalPoint, glm::dvec3(0, 1, 0));
   EXPECT_EQ(scene.Lights[3].Attenuation, glm::vec3(0, 0, 1)) << "inverse square by default";
 
   EXPECT_TRUE(SceneWith({ "lights=[]" }).Lights.empty()) << "an empty list means no lights";
@@ -81,8 +81,8 @@ TEST(SceneLights, WithoutTheKeyASunFromSixEightFour)
   const cloudvis::Scene scene = cloudvis::DefaultScene();
   ASSERT_EQ(scene.Lights.size(), 1u);
   EXPECT_FALSE(scene.Lights[0].Positional);
-  EXPECT_EQ(scene.Lights[0].Position, glm::vec3(6, 8, 4));
-  EXPECT_EQ(scene.Lights[0].FocalPoint, glm::vec3(0.0f));
+  EXPECT_EQ(scene.Lights[0].Position, glm::dvec3(6, 8, 4));
+  EXPECT_EQ(scene.Lights[0].FocalPoint, glm::dvec3(0.0));
   EXPECT_EQ(scene.Lights[0].Color, glm::vec3(1.0f));
   EXPECT_EQ(scene.Lights[0].Intensity, 1.0f); // the same light in every model
   EXPECT_EQ(scene.Ambient.Color, glm::vec3(0.6f, 0.6f, 0.75f));
@@ -105,7 +105,7 @@ TEST(SceneLights, Errors)
   EXPECT_NE(ErrorOf({ pointLights(9) }).find("lights: at most 8 lights"), std::string::npos);
   EXPECT_EQ(ErrorOf({ pointLights(8) }), "") << "8 are allowed";
   EXPECT_NE(ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "intensity": -1}])" })
-              .find("lights[0].intensity: value -1 is out of range: allowed >= 0"),
+              .find("lights[0].intensity: value -1 is out of range: allowed [0, 5.316911666e+36)"),
     std::string::npos);
   EXPECT_NE(
     ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "focal_point": [0, 0, 0]}])" })
@@ -181,64 +181,36 @@ TEST(SceneLighting, ConfigureLightingAddsSceneLightsAndNoHeadlight)
 
 // ---- pixels -------------------------------------------------------------------------------
 
-struct Png
-{
-  int Width = 0, Height = 0;
-  std::vector<unsigned char> RGB;
-  double At(int x, int y, int c) const { return this->RGB[3 * (size_t(y) * this->Width + x) + c]; }
-};
+using cloudvis::support::Crop;
+using cloudvis::support::Image;
+using cloudvis::support::ReadPng;
+using cloudvis::support::Region;
 
-Png ReadPng(const std::string& path)
+// RMS difference in 8-bit levels over the RGB channels between the columns [ax, ax + width) of a
+// and [bx, bx + width) of b, over the bottom `rows` rows (all when 0).
+double RmsLevels(const Image& a, int ax, const Image& b, int bx, int width, int rows = 0)
 {
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  Png png;
-  int d[3];
-  reader->GetOutput()->GetDimensions(d);
-  auto* data = vtkUnsignedCharArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetScalars());
-  if (data && data->GetNumberOfComponents() == 3)
-  {
-    png.Width = d[0];
-    png.Height = d[1];
-    png.RGB.assign(data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues());
-  }
-  return png;
+  return cloudvis::support::Compare(
+    Crop(a, Region{ ax, 0, width, rows }), Crop(b, Region{ bx, 0, width, rows }), 3)
+    .RmsLevels();
 }
 
-// RMS difference in 8-bit levels between the columns [ax, ax + width) of a and [bx, bx + width)
-// of b, over the bottom `rows` rows (all when 0).
-double RmsLevels(const Png& a, int ax, const Png& b, int bx, int width, int rows = 0)
-{
-  rows = rows > 0 ? rows : a.Height;
-  double sum = 0.0;
-  for (int y = 0; y < rows; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 3; ++c)
-      {
-        const double d = a.At(ax + x, y, c) - b.At(bx + x, y, c);
-        sum += d * d;
-      }
-  return std::sqrt(sum / (3.0 * rows * width));
-}
-
+// A file in a folder of its own, removed with it.
 class Output
 {
 public:
   explicit Output(const std::string& name)
-    : Path("/tmp/cloudvis-lighting-" + std::to_string(::getpid()) + "-" + name)
+    : Path(Folder.File(name))
   {
   }
-  ~Output() { std::remove(this->Path.c_str()); }
+  cloudvis::support::TemporaryDirectory Folder{ "cloudvis-lighting" };
   std::string Path;
 };
 
 void RunCloudvis(const std::vector<std::string>& arguments)
 {
-  std::vector<std::string> argv{ "cloudvis" };
-  argv.insert(argv.end(), arguments.begin(), arguments.end());
-  std::ostringstream out, err;
-  ASSERT_EQ(cloudvis::RunCommandLine(argv, out, err), 0) << err.str();
+  const cloudvis::support::CommandResult run = cloudvis::support::RunCloudvis(arguments);
+  ASSERT_EQ(run.Status, 0) << run.Err;
 }
 
 // Small, exact renders: no jitter, one frame, a coarse field.
@@ -253,7 +225,7 @@ std::vector<std::string> With(std::vector<std::string> arguments)
 
 TEST(LightingRender, DerivativeAndMarchDifferFromNone)
 {
-  Png images[3];
+  Image images[3];
   const char* models[3] = { "none", "derivative", "march" };
   for (int i = 0; i < 3; ++i)
   {
@@ -268,45 +240,95 @@ TEST(LightingRender, DerivativeAndMarchDifferFromNone)
   EXPECT_GT(RmsLevels(images[1], 0, images[2], 0, 48), 5.0);
 }
 
-class CpuReferenceMatchesRender : public ::testing::TestWithParam<const char*>
+struct ReferenceCase
+{
+  const char* Name;
+  std::string Input; // a scene, or a field file
+  const char* Lighting;
+};
+
+class CpuReferenceMatchesRender : public ::testing::TestWithParam<ReferenceCase>
 {
 };
 
-TEST_P(CpuReferenceMatchesRender, WithinTwoLevelsRms)
+TEST_P(CpuReferenceMatchesRender, WithinOneLevelOverTheCloud)
 {
   // A wide image, so that a camera fitted for the wrong aspect would show.
-  const Output gpu("gpu.png"), cpu("cpu.png");
-  const std::vector<std::string> common = { "render", CLOUDVIS_SCENES "/two-lights.json", "--size",
-    "72x40", "--lighting", GetParam() };
-  std::vector<std::string> gpuArguments = With(common), cpuArguments = With(common);
+  const ReferenceCase& c = GetParam();
+  const Output gpu("gpu.png"), cpu("cpu.png"), empty("empty.png");
+  const std::vector<std::string> common = {
+    "render", c.Input, "--size", "72x40", "--lighting", c.Lighting
+  };
+  std::vector<std::string> small = With(common);
+  if (c.Input.size() > 4 && c.Input.compare(c.Input.size() - 4, 4, ".vti") == 0)
+  {
+    const auto dimensions = std::find(small.begin(), small.end(), "field.dimensions=32");
+    small.erase(dimensions - 1, dimensions + 1); // a field file has its own voxels
+  }
+  std::vector<std::string> gpuArguments = small, cpuArguments = small, emptyArguments = small;
   gpuArguments.insert(gpuArguments.end(), { "-o", gpu.Path });
   cpuArguments.insert(cpuArguments.end(), { "--cpu-reference", "-o", cpu.Path });
+  emptyArguments.insert(
+    emptyArguments.end(), { "--set", "transfer_function.opacity=[[0,0]]", "-o", empty.Path });
   RunCloudvis(gpuArguments);
   RunCloudvis(cpuArguments);
-  const Png a = ReadPng(gpu.Path), b = ReadPng(cpu.Path);
+  RunCloudvis(emptyArguments);
+  const Image a = ReadPng(gpu.Path), b = ReadPng(cpu.Path), background = ReadPng(empty.Path);
   ASSERT_EQ(a.Width, 72);
   ASSERT_EQ(b.Width, 72);
   ASSERT_EQ(b.Height, 40);
-  const double rms = RmsLevels(a, 0, b, 0, 72);
-  std::cout << GetParam() << ": GPU vs --cpu-reference RMS " << rms << " levels\n";
-  // Both round the same radiance to 8 bits; what differs is float arithmetic (see
-  // tests/render/TestGpuMatchesCpuReference.cxx): well under 2 levels.
-  EXPECT_LT(rms, 2.0);
-  // And the cloud is there (not both empty).
-  const Output empty("empty.png");
-  RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "72x40", "--set",
-    "transfer_function.opacity=[[0,0]]", "-o", empty.Path }));
-  EXPECT_GT(RmsLevels(ReadPng(empty.Path), 0, b, 0, 72), 5.0);
+  ASSERT_EQ(background.Width, 72);
+  // Over the pixels where the reference shows cloud: those that differ from the empty render.
+  const auto shown = [&](int x, int y)
+  {
+    for (int k = 0; k < 3; ++k)
+      if (b.At(x, y, k) != background.At(x, y, k))
+        return true;
+    return false;
+  };
+  const cloudvis::support::Difference difference = cloudvis::support::Compare(a, b, 3, shown);
+  const double rms = difference.RmsLevels();
+  std::cout << c.Name << ": GPU vs --cpu-reference RMS " << rms << " levels over "
+            << difference.Count / 3 << " cloud pixels\n";
+  ASSERT_GT(difference.Count / 3, 72u * 40u / 20u) << "the cloud is there (not both empty)";
+  // Both round the same radiance to 8 bits (the GPU's float image differs from the reference's
+  // by about 1e-5 of the peak, tests/render/TestGpuMatchesCpuReference.cxx): what is left is two
+  // roundings, the window's 8-bit blend of the cloud over the background against the
+  // reference's rounding of its composite. Measured 0.37 to 0.50 levels RMS (two independent
+  // roundings give about 0.41); the gate before was 2 levels over the whole image.
+  EXPECT_LT(rms, 1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, CpuReferenceMatchesRender,
-  ::testing::Values("none", "derivative", "march"));
+INSTANTIATE_TEST_SUITE_P(Models,
+  CpuReferenceMatchesRender,
+  ::testing::Values(ReferenceCase{ "none", CLOUDVIS_SCENES "/two-lights.json", "none" },
+    ReferenceCase{ "derivative", CLOUDVIS_SCENES "/two-lights.json", "derivative" },
+    ReferenceCase{ "march", CLOUDVIS_SCENES "/two-lights.json", "march" },
+    // A field file indexed from -2 and rotated by its direction matrix: the whole geometry
+    // reaches both renderers.
+    ReferenceCase{ "rotated_offset_field", CLOUDVIS_APP_DATA "/rotated-offset.vti", "march" }),
+  [](const ::testing::TestParamInfo<ReferenceCase>& parameter) { return parameter.param.Name; });
+
+// The pictures of the thesis chapter's two-light scene, one per lighting model, against their
+// committed baselines (tests/baselines/two-lights-MODEL.png; tests/support/SupportBaselines.h).
+TEST(Baseline, TwoLightsUnderEachLightingModel)
+{
+  for (const char* model : { "none", "derivative", "march" })
+  {
+    const Output png(std::string(model) + ".png");
+    RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "128x96",
+      "--lighting", model, "-o", png.Path }));
+    const cloudvis::support::BaselineCheck check =
+      cloudvis::support::CompareWithBaseline(ReadPng(png.Path), std::string("two-lights-") + model);
+    EXPECT_TRUE(check) << check.Message;
+  }
+}
 
 TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
 {
   const Output png("compare.png");
   RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "-o", png.Path }));
-  const Png image = ReadPng(png.Path);
+  const Image image = ReadPng(png.Path);
   ASSERT_EQ(image.Width, 120);
   ASSERT_EQ(image.Height, 32);
   // Panel i is the render of model i; the labels, which differ anyway, are in the top rows.
@@ -321,16 +343,17 @@ TEST(Compare, DifferenceAddsAPanel)
   const Output png("difference.png");
   RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "--lighting",
     "none,march", "--difference", "none,march", "-o", png.Path }));
-  const Png image = ReadPng(png.Path);
+  const Image image = ReadPng(png.Path);
   ASSERT_EQ(image.Width, 120);
   // The difference panel is black where the models agree (the empty corners) and bright where
   // they differ most.
   double brightest = 0.0;
   for (int y = 0; y < image.Height; ++y)
     for (int x = 80; x < 120; ++x)
-      brightest = std::max(brightest, image.At(x, y, 0) + image.At(x, y, 1) + image.At(x, y, 2));
+      brightest =
+        std::max(brightest, image.Level(x, y, 0) + image.Level(x, y, 1) + image.Level(x, y, 2));
   EXPECT_GT(brightest, 300.0);
-  EXPECT_EQ(image.At(81, 1, 0) + image.At(81, 1, 1) + image.At(81, 1, 2), 0.0);
+  EXPECT_EQ(image.Level(81, 1, 0) + image.Level(81, 1, 1) + image.Level(81, 1, 2), 0.0);
 }
 
 } // namespace

@@ -11,6 +11,8 @@
 #include "Presets.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "SupportBaselines.h"
+#include "SupportRun.h"
 
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
@@ -35,34 +37,12 @@ using json = nlohmann::json;
 using Color = std::array<double, 3>;
 
 // A directory for scene and preset files, removed with them afterwards.
-class Folder
+struct Folder : cloudvis::support::TemporaryDirectory
 {
-public:
   Folder()
+    : TemporaryDirectory("cloudvis-scene-language")
   {
-    char pattern[] = "/tmp/cloudvis-scene-language-XXXXXX";
-    this->Path = ::mkdtemp(pattern);
   }
-  ~Folder()
-  {
-    for (const std::string& file : this->Written)
-    {
-      std::remove(file.c_str());
-    }
-    ::rmdir(this->Path.c_str());
-  }
-  std::string Write(const std::string& name, const std::string& content)
-  {
-    const std::string file = this->Path + "/" + name;
-    std::ofstream(file) << content;
-    this->Written.push_back(file);
-    return file;
-  }
-
-  std::string Path;
-
-private:
-  std::vector<std::string> Written;
 };
 
 // The message LoadScene throws for a scene, or "" when it loads.
@@ -512,6 +492,21 @@ TEST(Background, GradientAndSkyReachTheRenderedPixels)
     std::vector<unsigned char>(sky.Pixel(w / 2, h / 2), sky.Pixel(w / 2, h / 2) + 3));
   EXPECT_EQ(std::vector<unsigned char>(cloudy.Pixel(0, 0), cloudy.Pixel(0, 0) + 3),
     std::vector<unsigned char>(sky.Pixel(0, 0), sky.Pixel(0, 0) + 3));
+}
+
+// The picture at the top of the user guide, small: the article's cloud under the article's sky,
+// against its committed baseline (tests/baselines/sky.png; tests/support/SupportBaselines.h).
+TEST(Baseline, SkyScene)
+{
+  const Folder folder;
+  const std::string png = folder.File("sky.png");
+  const cloudvis::support::CommandResult run = cloudvis::support::RunCloudvis({ "render",
+    CLOUDVIS_SCENES "/sky.json", "--size", "128x96", "--set", "field.dimensions=32", "--set",
+    "render.jitter=false", "--set", "render.accumulate=1", "-o", png });
+  ASSERT_EQ(run.Status, 0) << run.Err;
+  const cloudvis::support::BaselineCheck check =
+    cloudvis::support::CompareWithBaseline(cloudvis::support::ReadPng(png), "sky");
+  EXPECT_TRUE(check) << check.Message;
 }
 
 // ---- camera orbit ---------------------------------------------------------------------------

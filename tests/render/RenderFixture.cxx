@@ -224,6 +224,35 @@ double MeanOver(const Image& image, int channel, int x0, int x1)
   return sum / (double(image.Height) * (x1 - x0));
 }
 
+CloudDifference CloudPixelDifference(const Image& a, const Image& b)
+{
+  CloudDifference d;
+  if (a.Width != b.Width || a.Height != b.Height)
+  {
+    d.RmsLevels = d.MaxLevels = 1e9;
+    return d;
+  }
+  double sum = 0.0;
+  for (size_t i = 0; i < a.RGBA.size(); i += 4)
+  {
+    const float shown = std::max(
+      { a.RGBA[i], a.RGBA[i + 1], a.RGBA[i + 2], b.RGBA[i], b.RGBA[i + 1], b.RGBA[i + 2] });
+    if (!(shown > 0.0f))
+    {
+      continue;
+    }
+    ++d.CloudPixels;
+    for (size_t c = 0; c < 3; ++c)
+    {
+      const double level = 255.0 * std::abs(double(a.RGBA[i + c]) - double(b.RGBA[i + c]));
+      sum += level * level;
+      d.MaxLevels = std::max(d.MaxLevels, level);
+    }
+  }
+  d.RmsLevels = d.CloudPixels ? std::sqrt(sum / (3.0 * d.CloudPixels)) : 0.0;
+  return d;
+}
+
 double RmsDifference(const Image& a, const Image& b)
 {
   if (a.Width != b.Width || a.Height != b.Height)
@@ -253,7 +282,12 @@ double MaxDifference(const Image& a, const Image& b)
   double largest = 0.0;
   for (size_t i = 0; i < a.RGBA.size(); ++i)
   {
-    largest = std::max(largest, double(std::abs(a.RGBA[i] - b.RGBA[i])));
+    const double d = std::abs(double(a.RGBA[i]) - double(b.RGBA[i]));
+    if (std::isnan(d))
+    {
+      return d; // a NaN pixel is no match for anything (std::max would drop it)
+    }
+    largest = std::max(largest, d);
   }
   return largest;
 }

@@ -3,6 +3,7 @@
 #ifndef RenderFixture_h
 #define RenderFixture_h
 
+#include "SupportMappers.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkColorTransferFunction.h>
@@ -31,6 +32,11 @@ vtkSmartPointer<vtkImageData> ConstantBox(double halfSize, int size = 64, double
 // The article's cloud (unit sphere + fBm) and a dense fBm box.
 vtkSmartPointer<vtkImageData> SparseCloud(int size = 64);
 vtkSmartPointer<vtkImageData> DenseCloud(int size = 64);
+
+// cloudvis's mapper and VTK's GPU ray caster at a fixed step, jitter off, marching the same
+// way (tests/support): every sample where the tests expect it.
+inline const auto CloudMapper = support::MatchedCloudMapper;
+inline const auto VtkMapper = support::MatchedVtkMapper;
 
 // A property whose opacity per unit length is `opacity` for densities >= 0.5 (0 below), with
 // the given unit distance and a uniform color.
@@ -77,8 +83,19 @@ public:
 // Writes the image as <name>.png into $CLOUDVIS_RENDER_DUMP when that is set: for looking.
 void Dump(const Image& image, const std::string& name);
 
+// The difference of two images over the pixels where either shows cloud (a color above 0, the
+// fixture's background being black), in 8-bit levels.
+struct CloudDifference
+{
+  int CloudPixels = 0;
+  double RmsLevels = 0.0;
+  double MaxLevels = 0.0;
+};
+CloudDifference CloudPixelDifference(const Image& a, const Image& b);
+
 // Root mean square difference over the RGB channels, in 8-bit levels.
 double RmsDifference(const Image& a, const Image& b);
+// The largest difference of any channel; NaN when either image holds a NaN.
 double MaxDifference(const Image& a, const Image& b);
 
 } // namespace test

@@ -1,20 +1,21 @@
-// The GPU mapper against the CPU reference of the same equations (vtkCloudReferenceRenderer),
-// model by model: the same field, camera, transfer table, lights, ambient and step, jitter off,
+// The GPU mapper against the CPU reference of the same equations (vtkCloudReferenceRenderer):
+// the same field, geometry, camera, transfer table, lights, ambient and step, jitter off,
 // compared on the float images (premultiplied radiance and opacity) before any 8-bit rounding.
 //
-// Tolerances, per model and field: RMS over r, g, b below 1% and the largest difference below 5%
-// of the brightest reference radiance; alpha within 1% RMS and 5% max of 1. What is left is not a
-// difference in the equations but in arithmetic: the GPU's filtered texture fetches have 8-bit
-// filter weights (trilinear density and the linear transfer-table lookup: up to 1/256 of the
-// step between neighbouring texels, where the reference interpolates exactly), the GPU works in
-// float with float matrices where the reference uses double matrices, so sample positions, and
-// with them the sample lattice at a surface, differ by a few ulps. A sharp-edged field (the
-// constant sphere) turns such a shift into an occasional whole sample more or less at the edge:
-// that is what the 5% bounds, while the RMS bound catches any systematic difference.
+// Each case changes one thing a user relies on: the lighting model, a point light, the lighting
+// parameters off their defaults (powder, both lobes and their weight, each multiple-scattering
+// falloff, the octave count, the mapper's extinction scale), and where the volume is: a
+// rotated image direction and vtkVolume orientation, a moved, scaled and user-transformed
+// vtkVolume, an extent that does not start at 0, a volume 1e10 units from the origin and one
+// 1e19 units wide.
 //
-// The point-light cases cover what a directional light cannot: per-sample light directions and
-// the distance falloff (with only a directional light, a model that ignored positional lights
-// would pass).
+// The gate is over the pixels where either image shows cloud (opacity above 1e-4), relative to
+// the brightest reference radiance, and a case fails on an empty image. What is left between
+// the two is arithmetic, not equations: the GPU's texture filters have 8-bit weights (trilinear
+// density and the transfer-table lookup; the CPU interpolates exactly) and its matrix products
+// round differently, which moves a sample by a few ulps; where the density is sharp (the
+// constant sphere's surface) that can add or drop a whole sample at the edge. Gates per platform,
+// 3 to 5 times what was measured on llvmpipe (docs/reliability.md lists the figures).
 #include "CpuReference.h"
 #include "RenderFixture.h"
 
@@ -24,11 +25,17 @@
 #include <vtkCamera.h>
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
+#include <vtkLight.h>
+#include <vtkLightCollection.h>
+#include <vtkMatrix4x4.h>
+#include <vtkOpenGLRenderWindow.h>
 #include <vtkPointData.h>
+#include <vtkTransform.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <string>
 
@@ -37,158 +44,399 @@ using namespace cloudvis::test;
 
 namespace
 {
-constexpr int Size = 96;
+constexpr int Size = 64;
 
 struct Comparison
 {
-  double Brightest = 0.0;  // largest reference radiance over r, g, b
-  double RmsColor = 0.0;   // over r, g, b and all pixels
+  double Brightest = 0.0; // largest reference radiance over r, g, b
+  int CloudPixels = 0;    // pixels where either image has opacity above 1e-4
+  double RmsColor = 0.0;  // over r, g, b of the cloud pixels
   double MaxColor = 0.0;
-  double RmsAlpha = 0.0;
   double MaxAlpha = 0.0;
 };
 
 Comparison Compare(const Image& gpu, const std::vector<float>& cpu)
 {
   Comparison c;
-  double sumColor = 0.0, sumAlpha = 0.0;
-  for (size_t i = 0; i < cpu.size(); ++i)
+  double sumColor = 0.0;
+  for (size_t i = 0; i < cpu.size(); i += 4)
   {
-    const double d = std::abs(double(gpu.RGBA[i]) - double(cpu[i]));
-    if (i % 4 == 3)
+    if (!(gpu.RGBA[i + 3] > 1e-4f || cpu[i + 3] > 1e-4f))
     {
-      sumAlpha += d * d;
-      c.MaxAlpha = std::max(c.MaxAlpha, d);
+      continue;
     }
-    else
+    ++c.CloudPixels;
+    for (size_t k = 0; k < 3; ++k)
     {
+      const double d = std::abs(double(gpu.RGBA[i + k]) - double(cpu[i + k]));
       sumColor += d * d;
       c.MaxColor = std::max(c.MaxColor, d);
-      c.Brightest = std::max(c.Brightest, double(cpu[i]));
+      c.Brightest = std::max(c.Brightest, double(cpu[i + k]));
     }
+    c.MaxAlpha = std::max(c.MaxAlpha, std::abs(double(gpu.RGBA[i + 3]) - double(cpu[i + 3])));
   }
-  const double pixels = double(cpu.size() / 4);
-  c.RmsColor = std::sqrt(sumColor / (3.0 * pixels));
-  c.RmsAlpha = std::sqrt(sumAlpha / pixels);
+  c.RmsColor = c.CloudPixels ? std::sqrt(sumColor / (3.0 * c.CloudPixels)) : 0.0;
   return c;
 }
 
+// A similarity transform of the whole scene, world' = Offset + Scale * world: applied to the
+// field's origin and spacing, the camera, the lights and the unit distance, it must not change
+// the image (the march's local frame makes that hold in float).
+struct Similarity
+{
+  double Scale = 1.0;
+  double Offset = 0.0; // along each axis
+  double Apply(double x) const { return this->Offset + this->Scale * x; }
+};
+
 struct Case
 {
-  LightingModel Model;
-  bool Cloud; // the article's cloud (perspective) or a constant sphere (parallel projection)
+  std::string Name;
+  LightingModel Model = LightingModel::March;
+  bool Cloud = true;       // the article's cloud (perspective) or a constant sphere (parallel)
   bool PointLight = false; // a point light in front of the cloud instead of the sun
+  std::function<void(LightingParameters&)> Lighting = [](LightingParameters&) {};
+  double ExtinctionScale = 1.0;
+  // Where the volume is: the field's geometry and the vtkVolume's matrix (the camera keeps
+  // looking at the volume's centre from the same side).
+  std::function<void(vtkImageData*, vtkVolume*)> Place = [](vtkImageData*, vtkVolume*) {};
+  Similarity World;
 };
 
-std::string NameOf(const Case& c)
+// The scene's radiance per pixel from both renderers.
+struct Rendered
 {
-  const char* model = c.Model == LightingModel::None ? "None"
-    : c.Model == LightingModel::Derivative          ? "Derivative"
-                                                     : "March";
-  return std::string(model) + (c.Cloud ? "Cloud" : "Sphere") + (c.PointLight ? "PointLight" : "");
-}
-
-class GpuMatchesCpuReference : public ::testing::TestWithParam<Case>
-{
+  Image Gpu;
+  std::vector<float> Cpu;
+  std::string Renderer; // the GL renderer's name
 };
-}
 
-TEST_P(GpuMatchesCpuReference, WithinTolerance)
+Rendered RenderBoth(const Case& c)
 {
-  const Case& c = GetParam();
-  const double step = 0.05;
+  const double step = 0.05 * c.World.Scale;
   LightingParameters lighting;
   lighting.Model = c.Model;
   lighting.AmbientColor = glm::vec3(0.6f, 0.6f, 0.75f);
   lighting.AmbientStrength = 0.2f;
-  // One directional light (or a point light, brighter to make up for its falloff).
-  Light sun;
-  sun.Positional = false;
-  sun.Position = glm::vec3(6.0f, 8.0f, 4.0f);
-  sun.FocalPoint = glm::vec3(0.0f);
-  sun.Color = glm::vec3(1.0f, 0.9f, 0.8f);
-  sun.Intensity = 0.8f;
-  if (c.PointLight)
-  {
-    sun.Positional = true;
-    sun.Position = glm::vec3(0.0f, 0.0f, 2.5f);
-    sun.Intensity *= 9.0f;
-  }
+  c.Lighting(lighting);
 
   vtkNew<vtkCloudVolumeMapper> mapper;
   mapper->SetSampleDistance(step);
   mapper->JitterOff();
   mapper->SetLighting(lighting);
+  mapper->SetExtinctionScale(c.ExtinctionScale);
   test::Scene scene(mapper, Size, Size);
-  const vtkSmartPointer<vtkImageData> field = c.Cloud ? SparseCloud(48) : ConstantSphere(1.2, 40);
+  const vtkSmartPointer<vtkImageData> field = c.Cloud ? SparseCloud(40) : ConstantSphere(1.2, 40);
+  const double* origin = field->GetOrigin();
+  const double* spacing = field->GetSpacing();
+  field->SetOrigin(c.World.Apply(origin[0]), c.World.Apply(origin[1]), c.World.Apply(origin[2]));
+  field->SetSpacing(
+    c.World.Scale * spacing[0], c.World.Scale * spacing[1], c.World.Scale * spacing[2]);
+  c.Place(field, scene.Volume);
   scene.SetInput(field);
   if (c.Cloud)
   {
     SetRampMedium(scene.Property, 1.0, 0.6);
-    scene.LookAlongMinusZ(6.0, false);
   }
   else
   {
     SetUniformMedium(scene.Property, 0.3, 0.1, 0.9, 0.8, 0.7);
-    scene.LookAlongMinusZ(6.0, true, 1.6);
   }
+  scene.Property->SetScalarOpacityUnitDistance(
+    c.World.Scale * scene.Property->GetScalarOpacityUnitDistance());
+
+  double bounds[6];
+  scene.Volume->GetBounds(bounds);
+  const double centre[3] = {
+    0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])
+  };
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  const double distance = 6.0 * c.World.Scale;
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0], centre[1], centre[2] + distance);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetParallelProjection(!c.Cloud);
+  camera->SetParallelScale(1.6 * c.World.Scale);
+  camera->SetViewAngle(30.0);
+  camera->SetClippingRange(0.1 * c.World.Scale, (2.0 * 6.0 + 10.0) * c.World.Scale);
+
+  // One directional light (or a point light, brighter to make up for its falloff), placed by the
+  // similarity; a point light's inverse-square falloff is rescaled so that it lights alike.
+  Light sun;
+  sun.Color = glm::vec3(1.0f, 0.9f, 0.8f);
+  sun.Intensity = 0.8f;
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetDiffuseColor(sun.Color.r, sun.Color.g, sun.Color.b);
   if (c.PointLight)
   {
-    AddPointLight(scene.Renderer, sun.Position.x, sun.Position.y, sun.Position.z, sun.Intensity,
-      sun.Color.r, sun.Color.g, sun.Color.b);
+    sun.Positional = true;
+    sun.Intensity *= 9.0f;
+    sun.Position = glm::dvec3(centre[0], centre[1], centre[2] + 2.5 * c.World.Scale);
+    sun.Attenuation = glm::vec3(0.0f, 0.0f, float(1.0 / (c.World.Scale * c.World.Scale)));
+    light->SetPositional(true);
+    light->SetConeAngle(180.0);
+    light->SetAttenuationValues(0.0, 0.0, 1.0 / (c.World.Scale * c.World.Scale));
   }
   else
   {
-    AddDirectionalLight(scene.Renderer, sun.Position.x, sun.Position.y, sun.Position.z,
-      sun.Intensity, sun.Color.r, sun.Color.g, sun.Color.b);
+    sun.Position = glm::dvec3(centre[0], centre[1], centre[2]) + glm::dvec3(6.0, 8.0, 4.0);
+    sun.FocalPoint = glm::dvec3(centre[0], centre[1], centre[2]);
   }
-  const Image gpu = scene.RenderFloat();
-  ASSERT_EQ(gpu.Width, Size);
-  ASSERT_EQ(gpu.Height, Size);
+  light->SetPosition(sun.Position.x, sun.Position.y, sun.Position.z);
+  light->SetFocalPoint(sun.FocalPoint.x, sun.FocalPoint.y, sun.FocalPoint.z);
+  light->SetIntensity(sun.Intensity);
+  scene.Renderer->AddLight(light);
 
-  // The reference, given what the mapper was given: the camera after the render (whatever the
-  // renderer did to it), the table the mapper builds (1024 entries over the scalar range).
-  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  Rendered r;
+  r.Gpu = scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLastError(), "");
+  r.Renderer = vtkOpenGLRenderWindow::SafeDownCast(scene.Window)->ReportCapabilities();
+
+  // The reference, given what the mapper was given: the camera after the render, the table the
+  // mapper builds, the volume's matrix.
   vtkNew<vtkCloudReferenceRenderer> reference;
   reference->SetInputData(field);
   reference->SetImageSize(Size, Size);
-  SetReferenceCamera(reference, camera); // as render --cpu-reference does
-  double range[2];
-  field->GetPointData()->GetScalars()->GetRange(range, 0);
+  reference->SetVolumeMatrix(scene.Volume->GetMatrix());
+  SetReferenceCamera(reference, camera);
   vtkVolumeProperty* property = scene.Property;
-  reference->SetTransferTable(BuildTransferTable(property->GetRGBTransferFunction(0),
-    property->GetScalarOpacity(0), property->GetScalarOpacityUnitDistance(0), range, 1024));
+  reference->SetTransferTable(TabulateTransferFunction(property->GetRGBTransferFunction(0),
+    property->GetScalarOpacity(0),
+    property->GetScalarOpacityUnitDistance(0),
+    1024,
+    c.ExtinctionScale));
   reference->SetLighting(lighting);
   reference->SetLights({ sun });
   reference->SetSampleDistance(step);
   reference->Update();
   auto* rgba = vtkFloatArray::SafeDownCast(reference->GetOutput()->GetPointData()->GetScalars());
-  ASSERT_NE(rgba, nullptr);
-  const std::vector<float> cpu(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * Size * Size);
-
+  if (rgba && rgba->GetNumberOfTuples() == Size * Size)
+  {
+    r.Cpu.assign(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * Size * Size);
+  }
   Image cpuImage;
   cpuImage.Width = cpuImage.Height = Size;
-  cpuImage.RGBA = cpu;
-  Dump(gpu, "gpu-vs-cpu-" + NameOf(c) + "-gpu");
-  Dump(cpuImage, "gpu-vs-cpu-" + NameOf(c) + "-cpu");
-
-  const Comparison d = Compare(gpu, cpu);
-  std::cout << NameOf(c) << ": brightest " << d.Brightest << ", color RMS " << d.RmsColor
-            << " (" << 100.0 * d.RmsColor / d.Brightest << "%), max " << d.MaxColor << " ("
-            << 100.0 * d.MaxColor / d.Brightest << "%); alpha RMS " << d.RmsAlpha << ", max "
-            << d.MaxAlpha << "\n";
-  RecordProperty("RelativeRms", std::to_string(d.RmsColor / d.Brightest));
-  RecordProperty("RelativeMax", std::to_string(d.MaxColor / d.Brightest));
-  ASSERT_GT(d.Brightest, 0.05) << "the scene must show something to compare";
-  EXPECT_LT(d.RmsColor, 0.01 * d.Brightest);
-  EXPECT_LT(d.MaxColor, 0.05 * d.Brightest);
-  EXPECT_LT(d.RmsAlpha, 0.01);
-  EXPECT_LT(d.MaxAlpha, 0.05);
+  cpuImage.RGBA = r.Cpu;
+  Dump(r.Gpu, "gpu-vs-cpu-" + c.Name + "-gpu");
+  Dump(cpuImage, "gpu-vs-cpu-" + c.Name + "-cpu");
+  return r;
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, GpuMatchesCpuReference,
-  ::testing::Values(Case{ LightingModel::None, true }, Case{ LightingModel::Derivative, true },
-    Case{ LightingModel::March, true }, Case{ LightingModel::None, false },
-    Case{ LightingModel::Derivative, false }, Case{ LightingModel::March, false },
-    Case{ LightingModel::Derivative, true, true }, Case{ LightingModel::March, true, true }),
-  [](const ::testing::TestParamInfo<Case>& parameter) { return NameOf(parameter.param); });
+bool OnLlvmpipe(const std::string& capabilities)
+{
+  return capabilities.find("llvmpipe") != std::string::npos;
+}
+
+// The test's name in ctest's list, rather than the parameter's bytes.
+void PrintTo(const Case& c, std::ostream* out)
+{
+  *out << c.Name;
+}
+
+class GpuMatchesCpuReference : public ::testing::TestWithParam<Case>
+{
+};
+
+// Rotation by `degrees` about `axis` as a direction matrix.
+void SetRotatedDirection(vtkImageData* field, double degrees, double x, double y, double z)
+{
+  vtkNew<vtkTransform> rotation;
+  rotation->RotateWXYZ(degrees, x, y, z);
+  double m[9];
+  for (int r = 0; r < 3; ++r)
+    for (int col = 0; col < 3; ++col)
+      m[3 * r + col] = rotation->GetMatrix()->GetElement(r, col);
+  field->SetDirectionMatrix(m);
+}
+}
+
+TEST_P(GpuMatchesCpuReference, WithinTolerance)
+{
+  const Case& c = GetParam();
+  const Rendered r = RenderBoth(c);
+  ASSERT_EQ(r.Gpu.Width, Size);
+  ASSERT_EQ(r.Gpu.Height, Size);
+  ASSERT_EQ(r.Cpu.size(), size_t(4 * Size * Size)) << "the reference rendered nothing";
+
+  const Comparison d = Compare(r.Gpu, r.Cpu);
+  std::cout << c.Name << ": " << d.CloudPixels << " cloud pixels, brightest " << d.Brightest
+            << ", color RMS " << d.RmsColor / d.Brightest << " of it, max "
+            << d.MaxColor / d.Brightest << "; alpha max " << d.MaxAlpha << "\n";
+  RecordProperty("RelativeRms", std::to_string(d.RmsColor / d.Brightest));
+  RecordProperty("RelativeMax", std::to_string(d.MaxColor / d.Brightest));
+  // Not an empty window: the cloud covers a good part of the image, and is bright.
+  ASSERT_GT(d.CloudPixels, Size * Size / 10) << "the scene must show a cloud to compare";
+  ASSERT_GT(d.Brightest, 0.05) << "the scene must show a cloud to compare";
+  // Measured on llvmpipe over all cases: RMS 0.06e-6 .. 3.5e-6 and max 0.5e-6 .. 2.1e-5 of the
+  // peak, alpha max up to 2.3e-5. Elsewhere (not measured yet) ten times looser, and the constant
+  // sphere's max at 5%: another GPU's rounding may add or drop a whole sample on its surface.
+  const bool llvmpipe = OnLlvmpipe(r.Renderer);
+  const double rmsGate = llvmpipe ? 1e-5 : 1e-4;
+  const double maxGate = llvmpipe ? 1e-4 : c.Cloud ? 1e-3 : 0.05;
+  EXPECT_LT(d.RmsColor, rmsGate * d.Brightest);
+  EXPECT_LT(d.MaxColor, maxGate * d.Brightest);
+  EXPECT_LT(d.MaxAlpha, maxGate);
+}
+
+namespace
+{
+std::vector<Case> Cases()
+{
+  std::vector<Case> cases;
+  for (LightingModel model :
+    { LightingModel::None, LightingModel::Derivative, LightingModel::March })
+  {
+    const std::string name = model == LightingModel::None ? "None"
+      : model == LightingModel::Derivative                ? "Derivative"
+                                                          : "March";
+    Case cloud;
+    cloud.Name = name + "Cloud";
+    cloud.Model = model;
+    cases.push_back(cloud);
+    Case sphere = cloud;
+    sphere.Name = name + "Sphere";
+    sphere.Cloud = false;
+    cases.push_back(sphere);
+    if (model != LightingModel::None)
+    {
+      Case point = cloud;
+      point.Name = name + "CloudPointLight";
+      point.PointLight = true;
+      cases.push_back(point);
+    }
+  }
+  // Every lighting parameter off its default at least once.
+  Case lobes;
+  lobes.Name = "MarchTwoLobesPowder";
+  lobes.Lighting = [](LightingParameters& p)
+  {
+    p.PhaseG1 = 0.85f;
+    p.PhaseG2 = -0.5f;
+    p.PhaseLobeWeight = 0.55f;
+    p.PowderStrength = 0.7f;
+  };
+  cases.push_back(lobes);
+  Case octaves;
+  octaves.Name = "MarchOctavesAndFalloffs";
+  octaves.Lighting = [](LightingParameters& p)
+  {
+    p.MultipleScatteringOctaves = 6;
+    p.ScatteringFalloff = 0.7f;
+    p.ExtinctionFalloff = 0.3f;
+    p.EccentricityFalloff = 0.8f;
+    p.LightSteps = 9;
+    p.LightStepGrowth = 1.3f;
+  };
+  cases.push_back(octaves);
+  Case singleScattering;
+  singleScattering.Name = "MarchSingleScatteringExtinctionScale";
+  singleScattering.Lighting = [](LightingParameters& p) { p.MultipleScatteringOctaves = 0; };
+  singleScattering.ExtinctionScale = 2.5;
+  cases.push_back(singleScattering);
+  Case derivativeDistance;
+  derivativeDistance.Name = "DerivativeDistanceAndExtinctionScale";
+  derivativeDistance.Model = LightingModel::Derivative;
+  derivativeDistance.Lighting = [](LightingParameters& p) { p.DerivativeDistance = 0.2f; };
+  derivativeDistance.ExtinctionScale = 0.4;
+  cases.push_back(derivativeDistance);
+
+  // Where the volume is.
+  Case rotated;
+  rotated.Name = "RotatedDirectionAndVolume";
+  rotated.Place = [](vtkImageData* field, vtkVolume* volume)
+  {
+    SetRotatedDirection(field, 35.0, 1.0, 2.0, 0.5);
+    volume->RotateWXYZ(-50.0, 0.3, 1.0, 0.2);
+  };
+  cases.push_back(rotated);
+  Case moved;
+  moved.Name = "MovedScaledVolume";
+  moved.Model = LightingModel::Derivative;
+  moved.Place = [](vtkImageData*, vtkVolume* volume)
+  {
+    volume->SetOrigin(0.5, 0.0, 0.0);
+    volume->SetPosition(3.0, -1.0, 2.0);
+    volume->SetScale(1.3, 0.7, 1.1);
+    vtkNew<vtkTransform> user;
+    user->Translate(0.0, 0.4, 0.0);
+    user->RotateZ(20.0);
+    volume->SetUserTransform(user);
+  };
+  cases.push_back(moved);
+  Case extent;
+  extent.Name = "ExtentStartingAtMinus10";
+  extent.Place = [](vtkImageData* field, vtkVolume*)
+  {
+    const double* origin = field->GetOrigin();
+    const double* spacing = field->GetSpacing();
+    int e[6];
+    field->GetExtent(e);
+    // The same voxels in the same place, indexed from -10 (as vtkRTAnalyticSource's).
+    field->SetOrigin(
+      origin[0] + 10 * spacing[0], origin[1] + 10 * spacing[1], origin[2] + 10 * spacing[2]);
+    field->SetExtent(e[0] - 10, e[1] - 10, e[2] - 10, e[3] - 10, e[4] - 10, e[5] - 10);
+  };
+  cases.push_back(extent);
+  Case far;
+  far.Name = "FarFromTheOrigin";
+  far.World.Offset = 1e10;
+  far.PointLight = true;
+  cases.push_back(far);
+  Case huge;
+  huge.Name = "HugeField";
+  huge.World.Scale = 1e19; // a field 4e19 units wide: its squared lengths overflow float
+  huge.PointLight = true;
+  cases.push_back(huge);
+  return cases;
+}
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases,
+  GpuMatchesCpuReference,
+  ::testing::ValuesIn(Cases()),
+  [](const ::testing::TestParamInfo<Case>& parameter) { return parameter.param.Name; });
+
+// A scene moved far from the origin, or scaled up or down enormously (camera, lights and unit
+// distance with it), is the same scene: each renderer must draw it as it draws the scene at the
+// origin. Before the march computed in its local frame, the GPU drew the first two blank.
+TEST(GpuMatchesCpuReference, FarAwayAndHugeFieldsRenderLikeTheSameFieldAtTheOrigin)
+{
+  Case base;
+  base.Name = "AtTheOrigin";
+  base.PointLight = true;
+  const Rendered atOrigin = RenderBoth(base);
+  const bool llvmpipe = OnLlvmpipe(atOrigin.Renderer);
+  for (const Similarity world : { Similarity{ 1.0, 1e10 },
+         Similarity{ 1e19, 0.0 },
+         Similarity{ std::ldexp(1.0, 60), 0.0 },
+         Similarity{ 1e-12, -3e-9 } })
+  {
+    Case moved = base;
+    moved.World = world;
+    moved.Name = "Scale" + std::to_string(world.Scale) + "Offset" + std::to_string(world.Offset);
+    const Rendered r = RenderBoth(moved);
+    const Comparison gpu = Compare(r.Gpu, atOrigin.Gpu.RGBA);
+    Image cpu;
+    cpu.Width = cpu.Height = Size;
+    cpu.RGBA = r.Cpu;
+    const Comparison reference = Compare(cpu, atOrigin.Cpu);
+    std::cout << "scale " << world.Scale << ", offset " << world.Offset
+              << ": GPU vs GPU at the origin, max " << gpu.MaxColor / gpu.Brightest << " RMS "
+              << gpu.RmsColor / gpu.Brightest << " of the peak; CPU vs CPU max "
+              << reference.MaxColor / reference.Brightest << " RMS "
+              << reference.RmsColor / reference.Brightest << "\n";
+    ASSERT_GT(gpu.CloudPixels, Size * Size / 10) << "an empty window proves nothing";
+    ASSERT_GT(gpu.Brightest, 0.05);
+    // Measured on llvmpipe: 0 for the offset and the power-of-two scale (the same floats),
+    // up to 2.9e-5 (GPU) and 3.3e-6 (CPU) of the peak for the others, where the scaled spacing
+    // rounds differently.
+    EXPECT_LT(gpu.MaxColor, (llvmpipe ? 1e-4 : 1e-3) * gpu.Brightest);
+    EXPECT_LT(reference.MaxColor, 1e-5 * reference.Brightest);
+    if (world.Scale == std::ldexp(1.0, 60) || world.Scale == 1.0)
+    {
+      EXPECT_EQ(gpu.MaxColor, 0.0) << "a power-of-two scale and an exact offset change no float";
+      EXPECT_EQ(reference.MaxColor, 0.0);
+    }
+  }
+}

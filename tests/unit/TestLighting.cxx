@@ -58,7 +58,9 @@ struct Volume
           this->Density.push_back(density(i, j, k));
     this->Uniforms.Density = this->Density.data();
     this->Uniforms.Dimensions = n;
-    this->Uniforms.Spacing = glm::vec3(spacing);
+    // A frame whose unit is the world's: local lengths are world lengths.
+    this->Uniforms.IndexToLocal = glm::mat4(glm::mat3(spacing));
+    this->Uniforms.LocalToIndex = glm::mat3(1.0f / spacing);
     this->Uniforms.Table = &this->Table;
     this->Uniforms.Lighting.LightStep = spacing;
     this->Uniforms.Lighting.LightStepGrowth = 1.0f;
@@ -172,14 +174,19 @@ TEST(Lighting, PowderZeroChangesNothingAndOneDarkensThinRegionsToZero)
 TEST(Lighting, SampleLightGivesDirectionDistanceAndFalloff)
 {
   Light sun;
-  sun.Position = glm::vec3(3.0f, 0.0f, 0.0f);
-  sun.FocalPoint = glm::vec3(1.0f, 0.0f, 0.0f);
-  const LightSample s = SampleLight(sun, glm::vec3(5.0f, 5.0f, 5.0f));
+  sun.Position = glm::dvec3(3.0, 0.0, 0.0);
+  sun.FocalPoint = glm::dvec3(1.0, 0.0, 0.0);
+  EXPECT_EQ(DirectionTowardLight(sun), glm::dvec3(1.0, 0.0, 0.0));
+  sun.Position = glm::dvec3(1e300, 0.0, 1e300); // any distance along its direction
+  EXPECT_NEAR(DirectionTowardLight(sun).z, std::sqrt(0.5), 1e-15);
+  LocalLight local;
+  local.Direction = glm::vec3(1.0f, 0.0f, 0.0f);
+  const LightSample s = SampleLight(local, glm::vec3(5.0f, 5.0f, 5.0f));
   EXPECT_FLOAT_EQ(s.Direction.x, 1.0f);
-  EXPECT_TRUE(std::isinf(s.Distance));
+  EXPECT_EQ(s.Distance, 1e30f); // as the GLSL's
   EXPECT_EQ(s.Falloff, 1.0f);
 
-  Light bulb;
+  LocalLight bulb;
   bulb.Positional = true;
   bulb.Position = glm::vec3(0.0f, 4.0f, 0.0f);
   bulb.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f);
@@ -262,14 +269,25 @@ TEST(ReferenceMarch, LightMarchStopsAtTheVolumeEdgeAndAtAPointLight)
     sigma_t * 31.0f * spacing, 1e-4f);
 }
 
-TEST(ReferenceMarch, AutomaticDistancesAreFourAndTwoVoxels)
+TEST(ReferenceMarch, AutomaticDistancesAreFourAndTwoVoxelsInLocalUnits)
 {
-  LightingParameters p;
-  const LightingParameters resolved = ResolveLighting(p, 0.25);
-  EXPECT_FLOAT_EQ(resolved.DerivativeDistance, 1.0f);
-  EXPECT_FLOAT_EQ(resolved.LightStep, 0.5f);
-  p.DerivativeDistance = 0.3f;
-  p.LightStep = 0.1f;
-  EXPECT_FLOAT_EQ(ResolveLighting(p, 0.25).DerivativeDistance, 0.3f);
-  EXPECT_FLOAT_EQ(ResolveLighting(p, 0.25).LightStep, 0.1f);
+  // Voxels of 0.3 world units: the frame's unit is 0.25, the nearest power of two.
+  std::vector<float> density(8, 0.0f);
+  TransferTable table = LinearTable(1.0f);
+  MarchSetup setup;
+  setup.Geometry.Dimensions = glm::ivec3(2);
+  setup.Geometry.IndexToWorld = glm::dmat4(glm::dmat3(0.3));
+  setup.Table = &table;
+  MarchUniforms u;
+  LocalFrame frame;
+  ASSERT_FALSE(SetUpMarch(setup, u, &frame)) << SetUpMarch(setup, u).Message;
+  EXPECT_EQ(frame.Unit, 0.25);
+  EXPECT_FLOAT_EQ(u.Lighting.DerivativeDistance, 4.0f * 0.3f / 0.25f);
+  EXPECT_FLOAT_EQ(u.Lighting.LightStep, 2.0f * 0.3f / 0.25f);
+  EXPECT_FLOAT_EQ(u.Step, 0.3f / 0.25f) << "one voxel by default";
+  setup.Lighting.DerivativeDistance = 0.3f;
+  setup.Lighting.LightStep = 0.1f;
+  ASSERT_FALSE(SetUpMarch(setup, u));
+  EXPECT_FLOAT_EQ(u.Lighting.DerivativeDistance, 0.3f / 0.25f);
+  EXPECT_FLOAT_EQ(u.Lighting.LightStep, 0.1f / 0.25f);
 }

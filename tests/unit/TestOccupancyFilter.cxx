@@ -1,6 +1,7 @@
 // vtkCloudOccupancyFilter: which bricks are occupied (apron included, transfer function
 // respected), the exact Chebyshev distances, the output geometry, input types, pipeline
 // manners (re-execution only on change) and determinism across SMP backends.
+#include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
 #include "vtkCloudOccupancyFilter.h"
 
@@ -180,6 +181,62 @@ TEST(OccupancyFilter, OneVoxelOccupiesExactlyTheBricksWhoseApronHoldsIt)
   EXPECT_EQ(bricks.Distance[bricks.At({ 3, 3, 2 })], 2);
   EXPECT_EQ(bricks.Distance[bricks.At({ 0, 3, 2 })], 2);
   ExpectExactDistances(bricks);
+}
+
+TEST(OccupancyFilter, ExtinctionBoundsHoldForEveryTrilinearSampleInTheBrick)
+{
+  // A random field and table: at random points of each brick, the extinction of the trilinear
+  // sample (the renderers' DensityAt) lies between the brick's min_extinction and
+  // max_extinction, the path tracer's minorant and majorant.
+  const Index dims = { 19, 14, 11 };
+  auto field = MakeField<vtkFloatArray>(dims);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  auto* scalars = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
+  for (vtkIdType v = 0; v < scalars->GetNumberOfValues(); ++v)
+    scalars->SetValue(v, v % dims[0] < 3 ? 0.0f : 0.1f + 0.9f * unit(rng)); // empty at low x
+  TransferTable table = RampTable();
+  for (int e = 0; e < table.Size; ++e)
+    table.RGBA[4 * e + 3] *= 0.5f + unit(rng); // not monotonic
+  vtkNew<vtkCloudOccupancyFilter> filter;
+  filter->SetInputData(field);
+  filter->SetTransferTable(table);
+  filter->SetBrickSize(4);
+  filter->Update();
+  vtkImageData* output = filter->GetOutput();
+  auto* maxima = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("max_extinction"));
+  auto* minima = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("min_extinction"));
+  ASSERT_NE(minima, nullptr);
+  ASSERT_EQ(minima->GetNumberOfValues(), maxima->GetNumberOfValues());
+  MarchUniforms u;
+  u.Density = scalars->GetPointer(0);
+  u.Dimensions = glm::ivec3(dims[0], dims[1], dims[2]);
+  u.Table = &table;
+  const int* bricks = output->GetDimensions();
+  int positive = 0;
+  for (int bz = 0; bz < bricks[2]; ++bz)
+    for (int by = 0; by < bricks[1]; ++by)
+      for (int bx = 0; bx < bricks[0]; ++bx)
+      {
+        const vtkIdType b = (vtkIdType(bz) * bricks[1] + by) * bricks[0] + bx;
+        positive += minima->GetValue(b) > 0.0f;
+        ASSERT_LE(minima->GetValue(b), maxima->GetValue(b));
+        for (int k = 0; k < 200; ++k)
+        {
+          // Within the brick's cells and the volume: [4 b, 4 b + 4] clamped to [0, n - 1].
+          glm::vec3 p;
+          for (int a = 0; a < 3; ++a)
+          {
+            const float lo = 4.0f * glm::ivec3(bx, by, bz)[a];
+            const float hi = std::min(lo + 4.0f, float(dims[a] - 1));
+            p[a] = lo + unit(rng) * (hi - lo);
+          }
+          const float sigma_t = ExtinctionAt(u, p);
+          ASSERT_GE(sigma_t, minima->GetValue(b)) << "brick " << bx << ", " << by << ", " << bz;
+          ASSERT_LE(sigma_t, maxima->GetValue(b)) << "brick " << bx << ", " << by << ", " << bz;
+        }
+      }
+  EXPECT_GT(positive, 10); // the bricks away from the empty side
 }
 
 TEST(OccupancyFilter, ApronZeroIsTheTrilinearFootprint)
@@ -466,4 +523,30 @@ TEST(OccupancyFilter, Timing256Cubed)
             << "\n";
   EXPECT_GT(filter->GetOccupiedFraction(), 0.0);
   EXPECT_LT(filter->GetOccupiedFraction(), 1.0);
+}
+
+TEST(OccupancyFilter, ValuesBeyondTheTransferFunctionTakeItsEndValues)
+{
+  // The table spans the function (0 .. 1); the data reach far beyond it. A brick of -3.4e38
+  // reads the first entry (transparent), bricks of 1e4 or 3.4e38 the last (opaque): skipping
+  // stays exact because the occupancy clamps exactly as the lookups do.
+  const Index dims = { 17, 9, 9 };
+  auto field = MakeField<vtkFloatArray>(dims, -3.4e38);
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 9; ++y)
+    {
+      SetVoxel(field, { 14, y, z }, 1e4);
+      SetVoxel(field, { 16, y, z }, 3.4e38);
+    }
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.0);
+  opacity->AddPoint(1.0, 0.5);
+  const TransferTable table = TabulateTransferFunction(nullptr, opacity, 1.0);
+  const Bricks bricks = Occupancy(field, table, 4, 0);
+  ASSERT_EQ(bricks.Dims, (Index{ 4, 2, 2 }));
+  for (int x = 0; x < 4; ++x)
+  {
+    EXPECT_EQ(bricks.Occupied({ x, 0, 0 }), x == 3) << "brick " << x;
+  }
+  EXPECT_FLOAT_EQ(bricks.MaxExtinction[bricks.At({ 3, 1, 1 })], float(Extinction(0.5, 1.0)));
 }

@@ -4,6 +4,7 @@
 // agreement with vtkCamera, the image's orientation, input checks and determinism.
 #include "CloudLighting.h"
 #include "CloudTransferTable.h"
+#include "RendererTestSupport.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCallbackCommand.h>
@@ -167,19 +168,83 @@ Image RenderWith(vtkCloudReferenceRenderer* renderer, const LightingParameters& 
   return Render(renderer);
 }
 
-int CountErrors(vtkCloudReferenceRenderer* renderer)
-{
-  int errors = 0;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&errors);
-  onError->SetCallback(
-    [](vtkObject*, unsigned long, void* clientData, void*) { ++*static_cast<int*>(clientData); });
-  const unsigned long tag = renderer->AddObserver(vtkCommand::ErrorEvent, onError);
-  renderer->Modified();
-  renderer->Update();
-  renderer->RemoveObserver(tag);
-  return errors;
+using cloudvis::test::CountErrors;
 }
+
+namespace
+{
+// An off-centre ellipsoid, so that a rotation or a shift of the volume shows.
+vtkSmartPointer<vtkImageData> Lopsided(int n = 24)
+{
+  return MakeField(n,
+    -1.0,
+    1.0,
+    [](double x, double y, double z)
+    {
+      const double u = (x - 0.3) / 0.5, v = (y + 0.1) / 0.3, w = z / 0.4;
+      return std::min(1.0, std::max(0.0, 2.0 * (1.0 - u * u - v * v - w * w)));
+    });
+}
+
+double MaxDifference(const Image& a, const Image& b)
+{
+  double largest = a.RGBA.size() == b.RGBA.size() ? 0.0 : 1e9;
+  for (std::size_t i = 0; i < a.RGBA.size() && i < b.RGBA.size(); ++i)
+  {
+    const double d = std::abs(double(a.RGBA[i]) - double(b.RGBA[i]));
+    largest = std::isnan(d) ? d : std::max(largest, d); // NaN: no match (EXPECT_LT fails)
+    if (std::isnan(d))
+      break;
+  }
+  return largest;
+}
+}
+
+TEST(ReferenceRenderer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
+{
+  // Each placement moves the volume and the camera alike: the picture must not change. (Before,
+  // the reference refused a direction matrix and had no volume matrix.)
+  auto field = Lopsided();
+  const Image base = Render(FrontView(field, 32));
+  ASSERT_GT(base.MeanRadiance(), 0.01) << "an empty image proves nothing";
+
+  // The same voxels indexed from -7, the origin moved back by 7 voxels.
+  auto shifted = vtkSmartPointer<vtkImageData>::New();
+  shifted->DeepCopy(field);
+  const double* spacing = field->GetSpacing();
+  shifted->SetOrigin(-1.0 + 7 * spacing[0], -1.0 + 7 * spacing[1], -1.0 + 7 * spacing[2]);
+  shifted->SetExtent(-7, 16, -7, 16, -7, 16);
+  EXPECT_LT(MaxDifference(Render(FrontView(shifted, 32)), base), 1e-6);
+
+  // Rotated a quarter turn about z around its origin (-1, -1, -1) by the direction matrix, and
+  // the camera with it: (x, y) -> (-y, x) about that point.
+  auto rotated = vtkSmartPointer<vtkImageData>::New();
+  rotated->DeepCopy(field);
+  rotated->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
+  auto turned = FrontView(rotated, 32);
+  turned->SetCameraPosition(-2.0, 0.0, 5.0);
+  turned->SetCameraFocalPoint(-2.0, 0.0, 0.0);
+  turned->SetCameraViewUp(-1.0, 0.0, 0.0);
+  EXPECT_LT(MaxDifference(Render(turned), base), 1e-5);
+
+  // Moved and scaled by the volume's matrix: twice as large, so half the extinction per unit
+  // length gives the same optical depths; the default step is one voxel, twice as long too.
+  vtkNew<vtkMatrix4x4> matrix;
+  matrix->SetElement(0, 0, 2.0);
+  matrix->SetElement(1, 1, 2.0);
+  matrix->SetElement(2, 2, 2.0);
+  matrix->SetElement(0, 3, 5.0);
+  matrix->SetElement(1, 3, -2.0);
+  matrix->SetElement(2, 3, 1.0);
+  auto placed = FrontView(field, 32);
+  placed->SetVolumeMatrix(matrix);
+  placed->SetTransferTable(LinearTable(3.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
+  placed->SetCameraPosition(5.0, -2.0, 11.0);
+  placed->SetCameraFocalPoint(5.0, -2.0, 1.0);
+  placed->SetParallelScale(2.0);
+  placed->SetClippingRange(2.0, 20.0);
+  EXPECT_LT(MaxDifference(Render(placed), base), 1e-5);
+  EXPECT_EQ(placed->GetVolumeMatrix()->GetElement(0, 3), 5.0);
 }
 
 TEST(ReferenceRenderer, CameraMatchesVtkCamera)
@@ -495,10 +560,12 @@ TEST(ReferenceRenderer, RefusesBadInput)
   vectors->GetPointData()->SetScalars(threeComponents);
   EXPECT_EQ(CountErrors(FrontView(vectors, 8)), 1);
 
-  auto rotated = vtkSmartPointer<vtkImageData>::New();
-  rotated->DeepCopy(sphere);
-  rotated->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
-  EXPECT_EQ(CountErrors(FrontView(rotated, 8)), 1);
+  // A rotated image is drawn (ReferenceRenderer.HonoursTheImageGeometry...); a flattened one
+  // cannot be.
+  auto flattened = vtkSmartPointer<vtkImageData>::New();
+  flattened->DeepCopy(sphere);
+  flattened->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 1, 1, 0);
+  EXPECT_EQ(CountErrors(FrontView(flattened, 8)), 1);
 
   auto emptyImage = FrontView(sphere, 8);
   emptyImage->SetImageSize(0, 8);
@@ -507,6 +574,20 @@ TEST(ReferenceRenderer, RefusesBadInput)
   auto negativeStep = FrontView(sphere, 8);
   negativeStep->SetSampleDistance(-0.1);
   EXPECT_EQ(CountErrors(negativeStep), 1);
+
+  auto tinyStep = FrontView(sphere, 8); // beyond the 65536 samples a ray may take
+  tinyStep->SetSampleDistance(1e-9);
+  EXPECT_EQ(CountErrors(tinyStep), 1);
+
+  auto noSpacing = vtkSmartPointer<vtkImageData>::New();
+  noSpacing->DeepCopy(sphere);
+  noSpacing->SetSpacing(0.1, std::nan(""), 0.1);
+  EXPECT_EQ(CountErrors(FrontView(noSpacing, 8)), 1);
+
+  auto notANumber = vtkSmartPointer<vtkImageData>::New();
+  notANumber->DeepCopy(sphere);
+  notANumber->GetPointData()->GetScalars()->SetComponent(7, 0, std::nan(""));
+  EXPECT_EQ(CountErrors(FrontView(notANumber, 8)), 1);
 
   auto badLighting = FrontView(sphere, 8);
   LightingParameters p = Model(LightingModel::March);

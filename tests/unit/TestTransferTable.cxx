@@ -189,33 +189,68 @@ TEST(TransferTable, LookupClampsOutsideTheRange)
   ExpectNear(TransferTable().Lookup(0.5), glm::vec4(0.0f));
 }
 
-TEST(TransferTable, MaxExtinctionBoundsEveryLookupInTheInterval)
+namespace
+{
+// 64 entries over [-0.5, 1.5] whose extinction is `extreme` every 9th entry and random in
+// [1, 10] (or 0) elsewhere, and 2000 random intervals in [-1, 2]: bound(a, b) is symmetric and
+// holds for 41 lookups across [a, b], above (upper) or below. Returns how many bounds are > 0.
+int ExpectBoundHolds(bool upper, unsigned seed)
 {
   TransferTable table;
   table.Range[0] = -0.5;
   table.Range[1] = 1.5;
   table.Size = 64;
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<float> sigma(0.0f, 10.0f);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> sigma(1.0f, 10.0f);
   for (int i = 0; i < table.Size; ++i)
   {
-    // Mostly transparent with isolated spikes: the case where missing a bracket entry shows.
-    const float s = (i % 9 == 0) ? sigma(rng) : 0.0f;
+    // Isolated spikes in a transparent table (for the upper bound) or holes in an opaque one
+    // (for the lower): the cases where missing a bracket entry shows.
+    const bool isolated = i % 9 == 0;
+    const float s = upper ? (isolated ? sigma(rng) : 0.0f) : (isolated ? 0.0f : sigma(rng));
     table.RGBA.insert(table.RGBA.end(), { 1.0f, 1.0f, 1.0f, s });
   }
+  const auto bound = [&](double a, double b) {
+    return upper ? table.MaxExtinction(a, b) : table.MinExtinction(a, b);
+  };
   std::uniform_real_distribution<double> u(-1.0, 2.0);
+  int positive = 0;
   for (int n = 0; n < 2000; ++n)
   {
     const double a = u(rng), b = u(rng);
-    const float bound = table.MaxExtinction(a, b);
-    EXPECT_EQ(bound, table.MaxExtinction(b, a));
+    const float value = bound(a, b);
+    EXPECT_EQ(value, bound(b, a));
+    EXPECT_LE(table.MinExtinction(a, b), table.MaxExtinction(a, b));
+    positive += value > 0.0f;
     for (int k = 0; k <= 40; ++k)
     {
       const double density = a + (b - a) * k / 40.0;
-      ASSERT_LE(table.Lookup(density).a, bound) << "density " << density << " in [" << a << ", "
-                                                << b << "]";
+      const float sigma_t = table.Lookup(density).a;
+      if (upper)
+        EXPECT_LE(sigma_t, value) << "density " << density << " in [" << a << ", " << b << "]";
+      else
+        EXPECT_GE(sigma_t, value) << "density " << density << " in [" << a << ", " << b << "]";
     }
   }
+  // One density on an entry: both bounds are that entry.
+  const double onEntry = table.Range[0] + 5.0 * (table.Range[1] - table.Range[0]) / 63.0;
+  EXPECT_EQ(bound(onEntry, onEntry), table.RGBA[5 * 4 + 3]);
+  return positive;
+}
+}
+
+TEST(TransferTable, MaxExtinctionBoundsEveryLookupInTheInterval)
+{
+  EXPECT_GT(ExpectBoundHolds(true, 11), 100);
+}
+
+TEST(TransferTable, MinExtinctionBoundsEveryLookupInTheIntervalFromBelow)
+{
+  // The path tracer integrates this bound exactly and ratio-tracks the rest, so a bound above
+  // one lookup would bias its transmittance. A bound of 0 everywhere would be useless, not
+  // wrong: most intervals contain a hole, but not all.
+  EXPECT_GT(ExpectBoundHolds(false, 12), 20);
+  EXPECT_EQ(TransferTable().MinExtinction(0.0, 1.0), 0.0f);
 }
 
 TEST(TransferTable, MaxExtinctionIsZeroWhereTheOpacityIsZeroAroundTheInterval)
@@ -308,4 +343,52 @@ TEST(ValidateTransferFunction, PointPositionsMustBeNumbersInOrder)
   double nan[4] = { std::numeric_limits<double>::quiet_NaN(), 0.2, 0.5, 0.0 };
   opacity->SetNodeValue(0, nan);
   EXPECT_EQ(ValidateTransferFunction(opacity, nullptr), "opacity point 0 is not a number");
+}
+
+namespace
+{
+// TransferFunctionRange of the pair is [lo, hi].
+void ExpectRange(vtkPiecewiseFunction* opacity, vtkScalarsToColors* color, double lo, double hi)
+{
+  double range[2];
+  ASSERT_TRUE(TransferFunctionRange(opacity, color, range));
+  EXPECT_EQ(range[0], lo);
+  EXPECT_EQ(range[1], hi);
+}
+}
+
+TEST(TransferTable, SpansTheTransferFunctionNotTheData)
+{
+  // The opacity's points and the color map's range together; the data's extremes play no part.
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.1, 0.0);
+  opacity->AddPoint(0.9, 0.6);
+  vtkNew<vtkLookupTable> color;
+  color->SetTableRange(0.0, 0.5);
+  ExpectRange(opacity, color, 0.0, 0.9);
+  ExpectRange(opacity, nullptr, 0.1, 0.9);
+
+  // Outside its points a function keeps its end values, as VTK clamps: so does the table.
+  const TransferTable table = TabulateTransferFunction(nullptr, opacity, 1.0);
+  ASSERT_EQ(table.Size, 1024);
+  EXPECT_EQ(table.Lookup(1e4), table.Lookup(0.9));
+  EXPECT_EQ(table.Lookup(3.4e38), table.Lookup(0.9));
+  EXPECT_EQ(table.Lookup(-3.4e38).a, 0.0f);
+  EXPECT_NEAR(table.Lookup(0.5).a, Extinction(0.3, 1.0), 1e-3);
+}
+
+TEST(TransferTable, ASinglePointFunctionGivesAConstantTableOfWidthOne)
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(2.0, 0.4);
+  ExpectRange(opacity, nullptr, 2.0, 3.0);
+  const TransferTable table = TabulateTransferFunction(nullptr, opacity, 0.5);
+  for (double density : { -1e30, 0.0, 2.0, 2.5, 1e30 })
+  {
+    EXPECT_FLOAT_EQ(table.Lookup(density).a, float(Extinction(0.4, 0.5))) << density;
+  }
+  vtkNew<vtkPiecewiseFunction> none;
+  double range[2];
+  EXPECT_FALSE(TransferFunctionRange(none, nullptr, range));
+  EXPECT_EQ(TabulateTransferFunction(nullptr, none, 1.0).Size, 0);
 }

@@ -1,10 +1,11 @@
 // `cloudvis render --cpu-reference`: the scene rendered by vtkCloudReferenceRenderer, the CPU
 // oracle of the GPU mapper's equations, instead of the GPU. Everything the image depends on comes
-// from the same places as RenderOffscreen's: the camera ApplyCamera sets up, the transfer table
-// the mapper would build (BuildTransferTable over the field's scalar range), the scene's lights,
-// LightingOf(scene) and render.step. No jitter (one exact ray per pixel), no accumulation, and
-// render.resolution_scale does not apply (the reference renders every pixel). No OpenGL, so no
-// display is needed.
+// from the same places as RenderOffscreen's: the camera ApplyCamera sets up, the field's whole
+// geometry, the transfer table the mapper would build (TabulateTransferFunction, over the
+// function's own points), the scene's lights, LightingOf(scene) and render.step. Both renderers
+// refuse the same inputs (cloudvis::SetUpMarch); CheckSceneRenderable says so in scene keys. No
+// jitter (one exact ray per pixel), no accumulation, and render.resolution_scale does not apply
+// (the reference renders every pixel). No OpenGL, so no display is needed.
 #ifndef cloudvis_CpuReference_h
 #define cloudvis_CpuReference_h
 
@@ -26,13 +27,21 @@ namespace cloudvis
 // two show the same view.
 void SetReferenceCamera(vtkCloudReferenceRenderer* reference, vtkCamera* camera);
 
-// The transfer table the GPU mapper builds for this transfer function and field: 1024 entries
-// over the field's scalar range (a constant field gets the range [v, v + 1], as on the GPU).
-TransferTable SceneTransferTable(const TransferFunctionSpec& transferFunction, vtkImageData* field);
+// The transfer table the GPU mapper builds for this transfer function: 1024 entries over the
+// function's points (TabulateTransferFunction), whatever the field's values.
+TransferTable SceneTransferTable(const TransferFunctionSpec& transferFunction);
+
+// Throws InputError unless both renderers can draw `field` as the scene says: what
+// cloudvis::ValidateVolumeGeometry and cloudvis::SetUpMarch refuse (a geometry float arithmetic
+// cannot hold, a step needing more samples per ray than the renderers take, an extinction or a
+// light beyond float range), named by its scene key: "<scene>: render.step: <problem>". Every
+// command that renders calls it once the field is known and before anything is drawn or written.
+void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::string& input);
 
 // The reference's premultiplied RGBA (render.size pixels, rows bottom to top) composited over the
 // scene's background, c + (1 - a) * background, rounded to 8 bits. Throws InputError
-// "<input>: CPU reference: <problem>" when the reference refuses the field or the parameters.
+// "<input>: CPU reference: <problem>" when the reference refuses the field or the parameters, and
+// CheckFiniteImage's error when a pixel is not finite.
 RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const std::string& input);
 
 } // namespace cloudvis

@@ -49,8 +49,21 @@ void CheckRenderSize(
 // the camera position (for a parallel projection: from the plane through the camera position
 // across the view direction) to where the cloud's opacity first passes 2%; +infinity where it
 // never does in some accumulated frame. Throws InputError (naming `input`) when the mapper has
-// no image or its image is not the window's size (render.resolution_scale below 1).
+// no image or its image is not the window's size (render.resolution_scale below 1), and
+// CheckFiniteImage's error when a pixel is not finite.
 void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, RenderedImage& image,
+  const std::string& input);
+
+// Throws InputError "<input>: the rendered image has N pixels that are NaN or infinite ..." (with
+// the likely causes) unless every value of the premultiplied RGBA floats is finite. Every path
+// that writes a picture checks its float image with it first: a non-finite pixel would reach
+// the file as a silently wrong color.
+void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input);
+
+// Reads the mapper's float image of `renderer` and checks it with CheckFiniteImage; for renders
+// whose export needs only the window's 8-bit pixels.
+void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
+  vtkRenderer* renderer,
   const std::string& input);
 
 // Renders the window once more with `volume` hidden and fills image.BackgroundRGB with what is

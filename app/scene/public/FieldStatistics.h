@@ -24,12 +24,10 @@ struct FieldStatistics
 {
   std::array<int, 3> Dimensions{};
   std::array<double, 3> Spacing{};
-  std::array<double, 3> Origin{}; // the world position of the first voxel
+  std::array<double, 3> Origin{}; // the world position of the extent's first voxel
   // The lattice's axes in world space, row-major (column a is the direction of index axis a).
   std::array<double, 9> Direction{ { 1, 0, 0, 0, 1, 0, 0, 0, 1 } };
-  // The world box around the voxels: origin .. origin + (n - 1) spacing per axis when the
-  // direction is the identity, else the box around the eight corner voxels.
-  std::array<double, 6> Bounds{};
+  std::array<double, 6> Bounds{}; // the world box around the voxels (direction matrix applied)
   std::uint64_t Voxels = 0;
   double Minimum = 0.0;
   double Maximum = 0.0;

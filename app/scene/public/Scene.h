@@ -1,7 +1,9 @@
 // A scene file, parsed and validated: what cloudvis should show or export. A scene is a JSON
 // object of sections (field, transfer_function, camera, background, render, lights, ambient);
-// each section has one entry in the section table of Scene.cxx and one part of the Scene struct,
-// so a new section is a new entry that does not touch the rest. Overrides from the command line
+// every key of every section is one entry of the scene schema (SceneSchema.cxx), which the
+// reader, --set, the resolved scene of SceneJson.h and the reference tables of
+// docs/scene-format.md (SceneReferenceMarkdown) all walk. Defaults are the members' initial
+// values below. Overrides from the command line
 // (--set key=value, and options such as --lighting that stand for a key) are applied to the JSON
 // document before validation, so a value from a file and a value from the command line are
 // checked by the same code and reported with the same dotted key.
@@ -81,7 +83,7 @@ struct CameraSpec
 // The "render" section: how the mapper marches and how large the image is.
 struct RenderSpec
 {
-  LightingModel Lighting = LightingModel::None; // names: the LightingModels table of Scene.cxx
+  LightingModel Lighting = LightingModel::None; // names: LightingModelNames()
   // render.derivative.* and render.march.*. Its Model and Ambient* members are not read from
   // here (render.lighting and the ambient section are): LightingOf(scene) assembles all three.
   LightingParameters Parameters;
@@ -138,11 +140,12 @@ struct Scene
   std::array<double, 3> Background{ { 0.1, 0.12, 0.16 } };
   BackgroundSpec BackgroundStyle;
   RenderSpec Render;
-  // The "lights" section (at most 8; DefaultLights() when the key is absent) and "ambient".
+  // The "lights" section (at most LightingLimits::MaxLights; DefaultLights() when the key is
+  // absent) and "ambient".
   std::vector<Light> Lights = DefaultLights();
   AmbientSpec Ambient;
-  // The validated JSON document, after overrides and before defaults (SceneJson.h builds the
-  // fully resolved document from it for export metadata).
+  // The validated JSON document as given, after overrides and before defaults (the fully
+  // resolved one is SceneToJson's, written from the members above).
   nlohmann::json Document;
 };
 
@@ -180,6 +183,11 @@ nlohmann::json ReadSceneDocument(const std::string& path);
 // file must be a regular file of at most MaximumJsonFileBytes (InputFiles.h).
 nlohmann::json ReadJsonFile(const std::string& path, const std::string& what);
 
+// The reference tables of docs/scene-format.md, generated from the scene schema: Markdown, each
+// table between the lines "<!-- schema:NAME -->" and "<!-- /schema -->" (`cloudvis schema`
+// prints it; app.scene_docs checks that the docs hold the same tables).
+std::string SceneReferenceMarkdown();
+
 // `value` with every string and object key made valid UTF-8 by EscapeInvalidUtf8 (Utf8.h), so
 // that dump() cannot throw: strings from --set and paths may hold any bytes.
 nlohmann::json WithValidUtf8(nlohmann::json value);
@@ -198,7 +206,8 @@ void SetDocumentValue(nlohmann::json& document, const std::string& key, const nl
 
 // The value of an assignment: JSON when it parses as JSON (6, "perlin", [1,2,3], true), else a
 // comma-separated list of numbers as an array (128,128,128), else the text as a string (perlin).
-// `key` only names the value in errors.
+// A key whose schema type is free text (description, field.file, transfer_function.preset) takes
+// text that is not JSON as written, even "inf" or "1,2". `key` names the value in errors.
 nlohmann::json ParseOverrideValue(const std::string& key, const std::string& text);
 
 // Validates a document and turns it into a Scene. `source` prefixes every message,

@@ -3,10 +3,10 @@
 // (`cloudvis render scene.json` on the document re-renders the same image). Exports embed it as
 // metadata (docs/export.md).
 //
-// The document is built from the Scene's document (the user's keys after overrides) with every
-// key this module knows written over it from the validated Scene. A key it does not know (a
-// section added later) keeps the user's value, so the embedded scene still re-renders; only that
-// key's default is then implicit.
+// The document is written from the validated Scene by the scene schema (SceneSchema.cxx), the
+// same table that reads it: every key of every section, defaults included. A transfer-function
+// preset is spelt out point by point, a sky's sun is the direction it resolved to, and the lights
+// are written even when the scene took the default sun.
 #ifndef cloudvis_SceneJson_h
 #define cloudvis_SceneJson_h
 

@@ -1,11 +1,20 @@
 // The viewer's transfer-function editor: two VTK charts in one vtkContextScene, drawn by a
 // vtkContextActor in the bottom viewport of the viewer's window (no vtkContextView, no Qt).
 // The upper chart edits opacity per unit distance over density (vtkPiecewiseControlPointsItem:
-// click to add a point, drag to move, Delete to remove) over the field's histogram (a vtkPlotBar,
-// log scale by default because cloud fields are mostly empty); the lower strip edits the color
+// click to add a point, drag to move) over the field's histogram (a vtkPlotBar, log scale by
+// default because cloud fields are mostly empty); the lower strip edits the color
 // (vtkColorTransferControlPointsItem over vtkColorTransferFunctionItem). The functions edited
 // are the very vtkPiecewiseFunction and vtkColorTransferFunction of the volume's property, so
 // the 3D view follows every change; the viewer observes their ModifiedEvent to re-render.
+//
+// Both charts put their axes on rectangles computed from the renderer's size (AXES_TO_RECT), with
+// the same left and right edges, so one density sits at the same x on both; the color strip is
+// never less than 14 pixels tall, enough to see and grab its points. The axes reach a little
+// beyond the function's range on every side, because a chart only takes presses strictly inside
+// its axes: a point on the range's edge could not be grabbed otherwise.
+//
+// The editor keeps an undo history of whole functions: a drag, an added or removed point, typed
+// values, a preset, a fit or a reset is one step each.
 #ifndef cloudvis_TransferFunctionEditor_h
 #define cloudvis_TransferFunctionEditor_h
 
@@ -15,6 +24,7 @@
 #include <vtkSmartPointer.h>
 
 #include <array>
+#include <string>
 #include <vector>
 
 class vtkChartXY;
@@ -23,6 +33,7 @@ class vtkColorTransferFunction;
 class vtkColorTransferFunctionItem;
 class vtkContextActor;
 class vtkContextScene;
+class vtkControlPointsItem;
 class vtkImageData;
 class vtkPiecewiseControlPointsItem;
 class vtkPiecewiseFunction;
@@ -30,6 +41,7 @@ class vtkPiecewiseFunctionItem;
 class vtkPlotBar;
 class vtkRenderer;
 class vtkTable;
+class vtkTextActor;
 class vtkVolumeProperty;
 
 namespace cloudvis
@@ -39,6 +51,7 @@ namespace cloudvis
 // included), and back.
 TransferFunctionSpec TransferFunctionOf(vtkVolumeProperty* property);
 void SetTransferFunction(vtkVolumeProperty* property, const TransferFunctionSpec& spec);
+bool SameTransferFunction(const TransferFunctionSpec& a, const TransferFunctionSpec& b);
 
 class TransferFunctionEditor
 {
@@ -57,18 +70,67 @@ public:
   bool GetLogHistogram() const { return this->LogHistogram; }
 
   // Stretches the functions' points so that they span the field's value range (the first point
-  // at its minimum, the last at its maximum) and shows that range.
+  // at its minimum, the last at its maximum) and shows that range. One undo step.
   void FitToData();
 
-  // Call after the functions were replaced wholesale (a preset): the axes follow their points.
-  void UpdateRange();
+  // Replaces the functions (a preset, the scene's function) and shows their range. One undo step.
+  void Apply(const TransferFunctionSpec& spec);
 
   // The density range the charts show.
   std::array<double, 2> GetRange() const { return this->Range; }
 
+  // Around a mouse drag in the charts: the drag's changes become one undo step, and the value
+  // of the point under the pointer is shown only while the drag lasts.
+  void BeginDrag();
+  void EndDrag();
+  bool GetTooltipsVisible() const;
+
+  // Undo / redo whole edits; false when there is nothing to undo / redo.
+  bool Undo();
+  bool Redo();
+  int GetUndoDepth() const { return int(this->UndoStack.size()); }
+  int GetRedoDepth() const { return int(this->RedoStack.size()); }
+
+  enum class Function
+  {
+    None,
+    Opacity,
+    Color
+  };
+  // The selected point (the last clicked or added): its function and index, or None and -1.
+  Function GetSelectedFunction() const;
+  int GetSelectedPoint() const;
+  static const char* FunctionName(Function function);
+
+  // Removes the selected point. Returns an empty string, or why it could not be removed.
+  std::string DeleteSelectedPoint();
+
+  // The selected point's values as typed: "density opacity" or "density red green blue".
+  std::string GetSelectedPointValues() const;
+  // Sets them from typed text (numbers separated by spaces or commas). Returns an empty string,
+  // or what is wrong with the text (nothing changes then).
+  std::string SetSelectedPointValues(const std::string& text);
+
+  // The line at the top of the editor: the selected point's values and what keys do with it,
+  // or `entry` while values are being typed (empty: not typing).
+  void SetEntry(const std::string& entry);
+  std::string GetInfoText() const;
+
+  // Where the points are drawn, in window pixels (x, y from the bottom left), for tests and
+  // tools driving the editor with a real mouse.
+  std::vector<std::array<double, 2>> GetPointPixels(Function function) const;
+  // The color strip's rectangle in window pixels: x0, y0, x1, y1.
+  std::array<double, 4> GetColorStripPixels() const;
+
 private:
   void FillHistogram();
   void LayOut();
+  void UpdateRange();
+  void UpdateInfo();
+  void Record(const TransferFunctionSpec& before);
+  void Restore(const TransferFunctionSpec& spec);
+  bool Step(std::vector<TransferFunctionSpec>& from, std::vector<TransferFunctionSpec>& to);
+  vtkControlPointsItem* SelectedItem() const;
 
   vtkVolumeProperty* Property;
   vtkRenderer* Renderer;
@@ -76,6 +138,17 @@ private:
   std::array<double, 2> Range{ { 0.0, 1.0 } };
   std::vector<double> Counts; // histogram bins over DataRange
   bool LogHistogram = true;
+  Function Selected = Function::None;
+  std::string Entry;
+  std::vector<TransferFunctionSpec> UndoStack;
+  std::vector<TransferFunctionSpec> RedoStack;
+  TransferFunctionSpec DragStart;
+  bool Dragging = false;
+  // The charts' axes rectangles (x, y, width, height in the editor's pixels) and the ranges their
+  // axes show, padded beyond the function's range.
+  std::array<double, 4> OpacityRect{ { 0.0, 0.0, 1.0, 1.0 } };
+  std::array<double, 4> ColorRect{ { 0.0, 0.0, 1.0, 1.0 } };
+  std::array<double, 2> AxisRange{ { 0.0, 1.0 } };
 
   vtkNew<vtkContextScene> Scene;
   vtkNew<vtkContextActor> Actor;
@@ -84,9 +157,10 @@ private:
   vtkNew<vtkTable> Histogram;
   vtkNew<vtkPlotBar> HistogramBars;
   vtkNew<vtkPiecewiseFunctionItem> OpacityCurve;
-  vtkNew<vtkPiecewiseControlPointsItem> OpacityPoints;
+  vtkSmartPointer<vtkPiecewiseControlPointsItem> OpacityPoints; // end points move in x and y
   vtkNew<vtkColorTransferFunctionItem> ColorBar;
   vtkNew<vtkColorTransferControlPointsItem> ColorPoints;
+  vtkNew<vtkTextActor> Info;
   unsigned long LayoutObserver = 0;
 };
 

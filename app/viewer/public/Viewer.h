@@ -1,10 +1,14 @@
-// `cloudvis view`: the interactive viewer. One vtkRenderWindow (no Qt) holds the 3D view of the
-// cloud in the upper three quarters, drawn exactly as `render` draws it (the configuration
-// functions of export/OffscreenRender.h, SceneLighting.h and Background.h), with the slice
-// widgets of SlicePlanes.h; the transfer-function editor (TransferFunctionEditor.h) in the
-// bottom quarter; and a text overlay for help and messages over the 3D view. Keys change the
-// lighting, step, resolution and presets, save screenshots and scenes (docs/viewer.md lists them);
-// sessions can be recorded and replayed with vtkInteractorEventRecorder.
+// `cloudvis view`: the interactive viewer. One vtkRenderWindow (no Qt) holds, in its upper three
+// quarters, either the 3D view of the cloud alone or four views (the 3D view and the axial,
+// coronal and sagittal slices, SliceViews.h); the transfer-function editor
+// (TransferFunctionEditor.h) in the bottom quarter; and a text overlay (StatusOverlay.h). The 3D
+// view is drawn exactly as `render` draws it (the configuration functions of
+// export/OffscreenRender.h, SceneLighting.h and Background.h), with the slice widgets of
+// SlicePlanes.h, an outline of the field and an orientation marker. Keys (KeyBindings.h; docs/
+// viewer.md lists them) change the layout, slices, lighting, step, resolution and transfer
+// function and save screenshots, scenes and presets (ViewerFiles.h). The event loop (LiveLoop.h)
+// renders only when something changed or the image is still refining. Sessions can be recorded
+// and replayed with vtkInteractorEventRecorder.
 //
 // Everything the user can change is kept in the Scene the viewer was opened with, so the scene
 // it saves (SceneToJson) re-renders with `cloudvis render` to the image the window showed.
@@ -19,6 +23,7 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkImageData;
@@ -30,9 +35,20 @@ struct ViewerOptions
 {
   std::array<int, 2> WindowSize{ { 800, 800 } }; // pixels; the 3D view is the top 75%
   std::string OutputDirectory = ".";             // where s, w and shift-p write
-  std::string RecordFile;                        // --record: the session's events, as VTK writes them
-  std::string CommandLine;                       // embedded in screenshots' metadata
-  std::ostream* Messages = nullptr;              // messages besides the window (stderr by default)
+  std::string RecordFile;  // --record: the session's events, as VTK writes them
+  std::string StateFile;   // --state-file: ViewerStateJson written after every frame or input
+  bool FourViews = false;  // start in the four-view layout (--layout four)
+  std::string CommandLine; // embedded in screenshots' metadata
+  std::ostream* Messages = nullptr; // messages besides the window (stderr by default)
+};
+
+// A key press the viewer handled, with when (MonotonicSeconds: CLOCK_MONOTONIC) it was handled
+// and when the first frame rendered after it was complete (negative until then).
+struct HandledKey
+{
+  std::string KeySym;
+  double HandledAt = 0.0;
+  double ShownAt = -1.0;
 };
 
 // What a test or a caller can ask the viewer about its state.
@@ -53,12 +69,60 @@ struct ViewerState
   bool LogHistogram = true;
   std::array<double, 2> EditorRange{ { 0.0, 1.0 } };
   std::array<double, 3> FirstLightPosition{ { 0.0, 0.0, 0.0 } };
-  std::string Preset;                 // the preset last loaded, empty for none
-  std::vector<std::string> Messages;  // every message shown, in order
+  std::string Preset;                // the preset last loaded, empty for none
+  std::vector<std::string> Messages; // every message shown, in order
   std::vector<std::string> SavedFiles;
   int AccumulatedFrames = 0;
   std::array<int, 2> ViewSize{ { 0, 0 } }; // the 3D view's pixels
+
+  // The live loop.
+  long FramesRendered = 0;
+  double LastFrameAt = -1.0;    // MonotonicSeconds when the last frame was complete
+  bool Converged = false;       // the 3D view has all the frames render.accumulate asks for
+  std::vector<HandledKey> Keys; // the last 64 handled
+  // The camera of the 3D view.
+  std::array<double, 3> CameraPosition{ { 0.0, 0.0, 0.0 } };
+  std::array<double, 3> CameraFocalPoint{ { 0.0, 0.0, 0.0 } };
+  std::array<double, 3> CameraViewUp{ { 0.0, 1.0, 0.0 } };
+  // Layout and what is shown.
+  bool FourViews = false;
+  bool VolumeVisible = true;
+  bool HintVisible = true;
+  bool ColorBarVisible = false;
+  std::string Message;        // the message on screen, as wrapped; empty once faded
+  std::string Readout;        // the probe readout line
+  unsigned long WindowId = 0; // the X window
+  std::array<int, 2> WindowSize{ { 0, 0 } };
+  // Viewports in window pixels x0, y0, x1, y1 from the bottom left: "3d", "editor", and in the
+  // four-view layout "axial", "coronal", "sagittal".
+  std::vector<std::pair<std::string, std::array<int, 4>>> Viewports;
+  // Slices.
+  std::array<int, 3> SliceIndex{ { 0, 0, 0 } };
+  std::array<double, 2> SliceWindowLevel{ { 1.0, 0.5 } };
+  std::string SliceColors;
+  bool ProbeValid = false;
+  std::array<int, 3> ProbeIndex{ { 0, 0, 0 } };
+  double ProbeValue = 0.0;
+  // The editor: where its points are drawn (window pixels), the selected point, typed entry,
+  // undo history.
+  std::vector<std::array<double, 2>> OpacityPointPixels;
+  std::vector<std::array<double, 2>> ColorPointPixels;
+  std::array<double, 4> ColorStripPixels{ { 0.0, 0.0, 0.0, 0.0 } };
+  std::string SelectedFunction; // "opacity", "color" or empty
+  int SelectedPoint = -1;
+  std::string EditorInfo;      // the editor's info line (selected point, typed entry)
+  bool EditorTooltips = false; // the value tooltip by the point under the pointer
+  bool Typing = false;         // typing a point's values
+  int UndoDepth = 0;
+  int RedoDepth = 0;
 };
+
+// The state as JSON (the --state-file format, docs/viewer.md); text that is not UTF-8 (a path
+// from --output-dir) is escaped as \xNN.
+nlohmann::json ViewerStateJson(const ViewerState& state);
+
+// The key bindings as the Markdown table docs/viewer.md holds (`cloudvis view --keys`).
+std::string ViewerKeysMarkdown();
 
 class Viewer
 {
@@ -75,11 +139,11 @@ public:
   void PlayFile(const std::string& path);
   void PlayString(const std::string& events);
 
-  // Runs the event loop until the window is closed (or q / Escape).
+  // Runs the event loop (LiveLoop.h) until the window is closed (or q / Escape).
   void Start();
 
   // The key bindings, as the keys do them (also for tests).
-  void PressKey(const std::string& keySym, char keyCode);
+  void PressKey(const std::string& keySym, char keyCode, bool control = false);
 
   ViewerState State() const;
 
@@ -92,7 +156,7 @@ public:
   void SaveScene(const std::string& path) const;
 
   // s: cloudvis-screenshot-NNN.png and .exr; w: cloudvis-view-NNN.json (the first NNN free in
-  // the output directory). Failures become messages; the session goes on.
+  // the output directory; ViewerFiles.h). Failures become messages; the session goes on.
   void SaveScreenshot();
   void SaveSceneFile();
 
@@ -101,6 +165,9 @@ public:
   void SaveWindowImage(const std::string& path);
 
 private:
+  // Writes ViewerStateJson(State()) to the --state-file, if any.
+  void WriteStateFile() const;
+
   struct Internals;
   std::unique_ptr<Internals> Internal;
 };

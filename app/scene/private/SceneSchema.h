@@ -1,0 +1,48 @@
+// The scene schema: every key of a scene file, written once (SceneSchema.cxx). The reader
+// (SceneFromDocument), --set, the resolved scene written into exports (SceneToJson) and the
+// reference tables of docs/scene-format.md (SceneReferenceMarkdown) all walk these tables.
+#ifndef cloudvis_SceneSchema_h
+#define cloudvis_SceneSchema_h
+
+#include "Scene.h"
+#include "Schema.h"
+
+namespace cloudvis
+{
+namespace schema
+{
+
+// The sections of a scene file, in the order the docs list them.
+const Keys<Scene>& SceneSections();
+
+// The objects inside the sections, for the docs.
+// The field section: the keys of a field read from a file (file, format, array, ...), then those
+// of a generated one (dimensions, bounds, noise, ...); a section takes keys of one kind only.
+const Keys<FieldSpec>& FieldKeys();
+const Keys<FieldSpec>& FieldFileKeys();
+const Keys<FieldSpec>& GeneratedFieldKeys();
+const Keys<RawLayout>& RawKeys(); // field.raw
+const Keys<Shape>& ShapeKeys();
+const Keys<TransferFunctionSpec>& TransferFunctionKeys();
+const Keys<CameraSpec>& CameraKeys();
+const Keys<OrbitSpec>& OrbitKeys();
+const Keys<Scene>& BackgroundKeys(); // used by the types of BackgroundTypes()
+const Keys<RenderSpec>& RenderKeys();
+const Keys<LightingParameters>& DerivativeKeys();
+const Keys<LightingParameters>& MarchKeys();
+const Keys<Light>& LightKeys(); // used by the types of LightTypes()
+const Keys<AmbientSpec>& AmbientKeys();
+
+const std::vector<Name>& ShapeTypes();
+const std::vector<Name>& BackgroundTypes();
+const std::vector<Name>& LightTypes();
+const std::vector<Name>& LightingModels();
+
+// A sky without background.sun takes its sun from the lights section, which may come after the
+// background in the document: resolved once the whole scene is read.
+void ResolveSkySun(const json& document, Scene& scene);
+
+} // namespace schema
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,353 @@
+// What the viewer's keys do: the actions of the key table (KeyBindings.h), the typed values of
+// a transfer-function point, and the record of handled keys the state file reports.
+#include "ViewerInternals.h"
+
+#include "OffscreenRender.h"
+#include "Presets.h"
+#include "Scene.h"
+#include "ViewerFiles.h"
+
+#include <vtkCamera.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace cloudvis
+{
+namespace
+{
+constexpr double ViewerPi = 3.14159265358979323846;
+constexpr size_t KeptKeys = 64;
+const char* const AxisNames[3] = { "x", "y", "z" };
+
+std::string Format(const char* format, double value)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+} // namespace
+
+int Viewer::Internals::FirstDirectionalLight() const
+{
+  for (size_t i = 0; i < this->Current.Lights.size(); ++i)
+  {
+    if (!this->Current.Lights[i].Positional)
+    {
+      return int(i);
+    }
+  }
+  return -1;
+}
+
+void Viewer::Internals::MoveLight(double azimuthDegrees, double elevationDegrees)
+{
+  const int index = this->FirstDirectionalLight();
+  if (index < 0)
+  {
+    this->Show("the scene has no directional light to move", true);
+    return;
+  }
+  Light& light = this->Current.Lights[size_t(index)];
+  const glm::dvec3 d = light.Position - light.FocalPoint;
+  const double r = glm::length(d);
+  double azimuth = std::atan2(d.x, d.z) + azimuthDegrees * ViewerPi / 180.0;
+  double elevation =
+    std::asin(std::max(-1.0, std::min(1.0, d.y / r))) + elevationDegrees * ViewerPi / 180.0;
+  elevation = std::max(-89.0 * ViewerPi / 180.0, std::min(89.0 * ViewerPi / 180.0, elevation));
+  const glm::dvec3 moved(r * std::cos(elevation) * std::sin(azimuth),
+    r * std::sin(elevation),
+    r * std::cos(elevation) * std::cos(azimuth));
+  light.Position = light.FocalPoint + moved;
+  this->ApplyLighting();
+  char text[128];
+  std::snprintf(text,
+    sizeof(text),
+    "light %d: azimuth %.0f, elevation %.0f degrees",
+    index,
+    azimuth * 180.0 / ViewerPi,
+    elevation * 180.0 / ViewerPi);
+  this->Show(text, false);
+}
+
+double Viewer::Internals::EffectiveStep() const
+{
+  if (this->Current.Render.Step > 0.0)
+  {
+    return this->Current.Render.Step;
+  }
+  const double* spacing = this->Field->GetSpacing();
+  return std::min({ spacing[0], spacing[1], spacing[2] });
+}
+
+void Viewer::Internals::LoadNextPreset()
+{
+  std::vector<std::string> names;
+  try
+  {
+    names = ShippedPresetNames();
+  }
+  catch (const std::exception& e)
+  {
+    this->Show(e.what(), true);
+    return;
+  }
+  if (names.empty())
+  {
+    this->Show("no presets in " + PresetDirectory(), true);
+    return;
+  }
+  this->PresetIndex = (this->PresetIndex + 1) % int(names.size());
+  const std::string& name = names[size_t(this->PresetIndex)];
+  try
+  {
+    this->Editing->Apply(ReadNamedPreset(name));
+    this->Preset = name;
+    this->Show("preset " + name, false);
+  }
+  catch (const std::exception& e)
+  {
+    this->Show(std::string(e.what()) + "; the transfer function is unchanged", true);
+  }
+}
+
+void Viewer::Internals::SavePreset()
+{
+  try
+  {
+    const std::string path =
+      WritePreset(TransferFunctionOf(this->Property), this->Options.OutputDirectory);
+    this->SavedFiles.push_back(path);
+    this->Show("saved preset " + path, false);
+  }
+  catch (const std::exception& e)
+  {
+    this->Show(e.what(), true);
+  }
+}
+
+void Viewer::Internals::TypeKey(const std::string& keySym, char keyCode)
+{
+  using Function = TransferFunctionEditor::Function;
+  const Function function = this->Editing->GetSelectedFunction();
+  const std::string what = std::string(TransferFunctionEditor::FunctionName(function)) + " point " +
+    std::to_string(this->Editing->GetSelectedPoint());
+  if (keySym == "Escape")
+  {
+    this->Typing = false;
+    this->Editing->SetEntry("");
+    this->Show("typing cancelled; the point is unchanged", false);
+    return;
+  }
+  if (keySym == "Return" || keySym == "KP_Enter")
+  {
+    const std::string problem = this->Editing->SetSelectedPointValues(this->Typed);
+    if (!problem.empty())
+    {
+      this->Show(problem + " (Esc cancels)", true);
+      return;
+    }
+    this->Typing = false;
+    this->Editing->SetEntry("");
+    this->Show(what + ": " + this->Editing->GetSelectedPointValues() + " (Ctrl+z undoes)", false);
+    return;
+  }
+  if (keySym == "BackSpace")
+  {
+    if (!this->Typed.empty())
+    {
+      this->Typed.pop_back();
+    }
+  }
+  else if (keyCode != 0 && std::string("0123456789.-+eE ,").find(keyCode) != std::string::npos)
+  {
+    this->Typed += keyCode;
+  }
+  this->Editing->SetEntry(what + " (now " + this->Editing->GetSelectedPointValues() + "), type " +
+    (function == Function::Opacity ? "density opacity" : "density r g b") + ": " + this->Typed +
+    "_   Enter applies, Esc cancels");
+}
+
+void Viewer::Internals::StartTyping()
+{
+  if (this->Editing->GetSelectedPoint() < 0)
+  {
+    this->Show("no point is selected: click one in the editor first", true);
+    return;
+  }
+  this->Typing = true;
+  this->Typed.clear();
+  this->TypeKey("", 0);
+}
+
+void Viewer::Internals::ToggleSlice(int axis)
+{
+  const bool visible = !this->Slices->GetSliceVisible(axis);
+  this->Slices->SetSliceVisible(axis, visible);
+  this->Show(std::string("slice across ") + AxisNames[axis] + ": " +
+      (visible ? "shown at " + std::string(AxisNames[axis]) + " = " +
+            Format("%.3g", this->Slices->GetSlicePosition(axis))
+               : std::string("hidden")),
+    false);
+  this->SlicesChanged();
+}
+
+void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
+{
+  using A = ViewerAction;
+  switch (action)
+  {
+    case A::ToggleSlice:
+      this->ToggleSlice(variant);
+      break;
+    case A::ToggleOblique:
+      this->Slices->SetObliqueVisible(!this->Slices->GetObliqueVisible());
+      this->Show(
+        std::string("oblique slice: ") + (this->Slices->GetObliqueVisible() ? "shown" : "hidden"),
+        false);
+      this->SlicesChanged();
+      break;
+    case A::CycleSliceColors:
+      this->Colors->NextColormap();
+      this->Show("slice colors: " + this->Colors->GetColormap(), false);
+      this->SlicesChanged();
+      break;
+    case A::ToggleLayout:
+      this->FourViews = !this->FourViews;
+      this->ApplyLayout();
+      this->Show(
+        this->FourViews ? "four views: 3D, axial, coronal, sagittal" : "the 3D view alone", false);
+      break;
+    case A::ToggleVolume:
+      this->Volume->SetVisibility(!this->Volume->GetVisibility());
+      this->Show(
+        this->Volume->GetVisibility() ? "cloud shown" : "cloud hidden (v shows it)", false);
+      break;
+    case A::CycleLighting:
+    {
+      const std::vector<std::string> names = LightingModelNames();
+      const std::string current = LightingModelName(this->Current.Render.Lighting);
+      const auto found = std::find(names.begin(), names.end(), current);
+      const size_t next =
+        found == names.end() ? 0 : size_t(found - names.begin() + 1) % names.size();
+      this->Current.Render.Lighting = *FindLightingModel(names[next]);
+      this->ApplyLighting();
+      this->Show("lighting: " + names[next], false);
+      break;
+    }
+    case A::MoveLightAzimuth:
+      this->MoveLight(variant == 0 ? -10.0 : 10.0, 0.0);
+      break;
+    case A::MoveLightElevation:
+      this->MoveLight(0.0, variant == 0 ? 10.0 : -10.0);
+      break;
+    case A::StepLarger:
+    case A::StepSmaller:
+      this->Current.Render.Step = this->EffectiveStep() * (action == A::StepLarger ? 1.25 : 0.8);
+      this->Mapper->SetSampleDistance(this->Current.Render.Step);
+      this->Show("step: " + Format("%.3g", this->Current.Render.Step), false);
+      break;
+    case A::ResolutionDown:
+    case A::ResolutionUp:
+      this->Current.Render.ResolutionScale = std::max(0.25,
+        std::min(1.0,
+          this->Current.Render.ResolutionScale + (action == A::ResolutionUp ? 0.125 : -0.125)));
+      this->Mapper->SetResolutionScale(this->Current.Render.ResolutionScale);
+      this->Show(
+        "resolution scale: " + Format("%.3g", this->Current.Render.ResolutionScale), false);
+      break;
+    case A::NextPreset:
+      this->LoadNextPreset();
+      break;
+    case A::SavePreset:
+      this->SavePreset();
+      break;
+    case A::HistogramScale:
+      this->Editing->SetLogHistogram(!this->Editing->GetLogHistogram());
+      this->Show(
+        std::string("histogram: ") + (this->Editing->GetLogHistogram() ? "log" : "linear"), false);
+      break;
+    case A::FitTransferFunction:
+    {
+      this->Editing->FitToData();
+      const auto range = this->Editing->GetRange();
+      this->Show("transfer function fitted to the data: [" + Format("%.4g", range[0]) + ", " +
+          Format("%.4g", range[1]) + "]",
+        false);
+      break;
+    }
+    case A::ResetTransferFunction:
+      this->Editing->Apply(this->SceneTransferFunction);
+      this->Preset.clear();
+      this->Show("transfer function reset to the scene's (Ctrl+z undoes)", false);
+      break;
+    case A::Undo:
+      this->Show(this->Editing->Undo() ? "undone" : "nothing to undo", false);
+      break;
+    case A::Redo:
+      this->Show(this->Editing->Redo() ? "redone" : "nothing to redo", false);
+      break;
+    case A::DeletePoint:
+    {
+      const std::string problem = this->Editing->DeleteSelectedPoint();
+      this->Show(problem.empty() ? "point removed (Ctrl+z undoes)" : problem, !problem.empty());
+      break;
+    }
+    case A::TypePointValues:
+      this->StartTyping();
+      break;
+    case A::Screenshot:
+      viewer.SaveScreenshot();
+      break;
+    case A::SaveScene:
+      viewer.SaveSceneFile();
+      break;
+    case A::ResetCamera:
+      ApplyCamera(this->Current.Camera, this->Field->GetBounds(), this->View, this->Current.Source);
+      break;
+    case A::Help:
+      this->Status->SetHelpVisible(!this->Status->GetHelpVisible());
+      break;
+    case A::Quit:
+      this->Interactor->TerminateApp();
+      break;
+  }
+}
+
+void Viewer::PressKey(const std::string& keySym, char keyCode, bool control)
+{
+  Internals& in = *this->Internal;
+  const double handled = MonotonicSeconds();
+  const std::string sym = keySym.empty() ? KeySymOfCharacter(keyCode) : keySym;
+  if (in.Typing)
+  {
+    in.TypeKey(sym, keyCode);
+  }
+  else
+  {
+    const KeyMatch match = FindKeyBinding(keySym, keyCode, control);
+    if (!match.Binding)
+    {
+      return; // not a viewer key
+    }
+    in.Act(match.Binding->Action, match.Variant, *this);
+    // A preview only in the live loop: replayed sessions and tests see full-resolution frames.
+    in.PreviewNext = in.PreviewNext || (match.Binding->RedrawsCloud && in.Loop->IsRunning());
+  }
+  in.Keys.push_back({ sym, handled, -1.0 });
+  if (in.Keys.size() > KeptKeys)
+  {
+    in.Keys.erase(in.Keys.begin());
+  }
+  if (!in.Interactor->GetDone())
+  {
+    in.Request();
+    if (!in.Loop->IsRunning())
+    {
+      in.Loop->Flush();
+    }
+  }
+}
+
+} // namespace cloudvis

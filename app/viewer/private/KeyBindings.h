@@ -1,0 +1,84 @@
+// The viewer's keys, written once: each binding is a row of (keys, action, group, description).
+// The same table drives the key handler (FindKeyBinding), the help overlay (KeyHelpColumns) and
+// the key list of docs/viewer.md (KeyBindingsMarkdown, printed by `cloudvis view --keys`; a test
+// fails when the document and the table disagree). A row may hold several keys for one action
+// with a variant (x, y, z toggle the slice across their axis): the handler receives the index of
+// the key that was pressed.
+#ifndef cloudvis_KeyBindings_h
+#define cloudvis_KeyBindings_h
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace cloudvis
+{
+
+enum class ViewerAction
+{
+  ToggleSlice, // variant: axis
+  ToggleOblique,
+  CycleSliceColors,
+  ToggleLayout,
+  ToggleVolume,
+  CycleLighting,
+  MoveLightAzimuth,   // variant 0: left, 1: right
+  MoveLightElevation, // variant 0: up, 1: down
+  StepLarger,
+  StepSmaller,
+  ResolutionDown,
+  ResolutionUp,
+  NextPreset,
+  SavePreset,
+  HistogramScale,
+  FitTransferFunction,
+  ResetTransferFunction,
+  Undo,
+  Redo,
+  DeletePoint,
+  TypePointValues,
+  Screenshot,
+  SaveScene,
+  ResetCamera,
+  Help,
+  Quit
+};
+
+struct KeyBinding
+{
+  std::vector<std::string> Keys;    // X key symbols ("x", "plus", "Left", "Delete"), a variant each
+  std::vector<std::string> Aliases; // other keys for the first variant (docs list them, help not)
+  bool Control;                     // with the Control key held
+  ViewerAction Action;
+  const char* Group;
+  const char* Description;
+  // The key changes how the cloud is drawn: the first frame after it renders at interactive
+  // resolution, for a quick answer, and the full-resolution image refines from there.
+  bool RedrawsCloud = false;
+};
+
+// Every binding, in the order help and docs list them.
+const std::vector<KeyBinding>& KeyBindings();
+
+struct KeyMatch
+{
+  const KeyBinding* Binding = nullptr; // none: not a viewer key
+  int Variant = 0;                     // index of the key pressed in Binding->Keys
+};
+
+// The binding of a key press. `keySym` is the X key symbol; when it is empty (a recording or a
+// caller that gave only the character) `keyCode` is looked up instead.
+KeyMatch FindKeyBinding(const std::string& keySym, char keyCode, bool control);
+
+// The key symbol X names a character by ('+' -> "plus", 'a' -> "a"); empty for 0.
+std::string KeySymOfCharacter(char character);
+
+// How help and docs write a key ("plus" -> "+", "Escape" -> "Esc", Control -> "Ctrl+").
+std::string KeyLabel(const std::string& keySym, bool control);
+
+// The help overlay's text in two columns of groups.
+std::array<std::string, 2> KeyHelpColumns();
+
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,78 @@
+// The texts over the views, in the viewer's overlay renderer (a layer of its own, so that a text
+// that changes never restarts the cloud's accumulation): the message line at the top left
+// (what a key did, saved files, errors), wrapped to the window's width and fading out after a few
+// seconds; the help (two columns made from the key table); a hint line at the bottom right
+// ("h: keys ...") until the help has been shown once; and the readout of the last probe at the
+// bottom left, which stays until the next probe.
+#ifndef cloudvis_StatusOverlay_h
+#define cloudvis_StatusOverlay_h
+
+#include <vtkNew.h>
+
+#include <array>
+#include <string>
+
+class vtkRenderer;
+class vtkTextActor;
+
+namespace cloudvis
+{
+
+class StatusOverlay
+{
+public:
+  explicit StatusOverlay(vtkRenderer* overlay);
+  ~StatusOverlay();
+  StatusOverlay(const StatusOverlay&) = delete;
+  StatusOverlay& operator=(const StatusOverlay&) = delete;
+
+  // Shown in full for MessageSeconds (errors twice as long), then faded out over FadeSeconds.
+  static constexpr double MessageSeconds = 4.0;
+  static constexpr double FadeSeconds = 1.0;
+
+  void ShowMessage(const std::string& text, bool error);
+  // The message as shown (wrapped), empty once it has faded.
+  std::string GetMessage() const;
+
+  // Advances the fading to now. Returns the seconds until the next step, negative when nothing
+  // is fading; `changed` tells whether the picture changed.
+  double Tick(bool& changed);
+
+  void SetHelpVisible(bool visible);
+  bool GetHelpVisible() const;
+  bool GetHintVisible() const;
+
+  void SetReadout(const std::string& text);
+  std::string GetReadout() const;
+
+  // Hides or shows every text (for screenshots of the 3D view alone); returns what was visible.
+  std::array<bool, 5> HideAll();
+  void Restore(const std::array<bool, 5>& visible);
+
+  // Places the texts for a layout: the message at the top left and the hint at the bottom right
+  // of `view` (the 3D view, in the overlay's normalized viewport coordinates), the readout's
+  // bottom left corner at `readout`. Re-wraps the message to the view's width.
+  void Place(const std::array<double, 4>& view, const std::array<double, 2>& readout);
+
+  // Re-wraps the message to the view's width (after a resize).
+  void LayOut();
+
+private:
+  vtkRenderer* Renderer;
+  vtkNew<vtkTextActor> Message;
+  std::array<vtkNew<vtkTextActor>, 2> Help;
+  vtkNew<vtkTextActor> Hint;
+  vtkNew<vtkTextActor> Readout;
+  std::string MessageText; // unwrapped
+  bool Error = false;
+  double ShownAt = -1.0; // steady-clock seconds; negative: no message
+  bool HelpShown = false;
+  std::array<double, 4> View{ { 0.0, 0.0, 1.0, 1.0 } };
+};
+
+// Seconds on the monotonic clock (CLOCK_MONOTONIC), as the viewer's state file reports times.
+double MonotonicSeconds();
+
+} // namespace cloudvis
+
+#endif

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Renders the pictures of docs/viewer.md with the viewer itself: each picture is a short session
+# (the key presses and clicks written below, in vtkInteractorEventRecorder's format) played into
+# `cloudvis view --play` with --window-image, which saves the whole window as the session left
+# it. Clicks go where the viewer says its points and views are: a first playback writes
+# --state-file, whose pixel positions the session then uses. Rerun after a change to the viewer,
+# look at every image, and commit them.
+#
+#   docs/scripts/make-viewer-images.sh [-s WxH] [-d VOXELS] [CLOUDVIS [OUTPUT_DIR]]
+#
+# CLOUDVIS defaults to ./build/bin/cloudvis, OUTPUT_DIR to docs/images (both relative to the
+# current directory). -s sets the window size (default 560x480), -d field.dimensions (default
+# 96). The tests run it small into a scratch folder. Without $DISPLAY it runs itself again under
+# xvfb-run.
+set -euo pipefail
+
+size=560x480
+dimensions=96
+usage() { sed -n '9,14p' "$0" | sed 's/^# \{0,1\}//'; }
+while getopts "s:d:h" option; do
+  case "$option" in
+    s) size=$OPTARG ;;
+    d) dimensions=$OPTARG ;;
+    h) usage; exit 0 ;;
+    *) usage >&2; exit 2 ;;
+  esac
+done
+shift $((OPTIND - 1))
+cloudvis=${1:-./build/bin/cloudvis}
+out=${2:-docs/images}
+
+if [[ -z "${DISPLAY:-}" ]]; then
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" -s "$size" -d "$dimensions" "$@"
+fi
+if [[ ! -x "$cloudvis" ]]; then
+  echo "make-viewer-images.sh: no cloudvis at $cloudvis (build it first: make build)" >&2
+  exit 1
+fi
+mkdir -p "$out"
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+# The default cloud, seen from above and to the side, lit by the directional derivative.
+common=(--size "$size" --set "field.dimensions=$dimensions" --set render.accumulate=8
+  --set render.lighting=derivative --set 'camera.orbit={"azimuth": 35, "elevation": 25}')
+
+# session NAME [VIEW OPTIONS...] < EVENTS: plays the events (one per line, no header) and saves
+# the window as $out/NAME.png; the viewer's state as it ended is in $scratch/NAME.json.
+session() {
+  local name=$1
+  shift
+  { echo "# StreamVersion 1.1"; cat; } > "$scratch/$name.log"
+  "$cloudvis" view "${common[@]}" "$@" --play "$scratch/$name.log" \
+    --state-file "$scratch/$name.json" --window-image "$out/$name.png" > /dev/null
+}
+
+# key SYMBOL: a key press event ("m", "4", "Return"); its character is the symbol's first byte.
+key() {
+  local code
+  case "$1" in
+    Return) code=13 ;;
+    space) code=32 ;;
+    period) code=46 ;;
+    *) code=$(printf '%d' "'$1") ;;
+  esac
+  echo "KeyPressEvent 10 10 0 $code 1 $1"
+}
+
+# click X Y: a left click at window pixels from the bottom left.
+click() {
+  echo "MouseMoveEvent $1 $2 0 0 0 0"
+  echo "LeftButtonPressEvent $1 $2 0 0 0 0"
+  echo "LeftButtonReleaseEvent $1 $2 0 0 0 0"
+}
+
+# state NAME KEY: the numbers of a JSON array of arrays in the state of session NAME, as
+# "x y" lines ("opacity_point_pixels") or of an object's array ("axial").
+state() {
+  grep -o "\"$2\":\[[^]]*\(\]\(,\[[^]]*\]\)*\]\)\?" "$scratch/$1.json" | head -1 |
+    sed -e "s/\"$2\"://" -e 's/\],\[/\n/g' -e 's/[][]//g' -e 's/,/ /g'
+}
+
+# The 3D view with the slice across z and a probed voxel, whose readout stays at the bottom.
+session viewer-3d <<< "$(key z)"
+read -r x0 y0 x1 y1 <<< "$(state viewer-3d 3d)"
+session viewer-3d <<< "$(key z; click $(((x0 + x1) / 2 + (x1 - x0) / 40)) $(((y0 + y1) / 2 + (y1 - y0) / 40)))"
+grep -q '"valid":true' "$scratch/viewer-3d.json" || { echo "make-viewer-images.sh: the probe missed the slice" >&2; exit 1; }
+
+# Four views: a click in the axial view moves the crosshair (the other two slices) there.
+session viewer-four <<< "$(key 4)"
+read -r x0 y0 x1 y1 <<< "$(state viewer-four axial)"
+session viewer-four <<< "$(key 4; key x; key y; key z; click $(((x0 + x1) / 2 + (x1 - x0) / 20)) $(((y0 + y1) / 2 + (y1 - y0) / 30)))"
+
+# The editor: the middle opacity point selected (its values in the editor's info line), then
+# Enter and new values typed, not yet applied.
+session viewer-editor < /dev/null
+read -r px py <<< "$(state viewer-editor opacity_point_pixels | sed -n 3p)"
+px=${px%.*}
+py=${py%.*}
+session viewer-editor <<< "$(click "$px" "$py"; key Return; key 0; key period; key 4; key 5; key space; key 0; key period; key 6)"
+grep -q '"typing":true' "$scratch/viewer-editor.json" || { echo "make-viewer-images.sh: no point was selected at $px $py" >&2; exit 1; }
+
+# The help: the key list, two columns.
+session viewer-help <<< "$(key h)"
+
+for image in viewer-3d viewer-four viewer-editor viewer-help; do
+  bytes=$(stat -c %s "$out/$image.png")
+  if ((bytes > 200 * 1024)); then
+    echo "make-viewer-images.sh: warning: $out/$image.png is $((bytes / 1024)) KB (keep them under 200 KB)" >&2
+  fi
+done

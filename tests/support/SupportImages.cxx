@@ -1,0 +1,228 @@
+// Reading, grabbing and comparing images for the tests (SupportImages.h).
+#include "SupportImages.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cloudvis
+{
+namespace support
+{
+namespace
+{
+// The values of an 8- or 16-bit vtkImageData, scaled to [0, 1].
+Image FromVtk(vtkImageData* pixels)
+{
+  Image image;
+  vtkDataArray* scalars = pixels ? pixels->GetPointData()->GetScalars() : nullptr;
+  if (!scalars)
+  {
+    return image;
+  }
+  int dimensions[3];
+  pixels->GetDimensions(dimensions);
+  image.Width = dimensions[0];
+  image.Height = dimensions[1];
+  image.Components = scalars->GetNumberOfComponents();
+  image.Bits = pixels->GetScalarType() == VTK_UNSIGNED_SHORT ? 16 : 8;
+  const double maximum = image.Bits == 16 ? 65535.0 : 255.0;
+  image.Values.resize(size_t(scalars->GetNumberOfValues()));
+  for (vtkIdType i = 0; i < scalars->GetNumberOfValues(); ++i)
+  {
+    image.Values[size_t(i)] = scalars->GetVariantValue(i).ToDouble() / maximum;
+  }
+  return image;
+}
+}
+
+Image ReadPng(const std::string& path)
+{
+  vtkNew<vtkPNGReader> reader;
+  if (!reader->CanReadFile(path.c_str()))
+  {
+    return Image{};
+  }
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  Image image = FromVtk(reader->GetOutput());
+  for (size_t i = 0; i < reader->GetNumberOfTextChunks(); ++i)
+  {
+    image.Text[reader->GetTextKey(int(i))] = reader->GetTextValue(int(i));
+  }
+  return image;
+}
+
+bool WritePng(const Image& image, const std::string& path)
+{
+  const int components = std::min(image.Components, 4);
+  if (image.Width < 1 || image.Height < 1 || components < 1)
+  {
+    return false;
+  }
+  vtkNew<vtkImageData> pixels;
+  pixels->SetDimensions(image.Width, image.Height, 1);
+  pixels->AllocateScalars(VTK_UNSIGNED_CHAR, components);
+  auto* data = static_cast<unsigned char*>(pixels->GetScalarPointer());
+  for (int y = 0; y < image.Height; ++y)
+  {
+    for (int x = 0; x < image.Width; ++x)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        const double v = std::min(1.0, std::max(0.0, image.At(x, y, c)));
+        *data++ = static_cast<unsigned char>(std::lround(255.0 * v));
+      }
+    }
+  }
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(pixels);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  return writer->GetErrorCode() == 0;
+}
+
+Image GrabWindow(vtkRenderWindow* window, bool alpha)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  if (alpha)
+  {
+    grab->SetInputBufferTypeToRGBA();
+  }
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  return FromVtk(grab->GetOutput());
+}
+
+Exr ReadExr(const std::string& path)
+{
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  Exr exr;
+  exr.Width = window.max.x - window.min.x + 1;
+  exr.Height = window.max.y - window.min.y + 1;
+  Imf::FrameBuffer frame;
+  for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c)
+  {
+    exr.Types[c.name()] = c.channel().type;
+    std::vector<float>& data = exr.Channels[c.name()];
+    data.resize(size_t(exr.Width) * size_t(exr.Height));
+    frame.insert(c.name(),
+      Imf::Slice(Imf::FLOAT,
+        reinterpret_cast<char*>(data.data()),
+        sizeof(float),
+        sizeof(float) * size_t(exr.Width)));
+  }
+  file.setFrameBuffer(frame);
+  file.readPixels(window.min.y, window.max.y);
+  for (auto a = file.header().begin(); a != file.header().end(); ++a)
+  {
+    if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&a.attribute()))
+    {
+      exr.Strings[a.name()] = text->value();
+    }
+  }
+  return exr;
+}
+
+Image Crop(const Image& image, const Region& region)
+{
+  Image crop;
+  crop.Components = image.Components;
+  crop.Bits = image.Bits;
+  crop.Width = region.Width > 0 ? region.Width : image.Width - region.X;
+  crop.Height = region.Height > 0 ? region.Height : image.Height - region.Y;
+  for (int y = region.Y; y < region.Y + crop.Height; ++y)
+  {
+    for (int x = region.X; x < region.X + crop.Width; ++x)
+    {
+      for (int c = 0; c < image.Components; ++c)
+      {
+        crop.Values.push_back(image.At(x, y, c));
+      }
+    }
+  }
+  return crop;
+}
+
+Difference Compare(const Image& a, const Image& b, int channels, const Mask& mask)
+{
+  Difference difference;
+  if (a.Width != b.Width || a.Height != b.Height || a.Components != b.Components ||
+    a.Values.empty())
+  {
+    difference.Rms = difference.Max = difference.Mean = std::numeric_limits<double>::infinity();
+    return difference;
+  }
+  const int compared = channels > 0 ? std::min(channels, a.Components) : a.Components;
+  double sum = 0.0, squares = 0.0;
+  for (int y = 0; y < a.Height; ++y)
+  {
+    for (int x = 0; x < a.Width; ++x)
+    {
+      if (mask && !mask(x, y))
+      {
+        continue;
+      }
+      for (int c = 0; c < compared; ++c)
+      {
+        const double d = std::fabs(a.At(x, y, c) - b.At(x, y, c));
+        sum += d;
+        squares += d * d;
+        difference.Max = std::max(difference.Max, d);
+        ++difference.Count;
+      }
+    }
+  }
+  if (difference.Count > 0)
+  {
+    difference.Mean = sum / double(difference.Count);
+    difference.Rms = std::sqrt(squares / double(difference.Count));
+  }
+  return difference;
+}
+
+Image DifferenceImage(const Image& a, const Image& b, double gain)
+{
+  Image image;
+  if (a.Width != b.Width || a.Height != b.Height || a.Components != b.Components)
+  {
+    return image;
+  }
+  image.Width = a.Width;
+  image.Height = a.Height;
+  image.Components = 3;
+  image.Bits = 8;
+  for (int y = 0; y < a.Height; ++y)
+  {
+    for (int x = 0; x < a.Width; ++x)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const int k = std::min(c, a.Components - 1);
+        image.Values.push_back(std::min(1.0, gain * std::fabs(a.At(x, y, k) - b.At(x, y, k))));
+      }
+    }
+  }
+  return image;
+}
+
+} // namespace support
+} // namespace cloudvis
