@@ -735,7 +735,8 @@ const Keys<FieldSpec>& GeneratedFieldKeys()
     { "dimensions",
       Dimensions(),
       &F::Dimensions,
-      "the field (4 bytes per voxel) must fit in the memory available" },
+      "the field (4 bytes per voxel) must fit in the memory available when it is generated "
+      "whole; generated in pieces (`generate -o FIELD.pvti`), each piece must" },
     { "bounds",
       NumbersIn(6, AnyNumber, "[xmin, xmax, ymin, ymax, zmin, zmax]"),
       &F::Bounds,

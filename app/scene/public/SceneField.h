@@ -21,7 +21,9 @@ namespace cloudvis
 vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field);
 
 // Empty when the source would accept the field, else the problem in the filters' words (the
-// same checks vtkCloudDensitySource::Validate applies before generating).
+// same checks vtkCloudDensitySource::Validate applies before generating). The memory the field
+// needs is not among them: it is checked for what is generated, the whole field in ProduceField,
+// each piece when a .pvti is generated in pieces.
 std::string ValidateProceduralField(const FieldSpec& field);
 
 // The field of a scene: read from field.file (with field.format, array, time_step, ...), or
