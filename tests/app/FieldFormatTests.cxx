@@ -12,6 +12,7 @@
 #include "FieldPieces.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "SupportRun.h"
 
 #include <gtest/gtest.h>
 #include <netcdf.h>
@@ -29,8 +30,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -39,11 +38,14 @@ namespace
 
 using cloudvis::FieldReadOptions;
 using cloudvis::FieldReport;
+using cloudvis::support::ReadText;
+using cloudvis::support::TemporaryDirectory;
+using cloudvis::support::WriteText;
 using cloudvis::test::Density;
 using cloudvis::test::Detail;
 using cloudvis::test::ErrorOf;
+using cloudvis::test::ExpectSameField;
 using cloudvis::test::RunTool;
-using cloudvis::test::TemporaryDirectory;
 
 // The value every test file holds at voxel (i, j, k), unless a test says otherwise.
 double Known(int i, int j, int k)
@@ -51,20 +53,9 @@ double Known(int i, int j, int k)
   return i + 10.0 * j + 100.0 * k;
 }
 
-std::string ReadBytes(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-void WriteBytes(const std::string& path, const std::string& bytes)
-{
-  std::ofstream(path, std::ios::binary) << bytes;
-}
-
 void Truncate(const std::string& path, std::size_t bytes)
 {
-  WriteBytes(path, ReadBytes(path).substr(0, bytes));
+  WriteText(path, ReadText(path).substr(0, bytes));
 }
 
 // Every voxel of `field` (extent from 0) holds Known(i, j, k) + offset; with `flippedRows`, the
@@ -400,7 +391,7 @@ TEST(NetCdf, HugeDeclaredSizesAreRefusedBeforeAllocation)
   }
   NC_OK(nc_def_var(file, "qc", NC_FLOAT, 3, dims, &variable));
   NC_OK(nc_close(file));
-  ASSERT_LT(ReadBytes(path).size(), 100000u);
+  ASSERT_LT(ReadText(path).size(), 100000u);
   const std::string message = ErrorOf([&] { cloudvis::ReadField(path); });
   EXPECT_NE(message.find("a field of 4096 x 4096 x 4096 voxels (6.87195e+10 voxels, 256 GiB as "
                          "float) is more than field.max_voxels allows (1073741824)"),
@@ -419,7 +410,7 @@ TEST(NetCdf, TruncatedAndForeignFilesAreRefused)
     { "qc" },
     [](std::size_t, int, int i, int j, int k) { return float(Known(i, j, k)); });
   // The netCDF library itself would read zeros past the end.
-  const std::size_t size = ReadBytes(path).size();
+  const std::size_t size = ReadText(path).size();
   Truncate(path, size - 100);
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
               .find(": the values of \"qc\" end at byte " + std::to_string(size) +
@@ -435,14 +426,14 @@ TEST(NetCdf, TruncatedAndForeignFilesAreRefused)
     { "qc", "qv" },
     [](std::size_t v, int t, int i, int j, int k)
     { return float(Known(i, j, k) + 1000.0 * t + 5000.0 * double(v)); });
-  const std::size_t recordsSize = ReadBytes(records).size();
+  const std::size_t recordsSize = ReadText(records).size();
   Truncate(records, recordsSize - 60 * 4 - 8); // all of the last "qv", and 8 bytes of "qc"
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(records, WithArray("qc", 1)); })
               .find("the values of \"qc\" end at byte " + std::to_string(recordsSize - 60 * 4) +
                 " but the file holds " + std::to_string(recordsSize - 60 * 4 - 8)),
     std::string::npos);
   ExpectKnownValues(cloudvis::ReadField(records, WithArray("qc", 0)), 0.0);
-  WriteBytes(dir.File("text.nc"), "netcdf is text\n");
+  WriteText(dir.File("text.nc"), "netcdf is text\n");
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(dir.File("text.nc")); })
               .find("not a NetCDF file (it starts with neither \"CDF\" nor the HDF5 signature)"),
     std::string::npos);
@@ -461,7 +452,7 @@ std::string WriteKnownRaw(const TemporaryDirectory& dir, const std::string& name
         const float value = float(Known(i, j, k));
         bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
       }
-  WriteBytes(dir.File(name), bytes);
+  WriteText(dir.File(name), bytes);
   return dir.File(name);
 }
 
@@ -519,7 +510,7 @@ TEST(Nrrd, HostileHeadersAreRefused)
   const std::string raw = WriteKnownRaw(dir);
   const std::string path = dir.File("f.nrrd");
   RunTool(Unu(raw, path, "-e raw -sp 1 1 1"));
-  const std::string good = ReadBytes(path);
+  const std::string good = ReadText(path);
   const auto replaced = [&good](const std::string& from, const std::string& to)
   {
     std::string text = good;
@@ -532,21 +523,21 @@ TEST(Nrrd, HostileHeadersAreRefused)
               .find("an image of 60 float values needs 240 bytes of data after "),
     std::string::npos);
   // Sizes far beyond memory, in a file of a few hundred bytes.
-  WriteBytes(path, replaced("sizes: 5 4 3", "sizes: 50000 40000 30000"));
+  WriteText(path, replaced("sizes: 5 4 3", "sizes: 50000 40000 30000"));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
               .find("a field of 50000 x 40000 x 30000 voxels (6e+13 voxels, 218 TiB as float)"),
     std::string::npos);
   // A sheared lattice, and values of several components per voxel.
-  WriteBytes(
+  WriteText(
     path, replaced("spacings: 1 1 1", "space: RAS\nspace directions: (1,0,0) (0.5,1,0) (0,0,1)"));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
               .find("axes 0 and 1 of the lattice are not perpendicular"),
     std::string::npos);
-  WriteBytes(path,
+  WriteText(path,
     replaced("dimension: 3\n", "dimension: 4\n")
       .replace(good.find("sizes: 5 4 3"), 12, "sizes: 1 5 4 3"));
   ExpectKnownValues(cloudvis::ReadField(path)) /* one component per voxel is a scalar */;
-  WriteBytes(path,
+  WriteText(path,
     replaced("dimension: 3\n", "dimension: 4\n")
       .replace(good.find("sizes: 5 4 3"), 12, "sizes: 5 1 4 3"));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
@@ -610,12 +601,12 @@ TEST(MetaImage, TransformMatrixAndSignedSpacingBecomeTheDirection)
 {
   TemporaryDirectory dir;
   const std::string path = WriteMetaImage(dir.File("f.mha"), VTK_FLOAT, false);
-  std::string text = ReadBytes(path);
+  std::string text = ReadText(path);
   // As ITK writes a rotated image: each axis's direction in turn (i along +y, j along -x).
   text.replace(
     text.find("TransformMatrix = 1 0 0 0 1 0 0 0 1"), 35, "TransformMatrix = 0 1 0 -1 0 0 0 0 1");
   text.replace(text.find("ElementSpacing = 0.5 1 2"), 24, "ElementSpacing = 0.5 1 -2");
-  WriteBytes(path, text);
+  WriteText(path, text);
   const auto field = cloudvis::ReadField(path);
   ExpectKnownValues(field);
   ExpectVector(field->GetSpacing(), { { 0.5, 1, 2 } });
@@ -629,14 +620,14 @@ TEST(MetaImage, TruncatedAndHugeHeadersAreRefused)
 {
   TemporaryDirectory dir;
   const std::string path = WriteMetaImage(dir.File("f.mha"), VTK_FLOAT, false);
-  const std::string good = ReadBytes(path);
+  const std::string good = ReadText(path);
   Truncate(path, good.size() - 4);
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
               .find("an image of 60 MET_FLOAT values needs 240 bytes of data"),
     std::string::npos);
   std::string huge = good;
   huge.replace(huge.find("DimSize = 5 4 3"), 15, "DimSize = 90000 90000 90000");
-  WriteBytes(path, huge);
+  WriteText(path, huge);
   EXPECT_NE(
     ErrorOf([&] { cloudvis::ReadField(path); }).find("a field of 90000 x 90000 x 90000 voxels"),
     std::string::npos);
@@ -697,7 +688,7 @@ TEST(Raw, ReadsEveryTypeInEitherByteOrder)
     ExpectVector(field->GetSpacing(), { { 0.5, 1, 2 } });
     ExpectVector(field->GetOrigin(), { { 1, 2, 3 } });
     // The same bytes reversed value by value, with a header before them: big-endian.
-    const std::string bytes = ReadBytes(path);
+    const std::string bytes = ReadText(path);
     const std::size_t size = bytes.size() / 60;
     std::string swapped = "HEADER";
     for (std::size_t v = 0; v < 60; ++v)
@@ -705,7 +696,7 @@ TEST(Raw, ReadsEveryTypeInEitherByteOrder)
       swapped.append(std::string(bytes.rbegin() + std::ptrdiff_t(bytes.size() - (v + 1) * size),
         bytes.rbegin() + std::ptrdiff_t(bytes.size() - v * size)));
     }
-    WriteBytes(dir.File("big.raw"), swapped);
+    WriteText(dir.File("big.raw"), swapped);
     const auto big = cloudvis::ReadField(dir.File("big.raw"), RawOptions(type.first, true, 6));
     EXPECT_EQ(Density(big, 4, 3, 2), Density(field, 4, 3, 2));
     EXPECT_EQ(Density(big, 1, 2, 1), Density(field, 1, 2, 1));
@@ -739,12 +730,12 @@ TEST(Raw, ValuesBeyondFloatAndNonFiniteValuesAreRefusedWithTheirCount)
   values[3] = 1e300;
   values[7] = -1e300;
   values[11] = std::numeric_limits<double>::quiet_NaN();
-  WriteBytes(dir.File("d.raw"), std::string(reinterpret_cast<const char*>(values.data()), 480));
+  WriteText(dir.File("d.raw"), std::string(reinterpret_cast<const char*>(values.data()), 480));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(dir.File("d.raw"), RawOptions("float64")); })
               .find("the raw volume holds 2 values beyond the range of float"),
     std::string::npos);
   values[3] = values[7] = std::numeric_limits<double>::infinity();
-  WriteBytes(dir.File("d.raw"), std::string(reinterpret_cast<const char*>(values.data()), 480));
+  WriteText(dir.File("d.raw"), std::string(reinterpret_cast<const char*>(values.data()), 480));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(dir.File("d.raw"), RawOptions("float64")); })
               .find("holds 3 values that are NaN or infinite"),
     std::string::npos);
@@ -816,32 +807,6 @@ vtkSmartPointer<vtkImageData> RotatedField()
   return field;
 }
 
-void ExpectSameField(vtkImageData* expected, vtkImageData* actual)
-{
-  int e[6], a[6];
-  expected->GetExtent(e);
-  actual->GetExtent(a);
-  EXPECT_EQ(std::vector<int>(e, e + 6), std::vector<int>(a, a + 6));
-  ExpectVector(actual->GetOrigin(),
-    { { expected->GetOrigin()[0], expected->GetOrigin()[1], expected->GetOrigin()[2] } });
-  ExpectVector(actual->GetSpacing(),
-    { { expected->GetSpacing()[0], expected->GetSpacing()[1], expected->GetSpacing()[2] } });
-  for (int i = 0; i < 9; ++i)
-  {
-    EXPECT_EQ(
-      actual->GetDirectionMatrix()->GetData()[i], expected->GetDirectionMatrix()->GetData()[i]);
-  }
-  vtkDataArray* x = expected->GetPointData()->GetScalars();
-  vtkDataArray* y = actual->GetPointData()->GetScalars();
-  ASSERT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples());
-  vtkIdType different = 0;
-  for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
-  {
-    different += x->GetComponent(i, 0) == y->GetComponent(i, 0) ? 0 : 1;
-  }
-  EXPECT_EQ(different, 0) << "voxels that differ";
-}
-
 TEST(ParallelFiles, PiecesWrittenByCloudvisReadBackByCloudvisAndVtk)
 {
   TemporaryDirectory dir;
@@ -885,7 +850,7 @@ TEST(ParallelFiles, PiecesWrittenByVtkKeepTheDirectionOfTheirPieces)
   writer->SetStartPiece(0);
   writer->SetEndPiece(2);
   ASSERT_EQ(writer->Write(), 1);
-  ASSERT_EQ(ReadBytes(path).find("Direction"), std::string::npos)
+  ASSERT_EQ(ReadText(path).find("Direction"), std::string::npos)
     << "VTK's writer now states the direction in the .pvti: this test no longer tests the pieces'";
   ExpectSameField(field, cloudvis::ReadField(path));
 }

@@ -1,5 +1,6 @@
-// What the tests of the field formats share (FieldFormatTests.cxx, OpenVdbTests.cxx): a temporary
-// directory, reading a field with its report, and checks that a read fails with a message.
+// What the tests of the field formats share (FieldFormatTests.cxx, OpenVdbTests.cxx) beyond
+// tests/support (temporary folders, whole files): a field's values, a field compared with the one
+// read back, a read's report and its failure message, and the formats' own tools.
 #ifndef cloudvis_FieldTestFiles_h
 #define cloudvis_FieldTestFiles_h
 
@@ -9,41 +10,56 @@
 #include <gtest/gtest.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
+#include <vtkMatrix3x3.h>
 #include <vtkPointData.h>
 
 #include <cstdlib>
-#include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace cloudvis
 {
 namespace test
 {
 
-// A directory of its own under /tmp, removed with everything in it.
-class TemporaryDirectory
-{
-public:
-  TemporaryDirectory()
-  {
-    char pattern[] = "/tmp/cloudvis-field-test-XXXXXX";
-    this->Path = ::mkdtemp(pattern);
-  }
-  ~TemporaryDirectory() { std::filesystem::remove_all(this->Path); }
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-
-  std::string File(const std::string& name) const { return this->Path + "/" + name; }
-
-  std::string Path;
-};
-
 // The density at point (i, j, k) of the field's extent.
 inline double Density(vtkImageData* field, int i, int j, int k)
 {
   int ijk[3] = { i, j, k };
   return field->GetPointData()->GetScalars()->GetComponent(field->ComputePointId(ijk), 0);
+}
+
+// `actual` is `expected` read back: the same extent, origin, spacing, direction and values (the
+// density ReadField makes against the expected scalars), exactly.
+inline void ExpectSameField(vtkImageData* expected, vtkImageData* actual)
+{
+  ASSERT_NE(actual, nullptr);
+  int e[6], a[6];
+  expected->GetExtent(e);
+  actual->GetExtent(a);
+  EXPECT_EQ(std::vector<int>(e, e + 6), std::vector<int>(a, a + 6));
+  for (int i = 0; i < 3; ++i)
+  {
+    EXPECT_EQ(actual->GetOrigin()[i], expected->GetOrigin()[i]) << "origin " << i;
+    EXPECT_EQ(actual->GetSpacing()[i], expected->GetSpacing()[i]) << "spacing " << i;
+  }
+  for (int i = 0; i < 9; ++i)
+  {
+    EXPECT_EQ(
+      actual->GetDirectionMatrix()->GetData()[i], expected->GetDirectionMatrix()->GetData()[i])
+      << "direction " << i;
+  }
+  vtkDataArray* x = expected->GetPointData()->GetScalars();
+  vtkDataArray* y = actual->GetPointData()->GetArray("density");
+  ASSERT_NE(y, nullptr);
+  ASSERT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples());
+  vtkIdType different = 0;
+  for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+  {
+    different += x->GetComponent(i, 0) == y->GetComponent(i, 0) ? 0 : 1;
+  }
+  EXPECT_EQ(different, 0) << "voxels whose value differs";
 }
 
 // The message of the InputError `read` throws, or "" (and a test failure) when it throws none.

@@ -6,6 +6,7 @@
 #include "FieldTestFiles.h"
 
 #include "SceneField.h"
+#include "SupportRun.h"
 
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
@@ -17,8 +18,6 @@
 #include <vtkPointData.h>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <limits>
 
 namespace
@@ -26,10 +25,12 @@ namespace
 
 using cloudvis::FieldReadOptions;
 using cloudvis::FieldReport;
+using cloudvis::support::ReadText;
+using cloudvis::support::TemporaryDirectory;
+using cloudvis::support::WriteText;
 using cloudvis::test::Density;
 using cloudvis::test::Detail;
 using cloudvis::test::ErrorOf;
-using cloudvis::test::TemporaryDirectory;
 
 // The value of active voxel (i, j, k) in the test grids.
 float Known(int i, int j, int k)
@@ -246,11 +247,10 @@ TEST_F(OpenVdb, NonFiniteValuesAndTruncatedFilesAreRefused)
   const std::string complete = Directory.File("cloud.vdb");
   cloudvis::WriteField(
     cloudvis::ProduceField(cloudvis::LoadScene("", { "field.dimensions=24" })), complete);
-  std::ifstream in(complete, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = ReadText(complete);
   for (const std::size_t keep : { bytes.size() / 4, bytes.size() / 2, bytes.size() - 10 })
   {
-    std::ofstream(Directory.File("cut.vdb"), std::ios::binary) << bytes.substr(0, keep);
+    WriteText(Directory.File("cut.vdb"), bytes.substr(0, keep));
     for (int attempt = 0; attempt < 3; ++attempt)
     {
       EXPECT_EQ(ErrorOf([&] { cloudvis::ReadField(Directory.File("cut.vdb")); }),
@@ -259,7 +259,7 @@ TEST_F(OpenVdb, NonFiniteValuesAndTruncatedFilesAreRefused)
         << "cut to " << keep << " of " << bytes.size() << " bytes";
     }
   }
-  std::ofstream(Directory.File("text.vdb")) << "not a grid";
+  WriteText(Directory.File("text.vdb"), "not a grid");
   EXPECT_NE(
     ErrorOf([&] { cloudvis::ReadField(Directory.File("text.vdb")); }).find("not an OpenVDB file"),
     std::string::npos);
