@@ -238,25 +238,6 @@ void SetAxes(const std::string& path,
       direction->SetElement(row, i, a[row] / spacing[i]);
     }
   }
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = i + 1; j < 3; ++j)
-    {
-      double dot = 0.0;
-      for (int row = 0; row < 3; ++row)
-      {
-        dot += direction->GetElement(row, i) * direction->GetElement(row, j);
-      }
-      // 1e-6: the rounding of direction cosines written with six or more digits.
-      if (std::fabs(dot) > 1e-6)
-      {
-        std::ostringstream text;
-        text << "axes " << i << " and " << j << " of the lattice are not perpendicular (cosine "
-             << dot << "): a sheared lattice cannot be represented as image data";
-        Fail(path, text.str());
-      }
-    }
-  }
   image->SetSpacing(spacing);
   image->SetDirectionMatrix(direction);
 }

@@ -9,6 +9,7 @@
 #include "FieldFormatReaders.h"
 #include "FieldPieces.h"
 #include "FileNames.h"
+#include "Schema.h" // Join
 #include "VtkMessageCapture.h"
 
 #include <vtkDataArray.h>
@@ -115,8 +116,10 @@ vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path,
         " values that are NaN or infinite");
   }
 
-  // The lattice's axes must be perpendicular unit vectors (a rotation, or a reflection): VTK
-  // accepts any matrix, but a sheared or scaled one is not a lattice the renderers can march.
+  // The lattice's axes must be perpendicular unit vectors (a rotation, or a reflection), as VTK's
+  // direction cosines are meant to be, though VTK accepts any matrix. Checked here once for every
+  // format: a .vti's Direction, NRRD's space directions, MetaImage's TransformMatrix and OpenVDB's
+  // affine map alike.
   const double* d = image->GetDirectionMatrix()->GetData();
   for (int a = 0; a < 3; ++a)
   {
@@ -143,16 +146,6 @@ vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path,
   field->SetDirectionMatrix(image->GetDirectionMatrix());
   field->GetPointData()->SetScalars(density);
   return field;
-}
-
-std::string JoinNames(const std::vector<std::string>& names)
-{
-  std::string list;
-  for (const std::string& name : names)
-  {
-    list += (list.empty() ? "" : ", ") + name;
-  }
-  return list;
 }
 
 const FieldFormat& FormatFor(const std::string& path, const FieldReadOptions& options)
@@ -256,7 +249,7 @@ std::string FieldFormatIds()
   {
     ids.push_back(format.Id);
   }
-  return JoinNames(ids);
+  return schema::Join(ids);
 }
 
 bool IsFieldFile(const std::string& path)
@@ -271,7 +264,7 @@ std::string FieldFileExtensions()
   {
     extensions.insert(extensions.end(), format.Extensions.begin(), format.Extensions.end());
   }
-  return JoinNames(extensions);
+  return schema::Join(extensions);
 }
 
 std::vector<std::string> RawTypeNames()
@@ -353,7 +346,7 @@ std::string FieldOutputExtensions()
   {
     extensions.push_back(writer.Extension);
   }
-  return JoinNames(extensions);
+  return schema::Join(extensions);
 }
 
 void CheckFieldOutput(const std::string& path)

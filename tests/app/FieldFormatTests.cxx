@@ -531,7 +531,8 @@ TEST(Nrrd, HostileHeadersAreRefused)
   WriteText(
     path, replaced("spacings: 1 1 1", "space: RAS\nspace directions: (1,0,0) (0.5,1,0) (0,0,1)"));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
-              .find("axes 0 and 1 of the lattice are not perpendicular"),
+              .find("the image's direction matrix is not a rotation: its axes must be "
+                    "perpendicular unit vectors (axes 0 and 1 have a dot product of "),
     std::string::npos);
   WriteText(path,
     replaced("dimension: 3\n", "dimension: 4\n")

@@ -204,7 +204,8 @@ TEST_F(OpenVdb, FrustumAndShearedTransformsAreRefused)
   grid->setTransform(openvdb::math::Transform::createLinearTransform(shear));
   Write(Directory.File("shear.vdb"), { grid });
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(Directory.File("shear.vdb")); })
-              .find("axes 0 and 1 of the lattice are not perpendicular"),
+              .find("the image's direction matrix is not a rotation: its axes must be "
+                    "perpendicular unit vectors (axes 0 and 1 have a dot product of "),
     std::string::npos);
 }
 

@@ -88,8 +88,9 @@ void ReportPointArrays(FieldReport& report, vtkImageData* image, const std::stri
 
 // Sets the image's spacing and direction from three axis vectors (world length and direction of
 // one step along i, j, k), as NRRD's space directions and MetaImage's TransformMatrix with
-// ElementSpacing state them. Throws InputError naming `path` when the axes are not orthogonal
-// (a sheared lattice, which vtkImageData cannot represent) or one has no length.
+// ElementSpacing and OpenVDB's affine maps state them. Throws InputError naming `path` when an
+// axis has no length. Axes that are not perpendicular (a sheared lattice) are kept as stated and
+// refused by ReadField with every format's, whose direction must be a rotation.
 void SetAxes(const std::string& path,
   vtkImageData* image,
   const std::array<std::array<double, 3>, 3>& axes);
