@@ -24,6 +24,7 @@
 #include "CloudMarchUniforms.h"
 #include "CloudReferenceMarch.h"
 #include "vtkCloudDensitySource.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudPathTracer.h"
 #include "vtkCloudReferenceRenderer.h"
 
@@ -43,6 +44,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkTimerLog.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkVolumeProperty.h>
 
 #include <nlohmann/json.hpp>
 
@@ -233,16 +235,34 @@ vtkSmartPointer<vtkImageData> MakeField(const BenchScene& scene)
   return field;
 }
 
-// The table the app builds (app/export/CpuReference.cxx): over the transfer function's points.
-TransferTable MakeTable(const BenchScene& scene)
+// The scene's transfer function as the app gives it to every renderer (MakeVolumeProperty in
+// app/export), or with every color replaced by the gray `albedo` when that is >= 0.
+vtkSmartPointer<vtkVolumeProperty> MakeMedium(const BenchScene& scene, float albedo = -1.0f)
 {
   vtkNew<vtkPiecewiseFunction> opacity;
   for (const auto& p : scene.Opacity)
     opacity->AddPoint(p[0], p[1]);
   vtkNew<vtkColorTransferFunction> color;
   for (const auto& p : scene.Color)
-    color->AddRGBPoint(p[0], p[1], p[2], p[3]);
-  return TabulateTransferFunction(color, opacity, scene.UnitDistance, 1024);
+    color->AddRGBPoint(p[0],
+      albedo >= 0.0f ? albedo : p[1],
+      albedo >= 0.0f ? albedo : p[2],
+      albedo >= 0.0f ? albedo : p[3]);
+  auto medium = vtkSmartPointer<vtkVolumeProperty>::New();
+  medium->SetScalarOpacity(opacity);
+  medium->SetColor(color);
+  medium->SetScalarOpacityUnitDistance(scene.UnitDistance);
+  return medium;
+}
+
+// The table every renderer builds from it.
+TransferTable TableOf(vtkVolumeProperty* medium)
+{
+  std::string problem;
+  TransferTable table = TransferTableOf(medium, 1.0, problem);
+  if (!problem.empty())
+    Fail(problem);
+  return table;
 }
 
 // The app's camera (render/OffscreenRender.cxx ApplyCamera) for the scene's keys read here: the
@@ -341,46 +361,43 @@ struct Options
   std::vector<std::string> Scenes;
 };
 
-// A march of the scene's field through its camera at the benchmark's size, with this table,
-// lighting and lights.
-vtkSmartPointer<vtkCloudReferenceRenderer> NewMarch(const BenchScene& scene, vtkImageData* field,
-  const TransferTable& table, const LightingParameters& lighting, const std::vector<Light>& lights,
+// A march of the scene's field through its camera at the benchmark's size, with this transfer
+// function, lighting and lights.
+vtkSmartPointer<vtkCloudReferenceRenderer> NewMarch(const BenchScene& scene,
+  vtkImageData* field,
+  vtkVolumeProperty* medium,
+  const LightingParameters& lighting,
+  const std::vector<Light>& lights,
   const Options& options)
 {
   auto march = vtkSmartPointer<vtkCloudReferenceRenderer>::New();
   march->SetInputData(field);
   SetSceneCamera(march, scene, field, options.Width, options.Height);
-  march->SetTransferTable(table);
-  march->SetLighting(lighting);
-  march->SetLights(lights);
+  march->SetVolumeProperty(medium);
+  march->GetLightingProperty()->SetParameters(lighting);
+  march->SetLights(MakeLights(lights));
   return march;
 }
 
 // The same as a path tracer with the benchmark's paths per pixel, brick size and seed.
-vtkSmartPointer<vtkCloudPathTracer> NewTracer(const BenchScene& scene, vtkImageData* field,
-  const TransferTable& table, const std::vector<Light>& lights, int maxBounces,
+vtkSmartPointer<vtkCloudPathTracer> NewTracer(const BenchScene& scene,
+  vtkImageData* field,
+  vtkVolumeProperty* medium,
+  const std::vector<Light>& lights,
+  int maxBounces,
   const Options& options)
 {
   auto tracer = vtkSmartPointer<vtkCloudPathTracer>::New();
   tracer->SetInputData(field);
   SetSceneCamera(tracer, scene, field, options.Width, options.Height);
-  tracer->SetTransferTable(table);
-  tracer->SetLighting(scene.Lighting);
-  tracer->SetLights(lights);
+  tracer->SetVolumeProperty(medium);
+  tracer->GetLightingProperty()->SetParameters(scene.Lighting);
+  tracer->SetLights(MakeLights(lights));
   tracer->SetSamplesPerPixel(options.Samples);
   tracer->SetMaxBounces(maxBounces);
   tracer->SetBrickSize(options.BrickSize);
   tracer->SetSeed(options.Seed);
   return tracer;
-}
-
-// The table with every entry's color (the albedo) replaced by a gray.
-TransferTable WithAlbedo(TransferTable table, float albedo)
-{
-  for (int e = 0; e < table.Size; ++e)
-    for (int c = 0; c < 3; ++c)
-      table.RGBA[4 * e + c] = albedo;
-  return table;
 }
 
 // ---- speed ----
@@ -405,12 +422,12 @@ int Speed(const Options& options)
   for (const BenchScene& scene : scenes)
   {
     const vtkSmartPointer<vtkImageData> field = MakeField(scene);
-    const TransferTable table = MakeTable(scene);
+    const auto medium = MakeMedium(scene);
 
     const Rendered traced =
-      Run(NewTracer(scene, field, table, scene.Lights, options.Bounces, options));
+      Run(NewTracer(scene, field, medium, scene.Lights, options.Bounces, options));
     const Rendered marched =
-      Run(NewMarch(scene, field, table, scene.Lighting, scene.Lights, options));
+      Run(NewMarch(scene, field, medium, scene.Lighting, scene.Lights, options));
 
     WritePng(
       options.PngDirectory, scene.Name + "-pathtrace", traced.RGBA, options.Width, options.Height);
@@ -504,7 +521,6 @@ int Errors(const Options& options)
   {
     const BenchScene& scene = errorField.Scene;
     const vtkSmartPointer<vtkImageData> field = MakeField(scene);
-    const TransferTable baseTable = MakeTable(scene);
     double bounds[6];
     field->GetBounds(bounds);
     const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
@@ -517,7 +533,7 @@ int Errors(const Options& options)
       double fullMean[2] = { 0.0, 0.0 };
       for (float albedo : { 1.0f, 0.9f })
       {
-        const TransferTable table = WithAlbedo(baseTable, albedo);
+        const auto medium = MakeMedium(scene, albedo);
         const std::string label = std::string(errorField.Name) + "-" + lit.Name + "-albedo" +
           (albedo == 1.0f ? "1" : "0.9");
         std::vector<Rendered> references(2); // every order of scattering, single scattering
@@ -528,8 +544,12 @@ int Errors(const Options& options)
           Rendered& reference = references[model.SingleScattering ? 1 : 0];
           if (reference.RGBA.empty())
           {
-            reference = Run(NewTracer(scene, field, table, { light },
-              model.SingleScattering ? 1 : options.Bounces, options));
+            reference = Run(NewTracer(scene,
+              field,
+              medium,
+              { light },
+              model.SingleScattering ? 1 : options.Bounces,
+              options));
             WritePng(options.PngDirectory,
               label + (model.SingleScattering ? "-pathtrace1" : "-pathtrace"), reference.RGBA,
               options.Width, options.Height);
@@ -543,7 +563,7 @@ int Errors(const Options& options)
             lighting.LightStepGrowth = 1.0f;
             lighting.LightStep = float(diagonal / 64.0);
           }
-          const Rendered image = Run(NewMarch(scene, field, table, lighting, { light }, options));
+          const Rendered image = Run(NewMarch(scene, field, medium, lighting, { light }, options));
           WritePng(options.PngDirectory,
             label + "-" + (model.Model == LightingModel::Derivative ? "derivative" : "march") +
               std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : ""),
@@ -589,14 +609,18 @@ int Bounces(const Options& options)
   {
     BenchScene& scene = errorField.Scene;
     const vtkSmartPointer<vtkImageData> field = MakeField(scene);
-    const TransferTable table = WithAlbedo(MakeTable(scene), 1.0f); // the longest paths
+    const auto medium = MakeMedium(scene, 1.0f); // the longest paths
     Light sun;
     sun.Position = glm::vec3(10.0f, 0.0f, 0.0f);
     double uncapped = 0.0;
     for (int cap : { 1 << 24, 8, 16, 32, 64, 128, 1024 })
     {
-      const Rendered image = Run(NewTracer(scene, field, table,
-        scene.Name == "two-lights.json" ? scene.Lights : std::vector<Light>{ sun }, cap, options));
+      const Rendered image = Run(NewTracer(scene,
+        field,
+        medium,
+        scene.Name == "two-lights.json" ? scene.Lights : std::vector<Light>{ sun },
+        cap,
+        options));
       // The green channel's mean over all pixels, and its standard error (pixels independent).
       double mean = 0.0, variance = 0.0;
       const std::size_t pixels = image.RGBA.size() / 4;
@@ -630,7 +654,7 @@ MarchUniforms UniformsOf(vtkImageData* field, const TransferTable& table, LocalF
   const MarchProblem problem = SetUpMarch(setup, u, &frame);
   if (problem)
     Fail("the field cannot be marched: " + problem.Message);
-  u.Density = static_cast<const float*>(field->GetPointData()->GetScalars()->GetVoidPointer(0));
+  u.Density = DensityTexelsOf(field->GetPointData()->GetScalars());
   return u;
 }
 
@@ -793,7 +817,7 @@ int Defects(const Options& options)
   {
     const BenchScene& scene = errorField.Scene;
     const vtkSmartPointer<vtkImageData> field = MakeField(scene);
-    const TransferTable table = MakeTable(scene);
+    const TransferTable table = TableOf(MakeMedium(scene));
     LightMarchErrors(errorField.Name, field, table);
 
     // The octaves against the path tracer, per opacity bin, side-lit, albedo 1 and 0.9.
@@ -801,7 +825,7 @@ int Defects(const Options& options)
     side.Position = glm::vec3(10.0f, 0.0f, 0.0f);
     for (float albedo : { 1.0f, 0.9f })
     {
-      const TransferTable gray = WithAlbedo(table, albedo);
+      const auto gray = MakeMedium(scene, albedo);
       const Rendered reference =
         Run(NewTracer(scene, field, gray, { side }, options.Bounces, options));
       LightingParameters lighting = scene.Lighting;
@@ -812,7 +836,7 @@ int Defects(const Options& options)
         double(albedo));
       OpacityBins(label, Run(march), reference);
       lighting.LightSteps = 12; // growing as before, but reaching past the volume's diagonal
-      march->SetLighting(lighting);
+      march->GetLightingProperty()->SetParameters(lighting);
       std::snprintf(label, sizeof(label),
         "side-lit, albedo %.1f, march with 12 growing light "
         "steps / path tracer",
@@ -829,7 +853,8 @@ int Defects(const Options& options)
   filling.Field.Shapes[0].Radius = 2.5f;
   filling.Lighting.AmbientStrength = 0.0f;
   const vtkSmartPointer<vtkImageData> field = MakeField(filling);
-  const TransferTable table = WithAlbedo(MakeTable(filling), 1.0f);
+  const auto medium = MakeMedium(filling, 1.0f);
+  const TransferTable table = TableOf(medium);
   LocalFrame frame;
   const MarchUniforms u = UniformsOf(field, table, frame);
   Light side;
@@ -840,7 +865,7 @@ int Defects(const Options& options)
   {
     LightingParameters lighting = filling.Lighting;
     lighting.Model = LightingModel::March;
-    auto march = NewMarch(filling, field, table, lighting, { side }, options);
+    auto march = NewMarch(filling, field, medium, lighting, { side }, options);
     march->SetSampleDistance(step);
     const Rendered image = Run(march);
     glm::dmat4 viewToDevice;

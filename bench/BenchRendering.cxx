@@ -5,20 +5,26 @@
 //   dense   6 octaves of fBm filling the whole 256^3 box
 // Prints ms/frame of both, the ratio, the RMS difference of the two images (8-bit levels),
 // cloudvis's useful-sample fraction (samples where the transfer function gives extinction /
-// samples taken) and its frame rate while interacting (automatic reduced resolution).
+// samples taken), its frame rate while interacting (automatic reduced resolution) and the GPU
+// memory it takes; then the sparse field stored as float, unsigned short, unsigned char and half
+// floats: the GPU memory of each, its frame time and its image against the float field's.
 //
 // Usage: cloudvis-bench-rendering [--size N] [--frames F] [--width W --height H]
 // Environment, for narrower measurements:
 //   CLOUDVIS_BENCH_LIGHTING_ONLY=1  only the lighting comparison
+//   CLOUDVIS_BENCH_STORAGE_ONLY=1   only the storage comparison
 //   CLOUDVIS_BENCH_OCCUPANCY=1      only the occupancy recomputation time per brick size
 //   CLOUDVIS_BENCH_ONE_MODEL=0|1|2  only cloudvis with lighting none|derivative|march (one sun),
 //                                   e.g. under `valgrind --tool=callgrind` with LP_NUM_THREADS=0
 //                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts
 //   CLOUDVIS_BENCH_BRICK=N          the brick size of that run
+#include "CloudFieldGeometry.h"
+#include "CloudLighting.h"
 #include "CloudTransferTable.h"
 #include "SupportImages.h"
 #include "SupportMappers.h"
 #include "vtkCloudDensitySource.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudOccupancyFilter.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -84,7 +90,12 @@ struct View
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkVolumeProperty> Property;
 
-  View(vtkVolumeMapper* mapper, vtkImageData* field, const Options& options)
+  // densityMax: the density the transfer function's last point sits at (1 for the float field;
+  // the full scale of an integer type holding it).
+  View(vtkVolumeMapper* mapper,
+    vtkImageData* field,
+    const Options& options,
+    double densityMax = 1.0)
   {
     this->Window->SetOffScreenRendering(1);
     this->Window->SetMultiSamples(0);
@@ -94,11 +105,11 @@ struct View
     mapper->SetInputDataObject(field);
     vtkNew<vtkPiecewiseFunction> opacity;
     opacity->AddPoint(0.0, 0.0);
-    opacity->AddPoint(0.05, 0.0);
-    opacity->AddPoint(1.0, 0.8);
+    opacity->AddPoint(0.05 * densityMax, 0.0);
+    opacity->AddPoint(densityMax, 0.8);
     vtkNew<vtkColorTransferFunction> color;
     color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
-    color->AddRGBPoint(1.0, 0.8, 0.85, 1.0);
+    color->AddRGBPoint(densityMax, 0.8, 0.85, 1.0);
     this->Property->SetScalarOpacity(opacity);
     this->Property->SetColor(color);
     this->Property->SetScalarOpacityUnitDistance(0.1);
@@ -157,18 +168,82 @@ void Compare(const char* name, vtkImageData* field, const Options& options)
   // While interacting the mapper lowers its resolution to keep 20 frames per second.
   cloud.Window->SetDesiredUpdateRate(20.0);
   cloud.MillisecondsPerFrame(3, [&] { cloud.Renderer->GetActiveCamera()->Azimuth(1.0); });
-  const double interactiveMs =
-    cloud.MillisecondsPerFrame(options.Frames, [&] { cloud.Renderer->GetActiveCamera()->Azimuth(1.0); });
+  const double interactiveMs = cloud.MillisecondsPerFrame(
+    options.Frames, [&] { cloud.Renderer->GetActiveCamera()->Azimuth(1.0); });
 
-  std::printf("%s field (%d^3, %dx%d, step %.4f):\n", name, options.Size, options.Width,
-    options.Height, step);
+  std::printf("%s field (%d^3, %dx%d, step %.4f):\n",
+    name,
+    options.Size,
+    options.Width,
+    options.Height,
+    step);
   std::printf("  vtkGPUVolumeRayCastMapper  %8.1f ms/frame\n", vtkMs);
   std::printf("  vtkCloudVolumeMapper       %8.1f ms/frame\n", cloudMs);
   std::printf("  %s speed-up ratio: %.2f\n", name, vtkMs / cloudMs);
   std::printf("  image difference: %.2f RMS 8-bit levels\n", rms);
-  std::printf("  useful-sample fraction: %.1f%% (occupied bricks %.1f%%)\n", 100.0 * useful,
+  std::printf("  useful-sample fraction: %.1f%% (occupied bricks %.1f%%)\n",
+    100.0 * useful,
     100.0 * statistics.OccupiedBrickFraction);
-  std::printf("  interactive: %.1f ms/frame = %.1f frames/s\n", interactiveMs, 1000.0 / interactiveMs);
+  std::printf(
+    "  interactive: %.1f ms/frame = %.1f frames/s\n", interactiveMs, 1000.0 / interactiveMs);
+  std::printf("  cloudvis GPU memory: %s (density texture %s)\n",
+    cloudvis::FormatBytes(double(cloudMapper->GetGPUMemoryBytes())).c_str(),
+    cloudvis::FormatBytes(double(cloudMapper->GetDensityTextureBytes())).c_str());
+}
+
+// The sparse field stored in each of the mapper's texel formats (QuantizedField: densities in
+// [0, 1] as integers of the type's full scale, the transfer function scaled with them).
+void CompareStorage(vtkImageData* field, const Options& options)
+{
+  struct Storage
+  {
+    const char* Name;
+    int ScalarType;
+    bool HalfFloat;
+  };
+  const double step = 4.0 / (options.Size - 1);
+  std::printf("storage of the sparse field (%d^3, %dx%d, step %.4f):\n",
+    options.Size,
+    options.Width,
+    options.Height,
+    step);
+  std::printf("  | field | texels | density texture | all textures and targets | ms/frame | "
+              "RMS vs float (8-bit levels) |\n  |---|---|---|---|---|---|\n");
+  cloudvis::support::Image floatImage;
+  for (const Storage& storage : { Storage{ "float", VTK_FLOAT, false },
+         Storage{ "unsigned short", VTK_UNSIGNED_SHORT, false },
+         Storage{ "unsigned char", VTK_UNSIGNED_CHAR, false },
+         Storage{ "float, HalfFloatDensity", VTK_FLOAT, true } })
+  {
+    auto mapper = MatchedCloudMapper(step);
+    mapper->SetHalfFloatDensity(storage.HalfFloat);
+    const auto stored = storage.ScalarType == VTK_FLOAT
+      ? vtkSmartPointer<vtkImageData>(field)
+      : cloudvis::support::QuantizedField(field, storage.ScalarType);
+    View view(mapper, stored, options, cloudvis::support::FullScale(storage.ScalarType));
+    const double ms = view.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); });
+    if (!mapper->GetLastError().empty())
+    {
+      std::printf("  | %s | refused: %s |\n", storage.Name, mapper->GetLastError().c_str());
+      continue;
+    }
+    const cloudvis::support::Image image = GrabWindow(view.Window);
+    if (storage.ScalarType == VTK_FLOAT && !storage.HalfFloat)
+    {
+      floatImage = image;
+    }
+    const double rms = cloudvis::support::Compare(image, floatImage).RmsLevels();
+    std::printf("  | %s | %s | %s | %s | %.1f | %.2f |\n",
+      storage.Name,
+      storage.HalfFloat                            ? "R16F"
+        : storage.ScalarType == VTK_UNSIGNED_CHAR  ? "R8"
+        : storage.ScalarType == VTK_UNSIGNED_SHORT ? "R16"
+                                                   : "R32F",
+      cloudvis::FormatBytes(double(mapper->GetDensityTextureBytes())).c_str(),
+      cloudvis::FormatBytes(double(mapper->GetGPUMemoryBytes())).c_str(),
+      ms,
+      rms);
+  }
 }
 }
 
@@ -177,7 +252,8 @@ void Compare(const char* name, vtkImageData* field, const Options& options)
 void CompareLighting(vtkImageData* field, const Options& options)
 {
   const double step = 4.0 / (options.Size - 1);
-  const auto addSun = [](vtkRenderer* renderer) {
+  const auto addSun = [](vtkRenderer* renderer)
+  {
     vtkNew<vtkLight> sun;
     sun->SetLightTypeToSceneLight();
     sun->SetPositional(false);
@@ -193,16 +269,19 @@ void CompareLighting(vtkImageData* field, const Options& options)
   addSun(vtk.Renderer);
   const double vtkShadedMs = vtk.MillisecondsPerFrame(options.Frames, [] {});
 
-  std::printf("lighting on the sparse field (%d^3, %dx%d, one light):\n", options.Size,
-    options.Width, options.Height);
+  std::printf("lighting on the sparse field (%d^3, %dx%d, one light):\n",
+    options.Size,
+    options.Width,
+    options.Height);
   double noneMs = 0.0;
   for (cloudvis::LightingModel model : { cloudvis::LightingModel::None,
-         cloudvis::LightingModel::Derivative, cloudvis::LightingModel::March })
+         cloudvis::LightingModel::Derivative,
+         cloudvis::LightingModel::March })
   {
     auto mapper = MatchedCloudMapper(step);
     cloudvis::LightingParameters lighting;
     lighting.Model = model;
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     View cloud(mapper, field, options);
     addSun(cloud.Renderer);
     const double ms = cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); });
@@ -239,7 +318,8 @@ int main(int argc, char* argv[])
   }
   if (options.Size < 8 || options.Frames < 1 || options.Width < 16 || options.Height < 16)
   {
-    std::fprintf(stderr, "usage: %s [--size N>=8] [--frames F>=1] [--width W --height H]\n", argv[0]);
+    std::fprintf(
+      stderr, "usage: %s [--size N>=8] [--frames F>=1] [--width W --height H]\n", argv[0]);
     return 2;
   }
   const auto sparse = Field(options.Size, false);
@@ -258,7 +338,8 @@ int main(int argc, char* argv[])
       occupancy->SetTransferTable(cloudvis::TabulateTransferFunction(nullptr, opacity, 0.1));
       const double start = vtkTimerLog::GetUniversalTime();
       occupancy->Update();
-      std::printf("occupancy brick %d: %.1f ms\n", brick, 1000.0 * (vtkTimerLog::GetUniversalTime() - start));
+      std::printf(
+        "occupancy brick %d: %.1f ms\n", brick, 1000.0 * (vtkTimerLog::GetUniversalTime() - start));
     }
     return 0;
   }
@@ -269,19 +350,26 @@ int main(int argc, char* argv[])
       mapper->SetBrickSize(std::atoi(brick));
     cloudvis::LightingParameters lighting;
     lighting.Model = cloudvis::LightingModel(std::atoi(only));
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     View cloud(mapper, sparse, options);
     vtkNew<vtkLight> sun;
     sun->SetPosition(6.0, 8.0, 4.0);
     sun->SetFocalPoint(0.0, 0.0, 0.0);
     cloud.Renderer->AddLight(sun);
-    std::printf("%.1f ms\n", cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); }));
+    std::printf(
+      "%.1f ms\n", cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); }));
     mapper->CollectStatisticsOn();
     mapper->Modified();
     cloud.Window->Render();
     const vtkCloudVolumeMapper::FrameStatistics& st = mapper->GetLastFrameStatistics();
     std::printf("useful-sample fraction %.1f%% of %.3g samples\n",
-      100.0 * st.UsefulSamples / st.SamplesTaken, st.SamplesTaken);
+      100.0 * st.UsefulSamples / st.SamplesTaken,
+      st.SamplesTaken);
+    return 0;
+  }
+  if (std::getenv("CLOUDVIS_BENCH_STORAGE_ONLY"))
+  {
+    CompareStorage(sparse, options);
     return 0;
   }
   if (!std::getenv("CLOUDVIS_BENCH_LIGHTING_ONLY"))
@@ -290,5 +378,9 @@ int main(int argc, char* argv[])
     Compare("dense", Field(options.Size, true), options);
   }
   CompareLighting(sparse, options);
+  if (!std::getenv("CLOUDVIS_BENCH_LIGHTING_ONLY"))
+  {
+    CompareStorage(sparse, options);
+  }
   return 0;
 }

@@ -57,6 +57,11 @@ struct LocalLight
   glm::vec3 Direction{ 0.0f };   // unit, toward the light; directional lights
   glm::vec3 Radiance{ 0.0f };    // color * intensity
   glm::vec3 Attenuation{ 0.0f }; // (a0, a1 unit, a2 unit^2): the falloff of a local distance
+  // Directional lights, the same at every sample (SetUpMarch computes them once, in float, for
+  // both renderers): Direction in index units per local unit, and the derivative model's offset
+  // h Direction in index units.
+  glm::vec3 IndexDirection{ 0.0f };
+  glm::vec3 IndexOffset{ 0.0f };
 };
 
 struct LightingParameters
@@ -189,8 +194,13 @@ inline float ScatteredFraction(const LightingParameters& p, float mu, float tau)
   return sum * powder;
 }
 
+// How far a directional light is, in local units: beyond any light march (the GLSL receives it
+// by substitution).
+constexpr float DirectionalLightDistance = 1e30f;
+
 // Where a light is seen from a point x of the march's local frame: unit direction toward it, the
-// local distance to it (1e30 for directional lights, as in the GLSL) and its distance falloff.
+// local distance to it (DirectionalLightDistance for directional lights) and its distance
+// falloff.
 struct LightSample
 {
   glm::vec3 Direction;
@@ -201,7 +211,7 @@ inline LightSample SampleLight(const LocalLight& light, glm::vec3 x)
 {
   if (!light.Positional)
   {
-    return { light.Direction, 1e30f, 1.0f };
+    return { light.Direction, DirectionalLightDistance, 1.0f };
   }
   const glm::vec3 toLight = light.Position - x;
   const float r = glm::length(toLight);

@@ -1,6 +1,10 @@
 #include "CloudMarchUniforms.h"
 
+#include "vtkCloudLightingProperty.h"
+
 #include <vtkImageData.h>
+#include <vtkLight.h>
+#include <vtkLightCollection.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
 
@@ -228,6 +232,13 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
         " world units, differ too much for float arithmetic");
   }
   u.Dimensions = geometry.Dimensions;
+  u.Density = setup.Density;
+  if (!(u.Density.Scale > 0.0f) || !FitsFloat(u.Density.Scale) || !FitsFloat(u.Density.Bias))
+  {
+    return Problem(MarchInput::Geometry,
+      "the density texels' scale " + Number(u.Density.Scale) + " and bias " +
+        Number(u.Density.Bias) + " must be finite, the scale > 0");
+  }
   u.IndexToLocal = glm::mat4(frame.IndexToLocal);
   u.LocalToIndex = glm::mat3(glm::dmat3(frame.LocalToIndex));
   u.ExtinctionUnit = float(frame.Unit);
@@ -302,7 +313,8 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
         Number(frame.LongestChord * frame.Unit / MaxSamplesPerRay * (1.0 + 1e-5)));
   }
   u.Step = float(step / frame.Unit);
-  u.MaximumSamples = int(std::ceil(samples)) + 16;
+  u.LongestRaySamples = int(std::ceil(samples));
+  u.MaximumSamples = u.LongestRaySamples + 16;
   if (!(setup.TerminationTransmittance >= 0.0 && setup.TerminationTransmittance <= 1.0))
   {
     return Problem(MarchInput::Step, "the termination transmittance must be in [0, 1]");
@@ -419,6 +431,8 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
           index);
       }
       local.Direction = glm::vec3(direction);
+      local.IndexDirection = u.LocalToIndex * local.Direction;
+      local.IndexOffset = u.LocalToIndex * (u.Lighting.DerivativeDistance * local.Direction);
     }
     const double peak =
       std::max({ std::abs(radiance.x), std::abs(radiance.y), std::abs(radiance.z) }) * falloff *
@@ -447,6 +461,88 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
     *frameOut = frame;
   }
   return {};
+}
+
+std::vector<Light> LightsOf(vtkLightCollection* collection)
+{
+  std::vector<Light> lights;
+  if (!collection)
+  {
+    return lights;
+  }
+  vtkCollectionSimpleIterator it;
+  collection->InitTraversal(it);
+  while (vtkLight* light = collection->GetNextLight(it))
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    Light l;
+    l.Positional = light->GetPositional() != 0;
+    double position[3], focalPoint[3];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focalPoint);
+    l.Position = glm::dvec3(position[0], position[1], position[2]);
+    l.FocalPoint = glm::dvec3(focalPoint[0], focalPoint[1], focalPoint[2]);
+    const double* color = light->GetDiffuseColor();
+    l.Color = glm::vec3(float(color[0]), float(color[1]), float(color[2]));
+    l.Intensity = float(light->GetIntensity());
+    const double* attenuation = light->GetAttenuationValues();
+    l.Attenuation = glm::vec3(float(attenuation[0]), float(attenuation[1]), float(attenuation[2]));
+    lights.push_back(l);
+  }
+  return lights;
+}
+
+vtkSmartPointer<vtkLight> MakeLight(const Light& light)
+{
+  auto vtk = vtkSmartPointer<vtkLight>::New();
+  vtk->SetLightTypeToSceneLight();
+  vtk->SetPositional(light.Positional);
+  vtk->SetPosition(light.Position.x, light.Position.y, light.Position.z);
+  vtk->SetFocalPoint(light.FocalPoint.x, light.FocalPoint.y, light.FocalPoint.z);
+  vtk->SetDiffuseColor(light.Color.x, light.Color.y, light.Color.z);
+  vtk->SetIntensity(light.Intensity);
+  vtk->SetAttenuationValues(light.Attenuation.x, light.Attenuation.y, light.Attenuation.z);
+  if (light.Positional)
+  {
+    vtk->SetConeAngle(180.0); // a point light, not a spot
+  }
+  return vtk;
+}
+
+vtkSmartPointer<vtkLightCollection> MakeLights(const std::vector<Light>& lights)
+{
+  auto collection = vtkSmartPointer<vtkLightCollection>::New();
+  for (const Light& light : lights)
+  {
+    collection->AddItem(MakeLight(light));
+  }
+  return collection;
+}
+
+MarchSetup MakeMarchSetup(vtkImageData* image,
+  vtkMatrix4x4* volumeMatrix,
+  const DensityTexels& texels,
+  const TransferTable* table,
+  double sampleDistance,
+  double terminationTransmittance,
+  vtkCloudLightingProperty* lighting,
+  vtkLightCollection* lights)
+{
+  MarchSetup setup;
+  setup.Geometry = GeometryOf(image, volumeMatrix);
+  setup.Density = texels;
+  setup.Table = table;
+  setup.SampleDistance = sampleDistance;
+  setup.TerminationTransmittance = terminationTransmittance;
+  if (lighting)
+  {
+    setup.Lighting = lighting->GetParameters();
+  }
+  setup.Lights = LightsOf(lights);
+  return setup;
 }
 
 } // namespace cloudvis

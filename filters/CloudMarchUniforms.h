@@ -18,15 +18,21 @@
 #ifndef CloudMarchUniforms_h
 #define CloudMarchUniforms_h
 
+#include "CloudDensityTexels.h"
 #include "CloudLighting.h"
 #include "CloudTransferTable.h"
 #include "cloudvisFiltersModule.h"
+
+#include <vtkLight.h>
+#include <vtkLightCollection.h>
+#include <vtkSmartPointer.h>
 
 #include <glm/glm.hpp>
 
 #include <string>
 #include <vector>
 
+class vtkCloudLightingProperty;
 class vtkImageData;
 class vtkMatrix4x4;
 
@@ -98,9 +104,10 @@ CLOUDVISFILTERS_EXPORT glm::dmat4 DeviceToLocal(const LocalFrame& frame,
 // The uniforms of shaders/CloudMarchFS.glsl and the lighting models, by the GLSL's names.
 struct MarchUniforms
 {
-  // DensityTexture, for the CPU reference: Dimensions.x * .y * .z values, x fastest, in the
-  // input's scalar units (the mapper uploads a texture instead).
-  const float* Density = nullptr;
+  // DensityTexture: how its texels hold the density (their format; Scale and Bias are the
+  // GLSL's DensityScale and DensityBias) and, for the CPU reference, Dimensions.x * .y * .z
+  // texels, x fastest (the mapper uploads a texture instead).
+  DensityTexels Density;
   glm::ivec3 Dimensions{ 0 };
   glm::mat4 IndexToLocal{ 1.0f };
   glm::mat3 LocalToIndex{ 1.0f }; // a local displacement in index units
@@ -110,8 +117,9 @@ struct MarchUniforms
   float ExtinctionUnit = 1.0f;
   float Step = 1.0f; // local units between samples along a view ray
   float TerminationTransmittance = 1.0f / 255.0f;
-  // The samples along the longest ray through the volume plus a margin: the CPU's loop bound.
-  // The GPU's adds one iteration per leap over empty bricks.
+  // The samples along the longest ray through the volume, and those plus a margin: the CPU's
+  // loop bound. The GPU's adds one iteration per leap over empty bricks.
+  int LongestRaySamples = 1;
   int MaximumSamples = 1;
 
   // The lighting model and its parameters, with DerivativeDistance and LightStep resolved (0
@@ -126,6 +134,7 @@ struct MarchUniforms
 struct MarchSetup
 {
   VolumeGeometry Geometry;
+  DensityTexels Density;                // the field's texels (DensityTexelsOf)
   const TransferTable* Table = nullptr; // sigma_t per world unit
   double SampleDistance = 0.0;          // world units; 0: the smallest voxel edge
   double TerminationTransmittance = 1.0 / 255.0;
@@ -163,6 +172,32 @@ struct MarchProblem
 CLOUDVISFILTERS_EXPORT MarchProblem SetUpMarch(const MarchSetup& setup,
   MarchUniforms& uniforms,
   LocalFrame* frame = nullptr);
+
+// The switched-on lights of a collection, as the renderers light with them: directional or
+// positional, at their transformed position and focal point (vtkLight::GetTransformedPosition),
+// with their diffuse color, intensity and attenuation values. All of them: SetUpMarch refuses
+// more than LightingLimits::MaxLights rather than dropping some. None for a null collection.
+CLOUDVISFILTERS_EXPORT std::vector<Light> LightsOf(vtkLightCollection* lights);
+
+// A light as a vtkLight, the inverse of LightsOf: a scene light (fixed in world coordinates),
+// positional for point lights (cone angle 180: no spot), with the light's position, focal
+// point, color as the diffuse color, intensity and attenuation values.
+CLOUDVISFILTERS_EXPORT vtkSmartPointer<vtkLight> MakeLight(const Light& light);
+// MakeLight of each light, in order.
+CLOUDVISFILTERS_EXPORT vtkSmartPointer<vtkLightCollection> MakeLights(
+  const std::vector<Light>& lights);
+
+// The MarchSetup of what a renderer holds, in the one way the GPU mapper and the CPU renderers
+// read it: `image`'s geometry placed by `volumeMatrix` (null: identity), its texels, the table,
+// the step, the termination transmittance, the lighting property's values and LightsOf(lights).
+CLOUDVISFILTERS_EXPORT MarchSetup MakeMarchSetup(vtkImageData* image,
+  vtkMatrix4x4* volumeMatrix,
+  const DensityTexels& texels,
+  const TransferTable* table,
+  double sampleDistance,
+  double terminationTransmittance,
+  vtkCloudLightingProperty* lighting,
+  vtkLightCollection* lights);
 
 } // namespace cloudvis
 

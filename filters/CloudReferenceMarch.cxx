@@ -100,7 +100,8 @@ glm::vec4 MarchRay(const MarchUniforms& u, glm::vec3 nearPoint, glm::vec3 farPoi
 float DensityAt(const MarchUniforms& u, glm::vec3 p)
 {
   // GL_LINEAR at texture coordinate (p + 0.5) / n reads texels floor(p) and floor(p) + 1 with
-  // weights from fract(p); CLAMP_TO_EDGE clamps each texel index to [0, n - 1].
+  // weights from fract(p); CLAMP_TO_EDGE clamps each texel index to [0, n - 1]. The texels'
+  // normalized values are interpolated, then scaled to the data's units, as the GLSL does.
   int i0[3], i1[3];
   float f[3];
   for (int a = 0; a < 3; ++a)
@@ -113,15 +114,18 @@ float DensityAt(const MarchUniforms& u, glm::vec3 p)
     i0[a] = static_cast<int>(lo);
     i1[a] = static_cast<int>(hi);
   }
-  const auto voxel = [&u](int x, int y, int z) {
-    return u.Density[(std::size_t(z) * u.Dimensions.y + y) * u.Dimensions.x + x];
+  const auto texel = [&u](int x, int y, int z)
+  {
+    return NormalizedTexel(
+      u.Density, (std::size_t(z) * u.Dimensions.y + y) * u.Dimensions.x + std::size_t(x));
   };
   const auto lerp = [](float a, float b, float w) { return a + w * (b - a); };
-  const float c00 = lerp(voxel(i0[0], i0[1], i0[2]), voxel(i1[0], i0[1], i0[2]), f[0]);
-  const float c10 = lerp(voxel(i0[0], i1[1], i0[2]), voxel(i1[0], i1[1], i0[2]), f[0]);
-  const float c01 = lerp(voxel(i0[0], i0[1], i1[2]), voxel(i1[0], i0[1], i1[2]), f[0]);
-  const float c11 = lerp(voxel(i0[0], i1[1], i1[2]), voxel(i1[0], i1[1], i1[2]), f[0]);
-  return lerp(lerp(c00, c10, f[1]), lerp(c01, c11, f[1]), f[2]);
+  const float c00 = lerp(texel(i0[0], i0[1], i0[2]), texel(i1[0], i0[1], i0[2]), f[0]);
+  const float c10 = lerp(texel(i0[0], i1[1], i0[2]), texel(i1[0], i1[1], i0[2]), f[0]);
+  const float c01 = lerp(texel(i0[0], i0[1], i1[2]), texel(i1[0], i0[1], i1[2]), f[0]);
+  const float c11 = lerp(texel(i0[0], i1[1], i1[2]), texel(i1[0], i1[1], i1[2]), f[0]);
+  const float filtered = lerp(lerp(c00, c10, f[1]), lerp(c01, c11, f[1]), f[2]);
+  return filtered * u.Density.Scale + u.Density.Bias;
 }
 
 float ExtinctionAt(const MarchUniforms& u, glm::vec3 p)
@@ -144,27 +148,50 @@ glm::vec3 SourceTermNone(const MarchUniforms&, glm::vec3, float, glm::vec3 albed
 
 // ---- CloudLightingDerivative.glsl ----
 
-glm::vec3 SourceTermDerivative(
-  const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3)
+namespace
 {
-  const float h = u.Lighting.DerivativeDistance;
-  const glm::vec3 x = LocalOfIndex(u, p);
+// SourceTerm with one term per light, as the mapper's generated GLSL calls them.
+template<typename DirectionalTerm, typename PointTerm>
+glm::vec3 SumOverLights(const MarchUniforms& u,
+  glm::vec3 albedo,
+  DirectionalTerm directional,
+  PointTerm point)
+{
   glm::vec3 light = u.Ambient;
   for (const LocalLight& source : u.Lights)
   {
-    const LightSample s = SampleLight(source, x);
-    const float towardLight = DensityAt(u, p + LocalToIndex(u, h * s.Direction));
-    light +=
-      source.Radiance * s.Falloff * DerivativeDiffuse(density, towardLight, u.DerivativeSlopeScale);
+    light += source.Positional ? point(source) : directional(source);
   }
   return albedo * light;
+}
+}
+
+glm::vec3 SourceTermDerivative(const MarchUniforms& u,
+  glm::vec3 p,
+  float density,
+  glm::vec3 albedo,
+  glm::vec3)
+{
+  const float h = u.Lighting.DerivativeDistance;
+  return SumOverLights(
+    u,
+    albedo,
+    [&](const LocalLight& source) { // DirectionalLightTerm: the offset h l is precomputed
+      const float towardLight = DensityAt(u, p + source.IndexOffset);
+      return source.Radiance * DerivativeDiffuse(density, towardLight, u.DerivativeSlopeScale);
+    },
+    [&](const LocalLight& source) { // PointLightTerm
+      const LightSample s = SampleLight(source, LocalOfIndex(u, p));
+      const float towardLight = DensityAt(u, p + LocalToIndex(u, h * s.Direction));
+      return source.Radiance * s.Falloff *
+        DerivativeDiffuse(density, towardLight, u.DerivativeSlopeScale);
+    });
 }
 
 // ---- CloudLightingMarch.glsl ----
 
-float LightOpticalDepth(const MarchUniforms& u, glm::vec3 p, glm::vec3 l, float maxDistance)
+float LightOpticalDepth(const MarchUniforms& u, glm::vec3 p, glm::vec3 indexStep, float maxDistance)
 {
-  const glm::vec3 indexStep = LocalToIndex(u, l); // index units per local unit
   float tau = 0.0f;
   float start = 0.0f;
   float segment = u.Lighting.LightStep;
@@ -187,16 +214,20 @@ float LightOpticalDepth(const MarchUniforms& u, glm::vec3 p, glm::vec3 l, float 
 glm::vec3 SourceTermMarch(
   const MarchUniforms& u, glm::vec3 p, float /*density*/, glm::vec3 albedo, glm::vec3 d)
 {
-  const glm::vec3 x = LocalOfIndex(u, p);
-  glm::vec3 light = u.Ambient;
-  for (const LocalLight& source : u.Lights)
-  {
-    const LightSample s = SampleLight(source, x);
-    const float tau = LightOpticalDepth(u, p, s.Direction, s.Distance);
-    light += source.Radiance * s.Falloff * PhaseToRadiance *
-      ScatteredFraction(u.Lighting, glm::dot(d, s.Direction), tau);
-  }
-  return albedo * light;
+  return SumOverLights(
+    u,
+    albedo,
+    [&](const LocalLight& source) { // DirectionalLightTerm: l in index units is precomputed
+      const float tau = LightOpticalDepth(u, p, source.IndexDirection, DirectionalLightDistance);
+      return source.Radiance * PhaseToRadiance *
+        ScatteredFraction(u.Lighting, glm::dot(d, source.Direction), tau);
+    },
+    [&](const LocalLight& source) { // PointLightTerm
+      const LightSample s = SampleLight(source, LocalOfIndex(u, p));
+      const float tau = LightOpticalDepth(u, p, LocalToIndex(u, s.Direction), s.Distance);
+      return source.Radiance * s.Falloff * PhaseToRadiance *
+        ScatteredFraction(u.Lighting, glm::dot(d, s.Direction), tau);
+    });
 }
 
 glm::vec3 SourceTerm(

@@ -42,20 +42,24 @@ CLOUDVISFILTERS_EXPORT glm::vec4 MarchRay(const MarchUniforms& u,
 
 // ---- CloudLightingCommon.glsl ----
 
-// The density texture's GL_LINEAR, CLAMP_TO_EDGE fetch at (p + 0.5) / Dimensions: trilinear
-// between the lattice voxels around index point p, the edge voxels repeated outside.
+// The density texture's GL_LINEAR, CLAMP_TO_EDGE fetch at (p + 0.5) / Dimensions, in the data's
+// units: the trilinear interpolation of the normalized texels around index point p (the edge
+// voxels repeated outside), times Density.Scale plus Density.Bias.
 CLOUDVISFILTERS_EXPORT float DensityAt(const MarchUniforms& u, glm::vec3 p);
 CLOUDVISFILTERS_EXPORT float ExtinctionAt(const MarchUniforms& u, glm::vec3 p);
 CLOUDVISFILTERS_EXPORT bool InsideVolume(const MarchUniforms& u, glm::vec3 p);
 
 // ---- CloudLightingNone.glsl, CloudLightingDerivative.glsl, CloudLightingMarch.glsl ----
 
-// Optical depth from index point p toward the light along l (unit direction), up to
-// maxDistance (local): segments from 0, the first Lighting.LightStep long, each next
-// LightStepGrowth times longer, sampled at their midpoints; stops at the first midpoint outside
-// the volume or beyond maxDistance, or after LightSteps segments.
-CLOUDVISFILTERS_EXPORT float LightOpticalDepth(
-  const MarchUniforms& u, glm::vec3 p, glm::vec3 l, float maxDistance);
+// Optical depth from index point p toward a light, up to maxDistance (local): indexStep is the
+// unit direction toward it in index units per local unit (LocalToIndex(u, l)); segments from 0,
+// the first Lighting.LightStep long, each next LightStepGrowth times longer, sampled at their
+// midpoints; stops at the first midpoint outside the volume or beyond maxDistance, or after
+// LightSteps segments.
+CLOUDVISFILTERS_EXPORT float LightOpticalDepth(const MarchUniforms& u,
+  glm::vec3 p,
+  glm::vec3 indexStep,
+  float maxDistance);
 
 // The source term S of each model at index point p (docs/lighting.md); d is the unit direction
 // of the view ray. SourceTerm calls the one u.Lighting.Model names, as the mapper

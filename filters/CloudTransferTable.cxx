@@ -1,7 +1,9 @@
 #include "CloudTransferTable.h"
 
+#include <vtkColorTransferFunction.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkScalarsToColors.h>
+#include <vtkVolumeProperty.h>
 
 #include <algorithm>
 #include <cmath>
@@ -107,6 +109,14 @@ bool TransferTable::operator==(const TransferTable& other) const
     this->Size == other.Size && this->RGBA == other.RGBA;
 }
 
+void WidenEmptyRange(double range[2])
+{
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+}
+
 double Extinction(double opacity, double unitDistance, double extinctionScale)
 {
   const double a = std::min(std::max(opacity, 0.0), MaxOpacity);
@@ -171,17 +181,14 @@ bool TransferFunctionRange(vtkPiecewiseFunction* opacity,
   };
   opacity->GetNodeValue(opacity->GetSize() - 1, node);
   include(node[0]);
-  // A vtkColorTransferFunction's range is that of its points (filters/ does not link the
-  // rendering module that defines the class, so the interface is all it can ask).
+  // A vtkColorTransferFunction's range is that of its points; any other vtkScalarsToColors
+  // gives its own.
   if (color)
   {
     include(color->GetRange()[0]);
     include(color->GetRange()[1]);
   }
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0;
-  }
+  WidenEmptyRange(range);
   return true;
 }
 
@@ -273,6 +280,33 @@ std::string ValidateTransferFunction(vtkPiecewiseFunction* opacity, vtkScalarsTo
     }
   }
   return "";
+}
+
+TransferTable TransferTableOf(vtkVolumeProperty* property,
+  double extinctionScale,
+  std::string& problem)
+{
+  problem.clear();
+  if (!property)
+  {
+    problem = "transfer function: no volume property";
+    return TransferTable();
+  }
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
+  const std::string invalid = ValidateTransferFunction(opacity, color);
+  if (!invalid.empty())
+  {
+    problem = "transfer function: " + invalid;
+    return TransferTable();
+  }
+  TransferTable table = TabulateTransferFunction(
+    color, opacity, property->GetScalarOpacityUnitDistance(0), TransferTableSize, extinctionScale);
+  if (table.Size < 1)
+  {
+    problem = "transfer function: the unit distance must be a positive finite number";
+  }
+  return table;
 }
 
 } // namespace cloudvis

@@ -17,9 +17,20 @@
 
 class vtkPiecewiseFunction;
 class vtkScalarsToColors;
+class vtkVolumeProperty;
 
 namespace cloudvis
 {
+
+// The number of entries of the table every renderer builds (the GPU mapper, the CPU reference and
+// path tracer, the occupancy map they share): 1024 resolves a transfer function's ramps far
+// below what an 8-bit image shows, in 16 KiB of texture.
+constexpr int TransferTableSize = 1024;
+
+// The rule for a range of densities with no width (a constant field, or a transfer function whose
+// points all lie at one density v): it becomes [v, v + 1], so that lookups, colour maps and axes
+// that divide by the width keep working. An increasing range is left alone.
+CLOUDVISFILTERS_EXPORT void WidenEmptyRange(double range[2]);
 
 // Color and extinction per density, sampled at Size evenly spaced densities over Range
 // (first entry at Range[0], last at Range[1]).
@@ -73,9 +84,9 @@ constexpr double MaxTransferDensity = FloatMax;
 
 // The densities the pair defines: from the first to the last point of the opacity function and
 // of the color function (its GetRange(), which for a vtkColorTransferFunction spans its points),
-// together. A function whose points all lie at one density v gives [v, v + 1], so the table has a
-// width (it is constant anyway: outside its points a function keeps its end values). False when
-// the opacity function is missing or has no points.
+// together. A function whose points all lie at one density gives a range of no width, widened by
+// WidenEmptyRange so the table has one (it is constant anyway: outside its points a function
+// keeps its end values). False when the opacity function is missing or has no points.
 CLOUDVISFILTERS_EXPORT bool TransferFunctionRange(vtkPiecewiseFunction* opacity,
   vtkScalarsToColors* color,
   double range[2]);
@@ -87,7 +98,7 @@ CLOUDVISFILTERS_EXPORT bool TransferFunctionRange(vtkPiecewiseFunction* opacity,
 CLOUDVISFILTERS_EXPORT TransferTable TabulateTransferFunction(vtkScalarsToColors* color,
   vtkPiecewiseFunction* opacity,
   double unitDistance,
-  int size = 1024,
+  int size = TransferTableSize,
   double extinctionScale = 1.0);
 
 // Samples color and opacity into a table of `size` entries over `range`. The opacity a(d) is
@@ -99,17 +110,29 @@ CLOUDVISFILTERS_EXPORT TransferTable TabulateTransferFunction(vtkScalarsToColors
 // extinctionScale is not finite and > 0 (resp. >= 0), or the range is not finite and
 // non-decreasing: the occupancy filter refuses an empty table, so the mistake shows.
 CLOUDVISFILTERS_EXPORT TransferTable BuildTransferTable(vtkScalarsToColors* color,
-  vtkPiecewiseFunction* opacity, double unitDistance, const double range[2], int size = 1024,
+  vtkPiecewiseFunction* opacity,
+  double unitDistance,
+  const double range[2],
+  int size = TransferTableSize,
   double extinctionScale = 1.0);
 
 // Empty when the pair can drive a renderer, else the problem in words: no opacity function or
 // one without points, point positions that are NaN or decrease, opacity values that are NaN or
 // outside [0, 1], midpoint / sharpness outside [0, 1], or a color that is NaN or outside [0, 1].
-// filters/ does not link VTK's rendering modules, so the color is checked through the
-// vtkScalarsToColors interface: sampled at 257 densities across its range and at every opacity
-// point. A null color is valid (white).
+// The color is checked through the vtkScalarsToColors interface, so any color map can be
+// given: sampled at 257 densities across its range and at every opacity point. A null color is
+// valid (white).
 CLOUDVISFILTERS_EXPORT std::string ValidateTransferFunction(
   vtkPiecewiseFunction* opacity, vtkScalarsToColors* color);
+
+// The table of a vtkVolumeProperty's first component, as every renderer builds it: its color and
+// scalar opacity checked by ValidateTransferFunction, then TabulateTransferFunction with its
+// scalar opacity unit distance, TransferTableSize entries and extinctionScale. On a problem
+// (no property, an invalid function, a unit distance that is not a positive finite number)
+// returns an empty table and sets `problem`, which starts with "transfer function: ".
+CLOUDVISFILTERS_EXPORT TransferTable TransferTableOf(vtkVolumeProperty* property,
+  double extinctionScale,
+  std::string& problem);
 
 } // namespace cloudvis
 

@@ -1,14 +1,16 @@
 #include "vtkCloudReferenceRenderer.h"
 
-#include "CloudReferenceMarch.h"
-
 #include "CloudFieldGeometry.h"
+#include "CloudReferenceMarch.h"
+#include "CloudTransferTable.h"
 
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkLight.h>
+#include <vtkLightCollection.h>
 #include <vtkMath.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
@@ -17,6 +19,7 @@
 #include <vtkPointData.h>
 #include <vtkSMPTools.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkVolumeProperty.h>
 
 #include <algorithm>
 #include <climits>
@@ -60,30 +63,56 @@ struct RowFunctor
 }
 
 vtkCloudReferenceRenderer::vtkCloudReferenceRenderer()
+  : LightingProperty(vtkSmartPointer<vtkCloudLightingProperty>::New())
+  , Lights(vtkSmartPointer<vtkLightCollection>::New())
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
 }
 
-void vtkCloudReferenceRenderer::SetTransferTable(const cloudvis::TransferTable& table)
+vtkCloudReferenceRenderer::~vtkCloudReferenceRenderer()
 {
-  if (table != this->TransferTable)
+  this->SetVolumeProperty(nullptr);
+}
+
+vtkCxxSetObjectMacro(vtkCloudReferenceRenderer, VolumeProperty, vtkVolumeProperty);
+
+void vtkCloudReferenceRenderer::SetLightingProperty(vtkCloudLightingProperty* property)
+{
+  if (!property || property != this->LightingProperty)
   {
-    this->TransferTable = table;
+    this->LightingProperty = property ? vtkSmartPointer<vtkCloudLightingProperty>(property)
+                                      : vtkSmartPointer<vtkCloudLightingProperty>::New();
     this->Modified();
   }
 }
 
-void vtkCloudReferenceRenderer::SetLighting(const cloudvis::LightingParameters& lighting)
+void vtkCloudReferenceRenderer::SetLights(vtkLightCollection* lights)
 {
-  this->Lighting = lighting;
-  this->Modified();
+  if (!lights || lights != this->Lights)
+  {
+    this->Lights = lights ? vtkSmartPointer<vtkLightCollection>(lights)
+                          : vtkSmartPointer<vtkLightCollection>::New();
+    this->Modified();
+  }
 }
 
-void vtkCloudReferenceRenderer::SetLights(const std::vector<cloudvis::Light>& lights)
+vtkMTimeType vtkCloudReferenceRenderer::GetMTime()
 {
-  this->Lights = lights;
-  this->Modified();
+  vtkMTimeType latest = this->Superclass::GetMTime();
+  if (this->VolumeProperty)
+  {
+    latest = std::max(latest, this->VolumeProperty->GetMTime());
+  }
+  latest = std::max(latest, this->LightingProperty->GetMTime());
+  latest = std::max(latest, this->Lights->GetMTime());
+  vtkCollectionSimpleIterator it;
+  this->Lights->InitTraversal(it);
+  while (vtkLight* light = this->Lights->GetNextLight(it))
+  {
+    latest = std::max(latest, light->GetMTime());
+  }
+  return latest;
 }
 
 void vtkCloudReferenceRenderer::SetVolumeMatrix(vtkMatrix4x4* matrix)
@@ -217,10 +246,12 @@ int vtkCloudReferenceRenderer::RequestData(
   vtkImageData* output = vtkImageData::GetData(outputVector);
 
   // The parameters.
-  const cloudvis::TransferTable& table = this->TransferTable;
-  if (table.Size < 1 || table.RGBA.size() < std::size_t(table.Size) * 4)
+  std::string tableProblem;
+  const cloudvis::TransferTable table =
+    cloudvis::TransferTableOf(this->VolumeProperty, this->ExtinctionScale, tableProblem);
+  if (!tableProblem.empty())
   {
-    vtkErrorMacro(<< "no transfer table: call SetTransferTable before updating");
+    vtkErrorMacro(<< tableProblem << (this->VolumeProperty ? "" : ": call SetVolumeProperty"));
     return 0;
   }
   const int width = this->ImageSize[0], height = this->ImageSize[1];
@@ -254,7 +285,6 @@ int vtkCloudReferenceRenderer::RequestData(
     vtkErrorMacro(<< valueProblem);
     return 0;
   }
-  const int type = scalars->GetDataType();
   int extent[6];
   input->GetExtent(extent);
   const vtkIdType voxels = vtkIdType(extent[1] - extent[0] + 1) * (extent[3] - extent[2] + 1) *
@@ -271,14 +301,16 @@ int vtkCloudReferenceRenderer::RequestData(
     return 0;
   }
 
-  // The uniforms the mapper would set, and its refusals.
-  cloudvis::MarchSetup setup;
-  setup.Geometry = cloudvis::GeometryOf(input, this->VolumeMatrix);
-  setup.Table = &table;
-  setup.SampleDistance = this->SampleDistance;
-  setup.TerminationTransmittance = this->TerminationTransmittance;
-  setup.Lighting = this->Lighting;
-  setup.Lights = this->Lights;
+  // The uniforms the mapper would set, and its refusals; the density as the GPU's texture holds
+  // it, in the input's native type.
+  const cloudvis::MarchSetup setup = cloudvis::MakeMarchSetup(input,
+    this->VolumeMatrix,
+    cloudvis::DensityTexelsOf(scalars),
+    &table,
+    this->SampleDistance,
+    this->TerminationTransmittance,
+    this->LightingProperty,
+    this->Lights);
   cloudvis::MarchUniforms uniforms;
   cloudvis::LocalFrame frame;
   const cloudvis::MarchProblem problem = cloudvis::SetUpMarch(setup, uniforms, &frame);
@@ -287,25 +319,6 @@ int vtkCloudReferenceRenderer::RequestData(
     vtkErrorMacro(<< problem.Message);
     return 0;
   }
-
-  // The density as the GPU's float texture holds it.
-  std::vector<float> converted;
-  const float* density = nullptr;
-  if (type == VTK_FLOAT)
-  {
-    density = static_cast<const float*>(scalars->GetVoidPointer(0));
-  }
-  else
-  {
-    converted.resize(std::size_t(scalars->GetNumberOfTuples()));
-    for (vtkIdType v = 0; v < scalars->GetNumberOfTuples(); ++v)
-    {
-      converted[std::size_t(v)] = static_cast<float>(scalars->GetComponent(v, 0));
-    }
-    density = converted.data();
-  }
-
-  uniforms.Density = density;
 
   // The image.
   int outExtent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
@@ -381,8 +394,6 @@ void vtkCloudReferenceRenderer::RenderRowBlocks(
 void vtkCloudReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* models[] = { "None", "Derivative", "March" };
-  const cloudvis::LightingParameters& l = this->Lighting;
   os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
   os << indent << "CameraPosition: " << this->CameraPosition[0] << ", " << this->CameraPosition[1]
      << ", " << this->CameraPosition[2] << "\n";
@@ -395,17 +406,11 @@ void vtkCloudReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ParallelScale: " << this->ParallelScale << "\n";
   os << indent << "ClippingRange: " << this->ClippingRange[0] << ", " << this->ClippingRange[1]
      << "\n";
-  os << indent << "TransferTable: " << this->TransferTable.Size << " entries over ["
-     << this->TransferTable.Range[0] << ", " << this->TransferTable.Range[1] << "]\n";
-  os << indent << "Lighting: " << models[static_cast<int>(l.Model)] << ", ambient "
-     << l.AmbientStrength << " x (" << l.AmbientColor.x << ", " << l.AmbientColor.y << ", "
-     << l.AmbientColor.z << "), derivative distance " << l.DerivativeDistance << ", "
-     << l.LightSteps << " light steps from " << l.LightStep << " growing " << l.LightStepGrowth
-     << ", phase g " << l.PhaseG1 << " / " << l.PhaseG2 << " weight " << l.PhaseLobeWeight << ", "
-     << l.MultipleScatteringOctaves << " octaves (" << l.ScatteringFalloff << ", "
-     << l.ExtinctionFalloff << ", " << l.EccentricityFalloff << "), powder " << l.PowderStrength
-     << "\n";
-  os << indent << "Lights: " << this->Lights.size() << "\n";
+  os << indent << "VolumeProperty: " << this->VolumeProperty << "\n";
+  os << indent << "ExtinctionScale: " << this->ExtinctionScale << "\n";
+  os << indent << "LightingProperty:\n";
+  this->LightingProperty->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
   os << indent << "VolumeMatrix:\n";
   this->VolumeMatrix->PrintSelf(os, indent.GetNextIndent());
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";

@@ -12,9 +12,14 @@
  * unsigned short, finite values and at least 2 voxels per axis. Its whole geometry counts, as
  * VTK's volume mappers read it: extent (which need not start at 0), origin, spacing and
  * direction matrix, placed in the world by VolumeMatrix (a vtkVolume's matrix). The density is
- * read in its scalar units, as the transfer table's Range expects. The march computes in the
- * local frame of CloudMarchUniforms.h, like the GPU, and SetUpMarch refuses, with the GPU's
- * words, what float arithmetic cannot render faithfully.
+ * sampled as the GPU mapper's native-type texture holds it (CloudDensityTexels.h: the normalized
+ * texels interpolated, then scaled to the scalar units the transfer function is in). The march
+ * computes in the local frame of CloudMarchUniforms.h, like the GPU, and SetUpMarch refuses, with
+ * the GPU's words, what float arithmetic cannot render faithfully.
+ *
+ * Every parameter is a VTK property (wrappable): the transfer function as a vtkVolumeProperty,
+ * the lighting as a vtkCloudLightingProperty, the lights as vtkLights, the camera and the volume
+ * matrix as numbers and a vtkMatrix4x4.
  *
  * Output: vtkImageData of ImageSize[0] x ImageSize[1] x 1 points (origin 0, spacing 1) with a
  * float, 4-component point array "rgba" (the active scalars): premultiplied radiance in r, g, b
@@ -35,17 +40,22 @@
 #ifndef vtkCloudReferenceRenderer_h
 #define vtkCloudReferenceRenderer_h
 
-#include "CloudLighting.h"
-#include "CloudTransferTable.h"
 #include "cloudvisFiltersModule.h"
+#include "vtkCloudLightingProperty.h"
 
 #include <vtkImageAlgorithm.h>
+#include <vtkLightCollection.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
 
 #include <functional>
-#include <vector>
 
+#ifndef __VTK_WRAP__
+#include <glm/glm.hpp>
+#endif
+
+class vtkVolumeProperty;
 namespace cloudvis
 {
 struct MarchUniforms;
@@ -57,6 +67,11 @@ public:
   static vtkCloudReferenceRenderer* New();
   vtkTypeMacro(vtkCloudReferenceRenderer, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Also the latest change of the volume property, the lighting property and the lights.
+   */
+  vtkMTimeType GetMTime() override;
 
   ///@{
   /**
@@ -118,32 +133,44 @@ public:
 
   ///@{
   /**
-   * The transfer table (albedo and extinction per density), the one the GPU mapper uploads;
-   * its Range is in the input's scalar units. Setting an equal table does not modify the
-   * filter. Default: an empty table, which the filter refuses with an error.
+   * The transfer function, as a vtkVolumeProperty's first component: its color (the albedo),
+   * scalar opacity and scalar opacity unit distance, from which the renderer builds the table the
+   * GPU mapper builds (cloudvis::TransferTableOf: cloudvis::TransferTableSize entries over the
+   * function's own points, opacity per unit distance turned into extinction). Densities are in
+   * the input's scalar units. Default: none, which the filter refuses with an error.
    */
-  void SetTransferTable(const cloudvis::TransferTable& table);
-  const cloudvis::TransferTable& GetTransferTable() const { return this->TransferTable; }
+  virtual void SetVolumeProperty(vtkVolumeProperty* property);
+  vtkGetObjectMacro(VolumeProperty, vtkVolumeProperty);
   ///@}
 
   ///@{
   /**
-   * The lighting model and its parameters (cloudvis::LightingParameters, whose members state
-   * their defaults; the default model is None). A DerivativeDistance of 0 means 4 times the
-   * smallest voxel spacing and a LightStep of 0 means 2 times it, as on the GPU. Checked with
-   * cloudvis::ValidateLightingParameters when the filter runs.
+   * Multiplies every extinction of the transfer function, as vtkCloudVolumeMapper's
+   * ExtinctionScale does. Default 1.
    */
-  void SetLighting(const cloudvis::LightingParameters& lighting);
-  const cloudvis::LightingParameters& GetLighting() const { return this->Lighting; }
+  vtkSetClampMacro(ExtinctionScale, double, 0.0, 1e6);
+  vtkGetMacro(ExtinctionScale, double);
   ///@}
 
   ///@{
   /**
-   * The lights, at most cloudvis::LightingLimits::MaxLights (8, the GPU's MAX_LIGHTS); their
-   * contributions add up. Ignored by the None model. Default: no lights.
+   * The lighting model and its parameters (vtkCloudLightingProperty states each default; the
+   * default model is none). Share one property with a vtkCloudVolumeMapper to light both alike.
+   * Setting null restores a default property. Never null.
    */
-  void SetLights(const std::vector<cloudvis::Light>& lights);
-  const std::vector<cloudvis::Light>& GetLights() const { return this->Lights; }
+  virtual void SetLightingProperty(vtkCloudLightingProperty* property);
+  vtkGetObjectMacro(LightingProperty, vtkCloudLightingProperty);
+  ///@}
+
+  ///@{
+  /**
+   * The lights, as vtkLights (the mapper reads its renderer's): the switched-on ones light the
+   * cloud, at most cloudvis::LightingLimits::MaxLights (8, the GPU's MAX_LIGHTS; more are
+   * refused); their contributions add up. Ignored by the none model. Pass a renderer's
+   * GetLights() to light both alike. Setting null restores an empty collection. Default: empty.
+   */
+  virtual void SetLights(vtkLightCollection* lights);
+  vtkGetObjectMacro(Lights, vtkLightCollection);
   ///@}
 
   ///@{
@@ -182,6 +209,7 @@ public:
    */
   bool GetDeviceToWorldMatrix(vtkMatrix4x4* deviceToWorld) const;
 
+#ifndef __VTK_WRAP__
   /**
    * The current camera parameters as cloudvis::DeviceToLocal takes them (CloudMarchUniforms.h):
    * the projection (view to normalized device coordinates), the rotation from world to view axes
@@ -203,10 +231,11 @@ public:
     int height,
     glm::dvec3& nearPoint,
     glm::dvec3& farPoint);
+#endif
 
 protected:
   vtkCloudReferenceRenderer();
-  ~vtkCloudReferenceRenderer() override = default;
+  ~vtkCloudReferenceRenderer() override;
 
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -219,10 +248,12 @@ protected:
    * This class marches each pixel's ray (cloudvis::MarchRay); vtkCloudPathTracer path-traces
    * it. Returns false (after an error message) when it cannot.
    */
+#ifndef __VTK_WRAP__
   virtual bool RenderImage(const cloudvis::MarchUniforms& uniforms,
     const glm::dmat4& deviceToLocal,
     vtkImageData* input,
     vtkImageData* output);
+#endif
 
   /**
    * Calls renderRows(firstRow, endRow) over the image's rows under vtkSMPTools, in blocks of
@@ -238,9 +269,10 @@ protected:
   bool ParallelProjection = false;
   double ParallelScale = 1.0;
   double ClippingRange[2] = { 0.1, 100.0 };
-  cloudvis::TransferTable TransferTable;
-  cloudvis::LightingParameters Lighting;
-  std::vector<cloudvis::Light> Lights;
+  vtkVolumeProperty* VolumeProperty = nullptr;
+  double ExtinctionScale = 1.0;
+  vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
+  vtkSmartPointer<vtkLightCollection> Lights;
   vtkNew<vtkMatrix4x4> VolumeMatrix;
   double SampleDistance = 0.0;
   double TerminationTransmittance = 1.0 / 255.0;

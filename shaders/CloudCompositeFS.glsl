@@ -1,8 +1,9 @@
 //VTK::System::Dec
 
 // The composite pass of vtkCloudVolumeMapper: draws the march target (premultiplied RGBA,
-// possibly at a lower resolution) over the viewport. Below full resolution it upsamples with a
-// Catmull-Rom filter (16 texels); the blend state composites it over the opaque scene.
+// possibly at a lower resolution) over the viewport. The target holds the sum of the accumulated
+// frames; FrameWeight (1 / their number) makes it their mean. Below full resolution it upsamples
+// with a Catmull-Rom filter (16 texels); the blend state composites it over the opaque scene.
 
 in vec2 texCoord;
 
@@ -12,6 +13,7 @@ uniform vec2 MarchSize;
 uniform int Upsample;
 uniform int ShowSampleCount;
 uniform float SampleCountScale;
+uniform float FrameWeight;
 
 //VTK::Output::Dec
 
@@ -40,7 +42,7 @@ vec4 Bicubic(sampler2D image, vec2 uv)
     for (int i = 0; i < 4; ++i)
     {
       ivec2 texel = clamp(ivec2(base) + ivec2(i - 1, j - 1), ivec2(0), last);
-      row += wx[i] * texelFetch(image, texel, 0);
+      row += wx[i] * (texelFetch(image, texel, 0) * FrameWeight);
     }
     sum += wy[j] * row;
   }
@@ -61,7 +63,7 @@ void main()
 {
   if (ShowSampleCount != 0)
   {
-    float samples = texelFetch(CountTexture, ivec2(texCoord * MarchSize), 0).r;
+    float samples = texelFetch(CountTexture, ivec2(texCoord * MarchSize), 0).r * FrameWeight;
     gl_FragData[0] = vec4(FalseColor(samples * SampleCountScale), 1.0);
     return;
   }
@@ -71,6 +73,6 @@ void main()
   }
   else
   {
-    gl_FragData[0] = texelFetch(MarchTexture, ivec2(texCoord * MarchSize), 0);
+    gl_FragData[0] = texelFetch(MarchTexture, ivec2(texCoord * MarchSize), 0) * FrameWeight;
   }
 }

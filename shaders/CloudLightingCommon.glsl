@@ -3,10 +3,9 @@
 // p is a point in voxel index space; LocalOfIndex(p) gives it in the local frame, where the
 // lights are (cloudvis::LocalLight), and LocalToIndex turns a local displacement into index units.
 
-// The mapper defines MAX_LIGHTS here as cloudvis::LightingLimits::MaxLights
-// (filters/CloudLighting.h), the one limit the scene reader, the mapper and the CPU renderers
-// all enforce.
-//CLOUD::MaxLights::Dec
+// MAX_LIGHTS is cloudvis::LightingLimits::MaxLights (filters/CloudLighting.h), the one limit the
+// scene reader, the mapper and the CPU renderers all enforce, substituted at the top of
+// CloudMarchFS.glsl with Pi and DirectionalLightDistance.
 uniform int LightPositional[MAX_LIGHTS];
 uniform vec3 LightPosition[MAX_LIGHTS];  // local; positional lights
 uniform vec3 LightDirection[MAX_LIGHTS]; // unit, toward the light; directional lights
@@ -18,11 +17,10 @@ uniform vec3 LightIndexDirection[MAX_LIGHTS];
 uniform vec3 LightIndexOffset[MAX_LIGHTS];
 uniform vec3 Ambient; // ambient color * strength
 
-const float Pi = 3.14159265358979;
-
+// The density in the data's units: the native texels, filtered, scaled back.
 float DensityAt(vec3 p)
 {
-  return texture(DensityTexture, (p + 0.5) / Dimensions).r;
+  return texture(DensityTexture, (p + 0.5) / Dimensions).r * DensityScale + DensityBias;
 }
 
 float ExtinctionAt(vec3 p)
@@ -41,7 +39,7 @@ void SampleLight(int i, vec3 x, out vec3 l, out float lightDistance, out float f
   if (LightPositional[i] == 0)
   {
     l = LightDirection[i];
-    lightDistance = 1e30;
+    lightDistance = DirectionalLightDistance;
     falloff = 1.0;
     return;
   }

@@ -69,7 +69,7 @@ float LightOpticalDepth(vec3 p, vec3 indexStep, float maxDistance)
 // A directional light: its direction in index units is the same everywhere (precomputed).
 vec3 DirectionalLightTerm(int i, vec3 p, float density, vec3 d)
 {
-  float tau = LightOpticalDepth(p, LightIndexDirection[i], 1e30);
+  float tau = LightOpticalDepth(p, LightIndexDirection[i], DirectionalLightDistance);
   return LightRadiance[i] * PhaseToRadiance * ScatteredFraction(dot(d, LightDirection[i]), tau);
 }
 

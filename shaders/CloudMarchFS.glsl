@@ -14,11 +14,17 @@
 
 in vec2 texCoord;
 
+// Constants the C++ defines once (MAX_LIGHTS, Pi, DirectionalLightDistance, NoDepth,
+// DepthTransmittance), substituted by the mapper (app/rendering/CloudMarchShader.cxx).
+//CLOUD::Constants::Dec
+
 uniform mat4 DCLocalMatrix;  // normalized device -> local frame
 uniform mat4 IndexToLocal;
 uniform mat3 LocalToIndex;   // a local displacement in index units
 uniform vec3 Dimensions;     // voxels per axis
-uniform sampler3D DensityTexture;
+uniform sampler3D DensityTexture; // the field's native texels (R8, R16, R32F or R16F)
+uniform float DensityScale;       // density = filtered texel * DensityScale + DensityBias
+uniform float DensityBias;
 uniform sampler1D TransferTexture; // rgb albedo, a = sigma_t
 uniform vec2 TableRange;           // density at the first and last table entries
 uniform float TableSize;
@@ -35,8 +41,6 @@ uniform int JitterEnabled;
 uniform float Step; // local units
 uniform float TerminationTransmittance;
 uniform int MaximumIterations;
-
-const float NoDepth = 1e30; // no significant density along the ray
 
 //VTK::Output::Dec
 
@@ -119,7 +123,8 @@ void main()
   float T = 1.0;
   float samplesTaken = 0.0;
   float usefulSamples = 0.0;
-  float firstSignificant = NoDepth; // local distance from the near plane where opacity passes 2%
+  float firstSignificant = NoDepth; // local distance from the near plane where T first falls
+                                    // below DepthTransmittance (NoDepth: it never does)
   if (tEnter < tExit)
   {
     // Samples are placed from the entry point, so their spacing keeps its precision however far
@@ -155,7 +160,7 @@ void main()
           continue;
         }
       }
-      float density = texture(DensityTexture, (p + 0.5) / Dimensions).r;
+      float density = DensityAt(p);
       vec4 optical = Optical(density);
       float sigma_t = optical.a;
       samplesTaken += 1.0;
@@ -167,7 +172,7 @@ void main()
         // constant over the step, so the sum does not depend on the step size.
         radiance += T * SourceTerm(p, density, optical.rgb, d) * (1.0 - stepT);
         T *= stepT;
-        if (firstSignificant == NoDepth && T < 0.98)
+        if (firstSignificant == NoDepth && T < DepthTransmittance)
         {
           firstSignificant = tEnter + s;
         }

@@ -168,7 +168,6 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
     ApplyBackground(lit, panel.Renderer);
     panel.Mapper->SetInputData(field);
     ConfigureMapper(panel.Mapper, lit.Render);
-    panel.Mapper->SetLighting(LightingOf(lit));
     panel.Mapper->SetMaximumAccumulatedFrames(frames);
     panel.Volume->SetMapper(panel.Mapper);
     panel.Volume->SetProperty(property);

@@ -3,7 +3,9 @@
 #include "CloudMarchUniforms.h"
 #include "Errors.h"
 #include "ExportRender.h"
+#include "SceneLighting.h"
 #include "VtkMessageCapture.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCamera.h>
@@ -11,6 +13,7 @@
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkLightCollection.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
@@ -34,15 +37,6 @@ void SetReferenceCamera(vtkCloudReferenceRenderer* reference, vtkCamera* camera)
   reference->SetClippingRange(camera->GetClippingRange());
 }
 
-TransferTable SceneTransferTable(const TransferFunctionSpec& transferFunction)
-{
-  const vtkSmartPointer<vtkVolumeProperty> property = MakeVolumeProperty(transferFunction);
-  return TabulateTransferFunction(property->GetRGBTransferFunction(0),
-    property->GetScalarOpacity(0),
-    property->GetScalarOpacityUnitDistance(0),
-    1024);
-}
-
 void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::string& input)
 {
   const std::string geometryProblem = ValidateVolumeGeometry(field, nullptr);
@@ -50,13 +44,24 @@ void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::st
   {
     throw InputError(input + ": " + geometryProblem);
   }
-  const TransferTable table = SceneTransferTable(scene.TransferFunction);
-  MarchSetup setup;
-  setup.Geometry = GeometryOf(field, nullptr);
-  setup.Table = &table;
-  setup.SampleDistance = scene.Render.Step;
-  setup.Lighting = LightingOf(scene);
-  setup.Lights = scene.Lights;
+  // What both renderers will be given (RendererSettingsOf), checked as both check it.
+  const RendererSettings settings = RendererSettingsOf(scene);
+  std::string tableProblem;
+  const TransferTable table = TransferTableOf(settings.TransferFunction, 1.0, tableProblem);
+  if (!tableProblem.empty())
+  {
+    throw InputError(scene.Source + ": " + tableProblem);
+  }
+  // The geometry and the parameters matter here, not the values; the scene does not set the
+  // termination transmittance (every renderer's default).
+  const MarchSetup setup = MakeMarchSetup(field,
+    nullptr,
+    DensityTexels(),
+    &table,
+    settings.SampleDistance,
+    MarchSetup().TerminationTransmittance,
+    settings.Lighting,
+    settings.Lights);
   MarchUniforms uniforms;
   const MarchProblem problem = SetUpMarch(setup, uniforms);
   switch (problem.Input)
@@ -97,10 +102,7 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   reference->SetInputData(field);
   reference->SetImageSize(width, height);
   SetReferenceCamera(reference, renderer->GetActiveCamera());
-  reference->SetTransferTable(SceneTransferTable(scene.TransferFunction));
-  reference->SetLighting(LightingOf(scene));
-  reference->SetLights(scene.Lights);
-  reference->SetSampleDistance(scene.Render.Step);
+  ConfigureReference(scene, reference);
   reference->Update();
 
   vtkImageData* output = reference->GetOutput();

@@ -80,16 +80,10 @@ vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec
 
 void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
 {
-  mapper->SetSampleDistance(render.Step);
   mapper->SetJitter(render.Jitter);
   mapper->SetResolutionScale(render.ResolutionScale);
   mapper->SetMaximumAccumulatedFrames(render.Accumulate);
   mapper->SetEmptySpaceSkipping(render.SkipEmptySpace);
-  // The model alone; ConfigureLighting (SceneLighting.h) sets the rest of the lighting, which
-  // needs the lights and ambient sections too.
-  LightingParameters lighting = mapper->GetLighting();
-  lighting.Model = render.Lighting;
-  mapper->SetLighting(lighting);
 }
 
 void ApplyCamera(

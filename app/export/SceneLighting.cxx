@@ -1,39 +1,52 @@
 #include "SceneLighting.h"
 
+#include "CloudMarchUniforms.h"
+#include "OffscreenRender.h"
+#include "vtkCloudLightingProperty.h"
+#include "vtkCloudReferenceRenderer.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkLight.h>
+#include <vtkLightCollection.h>
 #include <vtkRenderer.h>
+#include <vtkVolumeProperty.h>
 
 namespace cloudvis
 {
 
-vtkSmartPointer<vtkLight> MakeLight(const Light& light)
+RendererSettings RendererSettingsOf(const Scene& scene)
 {
-  auto vtk = vtkSmartPointer<vtkLight>::New();
-  vtk->SetLightTypeToSceneLight();
-  vtk->SetPositional(light.Positional);
-  vtk->SetPosition(light.Position.x, light.Position.y, light.Position.z);
-  vtk->SetFocalPoint(light.FocalPoint.x, light.FocalPoint.y, light.FocalPoint.z);
-  vtk->SetDiffuseColor(light.Color.x, light.Color.y, light.Color.z);
-  vtk->SetIntensity(light.Intensity);
-  vtk->SetAttenuationValues(light.Attenuation.x, light.Attenuation.y, light.Attenuation.z);
-  if (light.Positional)
-  {
-    vtk->SetConeAngle(180.0); // a point light, not a spot
-  }
-  return vtk;
+  RendererSettings settings;
+  settings.TransferFunction = MakeVolumeProperty(scene.TransferFunction);
+  settings.Lighting = vtkSmartPointer<vtkCloudLightingProperty>::New();
+  settings.Lighting->SetParameters(LightingOf(scene));
+  settings.Lights = MakeLights(scene.Lights);
+  settings.SampleDistance = scene.Render.Step;
+  return settings;
 }
 
 void ConfigureLighting(const Scene& scene, vtkRenderer* renderer, vtkCloudVolumeMapper* mapper)
 {
+  const RendererSettings settings = RendererSettingsOf(scene);
   renderer->AutomaticLightCreationOff();
   renderer->RemoveAllLights();
-  for (const Light& light : scene.Lights)
+  vtkCollectionSimpleIterator it;
+  settings.Lights->InitTraversal(it);
+  while (vtkLight* light = settings.Lights->GetNextLight(it))
   {
-    renderer->AddLight(MakeLight(light));
+    renderer->AddLight(light);
   }
-  mapper->SetLighting(LightingOf(scene));
+  mapper->SetLightingProperty(settings.Lighting);
+  mapper->SetSampleDistance(settings.SampleDistance);
+}
+
+void ConfigureReference(const Scene& scene, vtkCloudReferenceRenderer* reference)
+{
+  const RendererSettings settings = RendererSettingsOf(scene);
+  reference->SetVolumeProperty(settings.TransferFunction);
+  reference->SetLightingProperty(settings.Lighting);
+  reference->SetLights(settings.Lights);
+  reference->SetSampleDistance(settings.SampleDistance);
 }
 
 } // namespace cloudvis

@@ -21,12 +21,20 @@
  * functions are tabulated over their own points (not the data's range), and densities outside
  * them take the end values, as in VTK.
  *
- * Lighting (docs/lighting.md): none (emission-absorption), derivative (the directional
- * derivative toward each light) or march (a nested march toward each light with Beer-Lambert
- * transmittance, a two-lobe Henyey-Greenstein phase and approximate multiple scattering). The
- * lights are the renderer's switched-on vtkLights (at most cloudvis::LightingLimits::MaxLights,
- * 8; more are refused, not dropped): directional or positional, with their diffuse color,
- * intensity and attenuation values.
+ * Lighting (docs/lighting.md): the model and its parameters are a vtkCloudLightingProperty (none
+ * = emission-absorption, derivative = the directional derivative toward each light, or march = a
+ * nested march toward each light with Beer-Lambert transmittance, a two-lobe Henyey-Greenstein
+ * phase and approximate multiple scattering), which the CPU renderers (vtkCloudReferenceRenderer,
+ * vtkCloudPathTracer) take too. The lights are the renderer's switched-on vtkLights (at most
+ * cloudvis::LightingLimits::MaxLights, 8; more are refused, not dropped): directional or
+ * positional, with their diffuse color, intensity and attenuation values.
+ *
+ * The field is uploaded in its native type (unsigned char as R8, unsigned short as R16, float as
+ * R32F, or as R16F half floats with HalfFloatDensity), which the shader reads back in the data's
+ * units through a scale and bias (CloudDensityTexels.h): 1, 2 or 4 bytes per voxel.
+ * GetGPUMemoryBytes reports what the textures and targets take. A field the GPU cannot hold
+ * (beyond what the driver reports free, beyond MaximumGPUMemory, or refused by the driver when
+ * allocated) is refused with the size it needs.
  *
  * The march renders into a float target at ResolutionScale times the viewport, which a
  * composite pass upsamples (Catmull-Rom) and blends over the scene. While nothing changes,
@@ -34,20 +42,25 @@
  * While the user interacts (the render window's desired update rate is above 1), the scale is
  * lowered automatically to keep InteractiveFrameRate.
  *
+ * The work is split as VTK's own volume mapper splits it, into helpers private to the module
+ * (app/rendering/Cloud*.h): the density, transfer, occupancy and jitter textures, the per-view
+ * targets, the march shader and its uniforms, and the GPU memory checks; Render() runs one
+ * method per pass. Every GL state change goes through vtkOpenGLState.
+ *
  * Errors (no usable scalars, NaN or infinite densities, an unusable geometry, a field beyond the
- * GPU's 3-D texture limit, an invalid transfer function, a step that needs more than
- * cloudvis::MaxSamplesPerRay samples per ray, more than 8 lights, lights or extinctions beyond
- * float range: everything cloudvis::SetUpMarch refuses, in the CPU reference's words; a shader
- * or framebuffer failure) are reported with vtkErrorMacro and kept in GetLastError(); the
+ * GPU's 3-D texture limit or its memory, an invalid transfer function, a step that needs more
+ * than cloudvis::MaxSamplesPerRay samples per ray, more than 8 lights, lights or extinctions
+ * beyond float range: everything cloudvis::SetUpMarch refuses, in the CPU reference's words; a
+ * shader or framebuffer failure) are reported with vtkErrorMacro and kept in GetLastError(); the
  * volume is then not drawn.
  */
 #ifndef vtkCloudVolumeMapper_h
 #define vtkCloudVolumeMapper_h
 
-#include "CloudLighting.h"
-#include "CloudMarchUniforms.h"
 #include "cloudvisRenderingModule.h"
+#include "vtkCloudLightingProperty.h"
 
+#include <vtkSmartPointer.h>
 #include <vtkVolumeMapper.h>
 
 #include <memory>
@@ -55,7 +68,12 @@
 #include <vector>
 
 class vtkImageData;
-class vtkShaderProgram;
+class vtkOpenGLRenderWindow;
+namespace cloudvis
+{
+struct LocalFrame;
+struct MarchUniforms;
+}
 
 class CLOUDVISRENDERING_EXPORT vtkCloudVolumeMapper : public vtkVolumeMapper
 {
@@ -155,12 +173,55 @@ public:
 
   ///@{
   /**
-   * The lighting model and its parameters (cloudvis::LightingParameters documents each
-   * default). Default: model none.
+   * The lighting model and its parameters (vtkCloudLightingProperty states each default; the
+   * default model is none). Share one property with the CPU renderers to light them alike.
+   * Setting null restores a default property. Never null.
    */
-  void SetLighting(const cloudvis::LightingParameters& lighting);
-  const cloudvis::LightingParameters& GetLighting() const { return this->Lighting; }
+  virtual void SetLightingProperty(vtkCloudLightingProperty* property);
+  vtkGetObjectMacro(LightingProperty, vtkCloudLightingProperty);
   ///@}
+
+  ///@{
+  /**
+   * Store a float field's density as 16-bit half floats (R16F) instead of 32-bit floats: half
+   * the GPU memory, at the cost of precision. A half float holds 11 significant bits, so each
+   * voxel's density is rounded to a relative error of at most 2^-11 (4.9e-4) of itself, or for
+   * values below 2^-14 of the field's largest magnitude to an absolute error of at most 2^-25 of
+   * that magnitude (docs/performance.md gives the image error this makes). Unsigned char and
+   * unsigned short fields keep their own R8 and R16 texels. Default off.
+   */
+  vtkSetMacro(HalfFloatDensity, bool);
+  vtkGetMacro(HalfFloatDensity, bool);
+  vtkBooleanMacro(HalfFloatDensity, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The most GPU memory, in bytes, the mapper may hold in textures and targets for all its
+   * renderers together; a field (or a viewport) that would need more is refused with the size it
+   * needs. 0 means no limit of its own (what the GPU reports free still applies). Default 0.
+   */
+  vtkSetClampMacro(MaximumGPUMemory, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(MaximumGPUMemory, vtkTypeInt64);
+  ///@}
+
+  /**
+   * Bytes of GPU memory the mapper's textures and targets take now, as the driver allocated them
+   * (from the sizes it reports for their formats): the density, transfer, occupancy and jitter
+   * textures and every renderer's depth and march targets.
+   */
+  vtkTypeInt64 GetGPUMemoryBytes() const;
+
+  /**
+   * Bytes of GPU memory the density texture alone takes: voxels times 1 (unsigned char), 2
+   * (unsigned short, or half floats) or 4 (float).
+   */
+  vtkTypeInt64 GetDensityTextureBytes() const;
+
+  /**
+   * Also the latest change of the lighting property.
+   */
+  vtkMTimeType GetMTime() override;
 
   enum DisplayModes
   {
@@ -185,6 +246,7 @@ public:
   vtkBooleanMacro(CollectStatistics, bool);
   ///@}
 
+#ifndef __VTK_WRAP__
   struct FrameStatistics
   {
     double SamplesTaken = 0;  // density samples over all pixels
@@ -197,6 +259,7 @@ public:
    * Statistics of the last frame (with CollectStatistics on).
    */
   const FrameStatistics& GetLastFrameStatistics() const { return this->LastStatistics; }
+#endif
 
   /**
    * The image the composite pass last showed in this renderer, before upsampling: premultiplied
@@ -204,7 +267,9 @@ public:
    * march target. Needs the renderer's window to be current. Returns false when the renderer
    * has drawn no cloud yet.
    */
+#ifndef __VTK_WRAP__
   bool ReadImage(vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height);
+#endif
 
   /**
    * Per pixel of the same target, four floats: samples taken, useful samples (non-zero
@@ -212,7 +277,9 @@ public:
    * where its opacity first exceeds 2%; +infinity where it never does in some accumulated frame)
    * and 1. Averaged over the accumulated frames like the image.
    */
+#ifndef __VTK_WRAP__
   bool ReadAuxiliary(vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height);
+#endif
 
   /**
    * The last error, or an empty string when the last render succeeded.
@@ -226,6 +293,25 @@ protected:
   vtkCloudVolumeMapper();
   ~vtkCloudVolumeMapper() override;
 
+  /**
+   * The textures the march reads, each brought up to date with its input: the density (native
+   * type), the transfer table, the occupancy map and the jitter mask. False on a problem (then
+   * reported by Fail).
+   */
+  bool UpdateTextures(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
+
+  /**
+   * The march pass: the view's targets sized to the viewport and the resolution scale, the
+   * opaque depth copied, the uniforms SetUpMarch computes, then one more frame marched into the
+   * targets (added to those accumulated while the view holds). False on a problem.
+   */
+  bool MarchPass(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
+
+  /**
+   * The composite pass: the accumulated march target upsampled and blended over the viewport.
+   */
+  bool CompositePass(vtkRenderer* renderer);
+
   double SampleDistance = 0.0;
   bool EmptySpaceSkipping = true;
   int BrickSize = 3;
@@ -237,7 +323,9 @@ protected:
   int MaximumAccumulatedFrames = 1;
   int DisplayMode = Radiance;
   bool CollectStatistics = false;
-  cloudvis::LightingParameters Lighting;
+  bool HalfFloatDensity = false;
+  vtkTypeInt64 MaximumGPUMemory = 0;
+  vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
 
 private:
   vtkCloudVolumeMapper(const vtkCloudVolumeMapper&) = delete;
@@ -245,18 +333,20 @@ private:
 
   bool Fail(const std::string& message);
   vtkImageData* ValidInput(vtkVolume* volume);
-  bool UpdateVolumeTextures(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
   double ChooseResolutionScale(vtkRenderer* renderer);
-  void MarchPass(vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input);
-  void SetMarchUniforms(vtkShaderProgram* program, const cloudvis::MarchUniforms& uniforms);
-  void CompositePass(vtkRenderer* renderer);
+  bool ComputeUniforms(vtkRenderer* renderer,
+    vtkVolume* volume,
+    vtkImageData* input,
+    cloudvis::MarchUniforms& uniforms,
+    cloudvis::LocalFrame& frame);
   void ReadStatistics(vtkRenderer* renderer);
-  bool ReadTarget(vtkRenderer* renderer, int target, std::vector<float>& rgba, int& width, int& height);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
   std::string LastError;
+#ifndef __VTK_WRAP__
   FrameStatistics LastStatistics;
+#endif
 };
 
 #endif

@@ -2,6 +2,8 @@
 // colors is interpolated linearly between them.
 #include "SliceColors.h"
 
+#include "CloudTransferTable.h"
+
 #include <vtkColorTransferFunction.h>
 #include <vtkLookupTable.h>
 #include <vtkMath.h>
@@ -55,10 +57,7 @@ SliceColors::SliceColors(const std::array<double, 2>& range,
   : TransferColors(transferColors)
   , Range(range)
 {
-  if (!(this->Range[1] > this->Range[0]))
-  {
-    this->Range[1] = this->Range[0] + 1.0;
-  }
+  WidenEmptyRange(this->Range.data());
   this->Window = this->Range[1] - this->Range[0];
   this->Level = 0.5 * (this->Range[0] + this->Range[1]);
   this->Table->SetNumberOfTableValues(TableSize);

@@ -5,6 +5,8 @@
 // the charts (the viewer's key table calls DeleteSelectedPoint and the typed-value entry).
 #include "TransferFunctionEditor.h"
 
+#include "CloudTransferTable.h"
+
 #include <vtkAxis.h>
 #include <vtkBrush.h>
 #include <vtkCallbackCommand.h>
@@ -384,10 +386,10 @@ void TransferFunctionEditor::UpdateRange()
     lo = std::min(lo, p[0]);
     hi = std::max(hi, p[0]);
   }
-  if (!(hi > lo))
-  {
-    hi = lo + 1.0;
-  }
+  double range[2] = { lo, hi };
+  WidenEmptyRange(range);
+  lo = range[0];
+  hi = range[1];
   this->Range = { { lo, hi } };
   const double pad = AxisPadding * (hi - lo);
   this->AxisRange = { { lo - pad, hi + pad } };

@@ -2,12 +2,16 @@
 // sections reach LightingParameters and vtkLights with their documented defaults; the models
 // change the rendered pixels; --cpu-reference agrees with the GPU render of the same scene; and
 // compare lays its panels side by side. The render and compare tests need an X display (Xvfb).
+#include "CloudMarchUniforms.h"
 #include "Errors.h"
+#include "OffscreenRender.h"
 #include "Scene.h"
 #include "SceneLighting.h"
 #include "SupportBaselines.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
+#include "vtkCloudLightingProperty.h"
+#include "vtkCloudReferenceRenderer.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkImageData.h>
@@ -15,6 +19,7 @@
 #include <vtkLightCollection.h>
 #include <vtkNew.h>
 #include <vtkRenderer.h>
+#include <vtkVolumeProperty.h>
 
 #include <gtest/gtest.h>
 
@@ -94,7 +99,8 @@ TEST(SceneLights, Errors)
   EXPECT_NE(ErrorOf({ R"(lights=[{"type": "spot", "position": [1, 1, 1]}])" })
               .find("lights[0].type: unknown name \"spot\"; allowed: directional, point"),
     std::string::npos);
-  const auto pointLights = [](int count) {
+  const auto pointLights = [](int count)
+  {
     std::string list = "lights=[";
     for (int i = 0; i < count; ++i)
     {
@@ -111,8 +117,9 @@ TEST(SceneLights, Errors)
     ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "focal_point": [0, 0, 0]}])" })
       .find("lights[0].focal_point: not a parameter of a point light"),
     std::string::npos);
-  EXPECT_NE(ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "attenuation": [0, 0, 0]}])" })
-              .find("lights[0].attenuation: the attenuation [a0, a1, a2] must not be all zero"),
+  EXPECT_NE(
+    ErrorOf({ R"(lights=[{"type": "point", "position": [1, 1, 1], "attenuation": [0, 0, 0]}])" })
+      .find("lights[0].attenuation: the attenuation [a0, a1, a2] must not be all zero"),
     std::string::npos);
   EXPECT_NE(ErrorOf({ R"(lights=[{"position": [1, 1, 1]}])" }).find("lights[0].type: missing"),
     std::string::npos);
@@ -120,12 +127,21 @@ TEST(SceneLights, Errors)
 
 TEST(SceneLighting, RenderSectionsAndAmbientReachLightingParameters)
 {
-  const cloudvis::Scene scene = SceneWith({ "render.lighting=march", "render.derivative.distance=0.3",
-    "render.march.light_steps=9", "render.march.light_step=0.07", "render.march.light_step_growth=1.25",
-    "render.march.g1=0.7", "render.march.g2=-0.2", "render.march.lobe_weight=0.6",
-    "render.march.multiple_scattering=5", "render.march.scattering_falloff=0.4",
-    "render.march.extinction_falloff=0.3", "render.march.eccentricity_falloff=0.2",
-    "render.march.powder=0.1", "ambient.color=0.1,0.2,0.3", "ambient.strength=1.5" });
+  const cloudvis::Scene scene = SceneWith({ "render.lighting=march",
+    "render.derivative.distance=0.3",
+    "render.march.light_steps=9",
+    "render.march.light_step=0.07",
+    "render.march.light_step_growth=1.25",
+    "render.march.g1=0.7",
+    "render.march.g2=-0.2",
+    "render.march.lobe_weight=0.6",
+    "render.march.multiple_scattering=5",
+    "render.march.scattering_falloff=0.4",
+    "render.march.extinction_falloff=0.3",
+    "render.march.eccentricity_falloff=0.2",
+    "render.march.powder=0.1",
+    "ambient.color=0.1,0.2,0.3",
+    "ambient.strength=1.5" });
   const cloudvis::LightingParameters p = cloudvis::LightingOf(scene);
   EXPECT_EQ(p.Model, LightingModel::March);
   EXPECT_EQ(p.DerivativeDistance, 0.3f);
@@ -173,10 +189,59 @@ TEST(SceneLighting, ConfigureLightingAddsSceneLightsAndNoHeadlight)
   EXPECT_TRUE(lamp->GetPositional());
   EXPECT_EQ(lamp->GetConeAngle(), 180.0);
   EXPECT_EQ(lamp->GetAttenuationValues()[1], 0.5);
-  EXPECT_EQ(mapper->GetLighting().Model, LightingModel::Derivative);
+  EXPECT_EQ(mapper->GetLightingProperty()->GetParameters().Model, LightingModel::Derivative);
 
   cloudvis::ConfigureLighting(SceneWith({ "lights=[]" }), renderer, mapper);
   EXPECT_EQ(renderer->GetLights()->GetNumberOfItems(), 0) << "replaced, not added to";
+}
+
+// The GPU mapper and the CPU reference are configured from one RendererSettingsOf(scene): the
+// march setup each would compute from what it was given is the same, light for light.
+TEST(SceneLighting, TheGpuAndTheCpuReachTheSceneAlike)
+{
+  const cloudvis::Scene scene = SceneWith({ R"(lights=[
+      {"type": "directional", "position": [1, 2, 3], "color": [1, 0.5, 0], "intensity": 2},
+      {"type": "point", "position": [-1, 0, 2], "attenuation": [1, 0.5, 0]}])",
+    "render.lighting=march",
+    "render.march.g1=0.7",
+    "render.step=0.05",
+    "ambient.strength=0.3" });
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkCloudVolumeMapper> mapper;
+  cloudvis::ConfigureLighting(scene, renderer, mapper);
+  vtkNew<vtkCloudReferenceRenderer> reference;
+  cloudvis::ConfigureReference(scene, reference);
+
+  EXPECT_EQ(mapper->GetSampleDistance(), 0.05);
+  EXPECT_EQ(reference->GetSampleDistance(), 0.05);
+  const cloudvis::LightingParameters gpu = mapper->GetLightingProperty()->GetParameters();
+  const cloudvis::LightingParameters cpu = reference->GetLightingProperty()->GetParameters();
+  EXPECT_EQ(gpu.Model, LightingModel::March);
+  EXPECT_EQ(gpu.PhaseG1, 0.7f);
+  EXPECT_EQ(cpu.PhaseG1, gpu.PhaseG1);
+  EXPECT_EQ(cpu.AmbientStrength, 0.3f);
+  EXPECT_EQ(cpu.AmbientStrength, gpu.AmbientStrength);
+  const std::vector<cloudvis::Light> gpuLights = cloudvis::LightsOf(renderer->GetLights());
+  const std::vector<cloudvis::Light> cpuLights = cloudvis::LightsOf(reference->GetLights());
+  ASSERT_EQ(gpuLights.size(), 2u);
+  ASSERT_EQ(cpuLights.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i)
+  {
+    EXPECT_EQ(cpuLights[i].Positional, gpuLights[i].Positional);
+    EXPECT_EQ(cpuLights[i].Position, gpuLights[i].Position);
+    EXPECT_EQ(cpuLights[i].Color, gpuLights[i].Color);
+    EXPECT_EQ(cpuLights[i].Intensity, gpuLights[i].Intensity);
+    EXPECT_EQ(cpuLights[i].Attenuation, gpuLights[i].Attenuation);
+  }
+  // The reference builds the table the mapper builds from the volume property `render` gives it.
+  std::string problem;
+  const cloudvis::TransferTable cpuTable =
+    cloudvis::TransferTableOf(reference->GetVolumeProperty(), 1.0, problem);
+  const cloudvis::TransferTable gpuTable =
+    cloudvis::TransferTableOf(cloudvis::MakeVolumeProperty(scene.TransferFunction), 1.0, problem);
+  EXPECT_EQ(problem, "");
+  EXPECT_TRUE(cpuTable == gpuTable);
+  EXPECT_EQ(cpuTable.Size, cloudvis::TransferTableSize);
 }
 
 // ---- pixels -------------------------------------------------------------------------------
@@ -214,8 +279,12 @@ void RunCloudvis(const std::vector<std::string>& arguments)
 }
 
 // Small, exact renders: no jitter, one frame, a coarse field.
-const std::vector<std::string> Small = { "--set", "field.dimensions=32", "--set", "render.jitter=false",
-  "--set", "render.accumulate=1" };
+const std::vector<std::string> Small = { "--set",
+  "field.dimensions=32",
+  "--set",
+  "render.jitter=false",
+  "--set",
+  "render.accumulate=1" };
 
 std::vector<std::string> With(std::vector<std::string> arguments)
 {
@@ -230,8 +299,14 @@ TEST(LightingRender, DerivativeAndMarchDifferFromNone)
   for (int i = 0; i < 3; ++i)
   {
     const Output png(std::string(models[i]) + ".png");
-    RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "48x40", "--lighting",
-      models[i], "-o", png.Path }));
+    RunCloudvis(With({ "render",
+      CLOUDVIS_SCENES "/two-lights.json",
+      "--size",
+      "48x40",
+      "--lighting",
+      models[i],
+      "-o",
+      png.Path }));
     images[i] = ReadPng(png.Path);
     ASSERT_EQ(images[i].Width, 48);
   }
@@ -316,8 +391,14 @@ TEST(Baseline, TwoLightsUnderEachLightingModel)
   for (const char* model : { "none", "derivative", "march" })
   {
     const Output png(std::string(model) + ".png");
-    RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "128x96",
-      "--lighting", model, "-o", png.Path }));
+    RunCloudvis(With({ "render",
+      CLOUDVIS_SCENES "/two-lights.json",
+      "--size",
+      "128x96",
+      "--lighting",
+      model,
+      "-o",
+      png.Path }));
     const cloudvis::support::BaselineCheck check =
       cloudvis::support::CompareWithBaseline(ReadPng(png.Path), std::string("two-lights-") + model);
     EXPECT_TRUE(check) << check.Message;
@@ -327,7 +408,8 @@ TEST(Baseline, TwoLightsUnderEachLightingModel)
 TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
 {
   const Output png("compare.png");
-  RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "-o", png.Path }));
+  RunCloudvis(
+    With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "-o", png.Path }));
   const Image image = ReadPng(png.Path);
   ASSERT_EQ(image.Width, 120);
   ASSERT_EQ(image.Height, 32);
@@ -341,8 +423,16 @@ TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
 TEST(Compare, DifferenceAddsAPanel)
 {
   const Output png("difference.png");
-  RunCloudvis(With({ "compare", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32", "--lighting",
-    "none,march", "--difference", "none,march", "-o", png.Path }));
+  RunCloudvis(With({ "compare",
+    CLOUDVIS_SCENES "/two-lights.json",
+    "--size",
+    "40x32",
+    "--lighting",
+    "none,march",
+    "--difference",
+    "none,march",
+    "-o",
+    png.Path }));
   const Image image = ReadPng(png.Path);
   ASSERT_EQ(image.Width, 120);
   // The difference panel is black where the models agree (the empty corners) and bright where

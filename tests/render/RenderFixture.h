@@ -3,7 +3,9 @@
 #ifndef RenderFixture_h
 #define RenderFixture_h
 
+#include "CloudLighting.h"
 #include "SupportMappers.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkColorTransferFunction.h>

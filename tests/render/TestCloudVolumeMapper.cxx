@@ -136,7 +136,7 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     mapper->CollectStatisticsOn();
     LightingParameters lighting;
     lighting.Model = model;
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     Scene scene(mapper, 96, 96);
     auto field = SparseCloud(96);
     field->SetDirectionMatrix(0.8, -0.6, 0.0, 0.6, 0.8, 0.0, 0.0, 0.0, 1.0);
@@ -331,6 +331,12 @@ TEST(CloudVolumeMapper, AccumulationAveragesJitteredFramesUntilTheViewChanges)
   scene.Renderer->GetActiveCamera()->Azimuth(5.0);
   scene.RenderFloat();
   EXPECT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 1) << "a camera move restarts";
+  scene.RenderFloat();
+  ASSERT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 2);
+  mapper->GetLightingProperty()->SetAmbientStrength(0.5f);
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 1)
+    << "a change of the lighting property restarts";
 }
 
 TEST(CloudVolumeMapper, InteractionLowersTheResolutionAndStillnessRestoresIt)

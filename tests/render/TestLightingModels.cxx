@@ -21,7 +21,7 @@ vtkSmartPointer<vtkCloudVolumeMapper> LitMapper(LightingModel model, double step
   mapper->JitterOff();
   LightingParameters lighting;
   lighting.Model = model;
-  mapper->SetLighting(lighting);
+  mapper->GetLightingProperty()->SetParameters(lighting);
   return mapper;
 }
 
@@ -102,11 +102,11 @@ TEST(LightMarch, HalvingBothStepsChangesTheMeanRadianceByUnderTwoPercent)
 {
   const auto mean = [](double step, double lightStep, int lightSteps) {
     auto mapper = LitMapper(LightingModel::March, step);
-    LightingParameters lighting = mapper->GetLighting();
+    LightingParameters lighting = mapper->GetLightingProperty()->GetParameters();
     lighting.LightStep = float(lightStep);
     lighting.LightSteps = lightSteps;
     lighting.LightStepGrowth = 1.0f;
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     Scene scene(mapper, 64, 64);
     scene.SetInput(SparseCloud(64));
     SetRampMedium(scene.Property, 1.0, 0.6);
@@ -127,10 +127,10 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
   for (LightingModel model : { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
     auto mapper = LitMapper(model, 0.02);
-    LightingParameters lighting = mapper->GetLighting();
+    LightingParameters lighting = mapper->GetLightingProperty()->GetParameters();
     lighting.AmbientColor = glm::vec3(0.60f, 0.60f, 0.75f);
     lighting.AmbientStrength = model == LightingModel::Derivative ? 1.1f : 0.3f;
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     Scene scene(mapper, 160, 160);
     scene.SetInput(SparseCloud(96));
     scene.Renderer->SetBackground(0.35, 0.45, 0.65);

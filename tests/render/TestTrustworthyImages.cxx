@@ -84,7 +84,7 @@ TEST(TrustworthyImages, MoreThanEightLightsAreRefusedNotDropped)
   {
     return [count](Scene& scene, vtkCloudVolumeMapper* mapper)
     {
-      mapper->SetLighting(March());
+      mapper->GetLightingProperty()->SetParameters(March());
       for (int i = 0; i < count; ++i)
       {
         AddPointLight(scene.Renderer, i, 1.0, 3.0);
@@ -102,7 +102,7 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
     0.05,
     [](Scene& scene, vtkCloudVolumeMapper* mapper)
     {
-      mapper->SetLighting(March());
+      mapper->GetLightingProperty()->SetParameters(March());
       AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, 1e38);
     });
   EXPECT_TRUE(Mentions(bright, "light 0 (color x intensity 1e+38)")) << bright;
@@ -112,7 +112,7 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
     0.05,
     [](Scene& scene, vtkCloudVolumeMapper* mapper)
     {
-      mapper->SetLighting(March());
+      mapper->GetLightingProperty()->SetParameters(March());
       AddPointLight(scene.Renderer, 1e30, 0.0, 0.0);
     });
   EXPECT_TRUE(Mentions(far, "too far for float arithmetic")) << far;
@@ -137,7 +137,7 @@ TEST(TrustworthyImages, ADirectionalLightFarAlongItsDirectionLightsAlike)
   const auto render = [](double distance)
   {
     auto mapper = CloudMapper(0.05);
-    mapper->SetLighting(March());
+    mapper->GetLightingProperty()->SetParameters(March());
     Scene scene(mapper, 48, 48);
     scene.SetInput(SparseCloud(32));
     SetRampMedium(scene.Property, 1.0, 0.6);
@@ -215,7 +215,7 @@ TEST(TrustworthyImages, AnOutlierVoxelDoesNotChangeTheRestOfTheCloud)
   const auto render = [](const std::function<void(vtkFloatArray*)>& change)
   {
     auto mapper = CloudMapper(0.03);
-    mapper->SetLighting(March());
+    mapper->GetLightingProperty()->SetParameters(March());
     Scene scene(mapper, 96, 96);
     auto field = SparseCloud(48);
     change(vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars()));

@@ -6,7 +6,9 @@
 // CLOUDVIS_SOAK_MAX_GROWTH percent (default 5) over those 900 frames, and every frame must
 // render without a mapper error. Under the address sanitizer build LeakSanitizer checks at exit
 // that everything allocated was released. The figures go to stdout (and docs/reliability.md).
+#include "CloudLighting.h"
 #include "vtkCloudDensitySource.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkColorTransferFunction.h>
@@ -135,7 +137,7 @@ int main()
     lighting.LightSteps = 2 + frame % 5;
     lighting.AmbientStrength = 0.1f * float(frame % 4);
     lighting.MultipleScatteringOctaves = frame % 4;
-    mapper->SetLighting(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
     SetTransferFunction(property, frame);
     mapper->SetSampleDistance(frame % 2 ? 0.0 : 0.08);
     mapper->SetJitter(frame % 3 != 0);

@@ -1,5 +1,6 @@
 // What the renderers' unit tests share (TestPathTracer.cxx, TestReferenceRenderer.cxx): fields
-// on a box from a density function, linear transfer tables, lights, a parallel view, the
+// on a box from a density function, linear transfer tables and the volume properties that give
+// them, lights, a parallel view, the
 // rendered image with its per-pixel variance, means with their standard errors, and counting
 // an algorithm's errors. Statistical checks take their tolerance from the variance the path
 // tracer reports, so they are as tight as the noise allows.
@@ -11,12 +12,15 @@
 #include "vtkCloudPathTracer.h"
 
 #include <vtkCallbackCommand.h>
+#include <vtkColorTransferFunction.h>
 #include <vtkCommand.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
+#include <vtkVolumeProperty.h>
 
 #include <glm/glm.hpp>
 
@@ -59,6 +63,32 @@ inline TransferTable LinearTable(float sigma_t, glm::vec3 albedo = glm::vec3(1.0
   table.Size = 2;
   table.RGBA = { albedo.r, albedo.g, albedo.b, 0.0f, albedo.r, albedo.g, albedo.b, sigma_t };
   return table;
+}
+
+// The transfer function whose table (cloudvis::TransferTableOf, TransferTableSize entries over
+// [0, densityMax]) is LinearTable's: sigma_t * density / densityMax at every entry, one albedo.
+// The opacity per unit distance u is 1 - exp(-sigma_t u d / densityMax), given at each entry's
+// density, with u = 1 / sigma_t so that it stays below VTK's opacity of 1.
+inline vtkSmartPointer<vtkVolumeProperty> LinearMedium(float sigma_t,
+  glm::vec3 albedo = glm::vec3(1.0f),
+  double densityMax = 1.0)
+{
+  const double unitDistance = 1.0 / double(sigma_t);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  const int entries = TransferTableSize;
+  for (int i = 0; i < entries; ++i)
+  {
+    const double density = densityMax * (double(i) / (entries - 1));
+    opacity->AddPoint(density, -std::expm1(-double(sigma_t) * unitDistance * density / densityMax));
+  }
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, albedo.r, albedo.g, albedo.b);
+  color->AddRGBPoint(densityMax, albedo.r, albedo.g, albedo.b);
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetScalarOpacityUnitDistance(unitDistance);
+  return property;
 }
 
 inline Light DirectionalLight(glm::vec3 towardLight, float intensity = 1.0f)

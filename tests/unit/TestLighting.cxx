@@ -6,6 +6,7 @@
 #include "CloudLighting.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
+#include "RendererTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -31,15 +32,7 @@ double IntegrateOverSphere(const std::function<double(float)>& f)
   return 2.0 * 3.14159265358979323846 * sum * h / 3.0;
 }
 
-// sigma_t rising linearly from 0 at density 0 to sigma_t at density 1, so the extinction of a
-// trilinear sample is exactly sigma_t times its density.
-TransferTable LinearTable(float sigma_t, glm::vec3 albedo = glm::vec3(1.0f))
-{
-  TransferTable table;
-  table.Size = 2;
-  table.RGBA = { albedo.r, albedo.g, albedo.b, 0.0f, albedo.r, albedo.g, albedo.b, sigma_t };
-  return table;
-}
+using test::LinearTable;
 
 // A volume of n voxels per axis filled by density(i, j, k), with uniforms for the light march.
 struct Volume
@@ -56,7 +49,7 @@ struct Volume
       for (int j = 0; j < n.y; ++j)
         for (int i = 0; i < n.x; ++i)
           this->Density.push_back(density(i, j, k));
-    this->Uniforms.Density = this->Density.data();
+    this->Uniforms.Density.Values = this->Density.data();
     this->Uniforms.Dimensions = n;
     // A frame whose unit is the world's: local lengths are world lengths.
     this->Uniforms.IndexToLocal = glm::mat4(glm::mat3(spacing));
@@ -235,14 +228,18 @@ TEST(ReferenceMarch, LightMarchThroughAHomogeneousSlabGivesSigmaTimesLength)
     sigma_t);
   v.Uniforms.Lighting.LightStep = 0.5f * spacing;
   const float L = 11.0f * spacing;
-  const float tau = LightOpticalDepth(v.Uniforms, glm::vec3(5.0f, 1.5f, 1.5f),
-    glm::vec3(1.0f, 0.0f, 0.0f), INFINITY);
+  const float tau = LightOpticalDepth(v.Uniforms,
+    glm::vec3(5.0f, 1.5f, 1.5f),
+    LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)),
+    INFINITY);
   EXPECT_NEAR(tau, sigma_t * L, 0.01f * sigma_t * L);
   // The slab lit from behind transmits exp(-sigma_t L) to the sample.
   EXPECT_NEAR(std::exp(-tau), std::exp(-sigma_t * L), 0.01f * std::exp(-sigma_t * L));
   // Toward -x there is nothing between the sample and the volume's edge.
-  EXPECT_EQ(LightOpticalDepth(v.Uniforms, glm::vec3(5.0f, 1.5f, 1.5f),
-              glm::vec3(-1.0f, 0.0f, 0.0f), INFINITY),
+  EXPECT_EQ(LightOpticalDepth(v.Uniforms,
+              glm::vec3(5.0f, 1.5f, 1.5f),
+              LocalToIndex(v.Uniforms, glm::vec3(-1.0f, 0.0f, 0.0f)),
+              INFINITY),
     0.0f);
 }
 
@@ -252,21 +249,30 @@ TEST(ReferenceMarch, LightMarchStopsAtTheVolumeEdgeAndAtAPointLight)
   const Volume v({ 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
   const glm::vec3 p(5.0f, 1.5f, 1.5f);
   // One-voxel segments: midpoints 5.5 .. 46.5 are inside, 47.5 is not: 42 voxels to the edge.
-  EXPECT_NEAR(LightOpticalDepth(v.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), INFINITY),
-    sigma_t * 42.0f * spacing, 1e-4f);
+  EXPECT_NEAR(LightOpticalDepth(
+                v.Uniforms, p, LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), INFINITY),
+    sigma_t * 42.0f * spacing,
+    1e-4f);
   // A point light 15 voxels away: the midpoint at 15.5 voxels is beyond it.
-  EXPECT_NEAR(LightOpticalDepth(v.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), 15.0f * spacing),
-    sigma_t * 15.0f * spacing, 1e-4f);
+  EXPECT_NEAR(
+    LightOpticalDepth(
+      v.Uniforms, p, LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), 15.0f * spacing),
+    sigma_t * 15.0f * spacing,
+    1e-4f);
   // No more than LightSteps segments.
   Volume few({ 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
   few.Uniforms.Lighting.LightSteps = 6;
-  EXPECT_NEAR(LightOpticalDepth(few.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), INFINITY),
-    sigma_t * 6.0f * spacing, 1e-5f);
+  EXPECT_NEAR(LightOpticalDepth(
+                few.Uniforms, p, LocalToIndex(few.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), INFINITY),
+    sigma_t * 6.0f * spacing,
+    1e-5f);
   // Growing segments: 1, 2, 4, 8 voxels (midpoints 0.5, 2, 5, 11 from p) then 16 (midpoint 23,
   // at x = 28, inside) and 32 (midpoint 47, at x = 52, outside): 31 voxels.
   few.Uniforms.Lighting.LightStepGrowth = 2.0f;
-  EXPECT_NEAR(LightOpticalDepth(few.Uniforms, p, glm::vec3(1.0f, 0.0f, 0.0f), INFINITY),
-    sigma_t * 31.0f * spacing, 1e-4f);
+  EXPECT_NEAR(LightOpticalDepth(
+                few.Uniforms, p, LocalToIndex(few.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), INFINITY),
+    sigma_t * 31.0f * spacing,
+    1e-4f);
 }
 
 TEST(ReferenceMarch, AutomaticDistancesAreFourAndTwoVoxelsInLocalUnits)

@@ -209,7 +209,7 @@ TEST(OccupancyFilter, ExtinctionBoundsHoldForEveryTrilinearSampleInTheBrick)
   ASSERT_NE(minima, nullptr);
   ASSERT_EQ(minima->GetNumberOfValues(), maxima->GetNumberOfValues());
   MarchUniforms u;
-  u.Density = scalars->GetPointer(0);
+  u.Density.Values = scalars->GetPointer(0);
   u.Dimensions = glm::ivec3(dims[0], dims[1], dims[2]);
   u.Table = &table;
   const int* bricks = output->GetDimensions();

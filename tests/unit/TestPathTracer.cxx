@@ -8,6 +8,7 @@
 #include "CloudMarchUniforms.h"
 #include "CloudPathTrace.h"
 #include "RendererTestSupport.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudPathTracer.h"
 #include "vtkCloudReferenceRenderer.h"
 
@@ -31,13 +32,15 @@ namespace
 {
 constexpr double Sigmas = 4.0;
 
-// A path tracer of `field` with a linear table, no lights, no ambient.
-vtkSmartPointer<vtkCloudPathTracer> Tracer(vtkImageData* field, int size, TransferTable table)
+// A path tracer of `field` with a transfer function (LinearMedium), no lights, no ambient.
+vtkSmartPointer<vtkCloudPathTracer> Tracer(vtkImageData* field,
+  int size,
+  vtkVolumeProperty* transferFunction)
 {
   auto tracer = vtkSmartPointer<vtkCloudPathTracer>::New();
   tracer->SetInputData(field);
   tracer->SetImageSize(size, size);
-  tracer->SetTransferTable(table);
+  tracer->SetVolumeProperty(transferFunction);
   return tracer;
 }
 
@@ -128,10 +131,12 @@ void ExpectNoDifference(const Image& image, int blockSize,
 // Seen along `view`, the opacity of each pixel of the field over [0, 1]^3 is 1 - exp(-optical
 // depth), the depth integrated by the march (emission-absorption with a step of 1/32 voxel,
 // whose quadrature error is far below the noise).
-void ExpectOpacityOfTheOpticalDepth(
-  vtkImageData* field, const TransferTable& table, int brickSize, glm::dvec3 view)
+void ExpectOpacityOfTheOpticalDepth(vtkImageData* field,
+  vtkVolumeProperty* medium,
+  int brickSize,
+  glm::dvec3 view)
 {
-  auto tracer = Tracer(field, 24, table);
+  auto tracer = Tracer(field, 24, medium);
   SetParallelView(tracer, glm::dvec3(0.5), view, 0.5);
   tracer->SetSamplesPerPixel(64);
   tracer->SetBrickSize(brickSize);
@@ -140,7 +145,7 @@ void ExpectOpacityOfTheOpticalDepth(
   march->SetInputData(field);
   march->SetImageSize(24, 24);
   SetParallelView(march, glm::dvec3(0.5), view, 0.5);
-  march->SetTransferTable(table);
+  march->SetVolumeProperty(medium);
   march->SetSampleDistance(field->GetSpacing()[0] / 32.0);
   march->SetTerminationTransmittance(0.0);
   const Image exact = Render(march);
@@ -293,7 +298,7 @@ TEST(PathTracer, SlabTransmittanceIsExpOfMinusSigmaTimesPath)
   const float sigma_t = 2.5f;
   auto slab = MakeBoxField({ 17, 17, 33 }, { -2.0, -2.0, -1.0 }, { 2.0, 2.0, 1.0 },
     [](double, double, double z) { return std::abs(z) <= 0.25 + 1e-9 ? 1.0 : 0.0; });
-  auto tracer = Tracer(slab, 32, LinearTable(sigma_t));
+  auto tracer = Tracer(slab, 32, LinearMedium(sigma_t));
   SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(-0.6, 0.0, -0.8), 0.5);
   tracer->SetSamplesPerPixel(16);
   const Image image = Render(tracer);
@@ -333,7 +338,7 @@ TEST(PathTracer, SphereTransmittanceAlongItsDiameterAndEverywhereAsTheOpticalDep
   const double chord = 2.0 * 16.0 * spacing;
   const float sigma_t = float(1.2 / chord);
   // A 5 x 5 view of the centre 0.01 voxels wide: every ray's chord is 2 r to 1e-5 voxels.
-  auto centre = Tracer(field, 5, LinearTable(sigma_t));
+  auto centre = Tracer(field, 5, LinearMedium(sigma_t));
   SetParallelView(centre, glm::dvec3(0.5), glm::dvec3(0.0, 0.0, -1.0), 0.005 * spacing);
   centre->SetSamplesPerPixel(512);
   const Image image = Render(centre);
@@ -344,7 +349,7 @@ TEST(PathTracer, SphereTransmittanceAlongItsDiameterAndEverywhereAsTheOpticalDep
   EXPECT_LT(mean.StandardError, 0.01);
 
   // Across the whole sphere, seen from an oblique direction.
-  ExpectOpacityOfTheOpticalDepth(field, LinearTable(sigma_t), 8, { -0.3, 0.4, -0.85 });
+  ExpectOpacityOfTheOpticalDepth(field, LinearMedium(sigma_t), 8, { -0.3, 0.4, -0.85 });
 }
 
 TEST(PathTracer, EmptySpaceIsLeaptWithoutMissingTheCloud)
@@ -364,8 +369,8 @@ TEST(PathTracer, EmptySpaceIsLeaptWithoutMissingTheCloud)
       return 0.0;
     });
   // Along a direction and its opposite: walks leave the empty blocks by every kind of face.
-  ExpectOpacityOfTheOpticalDepth(field, LinearTable(8.0f), 2, { -0.3, 0.4, -0.85 });
-  ExpectOpacityOfTheOpticalDepth(field, LinearTable(8.0f), 2, { 0.3, -0.4, 0.85 });
+  ExpectOpacityOfTheOpticalDepth(field, LinearMedium(8.0f), 2, { -0.3, 0.4, -0.85 });
+  ExpectOpacityOfTheOpticalDepth(field, LinearMedium(8.0f), 2, { 0.3, -0.4, 0.85 });
 }
 
 TEST(PathTracer, SingleScatteringOfASlabMatchesItsClosedForm)
@@ -381,17 +386,18 @@ TEST(PathTracer, SingleScatteringOfASlabMatchesItsClosedForm)
   const double L = 0.5;
   for (float sigma_t : { 0.5f, 4.0f })
   {
-    auto tracer = Tracer(ConstantSlab(L), 6, LinearTable(sigma_t, albedo));
+    auto tracer = Tracer(ConstantSlab(L), 6, LinearMedium(sigma_t, albedo));
     SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), 0.75);
     tracer->SetMaxBounces(1);
     tracer->SetSamplesPerPixel(512);
     const LightingParameters lighting;
-    tracer->SetLighting(lighting);
+    tracer->GetLightingProperty()->SetParameters(lighting);
     for (const double c : { 1.0, 0.6, -1.0 })
     {
       const double s = std::sqrt(1.0 - c * c);
       // The light is toward -l from the slab; the view travels along d = (0, 0, -1).
-      tracer->SetLights({ DirectionalLight(glm::vec3(float(s), 0.0f, float(-c)), 1.5f) });
+      tracer->SetLights(
+        MakeLights({ DirectionalLight(glm::vec3(float(s), 0.0f, float(-c)), 1.5f) }));
       const Image image = Render(tracer);
       const double tau = sigma_t * L;
       const double phase = Phase(lighting, float(c), 1.0f);
@@ -423,9 +429,9 @@ TEST(PathTracer, WhiteFurnaceMediumVanishesIntoTheEnvironment)
   // is the environment: rgb = A alpha at every pixel, whatever the field. An optically thick,
   // heterogeneous sphere (optical diameter up to 12) with every order of scattering.
   const glm::vec3 environment(0.5f, 1.0f, 2.0f);
-  auto tracer = Tracer(SoftSphere(), 16, LinearTable(8.0f));
+  auto tracer = Tracer(SoftSphere(), 16, LinearMedium(8.0f));
   SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.8);
-  tracer->SetLighting(Ambient(environment));
+  tracer->GetLightingProperty()->SetParameters(Ambient(environment));
   tracer->SetSamplesPerPixel(64);
   const Image image = Render(tracer);
   for (int channel = 0; channel < 3; ++channel)
@@ -464,9 +470,9 @@ TEST(PathTracer, AbsorptionRemovesOneMinusAlbedoOfTheExtinguishedLight)
   double previous = 1e30;
   for (float a : { 1.0f, 0.9f, 0.5f })
   {
-    auto tracer = Tracer(ConstantSlab(L), 6, LinearTable(sigma_t, glm::vec3(a)));
+    auto tracer = Tracer(ConstantSlab(L), 6, LinearMedium(sigma_t, glm::vec3(a)));
     SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), 0.75);
-    tracer->SetLighting(lighting);
+    tracer->GetLightingProperty()->SetParameters(lighting);
     tracer->SetSamplesPerPixel(512);
     const Image image = Render(tracer);
     const double expected = std::exp(-(1.0 - a) * sigma_t * L) - std::exp(-sigma_t * L);
@@ -488,9 +494,9 @@ TEST(PathTracer, OneBounceEqualsTheMarchWithoutMultipleScattering)
   // the volume's diagonal and a fine view step (its quadrature error is far below the noise).
   auto field = SoftSphere();
   const double spacing = field->GetSpacing()[0];
-  const TransferTable table = LinearTable(4.0f, glm::vec3(0.9f, 0.8f, 0.7f));
-  const std::vector<Light> lights = { DirectionalLight({ 1.0f, 0.5f, 0.2f }),
-    PointLight({ -0.5f, 1.5f, 1.0f }, 3.0f) };
+  const auto medium = LinearMedium(4.0f, glm::vec3(0.9f, 0.8f, 0.7f));
+  const auto lights =
+    MakeLights({ DirectionalLight({ 1.0f, 0.5f, 0.2f }), PointLight({ -0.5f, 1.5f, 1.0f }, 3.0f) });
   const glm::dvec3 view(0.2, -0.1, -1.0);
   LightingParameters lighting;
   lighting.Model = LightingModel::March;
@@ -503,16 +509,16 @@ TEST(PathTracer, OneBounceEqualsTheMarchWithoutMultipleScattering)
   march->SetInputData(field);
   march->SetImageSize(24, 24);
   SetParallelView(march, glm::dvec3(0.0), view, 0.8);
-  march->SetTransferTable(table);
-  march->SetLighting(lighting);
+  march->SetVolumeProperty(medium);
+  march->GetLightingProperty()->SetParameters(lighting);
   march->SetLights(lights);
   march->SetSampleDistance(spacing / 8.0);
   march->SetTerminationTransmittance(0.0);
   const Image marched = Render(march);
 
-  auto tracer = Tracer(field, 24, table);
+  auto tracer = Tracer(field, 24, medium);
   SetParallelView(tracer, glm::dvec3(0.0), view, 0.8);
-  tracer->SetLighting(lighting);
+  tracer->GetLightingProperty()->SetParameters(lighting);
   tracer->SetLights(lights);
   tracer->SetMaxBounces(1);
   tracer->SetSamplesPerPixel(64);
@@ -543,10 +549,10 @@ TEST(PathTracer, BrickSizeChangesOnlyTheNoise)
   std::vector<Image> images;
   for (int brickSize : { 1, 16 })
   {
-    auto tracer = Tracer(field, 16, LinearTable(6.0f, glm::vec3(0.95f)));
+    auto tracer = Tracer(field, 16, LinearMedium(6.0f, glm::vec3(0.95f)));
     SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.0, -0.3, -1.0), 0.8);
-    tracer->SetLighting(lighting);
-    tracer->SetLights({ DirectionalLight({ 1.0f, 1.0f, 0.0f }) });
+    tracer->GetLightingProperty()->SetParameters(lighting);
+    tracer->SetLights(MakeLights({ DirectionalLight({ 1.0f, 1.0f, 0.0f }) }));
     tracer->SetBrickSize(brickSize);
     tracer->SetSamplesPerPixel(128);
     images.push_back(Render(tracer));
@@ -587,12 +593,12 @@ TEST(PathTracer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
   const glm::dvec3 focal(0.3, -0.1, 0.0);
   const auto tracer = [&](vtkImageData* input, float extinction)
   {
-    auto t = Tracer(input, 24, LinearTable(extinction, albedo));
+    auto t = Tracer(input, 24, LinearMedium(extinction, albedo));
     SetParallelView(t, focal, glm::dvec3(0.0, 0.0, -1.0), 0.6); // the blob fills the view
-    t->SetLighting(Ambient(glm::vec3(0.2f, 0.2f, 0.3f)));
+    t->GetLightingProperty()->SetParameters(Ambient(glm::vec3(0.2f, 0.2f, 0.3f)));
     Light light;
     light.Position = 10.0 * toLight;
-    t->SetLights({ light });
+    t->SetLights(MakeLights({ light }));
     t->SetSamplesPerPixel(128);
     return t;
   };
@@ -632,7 +638,7 @@ TEST(PathTracer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
   turned->SetCameraViewUp(-1.0, 0.0, 0.0);
   Light turnedLight;
   turnedLight.Position = 10.0 * glm::dvec3(-toLight.y, toLight.x, toLight.z);
-  turned->SetLights({ turnedLight });
+  turned->SetLights(MakeLights({ turnedLight }));
   expectSameImage(Render(turned), "direction matrix");
 
   // Moved and scaled twice as large by the volume's matrix, with half the extinction per unit
@@ -652,10 +658,11 @@ TEST(PathTracer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
 
 TEST(PathTracer, SameSeedSameImageUnderEverySmpBackend)
 {
-  auto tracer = Tracer(SoftSphere(24), 16, LinearTable(5.0f, glm::vec3(0.9f)));
+  auto tracer = Tracer(SoftSphere(24), 16, LinearMedium(5.0f, glm::vec3(0.9f)));
   SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), 0.8);
-  tracer->SetLighting(Ambient(glm::vec3(0.2f)));
-  tracer->SetLights({ DirectionalLight({ 1.0f, 1.0f, 0.0f }), PointLight({ 0.0f, -1.5f, 1.0f }) });
+  tracer->GetLightingProperty()->SetParameters(Ambient(glm::vec3(0.2f)));
+  tracer->SetLights(
+    MakeLights({ DirectionalLight({ 1.0f, 1.0f, 0.0f }), PointLight({ 0.0f, -1.5f, 1.0f }) }));
   tracer->SetSamplesPerPixel(8);
   tracer->SetSeed(7);
   const std::string original = vtkSMPTools::GetBackend();
@@ -687,9 +694,9 @@ TEST(PathTracer, AnExtinctionTooLargeForFloatStillEndsEveryPath)
   // after MaxTentativeCollisions: the ray is opaque, the path ends).
   auto field = MakeBoxField({ 5, 5, 5 }, glm::dvec3(-1.0), glm::dvec3(1.0),
     [](double x, double y, double z) { return x == 0.0 && y == 0.0 && z == 0.0 ? 1.0 : 0.0; });
-  auto tracer = Tracer(field, 2, LinearTable(1e9f));
+  auto tracer = Tracer(field, 2, LinearMedium(1e9f));
   SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), 0.5);
-  tracer->SetLights({ DirectionalLight({ 1.0f, 0.0f, 0.0f }) });
+  tracer->SetLights(MakeLights({ DirectionalLight({ 1.0f, 0.0f, 0.0f }) }));
   tracer->SetSamplesPerPixel(2);
   const Image image = Render(tracer);
   ASSERT_EQ(image.Pixels(), 4u);
@@ -701,7 +708,7 @@ TEST(PathTracer, AnExtinctionTooLargeForFloatStillEndsEveryPath)
 TEST(PathTracer, RefusesBadParameters)
 {
   auto field = SoftSphere(12);
-  const auto tracer = [&]() { return Tracer(field, 8, LinearTable(2.0f)); };
+  const auto tracer = [&]() { return Tracer(field, 8, LinearMedium(2.0f)); };
   auto oneSample = tracer();
   oneSample->SetSamplesPerPixel(1);
   EXPECT_EQ(CountErrors(oneSample), 1);
@@ -712,7 +719,7 @@ TEST(PathTracer, RefusesBadParameters)
   noBrick->SetBrickSize(0);
   EXPECT_EQ(CountErrors(noBrick), 1);
   auto noTable = tracer();
-  noTable->SetTransferTable(TransferTable());
+  noTable->SetVolumeProperty(nullptr);
   EXPECT_EQ(CountErrors(noTable), 1); // the reference renderer's checks apply
   EXPECT_EQ(CountErrors(tracer()), 0);
 }
@@ -739,7 +746,7 @@ TEST(PathTracer, NextEventEstimationIsTheShadowedLightFromEachSource)
     setup.Lights = { light };
     MarchUniforms u;
     EXPECT_FALSE(SetUpMarch(setup, u));
-    u.Density = density.data();
+    u.Density.Values = density.data();
     return u;
   };
   const LocalFrame frame = MakeLocalFrame(setup.Geometry);

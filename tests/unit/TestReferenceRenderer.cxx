@@ -3,8 +3,10 @@
 // add up, point lights fall off, the image converges as the steps shrink), the camera's
 // agreement with vtkCamera, the image's orientation, input checks and determinism.
 #include "CloudLighting.h"
+#include "CloudMarchUniforms.h"
 #include "CloudTransferTable.h"
 #include "RendererTestSupport.h"
+#include "vtkCloudLightingProperty.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCallbackCommand.h>
@@ -12,12 +14,16 @@
 #include <vtkCommand.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkLight.h>
+#include <vtkLightCollection.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkVolumeProperty.h>
 
 #include <gtest/gtest.h>
 
@@ -62,15 +68,6 @@ vtkSmartPointer<vtkImageData> SoftSphere(int n = 40)
     const double r = std::sqrt(x * x + y * y + z * z);
     return std::min(1.0, std::max(0.0, (0.75 - r) / 0.3));
   });
-}
-
-// sigma_t rising linearly from 0 at density 0 to sigma_t at density 1.
-TransferTable LinearTable(float sigma_t, glm::vec3 albedo = glm::vec3(1.0f))
-{
-  TransferTable table;
-  table.Size = 2;
-  table.RGBA = { albedo.r, albedo.g, albedo.b, 0.0f, albedo.r, albedo.g, albedo.b, sigma_t };
-  return table;
 }
 
 Light Directional(glm::vec3 towardLight, glm::vec3 color = glm::vec3(1.0f), float intensity = 1.0f)
@@ -138,7 +135,7 @@ vtkSmartPointer<vtkCloudReferenceRenderer> FrontView(vtkImageData* field, int si
   renderer->ParallelProjectionOn();
   renderer->SetParallelScale(1.0);
   renderer->SetClippingRange(1.0, 10.0);
-  renderer->SetTransferTable(LinearTable(6.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
+  renderer->SetVolumeProperty(test::LinearMedium(6.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
   return renderer;
 }
 
@@ -163,8 +160,8 @@ Image Render(vtkCloudReferenceRenderer* renderer)
 Image RenderWith(vtkCloudReferenceRenderer* renderer, const LightingParameters& lighting,
   const std::vector<Light>& lights)
 {
-  renderer->SetLighting(lighting);
-  renderer->SetLights(lights);
+  renderer->GetLightingProperty()->SetParameters(lighting);
+  renderer->SetLights(MakeLights(lights));
   return Render(renderer);
 }
 
@@ -238,7 +235,7 @@ TEST(ReferenceRenderer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
   matrix->SetElement(2, 3, 1.0);
   auto placed = FrontView(field, 32);
   placed->SetVolumeMatrix(matrix);
-  placed->SetTransferTable(LinearTable(3.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
+  placed->SetVolumeProperty(test::LinearMedium(3.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
   placed->SetCameraPosition(5.0, -2.0, 11.0);
   placed->SetCameraFocalPoint(5.0, -2.0, 1.0);
   placed->SetParallelScale(2.0);
@@ -339,7 +336,7 @@ TEST(ReferenceRenderer, HomogeneousSphereHasTheOpacityOfItsDiameter)
   renderer->ParallelProjectionOn();
   renderer->SetParallelScale(0.5);
   renderer->SetClippingRange(1.0, 10.0);
-  renderer->SetTransferTable(LinearTable(sigma_t, albedo));
+  renderer->SetVolumeProperty(test::LinearMedium(sigma_t, albedo));
   const Image image = Render(renderer);
 
   const float alpha = 1.0f - std::exp(-1.2f);
@@ -374,7 +371,7 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   renderer->ParallelProjectionOn();
   renderer->SetParallelScale(0.5);
   renderer->SetClippingRange(1.0, 10.0);
-  renderer->SetTransferTable(LinearTable(sigma_t));
+  renderer->SetVolumeProperty(test::LinearMedium(sigma_t));
   renderer->SetSampleDistance(1.0 / 256.0);
   LightingParameters p = Model(LightingModel::March);
   p.MultipleScatteringOctaves = 0;
@@ -472,7 +469,7 @@ TEST(ReferenceRenderer, MarchConvergesAsStepsShrink)
   auto field = SoftSphere();
   const double spacing = field->GetSpacing()[0];
   auto renderer = FrontView(field, 32);
-  renderer->SetTransferTable(LinearTable(3.0f));
+  renderer->SetVolumeProperty(test::LinearMedium(3.0f));
   LightingParameters p = Model(LightingModel::March);
   p.LightStepGrowth = 1.0f;
   const std::vector<Light> lights = { Directional({ 1, 1, 0.5f }) };
@@ -530,9 +527,7 @@ TEST(ReferenceRenderer, UnsignedCharFieldRendersLikeTheFloatField)
   bytes->GetPointData()->SetScalars(scalars);
   auto floatRenderer = FrontView(field, 16);
   auto byteRenderer = FrontView(bytes, 16);
-  TransferTable table = floatRenderer->GetTransferTable();
-  table.Range[1] = 255.0;
-  byteRenderer->SetTransferTable(table);
+  byteRenderer->SetVolumeProperty(test::LinearMedium(6.0f, glm::vec3(0.9f, 0.8f, 0.7f), 255.0));
   const std::vector<Light> lights = { Directional({ 1, 0, 0 }) };
   const Image a = RenderWith(floatRenderer, Model(LightingModel::March), lights);
   const Image b = RenderWith(byteRenderer, Model(LightingModel::March), lights);
@@ -548,7 +543,7 @@ TEST(ReferenceRenderer, RefusesBadInput)
   auto sphere = SoftSphere(12);
 
   auto noTable = FrontView(sphere, 8);
-  noTable->SetTransferTable(TransferTable());
+  noTable->SetVolumeProperty(nullptr);
   EXPECT_EQ(CountErrors(noTable), 1);
 
   auto vectors = vtkSmartPointer<vtkImageData>::New();
@@ -592,11 +587,11 @@ TEST(ReferenceRenderer, RefusesBadInput)
   auto badLighting = FrontView(sphere, 8);
   LightingParameters p = Model(LightingModel::March);
   p.PhaseG1 = 1.5f;
-  badLighting->SetLighting(p);
+  badLighting->GetLightingProperty()->SetParameters(p);
   EXPECT_EQ(CountErrors(badLighting), 1);
 
   auto tooManyLights = FrontView(sphere, 8);
-  tooManyLights->SetLights(std::vector<Light>(9, Directional({ 1, 0, 0 })));
+  tooManyLights->SetLights(MakeLights(std::vector<Light>(9, Directional({ 1, 0, 0 }))));
   EXPECT_EQ(CountErrors(tooManyLights), 1);
 
   auto blindCamera = FrontView(sphere, 8);
@@ -637,8 +632,8 @@ TEST(ReferenceRenderer, ReportsProgressAndStopsWhenAborted)
 TEST(ReferenceRenderer, SequentialStdThreadAndTbbBackendsGiveTheSameImage)
 {
   auto renderer = FrontView(SoftSphere(24), 24);
-  renderer->SetLighting(Model(LightingModel::March));
-  renderer->SetLights({ Directional({ 1, 1, 0 }), Point({ 0, -1.5f, 1 }) });
+  renderer->GetLightingProperty()->SetParameters(Model(LightingModel::March));
+  renderer->SetLights(MakeLights({ Directional({ 1, 1, 0 }), Point({ 0, -1.5f, 1 }) }));
   const std::string original = vtkSMPTools::GetBackend();
   std::vector<Image> images;
   for (const char* backend : { "Sequential", "STDThread", "TBB" })
@@ -649,6 +644,130 @@ TEST(ReferenceRenderer, SequentialStdThreadAndTbbBackendsGiveTheSameImage)
   vtkSMPTools::SetBackend(original.c_str());
   EXPECT_EQ(images[1].RGBA, images[0].RGBA);
   EXPECT_EQ(images[2].RGBA, images[0].RGBA);
+}
+
+// Every parameter reaches the renderer through VTK objects (what Python can pass): the lights as
+// vtkLights, where a switched-off one does not light and a change to one re-renders; the lighting
+// property and the volume property, whose changes re-render too, as VTK's pipeline promises.
+TEST(ReferenceRenderer, TakesItsParametersAsVtkObjectsAndFollowsTheirChanges)
+{
+  auto renderer = FrontView(SoftSphere(), 16);
+  vtkNew<vtkCloudLightingProperty> lighting;
+  lighting->SetModelToDerivative();
+  renderer->SetLightingProperty(lighting);
+  EXPECT_EQ(renderer->GetLightingProperty(), lighting.Get());
+  const auto update = [&]()
+  {
+    renderer->Update(); // no Modified(): the renderer must see the objects' changes itself
+    Image image;
+    auto* rgba = vtkFloatArray::SafeDownCast(renderer->GetOutput()->GetPointData()->GetScalars());
+    image.Width = image.Height = 16;
+    image.RGBA.assign(rgba->GetPointer(0), rgba->GetPointer(0) + rgba->GetNumberOfValues());
+    return image;
+  };
+  const double unlit = update().MeanRadiance();
+  EXPECT_EQ(unlit, 0.0); // no lights, no ambient
+
+  const vtkSmartPointer<vtkLight> sun = MakeLight(Directional({ 1, 0, 0 }));
+  renderer->GetLights()->AddItem(sun);
+  const double lit = update().MeanRadiance();
+  EXPECT_GT(lit, 0.01);
+  sun->SetIntensity(2.0);
+  EXPECT_NEAR(update().MeanRadiance(), 2.0 * lit, 1e-5 * lit);
+  sun->SwitchOff();
+  EXPECT_EQ(update().MeanRadiance(), 0.0);
+  sun->SwitchOn();
+
+  lighting->SetAmbientStrength(1.0f);
+  const double withAmbient = update().MeanRadiance();
+  EXPECT_GT(withAmbient, 2.0 * lit + 0.01);
+  renderer->GetVolumeProperty()->GetScalarOpacity()->RemoveAllPoints();
+  renderer->GetVolumeProperty()->GetScalarOpacity()->AddPoint(0.0, 0.0);
+  renderer->GetVolumeProperty()->GetScalarOpacity()->AddPoint(1.0, 0.0);
+  EXPECT_EQ(update().MeanRadiance(), 0.0) << "a transparent medium shows nothing";
+
+  renderer->SetLightingProperty(nullptr); // back to a default property: model none
+  EXPECT_NE(renderer->GetLightingProperty(), nullptr);
+  EXPECT_EQ(renderer->GetLightingProperty()->GetModel(), vtkCloudLightingProperty::NoLighting);
+  renderer->SetLights(nullptr);
+  EXPECT_EQ(renderer->GetLights()->GetNumberOfItems(), 0);
+}
+
+TEST(LightingProperty, DefaultsAreThoseOfLightingParameters)
+{
+  vtkNew<vtkCloudLightingProperty> property;
+  const LightingParameters p = property->GetParameters();
+  const LightingParameters defaults;
+  EXPECT_EQ(p.Model, defaults.Model);
+  EXPECT_EQ(p.AmbientColor, defaults.AmbientColor);
+  EXPECT_EQ(p.AmbientStrength, defaults.AmbientStrength);
+  EXPECT_EQ(p.DerivativeDistance, defaults.DerivativeDistance);
+  EXPECT_EQ(p.LightSteps, defaults.LightSteps);
+  EXPECT_EQ(p.LightStep, defaults.LightStep);
+  EXPECT_EQ(p.LightStepGrowth, defaults.LightStepGrowth);
+  EXPECT_EQ(p.PhaseG1, defaults.PhaseG1);
+  EXPECT_EQ(p.PhaseG2, defaults.PhaseG2);
+  EXPECT_EQ(p.PhaseLobeWeight, defaults.PhaseLobeWeight);
+  EXPECT_EQ(p.MultipleScatteringOctaves, defaults.MultipleScatteringOctaves);
+  EXPECT_EQ(p.ScatteringFalloff, defaults.ScatteringFalloff);
+  EXPECT_EQ(p.ExtinctionFalloff, defaults.ExtinctionFalloff);
+  EXPECT_EQ(p.EccentricityFalloff, defaults.EccentricityFalloff);
+  EXPECT_EQ(p.PowderStrength, defaults.PowderStrength);
+  // The values the class documentation states.
+  EXPECT_EQ(property->GetModel(), vtkCloudLightingProperty::NoLighting);
+  EXPECT_EQ(property->GetLightSteps(), 6);
+  EXPECT_EQ(property->GetLightStepGrowth(), 1.6f);
+  EXPECT_EQ(property->GetPhaseG1(), 0.6f);
+  EXPECT_EQ(property->GetPhaseG2(), -0.3f);
+  EXPECT_EQ(property->GetPhaseLobeWeight(), 0.8f);
+  EXPECT_EQ(property->GetMultipleScatteringOctaves(), 3);
+  EXPECT_EQ(property->GetAmbientStrength(), 0.0f);
+  EXPECT_EQ(property->GetAmbientColor()[0], 1.0f);
+}
+
+TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
+{
+  vtkNew<vtkCloudLightingProperty> property;
+  property->SetModelToMarch();
+  property->SetAmbientColor(0.1f, 0.2f, 0.3f);
+  property->SetAmbientStrength(0.4f);
+  property->SetDerivativeDistance(0.5f);
+  property->SetLightSteps(9);
+  property->SetLightStep(0.06f);
+  property->SetLightStepGrowth(1.3f);
+  property->SetPhaseG1(0.7f);
+  property->SetPhaseG2(-0.2f);
+  property->SetPhaseLobeWeight(0.6f);
+  property->SetMultipleScatteringOctaves(5);
+  property->SetScatteringFalloff(0.45f);
+  property->SetExtinctionFalloff(0.35f);
+  property->SetEccentricityFalloff(0.25f);
+  property->SetPowderStrength(0.15f);
+  const LightingParameters p = property->GetParameters();
+  EXPECT_EQ(p.Model, LightingModel::March);
+  EXPECT_EQ(p.AmbientColor, glm::vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(p.AmbientStrength, 0.4f);
+  EXPECT_EQ(p.DerivativeDistance, 0.5f);
+  EXPECT_EQ(p.LightSteps, 9);
+  EXPECT_EQ(p.LightStep, 0.06f);
+  EXPECT_EQ(p.LightStepGrowth, 1.3f);
+  EXPECT_EQ(p.PhaseG1, 0.7f);
+  EXPECT_EQ(p.PhaseG2, -0.2f);
+  EXPECT_EQ(p.PhaseLobeWeight, 0.6f);
+  EXPECT_EQ(p.MultipleScatteringOctaves, 5);
+  EXPECT_EQ(p.ScatteringFalloff, 0.45f);
+  EXPECT_EQ(p.ExtinctionFalloff, 0.35f);
+  EXPECT_EQ(p.EccentricityFalloff, 0.25f);
+  EXPECT_EQ(p.PowderStrength, 0.15f);
+
+  vtkNew<vtkCloudLightingProperty> copy;
+  copy->DeepCopy(property);
+  EXPECT_EQ(copy->GetParameters().PhaseG2, -0.2f);
+  const vtkMTimeType time = copy->GetMTime();
+  copy->SetParameters(p); // the same values
+  EXPECT_EQ(copy->GetMTime(), time);
+  copy->SetPhaseG1(0.1f);
+  EXPECT_GT(copy->GetMTime(), time);
 }
 
 // Not a test: how long a 128 x 128 render of a 64^3 field takes per model, for the report.
@@ -664,8 +783,8 @@ TEST(ReferenceRenderer, DISABLED_Timing128x128Of64Cubed)
   {
     LightingParameters p = Model(model);
     p.AmbientStrength = 0.2f;
-    renderer->SetLighting(p);
-    renderer->SetLights({ Directional({ 1, 1, 0.5f }) });
+    renderer->GetLightingProperty()->SetParameters(p);
+    renderer->SetLights(MakeLights({ Directional({ 1, 1, 0.5f }) }));
     const auto start = std::chrono::steady_clock::now();
     renderer->Modified();
     renderer->Update();

@@ -1,15 +1,15 @@
 // `cloudvis render --cpu-reference`: the scene rendered by vtkCloudReferenceRenderer, the CPU
 // oracle of the GPU mapper's equations, instead of the GPU. Everything the image depends on comes
 // from the same places as RenderOffscreen's: the camera ApplyCamera sets up, the field's whole
-// geometry, the transfer table the mapper would build (TabulateTransferFunction, over the
-// function's own points), the scene's lights, LightingOf(scene) and render.step. Both renderers
-// refuse the same inputs (cloudvis::SetUpMarch); CheckSceneRenderable says so in scene keys. No
+// geometry, and the settings of RendererSettingsOf (SceneLighting.h: the transfer function, from
+// which the reference builds the mapper's table, the lighting, the lights, render.step). Both
+// renderers refuse the same inputs (cloudvis::SetUpMarch); CheckSceneRenderable says so in scene
+// keys. No
 // jitter (one exact ray per pixel), no accumulation, and render.resolution_scale does not apply
 // (the reference renders every pixel). No OpenGL, so no display is needed.
 #ifndef cloudvis_CpuReference_h
 #define cloudvis_CpuReference_h
 
-#include "CloudTransferTable.h"
 #include "OffscreenRender.h"
 
 #include <string>
@@ -26,10 +26,6 @@ namespace cloudvis
 // parallel projection and scale, clipping range. With ImageSize equal to the viewport's size the
 // two show the same view.
 void SetReferenceCamera(vtkCloudReferenceRenderer* reference, vtkCamera* camera);
-
-// The transfer table the GPU mapper builds for this transfer function: 1024 entries over the
-// function's points (TabulateTransferFunction), whatever the field's values.
-TransferTable SceneTransferTable(const TransferFunctionSpec& transferFunction);
 
 // Throws InputError unless both renderers can draw `field` as the scene says: what
 // cloudvis::ValidateVolumeGeometry and cloudvis::SetUpMarch refuse (a geometry float arithmetic

@@ -37,9 +37,9 @@ struct OffscreenRenderResult
 // color, linear interpolation of the density, no VTK shading (lighting is the mapper's).
 vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction);
 
-// Sets the mapper's step, jitter, resolution scale, accumulation and empty-space skipping (and
-// the lighting model; ConfigureLighting in SceneLighting.h adds the lights and parameters) from
-// the render section.
+// Sets what only the GPU mapper has from the render section: jitter, resolution scale,
+// accumulation and empty-space skipping. What every renderer takes (the step, the lighting, the
+// lights) comes from ConfigureLighting (SceneLighting.h).
 void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render);
 
 // Sets the renderer's active camera from the camera section, filling absent keys for a field

@@ -1,0 +1,55 @@
+// GPU memory for vtkCloudVolumeMapper's textures and targets: what the driver reports free, and
+// the check every allocation of the mapper goes through, so that a field too large for the GPU
+// is refused with the size it needs instead of being drawn from a texture that was never
+// allocated. Private to the rendering module.
+#ifndef CloudGpuMemory_h
+#define CloudGpuMemory_h
+
+#include <functional>
+#include <string>
+
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+
+namespace cloudvis
+{
+
+// Bytes of video memory the driver reports free (GL_NVX_gpu_memory_info on NVIDIA,
+// GL_ATI_meminfo on AMD), or -1 when it reports nothing (Mesa's drivers, among others).
+long long FreeGpuMemory(vtkOpenGLRenderWindow* window);
+
+// One frame's allocations: each is checked against the mapper's limit (0: none) on all it holds,
+// and against what the GPU reports free; then GL's error flag tells whether the allocation
+// itself failed.
+class GpuMemoryBudget
+{
+public:
+  GpuMemoryBudget(vtkOpenGLRenderWindow* window, long long limit, long long held);
+
+  // Allocates `bytes` for `what`, replacing `released` bytes the mapper holds for it: empty when
+  // they fit and `create` (which allocates them, true on success) succeeded without a GL error,
+  // else why not, with the sizes (GL_OUT_OF_MEMORY: the driver could not allocate them; then
+  // `create` has run). The bytes then count as held.
+  std::string Allocate(const std::string& what,
+    long long bytes,
+    long long released,
+    const std::function<bool()>& create);
+
+private:
+  vtkOpenGLRenderWindow* Window;
+  long long Limit;
+  long long Held;
+};
+
+// The bytes the GL allocated for level 0 of a texture, from the sizes of its internal format's
+// components as the driver reports them (so R8 really is one byte a texel, or the count says
+// otherwise). The texture must have its context current.
+long long TextureBytes(vtkTextureObject* texture);
+
+// How a texture is sampled: `filter` for minification and magnification, `wrap` along every
+// axis (vtkTextureObject's enums).
+void SetSampling(vtkTextureObject* texture, int filter, int wrap);
+
+} // namespace cloudvis
+
+#endif

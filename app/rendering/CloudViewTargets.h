@@ -1,0 +1,85 @@
+// What vtkCloudVolumeMapper keeps for one renderer: the opaque scene's depth (full viewport), the
+// march's float targets (at the march's resolution) and their framebuffer, and the state of the
+// progressive accumulation. The targets hold the SUM of the accumulated frames (additive
+// blending, no blend constant to keep outside vtkOpenGLState); readers divide by the frame count.
+// Private to the module.
+#ifndef CloudViewTargets_h
+#define CloudViewTargets_h
+
+#include <vtkNew.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkTextureObject.h>
+
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkWindow;
+
+namespace cloudvis
+{
+class GpuMemoryBudget;
+
+class ViewTargets
+{
+public:
+  enum Target
+  {
+    Color = 0, // premultiplied radiance and opacity, RGBA32F
+    Counts = 1 // samples taken, useful samples, depth of the cloud, 1
+  };
+
+  // (Re)allocates what the viewport and the march size need; a change restarts accumulation.
+  bool Resize(vtkOpenGLRenderWindow* window,
+    int viewportWidth,
+    int viewportHeight,
+    int marchWidth,
+    int marchHeight,
+    GpuMemoryBudget& budget,
+    std::string& problem);
+  // Copies the opaque scene's depth from the current framebuffer (the rays end there).
+  void CopyDepth(const int viewport[4]);
+  // Accumulation goes on while `signature` (what the image depends on) holds; else restarts.
+  void Continue(const std::vector<double>& signature);
+
+  // Draws into both march targets; false (bindings restored) when the framebuffer is incomplete.
+  bool BindTargets(vtkOpenGLRenderWindow* window);
+  void UnbindTargets(vtkOpenGLRenderWindow* window);
+
+  // The mean over the accumulated frames of one target, rows bottom to top. False when nothing
+  // has been drawn.
+  bool Read(vtkOpenGLRenderWindow* window,
+    Target target,
+    std::vector<float>& values,
+    int& width,
+    int& height);
+
+  vtkTextureObject* GetDepth() { return this->Depth; }
+  vtkTextureObject* GetTarget(Target target)
+  {
+    return target == Color ? this->ColorTexture : this->CountTexture;
+  }
+  const int* GetMarchSize() const { return this->MarchSize; }
+  long long GetBytes() const { return this->DepthBytes + this->TargetBytes; }
+  void Release(vtkWindow* window);
+
+  int AccumulatedFrames = 0;
+  double SecondsPerPixel = 0.0;   // measured march cost, for the interactive scale
+  double MostSamplesPerRay = 1.0; // a ray across the whole volume: full scale of the count view
+  double LocalUnit = 1.0;         // world units per local unit of the march's frame, for depths
+
+private:
+  vtkNew<vtkTextureObject> Depth;
+  vtkNew<vtkTextureObject> ColorTexture;
+  vtkNew<vtkTextureObject> CountTexture;
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  int ViewportSize[2] = { 0, 0 };
+  int MarchSize[2] = { 0, 0 };
+  std::vector<double> Signature;
+  long long DepthBytes = 0;
+  long long TargetBytes = 0;
+};
+
+} // namespace cloudvis
+
+#endif
