@@ -2,6 +2,7 @@
 
 #include <vtkDataArray.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -105,11 +106,10 @@ std::string FormatBytes(double bytes)
   return out.str();
 }
 
-std::string ValidateFieldGeometry(const int dimensions[3], const double bounds[6], int bytesPerVoxel)
+std::string ValidateFieldGeometry(const int dimensions[3], const double bounds[6])
 {
   static const char* axes = "xyz";
   std::ostringstream error;
-  double voxels = 1.0;
   for (int a = 0; a < 3; ++a)
   {
     if (dimensions[a] < 1)
@@ -118,7 +118,6 @@ std::string ValidateFieldGeometry(const int dimensions[3], const double bounds[6
             << axes[a];
       return error.str();
     }
-    voxels *= dimensions[a];
     const double lo = bounds[2 * a], hi = bounds[2 * a + 1];
     if (!std::isfinite(lo) || !std::isfinite(hi))
     {
@@ -132,13 +131,28 @@ std::string ValidateFieldGeometry(const int dimensions[3], const double bounds[6
       return error.str();
     }
   }
+  return {};
+}
+
+std::string ValidateExtentMemory(const int extent[6], int bytesPerVoxel)
+{
+  // Counted in 64 bits and the product in double: a large extent overflows int; an empty one
+  // counts 0.
+  long long counts[3];
+  double voxels = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    counts[a] = std::max(0LL, (long long)extent[2 * a + 1] - extent[2 * a] + 1);
+    voxels *= double(counts[a]);
+  }
   const double needed = voxels * bytesPerVoxel;
   const std::uint64_t available = AvailableMemoryBytes();
   if (available > 0 && needed > static_cast<double>(available))
   {
-    error << "a field of " << dimensions[0] << " x " << dimensions[1] << " x " << dimensions[2]
-          << " voxels needs " << FormatBytes(needed) << " but only " << FormatBytes(double(available))
-          << " of memory is available";
+    std::ostringstream error;
+    error << "a field of " << counts[0] << " x " << counts[1] << " x " << counts[2]
+          << " voxels needs " << FormatBytes(needed) << " but only "
+          << FormatBytes(double(available)) << " of memory is available";
     return error.str();
   }
   return {};

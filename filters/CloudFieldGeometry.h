@@ -21,11 +21,16 @@ CLOUDVISFILTERS_EXPORT void LatticeFromBounds(
 // Bytes of physical memory this process can still take (MemAvailable), or 0 when unknown.
 CLOUDVISFILTERS_EXPORT std::uint64_t AvailableMemoryBytes();
 
-// Empty when dimensions and bounds describe a field that fits in memory, else the problem:
-// dimensions below 1, bounds that are not finite or not increasing, or a field larger than the
-// memory available (stating how much it needs).
-CLOUDVISFILTERS_EXPORT std::string ValidateFieldGeometry(
-  const int dimensions[3], const double bounds[6], int bytesPerVoxel = 4);
+// Empty when dimensions and bounds describe a lattice, else the problem: dimensions below 1, or
+// bounds that are not finite or not increasing.
+CLOUDVISFILTERS_EXPORT std::string ValidateFieldGeometry(const int dimensions[3],
+  const double bounds[6]);
+
+// Empty when `extent` (as VTK writes extents: first and last index per axis), at `bytesPerVoxel`,
+// fits in the memory available, else the problem, stating how much it needs. It is the extent a
+// source is asked to fill that must fit, not its whole extent: a process that generates one piece
+// of a field larger than its memory needs only the piece's.
+CLOUDVISFILTERS_EXPORT std::string ValidateExtentMemory(const int extent[6], int bytesPerVoxel = 4);
 
 // Empty when `scalars` can be rendered as a density (one component of float, unsigned char or
 // unsigned short), else the problem, naming the array.

@@ -292,6 +292,11 @@ std::string vtkCloudDensitySource::Validate() const
   return error;
 }
 
+std::string vtkCloudDensitySource::ValidateExtent(const int extent[6]) const
+{
+  return cloudvis::ValidateExtentMemory(extent);
+}
+
 int vtkCloudDensitySource::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -371,6 +376,12 @@ int vtkCloudDensitySource::RequestData(
   vtkImageData* output = vtkImageData::GetData(outInfo);
   int extent[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+  const std::string memoryError = this->ValidateExtent(extent);
+  if (!memoryError.empty())
+  {
+    vtkErrorMacro(<< memoryError);
+    return 0;
+  }
   double origin[3], spacing[3];
   cloudvis::LatticeFromBounds(this->Dimensions, this->Bounds, origin, spacing);
 

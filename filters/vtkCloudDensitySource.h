@@ -10,10 +10,10 @@
  * and docs/scene-format.md.
  *
  * Pipeline manners: the source produces any requested sub-extent (a field assembled from
- * pieces is bit-identical to the whole), publishes TIME_STEPS and TIME_RANGE and answers
- * UPDATE_TIME_STEP, reports progress and honours AbortExecute. The voxel loop runs under
- * vtkSMPTools; a voxel's value depends only on its index and the parameters, never on the
- * number of threads or the SMP backend.
+ * pieces is bit-identical to the whole; only the requested extent must fit in memory), publishes
+ * TIME_STEPS and TIME_RANGE and answers UPDATE_TIME_STEP, reports progress and honours
+ * AbortExecute. The voxel loop runs under vtkSMPTools; a voxel's value depends only on its index
+ * and the parameters, never on the number of threads or the SMP backend.
  */
 #ifndef vtkCloudDensitySource_h
 #define vtkCloudDensitySource_h
@@ -254,10 +254,19 @@ public:
   ///@}
 
   /**
-   * Empty when the current parameters describe a field that can be generated, else the
-   * problem, in words.
+   * Empty when the current parameters describe a field that can be generated (its geometry,
+   * shapes, noise range and time steps), else the problem, in words. The memory the field needs
+   * is not checked here: it depends on the extent requested (ValidateExtent).
    */
   std::string Validate() const;
+
+  /**
+   * Empty when the voxels of `extent` (a sub-extent of the whole, as UPDATE_EXTENT requests it)
+   * fit in the memory available, else the problem, stating how much they need. RequestData checks
+   * the update extent with it before allocating, so a process that generates one piece of a
+   * field larger than its memory (cloudvis generate under mpirun) needs only the piece's memory.
+   */
+  std::string ValidateExtent(const int extent[6]) const;
 
 protected:
   vtkCloudDensitySource();

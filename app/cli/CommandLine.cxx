@@ -4,6 +4,7 @@
 #include "CommandLine.h"
 
 #include "Errors.h"
+#include "ProcessGroup.h"
 #include "Utf8.h"
 
 #include <algorithm>
@@ -305,6 +306,14 @@ int RunCommandLine(const std::vector<std::string>& arguments,
                                       : "unknown command \"" + name + "\"; commands: " + CommandNames());
     }
     hint = "run 'cloudvis " + command->Name + " --help' for usage";
+    // Every rank of an MPI job runs the whole command: only generate shares its work out
+    // (FieldPieces.h); any other command would write the same files from every rank.
+    if (LaunchedProcesses() > 1 && command->Name != "generate")
+    {
+      throw UsageError(command->Name + ": only generate runs in several MPI processes; this is " +
+        "one of " + std::to_string(LaunchedProcesses()) + " started by mpirun: run " +
+        command->Name + " without mpirun");
+    }
     Arguments parsed =
       ParseArguments(*command, std::vector<std::string>(arguments.begin() + 2, arguments.end()));
     parsed.CommandLine = arguments;

@@ -13,14 +13,21 @@
 #include "Errors.h"
 #include "ExportCommands.h"
 #include "FieldIO.h"
+#include "FieldPieces.h"
 #include "FieldStatistics.h"
+#include "FileNames.h"
 #include "ImageWriters.h"
 #include "OffscreenRender.h"
+#include "ProcessGroup.h"
 #include "Progress.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "VtkMessageCapture.h"
+#include "vtkCloudDensitySource.h"
 
 #include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -65,26 +72,112 @@ nlohmann::json ParseSizeOption(const std::string& command, const std::string& te
   return nlohmann::json::array({ std::stoi(match[1]), std::stoi(match[2]) });
 }
 
-void RefuseFieldKeys(const std::string& command, const std::string& fieldFile,
-  const std::vector<std::string>& assignments)
+const std::vector<OptionSpec> FieldFileOptions = {
+  { "field-format",
+    0,
+    "NAME",
+    "read the field file operand as this format, whatever its extension: one of " +
+      FieldFormatIds() + "; overrides field.format" },
+  { "array",
+    0,
+    "NAME",
+    "the grid (OpenVDB), variable (NetCDF) or point array (.vti, .pvti) to read from the field "
+    "file; overrides field.array" },
+  { "time-step",
+    0,
+    "N",
+    "the time step to read from a NetCDF field file, from 0; overrides field.time_step" },
+};
+
+int ParseCount(const std::string& command,
+  const std::string& option,
+  const std::string& text,
+  const std::string& unit)
 {
-  for (const std::string& assignment : assignments)
+  static const std::regex form("[0-9]{1,6}");
+  if (!std::regex_match(text, form) || std::stoi(text) < 1)
   {
-    if (assignment.rfind("field", 0) == 0 &&
-      (assignment.size() == 5 || assignment[5] == '.' || assignment[5] == '='))
+    throw UsageError(command + ": --" + option + " expects a number of " + unit +
+      " in [1, 999999], got \"" + text + "\"");
+  }
+  return std::stoi(text);
+}
+
+bool IsFieldOperand(const std::string& input, const Arguments& arguments)
+{
+  return IsFieldFile(input) || arguments.Has("field-format");
+}
+
+void AddFieldFileOverrides(const Arguments& arguments, std::vector<SceneOverride>& overrides)
+{
+  const std::pair<const char*, const char*> options[] = { { "field-format", "field.format" },
+    { "array", "field.array" },
+    { "time-step", "field.time_step" } };
+  for (const auto& option : options)
+  {
+    if (arguments.Has(option.first))
     {
-      throw UsageError(command + ": --set " + assignment.substr(0, assignment.find('=')) +
-        " does not apply to the field file " + fieldFile + "; only scenes have field keys");
+      overrides.push_back({ option.second,
+        ParseOverrideValue(option.second, arguments.Value(option.first)),
+        std::string("--") + option.first });
     }
   }
+}
+
+Scene LoadOperandScene(const std::string& command,
+  const std::string& input,
+  const Arguments& arguments,
+  std::vector<SceneOverride> overrides,
+  bool fieldKeysOnly)
+{
+  AddFieldFileOverrides(arguments, overrides);
+  const std::vector<std::string> assignments = arguments.Values("set");
+  if (!IsFieldOperand(input, arguments))
+  {
+    return LoadScene(input, assignments, overrides);
+  }
+  // A field file has no procedural parameters; with `fieldKeysOnly` (info) nothing but how it
+  // is read applies.
+  const std::vector<std::string>& fileKeys = FieldFileKeyNames();
+  for (const std::string& assignment : assignments)
+  {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    const bool fieldKey = key == "field" || key.rfind("field.", 0) == 0;
+    const std::string member =
+      fieldKey && key.size() > 6 ? key.substr(6, key.find('.', 6) - 6) : "";
+    const bool fileKey =
+      std::find(fileKeys.begin(), fileKeys.end(), member) != fileKeys.end() && member != "file";
+    if (fieldKey ? !fileKey : fieldKeysOnly)
+    {
+      std::string allowed;
+      for (const std::string& name : fileKeys)
+      {
+        allowed += name == "file" ? "" : (allowed.empty() ? "field." : ", field.") + name;
+      }
+      throw UsageError(command + ": --set " + key + " does not apply to the field file " + input +
+        "; for a field file it takes only " + allowed +
+        (fieldKeysOnly ? "" : " and the keys of the other sections"));
+    }
+  }
+  return LoadFieldFileScene(input, assignments, overrides);
 }
 
 namespace
 {
 
-const OptionSpec OutputOption{ "output", 'o', "FIELD.vti",
-  "write the field to this file (VTK XML image data, zlib-compressed); required", false,
+const OptionSpec OutputOption{ "output",
+  'o',
+  "FIELD.vti",
+  "write the field to this file: .vti (VTK XML image data, zlib-compressed), .pvti (pieces, "
+  "see --pieces) or .vdb (an OpenVDB float grid \"density\"); required",
+  false,
   true };
+const OptionSpec PiecesOption{ "pieces",
+  0,
+  "N",
+  "with a .pvti output: write the field as N pieces FIELD_0.vti .. FIELD_<N-1>.vti beside it "
+  "(default: 1, or the number of MPI processes under mpirun); a procedural field is generated "
+  "one piece at a time" };
 const OptionSpec JsonOption{ "json", 0, "", "print the statistics as one JSON object" };
 const OptionSpec ImageOutputOption{ "output", 'o', "IMAGE.png",
   "write the rendered image to this file: .png (8-bit RGB unless --png-bits 16 or "
@@ -115,6 +208,37 @@ std::string DescribeDimensions(vtkImageData* field)
   return std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " + std::to_string(d[2]);
 }
 
+// A procedural field, made one piece (extent) at a time by the scene's source.
+PieceProducer ProceduralPieces(const Scene& scene, FieldLattice& lattice)
+{
+  vtkSmartPointer<vtkCloudDensitySource> source = MakeDensitySource(scene.Field);
+  const std::string problem = source->Validate();
+  if (!problem.empty())
+  {
+    throw InputError(scene.Source + ": field: " + problem);
+  }
+  source->UpdateInformation();
+  vtkInformation* information = source->GetOutputInformation(0);
+  information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), lattice.WholeExtent.data());
+  information->Get(vtkDataObject::ORIGIN(), lattice.Origin.data());
+  information->Get(vtkDataObject::SPACING(), lattice.Spacing.data());
+  const std::string name = scene.Source;
+  return [source, name](const Extent& extent)
+  {
+    VtkMessageCapture messages;
+    source->UpdateExtent(extent.data());
+    vtkImageData* output = source->GetOutput();
+    if (!messages.Messages().empty() || !output || output->GetNumberOfPoints() == 0)
+    {
+      throw InputError(name + ": field: generation failed" +
+        (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    }
+    auto piece = vtkSmartPointer<vtkImageData>::New();
+    piece->ShallowCopy(output);
+    return piece;
+  };
+}
+
 int Generate(const Arguments& arguments, std::ostream& out)
 {
   if (!arguments.Has("output"))
@@ -122,25 +246,61 @@ int Generate(const Arguments& arguments, std::ostream& out)
     throw UsageError("generate: missing the output file: -o FIELD.vti");
   }
   const std::string output = arguments.Value("output");
+  const bool parallelFile = LowerCaseExtension(output) == ".pvti";
+  if (arguments.Has("pieces") && !parallelFile)
+  {
+    throw UsageError("generate: --pieces applies to a .pvti output only, not to " + output);
+  }
+  const int requestedPieces = arguments.Has("pieces")
+    ? ParseCount("generate", "pieces", arguments.Value("pieces"), "pieces")
+    : 0;
+  // MPI, when mpirun started this process: every rank runs this command with the same arguments.
+  const ProcessGroup processes;
+  if (processes.Size() > 1 && !parallelFile)
+  {
+    throw UsageError("generate: under mpirun the output is written in pieces: give it a .pvti "
+                     "name (got " +
+      output + ")");
+  }
   // Before the work: a bad -o should not cost a field's generation time.
   CheckFieldOutput(output);
-  const std::string scenePath = arguments.Operands.empty() ? "" : arguments.Operands[0];
-  const Scene scene = LoadScene(scenePath, arguments.Values("set"));
-  const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
-  WriteField(field, output);
-  out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
-  return ExitSuccess;
-}
-
-int ParseFrameCount(const std::string& option, const std::string& text)
-{
-  static const std::regex form("[0-9]{1,6}");
-  if (!std::regex_match(text, form) || std::stoi(text) < 1)
+  const std::string input = arguments.Operands.empty() ? "" : arguments.Operands[0];
+  const Scene scene = LoadOperandScene("generate", input, arguments, {});
+  if (!parallelFile)
   {
-    throw UsageError("render: --" + option + " expects a number of frames in [1, 999999], got \"" +
-      text + "\"");
+    const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
+    WriteField(field, output, { ResolvedSceneJson(scene, field) });
+    out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
+    return ExitSuccess;
   }
-  return std::stoi(text);
+  const int pieces = requestedPieces > 0 ? requestedPieces : processes.Size();
+  FieldLattice lattice;
+  if (scene.Field.FromFile())
+  {
+    // A field file is read whole by every process, which writes its own pieces of it.
+    const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
+    lattice = LatticeOf(field);
+    WriteFieldPieces(field, output, pieces, processes.Controller());
+  }
+  else
+  {
+    // A procedural field is generated piece by piece, each process its own pieces.
+    const PieceProducer produce = ProceduralPieces(scene, lattice);
+    WriteFieldPieces(lattice, output, pieces, produce, processes.Controller());
+  }
+  if (processes.Rank() == 0)
+  {
+    const Extent& e = lattice.WholeExtent;
+    out << "wrote " << output << " (" << e[1] - e[0] + 1 << " x " << e[3] - e[2] + 1 << " x "
+        << e[5] - e[4] + 1 << " voxels in " << pieces << " piece" << (pieces == 1 ? "" : "s")
+        << ", " << PieceSource(output, 0) << " .. " << PieceSource(output, pieces - 1);
+    if (processes.Size() > 1)
+    {
+      out << ", written by " << processes.Size() << " MPI processes";
+    }
+    out << ")\n";
+  }
+  return ExitSuccess;
 }
 
 void MakeDirectory(const std::string& directory)
@@ -165,27 +325,13 @@ SceneInput LoadSceneInput(const std::string& command, const Arguments& arguments
   const std::function<void(double)>& generationProgress = {})
 {
   const std::string& input = arguments.Operands[0];
-  const bool fieldFile = IsFieldFile(input);
-  const std::vector<std::string> assignments = arguments.Values("set");
-  if (fieldFile)
-  {
-    RefuseFieldKeys(command, input, assignments);
-  }
   CheckImageOutput(output);
-  SceneInput loaded{ LoadScene(fieldFile ? "" : input, assignments, options), nullptr };
+  SceneInput loaded{ LoadOperandScene(command, input, arguments, options), nullptr };
   if (needsDisplay)
   {
     RequireDisplay("cloudvis " + command + " ...");
   }
-  if (fieldFile)
-  {
-    loaded.Loaded.Field.File = input;
-    loaded.Field = ReadField(input);
-  }
-  else
-  {
-    loaded.Field = ProduceField(loaded.Loaded, generationProgress);
-  }
+  loaded.Field = ProduceField(loaded.Loaded, generationProgress);
   return loaded;
 }
 
@@ -197,8 +343,9 @@ int Render(const Arguments& arguments, std::ostream& out)
   }
   const std::string output = arguments.Value("output");
   const std::string& input = arguments.Operands[0];
-  const int benchmarkFrames =
-    arguments.Has("benchmark") ? ParseFrameCount("benchmark", arguments.Value("benchmark")) : 0;
+  const int benchmarkFrames = arguments.Has("benchmark")
+    ? ParseCount("render", "benchmark", arguments.Value("benchmark"), "frames")
+    : 0;
   std::vector<SceneOverride> options;
   if (arguments.Has("lighting"))
   {
@@ -354,27 +501,17 @@ int Compare(const Arguments& arguments, std::ostream& out)
 int Info(const Arguments& arguments, std::ostream& out)
 {
   const std::string& input = arguments.Operands[0];
-  vtkSmartPointer<vtkImageData> field;
-  if (IsFieldFile(input))
-  {
-    if (arguments.Has("set"))
-    {
-      throw UsageError("info: --set applies to scenes, not to the field file " + input);
-    }
-    field = ReadField(input);
-  }
-  else
-  {
-    field = ProduceField(LoadScene(input, arguments.Values("set")));
-  }
+  const Scene scene = LoadOperandScene("info", input, arguments, {}, true);
+  FieldReport source;
+  const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &source);
   const FieldStatistics statistics = ComputeFieldStatistics(field);
   if (arguments.Has("json"))
   {
-    out << FieldStatisticsToJson(statistics, input).dump(2) << "\n";
+    out << FieldStatisticsToJson(statistics, input, &source).dump(2) << "\n";
   }
   else
   {
-    PrintFieldStatistics(out, statistics, input);
+    PrintFieldStatistics(out, statistics, input, &source);
   }
   return ExitSuccess;
 }
@@ -432,44 +569,57 @@ const std::vector<CommandSpec>& Commands()
 {
   static const std::vector<CommandSpec> commands = {
     { "generate",
-      "[SCENE]",
+      "[SCENE|FIELD]",
       0,
       1,
-      "generate a scene's density field and write it to a .vti file",
+      "generate a scene's density field and write it to a .vti, .pvti or .vdb file",
       "SCENE is a scene file (JSON, see docs/scene-format.md); without it the default scene is\n"
-      "used (a unit sphere plus 6 octaves of value noise on 128^3 voxels). If the scene's field\n"
-      "names a field file (" +
+      "used (a unit sphere plus 6 octaves of value noise on 128^3 voxels). A field file (" +
         FieldFileExtensions() +
-        "), that file is loaded, checked and written\n"
-        "out as a float \"density\" field. The output (a .vti name) is written to a temporary "
-        "file\n"
-        "next to FIELD.vti and renamed over it once complete: on failure FIELD.vti is left as it "
-        "was.",
-      { OutputOption, SetOption, HelpOption },
+        ", or any name with --field-format) is read and written out again, converted: a float\n"
+        "\"density\" field (docs/data.md). The output is written to a temporary file next to it\n"
+        "and renamed over it once complete: on failure it is left as it was. A .pvti is written\n"
+        "as pieces, the .pvti last; under mpirun each process generates and writes its own\n"
+        "pieces (mpirun -np 4 cloudvis generate scene.json -o big.pvti).",
+      { OutputOption,
+        PiecesOption,
+        SetOption,
+        FieldFileOptions[0],
+        FieldFileOptions[1],
+        FieldFileOptions[2],
+        HelpOption },
       Generate },
     { "info",
-      "FIELD.vti|SCENE",
+      "FIELD|SCENE",
       1,
       1,
-      "print statistics of a .vti field or of a scene's field",
+      "print what a field file holds, or a scene's field: geometry, statistics, how it was read",
       "An argument ending in a field extension (" + FieldFileExtensions() +
-        ", in any case) is\n"
-        "read as a field; anything else is a scene file whose field is generated (or loaded). "
-        "Prints dimensions, spacing, bounds (origin .. origin +\n"
-        "(n-1) spacing), value range, mean, the fraction of non-empty voxels (density > 0) and a\n"
-        "16-bin histogram over [min, max]. --set applies to scenes only.",
-      { JsonOption, SetOption, HelpOption },
+        ", in any case), or any\n"
+        "argument with --field-format, is read as a field; anything else is a scene file whose\n"
+        "field is generated (or loaded). Prints how the file was read (format, grid or variable,\n"
+        "units, time step, resampling), dimensions, spacing, origin, direction, bounds, value\n"
+        "range, mean, the fraction of non-empty voxels (density > 0) and a 16-bin histogram over\n"
+        "[min, max]. With a field file, --set takes only the keys that say how it is read\n"
+        "(field.format, field.array, field.time_step, field.max_voxels, field.raw).",
+      { JsonOption,
+        SetOption,
+        FieldFileOptions[0],
+        FieldFileOptions[1],
+        FieldFileOptions[2],
+        HelpOption },
       Info },
     { "render",
-      "SCENE|FIELD.vti",
+      "SCENE|FIELD",
       1,
       1,
-      "render a scene or a .vti field off screen to a PNG image",
+      "render a scene or a field file off screen to a PNG image",
       "An argument ending in a field extension (" + FieldFileExtensions() +
-        ", in any case) is a\n"
-        "field file, rendered with the default scene's transfer\n"
-        "function, camera, background and render settings (--set may change those, not field\n"
-        "keys); anything else is a scene file. The image is render.size pixels, the average of\n"
+        ", in any case), or any\n"
+        "argument with --field-format, is a field file (docs/data.md), rendered with the default\n"
+        "scene's transfer function, camera, background and render settings (--set may change\n"
+        "those, and how the file is read, not procedural field keys); anything else is a scene\n"
+        "file. The image is render.size pixels, the average of\n"
         "render.accumulate jittered frames, written as 8-bit RGB through a temporary file renamed\n"
         "over IMAGE.png. Rendering needs an X display: without one, run it under Xvfb,\n"
         "xvfb-run -a cloudvis render ...",
@@ -483,10 +633,13 @@ const std::vector<CommandSpec>& Commands()
         TransparentOption,
         QuietOption,
         SetOption,
+        FieldFileOptions[0],
+        FieldFileOptions[1],
+        FieldFileOptions[2],
         HelpOption },
       Render },
     { "compare",
-      "SCENE|FIELD.vti",
+      "SCENE|FIELD",
       1,
       1,
       "render lighting models side by side on one field and camera, with their frame times",
@@ -501,6 +654,9 @@ const std::vector<CommandSpec>& Commands()
         CompareLightingOption,
         DifferenceOption,
         SetOption,
+        FieldFileOptions[0],
+        FieldFileOptions[1],
+        FieldFileOptions[2],
         HelpOption },
       Compare },
     AnimateCommand(),

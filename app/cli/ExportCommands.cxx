@@ -61,17 +61,6 @@ bool ParseNumber(const std::string& text, double& value)
   return *end == '\0' && std::isfinite(value);
 }
 
-int ParseFrames(const std::string& text)
-{
-  static const std::regex form("[0-9]{1,6}");
-  if (!std::regex_match(text, form) || std::stoi(text) < 1)
-  {
-    throw UsageError(
-      "animate: --frames expects a number of frames in [1, 999999], got \"" + text + "\"");
-  }
-  return std::stoi(text);
-}
-
 void ParseTimeRange(const std::string& text, AnimationRequest& request)
 {
   const auto colon = text.find(':');
@@ -94,7 +83,7 @@ int Animate(const Arguments& arguments, std::ostream& out)
     throw UsageError("animate: missing the number of frames: --frames N");
   }
   AnimationRequest request;
-  request.Frames = ParseFrames(arguments.Value("frames"));
+  request.Frames = ParseCount("animate", "frames", arguments.Value("frames"), "frames");
   if (arguments.Has("turntable") == arguments.Has("time"))
   {
     throw UsageError("animate: give exactly one motion: --turntable or --time T0:T1");

@@ -57,12 +57,7 @@ int View(const Arguments& arguments, std::ostream& out)
     return ExitSuccess;
   }
   const std::string input = arguments.Operands.empty() ? "" : arguments.Operands[0];
-  const bool fieldFile = IsFieldFile(input);
-  const std::vector<std::string> assignments = arguments.Values("set");
-  if (fieldFile)
-  {
-    RefuseFieldKeys("view", input, assignments);
-  }
+  const bool fieldFile = !input.empty() && IsFieldOperand(input, arguments);
   ViewerOptions options;
   const std::string saveOnExit = arguments.Value("save-scene-on-exit");
   const std::string windowImage = arguments.Value("window-image");
@@ -101,7 +96,7 @@ int View(const Arguments& arguments, std::ostream& out)
   }
   options.CommandLine = QuoteCommandLine(arguments.CommandLine);
 
-  Scene scene = LoadScene(fieldFile ? "" : input, assignments);
+  Scene scene = LoadOperandScene("view", input, arguments, {});
   if (arguments.Has("size"))
   {
     options.WindowSize = ParseWindowSize(arguments.Value("size"));
@@ -112,17 +107,12 @@ int View(const Arguments& arguments, std::ostream& out)
     options.WindowSize = { { scene.Render.Size[0], scene.Render.Size[1] * 4 / 3 } };
   }
   RequireDisplay("cloudvis view ...");
-  vtkSmartPointer<vtkImageData> field;
   if (fieldFile)
   {
     // Absolute, so that a saved scene finds the field wherever the scene is kept.
     scene.Field.File = Absolute(input);
-    field = ReadField(input);
   }
-  else
-  {
-    field = ProduceField(scene);
-  }
+  const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
   Viewer viewer(scene, field, options);
   if (!play.empty())
   {
@@ -189,6 +179,9 @@ CommandSpec ViewCommand()
         "tools; docs/viewer.md)" },
       { "keys", 0, "", "print the key bindings (a Markdown table) and exit" },
       SetOption,
+      FieldFileOptions[0],
+      FieldFileOptions[1],
+      FieldFileOptions[2],
       HelpOption },
     View };
 }

@@ -1,17 +1,21 @@
-// The table of field formats, the conversion every reader's image goes through, and the .vti
-// writer. The readers themselves live with their formats (VtkXmlImageFiles.cxx for .vti and
-// .pvti).
+// The table of field formats, the checks of read options against a format, the conversion every
+// reader's image goes through, and the writers. The readers themselves live with their formats:
+// VtkXmlImageFiles.cxx (.vti, .pvti), VtkImageFiles.cxx (raw, NRRD, MetaImage), NetCdfFiles.cxx
+// (NetCDF), OpenVdbFiles.cxx (OpenVDB, reader and writer).
 #include "FieldIO.h"
 
 #include "AtomicFile.h"
 #include "Errors.h"
+#include "FieldFormatReaders.h"
+#include "FieldPieces.h"
 #include "FileNames.h"
+#include "Schema.h" // Join
 #include "VtkMessageCapture.h"
-#include "VtkXmlImageFiles.h"
 
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkMatrix3x3.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkXMLImageDataWriter.h>
@@ -24,15 +28,28 @@ namespace cloudvis
 namespace
 {
 
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
-
-// The array a density is taken from: "density" by name, else whatever the file marks as scalars.
-vtkDataArray* DensityArray(vtkImageData* image)
+// The array a density is taken from: `name` when the reader named one, else "density" by name,
+// else whatever the file marks as scalars.
+vtkDataArray* DensityArray(const std::string& path, vtkImageData* image, const std::string& name)
 {
   vtkPointData* points = image->GetPointData();
+  if (!name.empty())
+  {
+    vtkDataArray* named = points->GetArray(name.c_str());
+    if (!named)
+    {
+      std::string names;
+      for (int i = 0; i < points->GetNumberOfArrays(); ++i)
+      {
+        const char* arrayName = points->GetArrayName(i);
+        names += std::string(names.empty() ? "" : ", ") + (arrayName ? arrayName : "(unnamed)");
+      }
+      Fail(path,
+        "no point array named \"" + name + "\" (field.array); the file's point arrays: " +
+          (names.empty() ? std::string("none") : names));
+    }
+    return named;
+  }
   if (vtkDataArray* named = points->GetArray("density"))
   {
     return named;
@@ -42,13 +59,21 @@ vtkDataArray* DensityArray(vtkImageData* image)
 
 // The density field of an image a reader returned: its geometry and one float array "density",
 // after checking the array is one the renderer can use.
-vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path, vtkImageData* image)
+vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path,
+  vtkImageData* image,
+  const std::string& arrayName,
+  std::uint64_t maximumVoxels)
 {
   if (image->GetNumberOfPoints() == 0)
   {
     Fail(path, "the image has no voxels");
   }
-  vtkDataArray* array = DensityArray(image);
+  // Every reader checks the size before it allocates; this catches a reader that could not.
+  if (std::uint64_t(image->GetNumberOfPoints()) > maximumVoxels)
+  {
+    Fail(path, TooManyVoxels(image->GetDimensions(), maximumVoxels));
+  }
+  vtkDataArray* array = DensityArray(path, image, arrayName);
   if (!array)
   {
     Fail(path, "no point array named \"density\" and no active point scalars");
@@ -91,6 +116,27 @@ vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path, vtkImageDa
         " values that are NaN or infinite");
   }
 
+  // The lattice's axes must be perpendicular unit vectors (a rotation, or a reflection), as VTK's
+  // direction cosines are meant to be, though VTK accepts any matrix. Checked here once for every
+  // format: a .vti's Direction, NRRD's space directions, MetaImage's TransformMatrix and OpenVDB's
+  // affine map alike.
+  const double* d = image->GetDirectionMatrix()->GetData();
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      const double dot = d[a] * d[b] + d[3 + a] * d[3 + b] + d[6 + a] * d[6 + b];
+      if (!(std::fabs(dot - (a == b ? 1.0 : 0.0)) <= 1e-6))
+      {
+        Fail(path,
+          "the image's direction matrix is not a rotation: its axes must be perpendicular unit "
+          "vectors (axes " +
+            std::to_string(a) + " and " + std::to_string(b) + " have a dot product of " +
+            std::to_string(dot) + ")");
+      }
+    }
+  }
+
   // A new image with just the geometry and the density, so arrays of other meanings in the file
   // do not travel on as if they were ours.
   vtkSmartPointer<vtkImageData> field = vtkSmartPointer<vtkImageData>::New();
@@ -102,13 +148,70 @@ vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path, vtkImageDa
   return field;
 }
 
+const FieldFormat& FormatFor(const std::string& path, const FieldReadOptions& options)
+{
+  if (!options.Format.empty())
+  {
+    if (const FieldFormat* format = FindFieldFormatById(options.Format))
+    {
+      return *format;
+    }
+    Fail(path,
+      "unknown field format \"" + options.Format +
+        "\" (field.format); formats: " + FieldFormatIds());
+  }
+  if (const FieldFormat* format = FindFieldFormat(path))
+  {
+    return *format;
+  }
+  const std::string extension = LowerCaseExtension(path);
+  Fail(path,
+    (extension.empty() ? std::string("the file name has no field extension")
+                       : "unsupported field format \"" + extension + "\"") +
+      "; supported: " + FieldFileExtensions() + " (or name the format with field.format)");
+}
+
+// The writers, by the extension of the output.
+struct FieldWriter
+{
+  std::string Extension;
+  void (*Write)(vtkImageData* field, const std::string& path, const FieldMetadata& metadata);
+};
+
+const std::vector<FieldWriter>& FieldWriters()
+{
+  static const std::vector<FieldWriter> writers = {
+    { ".vti",
+      [](vtkImageData* field, const std::string& path, const FieldMetadata&)
+      {
+        WriteFileAtomically(path,
+          [field, &path](const std::string& temporary)
+          { WriteVtkXmlImageFile(field, temporary, path); });
+      } },
+    { ".pvti",
+      [](vtkImageData* field, const std::string& path, const FieldMetadata&)
+      { WriteFieldPieces(field, path, 1); } },
+    { ".vdb", WriteOpenVdbFile },
+  };
+  return writers;
+}
+
 } // namespace
 
 const std::vector<FieldFormat>& FieldFormats()
 {
   static const std::vector<FieldFormat> formats = {
-    { "VTK XML image data", { ".vti" }, ReadVtkXmlImageFile },
-    { "VTK XML parallel image data", { ".pvti" }, ReadVtkXmlParallelImageFile },
+    { "vti", "VTK XML image data", { ".vti" }, TakesArray, ReadVtkXmlImageFile },
+    { "pvti", "VTK XML parallel image data", { ".pvti" }, TakesArray, ReadVtkXmlParallelImageFile },
+    { "vdb", "OpenVDB", { ".vdb" }, TakesArray, ReadOpenVdbFile },
+    { "netcdf",
+      "NetCDF (CF conventions)",
+      { ".nc", ".nc4", ".cdf" },
+      TakesArray | TakesTimeStep,
+      ReadNetCdfFile },
+    { "nrrd", "NRRD", { ".nrrd", ".nhdr" }, 0, ReadNrrdFile },
+    { "metaimage", "MetaImage", { ".mha", ".mhd" }, 0, ReadMetaImageFile },
+    { "raw", "raw volume", { ".raw" }, TakesRawLayout, ReadRawFile },
   };
   return formats;
 }
@@ -127,6 +230,28 @@ const FieldFormat* FindFieldFormat(const std::string& path)
   return nullptr;
 }
 
+const FieldFormat* FindFieldFormatById(const std::string& id)
+{
+  for (const FieldFormat& format : FieldFormats())
+  {
+    if (format.Id == id)
+    {
+      return &format;
+    }
+  }
+  return nullptr;
+}
+
+std::string FieldFormatIds()
+{
+  std::vector<std::string> ids;
+  for (const FieldFormat& format : FieldFormats())
+  {
+    ids.push_back(format.Id);
+  }
+  return schema::Join(ids);
+}
+
 bool IsFieldFile(const std::string& path)
 {
   return FindFieldFormat(path) != nullptr;
@@ -134,62 +259,142 @@ bool IsFieldFile(const std::string& path)
 
 std::string FieldFileExtensions()
 {
-  std::string list;
+  std::vector<std::string> extensions;
   for (const FieldFormat& format : FieldFormats())
   {
-    for (const std::string& extension : format.Extensions)
-    {
-      list += (list.empty() ? "" : ", ") + extension;
-    }
+    extensions.insert(extensions.end(), format.Extensions.begin(), format.Extensions.end());
   }
-  return list;
+  return schema::Join(extensions);
 }
 
-vtkSmartPointer<vtkImageData> ReadField(const std::string& path)
+std::vector<std::string> RawTypeNames()
 {
-  const FieldFormat* format = FindFieldFormat(path);
+  std::vector<std::string> names;
+  for (const RawType& type : RawTypes())
+  {
+    names.emplace_back(type.Name);
+  }
+  return names;
+}
+
+std::optional<FieldOptionProblem> CheckFieldReadOptions(const std::string& path,
+  const FieldReadOptions& options)
+{
+  const FieldFormat* format =
+    options.Format.empty() ? FindFieldFormat(path) : FindFieldFormatById(options.Format);
   if (!format)
   {
-    const std::string extension = LowerCaseExtension(path);
-    Fail(path,
-      (extension.empty() ? std::string("the file name has no field extension")
-                         : "unsupported field format \"" + extension + "\"") +
-        "; supported: " + FieldFileExtensions());
+    return options.Format.empty()
+      ? FieldOptionProblem{ "file",
+          "\"" + path + "\" is not a field file: supported extensions (in any case) are " +
+            FieldFileExtensions() + "; field.format names the format of a file with another name" }
+      : FieldOptionProblem{ "format",
+          "unknown format \"" + options.Format + "\"; allowed: " + FieldFormatIds() };
   }
-  const vtkSmartPointer<vtkImageData> image = format->Read(path);
-  return DensityFieldOf(path, image);
+  const std::string of = " (" + format->Name + ")";
+  if (!options.Array.empty() && !(format->Options & TakesArray))
+  {
+    return FieldOptionProblem{ "array", "a " + format->Id + " file" + of + " holds one array" };
+  }
+  if (options.TimeStep && !(format->Options & TakesTimeStep))
+  {
+    return FieldOptionProblem{ "time_step",
+      "a " + format->Id + " file" + of + " holds one time step" };
+  }
+  const bool rawGiven = options.Raw.Dimensions[0] > 0;
+  if (format->Options & TakesRawLayout)
+  {
+    if (!rawGiven)
+    {
+      return FieldOptionProblem{ "raw.dimensions",
+        "missing; a raw file does not state its dimensions: give field.raw.dimensions (and "
+        "field.raw.type, byte_order, spacing, origin where they differ from the defaults)" };
+    }
+  }
+  else if (rawGiven)
+  {
+    return FieldOptionProblem{ "raw",
+      "applies to raw files only; a " + format->Id + " file" + of + " states its own layout" };
+  }
+  return std::nullopt;
+}
+
+vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
+  const FieldReadOptions& options,
+  FieldReport* report)
+{
+  const FieldFormat& format = FormatFor(path, options);
+  if (const std::optional<FieldOptionProblem> problem = CheckFieldReadOptions(path, options))
+  {
+    Fail(path, "field." + problem->Key + ": " + problem->Problem);
+  }
+  const FieldFileContents contents = format.Read(path, options);
+  vtkSmartPointer<vtkImageData> field =
+    DensityFieldOf(path, contents.Image, contents.Array, options.MaximumVoxels);
+  if (report)
+  {
+    *report = contents.Report;
+    report->Format = format.Name;
+  }
+  return field;
+}
+
+std::string FieldOutputExtensions()
+{
+  std::vector<std::string> extensions;
+  for (const FieldWriter& writer : FieldWriters())
+  {
+    extensions.push_back(writer.Extension);
+  }
+  return schema::Join(extensions);
 }
 
 void CheckFieldOutput(const std::string& path)
 {
   CheckOutputTarget(path); // first: "it is a directory" says more than a missing extension
-  if (LowerCaseExtension(path) != ".vti")
+  const std::string extension = LowerCaseExtension(path);
+  const auto& writers = FieldWriters();
+  if (std::none_of(writers.begin(),
+        writers.end(),
+        [&extension](const FieldWriter& writer) { return writer.Extension == extension; }))
   {
-    Fail(path, "fields are written as VTK XML image data: give the output a .vti name");
+    Fail(path,
+      "fields are written as VTK XML image data (.vti), parallel image data with pieces (.pvti) "
+      "or OpenVDB (.vdb): give the output one of the extensions " +
+        FieldOutputExtensions());
   }
 }
 
-void WriteField(vtkImageData* field, const std::string& path)
+void WriteField(vtkImageData* field, const std::string& path, const FieldMetadata& metadata)
 {
   CheckFieldOutput(path);
-  WriteFileAtomically(path,
-    [field, &path](const std::string& temporary)
+  const std::string extension = LowerCaseExtension(path);
+  for (const FieldWriter& writer : FieldWriters())
+  {
+    if (writer.Extension == extension)
     {
-      VtkMessageCapture messages;
-      vtkNew<vtkXMLImageDataWriter> writer;
-      writer->SetInputData(field);
-      writer->SetFileName(temporary.c_str());
-      // Raw appended binary (no base64) compressed with zlib: the smallest file VTK and
-      // ParaView read back exactly.
-      writer->SetDataModeToAppended();
-      writer->EncodeAppendedDataOff();
-      writer->SetCompressorTypeToZLib();
-      if (writer->Write() != 1 || writer->GetErrorCode() != 0)
-      {
-        const std::string summary = messages.Summary();
-        Fail(path, "cannot write the field" + (summary.empty() ? "" : " (VTK: " + summary + ")"));
-      }
-    });
+      writer.Write(field, path, metadata);
+      return;
+    }
+  }
+}
+
+void WriteVtkXmlImageFile(vtkImageData* field, const std::string& path, const std::string& target)
+{
+  VtkMessageCapture messages;
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(field);
+  writer->SetFileName(path.c_str());
+  // Raw appended binary (no base64) compressed with zlib: the smallest file VTK and
+  // ParaView read back exactly.
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+  {
+    const std::string summary = messages.Summary();
+    Fail(target, "cannot write the field" + (summary.empty() ? "" : " (VTK: " + summary + ")"));
+  }
 }
 
 } // namespace cloudvis

@@ -7,6 +7,7 @@
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
+#include <vtkMatrix3x3.h>
 #include <vtkPointData.h>
 
 #include <algorithm>
@@ -22,6 +23,10 @@ FieldStatistics ComputeFieldStatistics(vtkImageData* field, int bins)
   field->GetDimensions(s.Dimensions.data());
   field->GetSpacing(s.Spacing.data());
   field->GetOrigin(s.Origin.data());
+  for (int i = 0; i < 9; ++i)
+  {
+    s.Direction[std::size_t(i)] = field->GetDirectionMatrix()->GetData()[i];
+  }
   // Where the renderers put the voxels: the first voxel of the extent (origin, direction and
   // spacing applied), and the world box around the (possibly rotated) lattice.
   const VolumeGeometry geometry = GeometryOf(field, nullptr);
@@ -79,7 +84,34 @@ double HistogramEdge(const FieldStatistics& s, size_t bin)
   return s.Minimum + (s.Maximum - s.Minimum) * double(bin) / double(s.Histogram.size());
 }
 
-void PrintFieldStatistics(std::ostream& out, const FieldStatistics& s, const std::string& name)
+namespace
+{
+
+bool IsIdentity(const std::array<double, 9>& direction)
+{
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    if (direction[i] != (i % 4 == 0 ? 1.0 : 0.0))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// A report label as a JSON key: "time step" -> "time_step".
+std::string JsonKey(std::string label)
+{
+  std::replace(label.begin(), label.end(), ' ', '_');
+  return label;
+}
+
+} // namespace
+
+void PrintFieldStatistics(std::ostream& out,
+  const FieldStatistics& s,
+  const std::string& name,
+  const FieldReport* source)
 {
   const auto triple = [](const auto& v, const char* separator)
   {
@@ -89,8 +121,28 @@ void PrintFieldStatistics(std::ostream& out, const FieldStatistics& s, const std
   };
   out << std::setprecision(6);
   out << "field        " << name << "\n";
+  if (source)
+  {
+    out << "format       " << source->Format << "\n";
+    for (const auto& detail : source->Details)
+    {
+      out << std::left << std::setw(12) << detail.first << std::right << " " << detail.second
+          << "\n";
+    }
+  }
   out << "dimensions   " << triple(s.Dimensions, " x ") << " (" << s.Voxels << " voxels)\n";
   out << "spacing      " << triple(s.Spacing, " ") << "\n";
+  out << "origin       " << triple(s.Origin, " ") << " (the first voxel)\n";
+  if (IsIdentity(s.Direction))
+  {
+    out << "direction    identity (the lattice's axes are x, y, z)\n";
+  }
+  else
+  {
+    const auto& d = s.Direction;
+    out << "direction    axes i (" << d[0] << " " << d[3] << " " << d[6] << "), j (" << d[1] << " "
+        << d[4] << " " << d[7] << "), k (" << d[2] << " " << d[5] << " " << d[8] << ")\n";
+  }
   out << "bounds       [" << s.Bounds[0] << ", " << s.Bounds[1] << "] x [" << s.Bounds[2] << ", "
       << s.Bounds[3] << "] x [" << s.Bounds[4] << ", " << s.Bounds[5] << "]\n";
   out << "range        [" << s.Minimum << ", " << s.Maximum << "]\n";
@@ -115,19 +167,22 @@ void PrintFieldStatistics(std::ostream& out, const FieldStatistics& s, const std
   }
 }
 
-nlohmann::json FieldStatisticsToJson(const FieldStatistics& s, const std::string& name)
+nlohmann::json FieldStatisticsToJson(const FieldStatistics& s,
+  const std::string& name,
+  const FieldReport* source)
 {
   nlohmann::json edges = nlohmann::json::array();
   for (size_t b = 0; b <= s.Histogram.size(); ++b)
   {
     edges.push_back(HistogramEdge(s, b));
   }
-  return {
+  nlohmann::json json = {
     { "field", EscapeInvalidUtf8(name) }, // a path: any bytes
     { "dimensions", s.Dimensions },
     { "voxels", s.Voxels },
     { "spacing", s.Spacing },
     { "origin", s.Origin },
+    { "direction", s.Direction },
     { "bounds", s.Bounds },
     { "range", { s.Minimum, s.Maximum } },
     { "mean", s.Mean },
@@ -136,6 +191,31 @@ nlohmann::json FieldStatisticsToJson(const FieldStatistics& s, const std::string
     { "histogram",
       { { "bins", s.Histogram.size() }, { "edges", edges }, { "counts", s.Histogram } } },
   };
+  if (source)
+  {
+    // Names of grids, variables and paths in the details: any bytes.
+    nlohmann::json details = { { "format", source->Format } };
+    for (const auto& detail : source->Details)
+    {
+      // A label given more than once (one "resampled" line per axis) becomes a list.
+      nlohmann::json& entry = details[JsonKey(detail.first)];
+      const std::string text = EscapeInvalidUtf8(detail.second);
+      if (entry.is_null())
+      {
+        entry = text;
+      }
+      else
+      {
+        if (!entry.is_array())
+        {
+          entry = nlohmann::json::array({ entry });
+        }
+        entry.push_back(text);
+      }
+    }
+    json["source"] = details;
+  }
+  return json;
 }
 
 } // namespace cloudvis

@@ -341,10 +341,22 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   return scene;
 }
 
-Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments,
+const std::vector<std::string>& FieldFileKeyNames()
+{
+  static const std::vector<std::string> names = schema::KeyNames(schema::FieldFileKeys());
+  return names;
+}
+
+namespace
+{
+
+// LoadScene and LoadFieldFileScene: the assignments, then the options, applied to `document`.
+Scene SceneWithOverrides(json document,
+  const std::string& source,
+  const std::string& baseDirectory,
+  const std::vector<std::string>& assignments,
   const std::vector<SceneOverride>& options)
 {
-  json document = path.empty() ? json::object() : ReadSceneDocument(path);
   std::vector<std::string> keys;
   for (const std::string& assignment : assignments)
   {
@@ -355,8 +367,30 @@ Scene LoadScene(const std::string& path, const std::vector<std::string>& assignm
   {
     SetDocumentValue(document, option.Key, option.Value, option.Option);
   }
-  return SceneFromDocument(document, path.empty() ? "default scene" : path,
-    path.empty() ? "" : DirectoryOf(path), keys, options);
+  return SceneFromDocument(document, source, baseDirectory, keys, options);
+}
+
+} // namespace
+
+Scene LoadScene(const std::string& path,
+  const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options)
+{
+  return SceneWithOverrides(path.empty() ? json::object() : ReadSceneDocument(path),
+    path.empty() ? "default scene" : path,
+    path.empty() ? "" : DirectoryOf(path),
+    assignments,
+    options);
+}
+
+Scene LoadFieldFileScene(const std::string& path,
+  const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options)
+{
+  // The operand is field.file, set last so --set field.file cannot replace it.
+  std::vector<SceneOverride> all = options;
+  all.push_back({ "field.file", path, "the field file operand" });
+  return SceneWithOverrides(json::object(), path, "", assignments, all);
 }
 
 } // namespace cloudvis

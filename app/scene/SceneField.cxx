@@ -33,18 +33,27 @@ std::string ValidateProceduralField(const FieldSpec& field)
   return MakeDensitySource(field)->Validate();
 }
 
-vtkSmartPointer<vtkImageData> ProduceField(
-  const Scene& scene, const std::function<void(double fraction)>& progress)
+vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
+  const std::function<void(double fraction)>& progress,
+  FieldReport* report)
 {
   if (scene.Field.FromFile())
   {
-    return ReadField(scene.Field.File);
+    return ReadField(scene.Field.File, scene.Field.Read, report);
+  }
+  if (report)
+  {
+    *report = FieldReport{ "procedural (generated from the scene's field section)", {} };
   }
   vtkSmartPointer<vtkCloudDensitySource> source = MakeDensitySource(scene.Field);
   VtkMessageCapture messages;
-  // The scene was validated with the same checks the source applies, so this only fails on
-  // something unforeseen (memory exhausted between validation and allocation, for instance).
-  const std::string problem = source->Validate();
+  // The scene was validated with the same checks the source applies; what it could not check is
+  // the memory of the whole field, which is what is made here (generating pieces of it, as
+  // `generate -o f.pvti` does, needs only a piece's memory).
+  const std::array<int, 3>& d = scene.Field.Dimensions;
+  const int wholeExtent[6] = { 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1 };
+  std::string problem = source->Validate();
+  problem = problem.empty() ? source->ValidateExtent(wholeExtent) : problem;
   if (!problem.empty())
   {
     throw InputError(scene.Source + ": field: " + problem);

@@ -97,7 +97,7 @@ struct Table
   }
 };
 
-// key | type | default | allowed: the keys of `keys` that `keep` accepts, named with `prefix`.
+// key | type | default | allowed: the keys of `keys`, named with `prefix`.
 // For a typed object (a shape, a light), `types` are the values of its "type": a column after
 // the key says which of them take it.
 template<typename S>
@@ -105,7 +105,6 @@ Table KeyTable(const std::string& name,
   const Keys<S>& keys,
   const S& defaults,
   const std::string& prefix = "",
-  bool (*keep)(const std::string&) = nullptr,
   const std::vector<Name>* types = nullptr)
 {
   Table table{ name, { "key", "type", "default", "allowed" }, {} };
@@ -115,10 +114,6 @@ Table KeyTable(const std::string& name,
   }
   for (const Key<S>& key : keys)
   {
-    if (keep && !keep(key.Name))
-    {
-      continue;
-    }
     std::vector<std::string> row{ Code(prefix + key.Name),
       TypeWords(key.Type),
       DefaultWords(key, defaults),
@@ -145,17 +140,13 @@ std::vector<Table> ReferenceTables()
   }
   tables.push_back(sections);
 
-  Table fieldFile = KeyTable("field.file",
-    FieldKeys(),
-    scene.Field,
-    "",
-    [](const std::string& key) { return key == "file"; });
+  Table fieldFile = KeyTable("field.file", FieldFileKeys(), scene.Field);
   fieldFile.Header.back() = "meaning";
   tables.push_back(fieldFile);
-  tables.push_back(KeyTable(
-    "field", FieldKeys(), scene.Field, "", [](const std::string& key) { return key != "file"; }));
+  tables.push_back(KeyTable("field.raw", RawKeys(), RawLayout{}));
+  tables.push_back(KeyTable("field", GeneratedFieldKeys(), scene.Field));
 
-  tables.push_back(KeyTable("field.shape", ShapeKeys(), Shape{}, "", nullptr, &ShapeTypes()));
+  tables.push_back(KeyTable("field.shape", ShapeKeys(), Shape{}, "", &ShapeTypes()));
   tables.push_back(KeyTable("transfer_function", TransferFunctionKeys(), scene.TransferFunction));
   tables.push_back(KeyTable("camera", CameraKeys(), scene.Camera));
   tables.push_back(KeyTable("camera.orbit", OrbitKeys(), OrbitSpec{}));
@@ -183,7 +174,7 @@ std::vector<Table> ReferenceTables()
   lighting.Rows.insert(lighting.Rows.end(), march.Rows.begin(), march.Rows.end());
   tables.push_back(lighting);
 
-  tables.push_back(KeyTable("lights", LightKeys(), Light{}, "", nullptr, &LightTypes()));
+  tables.push_back(KeyTable("lights", LightKeys(), Light{}, "", &LightTypes()));
   tables.push_back(KeyTable("ambient", AmbientKeys(), scene.Ambient));
   return tables;
 }

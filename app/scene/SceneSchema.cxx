@@ -186,28 +186,48 @@ json WriteShapes(const FieldSpec& f)
   return shapes;
 }
 
-void ReadField(const Context& c, const json& v, const std::string& key, Scene& scene)
+// A field is read from a file or generated, never both: a section takes keys of one kind.
+void CheckFieldKind(const Context& c, const json& v, const std::string& key)
 {
-  if (v.is_object() && v.contains("file") && v.size() > 1)
+  if (!v.is_object())
   {
-    for (const auto& member : v.items())
+    return; // ReadObject says what is wrong
+  }
+  const bool fromFile = v.contains("file");
+  for (const auto& member : v.items())
+  {
+    const bool fileKey = FindKey(FieldFileKeys(), member.key()) != nullptr;
+    if (fromFile && !fileKey && FindKey(GeneratedFieldKeys(), member.key()))
     {
-      if (member.key() != "file")
-      {
-        c.Fail(key + ".file",
-          "cannot be combined with " + key + "." + member.key() +
-            ": a field loaded from a file has no procedural parameters");
-      }
+      c.Fail(key + ".file",
+        "cannot be combined with " + key + "." + member.key() +
+          ": a field loaded from a file has no procedural parameters");
+    }
+    if (!fromFile && fileKey)
+    {
+      c.Fail(key + "." + member.key(),
+        "says how a field file is read; give " + key +
+          ".file too (or leave it out for a procedural field)");
     }
   }
+}
+
+void ReadField(const Context& c, const json& v, const std::string& key, Scene& scene)
+{
+  CheckFieldKind(c, v, key);
   ReadObject(c, v, key, FieldKeys(), scene.Field);
   if (scene.Field.FromFile())
   {
+    // What the file's format decides, once every key is read (format may follow file): an
+    // extension no format has, options the format does not take, a raw file without its layout.
+    if (const auto problem = CheckFieldReadOptions(scene.Field.File, scene.Field.Read))
+    {
+      c.Fail(key + "." + problem->Key, problem->Problem);
+    }
     return;
   }
-  // The source's own checks, for what only a combination of keys can get wrong (a field too
-  // large for memory, a lacunarity that turns negative after some octaves, noise coordinates
-  // beyond the lattice's range).
+  // The source's own checks, for what only a combination of keys can get wrong (a lacunarity
+  // that turns negative after some octaves, noise coordinates beyond the lattice's range).
   const std::string problem = ValidateProceduralField(scene.Field);
   if (!problem.empty())
   {
@@ -217,13 +237,73 @@ void ReadField(const Context& c, const json& v, const std::string& key, Scene& s
 
 json WriteField(const Scene& scene)
 {
-  json field = WriteObject(FieldKeys(), scene.Field);
-  if (scene.Field.FromFile())
+  if (!scene.Field.FromFile())
   {
-    return { { "file", field["file"] } };
+    return WriteObject(GeneratedFieldKeys(), scene.Field);
   }
-  field.erase("file");
+  // What reading the file again needs: the file, and the read options that differ from their
+  // defaults.
+  json field = WriteObject(FieldFileKeys(), scene.Field);
+  const json defaults = WriteObject(FieldFileKeys(), FieldSpec{});
+  for (const auto& option : defaults.items())
+  {
+    if (field.value(option.key(), json()) == option.value())
+    {
+      field.erase(option.key());
+    }
+  }
   return field;
+}
+
+// A choice whose member holds the chosen name itself (a format's Id, a raw type's name), empty
+// when the key was not given.
+template<typename S, typename Member>
+Key<S> NameKey(const std::string& name, const ValueType& type, Member member, std::string help)
+{
+  return Key<S>(
+    name,
+    type,
+    [member, type](const Context& c, const json& v, const std::string& k, S& s)
+    { std::invoke(member, s) = NameOf(type.Names, Check(c, type, v, k).get<int>()); },
+    [member](const S& s)
+    {
+      const std::string& text = std::invoke(member, const_cast<S&>(s));
+      return text.empty() ? json() : json(text);
+    },
+    std::move(help));
+}
+
+// The formats of FieldFormats(), by their Ids, for field.format.
+std::vector<Name> FieldFormatNames()
+{
+  std::vector<Name> names;
+  for (const FieldFormat& format : FieldFormats())
+  {
+    names.push_back({ format.Id, int(names.size()), format.Name });
+  }
+  return names;
+}
+
+// "VTK XML image data `.vti`, ..., NetCDF (CF conventions) `.nc`/`.nc4`/`.cdf`, ...".
+std::string FieldFormatsInWords()
+{
+  std::vector<std::string> formats;
+  for (const FieldFormat& format : FieldFormats())
+  {
+    std::vector<std::string> extensions;
+    for (const std::string& extension : format.Extensions)
+    {
+      extensions.push_back("`" + extension + "`");
+    }
+    formats.push_back(format.Name + " " + Join(extensions, "/"));
+  }
+  return Join(formats);
+}
+
+// Voxels along x, y and z, of a generated field and of a raw file.
+ValueType Dimensions()
+{
+  return IntegerOrIntegersIn(3, 1, std::numeric_limits<int>::max(), "[nx, ny, nz]");
 }
 
 // ---- transfer_function -----------------------------------------------------------------------
@@ -554,31 +634,109 @@ const std::vector<Name>& LightingModels()
 
 const Keys<FieldSpec>& FieldKeys()
 {
+  static const Keys<FieldSpec> keys = []
+  {
+    Keys<FieldSpec> all = FieldFileKeys();
+    all.insert(all.end(), GeneratedFieldKeys().begin(), GeneratedFieldKeys().end());
+    return all;
+  }();
+  return keys;
+}
+
+const Keys<FieldSpec>& FieldFileKeys()
+{
+  using F = FieldSpec;
+  using R = FieldReadOptions;
+  static const Keys<F> keys = {
+    { "file",
+      Path("the path of a field file (" + FieldFileExtensions() + ", a non-empty string)")
+        .DefaultIs("none"),
+      &F::File,
+      "path of a field file: " + FieldFormatsInWords() +
+        " ([data.md](data.md)); the extension in any case (`.VTI`), or any name with `format`; a "
+        "relative path is relative to the folder of the scene file (to the current directory for "
+        "the default scene)" },
+    NameKey<F>("format",
+      ChoiceOf(FieldFormatNames()).DefaultIs("by the extension"),
+      Nested(&F::Read, &R::Format),
+      "the file's format, whatever its extension"),
+    { "array",
+      NonEmptyText("the name of a grid, variable or point array (a non-empty string)")
+        .DefaultIs("the format's default"),
+      Nested(&F::Read, &R::Array),
+      "the OpenVDB grid, NetCDF variable or `.vti`/`.pvti` point array to read; refused for a "
+      "format that holds one array" },
+    { "time_step",
+      IntegerIn(0, std::numeric_limits<int>::max()).DefaultIs("`0`, the first"),
+      Nested(&F::Read, &R::TimeStep),
+      "the time step of a NetCDF file, from 0; refused for a format that holds one time step" },
+    { "max_voxels",
+      IntegerIn(1, 1LL << 62),
+      Nested(&F::Read, &R::MaximumVoxels),
+      "the most voxels the field may have once read (1024^3, a 4 GiB float field, by default); "
+      "a file that needs more is refused, with its size, before anything is allocated" },
+    { "raw",
+      CustomValue("object").DefaultIs("none"),
+      [](const Context& c, const json& v, const std::string& k, F& f)
+      { ReadObject(c, v, k, RawKeys(), f.Read.Raw); },
+      [](const F& f)
+      { return f.Read.Raw.Dimensions[0] > 0 ? WriteObject(RawKeys(), f.Read.Raw) : json(); },
+      "a raw file's layout ([below](#loading-a-field)); required for a raw file, refused for any "
+      "other format",
+      Inside(RawKeys) },
+  };
+  return keys;
+}
+
+const Keys<RawLayout>& RawKeys()
+{
+  using R = RawLayout;
+  const auto types = []
+  {
+    std::vector<Name> names;
+    for (const std::string& type : RawTypeNames())
+    {
+      names.push_back({ type, int(names.size()), "" });
+    }
+    return ChoiceOf(names);
+  };
+  const auto byteOrder = []
+  {
+    ValueType t = ChoiceOf({ { "little", 0, "" }, { "big", 1, "" } });
+    t.StrictNames = true;
+    return t;
+  };
+  static const Keys<R> keys = {
+    { "dimensions",
+      Dimensions().Mandatory(),
+      &R::Dimensions,
+      "voxels along x, y and z (one integer for a cube)" },
+    NameKey<R>("type", types(), &R::Type, "the type of every voxel"),
+    { "byte_order", byteOrder(), &R::BigEndian, "of every voxel of more than one byte" },
+    { "spacing", NumbersIn(3, Positive).In("world units"), &R::Spacing, "" },
+    { "origin",
+      NumbersIn(3, AnyNumber).In("world units"),
+      &R::Origin,
+      "the position of the first voxel" },
+    { "header_bytes",
+      IntegerIn(0, 1LL << 62),
+      &R::HeaderBytes,
+      "bytes before the first voxel, skipped" },
+  };
+  return keys;
+}
+
+const Keys<FieldSpec>& GeneratedFieldKeys()
+{
   using F = FieldSpec;
   using D = FieldDescription;
   using N = noise::FbmParameters;
   static const Keys<F> keys = {
-    { "file",
-      Path("the path of a field file (" + FieldFileExtensions() + ", a non-empty string)")
-        .DefaultIs("none")
-        .CheckedBy(
-          [](const json& v) -> std::string
-          {
-            const std::string path = v.get<std::string>();
-            return IsFieldFile(path)
-              ? ""
-              : "\"" + path + "\" is not a field file: supported extensions (in any case) are " +
-                FieldFileExtensions();
-          }),
-      &F::File,
-      "path of a field file: VTK XML image data (`.vti`, either byte order) or VTK XML parallel "
-      "image data (`.pvti` and its pieces, as ParaView writes them); the extension in any case "
-      "(`.VTI`); a relative path is relative to the folder of the scene file (to the current "
-      "directory for the default scene)" },
     { "dimensions",
-      IntegerOrIntegersIn(3, 1, std::numeric_limits<int>::max(), "[nx, ny, nz]"),
+      Dimensions(),
       &F::Dimensions,
-      "the field (4 bytes per voxel) must fit in the memory available" },
+      "the field (4 bytes per voxel) must fit in the memory available when it is generated "
+      "whole; generated in pieces (`generate -o FIELD.pvti`), each piece must" },
     { "bounds",
       NumbersIn(6, AnyNumber, "[xmin, xmax, ymin, ymax, zmin, zmax]"),
       &F::Bounds,

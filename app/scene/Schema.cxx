@@ -606,9 +606,9 @@ std::string ShowValue(const json& value)
     }
     return "[" + Join(items) + "]";
   }
-  if (!value.is_number())
+  if (!value.is_number() || value.is_number_integer())
   {
-    return value.dump();
+    return value.dump(); // integers exactly: 2^30 voxels is 1073741824, not the float 1073741800
   }
   // A float member was written as the double it widens to (0.6f is 0.60000002384185791): show
   // the shortest decimal that reads back as that float.

@@ -1,25 +1,28 @@
-// VTK's XML readers trust the file: crafted headers make them crash, loop or allocate gigabytes
-// (docs/reliability.md lists what the fuzzer found). Three layers stand between a file and the
-// cloudvis process:
+// The readers of the field formats VTK's XML image readers handle: .vti (vtkXMLImageDataReader)
+// and .pvti (vtkXMLPImageDataReader: a small XML file listing pieces, each a .vti, assembled into
+// one image). VTK's XML readers trust the file: crafted headers make them crash, loop or allocate
+// gigabytes (docs/reliability.md lists what the fuzzer found). Three layers stand between a file
+// and the cloudvis process:
 //   1. text checks of the markup and of the binary headers of raw appended data (CheckVtiText),
 //      closing the classes the fuzzer found one by one, with messages that say what is wrong;
-//   2. a first read in a forked child under an address-space and a time limit (ReadInIsolation):
-//      a crash, a hang or a runaway allocation in VTK ends the child, not cloudvis;
-//   3. in the process itself, the header's extent checked against the memory available before
-//      VTK allocates the arrays it claims.
+//   2. the read itself in a forked child under an address-space and a time limit
+//      (ReadInIsolation, IsolatedRead.h), which sends the image back: a crash, a hang or a
+//      runaway allocation in VTK ends the child, not cloudvis;
+//   3. in that read, the header's extent checked against the memory available and
+//      field.max_voxels before VTK allocates the arrays it claims, and the image's Origin,
+//      Spacing and Direction attributes checked (VTK silently replaces one it cannot parse by
+//      its default); the Direction is set on the image where VTK 9.1 drops it (.pvti).
 // A .pvti names its pieces; each piece goes through layer 1 as a .vti would, the child reads the
 // whole assembly, and the memory check counts a piece's arrays on top of the output's. (Pieces
 // that leave part of the whole extent uncovered are refused by VTK itself: "No available piece
 // provides data for the following extents".)
-#include "VtkXmlImageFiles.h"
+#include "FieldFormatReaders.h"
 
-#include "AtomicFile.h"
 #include "Errors.h"
 #include "FileNames.h"
 #include "InputFiles.h"
+#include "IsolatedRead.h"
 #include "VtkMessageCapture.h"
-
-#include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -35,7 +38,6 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -43,20 +45,12 @@
 #include <limits>
 #include <optional>
 #include <sstream>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
 
 namespace cloudvis
 {
 namespace
 {
-
-[[noreturn]] void Fail(const std::string& path, const std::string& problem)
-{
-  throw InputError(path + ": " + problem);
-}
 
 std::string WithVtkReason(const std::string& problem, const VtkMessageCapture& messages)
 {
@@ -315,106 +309,13 @@ double VoxelCount(const Extent& e)
   return voxels;
 }
 
-// Layer 2: the file is first read by `NewReader()` in a forked child under an address-space and a
-// time limit, and only a file VTK read there without crashing, hanging or exhausting memory is
-// read in this process. The cost is reading a field twice.
-// How the child ends; any other exit status, or a signal, is a failure.
-constexpr int ChildReadCleanly = 0;
-constexpr int ChildVtkComplained = 3;
-constexpr int ChildOutOfMemory = 4;
-
-template<typename Reader>
-void ReadInIsolation(const std::string& path, std::uint64_t totalBytes)
-{
-  const unsigned seconds = 60u + unsigned(totalBytes / (10u << 20)); // 60 s + 1 s per 10 MiB
-  const pid_t child = ::fork();
-  if (child < 0)
-  {
-    return; // no isolation to be had: read directly, behind the text checks alone
-  }
-  if (child == 0)
-  {
-    // The temporaries of an export in progress are the parent's: a signal ending the child (the
-    // alarm below) must not remove them.
-    ForgetTemporariesInChild();
-#if !defined(__SANITIZE_ADDRESS__)
-    // The child may use what the process already maps plus the memory still available, so a
-    // header claiming more fails here as an allocation, not in the parent as an OOM kill.
-    // (AddressSanitizer reserves terabytes of shadow memory, so its builds skip the limit.)
-    std::uint64_t mapped = 0;
-    std::ifstream status("/proc/self/status");
-    for (std::string key; status >> key;)
-    {
-      if (key == "VmSize:")
-      {
-        status >> mapped;
-        mapped *= 1024u;
-        break;
-      }
-    }
-    const std::uint64_t available = AvailableMemoryBytes();
-    if (mapped > 0 && available > 0)
-    {
-      const rlimit memory{ rlim_t(mapped + available), rlim_t(mapped + available) };
-      ::setrlimit(RLIMIT_AS, &memory);
-    }
-#endif
-    ::alarm(seconds);
-    int code = ChildVtkComplained;
-    try
-    {
-      VtkMessageCapture messages;
-      vtkNew<Reader> reader;
-      if (reader->CanReadFile(path.c_str()))
-      {
-        reader->SetFileName(path.c_str());
-        reader->Update();
-        code = reader->GetErrorCode() == 0 && messages.Messages().empty() ? ChildReadCleanly
-                                                                          : ChildVtkComplained;
-      }
-    }
-    catch (...)
-    {
-      code = ChildOutOfMemory; // std::bad_alloc under the limit, most likely
-    }
-    ::_exit(code);
-  }
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
-  {
-  }
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (code == ChildReadCleanly || code == ChildVtkComplained)
-  {
-    return; // read it here; VTK's complaints are then reported in its own words
-  }
-  if (code == ChildOutOfMemory)
-  {
-    Fail(path,
-      "VTK's reader ran out of memory on this file: it claims more than the " +
-        FormatBytes(double(AvailableMemoryBytes())) + " available");
-  }
-  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
-  {
-    Fail(path,
-      "VTK's reader took longer than " + std::to_string(seconds) +
-        " s on this file without finishing: it is malformed");
-  }
-  if (WIFSIGNALED(status))
-  {
-    Fail(path,
-      "VTK's reader crashed on this file (" + std::string(strsignal(WTERMSIG(status))) +
-        "): it is malformed");
-  }
-  // Another status: a sanitizer (in sanitized builds) caught VTK doing something fatal.
-  Fail(path,
-    "VTK's reader failed on this file (exit status " + std::to_string(code) + "): it is malformed");
-}
-
-// Layer 3: refuses a header whose whole extent is empty, or whose point arrays (counted as 4
-// bytes per voxel each, plus the float copy ReadField makes, plus the reader's own `extraBytes`)
-// would not fit in the memory available.
-void CheckExtentFitsInMemory(const std::string& path, vtkXMLReader* reader, double extraBytes)
+// Layer 3: refuses a header whose whole extent is empty, larger than `maximumVoxels`, or whose
+// point arrays (counted as 4 bytes per voxel each, plus the float copy ReadField makes, plus the
+// reader's own `extraBytes`) would not fit in the memory available.
+void CheckExtentFitsInMemory(const std::string& path,
+  vtkXMLReader* reader,
+  std::uint64_t maximumVoxels,
+  double extraBytes)
 {
   vtkInformation* information = reader->GetOutputInformation(0);
   if (!information || !information->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
@@ -423,46 +324,27 @@ void CheckExtentFitsInMemory(const std::string& path, vtkXMLReader* reader, doub
   }
   Extent extent{};
   information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent.data());
-  int dimensions[3];
+  std::array<double, 3> dimensions{};
   for (int a = 0; a < 3; ++a)
   {
     // In double: a corrupt extent such as "-2147483648 2147483647" overflows int.
-    const double size = double(extent[2 * a + 1]) - double(extent[2 * a]) + 1.0;
-    if (size < 1.0)
+    dimensions[a] = double(extent[2 * a + 1]) - double(extent[2 * a]) + 1.0;
+    if (dimensions[a] < 1.0)
     {
       Fail(path,
         "the image has no voxels (whole extent " + std::to_string(extent[2 * a]) + " to " +
           std::to_string(extent[2 * a + 1]) + " along axis " + std::to_string(a) + ")");
     }
-    if (size > double(std::numeric_limits<int>::max()))
-    {
-      Fail(path, "the image's extent along axis " + std::to_string(a) + " is too large");
-    }
-    dimensions[a] = int(size);
   }
-  const double voxels = VoxelCount(extent);
   const int arrays = std::max(1, reader->GetNumberOfPointArrays());
-  const double needed = voxels * 4.0 * (arrays + 1) + extraBytes;
-  const std::uint64_t available = AvailableMemoryBytes();
-  if (voxels >= double(std::numeric_limits<vtkIdType>::max()))
-  {
-    Fail(path, "the image's extent holds more voxels than can be addressed");
-  }
-  if (available > 0 && needed > double(available))
-  {
-    Fail(path,
-      "an image of " + std::to_string(dimensions[0]) + " x " + std::to_string(dimensions[1]) +
-        " x " + std::to_string(dimensions[2]) + " voxels needs at least " + FormatBytes(needed) +
-        " but only " + FormatBytes(double(available)) + " of memory is available");
-  }
+  CheckFieldSize(path, dimensions, 4.0 * arrays, maximumVoxels, extraBytes);
 }
 
 // VTK's readers turn an Origin, Spacing or Direction attribute they cannot parse ("nan", "inf",
 // too few numbers) into its default (origin 0, spacing 1, identity) without a word: the text of
-// the image element (ImageData for a .vti, PImageData for a .pvti, whose pieces' own geometry VTK
-// ignores) is checked here. Returns the Direction attribute's nine numbers (row by row, as VTK
-// writes them) when there is one: vtkXMLPImageDataReader (VTK 9.1) reads a .pvti's Origin and
-// Spacing but drops its Direction, so ReadChecked sets it.
+// the image element (ImageData for a .vti or a piece, PImageData for a .pvti) is checked here, as
+// VTK's own XML parser read it. Returns the Direction attribute's nine numbers (row by row, as VTK
+// writes them) when there is one, for ReadChecked to set where VTK drops it.
 std::optional<std::array<double, 9>> CheckGeometryAttributes(const std::string& path,
   vtkXMLReader* reader)
 {
@@ -515,11 +397,33 @@ std::optional<std::array<double, 9>> CheckGeometryAttributes(const std::string& 
   return direction;
 }
 
-// The read in this process, after layers 1 and 2: the header, the memory check, then the data.
+// The Direction of a .pvti: vtkXMLPImageDataReader (VTK 9.1) reads the PImageData's Origin and
+// Spacing but drops its Direction, and VTK 9.1's parallel writer leaves the Direction out of the
+// .pvti altogether, writing it only in each piece. So the direction is the .pvti's when it states
+// one (cloudvis and newer VTK write it there), else its first piece's (checked the same way).
+std::optional<std::array<double, 9>> ParallelImageDirection(vtkXMLReader* reader,
+  const std::string& path,
+  const std::string& firstPiece)
+{
+  if (std::optional<std::array<double, 9>> direction = CheckGeometryAttributes(path, reader))
+  {
+    return direction;
+  }
+  vtkNew<vtkXMLImageDataReader> piece;
+  piece->SetFileName(firstPiece.c_str());
+  piece->UpdateInformation();
+  return CheckGeometryAttributes(firstPiece, piece);
+}
+
+// The read in the isolated child, after layer 1: the header, the memory check, the geometry
+// attributes, then the data, with the Direction set on the image (`firstPiece`: a .pvti's, see
+// ParallelImageDirection).
 template<typename Reader>
 vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
   const std::string& formatName,
-  double extraBytes = 0.0)
+  std::uint64_t maximumVoxels,
+  double extraBytes = 0.0,
+  const std::string& firstPiece = "")
 {
   VtkMessageCapture messages;
   vtkNew<Reader> reader;
@@ -537,8 +441,10 @@ vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
   {
     Fail(path, WithVtkReason("cannot read " + formatName, messages));
   }
-  CheckExtentFitsInMemory(path, reader, extraBytes);
-  const std::optional<std::array<double, 9>> direction = CheckGeometryAttributes(path, reader);
+  CheckExtentFitsInMemory(path, reader, maximumVoxels, extraBytes);
+  const std::optional<std::array<double, 9>> direction = firstPiece.empty()
+    ? CheckGeometryAttributes(path, reader)
+    : ParallelImageDirection(reader, path, firstPiece);
   reader->Update();
   vtkSmartPointer<vtkImageData> image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
@@ -604,9 +510,18 @@ std::vector<Piece> ListPieces(const std::string& path, const std::string& xml)
   return pieces;
 }
 
+// What both readers return: the image, the array field.array names (if any) and the report.
+FieldFileContents Contents(const vtkSmartPointer<vtkImageData>& image,
+  const FieldReadOptions& options)
+{
+  FieldFileContents contents{ image, options.Array, {} };
+  ReportPointArrays(contents.Report, image, options.Array);
+  return contents;
+}
+
 } // namespace
 
-vtkSmartPointer<vtkImageData> ReadVtkXmlImageFile(const std::string& path)
+FieldFileContents ReadVtkXmlImageFile(const std::string& path, const FieldReadOptions& options)
 {
   std::uint64_t bytes = 0;
   {
@@ -614,11 +529,13 @@ vtkSmartPointer<vtkImageData> ReadVtkXmlImageFile(const std::string& path)
     bytes = file.Size();
     CheckVtiText(path, file);
   }
-  ReadInIsolation<vtkXMLImageDataReader>(path, bytes);
-  return ReadChecked<vtkXMLImageDataReader>(path, "VTK XML image data");
+  const auto read = [&path, &options]()
+  { return ReadChecked<vtkXMLImageDataReader>(path, "VTK XML image data", options.MaximumVoxels); };
+  return ReadInIsolation(path, bytes, "VTK's reader", [&] { return Contents(read(), options); });
 }
 
-vtkSmartPointer<vtkImageData> ReadVtkXmlParallelImageFile(const std::string& path)
+FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
+  const FieldReadOptions& options)
 {
   std::vector<Piece> listed;
   {
@@ -650,11 +567,20 @@ vtkSmartPointer<vtkImageData> ReadVtkXmlParallelImageFile(const std::string& pat
       Fail(path, "piece " + std::to_string(number) + " (" + piece.Source + "): " + problem);
     }
   }
-  ReadInIsolation<vtkXMLPImageDataReader>(path, totalBytes);
   // Beyond the output: a piece's arrays while it is copied in (one piece at a time; counted as
   // two arrays of 4 bytes per voxel).
-  return ReadChecked<vtkXMLPImageDataReader>(
-    path, "VTK XML parallel image data", largestPiece * 8.0);
+  const auto read = [&path, &options, &listed, largestPiece]()
+  {
+    return ReadChecked<vtkXMLPImageDataReader>(path,
+      "VTK XML parallel image data",
+      options.MaximumVoxels,
+      largestPiece * 8.0,
+      listed.front().Path);
+  };
+  FieldFileContents contents =
+    ReadInIsolation(path, totalBytes, "VTK's reader", [&] { return Contents(read(), options); });
+  contents.Report.Add("pieces", std::to_string(listed.size()));
+  return contents;
 }
 
 } // namespace cloudvis

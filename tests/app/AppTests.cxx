@@ -10,6 +10,7 @@
 #include "ExportRender.h"
 #include "FieldIO.h"
 #include "FieldStatistics.h"
+#include "FieldTestFiles.h"
 #include "FileNames.h"
 #include "InputFiles.h"
 #include "OffscreenRender.h"
@@ -624,32 +625,9 @@ TEST(Render, ANonFiniteImageIsAnErrorNamingTheLikelyCauseBeforeAnyFileIsWritten)
 namespace
 {
 
-// Class "valid files refused": what VTK writes, cloudvis reads, value for value.
-void ExpectSameField(vtkImageData* reference, vtkImageData* read)
-{
-  ASSERT_NE(read, nullptr);
-  int expectedExtent[6], readExtent[6];
-  reference->GetExtent(expectedExtent);
-  read->GetExtent(readExtent);
-  EXPECT_EQ(std::vector<int>(expectedExtent, expectedExtent + 6),
-    std::vector<int>(readExtent, readExtent + 6));
-  for (int a = 0; a < 3; ++a)
-  {
-    EXPECT_EQ(reference->GetOrigin()[a], read->GetOrigin()[a]);
-    EXPECT_EQ(reference->GetSpacing()[a], read->GetSpacing()[a]);
-  }
-  vtkDataArray* expected = reference->GetPointData()->GetScalars();
-  vtkDataArray* density = read->GetPointData()->GetArray("density");
-  ASSERT_NE(density, nullptr);
-  ASSERT_EQ(expected->GetNumberOfTuples(), density->GetNumberOfTuples());
-  vtkIdType different = 0;
-  for (vtkIdType i = 0; i < expected->GetNumberOfTuples(); ++i)
-  {
-    different += expected->GetComponent(i, 0) == density->GetComponent(i, 0) ? 0 : 1;
-  }
-  EXPECT_EQ(different, 0) << "voxels whose value differs from the one VTK wrote";
-}
+using cloudvis::test::ExpectSameField;
 
+// Class "valid files refused": what VTK writes, cloudvis reads, value for value.
 TEST(FieldFormats, BigEndianFilesWrittenByVtkReadAsWritten)
 {
   TemporaryDirectory dir;
@@ -707,7 +685,8 @@ TEST(FieldFormats, ExtensionsMatchWithoutRegardToCase)
   ASSERT_NE(parallel, nullptr);
   EXPECT_EQ(parallel->Name, "VTK XML parallel image data");
   EXPECT_EQ(cloudvis::LowerCaseExtension("dir/Image.EXR"), ".exr");
-  EXPECT_EQ(cloudvis::FieldFileExtensions(), ".vti, .pvti");
+  EXPECT_EQ(cloudvis::FieldFileExtensions(),
+    ".vti, .pvti, .vdb, .nc, .nc4, .cdf, .nrrd, .nhdr, .mha, .mhd, .raw");
 }
 
 // Class "JSON files above the size limit": the limit is the largest size read, inclusive.

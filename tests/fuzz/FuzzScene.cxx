@@ -1,6 +1,6 @@
 // Fuzz target: a scene file's bytes through LoadScene, the entry point of every command that
 // takes a scene (read, parse JSON, validate every section), then the procedural field's own
-// checks (ValidateProceduralField: geometry, memory, shapes) that run before generation.
+// checks (ValidateProceduralField: geometry, shapes, noise range) that run before generation.
 // Contract: any input is either accepted or refused with an InputError; anything else (another
 // exception, a crash, undefined behaviour, a leak) is a bug.
 #include "FuzzInput.h"

@@ -6,6 +6,7 @@
 #define cloudvis_CommandSupport_h
 
 #include "CommandLine.h"
+#include "Scene.h"
 
 #include <nlohmann/json.hpp>
 
@@ -25,11 +26,33 @@ OptionSpec LightingOption();
 // naming `command` when the text is not of that form.
 nlohmann::json ParseSizeOption(const std::string& command, const std::string& text);
 
-// Throws UsageError when one of the --set assignments sets a field key: a field file has no
-// procedural parameters, so `command` refuses them.
-void RefuseFieldKeys(const std::string& command,
-  const std::string& fieldFile,
-  const std::vector<std::string>& assignments);
+// The value of a count option (--frames, --benchmark, --pieces): an integer in [1, 999999].
+// Throws UsageError "COMMAND: --OPTION expects a number of UNIT in [1, 999999], got ...".
+int ParseCount(const std::string& command,
+  const std::string& option,
+  const std::string& text,
+  const std::string& unit);
+
+// The options that say how a field file operand is read: --field-format, --array, --time-step
+// (field.format, field.array, field.time_step). Every command that takes a field file lists them.
+extern const std::vector<OptionSpec> FieldFileOptions;
+
+// Whether the operand `input` is a field file rather than a scene: its extension is a field
+// format's (FieldIO.h), or --field-format names its format.
+bool IsFieldOperand(const std::string& input, const Arguments& arguments);
+
+// Adds the scene overrides the field file options stand for.
+void AddFieldFileOverrides(const Arguments& arguments, std::vector<SceneOverride>& overrides);
+
+// The scene of the operand `input`, with --set and `overrides` (AddFieldFileOverrides is added
+// here): for a field file, LoadFieldFileScene (after refusing --set keys that do not apply to a
+// field file: procedural field keys, and with `fieldKeysOnly` every key outside field), else
+// LoadScene.
+Scene LoadOperandScene(const std::string& command,
+  const std::string& input,
+  const Arguments& arguments,
+  std::vector<SceneOverride> overrides,
+  bool fieldKeysOnly = false);
 
 // The commands defined in their own files.
 CommandSpec AnimateCommand(); // ExportCommands.cxx

@@ -16,7 +16,12 @@ namespace schema
 const Keys<Scene>& SceneSections();
 
 // The objects inside the sections, for the docs.
+// The field section: the keys of a field read from a file (file, format, array, ...), then those
+// of a generated one (dimensions, bounds, noise, ...); a section takes keys of one kind only.
 const Keys<FieldSpec>& FieldKeys();
+const Keys<FieldSpec>& FieldFileKeys();
+const Keys<FieldSpec>& GeneratedFieldKeys();
+const Keys<RawLayout>& RawKeys(); // field.raw
 const Keys<Shape>& ShapeKeys();
 const Keys<TransferFunctionSpec>& TransferFunctionKeys();
 const Keys<CameraSpec>& CameraKeys();

@@ -189,6 +189,10 @@ inline void Assign(const json& v, std::uint32_t& m)
 {
   m = std::uint32_t(v.get<long long>());
 }
+inline void Assign(const json& v, std::uint64_t& m)
+{
+  m = std::uint64_t(v.get<long long>());
+}
 inline void Assign(const json& v, bool& m)
 {
   m = v.is_boolean() ? v.get<bool>() : v.get<int>() != 0;
@@ -242,6 +246,10 @@ inline json ToJson(int m)
   return m;
 }
 inline json ToJson(std::uint32_t m)
+{
+  return m;
+}
+inline json ToJson(std::uint64_t m)
 {
   return m;
 }

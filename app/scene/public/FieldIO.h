@@ -1,17 +1,24 @@
 // Reading and writing density fields. Every field format cloudvis reads is one entry of the table
-// FieldFormats(): its name for messages, its file extensions (matched without regard to case),
-// and its reader, which returns the image as the format holds it. ReadField picks the entry by
-// extension and hands the rest of cloudvis one form only: a float point array named "density",
-// set as the active scalars. A new format (OpenVDB, NetCDF, raw, NRRD, MetaImage) is a new entry;
-// the command line's choice between a scene and a field file, the scene's field.file, the help
-// texts and the error messages all follow the table. Every problem becomes one InputError naming
-// the file and what is wrong with it. Fields are written as .vti only.
+// FieldFormats(): its name for field.format and --format, its name for messages, its file
+// extensions (matched without regard to case), the read options it takes and its reader, which
+// returns the image as the format holds it together with a report of what it read. ReadField
+// picks the entry (by field.format, else by extension) and hands the rest of cloudvis one form
+// only: a float point array named "density", set as the active scalars, on an image that keeps
+// the file's whole geometry (extent, origin, spacing, direction). The command line's choice between
+// a scene and a field file, the scene's field.file and field.format, the help texts and the error
+// messages all follow the table. Every problem becomes one InputError naming the file and what is
+// wrong with it. Fields are written as .vti, as .pvti with pieces (FieldPieces.h) or as OpenVDB.
+// docs/data.md describes every format for users.
 #ifndef cloudvis_FieldIO_h
 #define cloudvis_FieldIO_h
 
 #include <vtkSmartPointer.h>
 
+#include <array>
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkImageData;
@@ -19,14 +26,73 @@ class vtkImageData;
 namespace cloudvis
 {
 
+// The most voxels a field file may become unless field.max_voxels says otherwise: 1024^3, a
+// 4 GiB float field, about what one GPU of today renders. A reader refuses more before it
+// allocates, naming the size the file needs.
+constexpr std::uint64_t DefaultMaximumFieldVoxels = std::uint64_t(1) << 30;
+
+// The layout of a raw volume, which the file itself does not state (field.raw.*).
+struct RawLayout
+{
+  std::array<int, 3> Dimensions{ { 0, 0, 0 } }; // voxels along x, y, z; 0: not given
+  std::string Type = "float32";                 // one of RawTypeNames()
+  bool BigEndian = false;
+  std::array<double, 3> Spacing{ { 1.0, 1.0, 1.0 } };
+  std::array<double, 3> Origin{ { 0.0, 0.0, 0.0 } };
+  std::uint64_t HeaderBytes = 0; // bytes before the first voxel
+};
+
+// How a field file is read beyond its path: the scene's field.format, field.array,
+// field.time_step, field.max_voxels and field.raw (or --format, --array, --time-step).
+struct FieldReadOptions
+{
+  std::string Format;          // a FieldFormat's Id; empty: chosen by the extension
+  std::string Array;           // grid, variable or point array; empty: the format's default
+  std::optional<int> TimeStep; // index from 0; empty: the first
+  std::uint64_t MaximumVoxels = DefaultMaximumFieldVoxels;
+  RawLayout Raw;
+};
+
+// What a reader found and did, for `cloudvis info`: the format's name, then labelled lines in
+// the order they are printed ("grid", "units", "time step", "resampled", ...).
+struct FieldReport
+{
+  std::string Format;
+  std::vector<std::pair<std::string, std::string>> Details;
+
+  void Add(const std::string& label, const std::string& text)
+  {
+    this->Details.emplace_back(label, text);
+  }
+};
+
+// What a reader returns: the image as the format holds it, the point array holding the density
+// (empty: "density", else the active scalars) and the report.
+struct FieldFileContents
+{
+  vtkSmartPointer<vtkImageData> Image;
+  std::string Array;
+  FieldReport Report;
+};
+
+// The read options a format takes beyond the path (bits of FieldFormat::Options).
+enum FieldReadOption : unsigned
+{
+  TakesArray = 1u,    // field.array
+  TakesTimeStep = 2u, // field.time_step
+  TakesRawLayout = 4u // field.raw (and requires its dimensions)
+};
+
 struct FieldFormat
 {
-  std::string Name;                    // for messages and help: "VTK XML image data"
-  std::vector<std::string> Extensions; // lower case, with the dot: ".vti"
-  // Reads `path` into image data whose point data holds the density (an array named "density",
-  // else the active scalars), with the format's own protections against hostile input. Throws
-  // InputError naming the file.
-  vtkSmartPointer<vtkImageData> (*Read)(const std::string& path);
+  std::string Id;                      // field.format and --format: "vdb"
+  std::string Name;                    // for messages and help: "OpenVDB"
+  std::vector<std::string> Extensions; // lower case, with the dot: ".vdb"
+  unsigned Options = 0;                // FieldReadOption bits
+  // Reads `path` with the format's own protections against hostile input (the regular-file
+  // check, sizes checked against memory, the file and options.MaximumVoxels before allocation,
+  // the library's parsing isolated where it can crash or hang). Throws InputError naming the file.
+  FieldFileContents (*Read)(const std::string& path, const FieldReadOptions& options);
 };
 
 // The field formats cloudvis reads, in the order help texts list them.
@@ -35,25 +101,62 @@ const std::vector<FieldFormat>& FieldFormats();
 // The format whose extension `path` ends in (any case), or nullptr.
 const FieldFormat* FindFieldFormat(const std::string& path);
 
+// The format whose Id is `id`, or nullptr.
+const FieldFormat* FindFieldFormatById(const std::string& id);
+
+// The Ids of FieldFormats() for messages: "vti, pvti, vdb, ...".
+std::string FieldFormatIds();
+
 // Whether `path` names a field file (its extension is one of FieldFormats()) rather than a scene.
 bool IsFieldFile(const std::string& path);
 
-// The extensions of FieldFormats() for messages: ".vti, .pvti".
+// The extensions of FieldFormats() for messages: ".vti, .pvti, .vdb, ...".
 std::string FieldFileExtensions();
 
-// Loads a density field in any format of FieldFormats(). The point array used is the one named
-// "density", else the active scalars; it must have one component of type float, unsigned char
-// or unsigned short and only finite values. Throws InputError otherwise, and for an extension no
-// format has.
-vtkSmartPointer<vtkImageData> ReadField(const std::string& path);
+// The names field.raw.type accepts: "uint8", "int8", "uint16", ..., "float64".
+std::vector<std::string> RawTypeNames();
+
+// A read option that does not suit the file's format, as the dotted key under "field" that
+// names it ("array", "raw.dimensions") and the problem; nullopt when the options suit it.
+struct FieldOptionProblem
+{
+  std::string Key;
+  std::string Problem;
+};
+std::optional<FieldOptionProblem> CheckFieldReadOptions(const std::string& path,
+  const FieldReadOptions& options);
+
+// Loads a density field in any format of FieldFormats(), chosen by options.Format or else the
+// extension. The density must have one component and only finite values; it becomes a float
+// array "density", the active scalars, on an image with the file's extent, origin, spacing and
+// direction. Throws InputError otherwise, and for an extension no format has. `report`, when
+// given, receives what the reader found.
+vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
+  const FieldReadOptions& options = {},
+  FieldReport* report = nullptr);
+
+// What is recorded in a field file cloudvis writes, where the format has room for it (.vdb).
+struct FieldMetadata
+{
+  std::string Scene; // the resolved scene as JSON text; empty: none
+};
+
+// The extensions fields are written in: ".vti, .pvti, .vdb".
+std::string FieldOutputExtensions();
 
 // Throws InputError unless `path` can take a field: its directory writable (CheckOutputTarget),
-// and its extension .vti (any case).
+// and its extension one of FieldOutputExtensions() (any case).
 void CheckFieldOutput(const std::string& path);
 
-// Writes a field as binary VTK XML image data, zlib-compressed, atomically (see AtomicFile.h).
-// Throws InputError when the target cannot be written.
-void WriteField(vtkImageData* field, const std::string& path);
+// Writes a field atomically (see AtomicFile.h): .vti as binary VTK XML image data,
+// zlib-compressed; .vdb as an OpenVDB FloatGrid "density" (OpenVdbFiles.h); .pvti as one piece
+// (FieldPieces.h writes several). Throws InputError when the target cannot be written.
+void WriteField(vtkImageData* field, const std::string& path, const FieldMetadata& metadata = {});
+
+// Writes `field` as VTK XML image data (.vti) at exactly `path`, not atomically: WriteField and
+// the pieces of a .pvti (FieldPieces.h) call it inside their own atomic write. Errors name
+// `target`, the file the user asked for.
+void WriteVtkXmlImageFile(vtkImageData* field, const std::string& path, const std::string& target);
 
 } // namespace cloudvis
 

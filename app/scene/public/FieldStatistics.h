@@ -5,6 +5,8 @@
 #ifndef cloudvis_FieldStatistics_h
 #define cloudvis_FieldStatistics_h
 
+#include "FieldIO.h" // FieldReport
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -23,6 +25,8 @@ struct FieldStatistics
   std::array<int, 3> Dimensions{};
   std::array<double, 3> Spacing{};
   std::array<double, 3> Origin{}; // the world position of the extent's first voxel
+  // The lattice's axes in world space, row-major (column a is the direction of index axis a).
+  std::array<double, 9> Direction{ { 1, 0, 0, 0, 1, 0, 0, 0, 1 } };
   std::array<double, 6> Bounds{}; // the world box around the voxels (direction matrix applied)
   std::uint64_t Voxels = 0;
   double Minimum = 0.0;
@@ -41,11 +45,19 @@ FieldStatistics ComputeFieldStatistics(vtkImageData* field, int bins = 16);
 // The lower edge of histogram bin `bin` (bin == bins gives the upper edge of the last one).
 double HistogramEdge(const FieldStatistics& statistics, size_t bin);
 
-// Human-readable report, the histogram drawn as text bars. `name` is the file or scene shown.
-void PrintFieldStatistics(std::ostream& out, const FieldStatistics& statistics, const std::string& name);
+// Human-readable report, the histogram drawn as text bars. `name` is the file or scene shown;
+// `source`, when given, what its reader found (format, grid or variable, units, time step,
+// resampling), printed after the name.
+void PrintFieldStatistics(std::ostream& out,
+  const FieldStatistics& statistics,
+  const std::string& name,
+  const FieldReport* source = nullptr);
 
-// The same as a JSON object with stable keys.
-nlohmann::json FieldStatisticsToJson(const FieldStatistics& statistics, const std::string& name);
+// The same as a JSON object with stable keys; `source` becomes the object "source" (its format
+// under "format", each detail under its label with spaces as underscores).
+nlohmann::json FieldStatisticsToJson(const FieldStatistics& statistics,
+  const std::string& name,
+  const FieldReport* source = nullptr);
 
 } // namespace cloudvis
 

@@ -13,6 +13,7 @@
 
 #include "CloudDensityEvaluator.h"
 #include "CloudLighting.h" // LightingModel
+#include "FieldIO.h"       // FieldReadOptions
 
 #include <nlohmann/json.hpp>
 
@@ -24,12 +25,15 @@
 namespace cloudvis
 {
 
-// The "field" section: either a .vti to load, or where and how to generate a procedural field.
+// The "field" section: either a field file to load, or where and how to generate a procedural
+// field.
 struct FieldSpec
 {
-  // Path of a .vti to load instead of generating, already resolved against the scene file's
-  // folder; empty for a procedural field (then the members below apply).
+  // Path of a field file (FieldIO.h) to load instead of generating, already resolved against the
+  // scene file's folder; empty for a procedural field (then the members below Read apply).
   std::string File;
+  // How File is read: field.format, field.array, field.time_step, field.max_voxels, field.raw.
+  FieldReadOptions Read;
   std::array<int, 3> Dimensions{ { 128, 128, 128 } };
   std::array<double, 6> Bounds{ { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 } };
   FieldDescription Description;
@@ -220,6 +224,18 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
 // calls.
 Scene LoadScene(const std::string& path, const std::vector<std::string>& assignments,
   const std::vector<SceneOverride>& options = {});
+
+// The scene of a field file given where a scene could be (`cloudvis render cloud.vdb`): the
+// default scene whose field.file is `path` (relative to the current directory), with the
+// assignments and option overrides applied and validated as LoadScene does, so field.format,
+// field.array, field.time_step and field.raw set on the command line are checked like scene keys.
+Scene LoadFieldFileScene(const std::string& path,
+  const std::vector<std::string>& assignments,
+  const std::vector<SceneOverride>& options = {});
+
+// The keys of the field section that say how a field file is read ("file", "format", "array",
+// "time_step", "max_voxels", "raw"): the only field keys a field file takes.
+const std::vector<std::string>& FieldFileKeyNames();
 
 } // namespace cloudvis
 

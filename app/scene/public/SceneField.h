@@ -21,13 +21,17 @@ namespace cloudvis
 vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field);
 
 // Empty when the source would accept the field, else the problem in the filters' words (the
-// same checks vtkCloudDensitySource::Validate applies before generating).
+// same checks vtkCloudDensitySource::Validate applies before generating). The memory the field
+// needs is not among them: it is checked for what is generated, the whole field in ProduceField,
+// each piece when a .pvti is generated in pieces.
 std::string ValidateProceduralField(const FieldSpec& field);
 
-// The field of a scene: read from field.file, or generated. Throws InputError on failure.
-// `progress`, when given, is called with the generation's fraction done, 0 .. 1.
-vtkSmartPointer<vtkImageData> ProduceField(
-  const Scene& scene, const std::function<void(double fraction)>& progress = {});
+// The field of a scene: read from field.file (with field.format, array, time_step, ...), or
+// generated. Throws InputError on failure. `progress`, when given, is called with the
+// generation's fraction done, 0 .. 1; `report`, when given, receives what was read (FieldIO.h).
+vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
+  const std::function<void(double fraction)>& progress = {},
+  FieldReport* report = nullptr);
 
 } // namespace cloudvis
 

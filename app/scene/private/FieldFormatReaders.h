@@ -1,0 +1,100 @@
+// The readers of the table in FieldIO.cxx, one per format, each in the file of its format, and
+// what they share (FieldFormatReaders.cxx): the size check every reader makes before it allocates,
+// the scalar types of raw files, the conversion of other numeric types to float and the lines of
+// the report that every format fills the same way.
+#ifndef cloudvis_FieldFormatReaders_h
+#define cloudvis_FieldFormatReaders_h
+
+#include "FieldIO.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+class vtkDataArray;
+class vtkFloatArray;
+class vtkImageData;
+class vtkMatrix3x3;
+
+namespace cloudvis
+{
+
+// VtkXmlImageFiles.cxx
+FieldFileContents ReadVtkXmlImageFile(const std::string& path, const FieldReadOptions& options);
+FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
+  const FieldReadOptions& options);
+// VtkImageFiles.cxx
+FieldFileContents ReadNrrdFile(const std::string& path, const FieldReadOptions& options);
+FieldFileContents ReadMetaImageFile(const std::string& path, const FieldReadOptions& options);
+FieldFileContents ReadRawFile(const std::string& path, const FieldReadOptions& options);
+// NetCdfFiles.cxx
+FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions& options);
+// OpenVdbFiles.cxx (the one translation unit that includes OpenVDB's headers)
+FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOptions& options);
+void WriteOpenVdbFile(vtkImageData* field, const std::string& path, const FieldMetadata& metadata);
+
+// ---- shared by the readers (FieldFormatReaders.cxx) ---------------------------------------
+
+// Throws InputError "PATH: PROBLEM": every reader's one way to refuse a file.
+[[noreturn]] void Fail(const std::string& path, const std::string& problem);
+
+// A number in six significant digits, as reports and messages print them.
+std::string Number(double value);
+
+// The scalar types of raw files (field.raw.type), as VTK types.
+struct RawType
+{
+  const char* Name; // "uint16"
+  int VtkType;      // VTK_UNSIGNED_SHORT
+  int Bytes;
+};
+const std::vector<RawType>& RawTypes();
+
+// "a field of 2048 x 2048 x 1024 voxels (4.29e+09 voxels, 16 GiB as float) is more than
+// field.max_voxels allows (1073741824): ..." for messages.
+std::string TooManyVoxels(const int dimensions[3], std::uint64_t maximumVoxels);
+
+// Throws InputError naming `path` unless a field of `dimensions` voxels (each at least 1) fits:
+// at most `maximumVoxels`, and `bytesPerVoxel` (what the reader holds per voxel while reading;
+// twice in the isolated child, whose parent receives a copy) plus the 4-byte float copy
+// ReadField makes, plus `extraBytes`, within the memory available. Called before anything of
+// that size is allocated.
+void CheckFieldSize(const std::string& path,
+  const std::array<double, 3>& dimensions,
+  double bytesPerVoxel,
+  std::uint64_t maximumVoxels,
+  double extraBytes = 0.0);
+
+// Throws InputError naming `path` unless the file holds at least `needed` bytes of voxel data
+// after `offset`: a truncated file is refused before its claimed size is allocated.
+void CheckFileHoldsData(const std::string& path,
+  std::uint64_t fileBytes,
+  std::uint64_t offset,
+  double needed,
+  const std::string& what);
+
+// A float copy of every value of `values` (components one after the other, as they lie in
+// memory), named `name`; values beyond float's range are refused (InputError naming `path` and
+// the count), NaN and infinity are kept for ReadField to count.
+vtkSmartPointer<vtkFloatArray> ToFloat(const std::string& path,
+  vtkDataArray* values,
+  const std::string& name);
+
+// "float", "unsigned short", ...: a VTK type in words.
+std::string TypeInWords(int vtkType);
+
+// The report line "array": the point array used and the others the image holds.
+void ReportPointArrays(FieldReport& report, vtkImageData* image, const std::string& chosen);
+
+// Sets the image's spacing and direction from three axis vectors (world length and direction of
+// one step along i, j, k), as NRRD's space directions and MetaImage's TransformMatrix with
+// ElementSpacing and OpenVDB's affine maps state them. Throws InputError naming `path` when an
+// axis has no length. Axes that are not perpendicular (a sheared lattice) are kept as stated and
+// refused by ReadField with every format's, whose direction must be a rotation.
+void SetAxes(const std::string& path,
+  vtkImageData* image,
+  const std::array<std::array<double, 3>, 3>& axes);
+
+} // namespace cloudvis
+
+#endif
