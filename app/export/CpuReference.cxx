@@ -6,6 +6,7 @@
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudLightingProperty.h"
+#include "vtkCloudPathTracer.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCamera.h>
@@ -98,7 +99,18 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
 
   VtkMessageCapture messages;
-  vtkNew<vtkCloudReferenceRenderer> reference;
+  // pathtrace: the CPU path tracer, render.spp paths per pixel; else the march's reference.
+  vtkSmartPointer<vtkCloudReferenceRenderer> reference;
+  if (scene.Render.Lighting == LightingModel::PathTrace)
+  {
+    vtkNew<vtkCloudPathTracer> tracer;
+    tracer->SetSamplesPerPixel(scene.Render.SamplesPerPixel);
+    reference = tracer;
+  }
+  else
+  {
+    reference = vtkSmartPointer<vtkCloudReferenceRenderer>::New();
+  }
   reference->SetInputData(field);
   reference->SetImageSize(width, height);
   SetReferenceCamera(reference, renderer->GetActiveCamera());

@@ -1,6 +1,7 @@
 #include "CloudMarchShader.h"
 
 #include "CloudMarchUniforms.h"
+#include "CloudPathTracePass.h"
 
 #include "CloudLightingCommon.h"
 #include "CloudLightingDerivative.h"
@@ -56,6 +57,10 @@ std::string LightingSource(LightingModel model, const std::vector<LocalLight>& l
   if (model == LightingModel::None)
   {
     return std::string(CloudLightingCommon) + "\n" + CloudLightingNone;
+  }
+  if (model == LightingModel::PathTrace)
+  {
+    return PathTraceLightingSource(); // with a main() of its own
   }
   std::ostringstream source;
   source << CloudLightingCommon << "\n"
