@@ -91,6 +91,28 @@ inline vtkSmartPointer<vtkVolumeProperty> LinearMedium(float sigma_t,
   return property;
 }
 
+// No light but the ambient, a uniform environment of this radiance.
+inline LightingParameters Ambient(glm::vec3 radiance)
+{
+  LightingParameters lighting;
+  lighting.AmbientColor = radiance;
+  lighting.AmbientStrength = 1.0f;
+  return lighting;
+}
+
+// A sphere of radius 0.6 with a soft edge 0.3 wide in [-1, 1]^3: optically thick at its core.
+inline vtkSmartPointer<vtkImageData> SoftSphere(int n = 32)
+{
+  return MakeBoxField({ n, n, n },
+    glm::dvec3(-1.0),
+    glm::dvec3(1.0),
+    [](double x, double y, double z)
+    {
+      const double r = std::sqrt(x * x + y * y + z * z);
+      return std::min(1.0, std::max(0.0, (0.75 - r) / 0.3));
+    });
+}
+
 inline Light DirectionalLight(glm::vec3 towardLight, float intensity = 1.0f)
 {
   Light light;

@@ -44,31 +44,12 @@ vtkSmartPointer<vtkCloudPathTracer> Tracer(vtkImageData* field,
   return tracer;
 }
 
-LightingParameters Ambient(glm::vec3 radiance)
-{
-  LightingParameters lighting;
-  lighting.AmbientColor = radiance;
-  lighting.AmbientStrength = 1.0f;
-  return lighting;
-}
-
 // The box [-2, 2] x [-2, 2] x [-thickness / 2, thickness / 2] filled with density 1: a slab of
 // constant sigma_t, wide enough that light reaching the framed middle enters through its faces.
 vtkSmartPointer<vtkImageData> ConstantSlab(double thickness)
 {
   return MakeBoxField({ 17, 17, 9 }, { -2.0, -2.0, -0.5 * thickness },
     { 2.0, 2.0, 0.5 * thickness }, [](double, double, double) { return 1.0; });
-}
-
-// A sphere of radius 0.6 with a soft edge 0.3 wide in [-1, 1]^3: optically thick at its core.
-vtkSmartPointer<vtkImageData> SoftSphere(int n = 32)
-{
-  return MakeBoxField({ n, n, n }, glm::dvec3(-1.0), glm::dvec3(1.0),
-    [](double x, double y, double z)
-    {
-      const double r = std::sqrt(x * x + y * y + z * z);
-      return std::min(1.0, std::max(0.0, (0.75 - r) / 0.3));
-    });
 }
 
 // The largest |z| over blocks of blockSize x blockSize pixels (where `use` picks at least half
