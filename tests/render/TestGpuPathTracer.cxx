@@ -232,10 +232,20 @@ TEST(GpuPathTracer, SlabOpacityIsOneMinusExpOfMinusSigmaTimesPath)
     alpha,
     30,
     "opacity");
+  // The pixels are independent estimates of one value: their scatter checks the variance the
+  // mapper reports from its moment target (the sample variance of N pixels has a relative
+  // standard error of sqrt(2 / (N - 1))).
+  double scatter = 0.0, reported = 0.0;
   for (std::size_t p = 0; p < image.Pixels(); ++p)
   {
     ASSERT_EQ(image.At(p, 0), 0.0f) << "no light, no ambient: nothing is scattered";
+    scatter += (image.At(p, 3) - alpha) * (image.At(p, 3) - alpha);
+    reported += image.VarianceAt(p, 3);
   }
+  const double pixels = double(image.Pixels());
+  const double ratio = (scatter / pixels) / (reported / pixels);
+  std::cout << "scatter over reported variance: " << ratio << "\n";
+  EXPECT_NEAR(ratio, 1.0, Sigmas * std::sqrt(2.0 / (pixels - 1.0)));
 }
 
 TEST(GpuPathTracer, WhiteFurnaceMediumVanishesIntoTheEnvironment)
