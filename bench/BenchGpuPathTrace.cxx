@@ -11,8 +11,9 @@
 //   --spp       paths per pixel of both renderers (default 16)
 //   --cpu-size  the CPU's image (default 200x150; its time is scaled to 800 x 600)
 //   scenes      default data/scenes/fbm-sphere.json, two-lights.json, sphere.json
-// Needs an X display (xvfb-run -a on a headless machine). The GPU time excludes the first frame's
-// shader compilation and uploads, and ends when the GPU has finished.
+// Needs an X display (xvfb-run -a on a headless machine). The GPU is timed through RenderOffscreen
+// (what `cloudvis render` runs) from the end of its first frame (shader compilation, uploads) to
+// the image read back; at least 16 paths per pixel, so that some frames follow the first.
 #include "CloudImageComparison.h"
 #include "CpuReference.h"
 #include "OffscreenRender.h"
@@ -20,18 +21,14 @@
 #include "SceneField.h"
 #include "SceneLighting.h"
 #include "vtkCloudPathTracer.h"
-#include "vtkCloudVolumeMapper.h"
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSMPTools.h>
 #include <vtkTimerLog.h>
-#include <vtkVolume.h>
-#include <vtkVolumeProperty.h>
 
 #include <cmath>
 #include <cstdio>
@@ -81,47 +78,39 @@ Scene SceneAt(const std::string& path, int width, int height, int samples)
   return scene;
 }
 
+// `cloudvis render` itself (RenderOffscreen, float image kept for the variance), timed from the
+// end of its first frame (shader compilation, uploads, occupancy) to the image read back: the
+// paths of the frames after the first.
 Run RunGpu(const Scene& scene, vtkImageData* field)
 {
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(scene.Render.Size[0], scene.Render.Size[1]);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkCloudVolumeMapper> mapper;
-  mapper->SetInputData(field);
-  ConfigureMapper(mapper, scene.Render);
-  ConfigureLighting(scene, renderer, mapper);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(MakeVolumeProperty(scene.TransferFunction));
-  renderer->AddVolume(volume);
-  ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
-
-  window->Render(); // shader compilation, uploads, occupancy: not timed
-  window->WaitForCompletion();
-  mapper->Modified(); // the accumulation starts again
-  const int frames = mapper->GetMaximumAccumulatedFrames();
-  const double start = vtkTimerLog::GetUniversalTime();
-  for (int f = 0; f < frames; ++f)
+  double start = 0.0;
+  int framesTimed = 0;
+  RenderOptions options;
+  options.FloatImage = true;
+  options.OnFrame = [&](int frame, int frames)
   {
-    window->Render();
-  }
-  window->WaitForCompletion();
+    if (frame == 1)
+    {
+      start = vtkTimerLog::GetUniversalTime();
+    }
+    framesTimed = frames - 1;
+  };
+  const OffscreenRenderResult result = RenderOffscreen(scene, field, scene.Source, 0, options);
   Run run;
   run.Seconds = vtkTimerLog::GetUniversalTime() - start;
-  std::vector<float> rgba, variance;
-  int width = 0, height = 0;
-  if (!mapper->GetLastError().empty() || !mapper->ReadImage(renderer, rgba, width, height) ||
-    !mapper->ReadVariance(renderer, variance, width, height))
+  const RenderedImage& image = result.Image;
+  if (framesTimed < 1 || image.Variance.empty())
   {
-    throw std::runtime_error("the GPU path tracer rendered nothing: " + mapper->GetLastError());
+    throw std::runtime_error("the GPU path tracer needs at least two frames (spp above 8)");
   }
-  run.Width = width;
-  run.Height = height;
-  run.Samples = mapper->GetNumberOfAccumulatedSamples(renderer);
-  run.Noise = MeasureImageNoise(rgba.data(), variance.data(), std::size_t(width) * height);
+  run.Width = image.Width;
+  run.Height = image.Height;
+  run.Samples = result.AccumulatedSamples / result.AccumulatedFrames * framesTimed;
+  run.Noise = MeasureImageNoise(
+    image.Radiance.data(), image.Variance.data(), std::size_t(image.Width) * image.Height);
+  // The noise is that of all the paths; the time, of the timed ones.
+  run.Noise.RelativeStandardError *=
+    std::sqrt(double(result.AccumulatedSamples) / double(run.Samples));
   return run;
 }
 
@@ -188,9 +177,9 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--spp") && hasValue)
     {
       options.Samples = std::atoi(argv[++i]);
-      if (options.Samples < 2)
+      if (options.Samples < 16)
       {
-        std::fprintf(stderr, "--spp expects an integer of at least 2\n");
+        std::fprintf(stderr, "--spp expects an integer of at least 16\n");
         return 2;
       }
     }

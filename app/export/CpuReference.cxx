@@ -76,10 +76,14 @@ void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::st
     case MarchInput::Step:
       throw InputError(scene.Source + ": render.step: " + problem.Message);
     case MarchInput::Lighting:
+      // The path tracer's parameters are the march's phase (render.march).
       throw InputError(scene.Source + ": " +
         (scene.Render.Lighting == LightingModel::None
             ? std::string("render")
-            : "render." + LightingModelName(scene.Render.Lighting)) +
+            : "render." +
+              LightingModelName(scene.Render.Lighting == LightingModel::PathTrace
+                  ? LightingModel::March
+                  : scene.Render.Lighting)) +
         ": " + problem.Message);
     case MarchInput::Light:
       throw InputError(

@@ -21,11 +21,6 @@
 
 namespace cloudvis
 {
-namespace
-{
-constexpr int MaxLights = LightingLimits::MaxLights;
-
-// A float as a GLSL literal that reads back as the same float.
 std::string GlslFloat(float value)
 {
   char text[32];
@@ -37,6 +32,10 @@ std::string GlslFloat(float value)
   }
   return literal;
 }
+
+namespace
+{
+constexpr int MaxLights = LightingLimits::MaxLights;
 
 // The constants the GLSL shares with the C++, from their one definition.
 std::string Constants()

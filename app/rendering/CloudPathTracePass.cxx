@@ -1,6 +1,7 @@
 #include "CloudPathTracePass.h"
 
 #include "CloudGpuMemory.h"
+#include "CloudMarchShader.h" // GlslFloat
 #include "CloudPathTrace.h"
 
 #include "CloudLightingCommon.h"
@@ -14,7 +15,6 @@
 #include <vtkShaderProgram.h>
 #include <vtk_glew.h>
 
-#include <cstdio>
 #include <sstream>
 #include <vector>
 
@@ -26,18 +26,6 @@ namespace
 // crosses (3 x 2^16 / 2 for the largest field the mapper takes): the C++ loop ends by itself;
 // this only keeps a GPU from hanging should rounding ever stall the walk.
 constexpr int MaxWalkSteps = 1 << 18;
-
-std::string GlslFloat(float value)
-{
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", double(value));
-  std::string literal = text;
-  if (literal.find_first_of(".e") == std::string::npos)
-  {
-    literal += ".0";
-  }
-  return literal;
-}
 }
 
 std::string PathTraceLightingSource()

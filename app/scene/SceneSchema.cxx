@@ -550,8 +550,8 @@ const std::vector<Name>& LightingModels()
       "a nested march toward each light: shadows, phase function, multiple scattering" },
     { "pathtrace",
       int(LightingModel::PathTrace),
-      "Monte Carlo path tracing of the same medium, every order of scattering: the ground truth "
-      "(`render.spp` paths per pixel)" },
+      "Monte Carlo path tracing of the same medium, every order of scattering, `render.spp` "
+      "paths per pixel: the ground truth" },
   };
   return names;
 }
