@@ -4,6 +4,8 @@
 // from the mapper's GetLastError().
 #include "OffscreenRender.h"
 
+#include "CloudPathTrace.h" // PathTraceBrickSize
+
 #include "AtomicFile.h"
 #include "Background.h"
 #include "CpuReference.h"
@@ -106,6 +108,9 @@ void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
     const PathTraceFrames frames = PathTraceFramesOf(render.SamplesPerPixel);
     mapper->SetPathTraceSamplesPerFrame(frames.SamplesPerFrame);
     mapper->SetMaximumAccumulatedFrames(frames.Frames);
+    // The majorant bricks of the CPU tracer's default: larger than the march's, they cut the
+    // bricks a path walks through, 1.2-1.5x faster on llvmpipe (docs/performance.md).
+    mapper->SetBrickSize(PathTraceBrickSize);
   }
 }
 

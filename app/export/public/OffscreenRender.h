@@ -47,7 +47,8 @@ struct PathTraceFrames
 PathTraceFrames PathTraceFramesOf(int samplesPerPixel);
 
 // Sets what only the GPU mapper has from the render section: jitter, resolution scale,
-// accumulation (for pathtrace: render.spp paths, PathTraceFramesOf) and empty-space skipping.
+// accumulation (for pathtrace: render.spp paths, PathTraceFramesOf, and the path tracer's bricks,
+// cloudvis::PathTraceBrickSize) and empty-space skipping.
 // What every renderer takes (the step, the lighting, the
 // lights) comes from ConfigureLighting (SceneLighting.h).
 void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render);
