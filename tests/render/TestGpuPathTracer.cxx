@@ -104,9 +104,8 @@ struct GpuTrace
   }
 };
 
-// Per channel: the mean of `difference` over the pixels `use` picks is 0 within Sigmas combined
-// standard errors, and so is every 4 x 4 tile's with at least half its pixels used (at least
-// minTiles of them); the standard error of the mean is below 2% of `scale`.
+// test::ExpectNoDifference over 4 x 4 tiles at Sigmas, the standard error below 2% of `scale`,
+// with the observed figures printed (the tolerances' margins, for docs and reports).
 void ExpectAgreement(const Image& image,
   const std::function<double(std::size_t)>& difference,
   const std::function<double(std::size_t)>& variance,
@@ -116,41 +115,13 @@ void ExpectAgreement(const Image& image,
   const std::string& what)
 {
   const test::Estimate mean = test::MeanOverPixels(image, difference, variance, use);
-  EXPECT_NEAR(mean.Mean, 0.0, Sigmas * mean.StandardError) << what;
-  EXPECT_LT(mean.StandardError, 0.02 * scale) << what;
-  double largest = 0.0;
   int tiles = 0;
-  for (int tj = 0; tj + 4 <= image.Height; tj += 4)
-  {
-    for (int ti = 0; ti + 4 <= image.Width; ti += 4)
-    {
-      double sum = 0.0, v = 0.0;
-      int used = 0;
-      for (int j = tj; j < tj + 4; ++j)
-      {
-        for (int i = ti; i < ti + 4; ++i)
-        {
-          const std::size_t p = std::size_t(j) * image.Width + i;
-          if (use(p))
-          {
-            sum += difference(p);
-            v += variance(p);
-            ++used;
-          }
-        }
-      }
-      if (2 * used >= 16 && v > 0.0)
-      {
-        largest = std::max(largest, std::abs(sum) / std::sqrt(v));
-        ++tiles;
-      }
-    }
-  }
   std::cout << what << ": mean difference " << mean.Mean << " +- " << mean.StandardError
-            << " (scale " << scale << "), largest tile z " << largest << " over " << tiles
+            << " (scale " << scale << "), largest tile z "
+            << test::LargestBlockZ(image, 4, difference, variance, use, tiles) << " over " << tiles
             << " tiles\n";
-  EXPECT_LT(largest, Sigmas) << what;
-  EXPECT_GE(tiles, minTiles) << what;
+  test::ExpectNoDifference(
+    image, 4, difference, variance, use, scale, minTiles, what, 0.02, Sigmas);
 }
 
 double MeanOf(const Image& image, int channel, const std::function<bool(std::size_t)>& use)

@@ -52,63 +52,6 @@ vtkSmartPointer<vtkImageData> ConstantSlab(double thickness)
     { 2.0, 2.0, 0.5 * thickness }, [](double, double, double) { return 1.0; });
 }
 
-// The largest |z| over blocks of blockSize x blockSize pixels (where `use` picks at least half
-// of a block's pixels) of the block's mean difference over its standard error. A block pools
-// thousands of paths, so its mean is close to normal and its variance estimate reliable even
-// where single pixels depend on rare events (a path that hits a thin edge, or fails to).
-double LargestBlockZ(const Image& image, int blockSize,
-  const std::function<double(std::size_t)>& difference,
-  const std::function<double(std::size_t)>& variance, const std::function<bool(std::size_t)>& use,
-  int& blocks)
-{
-  double largest = 0.0;
-  blocks = 0;
-  for (int bj = 0; bj + blockSize <= image.Height; bj += blockSize)
-  {
-    for (int bi = 0; bi + blockSize <= image.Width; bi += blockSize)
-    {
-      double sum = 0.0, v = 0.0;
-      int used = 0;
-      for (int j = bj; j < bj + blockSize; ++j)
-      {
-        for (int i = bi; i < bi + blockSize; ++i)
-        {
-          const std::size_t p = std::size_t(j) * image.Width + i;
-          if (use(p))
-          {
-            sum += difference(p);
-            v += variance(p);
-            ++used;
-          }
-        }
-      }
-      if (2 * used >= blockSize * blockSize && v > 0.0)
-      {
-        largest = std::max(largest, std::abs(sum) / std::sqrt(v));
-        ++blocks;
-      }
-    }
-  }
-  return largest;
-}
-
-// The checks of every image comparison: the mean of `difference` over the pixels `use` picks is
-// 0 within Sigmas standard errors, and so is each block's (a local error cannot hide in the
-// mean: at least minBlocks blocks of 3 x 3 or more pixels count); and the standard error is
-// below `tightness` (1%) of `scale`, so the check is tight.
-void ExpectNoDifference(const Image& image, int blockSize,
-  const std::function<double(std::size_t)>& difference,
-  const std::function<double(std::size_t)>& variance, const std::function<bool(std::size_t)>& use,
-  double scale, int minBlocks, const std::string& what, double tightness = 0.01)
-{
-  const Estimate mean = MeanOverPixels(image, difference, variance, use);
-  EXPECT_NEAR(mean.Mean, 0.0, Sigmas * mean.StandardError) << what;
-  EXPECT_LT(mean.StandardError, tightness * scale) << what;
-  int blocks = 0;
-  EXPECT_LT(LargestBlockZ(image, blockSize, difference, variance, use, blocks), Sigmas) << what;
-  EXPECT_GE(blocks, minBlocks) << what;
-}
-
 // Seen along `view`, the opacity of each pixel of the field over [0, 1]^3 is 1 - exp(-optical
 // depth), the depth integrated by the march (emission-absorption with a step of 1/32 voxel,
 // whose quadrature error is far below the noise).
