@@ -23,6 +23,7 @@ enum class LightingModel
   None,       // emission-absorption: a sample emits its transfer-function color
   Derivative, // directional derivative toward each light, one extra density sample per light
   March,      // nested march toward each light: Beer-Lambert shadowing and a phase function
+  PathTrace,  // Monte Carlo volumetric path tracing: every order of scattering (CloudPathTrace.h)
 };
 
 // A light in the world, as a scene or a vtkLight gives it (the mapper converts vtkLights into

@@ -77,6 +77,11 @@ struct CLOUDVISFILTERS_EXPORT PathTraceUniforms
   int RouletteBounces = 3;
 };
 
+// The edge of the majorant bricks, in cells, that renders path-trace with by default
+// (vtkCloudPathTracer's BrickSize, and the app's GPU mapper for the pathtrace model): the fastest
+// on the shipped scenes (docs/performance.md).
+constexpr int PathTraceBrickSize = 8;
+
 // Ratio tracking plays Russian roulette once its running transmittance falls below this: a
 // path in deep shadow stops early, unbiased (it survives with probability T / threshold and
 // then carries the threshold).

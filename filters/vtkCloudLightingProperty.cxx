@@ -6,7 +6,8 @@ vtkStandardNewMacro(vtkCloudLightingProperty);
 
 static_assert(int(cloudvis::LightingModel::None) == vtkCloudLightingProperty::NoLighting &&
     int(cloudvis::LightingModel::Derivative) == vtkCloudLightingProperty::DerivativeLighting &&
-    int(cloudvis::LightingModel::March) == vtkCloudLightingProperty::MarchLighting,
+    int(cloudvis::LightingModel::March) == vtkCloudLightingProperty::MarchLighting &&
+    int(cloudvis::LightingModel::PathTrace) == vtkCloudLightingProperty::PathTraceLighting,
   "the property's models are cloudvis::LightingModel's");
 
 namespace
@@ -99,6 +100,8 @@ const char* vtkCloudLightingProperty::GetModelAsString() const
       return "derivative";
     case MarchLighting:
       return "march";
+    case PathTraceLighting:
+      return "pathtrace";
     case NoLighting:
     default:
       return "none";

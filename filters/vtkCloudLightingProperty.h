@@ -37,17 +37,20 @@ public:
     NoLighting = 0,         // emission-absorption: a sample emits its transfer-function color
     DerivativeLighting = 1, // the directional derivative toward each light
     MarchLighting = 2,      // a nested march toward each light, phase, multiple scattering
+    PathTraceLighting = 3,  // Monte Carlo path tracing of the same medium: the ground truth
   };
 
   ///@{
   /**
-   * The lighting model: NoLighting, DerivativeLighting or MarchLighting. Default NoLighting.
+   * The lighting model: NoLighting, DerivativeLighting, MarchLighting or PathTraceLighting (the
+   * GPU mapper's progressive path tracer; the CPU's is vtkCloudPathTracer). Default NoLighting.
    */
-  vtkSetClampMacro(Model, int, NoLighting, MarchLighting);
+  vtkSetClampMacro(Model, int, NoLighting, PathTraceLighting);
   vtkGetMacro(Model, int);
   void SetModelToNone() { this->SetModel(NoLighting); }
   void SetModelToDerivative() { this->SetModel(DerivativeLighting); }
   void SetModelToMarch() { this->SetModel(MarchLighting); }
+  void SetModelToPathTrace() { this->SetModel(PathTraceLighting); }
   const char* GetModelAsString() const;
   ///@}
 

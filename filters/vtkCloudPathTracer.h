@@ -33,6 +33,7 @@
 #ifndef vtkCloudPathTracer_h
 #define vtkCloudPathTracer_h
 
+#include "CloudPathTrace.h" // PathTraceBrickSize
 #include "vtkCloudReferenceRenderer.h"
 
 class CLOUDVISFILTERS_EXPORT vtkCloudPathTracer : public vtkCloudReferenceRenderer
@@ -93,7 +94,7 @@ protected:
   int SamplesPerPixel = 64;
   unsigned int Seed = 0;
   int MaxBounces = 1024;
-  int BrickSize = 8;
+  int BrickSize = cloudvis::PathTraceBrickSize;
 
 private:
   vtkCloudPathTracer(const vtkCloudPathTracer&) = delete;

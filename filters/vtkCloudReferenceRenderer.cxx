@@ -334,6 +334,13 @@ bool vtkCloudReferenceRenderer::RenderImage(const cloudvis::MarchUniforms& unifo
   vtkImageData*,
   vtkImageData* output)
 {
+  if (uniforms.Lighting.Model == cloudvis::LightingModel::PathTrace)
+  {
+    // The march has no path-trace source term; the path tracer is a renderer of its own.
+    vtkErrorMacro(<< "the pathtrace lighting model is rendered by vtkCloudPathTracer, not by "
+                     "vtkCloudReferenceRenderer's march");
+    return false;
+  }
   const int width = this->ImageSize[0], height = this->ImageSize[1];
   vtkNew<vtkFloatArray> rgba;
   rgba->SetName("rgba");

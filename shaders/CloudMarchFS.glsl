@@ -100,9 +100,11 @@ bool EmptyBrickAt(vec3 p)
   return EmptyBricksAround(BrickOf(p)) > 0.0;
 }
 
-// The lighting model: SourceTerm(p, density, albedo, d) and what it needs.
+// The lighting model: SourceTerm(p, density, albedo, d) and what it needs, or (the path tracer,
+// which defines CLOUD_OWN_MAIN) a main() of its own that uses the helpers above.
 //CLOUD::Lighting::Dec
 
+#ifndef CLOUD_OWN_MAIN
 void main()
 {
   vec2 ndc = texCoord * 2.0 - 1.0;
@@ -187,3 +189,4 @@ void main()
   gl_FragData[0] = vec4(radiance, 1.0 - T); // premultiplied: alpha is the opacity
   gl_FragData[1] = vec4(samplesTaken, usefulSamples, firstSignificant, 1.0);
 }
+#endif

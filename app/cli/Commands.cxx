@@ -30,6 +30,7 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -37,8 +38,8 @@
 #include <iostream>
 #include <numeric>
 #include <optional>
-#include <sstream>
 #include <regex>
+#include <sstream>
 #include <sys/stat.h>
 
 namespace cloudvis
@@ -184,6 +185,10 @@ const OptionSpec ImageOutputOption{ "output", 'o', "IMAGE.png",
   "--transparent) or .exr (float channels, docs/export.md); required", false, true };
 const OptionSpec SizeOption{ "size", 0, "WxH",
   "image size in pixels, e.g. 800x600 (each in [16, 16384]); overrides render.size" };
+const OptionSpec SamplesPerPixelOption{ "spp",
+  0,
+  "N",
+  "paths per pixel of a pathtrace still, at least 2; overrides render.spp" };
 const OptionSpec BenchmarkOption{ "benchmark", 0, "N",
   "after the image is made, march N more frames in full and print the mean time per frame as "
   "'<milliseconds> ms/frame'" };
@@ -197,6 +202,12 @@ const OptionSpec CompareLightingOption{ "lighting", 0, "M1,M2,...",
 const OptionSpec DifferenceOption{ "difference", 0, "A,B",
   "add a panel showing |A - B| of two of the compared models, false colored, labelled with the "
   "largest difference" };
+const OptionSpec ReferenceOption{ "reference",
+  0,
+  "pathtrace[:SPP]",
+  "add a ground-truth panel path-traced with SPP paths per pixel (default render.spp, at least "
+  "2) and measure every model against it: relative RMSE, bias (ratio of means) and max error "
+  "relative to the peak, on its panel and printed, with the reference's own standard error" };
 const OptionSpec PanelSizeOption{ "size", 0, "WxH",
   "size of each panel in pixels, e.g. 400x300; overrides render.size (the window is the panels "
   "side by side)" };
@@ -355,6 +366,10 @@ int Render(const Arguments& arguments, std::ostream& out)
   {
     options.push_back({ "render.size", ParseSizeOption("render", arguments.Value("size")), "--size" });
   }
+  if (arguments.Has("spp"))
+  {
+    options.push_back(NumericOverride("render.spp", arguments.Value("spp"), "--spp"));
+  }
   AddExportOverrides(arguments, options);
   const bool cpuReference = arguments.Has("cpu-reference");
   if (cpuReference && benchmarkFrames > 0)
@@ -391,8 +406,16 @@ int Render(const Arguments& arguments, std::ostream& out)
   progress.Finish();
   WriteImage(result.Image, output, exportOptions);
   out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, " << result.AccumulatedFrames << " frame"
-      << (result.AccumulatedFrames == 1 ? "" : "s") << " averaged)\n";
+      << " pixels, ";
+  if (scene.Render.Lighting == LightingModel::PathTrace)
+  {
+    out << result.AccumulatedSamples << " paths per pixel averaged)\n";
+  }
+  else
+  {
+    out << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
+        << " averaged)\n";
+  }
   if (benchmarkFrames > 0)
   {
     const double total =
@@ -432,12 +455,50 @@ std::vector<LightingModel> ParseModelList(const std::string& text)
   return models;
 }
 
-// --difference A,B: two of the compared models, as indices into `models`.
-std::pair<size_t, size_t> ParseDifference(const std::string& text, const std::vector<LightingModel>& models)
+// --reference pathtrace[:SPP]: the reference's paths per pixel (SPP), or 0 for the scene's
+// render.spp.
+int ParseReference(const std::string& text)
 {
-  const auto comma = text.find(',');
-  const std::string names[2] = { text.substr(0, comma),
-    comma == std::string::npos ? "" : text.substr(comma + 1) };
+  const std::string name = LightingModelName(LightingModel::PathTrace);
+  const auto colon = text.find(':');
+  if (text.substr(0, colon) != name)
+  {
+    throw UsageError("compare: --reference expects " + name + " or " + name +
+      ":SPP (the path tracer with SPP paths per pixel), got \"" + text + "\"");
+  }
+  if (colon == std::string::npos)
+  {
+    return 0;
+  }
+  const std::string count = text.substr(colon + 1);
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(count.c_str(), &end, 10);
+  if (count.empty() || *end != '\0' || errno != 0 || value < 2 || value > (1L << 24) ||
+    !std::isdigit(static_cast<unsigned char>(count[0])))
+  {
+    throw UsageError("compare: --reference: SPP must be an integer from 2 to 16777216 (paths per "
+                     "pixel), got \"" +
+      count + "\"");
+  }
+  return int(value);
+}
+
+// --difference A,B: two of the compared models, as indices into `models` (which ends with the
+// reference, pathtrace, when there is one). With a reference, one name A means A,pathtrace.
+std::pair<size_t, size_t> ParseDifference(const std::string& text,
+  const std::vector<LightingModel>& models,
+  bool reference)
+{
+  auto comma = text.find(',');
+  std::string pair = text;
+  if (comma == std::string::npos && reference)
+  {
+    pair = text + "," + LightingModelName(LightingModel::PathTrace);
+    comma = text.size();
+  }
+  const std::string names[2] = { pair.substr(0, comma),
+    comma == std::string::npos ? "" : pair.substr(comma + 1) };
   size_t indices[2] = { 0, 0 };
   for (int i = 0; i < 2; ++i)
   {
@@ -466,10 +527,25 @@ int Compare(const Arguments& arguments, std::ostream& out)
   const std::string output = arguments.Value("output");
   const std::vector<LightingModel> models =
     ParseModelList(arguments.Has("lighting") ? arguments.Value("lighting") : "none,derivative,march");
+  std::optional<int> referenceSamples;
+  if (arguments.Has("reference"))
+  {
+    referenceSamples = ParseReference(arguments.Value("reference"));
+    if (std::find(models.begin(), models.end(), LightingModel::PathTrace) != models.end())
+    {
+      throw UsageError("compare: --lighting lists pathtrace, which --reference already adds as "
+                       "the reference panel");
+    }
+  }
+  std::vector<LightingModel> panels = models;
+  if (referenceSamples)
+  {
+    panels.push_back(LightingModel::PathTrace);
+  }
   std::optional<std::pair<size_t, size_t>> difference;
   if (arguments.Has("difference"))
   {
-    difference = ParseDifference(arguments.Value("difference"), models);
+    difference = ParseDifference(arguments.Value("difference"), panels, bool(referenceSamples));
   }
   std::vector<SceneOverride> options;
   if (arguments.Has("size"))
@@ -477,22 +553,39 @@ int Compare(const Arguments& arguments, std::ostream& out)
     options.push_back({ "render.size", ParseSizeOption("compare", arguments.Value("size")), "--size" });
   }
   const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
+  if (referenceSamples && *referenceSamples == 0)
+  {
+    referenceSamples = loaded.Loaded.Render.SamplesPerPixel;
+  }
   const ComparisonResult result = RenderComparison(
-    loaded.Loaded, loaded.Field, arguments.Operands[0], models, difference);
+    loaded.Loaded, loaded.Field, arguments.Operands[0], models, difference, 3, referenceSamples);
   WriteImage(result.Image, output);
   out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, " << models.size() + (difference ? 1 : 0) << " panels, "
+      << " pixels, " << panels.size() + (difference ? 1 : 0) << " panels, "
       << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
       << " averaged)\n";
-  for (size_t i = 0; i < models.size(); ++i)
+  for (size_t i = 0; i < panels.size(); ++i)
   {
-    out << LightingModelName(models[i]) << ": " << std::fixed << std::setprecision(2)
-        << result.Milliseconds[i] << " ms/frame\n";
+    out << LightingModelName(panels[i]) << ": " << std::fixed << std::setprecision(2)
+        << result.Milliseconds[i] << " ms/frame";
+    if (referenceSamples && i < models.size())
+    {
+      const ImageError& e = result.Errors[i];
+      out << "; against the reference: relative RMSE " << std::setprecision(4) << e.RelativeRMSE
+          << ", bias " << e.BiasRatio << " (ratio of means), max error " << e.MaxErrorOverPeak
+          << " of the peak";
+    }
+    else if (referenceSamples)
+    {
+      out << "; reference: " << result.ReferenceSamples << " paths per pixel, relative standard "
+          << "error " << std::setprecision(4) << result.ReferenceNoise.RelativeStandardError;
+    }
+    out << "\n";
   }
   if (difference)
   {
-    out << "max |" << LightingModelName(models[difference->first]) << " - "
-        << LightingModelName(models[difference->second]) << "|: " << std::setprecision(6)
+    out << "max |" << LightingModelName(panels[difference->first]) << " - "
+        << LightingModelName(panels[difference->second]) << "|: " << std::setprecision(6)
         << result.MaxDifference << "\n";
   }
   return ExitSuccess;
@@ -626,6 +719,7 @@ const std::vector<CommandSpec>& Commands()
       { ImageOutputOption,
         SizeOption,
         LightingOption(),
+        SamplesPerPixelOption,
         BenchmarkOption,
         CpuReferenceOption,
         PngBitsOption,
@@ -646,12 +740,15 @@ const std::vector<CommandSpec>& Commands()
       "One off-screen window with one panel per model (--lighting), render.size each, all\n"
       "sharing one camera and jitter sequence; each panel is labelled with the model and its\n"
       "mean frame time, measured with the other panels hidden. --difference A,B adds a panel\n"
-      "of |A - B|. The scene's render.lighting is not used; everything else is as in render.\n"
+      "of |A - B|. --reference pathtrace[:SPP] adds the path tracer's ground truth and each\n"
+      "model's error against it (--difference A then means A,pathtrace).\n"
+      "The scene's render.lighting is not used; everything else is as in render.\n"
       "Prints each model's time as '<model>: <milliseconds> ms/frame'. Needs an X display:\n"
       "xvfb-run -a cloudvis compare ...",
       { ImageOutputOption,
         PanelSizeOption,
         CompareLightingOption,
+        ReferenceOption,
         DifferenceOption,
         SetOption,
         FieldFileOptions[0],
@@ -661,11 +758,16 @@ const std::vector<CommandSpec>& Commands()
       Compare },
     AnimateCommand(),
     ViewCommand(),
-    { "schema", "", 0, 0, "print the reference tables of the scene file format (Markdown)",
+    { "schema",
+      "",
+      0,
+      0,
+      "print the reference tables of the scene file format (Markdown)",
       "Prints every key a scene file may hold, with its type, default and allowed values, as\n"
       "the Markdown tables of docs/scene-format.md, which are generated from this output (the\n"
       "test app.scene_docs fails when the two differ; `make docs` writes them in).",
-      { HelpOption }, Schema },
+      { HelpOption },
+      Schema },
   };
   return commands;
 }

@@ -146,18 +146,27 @@ int Animate(const Arguments& arguments, std::ostream& out)
 
 } // namespace
 
+SceneOverride NumericOverride(const std::string& key,
+  const std::string& text,
+  const std::string& option)
+{
+  double number = 0.0;
+  // A number goes in as a number, anything else as text, for the scene to refuse by key.
+  return { key,
+    ParseNumber(text, number)
+      ? nlohmann::json(number == std::floor(number) && std::abs(number) < 2147483648.0
+            ? nlohmann::json(int(number))
+            : nlohmann::json(number))
+      : nlohmann::json(text),
+    option };
+}
+
 void AddExportOverrides(const Arguments& arguments, std::vector<SceneOverride>& overrides)
 {
   if (arguments.Has("png-bits"))
   {
-    const std::string text = arguments.Value("png-bits");
-    double bits = 0.0;
-    // A number goes in as a number, anything else as text, for the scene to refuse by key.
-    overrides.push_back({ "render.png_bits",
-      ParseNumber(text, bits) ? nlohmann::json(bits == std::floor(bits) ? nlohmann::json(int(bits))
-                                                                        : nlohmann::json(bits))
-                              : nlohmann::json(text),
-      "--png-bits" });
+    overrides.push_back(
+      NumericOverride("render.png_bits", arguments.Value("png-bits"), "--png-bits"));
   }
   if (arguments.Has("exr-half"))
   {

@@ -99,6 +99,71 @@ vtkSmartPointer<vtkImageData> DifferenceImage(const std::vector<float>& a,
   return image;
 }
 
+// A panel's float image, and with `variance` the variance of its means (a path-traced panel).
+void ReadPanel(Panel& panel,
+  const std::string& input,
+  std::vector<float>& rgba,
+  std::vector<float>* variance,
+  int& width,
+  int& height)
+{
+  int varianceWidth = 0, varianceHeight = 0;
+  if (!panel.Mapper->ReadImage(panel.Renderer, rgba, width, height) ||
+    (variance &&
+      (!panel.Mapper->ReadVariance(panel.Renderer, *variance, varianceWidth, varianceHeight) ||
+        varianceWidth != width || varianceHeight != height)))
+  {
+    throw InputError(input + ": could not read the panels' images back to measure their errors");
+  }
+}
+
+// Each model's error against the reference panel, into `result` and onto the labels.
+void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
+  const std::vector<LightingModel>& models,
+  size_t referencePanel,
+  const std::string& input,
+  ComparisonResult& result)
+{
+  std::vector<float> reference, variance;
+  int width = 0, height = 0;
+  ReadPanel(*panels[referencePanel], input, reference, &variance, width, height);
+  const size_t pixels = size_t(width) * size_t(height);
+  result.ReferenceNoise = MeasureImageNoise(reference.data(), variance.data(), pixels);
+  result.ReferenceSamples =
+    panels[referencePanel]->Mapper->GetNumberOfAccumulatedSamples(panels[referencePanel]->Renderer);
+  char text[160];
+  std::snprintf(text,
+    sizeof(text),
+    "%s  %s\nreference: %d paths/pixel, noise %.2g%%",
+    LightingModelName(LightingModel::PathTrace).c_str(),
+    FormatMilliseconds(result.Milliseconds[referencePanel]).c_str(),
+    result.ReferenceSamples,
+    100.0 * result.ReferenceNoise.RelativeStandardError);
+  panels[referencePanel]->Label->SetInput(text);
+  for (size_t i = 0; i < referencePanel; ++i)
+  {
+    std::vector<float> rgba;
+    int modelWidth = 0, modelHeight = 0;
+    ReadPanel(*panels[i], input, rgba, nullptr, modelWidth, modelHeight);
+    if (modelWidth != width || modelHeight != height)
+    {
+      throw InputError(input + ": the panels' images differ in size");
+    }
+    const ImageError error =
+      CompareWithReference(rgba.data(), reference.data(), variance.data(), pixels);
+    result.Errors.push_back(error);
+    std::snprintf(text,
+      sizeof(text),
+      "%s  %s\nrRMSE %.1f%%  bias %.2f  max %.0f%%",
+      LightingModelName(models[i]).c_str(),
+      FormatMilliseconds(result.Milliseconds[i]).c_str(),
+      100.0 * error.RelativeRMSE,
+      error.BiasRatio,
+      100.0 * error.MaxErrorOverPeak);
+    panels[i]->Label->SetInput(text);
+  }
+}
+
 } // namespace
 
 std::array<double, 3> DifferenceColor(double t)
@@ -115,15 +180,26 @@ std::array<double, 3> DifferenceColor(double t)
     stops[i][2] + f * (stops[i + 1][2] - stops[i][2]) };
 }
 
-ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const std::string& input,
-  const std::vector<LightingModel>& models,
-  const std::optional<std::pair<size_t, size_t>>& difference, int timingFrames)
+ComparisonResult RenderComparison(const Scene& scene,
+  vtkImageData* field,
+  const std::string& input,
+  const std::vector<LightingModel>& comparedModels,
+  const std::optional<std::pair<size_t, size_t>>& difference,
+  int timingFrames,
+  std::optional<int> referenceSamples)
 {
   const int width = scene.Render.Size[0];
   const int height = scene.Render.Size[1];
+  // The reference is one more panel, the path tracer's, after the compared models.
+  std::vector<LightingModel> models = comparedModels;
+  if (referenceSamples)
+  {
+    models.push_back(LightingModel::PathTrace);
+  }
+  const size_t referencePanel = comparedModels.size();
   const int panelCount = int(models.size()) + (difference ? 1 : 0);
-  if (models.empty() || (difference && (difference->first >= models.size() ||
-                                         difference->second >= models.size())))
+  if (comparedModels.empty() ||
+    (difference && (difference->first >= models.size() || difference->second >= models.size())))
   {
     throw InputError(input + ": compare: no models, or a difference of models not compared");
   }
@@ -167,8 +243,16 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
     ConfigureLighting(lit, panel.Renderer, panel.Mapper);
     ApplyBackground(lit, panel.Renderer);
     panel.Mapper->SetInputData(field);
-    ConfigureMapper(panel.Mapper, lit.Render);
-    panel.Mapper->SetMaximumAccumulatedFrames(frames);
+    if (referenceSamples && i == referencePanel)
+    {
+      lit.Render.SamplesPerPixel = *referenceSamples;
+      ConfigureMapper(panel.Mapper, lit.Render); // its frames: referenceSamples paths
+    }
+    else
+    {
+      ConfigureMapper(panel.Mapper, lit.Render);
+      panel.Mapper->SetMaximumAccumulatedFrames(frames);
+    }
     panel.Volume->SetMapper(panel.Mapper);
     panel.Volume->SetProperty(property);
     panel.Renderer->AddVolume(panel.Volume);
@@ -224,7 +308,14 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
     panel->Volume->SetVisibility(true);
     panel->Mapper->Modified();
   }
-  for (int frame = 0; frame < frames; ++frame)
+  // A converged panel shows its image again without marching, so the window renders until the
+  // panel with the most frames (the reference's, usually) has them all.
+  int mostFrames = 0;
+  for (const auto& panel : panels)
+  {
+    mostFrames = std::max(mostFrames, panel->Mapper->GetMaximumAccumulatedFrames());
+  }
+  for (int frame = 0; frame < mostFrames; ++frame)
   {
     renderChecked();
   }
@@ -238,6 +329,11 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
   for (const auto& panel : panels)
   {
     CheckMapperImageFinite(panel->Mapper, panel->Renderer, input);
+  }
+
+  if (referenceSamples)
+  {
+    MeasureAgainstReference(panels, models, referencePanel, input, result);
   }
 
   vtkNew<vtkImageActor> differenceActor;
@@ -276,7 +372,10 @@ ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const
       LightingModelName(models[difference->first]).c_str(),
       LightingModelName(models[difference->second]).c_str(), result.MaxDifference);
     differenceLabel->SetInput(text);
-    // The model panels are converged: this frame shows them again without marching.
+  }
+  if (difference || referenceSamples)
+  {
+    // The model panels are converged: this frame shows them again, with the new labels.
     renderChecked();
   }
   result.Image = CaptureWindow(window, input, messages);

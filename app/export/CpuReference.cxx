@@ -6,6 +6,7 @@
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudLightingProperty.h"
+#include "vtkCloudPathTracer.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCamera.h>
@@ -75,10 +76,14 @@ void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::st
     case MarchInput::Step:
       throw InputError(scene.Source + ": render.step: " + problem.Message);
     case MarchInput::Lighting:
+      // The path tracer's parameters are the march's phase (render.march).
       throw InputError(scene.Source + ": " +
         (scene.Render.Lighting == LightingModel::None
             ? std::string("render")
-            : "render." + LightingModelName(scene.Render.Lighting)) +
+            : "render." +
+              LightingModelName(scene.Render.Lighting == LightingModel::PathTrace
+                  ? LightingModel::March
+                  : scene.Render.Lighting)) +
         ": " + problem.Message);
     case MarchInput::Light:
       throw InputError(
@@ -98,7 +103,18 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
 
   VtkMessageCapture messages;
-  vtkNew<vtkCloudReferenceRenderer> reference;
+  // pathtrace: the CPU path tracer, render.spp paths per pixel; else the march's reference.
+  vtkSmartPointer<vtkCloudReferenceRenderer> reference;
+  if (scene.Render.Lighting == LightingModel::PathTrace)
+  {
+    vtkNew<vtkCloudPathTracer> tracer;
+    tracer->SetSamplesPerPixel(scene.Render.SamplesPerPixel);
+    reference = tracer;
+  }
+  else
+  {
+    reference = vtkSmartPointer<vtkCloudReferenceRenderer>::New();
+  }
   reference->SetInputData(field);
   reference->SetImageSize(width, height);
   SetReferenceCamera(reference, renderer->GetActiveCamera());

@@ -86,6 +86,15 @@ void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, Rendere
       " x " + std::to_string(image.Height) + "; render.resolution_scale must be 1 to export it");
   }
   CheckFiniteImage(image.Radiance.data(), size_t(width) * size_t(height), input);
+  int varianceWidth = 0, varianceHeight = 0;
+  if (!mapper->ReadVariance(renderer, image.Variance, varianceWidth, varianceHeight))
+  {
+    image.Variance.clear(); // not path traced
+  }
+  else if (varianceWidth != width || varianceHeight != height)
+  {
+    throw InputError(input + ": the variance image does not match the float image");
+  }
 
   // Pixel centre (i, j) -> normalized device coordinates -> the world point on the near plane.
   vtkCamera* camera = renderer->GetActiveCamera();

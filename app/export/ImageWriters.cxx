@@ -86,13 +86,19 @@ template <typename T>
 void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& options,
   const std::string& path, Imf::PixelType type)
 {
-  const char* const names[] = { "R", "G", "B", "A", "Z", "transmittance", "samples" };
-  constexpr int channels = 7;
+  // A path-traced image adds the variance of each RGBA mean, as the layer "variance".
+  const bool variance = !image.Variance.empty();
+  std::vector<const char*> names = { "R", "G", "B", "A", "Z", "transmittance", "samples" };
+  if (variance)
+  {
+    names.insert(names.end(), { "variance.R", "variance.G", "variance.B", "variance.A" });
+  }
+  const size_t channels = names.size();
   const size_t width = size_t(image.Width);
   std::vector<T> row(channels * width);
   Imf::Header header(image.Width, image.Height);
   Imf::FrameBuffer frame;
-  for (int c = 0; c < channels; ++c)
+  for (size_t c = 0; c < channels; ++c)
   {
     header.channels().insert(names[c], Imf::Channel(type));
     frame.insert(
@@ -116,6 +122,10 @@ void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& opt
       row[4 * width + x] = T(auxiliary[4 * x + 2]);         // Z
       row[5 * width + x] = T(1.0f - radiance[4 * x + 3]); // transmittance
       row[6 * width + x] = T(auxiliary[4 * x + 0]);         // samples
+      for (size_t k = 0; variance && k < 4; ++k)
+      {
+        row[(7 + k) * width + x] = T(image.Variance[4 * (width * size_t(y) + x) + k]);
+      }
     }
     file.writePixels(1);
   }
@@ -222,7 +232,8 @@ void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options
   const std::string& path, const std::string& target)
 {
   const size_t pixels = size_t(image.Width) * size_t(image.Height);
-  if (image.Radiance.size() != 4 * pixels || image.Auxiliary.size() != 4 * pixels)
+  if (image.Radiance.size() != 4 * pixels || image.Auxiliary.size() != 4 * pixels ||
+    (!image.Variance.empty() && image.Variance.size() != 4 * pixels))
   {
     throw InputError(target + ": cannot write the EXR image: the float render was not kept");
   }

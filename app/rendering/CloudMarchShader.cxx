@@ -1,6 +1,7 @@
 #include "CloudMarchShader.h"
 
 #include "CloudMarchUniforms.h"
+#include "CloudPathTracePass.h"
 
 #include "CloudLightingCommon.h"
 #include "CloudLightingDerivative.h"
@@ -20,11 +21,6 @@
 
 namespace cloudvis
 {
-namespace
-{
-constexpr int MaxLights = LightingLimits::MaxLights;
-
-// A float as a GLSL literal that reads back as the same float.
 std::string GlslFloat(float value)
 {
   char text[32];
@@ -36,6 +32,10 @@ std::string GlslFloat(float value)
   }
   return literal;
 }
+
+namespace
+{
+constexpr int MaxLights = LightingLimits::MaxLights;
 
 // The constants the GLSL shares with the C++, from their one definition.
 std::string Constants()
@@ -56,6 +56,10 @@ std::string LightingSource(LightingModel model, const std::vector<LocalLight>& l
   if (model == LightingModel::None)
   {
     return std::string(CloudLightingCommon) + "\n" + CloudLightingNone;
+  }
+  if (model == LightingModel::PathTrace)
+  {
+    return PathTraceLightingSource(); // with a main() of its own
   }
   std::ostringstream source;
   source << CloudLightingCommon << "\n"

@@ -28,6 +28,9 @@ struct MarchUniforms;
 constexpr float NoDepth = 1e30f;
 constexpr float DepthTransmittance = 0.98f;
 
+// A float as a GLSL literal that reads back as the same float.
+std::string GlslFloat(float value);
+
 // The fragment shader's source for a lighting model and the kinds of the lights (positional or
 // directional, in order).
 std::string MarchShaderSource(LightingModel model, const std::vector<LocalLight>& lights);

@@ -39,6 +39,8 @@ public:
     std::string& problem);
 
   vtkTextureObject* GetTexture() { return this->Texture; }
+  // The occupancy filter's last output: per brick its empty distance and extinction bounds.
+  vtkImageData* GetBricks() { return this->Filter->GetOutput(); }
   const int* GetBrickCount() const { return this->BrickCount; }
   double GetOccupiedFraction() const { return this->OccupiedFraction; }
   long long GetBytes() const { return this->Bytes; }

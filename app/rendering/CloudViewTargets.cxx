@@ -62,6 +62,8 @@ bool ViewTargets::Resize(vtkOpenGLRenderWindow* window,
       return false;
     }
     this->TargetBytes = TextureBytes(this->ColorTexture) + TextureBytes(this->CountTexture);
+    this->MomentTexture->ReleaseGraphicsResources(window); // reallocated at the new size
+    this->MomentBytes = 0;
     this->Framebuffer->SetContext(window);
     this->MarchSize[0] = marchWidth;
     this->MarchSize[1] = marchHeight;
@@ -84,13 +86,51 @@ void ViewTargets::Continue(const std::vector<double>& signature)
   }
 }
 
-bool ViewTargets::BindTargets(vtkOpenGLRenderWindow* window)
+bool ViewTargets::AllocateMoments(vtkOpenGLRenderWindow* window,
+  GpuMemoryBudget& budget,
+  std::string& problem)
+{
+  if (this->MomentTexture->GetHandle())
+  {
+    return true;
+  }
+  problem = budget.Allocate("the moment target",
+    (long long)this->MarchSize[0] * this->MarchSize[1] * 4 * sizeof(float),
+    this->MomentBytes,
+    [&]()
+    {
+      vtkTextureObject* target = this->MomentTexture;
+      target->SetContext(window);
+      target->SetInternalFormat(GL_RGBA32F);
+      target->SetFormat(GL_RGBA);
+      const bool allocated =
+        target->Allocate2D(this->MarchSize[0], this->MarchSize[1], 4, VTK_FLOAT);
+      SetSampling(target, vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
+      return allocated;
+    });
+  if (!problem.empty())
+  {
+    this->MomentTexture->ReleaseGraphicsResources(window);
+    this->MomentBytes = 0;
+    return false;
+  }
+  this->MomentBytes = TextureBytes(this->MomentTexture);
+  return true;
+}
+
+bool ViewTargets::BindTargets(vtkOpenGLRenderWindow* window, bool moments)
 {
   window->GetState()->PushFramebufferBindings();
   this->Framebuffer->Bind();
   this->Framebuffer->AddColorAttachment(0, this->ColorTexture);
   this->Framebuffer->AddColorAttachment(1, this->CountTexture);
-  this->Framebuffer->ActivateDrawBuffers(2);
+  this->AttachedTargets = 2;
+  if (moments)
+  {
+    this->Framebuffer->AddColorAttachment(2, this->MomentTexture);
+    this->AttachedTargets = 3;
+  }
+  this->Framebuffer->ActivateDrawBuffers(this->AttachedTargets);
   if (!this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
   {
     this->UnbindTargets(window);
@@ -101,7 +141,7 @@ bool ViewTargets::BindTargets(vtkOpenGLRenderWindow* window)
 
 void ViewTargets::UnbindTargets(vtkOpenGLRenderWindow* window)
 {
-  this->Framebuffer->RemoveColorAttachments(2);
+  this->Framebuffer->RemoveColorAttachments(this->AttachedTargets);
   window->GetState()->PopFramebufferBindings();
 }
 
@@ -111,7 +151,8 @@ bool ViewTargets::Read(vtkOpenGLRenderWindow* window,
   int& width,
   int& height)
 {
-  if (!this->ColorTexture->GetHandle() || this->AccumulatedFrames < 1)
+  if (!this->ColorTexture->GetHandle() || !this->GetTarget(target)->GetHandle() ||
+    this->AccumulatedFrames < 1)
   {
     return false;
   }
@@ -141,11 +182,12 @@ void ViewTargets::Release(vtkWindow* window)
   this->Depth->ReleaseGraphicsResources(window);
   this->ColorTexture->ReleaseGraphicsResources(window);
   this->CountTexture->ReleaseGraphicsResources(window);
+  this->MomentTexture->ReleaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);
   this->ViewportSize[0] = this->ViewportSize[1] = 0;
   this->MarchSize[0] = this->MarchSize[1] = 0;
   this->AccumulatedFrames = 0;
-  this->DepthBytes = this->TargetBytes = 0;
+  this->DepthBytes = this->TargetBytes = this->MomentBytes = 0;
 }
 
 } // namespace cloudvis

@@ -25,8 +25,9 @@ class ViewTargets
 public:
   enum Target
   {
-    Color = 0, // premultiplied radiance and opacity, RGBA32F
-    Counts = 1 // samples taken, useful samples, depth of the cloud, 1
+    Color = 0,  // premultiplied radiance and opacity, RGBA32F
+    Counts = 1, // samples taken, useful samples, depth of the cloud, 1
+    Moments = 2 // the path tracer's mean square of its samples, RGBA32F (only when allocated)
   };
 
   // (Re)allocates what the viewport and the march size need; a change restarts accumulation.
@@ -42,8 +43,15 @@ public:
   // Accumulation goes on while `signature` (what the image depends on) holds; else restarts.
   void Continue(const std::vector<double>& signature);
 
-  // Draws into both march targets; false (bindings restored) when the framebuffer is incomplete.
-  bool BindTargets(vtkOpenGLRenderWindow* window);
+  // Allocates the moment target at the march size (the path tracer's second moments), or keeps
+  // it; Resize releases it when the march size changes.
+  bool AllocateMoments(vtkOpenGLRenderWindow* window,
+    GpuMemoryBudget& budget,
+    std::string& problem);
+
+  // Draws into both march targets, and the moment target as a third with `moments`; false
+  // (bindings restored) when the framebuffer is incomplete.
+  bool BindTargets(vtkOpenGLRenderWindow* window, bool moments = false);
   void UnbindTargets(vtkOpenGLRenderWindow* window);
 
   // The mean over the accumulated frames of one target, rows bottom to top. False when nothing
@@ -57,27 +65,33 @@ public:
   vtkTextureObject* GetDepth() { return this->Depth; }
   vtkTextureObject* GetTarget(Target target)
   {
-    return target == Color ? this->ColorTexture : this->CountTexture;
+    return target == Color ? this->ColorTexture
+                           : (target == Counts ? this->CountTexture : this->MomentTexture);
   }
   const int* GetMarchSize() const { return this->MarchSize; }
-  long long GetBytes() const { return this->DepthBytes + this->TargetBytes; }
+  long long GetBytes() const { return this->DepthBytes + this->TargetBytes + this->MomentBytes; }
   void Release(vtkWindow* window);
 
   int AccumulatedFrames = 0;
   double SecondsPerPixel = 0.0;   // measured march cost, for the interactive scale
   double MostSamplesPerRay = 1.0; // a ray across the whole volume: full scale of the count view
   double LocalUnit = 1.0;         // world units per local unit of the march's frame, for depths
+  bool PathTraced = false;        // the accumulated frames are the path tracer's
+  int SamplesPerFrame = 1;        // samples per pixel in each accumulated frame (path tracer)
 
 private:
   vtkNew<vtkTextureObject> Depth;
   vtkNew<vtkTextureObject> ColorTexture;
   vtkNew<vtkTextureObject> CountTexture;
+  vtkNew<vtkTextureObject> MomentTexture;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   int ViewportSize[2] = { 0, 0 };
   int MarchSize[2] = { 0, 0 };
   std::vector<double> Signature;
   long long DepthBytes = 0;
   long long TargetBytes = 0;
+  long long MomentBytes = 0;
+  int AttachedTargets = 2;
 };
 
 } // namespace cloudvis

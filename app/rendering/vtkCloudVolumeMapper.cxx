@@ -7,6 +7,7 @@
 #include "CloudMarchShader.h"
 #include "CloudMarchUniforms.h"
 #include "CloudOccupancyTexture.h"
+#include "CloudPathTracePass.h"
 #include "CloudTransferTexture.h"
 #include "CloudViewTargets.h"
 
@@ -112,6 +113,7 @@ struct vtkCloudVolumeMapper::Internals
   cloudvis::TransferTexture Transfer;
   cloudvis::OccupancyTexture Occupancy;
   cloudvis::JitterTexture Jitter;
+  cloudvis::ExtinctionBoundsTexture ExtinctionBounds; // the path tracer's, made on first use
   cloudvis::MarchPrograms March;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<cloudvis::ViewTargets>> Views; // keys: identities only
@@ -130,7 +132,7 @@ struct vtkCloudVolumeMapper::Internals
   long long TextureBytes() const
   {
     return this->Density.GetBytes() + this->Transfer.GetBytes() + this->Occupancy.GetBytes() +
-      this->Jitter.GetBytes();
+      this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes();
   }
 
   long long Bytes() const
@@ -192,6 +194,17 @@ int vtkCloudVolumeMapper::GetNumberOfAccumulatedFrames(vtkRenderer* renderer) co
 {
   auto found = this->Internal->Views.find(renderer);
   return found == this->Internal->Views.end() ? 0 : found->second->AccumulatedFrames;
+}
+
+int vtkCloudVolumeMapper::GetNumberOfAccumulatedSamples(vtkRenderer* renderer) const
+{
+  auto found = this->Internal->Views.find(renderer);
+  if (found == this->Internal->Views.end())
+  {
+    return 0;
+  }
+  const cloudvis::ViewTargets& view = *found->second;
+  return view.AccumulatedFrames * (view.PathTraced ? view.SamplesPerFrame : 1);
 }
 
 void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
@@ -409,7 +422,14 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     window->WaitForCompletion(); // time the march alone
   }
 
-  if (!view.BindTargets(window))
+  const bool pathTrace = uniforms.Lighting.Model == cloudvis::LightingModel::PathTrace;
+  if (pathTrace &&
+    (!in.ExtinctionBounds.Update(window, in.Occupancy.GetBricks(), budget, problem) ||
+      !view.AllocateMoments(window, budget, problem)))
+  {
+    return this->Fail(problem);
+  }
+  if (!view.BindTargets(window, pathTrace))
   {
     return this->Fail("the march framebuffer is incomplete on this GPU");
   }
@@ -433,11 +453,15 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
   }
 
-  vtkTextureObject* textures[] = { in.Density.GetTexture(),
+  std::vector<vtkTextureObject*> textures = { in.Density.GetTexture(),
     in.Transfer.GetTexture(),
     in.Occupancy.GetTexture(),
     in.Jitter.GetTexture(),
     view.GetDepth() };
+  if (pathTrace)
+  {
+    textures.push_back(in.ExtinctionBounds.GetTexture());
+  }
   for (vtkTextureObject* texture : textures)
   {
     texture->Activate();
@@ -457,6 +481,20 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   program->SetUniformf("JitterOffset", float(std::fmod(frame * GoldenRatioFraction, 1.0)));
   program->SetUniformi("JitterEnabled", this->Jitter ? 1 : 0);
   program->SetUniformi("MaximumIterations", iterations);
+  if (pathTrace)
+  {
+    // The same paths whatever the frame split: sample k of frame f is f * per frame + k.
+    cloudvis::PathTraceFrame pathFrame;
+    pathFrame.LightCount = int(uniforms.Lights.size());
+    pathFrame.MaxBounces = this->PathTraceMaxBounces;
+    pathFrame.Seed = this->PathTraceSeed;
+    pathFrame.SamplesPerFrame = this->PathTraceSamplesPerFrame;
+    pathFrame.SampleBase = frame * this->PathTraceSamplesPerFrame;
+    pathFrame.MarchWidth = marchWidth;
+    program->SetUniformi(
+      "ExtinctionBoundsTexture", in.ExtinctionBounds.GetTexture()->GetTextureUnit());
+    cloudvis::SetPathTraceUniforms(program, pathFrame);
+  }
   in.March.Render();
   for (vtkTextureObject* texture : textures)
   {
@@ -465,6 +503,8 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   view.UnbindTargets(window);
   view.AccumulatedFrames = frame + 1;
   view.LocalUnit = localFrame.Unit;
+  view.PathTraced = pathTrace;
+  view.SamplesPerFrame = this->PathTraceSamplesPerFrame;
 
   if (this->CollectStatistics)
   {
@@ -508,6 +548,36 @@ bool vtkCloudVolumeMapper::ReadImage(
   auto found = this->Internal->Views.find(renderer);
   return found != this->Internal->Views.end() &&
     found->second->Read(WindowOf(renderer), cloudvis::ViewTargets::Color, rgba, width, height);
+}
+
+bool vtkCloudVolumeMapper::ReadVariance(vtkRenderer* renderer,
+  std::vector<float>& variance,
+  int& width,
+  int& height)
+{
+  auto found = this->Internal->Views.find(renderer);
+  if (found == this->Internal->Views.end() || !found->second->PathTraced)
+  {
+    return false;
+  }
+  cloudvis::ViewTargets& view = *found->second;
+  const double samples = double(view.AccumulatedFrames) * view.SamplesPerFrame;
+  std::vector<float> mean;
+  if (samples < 2.0 ||
+    !view.Read(WindowOf(renderer), cloudvis::ViewTargets::Color, mean, width, height) ||
+    !view.Read(WindowOf(renderer), cloudvis::ViewTargets::Moments, variance, width, height))
+  {
+    return false;
+  }
+  // The sample variance from the first two moments, over the samples: the variance of the mean.
+  for (size_t i = 0; i < variance.size(); ++i)
+  {
+    const double m = mean[i];
+    const double sampleVariance =
+      std::max(0.0, double(variance[i]) - m * m) * samples / (samples - 1.0);
+    variance[i] = float(sampleVariance / samples);
+  }
+  return true;
 }
 
 bool vtkCloudVolumeMapper::ReadAuxiliary(
@@ -637,6 +707,7 @@ void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Transfer.Release(window);
   in.Occupancy.Release(window);
   in.Jitter.Release(window);
+  in.ExtinctionBounds.Release(window);
   for (auto& view : in.Views)
   {
     view.second->Release(window);
@@ -663,6 +734,9 @@ void vtkCloudVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CollectStatistics: " << this->CollectStatistics << "\n";
   os << indent << "HalfFloatDensity: " << this->HalfFloatDensity << "\n";
   os << indent << "MaximumGPUMemory: " << this->MaximumGPUMemory << "\n";
+  os << indent << "PathTraceSamplesPerFrame: " << this->PathTraceSamplesPerFrame << "\n";
+  os << indent << "PathTraceSeed: " << this->PathTraceSeed << "\n";
+  os << indent << "PathTraceMaxBounces: " << this->PathTraceMaxBounces << "\n";
   os << indent << "LightingProperty:\n";
   this->LightingProperty->PrintSelf(os, indent.GetNextIndent());
 }

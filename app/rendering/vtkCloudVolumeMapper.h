@@ -42,6 +42,13 @@
  * While the user interacts (the render window's desired update rate is above 1), the scale is
  * lowered automatically to keep InteractiveFrameRate.
  *
+ * The pathtrace lighting model is the GPU twin of vtkCloudPathTracer (filters/CloudPathTrace.h):
+ * each frame traces PathTraceSamplesPerFrame paths through every pixel centre (no jitter, the
+ * CPU's random numbers for pixel, sample and PathTraceSeed) and adds them to the accumulation, up
+ * to MaximumAccumulatedFrames frames; a second float target accumulates the squares, so
+ * ReadVariance gives each pixel's standard error. Opaque geometry ends the view ray; paths that
+ * scatter ignore it.
+ *
  * The work is split as VTK's own volume mapper splits it, into helpers private to the module
  * (app/rendering/Cloud*.h): the density, transfer, occupancy and jitter textures, the per-view
  * targets, the march shader and its uniforms, and the GPU memory checks; Render() runs one
@@ -172,6 +179,39 @@ public:
    */
   int GetNumberOfAccumulatedFrames(vtkRenderer* renderer) const;
 
+  /**
+   * Samples per pixel averaged in that image: the frames, times PathTraceSamplesPerFrame when it
+   * was path traced.
+   */
+  int GetNumberOfAccumulatedSamples(vtkRenderer* renderer) const;
+
+  ///@{
+  /**
+   * Path-trace model: paths per pixel each frame adds, 1 to 4096. More per frame means fewer
+   * frames (less overhead) but longer ones. Default 1.
+   */
+  vtkSetClampMacro(PathTraceSamplesPerFrame, int, 1, 4096);
+  vtkGetMacro(PathTraceSamplesPerFrame, int);
+  ///@}
+
+  ///@{
+  /**
+   * Path-trace model: the seed of the random numbers (vtkCloudPathTracer's Seed), 0 to 2^31 - 1:
+   * another seed gives an independent image. Default 0.
+   */
+  vtkSetClampMacro(PathTraceSeed, int, 0, VTK_INT_MAX);
+  vtkGetMacro(PathTraceSeed, int);
+  ///@}
+
+  ///@{
+  /**
+   * Path-trace model: the most scattering events a path may have (vtkCloudPathTracer's
+   * MaxBounces), 1 to 2^24; 1 is single scattering. Default 1024.
+   */
+  vtkSetClampMacro(PathTraceMaxBounces, int, 1, 1 << 24);
+  vtkGetMacro(PathTraceMaxBounces, int);
+  ///@}
+
   ///@{
   /**
    * The lighting model and its parameters (vtkCloudLightingProperty states each default; the
@@ -294,6 +334,17 @@ public:
   ///@}
 
   /**
+   * For a path-traced image: per pixel of the same target, the estimated variance of each of
+   * the four channels' mean (the sample variance over the accumulated paths divided by their
+   * number; its square root is the pixel's standard error), as vtkCloudPathTracer's
+   * "rgba_variance". False when the image was not path traced or at least two samples are not
+   * accumulated yet.
+   */
+#ifndef __VTK_WRAP__
+  bool ReadVariance(vtkRenderer* renderer, std::vector<float>& variance, int& width, int& height);
+#endif
+
+  /**
    * The last error, or an empty string when the last render succeeded.
    */
   const std::string& GetLastError() const { return this->LastError; }
@@ -337,6 +388,9 @@ protected:
   bool CollectStatistics = false;
   bool HalfFloatDensity = false;
   vtkTypeInt64 MaximumGPUMemory = 0;
+  int PathTraceSamplesPerFrame = 1;
+  int PathTraceSeed = 0;
+  int PathTraceMaxBounces = 1024;
   vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
 
 private:

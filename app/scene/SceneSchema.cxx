@@ -628,6 +628,10 @@ const std::vector<Name>& LightingModels()
     { "march",
       int(LightingModel::March),
       "a nested march toward each light: shadows, phase function, multiple scattering" },
+    { "pathtrace",
+      int(LightingModel::PathTrace),
+      "Monte Carlo path tracing of the same medium, every order of scattering, `render.spp` "
+      "paths per pixel: the ground truth" },
   };
   return names;
 }
@@ -1017,6 +1021,11 @@ const Keys<RenderSpec>& RenderKeys()
       &R::Accumulate,
       "frames averaged into a still (with `jitter: false` one frame is rendered: every frame "
       "would be the same)" },
+    { "spp",
+      IntegerIn(2, 1 << 24),
+      &R::SamplesPerPixel,
+      "`pathtrace`: paths averaged per pixel of a still (its noise falls as 1 / sqrt(spp)); "
+      "`--spp` overrides it" },
     { "skip_empty_space",
       Boolean(),
       &R::SkipEmptySpace,

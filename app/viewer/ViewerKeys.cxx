@@ -226,7 +226,12 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       break;
     case A::CycleLighting:
     {
-      const std::vector<std::string> names = LightingModelNames();
+      // The interactive models: the path tracer takes seconds per clean frame, so `m` passes it
+      // by (a scene with render.lighting "pathtrace" still opens with it, converging in place).
+      std::vector<std::string> names = LightingModelNames();
+      names.erase(
+        std::remove(names.begin(), names.end(), LightingModelName(LightingModel::PathTrace)),
+        names.end());
       const std::string current = LightingModelName(this->Current.Render.Lighting);
       const auto found = std::find(names.begin(), names.end(), current);
       const size_t next =

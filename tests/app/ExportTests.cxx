@@ -136,6 +136,47 @@ TEST(Exr, ChannelsHoldTheFloatRender)
   EXPECT_GT(brightest, 1.0f);
 }
 
+TEST(Exr, PathTracedRenderAddsTheVarianceOfEachChannel)
+{
+  // render --lighting pathtrace: the variance layer holds the mapper's variance of each pixel's
+  // means (the same paths: same seed and split), non-negative and non-zero where the cloud is.
+  TemporaryDirectory dir;
+  const CliRun run = Cloudvis(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "-o",
+    dir.File("p.exr"), "--lighting", "pathtrace", "--spp", "4" }, Small));
+  ASSERT_EQ(run.Status, 0) << run.Err;
+  const Exr exr = ReadExr(dir.File("p.exr"));
+  std::vector<std::string> names;
+  for (const auto& channel : exr.Types)
+  {
+    names.push_back(channel.first);
+  }
+  EXPECT_EQ(names,
+    (std::vector<std::string>{ "A", "B", "G", "R", "Z", "samples", "transmittance", "variance.A",
+      "variance.B", "variance.G", "variance.R" }));
+
+  cloudvis::Scene scene = SmallScene();
+  scene.Render.Lighting = cloudvis::LightingModel::PathTrace;
+  scene.Render.SamplesPerPixel = 4;
+  const cloudvis::RenderedImage image = RenderFloat(scene).Image;
+  ASSERT_EQ(image.Variance.size(), image.Radiance.size());
+  const char* const variance[] = { "variance.R", "variance.G", "variance.B", "variance.A" };
+  int noisy = 0;
+  for (int y = 0; y < 48; ++y)
+  {
+    for (int x = 0; x < 64; ++x)
+    {
+      const size_t p = size_t(y) * 64 + size_t(x);
+      for (int c = 0; c < 4; ++c)
+      {
+        ASSERT_EQ(exr.At(variance[c], x, y), image.Variance[4 * p + c]) << x << "," << y;
+        ASSERT_GE(image.Variance[4 * p + c], 0.0f);
+      }
+      noisy += exr.At("A", x, y) > 0.0f && exr.At("variance.R", x, y) > 0.0f;
+    }
+  }
+  EXPECT_GT(noisy, 20);
+}
+
 TEST(Exr, HalfChannelsRoundTheFloatRender)
 {
   TemporaryDirectory dir;

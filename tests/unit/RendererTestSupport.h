@@ -23,9 +23,12 @@
 #include <vtkVolumeProperty.h>
 
 #include <glm/glm.hpp>
+#include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace cloudvis
@@ -89,6 +92,28 @@ inline vtkSmartPointer<vtkVolumeProperty> LinearMedium(float sigma_t,
   property->SetColor(color);
   property->SetScalarOpacityUnitDistance(unitDistance);
   return property;
+}
+
+// No light but the ambient, a uniform environment of this radiance.
+inline LightingParameters Ambient(glm::vec3 radiance)
+{
+  LightingParameters lighting;
+  lighting.AmbientColor = radiance;
+  lighting.AmbientStrength = 1.0f;
+  return lighting;
+}
+
+// A sphere of radius 0.6 with a soft edge 0.3 wide in [-1, 1]^3: optically thick at its core.
+inline vtkSmartPointer<vtkImageData> SoftSphere(int n = 32)
+{
+  return MakeBoxField({ n, n, n },
+    glm::dvec3(-1.0),
+    glm::dvec3(1.0),
+    [](double x, double y, double z)
+    {
+      const double r = std::sqrt(x * x + y * y + z * z);
+      return std::min(1.0, std::max(0.0, (0.75 - r) / 0.3));
+    });
 }
 
 inline Light DirectionalLight(glm::vec3 towardLight, float intensity = 1.0f)
@@ -198,6 +223,64 @@ inline Estimate MeanOverPixels(
     }
   }
   return { sum / n, std::sqrt(variance) / n };
+}
+
+// The largest |z| over blocks of blockSize x blockSize pixels (where `use` picks at least half
+// of a block's pixels) of the block's mean difference over its standard error. A block pools
+// thousands of paths, so its mean is close to normal and its variance estimate reliable even
+// where single pixels depend on rare events (a path that hits a thin edge, or fails to).
+inline double LargestBlockZ(const Image& image, int blockSize,
+  const std::function<double(std::size_t)>& difference,
+  const std::function<double(std::size_t)>& variance, const std::function<bool(std::size_t)>& use,
+  int& blocks)
+{
+  double largest = 0.0;
+  blocks = 0;
+  for (int bj = 0; bj + blockSize <= image.Height; bj += blockSize)
+  {
+    for (int bi = 0; bi + blockSize <= image.Width; bi += blockSize)
+    {
+      double sum = 0.0, v = 0.0;
+      int used = 0;
+      for (int j = bj; j < bj + blockSize; ++j)
+      {
+        for (int i = bi; i < bi + blockSize; ++i)
+        {
+          const std::size_t p = std::size_t(j) * image.Width + i;
+          if (use(p))
+          {
+            sum += difference(p);
+            v += variance(p);
+            ++used;
+          }
+        }
+      }
+      if (2 * used >= blockSize * blockSize && v > 0.0)
+      {
+        largest = std::max(largest, std::abs(sum) / std::sqrt(v));
+        ++blocks;
+      }
+    }
+  }
+  return largest;
+}
+
+// The checks of every image comparison: the mean of `difference` over the pixels `use` picks is
+// 0 within `sigmas` standard errors, and so is each block's (a local error cannot hide in the
+// mean: at least minBlocks blocks of 3 x 3 or more pixels count); and the standard error is
+// below `tightness` (1%) of `scale`, so the check is tight.
+inline void ExpectNoDifference(const Image& image, int blockSize,
+  const std::function<double(std::size_t)>& difference,
+  const std::function<double(std::size_t)>& variance, const std::function<bool(std::size_t)>& use,
+  double scale, int minBlocks, const std::string& what, double tightness = 0.01,
+  double sigmas = 4.0)
+{
+  const Estimate mean = MeanOverPixels(image, difference, variance, use);
+  EXPECT_NEAR(mean.Mean, 0.0, sigmas * mean.StandardError) << what;
+  EXPECT_LT(mean.StandardError, tightness * scale) << what;
+  int blocks = 0;
+  EXPECT_LT(LargestBlockZ(image, blockSize, difference, variance, use, blocks), sigmas) << what;
+  EXPECT_GE(blocks, minBlocks) << what;
 }
 
 } // namespace test

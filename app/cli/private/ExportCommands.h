@@ -24,6 +24,12 @@ extern const OptionSpec ExrHalfOption;
 extern const OptionSpec TransparentOption;
 extern const OptionSpec QuietOption;
 
+// The override of a numeric scene key by an option's text: an integer or a number as such,
+// anything else as text, for the scene to refuse by key (naming the option).
+SceneOverride NumericOverride(const std::string& key,
+  const std::string& text,
+  const std::string& option);
+
 // Adds the scene overrides the export options stand for (--png-bits N is render.png_bits,
 // --exr-half is render.exr_type = "half").
 void AddExportOverrides(const Arguments& arguments, std::vector<SceneOverride>& overrides);

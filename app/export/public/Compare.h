@@ -7,6 +7,7 @@
 #ifndef cloudvis_Compare_h
 #define cloudvis_Compare_h
 
+#include "CloudImageComparison.h"
 #include "OffscreenRender.h"
 
 #include <optional>
@@ -23,6 +24,10 @@ struct ComparisonResult
   std::vector<double> Milliseconds; // per model, in the order given: mean full-window frame time
   int AccumulatedFrames = 0;        // frames averaged into each panel
   double MaxDifference = 0.0;       // with a difference panel: max over pixels of |A - B|
+  // With a reference: each model's error against it (in the order given), and its own noise.
+  std::vector<ImageError> Errors;
+  ImageNoise ReferenceNoise;
+  int ReferenceSamples = 0; // paths per pixel in the reference panel
 };
 
 // The widest window compare opens, in pixels (render.size's own limit per axis).
@@ -39,11 +44,21 @@ constexpr int MaximumComparisonWidth = 16384;
 // |A - B| between the two models' accumulated float radiances (vtkCloudVolumeMapper::ReadImage),
 // scaled so the largest difference is the top of a black-purple-orange-yellow ramp, labelled
 // "|A - B|" with that largest difference. The scene's render.lighting is not used.
+//
+// `referenceSamples` adds a ground-truth panel after the models' (before the difference): the
+// GPU path tracer with that many paths per pixel (a difference index of models.size() is that
+// panel), labelled with its noise (MeasureImageNoise); each model's panel is labelled with its
+// error against it (CompareWithReference: relative RMSE, bias as the ratio of means, max error
+// relative to the reference's peak), which Errors and ReferenceNoise return.
 // Throws InputError naming `input` for a window wider than MaximumComparisonWidth, a mapper
 // error, or nothing drawn.
-ComparisonResult RenderComparison(const Scene& scene, vtkImageData* field, const std::string& input,
+ComparisonResult RenderComparison(const Scene& scene,
+  vtkImageData* field,
+  const std::string& input,
   const std::vector<LightingModel>& models,
-  const std::optional<std::pair<size_t, size_t>>& difference, int timingFrames = 3);
+  const std::optional<std::pair<size_t, size_t>>& difference,
+  int timingFrames = 3,
+  std::optional<int> referenceSamples = std::nullopt);
 
 // The ramp of the difference panel: t in [0, 1] (clamped) to RGB in [0, 1].
 std::array<double, 3> DifferenceColor(double t);

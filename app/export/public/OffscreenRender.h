@@ -30,6 +30,7 @@ struct OffscreenRenderResult
 {
   RenderedImage Image;
   int AccumulatedFrames = 0;             // frames the mapper averaged into Image
+  int AccumulatedSamples = 0;            // samples per pixel in them (pathtrace: paths)
   std::vector<double> FrameMilliseconds; // wall clock of each benchmark frame, in order
 };
 
@@ -37,8 +38,18 @@ struct OffscreenRenderResult
 // color, linear interpolation of the density, no VTK shading (lighting is the mapper's).
 vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction);
 
+// How the GPU mapper splits a pathtrace still of samplesPerPixel paths into accumulated frames.
+struct PathTraceFrames
+{
+  int SamplesPerFrame = 1;
+  int Frames = 1;
+};
+PathTraceFrames PathTraceFramesOf(int samplesPerPixel);
+
 // Sets what only the GPU mapper has from the render section: jitter, resolution scale,
-// accumulation and empty-space skipping. What every renderer takes (the step, the lighting, the
+// accumulation (for pathtrace: render.spp paths, PathTraceFramesOf, and the path tracer's bricks,
+// cloudvis::PathTraceBrickSize) and empty-space skipping.
+// What every renderer takes (the step, the lighting, the
 // lights) comes from ConfigureLighting (SceneLighting.h).
 void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render);
 

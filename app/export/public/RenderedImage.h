@@ -23,6 +23,9 @@ struct RenderedImage
   std::vector<float> Radiance;
   std::vector<float> Auxiliary;
   std::vector<unsigned char> BackgroundRGB;
+  // A path-traced render's estimated variance of each Radiance channel's per-pixel mean (its
+  // square root is the standard error), same size and order; empty for the other models.
+  std::vector<float> Variance;
 
   const unsigned char* Pixel(int x, int y) const
   {

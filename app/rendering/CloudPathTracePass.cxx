@@ -1,0 +1,113 @@
+#include "CloudPathTracePass.h"
+
+#include "CloudGpuMemory.h"
+#include "CloudMarchShader.h" // GlslFloat
+#include "CloudPathTrace.h"
+
+#include "CloudLightingCommon.h"
+#include "CloudLightingMarch.h"
+#include "CloudLightingPathTrace.h"
+
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkPointData.h>
+#include <vtkShaderProgram.h>
+#include <vtk_glew.h>
+
+#include <sstream>
+#include <vector>
+
+namespace cloudvis
+{
+namespace
+{
+// A bound on the turns of one search for the next occupied brick, far above the bricks any ray
+// crosses (3 x 2^16 / 2 for the largest field the mapper takes): the C++ loop ends by itself;
+// this only keeps a GPU from hanging should rounding ever stall the walk.
+constexpr int MaxWalkSteps = 1 << 18;
+}
+
+std::string PathTraceLightingSource()
+{
+  std::ostringstream source;
+  source << "const float RatioTrackingRouletteThreshold = "
+         << GlslFloat(RatioTrackingRouletteThreshold) << ";\n"
+         << "const float NoCrossing = " << GlslFloat(NoCrossing) << ";\n"
+         << "const int MaxTentativeCollisions = " << MaxTentativeCollisions << ";\n"
+         << "const float GaveUp = " << GlslFloat(GaveUp) << ";\n"
+         << "const int MaxWalkSteps = " << MaxWalkSteps << ";\n"
+         << CloudLightingCommon << "\n"
+         << CloudLightingMarch << "\n" // Phase() and PhaseToRadiance
+         << CloudLightingPathTrace << "\n";
+  return source.str();
+}
+
+bool ExtinctionBoundsTexture::Update(vtkOpenGLRenderWindow* window,
+  vtkImageData* bricks,
+  GpuMemoryBudget& budget,
+  std::string& problem)
+{
+  if (this->UploadTime >= bricks->GetMTime() && this->Texture->GetHandle())
+  {
+    return true;
+  }
+  auto* majorant = vtkFloatArray::SafeDownCast(bricks->GetPointData()->GetArray("max_extinction"));
+  auto* minorant = vtkFloatArray::SafeDownCast(bricks->GetPointData()->GetArray("min_extinction"));
+  int count[3];
+  bricks->GetDimensions(count);
+  const vtkIdType total = vtkIdType(count[0]) * count[1] * count[2];
+  if (!majorant || !minorant || majorant->GetNumberOfTuples() != total ||
+    minorant->GetNumberOfTuples() != total)
+  {
+    this->Release(window);
+    problem = "the occupancy filter produced no extinction bounds per brick";
+    return false;
+  }
+  std::vector<float> bounds(std::size_t(total) * 2);
+  for (vtkIdType b = 0; b < total; ++b)
+  {
+    bounds[std::size_t(b) * 2] = minorant->GetValue(b);
+    bounds[std::size_t(b) * 2 + 1] = majorant->GetValue(b);
+  }
+  this->Texture->SetContext(window);
+  problem = budget.Allocate("the extinction bounds texture",
+    (long long)total * 2 * sizeof(float),
+    this->Bytes,
+    [&]()
+    {
+      this->Texture->SetInternalFormat(GL_RG32F);
+      this->Texture->SetFormat(GL_RG);
+      return this->Texture->Create3DFromRaw(
+        count[0], count[1], count[2], 2, VTK_FLOAT, bounds.data());
+    });
+  if (!problem.empty())
+  {
+    this->Release(window);
+    return false;
+  }
+  SetSampling(this->Texture, vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
+  this->Bytes = TextureBytes(this->Texture);
+  this->UploadTime = bricks->GetMTime();
+  return true;
+}
+
+void ExtinctionBoundsTexture::Release(vtkWindow* window)
+{
+  this->Texture->ReleaseGraphicsResources(window);
+  this->UploadTime = 0;
+  this->Bytes = 0;
+}
+
+void SetPathTraceUniforms(vtkShaderProgram* program, const PathTraceFrame& frame)
+{
+  program->SetUniformi("LightCount", frame.LightCount);
+  program->SetUniformi("MaxBounces", frame.MaxBounces);
+  program->SetUniformi("RouletteBounces", PathTraceUniforms{}.RouletteBounces);
+  program->SetUniformi("PathTraceSeed", frame.Seed);
+  program->SetUniformi("SampleBase", frame.SampleBase);
+  program->SetUniformi("SamplesPerFrame", frame.SamplesPerFrame);
+  program->SetUniformi("MarchWidth", frame.MarchWidth);
+}
+
+} // namespace cloudvis

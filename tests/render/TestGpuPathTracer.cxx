@@ -1,0 +1,246 @@
+// The GPU path tracer (vtkCloudVolumeMapper's pathtrace model, shaders/CloudLightingPathTrace.glsl)
+// against its CPU twin (vtkCloudPathTracer) and against closed forms. Both are Monte Carlo
+// estimates with independent seeds, so they agree when their difference is within the combined
+// standard error each reports (the GPU's from its second-moment target, ReadVariance): checked
+// per channel on the mean over the cloud and on every 4 x 4 tile, with 4.5 standard errors as the
+// gate (about one false alarm in 150,000 checks; the seeds are fixed, so the outcome is
+// reproducible). Each check also requires the standard error to be small against the signal, so
+// a loose estimate cannot pass by being noisy. The closed forms are the CPU tests' own
+// (tests/unit/TestPathTracer.cxx): the opacity of a homogeneous slab seen obliquely, and the
+// white furnace. Small images and sample counts: llvmpipe runs the shader on the CPU.
+#include "CpuReference.h"
+#include "RendererTestSupport.h" // tests/unit: fields, media, lights, images with variances
+
+#include "CloudMarchUniforms.h"
+#include "vtkCloudPathTracer.h"
+#include "vtkCloudVolumeMapper.h"
+
+#include <vtkCamera.h>
+#include <vtkLightCollection.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkVolume.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <string>
+
+using namespace cloudvis;
+
+namespace
+{
+constexpr double Sigmas = 4.5;
+constexpr int Size = 24;
+
+using test::Image;
+
+// An off-screen window path-tracing `field` on the GPU, Size x Size pixels.
+struct GpuTrace
+{
+  vtkNew<vtkCloudVolumeMapper> Mapper;
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkSmartPointer<vtkVolumeProperty> Property;
+
+  GpuTrace(vtkImageData* field,
+    vtkVolumeProperty* medium,
+    const LightingParameters& lighting,
+    int samplesPerFrame,
+    int seed)
+    : Property(medium)
+  {
+    LightingParameters p = lighting;
+    p.Model = LightingModel::PathTrace;
+    this->Mapper->GetLightingProperty()->SetParameters(p);
+    this->Mapper->SetPathTraceSamplesPerFrame(samplesPerFrame);
+    this->Mapper->SetPathTraceSeed(seed);
+    this->Mapper->SetInputData(field);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(Size, Size);
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->AutomaticLightCreationOff(); // no headlight: the lights are the test's
+    this->Volume->SetMapper(this->Mapper);
+    this->Volume->SetProperty(medium);
+    this->Renderer->AddVolume(this->Volume);
+  }
+
+  // A parallel view as test::SetParallelView gives the CPU renderers.
+  void LookAt(glm::dvec3 focal, glm::dvec3 view, double scale)
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    const glm::dvec3 position = focal - 5.0 * glm::normalize(view);
+    camera->SetPosition(position.x, position.y, position.z);
+    camera->SetFocalPoint(focal.x, focal.y, focal.z);
+    camera->SetViewUp(0.0, 1.0, 0.0);
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(scale);
+    camera->SetClippingRange(1.0, 10.0);
+  }
+
+  // Accumulates `frames` frames and reads the mean and its variance.
+  Image Render(int frames)
+  {
+    this->Mapper->SetMaximumAccumulatedFrames(frames);
+    for (int f = 0; f < frames; ++f)
+    {
+      this->Window->Render();
+    }
+    EXPECT_EQ(this->Mapper->GetLastError(), "");
+    EXPECT_EQ(this->Mapper->GetNumberOfAccumulatedSamples(this->Renderer),
+      frames * this->Mapper->GetPathTraceSamplesPerFrame());
+    Image image;
+    int width = 0, height = 0;
+    if (!this->Mapper->ReadImage(this->Renderer, image.RGBA, image.Width, image.Height) ||
+      !this->Mapper->ReadVariance(this->Renderer, image.Variance, width, height))
+    {
+      ADD_FAILURE() << "the mapper kept no path-traced image";
+    }
+    return image;
+  }
+};
+
+// test::ExpectNoDifference over 4 x 4 tiles at Sigmas, the standard error below 2% of `scale`,
+// with the observed figures printed (the tolerances' margins, for docs and reports).
+void ExpectAgreement(const Image& image,
+  const std::function<double(std::size_t)>& difference,
+  const std::function<double(std::size_t)>& variance,
+  const std::function<bool(std::size_t)>& use,
+  double scale,
+  int minTiles,
+  const std::string& what)
+{
+  const test::Estimate mean = test::MeanOverPixels(image, difference, variance, use);
+  int tiles = 0;
+  std::cout << what << ": mean difference " << mean.Mean << " +- " << mean.StandardError
+            << " (scale " << scale << "), largest tile z "
+            << test::LargestBlockZ(image, 4, difference, variance, use, tiles) << " over " << tiles
+            << " tiles\n";
+  test::ExpectNoDifference(
+    image, 4, difference, variance, use, scale, minTiles, what, 0.02, Sigmas);
+}
+
+double MeanOf(const Image& image, int channel, const std::function<bool(std::size_t)>& use)
+{
+  return test::MeanOverPixels(
+    image,
+    [&](std::size_t p) { return image.At(p, channel); },
+    [](std::size_t) { return 0.0; },
+    use)
+    .Mean;
+}
+}
+
+TEST(GpuPathTracer, AgreesWithTheCpuPathTracerWithinTheirStandardErrors)
+{
+  // A heterogeneous, optically thick sphere (optical diameter up to 12) with a coloured albedo,
+  // lit from the side by a directional light and a point light, in a dim environment, with every
+  // order of scattering: every estimator of the tracer takes part (free flight, ratio tracking
+  // with empty bricks leapt and homogeneous bricks integrated, both lobes, roulette, NEE to each
+  // kind of light, the environment).
+  auto field = test::SoftSphere(24);
+  auto medium = test::LinearMedium(8.0f, glm::vec3(0.9f, 0.8f, 0.7f));
+  LightingParameters lighting = test::Ambient(glm::vec3(0.1f, 0.15f, 0.2f));
+  GpuTrace gpu(field, medium, lighting, 8, 7);
+  gpu.LookAt(glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.9);
+  gpu.Renderer->AddLight(MakeLight(test::DirectionalLight(glm::vec3(1.0f, 0.5f, 0.2f), 1.5f)));
+  gpu.Renderer->AddLight(MakeLight(test::PointLight(glm::vec3(-0.5f, 1.5f, 1.0f), 2.0f)));
+  const Image traced = gpu.Render(16); // 128 paths per pixel
+  ASSERT_EQ(traced.Width, Size);
+
+  vtkNew<vtkCloudPathTracer> cpu;
+  cpu->SetInputData(field);
+  cpu->SetImageSize(Size, Size);
+  SetReferenceCamera(cpu, gpu.Renderer->GetActiveCamera());
+  cpu->SetVolumeProperty(gpu.Property);
+  cpu->SetLightingProperty(gpu.Mapper->GetLightingProperty());
+  cpu->SetLights(gpu.Renderer->GetLights());
+  cpu->SetSamplesPerPixel(128);
+  cpu->SetSeed(0);
+  const Image reference = test::Render(cpu);
+  ASSERT_EQ(reference.Pixels(), traced.Pixels());
+
+  const auto inCloud = [&](std::size_t p) { return reference.At(p, 3) > 0.0f; };
+  for (int channel = 0; channel < 4; ++channel)
+  {
+    ExpectAgreement(
+      traced,
+      [&](std::size_t p) { return traced.At(p, channel) - reference.At(p, channel); },
+      [&](std::size_t p)
+      { return traced.VarianceAt(p, channel) + reference.VarianceAt(p, channel); },
+      inCloud,
+      MeanOf(reference, channel, inCloud),
+      8,
+      "channel " + std::to_string(channel));
+  }
+}
+
+TEST(GpuPathTracer, SlabOpacityIsOneMinusExpOfMinusSigmaTimesPath)
+{
+  // tests/unit/TestPathTracer.cxx's slab: optical thickness sigma_t L, L = 9 / 16, seen at
+  // cosine 0.8 to its normal: every pixel's opacity is 1 - exp(-sigma_t L / 0.8); no light, so
+  // nothing is scattered toward the eye.
+  const double thickness = 9.0 / 16.0;
+  const float sigma_t = 2.5f;
+  auto slab = test::MakeBoxField({ 17, 17, 33 },
+    { -2.0, -2.0, -1.0 },
+    { 2.0, 2.0, 1.0 },
+    [](double, double, double z) { return std::abs(z) <= 0.25 + 1e-9 ? 1.0 : 0.0; });
+  GpuTrace gpu(slab, test::LinearMedium(sigma_t), LightingParameters(), 4, 3);
+  gpu.LookAt(glm::dvec3(0.0), glm::dvec3(-0.6, 0.0, -0.8), 0.5);
+  const Image image = gpu.Render(4);
+  const double alpha = 1.0 - std::exp(-sigma_t * thickness / 0.8);
+  const auto all = [](std::size_t) { return true; };
+  ExpectAgreement(
+    image,
+    [&](std::size_t p) { return image.At(p, 3) - alpha; },
+    [&](std::size_t p) { return image.VarianceAt(p, 3); },
+    all,
+    alpha,
+    30,
+    "opacity");
+  // The pixels are independent estimates of one value: their scatter checks the variance the
+  // mapper reports from its moment target (the sample variance of N pixels has a relative
+  // standard error of sqrt(2 / (N - 1))).
+  double scatter = 0.0, reported = 0.0;
+  for (std::size_t p = 0; p < image.Pixels(); ++p)
+  {
+    ASSERT_EQ(image.At(p, 0), 0.0f) << "no light, no ambient: nothing is scattered";
+    scatter += (image.At(p, 3) - alpha) * (image.At(p, 3) - alpha);
+    reported += image.VarianceAt(p, 3);
+  }
+  const double pixels = double(image.Pixels());
+  const double ratio = (scatter / pixels) / (reported / pixels);
+  std::cout << "scatter over reported variance: " << ratio << "\n";
+  EXPECT_NEAR(ratio, 1.0, Sigmas * std::sqrt(2.0 / (pixels - 1.0)));
+}
+
+TEST(GpuPathTracer, WhiteFurnaceMediumVanishesIntoTheEnvironment)
+{
+  // Albedo 1, no light, a uniform environment A: every path that enters leaves with A, so
+  // rgb = A alpha at every pixel, through every order of scattering of a thick sphere.
+  const glm::vec3 environment(0.5f, 1.0f, 2.0f);
+  GpuTrace gpu(test::SoftSphere(24), test::LinearMedium(8.0f), test::Ambient(environment), 8, 5);
+  gpu.LookAt(glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.8);
+  const Image image = gpu.Render(8);
+  const auto inCloud = [&](std::size_t p) { return image.At(p, 3) > 0.0f; };
+  for (int channel = 0; channel < 3; ++channel)
+  {
+    ExpectAgreement(
+      image,
+      [&](std::size_t p) { return image.At(p, channel) - environment[channel] * image.At(p, 3); },
+      [&](std::size_t p)
+      {
+        return image.VarianceAt(p, channel) +
+          environment[channel] * environment[channel] * image.VarianceAt(p, 3);
+      },
+      inCloud,
+      MeanOf(image, channel, inCloud),
+      8,
+      "channel " + std::to_string(channel));
+  }
+}
