@@ -531,6 +531,7 @@ int Errors(const Options& options)
       Light light;
       light.Position = 10.0f * lit.TowardLight;
       double fullMean[2] = { 0.0, 0.0 };
+      double marchMean[2] = { 0.0, 0.0 }; // march with its defaults (models[0])
       for (float albedo : { 1.0f, 0.9f })
       {
         const auto medium = MakeMedium(scene, albedo);
@@ -568,6 +569,8 @@ int Errors(const Options& options)
             label + "-" + (model.Model == LightingModel::Derivative ? "derivative" : "march") +
               std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : ""),
             image.RGBA, options.Width, options.Height);
+          if (&model == &models[0])
+            marchMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(image);
           const ImageError e = CompareWithReference(image.RGBA.data(), reference.RGBA.data(),
             reference.Variance.data(), std::size_t(options.Width) * options.Height);
           std::printf("| %s | %s | %.1f | %s | %.1f%% | %.1f%% | %.3f | %.1f%% | %.2f%% |\n",
@@ -579,13 +582,18 @@ int Errors(const Options& options)
         fullMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(references[0]);
       }
       char line[200];
-      std::snprintf(line, sizeof(line), "| %s | %s | %.3f | 0.900 |", errorField.Name, lit.Name,
-        fullMean[1] / fullMean[0]);
+      std::snprintf(line,
+        sizeof(line),
+        "| %s | %s | %.3f | %.3f |",
+        errorField.Name,
+        lit.Name,
+        fullMean[1] / fullMean[0],
+        marchMean[1] / marchMean[0]);
       albedoRatios.push_back(line);
     }
   }
   std::printf("\nImage at albedo 0.9 over image at albedo 1 (means over the footprint):\n\n"
-              "| field | light | path tracer | march, any octaves |\n|---|---|---|---|\n");
+              "| field | light | path tracer | march (defaults) |\n|---|---|---|---|\n");
   for (const std::string& line : albedoRatios)
     std::printf("%s\n", line.c_str());
   return 0;
@@ -695,63 +703,50 @@ struct Percentiles
   }
 };
 
-// The light march's transmittance at sample points of the cloud against the exact one: the
-// midpoint sampling of its growing segments (same reach), and the reach itself (to the exit).
+// The light march's transmittance at sample points of the cloud against the exact one over the
+// same way (to the volume's exit): what its segments and their quadrature make of the field.
 void LightMarchErrors(const char* name, vtkImageData* field, const TransferTable& table)
 {
   LocalFrame frame;
   const MarchUniforms u = UniformsOf(field, table, frame);
-  const LightingParameters& l = u.Lighting; // lengths in local units
-  // Where the segments end: the first light step, each next one LightStepGrowth times longer.
-  double reach = 0.0, segment = l.LightStep;
-  for (int j = 0; j < l.LightSteps; ++j, segment *= l.LightStepGrowth)
-    reach += segment;
+  const LightingParameters& l = u.Lighting;                  // lengths in local units
   const double voxel = frame.SmallestVoxelEdge / frame.Unit; // local units
-  std::printf("\n%s: %d light steps from %.4f (%.1f voxels) growing %.2f reach %.3f world units "
+  std::printf("\n%s: %d light steps growing %.2f to the volume's exit, the first at least %.4f "
               "(%.1f voxels; the volume's diagonal is %.2f)\n",
-    name, l.LightSteps, l.LightStep * frame.Unit, l.LightStep / voxel, double(l.LightStepGrowth),
-    reach * frame.Unit, reach / voxel, frame.LongestChord * frame.Unit);
+    name,
+    l.LightSteps,
+    double(l.LightStepGrowth),
+    l.LightStep * frame.Unit,
+    l.LightStep / voxel,
+    frame.LongestChord * frame.Unit);
   for (const glm::vec3 toward : { glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.2f, 0.3f, -1)) })
   {
-    Percentiles midpoint, truncation;
-    int truncated = 0, samples = 0;
+    Percentiles ratio;
+    int samples = 0;
     for (int k = 2; k < u.Dimensions.z - 2; k += 3)
       for (int j = 2; j < u.Dimensions.y - 2; j += 3)
         for (int i = 2; i < u.Dimensions.x - 2; i += 3)
         {
           // Off the lattice, as view samples are.
           const glm::vec3 p(i + 0.37f, j + 0.61f, k + 0.23f);
-          if (!(ExtinctionAt(u, p) > 0.0f))
+          const float sigma = ExtinctionAt(u, p);
+          if (!(sigma > 0.0f))
             continue;
           ++samples;
-          const float tauMarch = LightOpticalDepth(u, p, toward, 1e30f);
-          // The reach the march counted: segments until the first midpoint outside.
-          double counted = 0.0, start = 0.0;
-          segment = l.LightStep;
-          for (int s = 0; s < l.LightSteps; ++s, segment *= l.LightStepGrowth)
-          {
-            if (!InsideVolume(u, p + float(start + 0.5 * segment) * LocalToIndex(u, toward)))
-              break;
-            start += segment;
-            counted = start;
-          }
+          const glm::vec3 indexStep = LocalToIndex(u, toward);
+          const float tauMarch = LightOpticalDepth(u, p, sigma, indexStep, 1e30f);
           const glm::vec2 exit =
-            IntersectBox(p, LocalToIndex(u, toward), glm::vec3(0.0f), glm::vec3(u.Dimensions - 1));
-          const double tauReach = OpticalDepth(u, frame, p, toward, 0.0, counted);
-          const double tauFull = OpticalDepth(u, frame, p, toward, 0.0, exit.y);
-          midpoint.Values.push_back(std::exp(tauReach - tauMarch));
-          if (tauFull - tauReach > 1e-3)
-          {
-            ++truncated;
-            truncation.Values.push_back(std::exp(tauFull - tauReach));
-          }
+            IntersectBox(p, indexStep, glm::vec3(0.0f), glm::vec3(u.Dimensions - 1));
+          const double tauExact = OpticalDepth(u, frame, p, toward, 0.0, exit.y);
+          ratio.Values.push_back(std::exp(tauExact - tauMarch));
         }
-    std::printf("  light toward (%.2f, %.2f, %.2f), %d cloud samples:\n"
-                "    midpoint segments: transmittance / exact over the same reach: %s\n"
-                "    reach: %d samples (%.1f%%) have material beyond it; their transmittance / "
-                "exact to the exit: %s\n",
-      double(toward.x), double(toward.y), double(toward.z), samples, midpoint.Format().c_str(),
-      truncated, 100.0 * truncated / std::max(samples, 1), truncation.Format().c_str());
+    std::printf("  light toward (%.2f, %.2f, %.2f), %d cloud samples: transmittance / exact to "
+                "the exit: %s\n",
+      double(toward.x),
+      double(toward.y),
+      double(toward.z),
+      samples,
+      ratio.Format().c_str());
   }
 }
 
@@ -835,7 +830,7 @@ int Defects(const Options& options)
       std::snprintf(label, sizeof(label), "side-lit, albedo %.1f, march (defaults) / path tracer",
         double(albedo));
       OpacityBins(label, Run(march), reference);
-      lighting.LightSteps = 12; // growing as before, but reaching past the volume's diagonal
+      lighting.LightSteps = 12; // twice the segments, over the same way to the exit
       march->GetLightingProperty()->SetParameters(lighting);
       std::snprintf(label, sizeof(label),
         "side-lit, albedo %.1f, march with 12 growing light "
