@@ -485,6 +485,7 @@ struct ErrorModel
   bool UniformLightSteps; // 64 uniform light steps spanning the volume's diagonal
   bool SingleScattering;  // compared with the path tracer restricted to one bounce
   bool AlbedoOneOnly;     // single scattering scales with the albedo: one albedo says it all
+  bool Nested;            // the nested light march rather than the light volumes
 };
 
 // The mean of r, g, b over the footprint of an image.
@@ -497,13 +498,18 @@ double MeanRadiance(const Rendered& image)
 int Errors(const Options& options)
 {
   const ErrorModel models[] = {
-    { "march (defaults: 6 growing light steps, 3 octaves)", LightingModel::March, 3, false, false,
+    { "march (defaults: light volumes, 3 octaves)", LightingModel::March, 3, false, false, false,
       false },
-    { "march, no octaves", LightingModel::March, 0, false, false, false },
-    { "derivative", LightingModel::Derivative, 0, false, false, false },
-    { "single scattering: march, no octaves", LightingModel::March, 0, false, true, true },
+    { "march, nested light march (6 growing steps), 3 octaves", LightingModel::March, 3, false,
+      false, false, true },
+    { "march, no octaves", LightingModel::March, 0, false, false, false, false },
+    { "derivative", LightingModel::Derivative, 0, false, false, false, false },
+    { "single scattering: march, no octaves (light volumes)", LightingModel::March, 0, false, true,
+      true, false },
+    { "single scattering: march, no octaves, nested light march", LightingModel::March, 0, false,
+      true, true, true },
     { "single scattering: march, no octaves, 64 uniform light steps", LightingModel::March, 0, true,
-      true, true },
+      true, true, true },
   };
   const struct
   {
@@ -516,7 +522,7 @@ int Errors(const Options& options)
   std::printf("| field | light | albedo | model | relative RMSE | noise-corrected | bias (ratio "
               "of means) | max error / peak | reference's relative standard error |\n"
               "|---|---|---|---|---|---|---|---|---|\n");
-  std::vector<std::string> albedoRatios;
+  std::vector<std::string> albedoRatios, settingDifferences;
   for (const ErrorField& errorField : ErrorFields())
   {
     const BenchScene& scene = errorField.Scene;
@@ -538,6 +544,7 @@ int Errors(const Options& options)
         const std::string label = std::string(errorField.Name) + "-" + lit.Name + "-albedo" +
           (albedo == 1.0f ? "1" : "0.9");
         std::vector<Rendered> references(2); // every order of scattering, single scattering
+        Rendered volumesImage;                // march with its defaults: the light volumes
         for (const ErrorModel& model : models)
         {
           if (model.AlbedoOneOnly && albedo != 1.0f)
@@ -558,6 +565,8 @@ int Errors(const Options& options)
           LightingParameters lighting = scene.Lighting;
           lighting.Model = model.Model;
           lighting.MultipleScatteringOctaves = model.Octaves;
+          lighting.Transmittance =
+            model.Nested ? LightTransmittance::Nested : LightTransmittance::Volumes;
           if (model.UniformLightSteps)
           {
             lighting.LightSteps = 64;
@@ -567,10 +576,25 @@ int Errors(const Options& options)
           const Rendered image = Run(NewMarch(scene, field, medium, lighting, { light }, options));
           WritePng(options.PngDirectory,
             label + "-" + (model.Model == LightingModel::Derivative ? "derivative" : "march") +
-              std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : ""),
+              std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : "") +
+              (model.Nested ? "n" : ""),
             image.RGBA, options.Width, options.Height);
           if (&model == &models[0])
+          {
             marchMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(image);
+            volumesImage = image;
+          }
+          if (&model == &models[1]) // the two settings against each other, noise-free
+          {
+            const std::vector<float> exact(image.RGBA.size(), 0.0f);
+            const ImageError d = CompareWithReference(volumesImage.RGBA.data(), image.RGBA.data(),
+              exact.data(), std::size_t(options.Width) * options.Height);
+            char line[200];
+            std::snprintf(line, sizeof(line), "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
+              errorField.Name, lit.Name, double(albedo), 100.0 * d.RelativeRMSE, d.BiasRatio,
+              100.0 * d.MaxErrorOverPeak);
+            settingDifferences.push_back(line);
+          }
           const ImageError e = CompareWithReference(image.RGBA.data(), reference.RGBA.data(),
             reference.Variance.data(), std::size_t(options.Width) * options.Height);
           std::printf("| %s | %s | %.1f | %s | %.1f%% | %.1f%% | %.3f | %.1f%% | %.2f%% |\n",
@@ -595,6 +619,11 @@ int Errors(const Options& options)
   std::printf("\nImage at albedo 0.9 over image at albedo 1 (means over the footprint):\n\n"
               "| field | light | path tracer | march (defaults) |\n|---|---|---|---|\n");
   for (const std::string& line : albedoRatios)
+    std::printf("%s\n", line.c_str());
+  std::printf("\nmarch (defaults) with light volumes against the nested light march (the "
+              "nested image as the reference):\n\n| field | light | albedo | relative RMSE | "
+              "bias | max error / peak |\n|---|---|---|---|---|---|\n");
+  for (const std::string& line : settingDifferences)
     std::printf("%s\n", line.c_str());
   return 0;
 }

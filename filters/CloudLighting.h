@@ -64,6 +64,13 @@ struct LocalLight
   glm::vec3 IndexOffset{ 0.0f };
 };
 
+// How the march finds the optical depth toward a light at a sample (docs/lighting.md).
+enum class LightTransmittance
+{
+  Volumes, // read from per-light optical-depth volumes computed when the inputs change
+  Nested,  // a march toward each light at every sample (the quality setting)
+};
+
 struct LightingParameters
 {
   LightingModel Model = LightingModel::None;
@@ -80,6 +87,9 @@ struct LightingParameters
   int LightSteps = 6;
   float LightStep = 0.0f;
   float LightStepGrowth = 1.6f;
+  // Where the optical depth comes from: the volumes (fast; their march has uniform steps of the
+  // view's step) or the nested march above at every sample.
+  LightTransmittance Transmittance = LightTransmittance::Volumes;
   // Henyey-Greenstein phase, two lobes: w * HG(g1) + (1 - w) * HG(g2). w = 1 is one lobe.
   float PhaseG1 = 0.6f;
   float PhaseG2 = -0.3f;

@@ -1,5 +1,7 @@
 #include "CloudReferenceMarch.h"
 
+#include "CloudLightVolumes.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -235,9 +237,14 @@ glm::vec3 SourceTermMarch(
   const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3 d)
 {
   const float sigmaHere = Optical(u, density).a;
+  const bool fromVolumes =
+    u.Lighting.Transmittance == LightTransmittance::Volumes && u.LightDepths != nullptr;
   // The optical depth toward light `source`, along indexStep, up to maxDistance.
-  const auto opticalDepth = [&](const LocalLight&, glm::vec3 indexStep, float maxDistance)
-  { return LightOpticalDepth(u, p, sigmaHere, indexStep, maxDistance); };
+  const auto opticalDepth = [&](const LocalLight& source, glm::vec3 indexStep, float maxDistance)
+  {
+    return fromVolumes ? LightVolumeDepth(*u.LightDepths, u, int(&source - u.Lights.data()), p)
+                       : LightOpticalDepth(u, p, sigmaHere, indexStep, maxDistance);
+  };
   return SumOverLights(
     u,
     albedo,

@@ -14,6 +14,12 @@ uniform float ScatteringFalloff;   // a
 uniform float ExtinctionFalloff;   // b
 uniform float EccentricityFalloff; // c
 uniform float PowderStrength;
+// Issue 12: 1 reads the optical depth from the light volumes (filters/CloudLightVolumes.h), one
+// block per light stacked along z in LightVolumeTexture; 0 marches toward each light.
+uniform int LightTransmittanceVolumes;
+uniform sampler3D LightVolumeTexture;
+uniform vec3 LightVolumeSize; // texels per axis of one light's block
+uniform float LightVolumeCount; // blocks stacked along z
 
 // A light's intensity means the same in every model (filters/CloudLighting.h): the phase,
 // per steradian, is scaled so an isotropic, unshadowed sample scatters color x intensity.
@@ -87,10 +93,22 @@ float LightOpticalDepth(vec3 p, float sigmaHere, vec3 indexStep, float maxDistan
   return tau;
 }
 
+// The optical depth toward light i at index point p from its block of the light volumes: p
+// clamped to the volume, at its place in the corner-aligned grid (within [0, size - 1] texels, so
+// the linear filter never reads another light's block). The twin of cloudvis::LightVolumeDepth.
+float LightVolumeDepth(int i, vec3 p)
+{
+  vec3 t = clamp(p, vec3(0.0), Dimensions - 1.0) * ((LightVolumeSize - 1.0) / max(Dimensions - 1.0, vec3(1.0)));
+  t.z += float(i) * LightVolumeSize.z;
+  return texture(LightVolumeTexture, (t + 0.5) / vec3(LightVolumeSize.xy, LightVolumeSize.z * LightVolumeCount)).r;
+}
+
 // A directional light: its direction in index units is the same everywhere (precomputed).
 vec3 DirectionalLightTerm(int i, vec3 p, float density, vec3 albedo, vec3 d)
 {
-  float tau = LightOpticalDepth(p, Optical(density).a, LightIndexDirection[i], DirectionalLightDistance);
+  float tau = LightTransmittanceVolumes != 0
+    ? LightVolumeDepth(i, p)
+    : LightOpticalDepth(p, Optical(density).a, LightIndexDirection[i], DirectionalLightDistance);
   return LightRadiance[i] * PhaseToRadiance * ScatteredFraction(dot(d, LightDirection[i]), tau, albedo);
 }
 
@@ -99,6 +117,8 @@ vec3 PointLightTerm(int i, vec3 p, float density, vec3 albedo, vec3 d)
   vec3 l;
   float lightDistance, falloff;
   SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
-  float tau = LightOpticalDepth(p, Optical(density).a, LocalToIndex * l, lightDistance);
+  float tau = LightTransmittanceVolumes != 0
+    ? LightVolumeDepth(i, p)
+    : LightOpticalDepth(p, Optical(density).a, LocalToIndex * l, lightDistance);
   return LightRadiance[i] * falloff * PhaseToRadiance * ScatteredFraction(dot(d, l), tau, albedo);
 }

@@ -3,6 +3,7 @@
 // to 1, the scattered fraction behaves as docs/lighting.md says, the trilinear fetch reproduces
 // a linear field and clamps at the edges, and the light march's optical depth through a
 // homogeneous slab is sigma_t * L, so a slab lit from behind transmits exp(-sigma_t L).
+#include "CloudLightVolumes.h"
 #include "CloudLighting.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
@@ -339,6 +340,66 @@ TEST(ReferenceMarch, ASampleAHairOutsideAFaceGetsItsShadow)
                 INFINITY),
     sigma_t * (42.0f + LightBoxMargin) * spacing,
     1e-5f);
+}
+
+TEST(LightVolumes, HoldTheOpticalDepthTowardEachLightAndTheMarchInterpolatesThem)
+{
+  // A uniform field of 33 x 9 x 9 voxels: the grid has 17 x 5 x 5 texels per light, corner-aligned.
+  // Toward a sun along +x the optical depth is sigma_t times the way to the exit, linear in x, so
+  // the trilinear lookup between texels is exact anywhere; toward a point light inside the field
+  // it is sigma_t times the distance to the light.
+  const float spacing = 0.05f, sigma_t = 2.0f;
+  Volume v(
+    { 33, 9, 9 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
+  v.Uniforms.Step = 0.5f * spacing; // the volumes' own march: uniform steps of the view's step
+  v.Uniforms.LongestRaySamples = 80;
+  LocalLight sun;
+  sun.Direction = glm::vec3(1.0f, 0.0f, 0.0f);
+  sun.IndexDirection = LocalToIndex(v.Uniforms, sun.Direction);
+  sun.Radiance = glm::vec3(1.0f);
+  LocalLight lamp;
+  lamp.Positional = true;
+  lamp.Position = LocalOfIndex(v.Uniforms, glm::vec3(16.0f, 4.0f, 4.0f));
+  lamp.Attenuation = glm::vec3(1.0f, 0.0f, 0.0f);
+  v.Uniforms.Lights = { sun, lamp };
+  LightVolumes volumes;
+  ComputeLightVolumes(v.Uniforms, volumes);
+  EXPECT_EQ(volumes.Size, glm::ivec3(17, 5, 5));
+  EXPECT_EQ(volumes.Depth.size(), std::size_t(17 * 5 * 5 * 2));
+  for (const glm::vec3 p : { glm::vec3(0.0f, 0.0f, 0.0f),
+         glm::vec3(3.3f, 1.7f, 6.1f),
+         glm::vec3(31.9f, 8.0f, 0.4f),
+         glm::vec3(32.0f, 4.0f, 4.0f) })
+  {
+    EXPECT_NEAR(LightVolumeDepth(volumes, v.Uniforms, 0, p),
+      sigma_t * (32.0f - p.x + LightBoxMargin) * spacing,
+      1e-4f)
+      << p.x << " " << p.y << " " << p.z;
+  }
+  // The lamp's block, at texel centres (between them the distance is not linear).
+  for (const glm::vec3 p : { glm::vec3(0.0f, 0.0f, 0.0f), glm::vec3(32.0f, 8.0f, 2.0f) })
+  {
+    EXPECT_NEAR(LightVolumeDepth(volumes, v.Uniforms, 1, p),
+      sigma_t * glm::length(p - glm::vec3(16.0f, 4.0f, 4.0f)) * spacing,
+      1e-4f);
+  }
+  // The march reads them when it is given them, and marches toward each light when not: toward
+  // the sun both are exact on this field, so a ray's color is the same.
+  v.Uniforms.Lights = { sun };
+  ComputeLightVolumes(v.Uniforms, volumes);
+  v.Uniforms.Lighting.Model = LightingModel::March;
+  v.Uniforms.Step = spacing;
+  v.Uniforms.MaximumSamples = 200;
+  const glm::vec3 nearPoint = LocalOfIndex(v.Uniforms, glm::vec3(-5.0f, 3.3f, 2.2f));
+  const glm::vec3 farPoint = LocalOfIndex(v.Uniforms, glm::vec3(40.0f, 5.1f, 6.0f));
+  const glm::vec4 nested = MarchRay(v.Uniforms, nearPoint, farPoint);
+  v.Uniforms.LightDepths = &volumes;
+  const glm::vec4 fromVolumes = MarchRay(v.Uniforms, nearPoint, farPoint);
+  ASSERT_GT(nested.r, 0.0f);
+  EXPECT_NEAR(fromVolumes.r, nested.r, 2e-3f * nested.r);
+  EXPECT_EQ(fromVolumes.a, nested.a);
+  v.Uniforms.Lighting.Transmittance = LightTransmittance::Nested; // the quality setting
+  EXPECT_EQ(MarchRay(v.Uniforms, nearPoint, farPoint), nested);
 }
 
 TEST(ReferenceMarch, AutomaticDistancesAreFourAndTwoVoxelsInLocalUnits)
