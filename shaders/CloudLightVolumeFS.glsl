@@ -9,7 +9,9 @@ uniform float LightVolumeSlice; // the texel's z within the block
 
 void main()
 {
-  vec3 texel = vec3(floor(gl_FragCoord.xy), LightVolumeSlice);
+  // The fragment's texel from the quad's texture coordinate, (i + 0.5) / size at its centre (using
+  // it keeps the quad's vertex attribute alive in the linked program).
+  vec3 texel = vec3(floor(texCoord * LightVolumeSize.xy), LightVolumeSlice);
   vec3 p = texel * ((Dimensions - 1.0) / max(LightVolumeSize - 1.0, vec3(1.0)));
   vec3 l;
   float lightDistance, falloff;
