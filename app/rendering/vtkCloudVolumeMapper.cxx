@@ -412,6 +412,10 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
       return this->Fail(problem);
     }
   }
+  else if (in.LightVolumes.GetBytes() > 0)
+  {
+    in.LightVolumes.Release(window); // another model or the nested march: not held for nothing
+  }
 
   // The march is one shader; a lighting model only supplies its source term.
   vtkShaderProgram* program = in.March.Ready(window, uniforms.Lighting.Model, uniforms.Lights);

@@ -151,7 +151,14 @@ TEST(MapperResources, LightVolumesAreComputedWhenTheirInputsChangeAndCountInTheB
   scene.RenderFloat();
   EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 4);
   EXPECT_EQ(mapper->GetLightVolumeBytes(), 2 * 33LL * 33 * 33 * 4);
+  // The nested march needs none: they are not held for nothing.
+  mapper->GetLightingProperty()->SetTransmittanceToNestedMarch();
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeBytes(), 0);
   // Released with the rest.
+  mapper->GetLightingProperty()->SetTransmittanceToLightVolumes();
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 5);
   mapper->ReleaseGraphicsResources(scene.Window);
   EXPECT_EQ(mapper->GetLightVolumeBytes(), 0);
 }
