@@ -747,6 +747,7 @@ TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
   property->SetExtinctionFalloff(0.35f);
   property->SetEccentricityFalloff(0.25f);
   property->SetPowderStrength(0.15f);
+  property->SetTransmittanceToNestedMarch();
   const LightingParameters p = property->GetParameters();
   EXPECT_EQ(p.Model, LightingModel::March);
   EXPECT_EQ(p.AmbientColor, glm::vec3(0.1f, 0.2f, 0.3f));
@@ -763,10 +764,12 @@ TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
   EXPECT_EQ(p.ExtinctionFalloff, 0.35f);
   EXPECT_EQ(p.EccentricityFalloff, 0.25f);
   EXPECT_EQ(p.PowderStrength, 0.15f);
+  EXPECT_EQ(p.Transmittance, LightTransmittance::Nested);
 
   vtkNew<vtkCloudLightingProperty> copy;
   copy->DeepCopy(property);
   EXPECT_EQ(copy->GetParameters().PhaseG2, -0.2f);
+  EXPECT_EQ(copy->GetParameters().Transmittance, LightTransmittance::Nested);
   const vtkMTimeType time = copy->GetMTime();
   copy->SetParameters(p); // the same values
   EXPECT_EQ(copy->GetMTime(), time);
