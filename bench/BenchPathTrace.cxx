@@ -485,6 +485,7 @@ struct ErrorModel
   bool UniformLightSteps; // 64 uniform light steps spanning the volume's diagonal
   bool SingleScattering;  // compared with the path tracer restricted to one bounce
   bool AlbedoOneOnly;     // single scattering scales with the albedo: one albedo says it all
+  bool Nested;            // the nested light march rather than the light volumes
 };
 
 // The mean of r, g, b over the footprint of an image.
@@ -497,13 +498,18 @@ double MeanRadiance(const Rendered& image)
 int Errors(const Options& options)
 {
   const ErrorModel models[] = {
-    { "march (defaults: 6 growing light steps, 3 octaves)", LightingModel::March, 3, false, false,
+    { "march (defaults: light volumes, 3 octaves)", LightingModel::March, 3, false, false, false,
       false },
-    { "march, no octaves", LightingModel::March, 0, false, false, false },
-    { "derivative", LightingModel::Derivative, 0, false, false, false },
-    { "single scattering: march, no octaves", LightingModel::March, 0, false, true, true },
+    { "march, nested light march (6 growing steps), 3 octaves", LightingModel::March, 3, false,
+      false, false, true },
+    { "march, no octaves", LightingModel::March, 0, false, false, false, false },
+    { "derivative", LightingModel::Derivative, 0, false, false, false, false },
+    { "single scattering: march, no octaves (light volumes)", LightingModel::March, 0, false, true,
+      true, false },
+    { "single scattering: march, no octaves, nested light march", LightingModel::March, 0, false,
+      true, true, true },
     { "single scattering: march, no octaves, 64 uniform light steps", LightingModel::March, 0, true,
-      true, true },
+      true, true, true },
   };
   const struct
   {
@@ -516,7 +522,7 @@ int Errors(const Options& options)
   std::printf("| field | light | albedo | model | relative RMSE | noise-corrected | bias (ratio "
               "of means) | max error / peak | reference's relative standard error |\n"
               "|---|---|---|---|---|---|---|---|---|\n");
-  std::vector<std::string> albedoRatios;
+  std::vector<std::string> albedoRatios, settingDifferences;
   for (const ErrorField& errorField : ErrorFields())
   {
     const BenchScene& scene = errorField.Scene;
@@ -531,12 +537,14 @@ int Errors(const Options& options)
       Light light;
       light.Position = 10.0f * lit.TowardLight;
       double fullMean[2] = { 0.0, 0.0 };
+      double marchMean[2] = { 0.0, 0.0 }; // march with its defaults (models[0])
       for (float albedo : { 1.0f, 0.9f })
       {
         const auto medium = MakeMedium(scene, albedo);
         const std::string label = std::string(errorField.Name) + "-" + lit.Name + "-albedo" +
           (albedo == 1.0f ? "1" : "0.9");
         std::vector<Rendered> references(2); // every order of scattering, single scattering
+        Rendered volumesImage;                // march with its defaults: the light volumes
         for (const ErrorModel& model : models)
         {
           if (model.AlbedoOneOnly && albedo != 1.0f)
@@ -557,6 +565,8 @@ int Errors(const Options& options)
           LightingParameters lighting = scene.Lighting;
           lighting.Model = model.Model;
           lighting.MultipleScatteringOctaves = model.Octaves;
+          lighting.Transmittance =
+            model.Nested ? LightTransmittance::Nested : LightTransmittance::Volumes;
           if (model.UniformLightSteps)
           {
             lighting.LightSteps = 64;
@@ -566,8 +576,25 @@ int Errors(const Options& options)
           const Rendered image = Run(NewMarch(scene, field, medium, lighting, { light }, options));
           WritePng(options.PngDirectory,
             label + "-" + (model.Model == LightingModel::Derivative ? "derivative" : "march") +
-              std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : ""),
+              std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : "") +
+              (model.Nested ? "n" : ""),
             image.RGBA, options.Width, options.Height);
+          if (&model == &models[0])
+          {
+            marchMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(image);
+            volumesImage = image;
+          }
+          if (&model == &models[1]) // the two settings against each other, noise-free
+          {
+            const std::vector<float> exact(image.RGBA.size(), 0.0f);
+            const ImageError d = CompareWithReference(volumesImage.RGBA.data(), image.RGBA.data(),
+              exact.data(), std::size_t(options.Width) * options.Height);
+            char line[200];
+            std::snprintf(line, sizeof(line), "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
+              errorField.Name, lit.Name, double(albedo), 100.0 * d.RelativeRMSE, d.BiasRatio,
+              100.0 * d.MaxErrorOverPeak);
+            settingDifferences.push_back(line);
+          }
           const ImageError e = CompareWithReference(image.RGBA.data(), reference.RGBA.data(),
             reference.Variance.data(), std::size_t(options.Width) * options.Height);
           std::printf("| %s | %s | %.1f | %s | %.1f%% | %.1f%% | %.3f | %.1f%% | %.2f%% |\n",
@@ -579,14 +606,24 @@ int Errors(const Options& options)
         fullMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(references[0]);
       }
       char line[200];
-      std::snprintf(line, sizeof(line), "| %s | %s | %.3f | 0.900 |", errorField.Name, lit.Name,
-        fullMean[1] / fullMean[0]);
+      std::snprintf(line,
+        sizeof(line),
+        "| %s | %s | %.3f | %.3f |",
+        errorField.Name,
+        lit.Name,
+        fullMean[1] / fullMean[0],
+        marchMean[1] / marchMean[0]);
       albedoRatios.push_back(line);
     }
   }
   std::printf("\nImage at albedo 0.9 over image at albedo 1 (means over the footprint):\n\n"
-              "| field | light | path tracer | march, any octaves |\n|---|---|---|---|\n");
+              "| field | light | path tracer | march (defaults) |\n|---|---|---|---|\n");
   for (const std::string& line : albedoRatios)
+    std::printf("%s\n", line.c_str());
+  std::printf("\nmarch (defaults) with light volumes against the nested light march (the "
+              "nested image as the reference):\n\n| field | light | albedo | relative RMSE | "
+              "bias | max error / peak |\n|---|---|---|---|---|---|\n");
+  for (const std::string& line : settingDifferences)
     std::printf("%s\n", line.c_str());
   return 0;
 }
@@ -695,63 +732,50 @@ struct Percentiles
   }
 };
 
-// The light march's transmittance at sample points of the cloud against the exact one: the
-// midpoint sampling of its growing segments (same reach), and the reach itself (to the exit).
+// The light march's transmittance at sample points of the cloud against the exact one over the
+// same way (to the volume's exit): what its segments and their quadrature make of the field.
 void LightMarchErrors(const char* name, vtkImageData* field, const TransferTable& table)
 {
   LocalFrame frame;
   const MarchUniforms u = UniformsOf(field, table, frame);
-  const LightingParameters& l = u.Lighting; // lengths in local units
-  // Where the segments end: the first light step, each next one LightStepGrowth times longer.
-  double reach = 0.0, segment = l.LightStep;
-  for (int j = 0; j < l.LightSteps; ++j, segment *= l.LightStepGrowth)
-    reach += segment;
+  const LightingParameters& l = u.Lighting;                  // lengths in local units
   const double voxel = frame.SmallestVoxelEdge / frame.Unit; // local units
-  std::printf("\n%s: %d light steps from %.4f (%.1f voxels) growing %.2f reach %.3f world units "
+  std::printf("\n%s: %d light steps growing %.2f to the volume's exit, the first at least %.4f "
               "(%.1f voxels; the volume's diagonal is %.2f)\n",
-    name, l.LightSteps, l.LightStep * frame.Unit, l.LightStep / voxel, double(l.LightStepGrowth),
-    reach * frame.Unit, reach / voxel, frame.LongestChord * frame.Unit);
+    name,
+    l.LightSteps,
+    double(l.LightStepGrowth),
+    l.LightStep * frame.Unit,
+    l.LightStep / voxel,
+    frame.LongestChord * frame.Unit);
   for (const glm::vec3 toward : { glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.2f, 0.3f, -1)) })
   {
-    Percentiles midpoint, truncation;
-    int truncated = 0, samples = 0;
+    Percentiles ratio;
+    int samples = 0;
     for (int k = 2; k < u.Dimensions.z - 2; k += 3)
       for (int j = 2; j < u.Dimensions.y - 2; j += 3)
         for (int i = 2; i < u.Dimensions.x - 2; i += 3)
         {
           // Off the lattice, as view samples are.
           const glm::vec3 p(i + 0.37f, j + 0.61f, k + 0.23f);
-          if (!(ExtinctionAt(u, p) > 0.0f))
+          const float sigma = ExtinctionAt(u, p);
+          if (!(sigma > 0.0f))
             continue;
           ++samples;
-          const float tauMarch = LightOpticalDepth(u, p, toward, 1e30f);
-          // The reach the march counted: segments until the first midpoint outside.
-          double counted = 0.0, start = 0.0;
-          segment = l.LightStep;
-          for (int s = 0; s < l.LightSteps; ++s, segment *= l.LightStepGrowth)
-          {
-            if (!InsideVolume(u, p + float(start + 0.5 * segment) * LocalToIndex(u, toward)))
-              break;
-            start += segment;
-            counted = start;
-          }
+          const glm::vec3 indexStep = LocalToIndex(u, toward);
+          const float tauMarch = LightOpticalDepth(u, p, sigma, indexStep, 1e30f);
           const glm::vec2 exit =
-            IntersectBox(p, LocalToIndex(u, toward), glm::vec3(0.0f), glm::vec3(u.Dimensions - 1));
-          const double tauReach = OpticalDepth(u, frame, p, toward, 0.0, counted);
-          const double tauFull = OpticalDepth(u, frame, p, toward, 0.0, exit.y);
-          midpoint.Values.push_back(std::exp(tauReach - tauMarch));
-          if (tauFull - tauReach > 1e-3)
-          {
-            ++truncated;
-            truncation.Values.push_back(std::exp(tauFull - tauReach));
-          }
+            IntersectBox(p, indexStep, glm::vec3(0.0f), glm::vec3(u.Dimensions - 1));
+          const double tauExact = OpticalDepth(u, frame, p, toward, 0.0, exit.y);
+          ratio.Values.push_back(std::exp(tauExact - tauMarch));
         }
-    std::printf("  light toward (%.2f, %.2f, %.2f), %d cloud samples:\n"
-                "    midpoint segments: transmittance / exact over the same reach: %s\n"
-                "    reach: %d samples (%.1f%%) have material beyond it; their transmittance / "
-                "exact to the exit: %s\n",
-      double(toward.x), double(toward.y), double(toward.z), samples, midpoint.Format().c_str(),
-      truncated, 100.0 * truncated / std::max(samples, 1), truncation.Format().c_str());
+    std::printf("  light toward (%.2f, %.2f, %.2f), %d cloud samples: transmittance / exact to "
+                "the exit: %s\n",
+      double(toward.x),
+      double(toward.y),
+      double(toward.z),
+      samples,
+      ratio.Format().c_str());
   }
 }
 
@@ -835,7 +859,7 @@ int Defects(const Options& options)
       std::snprintf(label, sizeof(label), "side-lit, albedo %.1f, march (defaults) / path tracer",
         double(albedo));
       OpacityBins(label, Run(march), reference);
-      lighting.LightSteps = 12; // growing as before, but reaching past the volume's diagonal
+      lighting.LightSteps = 12; // twice the segments, over the same way to the exit
       march->GetLightingProperty()->SetParameters(lighting);
       std::snprintf(label, sizeof(label),
         "side-lit, albedo %.1f, march with 12 growing light "

@@ -19,6 +19,7 @@
 //                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts
 //   CLOUDVIS_BENCH_BRICK=N          the brick size of that run
 #include "CloudFieldGeometry.h"
+#include "CloudLightVolumes.h"
 #include "CloudLighting.h"
 #include "CloudTransferTable.h"
 #include "SupportImages.h"
@@ -33,6 +34,7 @@
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkLight.h>
+#include <vtkLightCollection.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
@@ -248,7 +250,8 @@ void CompareStorage(vtkImageData* field, const Options& options)
 }
 
 // Issue 4's figures: the cost of each lighting model on the sparse cloud with one sun, against
-// VTK's mapper with shading on.
+// VTK's mapper with shading on; issue 12's: the march with light volumes against the nested
+// march, and the volumes' recompute time.
 void CompareLighting(vtkImageData* field, const Options& options)
 {
   const double step = 4.0 / (options.Size - 1);
@@ -273,30 +276,82 @@ void CompareLighting(vtkImageData* field, const Options& options)
     options.Size,
     options.Width,
     options.Height);
-  double noneMs = 0.0;
-  for (cloudvis::LightingModel model : { cloudvis::LightingModel::None,
-         cloudvis::LightingModel::Derivative,
-         cloudvis::LightingModel::March })
+  // The march with its light volumes (the default: computed once here, since nothing they depend
+  // on changes between frames), with the nested march at every sample (the quality setting), and
+  // with the volumes while the light moves every frame: that frame minus the static one is the
+  // volumes' recompute time.
+  struct Setting
+  {
+    const char* Name;
+    cloudvis::LightingModel Model;
+    cloudvis::LightTransmittance Transmittance;
+    bool MovingLight;
+  };
+  const Setting settings[] = {
+    { "none", cloudvis::LightingModel::None, cloudvis::LightTransmittance::Volumes, false },
+    { "derivative",
+      cloudvis::LightingModel::Derivative,
+      cloudvis::LightTransmittance::Volumes,
+      false },
+    { "march (light volumes)",
+      cloudvis::LightingModel::March,
+      cloudvis::LightTransmittance::Volumes,
+      false },
+    { "march (nested march)",
+      cloudvis::LightingModel::March,
+      cloudvis::LightTransmittance::Nested,
+      false },
+    { "march (light volumes, the light moving every frame)",
+      cloudvis::LightingModel::March,
+      cloudvis::LightTransmittance::Volumes,
+      true },
+  };
+  double noneMs = 0.0, volumesMs = 0.0;
+  for (const Setting& setting : settings)
   {
     auto mapper = MatchedCloudMapper(step);
     cloudvis::LightingParameters lighting;
-    lighting.Model = model;
+    lighting.Model = setting.Model;
+    lighting.Transmittance = setting.Transmittance;
     mapper->GetLightingProperty()->SetParameters(lighting);
     View cloud(mapper, field, options);
     addSun(cloud.Renderer);
-    const double ms = cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); });
-    const char* name = model == cloudvis::LightingModel::None
-      ? "none"
-      : (model == cloudvis::LightingModel::Derivative ? "derivative" : "march");
-    if (model == cloudvis::LightingModel::None)
+    vtkLight* sun = vtkLight::SafeDownCast(cloud.Renderer->GetLights()->GetItemAsObject(0));
+    int frame = 0;
+    const double ms = cloud.MillisecondsPerFrame(options.Frames,
+      [&]
+      {
+        mapper->Modified();
+        if (setting.MovingLight)
+        {
+          sun->SetPosition(6.0, 8.0, 4.0 + 0.01 * ++frame);
+        }
+      });
+    if (setting.Model == cloudvis::LightingModel::None)
     {
       noneMs = ms;
     }
-    std::printf("  %-10s %8.1f ms/frame  (%.2f x none)\n", name, ms, ms / noneMs);
-    if (model == cloudvis::LightingModel::March)
+    std::printf("  %-52s %8.1f ms/frame  (%.2f x none)\n", setting.Name, ms, ms / noneMs);
+    if (setting.Model == cloudvis::LightingModel::March &&
+      setting.Transmittance == cloudvis::LightTransmittance::Volumes && !setting.MovingLight)
     {
+      volumesMs = ms;
       std::printf("  vtkGPUVolumeRayCastMapper shaded %8.1f ms/frame\n", vtkShadedMs);
-      std::printf("  march vs VTK shaded speed-up ratio: %.2f\n", vtkShadedMs / ms);
+      std::printf("  march (light volumes) vs VTK shaded speed-up ratio: %.2f\n", vtkShadedMs / ms);
+      std::printf("  light volumes: %d^3 texels per light, %.1f MiB\n",
+        cloudvis::LightVolumeSize(glm::ivec3(options.Size)).x,
+        double(mapper->GetLightVolumeBytes()) / (1 << 20));
+    }
+    if (setting.Transmittance == cloudvis::LightTransmittance::Nested)
+    {
+      std::printf("  nested march / light volumes: %.2f\n", ms / volumesMs);
+    }
+    if (setting.MovingLight)
+    {
+      std::printf("  light volumes recompute: %.1f ms (moving-light frame minus static frame; "
+                  "%d recomputes)\n",
+        ms - volumesMs,
+        mapper->GetLightVolumeComputeCount());
     }
   }
 }

@@ -65,6 +65,13 @@ struct LocalLight
   glm::vec3 IndexOffset{ 0.0f };
 };
 
+// How the march finds the optical depth toward a light at a sample (docs/lighting.md).
+enum class LightTransmittance
+{
+  Volumes, // read from per-light optical-depth volumes computed when the inputs change
+  Nested,  // a march toward each light at every sample (the quality setting)
+};
+
 struct LightingParameters
 {
   LightingModel Model = LightingModel::None;
@@ -75,11 +82,15 @@ struct LightingParameters
   // voxel spacings (the smallest spacing of the field).
   float DerivativeDistance = 0.0f;
 
-  // march: LightSteps samples toward each light; the first segment is LightStep long (0 means
-  // 2 voxel spacings) and each next one LightStepGrowth times longer (1: uniform steps).
+  // march: LightSteps segments toward each light spanning the way to the volume's exit (or a
+  // point light), each LightStepGrowth times longer than the one before (1: uniform steps), the
+  // first at least LightStep long (0 means 2 voxel spacings).
   int LightSteps = 6;
   float LightStep = 0.0f;
   float LightStepGrowth = 1.6f;
+  // Where the optical depth comes from: the volumes (fast; their march has uniform steps of the
+  // view's step) or the nested march above at every sample.
+  LightTransmittance Transmittance = LightTransmittance::Volumes;
   // Henyey-Greenstein phase, two lobes: w * HG(g1) + (1 - w) * HG(g2). w = 1 is one lobe.
   float PhaseG1 = 0.6f;
   float PhaseG2 = -0.3f;
@@ -113,9 +124,8 @@ struct LightingLimits
 inline std::string ValidateLightingParameters(const LightingParameters& p)
 {
   using L = LightingLimits;
-  const auto finite3 = [](glm::vec3 v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-  };
+  const auto finite3 = [](glm::vec3 v)
+  { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   if (!finite3(p.AmbientColor) || !std::isfinite(p.AmbientStrength) || p.AmbientStrength < 0.0f)
     return "ambient color and strength must be finite, strength >= 0";
   if (!std::isfinite(p.DerivativeDistance) || p.DerivativeDistance < 0.0f)
@@ -128,12 +138,14 @@ inline std::string ValidateLightingParameters(const LightingParameters& p)
   if (!std::isfinite(p.LightStepGrowth) || p.LightStepGrowth < L::MinLightStepGrowth ||
     p.LightStepGrowth > L::MaxLightStepGrowth)
     return "the light-march step growth must be between " +
-      std::to_string(int(L::MinLightStepGrowth)) + " and " + std::to_string(int(L::MaxLightStepGrowth));
+      std::to_string(int(L::MinLightStepGrowth)) + " and " +
+      std::to_string(int(L::MaxLightStepGrowth));
   if (!(std::abs(p.PhaseG1) < 1.0f) || !(std::abs(p.PhaseG2) < 1.0f))
     return "phase eccentricities g must be in (-1, 1)";
   if (!(p.PhaseLobeWeight >= 0.0f && p.PhaseLobeWeight <= 1.0f))
     return "the phase lobe weight must be in [0, 1]";
-  if (p.MultipleScatteringOctaves < 0 || p.MultipleScatteringOctaves > L::MaxMultipleScatteringOctaves)
+  if (p.MultipleScatteringOctaves < 0 ||
+    p.MultipleScatteringOctaves > L::MaxMultipleScatteringOctaves)
     return "multiple-scattering octaves must be between 0 and " +
       std::to_string(L::MaxMultipleScatteringOctaves);
   for (float f : { p.ScatteringFalloff, p.ExtinctionFalloff, p.EccentricityFalloff })
@@ -178,15 +190,21 @@ inline float DerivativeDiffuse(float densityHere, float densityTowardLight, floa
 }
 
 // Light scattered toward the eye at a sample from one light whose optical depth to the sample
-// is tau: single scattering plus the multiple-scattering octaves (docs/lighting.md).
-inline float ScatteredFraction(const LightingParameters& p, float mu, float tau)
+// is tau: single scattering plus the multiple-scattering octaves (docs/lighting.md), per channel.
+// Octave n stands for light scattered n + 1 times, so it carries the albedo n more times than
+// single scattering (the caller multiplies by the albedo once): physics' albedo^(n+1).
+inline glm::vec3 ScatteredFraction(const LightingParameters& p,
+  float mu,
+  float tau,
+  glm::vec3 albedo)
 {
-  float sum = 0.0f;
-  float a = 1.0f, b = 1.0f, c = 1.0f;
+  glm::vec3 sum(0.0f);
+  glm::vec3 a(1.0f);
+  float b = 1.0f, c = 1.0f;
   for (int n = 0; n <= p.MultipleScatteringOctaves; ++n)
   {
-    sum += a * Phase(p, mu, c) * std::exp(-b * tau);
-    a *= p.ScatteringFalloff;
+    sum += a * (Phase(p, mu, c) * std::exp(-b * tau));
+    a *= p.ScatteringFalloff * albedo;
     b *= p.ExtinctionFalloff;
     c *= p.EccentricityFalloff;
   }
@@ -194,6 +212,11 @@ inline float ScatteredFraction(const LightingParameters& p, float mu, float tau)
   const float powder = 1.0f - p.PowderStrength * std::exp(-2.0f * tau);
   return sum * powder;
 }
+
+// The light march leaves a box this much larger (index units) than the volume's [0, n - 1]: a
+// sample on a face, with the light running along that face, would otherwise leave the box at
+// once (at 1e-3 voxels the reach grows by at most 0.002 voxels elsewhere).
+constexpr float LightBoxMargin = 1e-3f;
 
 // How far a directional light is, in local units: beyond any light march (the GLSL receives it
 // by substitution).

@@ -38,6 +38,7 @@ class vtkMatrix4x4;
 
 namespace cloudvis
 {
+struct LightVolumes;
 
 // The most samples one view ray may take. A step that would need more along the volume's
 // longest ray is refused with the smallest step the volume allows (docs/scene-format.md,
@@ -128,6 +129,10 @@ struct MarchUniforms
   float DerivativeSlopeScale = 1.0f; // 1 / (h in world units * density unit), docs/lighting.md
   std::vector<LocalLight> Lights;
   glm::vec3 Ambient{ 0.0f }; // AmbientColor * AmbientStrength
+  // The CPU's light volumes (CloudLightVolumes.h), computed by the renderer for the march with
+  // Lighting.Transmittance Volumes; without them (a caller that marches single rays, as unit tests
+  // do) the march takes the nested march toward each light. The GPU binds a texture instead.
+  const LightVolumes* LightDepths = nullptr;
 };
 
 // What a renderer is given.

@@ -1,5 +1,7 @@
 #include "CloudReferenceMarch.h"
 
+#include "CloudLightVolumes.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -17,8 +19,8 @@ glm::vec2 IntersectBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi)
   const glm::vec3 t1 = (hi - o) * inv;
   const glm::vec3 tNear = glm::min(t0, t1);
   const glm::vec3 tFar = glm::max(t0, t1);
-  return glm::vec2(std::max(std::max(tNear.x, tNear.y), tNear.z),
-    std::min(std::min(tFar.x, tFar.y), tFar.z));
+  return glm::vec2(
+    std::max(std::max(tNear.x, tNear.y), tNear.z), std::min(std::min(tFar.x, tFar.y), tFar.z));
 }
 
 glm::vec4 Optical(const MarchUniforms& u, float density)
@@ -190,48 +192,80 @@ glm::vec3 SourceTermDerivative(const MarchUniforms& u,
 
 // ---- CloudLightingMarch.glsl ----
 
-float LightOpticalDepth(const MarchUniforms& u, glm::vec3 p, glm::vec3 indexStep, float maxDistance)
+float LightOpticalDepth(const MarchUniforms& u,
+  glm::vec3 p,
+  float sigmaHere,
+  glm::vec3 indexStep,
+  float maxDistance)
 {
+  // A sample on a face may lie a hair outside by rounding: its light starts on the face, and
+  // leaves a box LightBoxMargin larger, so a light running along the face still crosses it.
+  const glm::vec3 last = glm::vec3(u.Dimensions) - 1.0f;
+  const glm::vec3 start = glm::clamp(p, glm::vec3(0.0f), last);
+  const float reach = std::min(
+    IntersectBox(start, indexStep, glm::vec3(-LightBoxMargin), last + LightBoxMargin).y,
+    maxDistance);
   float tau = 0.0f;
-  float start = 0.0f;
-  float segment = u.Lighting.LightStep;
-  for (int j = 0; j < u.Lighting.LightSteps; ++j)
+  if (reach > 0.0f)
   {
-    const float s = start + 0.5f * segment;
-    const glm::vec3 q = p + s * indexStep;
-    if (s > maxDistance || !InsideVolume(u, q))
+    const float growth = u.Lighting.LightStepGrowth;
+    const float segments = growth == 1.0f
+      ? float(u.Lighting.LightSteps)
+      : (std::pow(growth, float(u.Lighting.LightSteps)) - 1.0f) / (growth - 1.0f);
+    float segment = std::max(u.Lighting.LightStep, reach / segments);
+    float s = 0.0f;
+    float sigmaStart = sigmaHere;
+    for (int j = 0; j < u.Lighting.LightSteps; ++j)
     {
-      break;
+      const float end = std::min(s + segment, reach);
+      // The GPU passes empty bricks without reading them; their sigma_t is 0, so reading adds 0.
+      const float sigmaEnd = ExtinctionAt(u, start + end * indexStep);
+      tau += 0.5f * (sigmaStart + sigmaEnd) * (end - s);
+      if (end >= reach)
+      {
+        break;
+      }
+      s = end;
+      sigmaStart = sigmaEnd;
+      segment *= growth;
     }
-    // The GPU passes empty bricks without reading them; their sigma_t is 0, so reading adds 0.
-    tau += ExtinctionAt(u, q) * segment;
-    start += segment;
-    segment *= u.Lighting.LightStepGrowth;
   }
   return tau;
 }
 
 glm::vec3 SourceTermMarch(
-  const MarchUniforms& u, glm::vec3 p, float /*density*/, glm::vec3 albedo, glm::vec3 d)
+  const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3 d)
 {
+  const float sigmaHere = Optical(u, density).a;
+  const bool fromVolumes =
+    u.Lighting.Transmittance == LightTransmittance::Volumes && u.LightDepths != nullptr;
+  // The optical depth toward light `source`, along indexStep, up to maxDistance.
+  const auto opticalDepth = [&](const LocalLight& source, glm::vec3 indexStep, float maxDistance)
+  {
+    return fromVolumes ? LightVolumeDepth(*u.LightDepths, u, int(&source - u.Lights.data()), p)
+                       : LightOpticalDepth(u, p, sigmaHere, indexStep, maxDistance);
+  };
   return SumOverLights(
     u,
     albedo,
     [&](const LocalLight& source) { // DirectionalLightTerm: l in index units is precomputed
-      const float tau = LightOpticalDepth(u, p, source.IndexDirection, DirectionalLightDistance);
+      const float tau = opticalDepth(source, source.IndexDirection, DirectionalLightDistance);
       return source.Radiance * PhaseToRadiance *
-        ScatteredFraction(u.Lighting, glm::dot(d, source.Direction), tau);
+        ScatteredFraction(u.Lighting, glm::dot(d, source.Direction), tau, albedo);
     },
     [&](const LocalLight& source) { // PointLightTerm
       const LightSample s = SampleLight(source, LocalOfIndex(u, p));
-      const float tau = LightOpticalDepth(u, p, LocalToIndex(u, s.Direction), s.Distance);
+      const float tau = opticalDepth(source, LocalToIndex(u, s.Direction), s.Distance);
       return source.Radiance * s.Falloff * PhaseToRadiance *
-        ScatteredFraction(u.Lighting, glm::dot(d, s.Direction), tau);
+        ScatteredFraction(u.Lighting, glm::dot(d, s.Direction), tau, albedo);
     });
 }
 
-glm::vec3 SourceTerm(
-  const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3 d)
+glm::vec3 SourceTerm(const MarchUniforms& u,
+  glm::vec3 p,
+  float density,
+  glm::vec3 albedo,
+  glm::vec3 d)
 {
   switch (u.Lighting.Model)
   {

@@ -51,27 +51,41 @@ CLOUDVISFILTERS_EXPORT bool InsideVolume(const MarchUniforms& u, glm::vec3 p);
 
 // ---- CloudLightingNone.glsl, CloudLightingDerivative.glsl, CloudLightingMarch.glsl ----
 
-// Optical depth from index point p toward a light, up to maxDistance (local): indexStep is the
-// unit direction toward it in index units per local unit (LocalToIndex(u, l)); segments from 0,
-// the first Lighting.LightStep long, each next LightStepGrowth times longer, sampled at their
-// midpoints; stops at the first midpoint outside the volume or beyond maxDistance, or after
-// LightSteps segments.
+// Optical depth from index point p toward a light, to where the light's ray leaves the volume
+// or maxDistance (local), whichever is nearer: indexStep is the unit direction toward it in index
+// units per local unit (LocalToIndex(u, l)), sigmaHere the extinction at p. Lighting.LightSteps
+// segments growing by LightStepGrowth span that reach (the first at least Lighting.LightStep
+// long, so a short reach takes fewer), each integrated by the trapezoid rule from the extinction
+// at its ends. A p a hair outside the volume (a sample on a face, by rounding) starts on the face.
 CLOUDVISFILTERS_EXPORT float LightOpticalDepth(const MarchUniforms& u,
   glm::vec3 p,
+  float sigmaHere,
   glm::vec3 indexStep,
   float maxDistance);
 
 // The source term S of each model at index point p (docs/lighting.md); d is the unit direction
 // of the view ray. SourceTerm calls the one u.Lighting.Model names, as the mapper
 // splices one of the three GLSL files into the march shader.
-CLOUDVISFILTERS_EXPORT glm::vec3 SourceTermNone(
-  const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3 d);
-CLOUDVISFILTERS_EXPORT glm::vec3 SourceTermDerivative(
-  const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3 d);
-CLOUDVISFILTERS_EXPORT glm::vec3 SourceTermMarch(
-  const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3 d);
-CLOUDVISFILTERS_EXPORT glm::vec3 SourceTerm(
-  const MarchUniforms& u, glm::vec3 p, float density, glm::vec3 albedo, glm::vec3 d);
+CLOUDVISFILTERS_EXPORT glm::vec3 SourceTermNone(const MarchUniforms& u,
+  glm::vec3 p,
+  float density,
+  glm::vec3 albedo,
+  glm::vec3 d);
+CLOUDVISFILTERS_EXPORT glm::vec3 SourceTermDerivative(const MarchUniforms& u,
+  glm::vec3 p,
+  float density,
+  glm::vec3 albedo,
+  glm::vec3 d);
+CLOUDVISFILTERS_EXPORT glm::vec3 SourceTermMarch(const MarchUniforms& u,
+  glm::vec3 p,
+  float density,
+  glm::vec3 albedo,
+  glm::vec3 d);
+CLOUDVISFILTERS_EXPORT glm::vec3 SourceTerm(const MarchUniforms& u,
+  glm::vec3 p,
+  float density,
+  glm::vec3 albedo,
+  glm::vec3 d);
 
 } // namespace cloudvis
 

@@ -52,6 +52,7 @@ bool vtkCloudLightingProperty::AssignParameters(const cloudvis::LightingParamete
   Assign(this->ExtinctionFalloff, p.ExtinctionFalloff, changed);
   Assign(this->EccentricityFalloff, p.EccentricityFalloff, changed);
   Assign(this->PowderStrength, p.PowderStrength, changed);
+  Assign(this->Transmittance, int(p.Transmittance), changed);
   return changed;
 }
 
@@ -81,6 +82,7 @@ cloudvis::LightingParameters vtkCloudLightingProperty::GetParameters() const
   p.ExtinctionFalloff = this->ExtinctionFalloff;
   p.EccentricityFalloff = this->EccentricityFalloff;
   p.PowderStrength = this->PowderStrength;
+  p.Transmittance = static_cast<cloudvis::LightTransmittance>(this->Transmittance);
   return p;
 }
 
@@ -127,4 +129,7 @@ void vtkCloudLightingProperty::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ExtinctionFalloff: " << this->ExtinctionFalloff << "\n";
   os << indent << "EccentricityFalloff: " << this->EccentricityFalloff << "\n";
   os << indent << "PowderStrength: " << this->PowderStrength << "\n";
+  os << indent
+     << "Transmittance: " << (this->Transmittance == NestedMarch ? "nested march" : "light volumes")
+     << "\n";
 }

@@ -120,6 +120,25 @@ public:
 
   ///@{
   /**
+   * March model: where the optical depth toward each light comes from. LightVolumes (the
+   * default): per-light volumes at half the field's resolution, computed when the field, the
+   * transfer function, the extinction, the step or the lights change, read once per sample per
+   * light. NestedMarch (the quality setting): a march of LightSteps segments toward each light at
+   * every sample. docs/lighting.md gives the difference between the two.
+   */
+  enum Transmittances
+  {
+    LightVolumes = 0,
+    NestedMarch = 1,
+  };
+  vtkSetClampMacro(Transmittance, int, LightVolumes, NestedMarch);
+  vtkGetMacro(Transmittance, int);
+  void SetTransmittanceToLightVolumes() { this->SetTransmittance(LightVolumes); }
+  void SetTransmittanceToNestedMarch() { this->SetTransmittance(NestedMarch); }
+  ///@}
+
+  ///@{
+  /**
    * March model: the non-physical "powder" darkening of thin regions (an artistic term), in
    * [0, 1]; 0 disables it. Default 0.
    */
@@ -163,6 +182,7 @@ protected:
   float ExtinctionFalloff{};
   float EccentricityFalloff{};
   float PowderStrength{};
+  int Transmittance{};
 
 private:
 #ifndef __VTK_WRAP__

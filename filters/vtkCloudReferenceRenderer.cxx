@@ -1,6 +1,7 @@
 #include "vtkCloudReferenceRenderer.h"
 
 #include "CloudFieldGeometry.h"
+#include "CloudLightVolumes.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
 
@@ -318,6 +319,16 @@ int vtkCloudReferenceRenderer::RequestData(
   {
     vtkErrorMacro(<< problem.Message);
     return 0;
+  }
+
+  // The march with light volumes reads them: computed once per image, as the GPU computes them
+  // when its inputs change.
+  cloudvis::LightVolumes lightVolumes;
+  if (uniforms.Lighting.Model == cloudvis::LightingModel::March &&
+    uniforms.Lighting.Transmittance == cloudvis::LightTransmittance::Volumes)
+  {
+    cloudvis::ComputeLightVolumes(uniforms, lightVolumes);
+    uniforms.LightDepths = &lightVolumes;
   }
 
   // The image.

@@ -11,13 +11,13 @@ float DerivativeDiffuse(float densityHere, float densityTowardLight, float slope
 }
 
 // A directional light: the offset h l in index units is the same everywhere (precomputed).
-vec3 DirectionalLightTerm(int i, vec3 p, float density, vec3 d)
+vec3 DirectionalLightTerm(int i, vec3 p, float density, vec3 albedo, vec3 d)
 {
   float towardLight = DensityAt(p + LightIndexOffset[i]);
   return LightRadiance[i] * DerivativeDiffuse(density, towardLight, DerivativeSlopeScale);
 }
 
-vec3 PointLightTerm(int i, vec3 p, float density, vec3 d)
+vec3 PointLightTerm(int i, vec3 p, float density, vec3 albedo, vec3 d)
 {
   vec3 l;
   float lightDistance, falloff;

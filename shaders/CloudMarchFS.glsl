@@ -14,7 +14,7 @@
 
 in vec2 texCoord;
 
-// Constants the C++ defines once (MAX_LIGHTS, Pi, DirectionalLightDistance, NoDepth,
+// Constants the C++ defines once (MAX_LIGHTS, Pi, DirectionalLightDistance, LightBoxMargin, NoDepth,
 // DepthTransmittance), substituted by the mapper (app/rendering/CloudMarchShader.cxx).
 //CLOUD::Constants::Dec
 

@@ -44,6 +44,7 @@ std::string Constants()
   glsl << "#define MAX_LIGHTS " << MaxLights << "\n"
        << "const float Pi = " << GlslFloat(Pi) << ";\n"
        << "const float DirectionalLightDistance = " << GlslFloat(DirectionalLightDistance) << ";\n"
+       << "const float LightBoxMargin = " << GlslFloat(LightBoxMargin) << ";\n"
        << "const float NoDepth = " << GlslFloat(NoDepth) << ";\n"
        << "const float DepthTransmittance = " << GlslFloat(DepthTransmittance) << ";\n";
   return glsl.str();
@@ -69,7 +70,7 @@ std::string LightingSource(LightingModel model, const std::vector<LocalLight>& l
   for (size_t i = 0; i < lights.size(); ++i)
   {
     source << "  light += " << (lights[i].Positional ? "PointLightTerm" : "DirectionalLightTerm")
-           << "(" << i << ", p, density, d);\n";
+           << "(" << i << ", p, density, albedo, d);\n";
   }
   source << "  return albedo * light;\n}\n";
   return source.str();

@@ -4,6 +4,7 @@
 #include "CloudFieldGeometry.h"
 #include "CloudGpuMemory.h"
 #include "CloudJitterTexture.h"
+#include "CloudLightVolumeTexture.h"
 #include "CloudMarchShader.h"
 #include "CloudMarchUniforms.h"
 #include "CloudOccupancyTexture.h"
@@ -114,6 +115,7 @@ struct vtkCloudVolumeMapper::Internals
   cloudvis::OccupancyTexture Occupancy;
   cloudvis::JitterTexture Jitter;
   cloudvis::ExtinctionBoundsTexture ExtinctionBounds; // the path tracer's, made on first use
+  cloudvis::LightVolumeTexture LightVolumes;
   cloudvis::MarchPrograms March;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<cloudvis::ViewTargets>> Views; // keys: identities only
@@ -132,7 +134,7 @@ struct vtkCloudVolumeMapper::Internals
   long long TextureBytes() const
   {
     return this->Density.GetBytes() + this->Transfer.GetBytes() + this->Occupancy.GetBytes() +
-      this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes();
+      this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes() + this->LightVolumes.GetBytes();
   }
 
   long long Bytes() const
@@ -172,6 +174,16 @@ vtkMTimeType vtkCloudVolumeMapper::GetMTime()
 vtkTypeInt64 vtkCloudVolumeMapper::GetGPUMemoryBytes() const
 {
   return this->Internal->Bytes();
+}
+
+int vtkCloudVolumeMapper::GetLightVolumeComputeCount() const
+{
+  return this->Internal->LightVolumes.GetComputeCount();
+}
+
+vtkTypeInt64 vtkCloudVolumeMapper::GetLightVolumeBytes() const
+{
+  return this->Internal->LightVolumes.GetBytes();
 }
 
 vtkTypeInt64 vtkCloudVolumeMapper::GetDensityTextureBytes() const
@@ -407,6 +419,33 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     return true; // converged: the composite pass shows the accumulated image again
   }
 
+  // The march with light volumes reads the optical depth toward each light from them: computed
+  // here (in a pass of their own) when what they depend on changed, before the march's program
+  // is made current.
+  const bool marchModel = uniforms.Lighting.Model == cloudvis::LightingModel::March;
+  const bool lightVolumes =
+    marchModel && uniforms.Lighting.Transmittance == cloudvis::LightTransmittance::Volumes;
+  if (lightVolumes)
+  {
+    cloudvis::LightVolumeTexture::Inputs lightInputs;
+    lightInputs.Density = in.Density.GetTexture();
+    lightInputs.Transfer = in.Transfer.GetTexture();
+    lightInputs.Occupancy = in.Occupancy.GetTexture();
+    lightInputs.BrickCount = bricks;
+    lightInputs.BrickSize = this->BrickSize;
+    lightInputs.SkipEmptySpace = this->EmptySpaceSkipping;
+    lightInputs.DensityTime = double(in.Density.GetUploadTime());
+    lightInputs.TableTime = double(in.Transfer.GetTableTime());
+    if (!in.LightVolumes.Update(window, uniforms, lightInputs, budget, problem))
+    {
+      return this->Fail(problem);
+    }
+  }
+  else if (in.LightVolumes.GetBytes() > 0)
+  {
+    in.LightVolumes.Release(window); // another model or the nested march: not held for nothing
+  }
+
   // The march is one shader; a lighting model only supplies its source term.
   vtkShaderProgram* program = in.March.Ready(window, uniforms.Lighting.Model, uniforms.Lights);
   if (!program)
@@ -495,7 +534,23 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
       "ExtinctionBoundsTexture", in.ExtinctionBounds.GetTexture()->GetTextureUnit());
     cloudvis::SetPathTraceUniforms(program, pathFrame);
   }
+  if (marchModel)
+  {
+    program->SetUniformi("LightTransmittanceVolumes", lightVolumes ? 1 : 0);
+    if (lightVolumes)
+    {
+      in.LightVolumes.Activate(program);
+    }
+    else // never read, but a sampler must name a unit of its own type
+    {
+      program->SetUniformi("LightVolumeTexture", in.Density.GetTexture()->GetTextureUnit());
+    }
+  }
   in.March.Render();
+  if (lightVolumes)
+  {
+    in.LightVolumes.Deactivate();
+  }
   for (vtkTextureObject* texture : textures)
   {
     texture->Deactivate();
@@ -708,6 +763,7 @@ void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Occupancy.Release(window);
   in.Jitter.Release(window);
   in.ExtinctionBounds.Release(window);
+  in.LightVolumes.Release(window);
   for (auto& view : in.Views)
   {
     view.second->Release(window);

@@ -260,6 +260,16 @@ public:
   vtkTypeInt64 GetDensityTextureBytes() const;
 
   /**
+   * The march with render.march.transmittance "volumes" (the default) reads the optical depth
+   * toward each light from per-light volumes (docs/lighting.md) that the mapper computes on the
+   * GPU when the field, the transfer function, the extinction scale, the step, the volume's
+   * placement or the lights change. How many times it has computed them (a frame that changes
+   * none of these does not), and the bytes they take (part of GetGPUMemoryBytes).
+   */
+  int GetLightVolumeComputeCount() const;
+  vtkTypeInt64 GetLightVolumeBytes() const;
+
+  /**
    * Also the latest change of the lighting property.
    */
   vtkMTimeType GetMTime() override;

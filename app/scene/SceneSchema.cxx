@@ -1081,15 +1081,24 @@ const Keys<LightingParameters>& MarchKeys()
     { "light_steps",
       IntegerIn(L::MinLightSteps, L::MaxLightSteps),
       &P::LightSteps,
-      "segments of the march toward each light" },
+      "segments of the march toward each light, spanning the way to the volume's exit (or a point "
+      "light)" },
     { "light_step",
       NumberIn(NonNegative).In("world units"),
       &P::LightStep,
-      "length of the first segment; `0` means automatic: 2 voxels" },
+      "shortest first segment (a short way takes fewer segments); `0` means automatic: 2 voxels" },
     { "light_step_growth",
       NumberIn(Range{ L::MinLightStepGrowth, L::MaxLightStepGrowth }),
       &P::LightStepGrowth,
       "each segment is this much longer than the one before (1: uniform)" },
+    { "transmittance",
+      ChoiceOf(NamesOf<LightTransmittance>(
+        { { "volumes", LightTransmittance::Volumes }, { "nested", LightTransmittance::Nested } })),
+      &P::Transmittance,
+      "where the optical depth toward each light comes from: `\"volumes\"`, per-light volumes at "
+      "half the field's resolution computed when the field, transfer function or lights change "
+      "(fast), or `\"nested\"`, the march above at every sample (the quality setting); see "
+      "[lighting.md](lighting.md#light-volumes)" },
     { "g1",
       NumberIn(g),
       &P::PhaseG1,

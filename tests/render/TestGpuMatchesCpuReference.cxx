@@ -331,8 +331,19 @@ std::vector<Case> Cases()
     p.EccentricityFalloff = 0.8f;
     p.LightSteps = 9;
     p.LightStepGrowth = 1.3f;
+    p.Transmittance = LightTransmittance::Nested; // where the light steps count
   };
   cases.push_back(octaves);
+  // The quality setting: a nested march toward each light at every sample (every other march
+  // case reads the light volumes, the default).
+  for (const bool point : { false, true })
+  {
+    Case nested;
+    nested.Name = point ? "MarchCloudPointLightNested" : "MarchCloudNested";
+    nested.PointLight = point;
+    nested.Lighting = [](LightingParameters& p) { p.Transmittance = LightTransmittance::Nested; };
+    cases.push_back(nested);
+  }
   Case singleScattering;
   singleScattering.Name = "MarchSingleScatteringExtinctionScale";
   singleScattering.Lighting = [](LightingParameters& p) { p.MultipleScatteringOctaves = 0; };

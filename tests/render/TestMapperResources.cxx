@@ -1,10 +1,12 @@
 // What vtkCloudVolumeMapper takes from the GPU and leaves behind: each field uploaded in its
 // native texels (1, 2 or 4 bytes a voxel, half floats 2) with the memory reported as the driver
 // allocated it; a field beyond the mapper's memory limit refused with the size it needs and
-// nothing drawn; and the GL state left as vtkOpenGLState believes it is, since every change goes
-// through it.
+// nothing drawn; the light volumes computed only when their inputs change and counted; and the GL
+// state left as vtkOpenGLState believes it is, since every change goes through it.
 #include "RenderFixture.h"
 
+#include <vtkCamera.h>
+#include <vtkLight.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLState.h>
 #include <vtk_glew.h>
@@ -110,6 +112,55 @@ TEST(MapperResources, AFieldBeyondTheMemoryLimitIsRefusedWithItsSizeAndNotDrawn)
   SetField(scene, mapper, Storages[0]);
   EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
   EXPECT_EQ(mapper->GetLastError(), "");
+}
+
+TEST(MapperResources, LightVolumesAreComputedWhenTheirInputsChangeAndCountInTheBudget)
+{
+  // The march with light volumes (the default) computes them once for a scene, not per frame,
+  // again when a light moves or the transfer function changes; they take one R32F texel per
+  // texel of half the field's resolution per light (33^3 for 64^3 voxels), in GetGPUMemoryBytes.
+  auto mapper = CloudMapper(0.05);
+  mapper->GetLightingProperty()->SetModelToMarch();
+  Scene scene(mapper, ImageSize, ImageSize);
+  SetField(scene, mapper, Storages[0]);
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(1.0, 0.5, 0.3);
+  sun->SetFocalPoint(0.0, 0.0, 0.0);
+  scene.Renderer->AddLight(sun);
+  const Image first = scene.RenderFloat();
+  ASSERT_EQ(mapper->GetLastError(), "");
+  EXPECT_GT(LargestAlpha(first), 0.3);
+  EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 1);
+  EXPECT_EQ(mapper->GetLightVolumeBytes(), 33LL * 33 * 33 * 4);
+  scene.Renderer->GetActiveCamera()->Azimuth(20.0); // a new view: the same volumes
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 1);
+  sun->SetPosition(-1.0, 0.5, 0.3); // the light moves
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 2);
+  SetRampMedium(scene.Property, 1.0, 0.3); // another transfer function
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 3);
+  vtkNew<vtkLight> second; // a second light: a block more
+  second->SetLightTypeToSceneLight();
+  second->SetPositional(true);
+  second->SetPosition(0.0, -3.0, 1.0);
+  scene.Renderer->AddLight(second);
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 4);
+  EXPECT_EQ(mapper->GetLightVolumeBytes(), 2 * 33LL * 33 * 33 * 4);
+  // The nested march needs none: they are not held for nothing.
+  mapper->GetLightingProperty()->SetTransmittanceToNestedMarch();
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeBytes(), 0);
+  // Released with the rest.
+  mapper->GetLightingProperty()->SetTransmittanceToLightVolumes();
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLightVolumeComputeCount(), 5);
+  mapper->ReleaseGraphicsResources(scene.Window);
+  EXPECT_EQ(mapper->GetLightVolumeBytes(), 0);
 }
 
 TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)

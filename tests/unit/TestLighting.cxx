@@ -3,6 +3,7 @@
 // to 1, the scattered fraction behaves as docs/lighting.md says, the trilinear fetch reproduces
 // a linear field and clamps at the edges, and the light march's optical depth through a
 // homogeneous slab is sigma_t * L, so a slab lit from behind transmits exp(-sigma_t L).
+#include "CloudLightVolumes.h"
 #include "CloudLighting.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
@@ -98,14 +99,18 @@ TEST(Lighting, TwoLobePhaseIntegratesToOneForAnyWeight)
   }
 }
 
+// An albedo of 1: the scattered fraction is the same in every channel.
+const glm::vec3 White(1.0f);
+
 TEST(Lighting, ScatteredFractionIsSingleScatteringWithoutOctaves)
 {
   LightingParameters p;
   p.MultipleScatteringOctaves = 0;
   for (float mu : { -1.0f, -0.2f, 0.5f, 1.0f })
   {
-    EXPECT_FLOAT_EQ(ScatteredFraction(p, mu, 0.0f), Phase(p, mu, 1.0f)) << mu;
-    EXPECT_NEAR(ScatteredFraction(p, mu, 1.5f), Phase(p, mu, 1.0f) * std::exp(-1.5f), 1e-6f);
+    EXPECT_FLOAT_EQ(ScatteredFraction(p, mu, 0.0f, White).x, Phase(p, mu, 1.0f)) << mu;
+    EXPECT_NEAR(
+      ScatteredFraction(p, mu, 1.5f, White).x, Phase(p, mu, 1.0f) * std::exp(-1.5f), 1e-6f);
   }
 }
 
@@ -114,10 +119,10 @@ TEST(Lighting, ScatteredFractionFallsWithOpticalDepth)
   LightingParameters p; // three octaves by default
   for (float mu : { -0.9f, 0.0f, 0.9f })
   {
-    float previous = ScatteredFraction(p, mu, 0.0f);
+    float previous = ScatteredFraction(p, mu, 0.0f, White).x;
     for (float tau : { 0.1f, 0.5f, 1.0f, 3.0f, 10.0f })
     {
-      const float f = ScatteredFraction(p, mu, tau);
+      const float f = ScatteredFraction(p, mu, tau, White).x;
       EXPECT_LT(f, previous) << "mu " << mu << ", tau " << tau;
       previous = f;
     }
@@ -140,7 +145,35 @@ TEST(Lighting, ScatteredFractionMatchesTheOctaveSum)
       expected += std::pow(0.6, n) * Phase(p, 0.3f, float(std::pow(0.7, n))) *
         std::exp(-std::pow(0.4, n) * tau);
     }
-    EXPECT_NEAR(ScatteredFraction(p, 0.3f, tau), expected, 1e-5 * expected) << tau;
+    EXPECT_NEAR(ScatteredFraction(p, 0.3f, tau, White).x, expected, 1e-5 * expected) << tau;
+  }
+}
+
+TEST(Lighting, OctaveNCarriesTheAlbedoNMoreTimes)
+{
+  // Light scattered n + 1 times is multiplied by the albedo n + 1 times; the caller multiplies
+  // once, so octave n carries albedo^n, per channel: F = sum a^n albedo^n P(mu, c^n) exp(-b^n tau).
+  LightingParameters p;
+  p.MultipleScatteringOctaves = 3;
+  const glm::vec3 albedo(1.0f, 0.9f, 0.5f);
+  for (float tau : { 0.0f, 1.2f })
+  {
+    const glm::vec3 f = ScatteredFraction(p, 0.2f, tau, albedo);
+    for (int channel = 0; channel < 3; ++channel)
+    {
+      double expected = 0.0;
+      for (int n = 0; n <= 3; ++n)
+      {
+        expected += std::pow(0.5 * albedo[channel], n) * Phase(p, 0.2f, float(std::pow(0.5, n))) *
+          std::exp(-std::pow(0.5, n) * tau);
+      }
+      EXPECT_NEAR(f[channel], expected, 1e-5 * expected)
+        << "channel " << channel << ", tau " << tau;
+    }
+    // Without octaves the albedo plays no part: single scattering carries it once, outside.
+    p.MultipleScatteringOctaves = 0;
+    EXPECT_EQ(ScatteredFraction(p, 0.2f, tau, albedo), ScatteredFraction(p, 0.2f, tau, White));
+    p.MultipleScatteringOctaves = 3;
   }
 }
 
@@ -152,16 +185,18 @@ TEST(Lighting, PowderZeroChangesNothingAndOneDarkensThinRegionsToZero)
   {
     p.PowderStrength = 0.0f;
     withPowder.PowderStrength = 1.0f;
-    const float plain = ScatteredFraction(p, 0.4f, tau);
-    EXPECT_FLOAT_EQ(plain, ScatteredFraction(p, 0.4f, tau));
-    EXPECT_NEAR(ScatteredFraction(withPowder, 0.4f, tau), plain * (1.0f - std::exp(-2.0f * tau)),
+    const float plain = ScatteredFraction(p, 0.4f, tau, White).x;
+    EXPECT_FLOAT_EQ(plain, ScatteredFraction(p, 0.4f, tau, White).x);
+    EXPECT_NEAR(ScatteredFraction(withPowder, 0.4f, tau, White).x,
+      plain * (1.0f - std::exp(-2.0f * tau)),
       1e-6f);
     withPowder.PowderStrength = 0.5f;
-    EXPECT_NEAR(ScatteredFraction(withPowder, 0.4f, tau),
-      plain * (1.0f - 0.5f * std::exp(-2.0f * tau)), 1e-6f);
+    EXPECT_NEAR(ScatteredFraction(withPowder, 0.4f, tau, White).x,
+      plain * (1.0f - 0.5f * std::exp(-2.0f * tau)),
+      1e-6f);
   }
   withPowder.PowderStrength = 1.0f;
-  EXPECT_EQ(ScatteredFraction(withPowder, 0.4f, 0.0f), 0.0f);
+  EXPECT_EQ(ScatteredFraction(withPowder, 0.4f, 0.0f, White).x, 0.0f);
 }
 
 TEST(Lighting, SampleLightGivesDirectionDistanceAndFalloff)
@@ -221,58 +256,150 @@ TEST(ReferenceMarch, IntersectBoxHandlesAxisParallelRays)
 TEST(ReferenceMarch, LightMarchThroughAHomogeneousSlabGivesSigmaTimesLength)
 {
   // Density 1 in the slab of voxels 20..30 along x; the trilinear ramps on either side add half
-  // a voxel each, so the slab is L = 11 voxels thick. Half-voxel segments from x = 5 put every
-  // kink of the piecewise-linear profile on a segment boundary: the midpoint rule is exact.
+  // a voxel each, so the slab is L = 11 voxels thick. The 42 voxels from x = 5 to the exit at 47
+  // in one-voxel segments put every kink of the piecewise-linear profile on a segment end: the
+  // trapezoid rule is exact.
   const float spacing = 0.05f, sigma_t = 2.0f;
-  Volume v({ 48, 4, 4 }, spacing, [](int i, int, int) { return i >= 20 && i <= 30 ? 1.0f : 0.0f; },
+  Volume v(
+    { 48, 4, 4 },
+    spacing,
+    [](int i, int, int) { return i >= 20 && i <= 30 ? 1.0f : 0.0f; },
     sigma_t);
-  v.Uniforms.Lighting.LightStep = 0.5f * spacing;
-  const float L = 11.0f * spacing;
-  const float tau = LightOpticalDepth(v.Uniforms,
-    glm::vec3(5.0f, 1.5f, 1.5f),
-    LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)),
-    INFINITY);
-  EXPECT_NEAR(tau, sigma_t * L, 0.01f * sigma_t * L);
-  // The slab lit from behind transmits exp(-sigma_t L) to the sample.
-  EXPECT_NEAR(std::exp(-tau), std::exp(-sigma_t * L), 0.01f * std::exp(-sigma_t * L));
-  // Toward -x there is nothing between the sample and the volume's edge.
-  EXPECT_EQ(LightOpticalDepth(v.Uniforms,
-              glm::vec3(5.0f, 1.5f, 1.5f),
-              LocalToIndex(v.Uniforms, glm::vec3(-1.0f, 0.0f, 0.0f)),
-              INFINITY),
-    0.0f);
-}
-
-TEST(ReferenceMarch, LightMarchStopsAtTheVolumeEdgeAndAtAPointLight)
-{
-  const float spacing = 0.05f, sigma_t = 2.0f;
-  const Volume v({ 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
   const glm::vec3 p(5.0f, 1.5f, 1.5f);
-  // One-voxel segments: midpoints 5.5 .. 46.5 are inside, 47.5 is not: 42 voxels to the edge.
-  EXPECT_NEAR(LightOpticalDepth(
-                v.Uniforms, p, LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), INFINITY),
-    sigma_t * 42.0f * spacing,
-    1e-4f);
-  // A point light 15 voxels away: the midpoint at 15.5 voxels is beyond it.
+  const float L = 11.0f * spacing;
+  const float tau = LightOpticalDepth(
+    v.Uniforms, p, 0.0f, LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), INFINITY);
+  EXPECT_NEAR(tau, sigma_t * L, 1e-4f * sigma_t * L);
+  // The slab lit from behind transmits exp(-sigma_t L) to the sample.
+  EXPECT_NEAR(std::exp(-tau), std::exp(-sigma_t * L), 1e-4f * std::exp(-sigma_t * L));
+  // Toward -x there is nothing between the sample and the volume's edge.
+  EXPECT_EQ(
+    LightOpticalDepth(
+      v.Uniforms, p, 0.0f, LocalToIndex(v.Uniforms, glm::vec3(-1.0f, 0.0f, 0.0f)), INFINITY),
+    0.0f);
+  // The sample's own extinction weighs half the first segment (one voxel here).
   EXPECT_NEAR(
     LightOpticalDepth(
-      v.Uniforms, p, LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), 15.0f * spacing),
-    sigma_t * 15.0f * spacing,
-    1e-4f);
-  // No more than LightSteps segments.
-  Volume few({ 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
-  few.Uniforms.Lighting.LightSteps = 6;
-  EXPECT_NEAR(LightOpticalDepth(
-                few.Uniforms, p, LocalToIndex(few.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), INFINITY),
-    sigma_t * 6.0f * spacing,
+      v.Uniforms, p, 3.0f, LocalToIndex(v.Uniforms, glm::vec3(-1.0f, 0.0f, 0.0f)), INFINITY),
+    0.5f * 3.0f * spacing,
+    1e-6f);
+}
+
+TEST(ReferenceMarch, LightMarchReachesTheVolumesExitOrAPointLightWhateverItsSteps)
+{
+  // A uniform field: tau is sigma_t times the way to the exit (42 voxels from x = 5, and the
+  // margin LightBoxMargin the light march's box has beyond the volume's faces) or to a
+  // point light, however few segments and however they grow (the trapezoid rule is exact on a
+  // constant). Before issue 15 six growing segments stopped after about 53 voxels whatever lay
+  // beyond, and a few one-voxel segments after a few voxels.
+  const float spacing = 0.05f, sigma_t = 2.0f;
+  Volume v(
+    { 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
+  const glm::vec3 p(5.0f, 1.5f, 1.5f);
+  const glm::vec3 towardX = LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f));
+  struct Steps
+  {
+    int Count;
+    float First; // voxels
+    float Growth;
+  };
+  for (const Steps steps : { Steps{ 64, 1.0f, 1.0f },
+         Steps{ 6, 2.0f, 1.6f },
+         Steps{ 2, 0.5f, 1.0f },
+         Steps{ 3, 30.0f, 2.0f } })
+  {
+    v.Uniforms.Lighting.LightSteps = steps.Count;
+    v.Uniforms.Lighting.LightStep = steps.First * spacing;
+    v.Uniforms.Lighting.LightStepGrowth = steps.Growth;
+    EXPECT_NEAR(LightOpticalDepth(v.Uniforms, p, sigma_t, towardX, INFINITY),
+      sigma_t * (42.0f + LightBoxMargin) * spacing,
+      1e-5f)
+      << steps.Count << " steps";
+    // A point light 15 voxels away: the way ends there.
+    EXPECT_NEAR(LightOpticalDepth(v.Uniforms, p, sigma_t, towardX, 15.0f * spacing),
+      sigma_t * 15.0f * spacing,
+      1e-5f)
+      << steps.Count << " steps";
+  }
+}
+
+TEST(ReferenceMarch, ASampleAHairOutsideAFaceGetsItsShadow)
+{
+  // A sample on the face y = 3 that rounding put just outside, lit along the face: its light
+  // starts on the face and crosses the 42 voxels to the exit, plus LightBoxMargin (before issue 15:
+  // no shadow at all).
+  const float spacing = 0.05f, sigma_t = 2.0f;
+  const Volume v(
+    { 48, 4, 4 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
+  const glm::vec3 outside(5.0f, 3.0f + 2e-6f, 1.5f);
+  ASSERT_FALSE(InsideVolume(v.Uniforms, outside));
+  EXPECT_NEAR(LightOpticalDepth(v.Uniforms,
+                outside,
+                sigma_t,
+                LocalToIndex(v.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)),
+                INFINITY),
+    sigma_t * (42.0f + LightBoxMargin) * spacing,
     1e-5f);
-  // Growing segments: 1, 2, 4, 8 voxels (midpoints 0.5, 2, 5, 11 from p) then 16 (midpoint 23,
-  // at x = 28, inside) and 32 (midpoint 47, at x = 52, outside): 31 voxels.
-  few.Uniforms.Lighting.LightStepGrowth = 2.0f;
-  EXPECT_NEAR(LightOpticalDepth(
-                few.Uniforms, p, LocalToIndex(few.Uniforms, glm::vec3(1.0f, 0.0f, 0.0f)), INFINITY),
-    sigma_t * 31.0f * spacing,
-    1e-4f);
+}
+
+TEST(LightVolumes, HoldTheOpticalDepthTowardEachLightAndTheMarchInterpolatesThem)
+{
+  // A uniform field of 33 x 9 x 9 voxels: the grid has 17 x 5 x 5 texels per light, corner-aligned.
+  // Toward a sun along +x the optical depth is sigma_t times the way to the exit, linear in x, so
+  // the trilinear lookup between texels is exact anywhere; toward a point light inside the field
+  // it is sigma_t times the distance to the light.
+  const float spacing = 0.05f, sigma_t = 2.0f;
+  Volume v(
+    { 33, 9, 9 }, spacing, [](int, int, int) { return 1.0f; }, sigma_t);
+  v.Uniforms.Step = 0.5f * spacing; // the volumes' own march: uniform steps of the view's step
+  v.Uniforms.LongestRaySamples = 80;
+  LocalLight sun;
+  sun.Direction = glm::vec3(1.0f, 0.0f, 0.0f);
+  sun.IndexDirection = LocalToIndex(v.Uniforms, sun.Direction);
+  sun.Radiance = glm::vec3(1.0f);
+  LocalLight lamp;
+  lamp.Positional = true;
+  lamp.Position = LocalOfIndex(v.Uniforms, glm::vec3(16.0f, 4.0f, 4.0f));
+  lamp.Attenuation = glm::vec3(1.0f, 0.0f, 0.0f);
+  v.Uniforms.Lights = { sun, lamp };
+  LightVolumes volumes;
+  ComputeLightVolumes(v.Uniforms, volumes);
+  EXPECT_EQ(volumes.Size, glm::ivec3(17, 5, 5));
+  EXPECT_EQ(volumes.Depth.size(), std::size_t(17 * 5 * 5 * 2));
+  for (const glm::vec3 p : { glm::vec3(0.0f, 0.0f, 0.0f),
+         glm::vec3(3.3f, 1.7f, 6.1f),
+         glm::vec3(31.9f, 8.0f, 0.4f),
+         glm::vec3(32.0f, 4.0f, 4.0f) })
+  {
+    EXPECT_NEAR(LightVolumeDepth(volumes, v.Uniforms, 0, p),
+      sigma_t * (32.0f - p.x + LightBoxMargin) * spacing,
+      1e-4f)
+      << p.x << " " << p.y << " " << p.z;
+  }
+  // The lamp's block, at texel centres (between them the distance is not linear).
+  for (const glm::vec3 p : { glm::vec3(0.0f, 0.0f, 0.0f), glm::vec3(32.0f, 8.0f, 2.0f) })
+  {
+    EXPECT_NEAR(LightVolumeDepth(volumes, v.Uniforms, 1, p),
+      sigma_t * glm::length(p - glm::vec3(16.0f, 4.0f, 4.0f)) * spacing,
+      1e-4f);
+  }
+  // The march reads them when it is given them, and marches toward each light when not: toward
+  // the sun both are exact on this field, so a ray's color is the same.
+  v.Uniforms.Lights = { sun };
+  ComputeLightVolumes(v.Uniforms, volumes);
+  v.Uniforms.Lighting.Model = LightingModel::March;
+  v.Uniforms.Step = spacing;
+  v.Uniforms.MaximumSamples = 200;
+  const glm::vec3 nearPoint = LocalOfIndex(v.Uniforms, glm::vec3(-5.0f, 3.3f, 2.2f));
+  const glm::vec3 farPoint = LocalOfIndex(v.Uniforms, glm::vec3(40.0f, 5.1f, 6.0f));
+  const glm::vec4 nested = MarchRay(v.Uniforms, nearPoint, farPoint);
+  v.Uniforms.LightDepths = &volumes;
+  const glm::vec4 fromVolumes = MarchRay(v.Uniforms, nearPoint, farPoint);
+  ASSERT_GT(nested.r, 0.0f);
+  EXPECT_NEAR(fromVolumes.r, nested.r, 2e-3f * nested.r);
+  EXPECT_EQ(fromVolumes.a, nested.a);
+  v.Uniforms.Lighting.Transmittance = LightTransmittance::Nested; // the quality setting
+  EXPECT_EQ(MarchRay(v.Uniforms, nearPoint, farPoint), nested);
 }
 
 TEST(ReferenceMarch, AutomaticDistancesAreFourAndTwoVoxelsInLocalUnits)

@@ -415,7 +415,9 @@ TEST(PathTracer, OneBounceEqualsTheMarchWithoutMultipleScattering)
   // Single scattering two ways on a heterogeneous field (optical diameter up to 6), a
   // directional and a point light, albedo per channel, the default two-lobe phase: the path
   // tracer with one bounce, and the march without octaves, with uniform light steps covering
-  // the volume's diagonal and a fine view step (its quadrature error is far below the noise).
+  // the volume's diagonal and a fine view step (its quadrature error is far below the noise),
+  // both as a nested march at every sample and from the light volumes (issue 12), whose march
+  // has uniform steps of the view step at half the field's resolution.
   auto field = SoftSphere();
   const double spacing = field->GetSpacing()[0];
   const auto medium = LinearMedium(4.0f, glm::vec3(0.9f, 0.8f, 0.7f));
@@ -438,7 +440,6 @@ TEST(PathTracer, OneBounceEqualsTheMarchWithoutMultipleScattering)
   march->SetLights(lights);
   march->SetSampleDistance(spacing / 8.0);
   march->SetTerminationTransmittance(0.0);
-  const Image marched = Render(march);
 
   auto tracer = Tracer(field, 24, medium);
   SetParallelView(tracer, glm::dvec3(0.0), view, 0.8);
@@ -448,18 +449,35 @@ TEST(PathTracer, OneBounceEqualsTheMarchWithoutMultipleScattering)
   tracer->SetSamplesPerPixel(64);
   const Image traced = Render(tracer);
 
-  for (int channel = 0; channel < 4; ++channel)
+  for (const LightTransmittance transmittance :
+    { LightTransmittance::Nested, LightTransmittance::Volumes })
   {
-    const auto difference = [&](std::size_t p)
-    { return traced.At(p, channel) - marched.At(p, channel); };
-    const auto variance = [&](std::size_t p) { return traced.VarianceAt(p, channel); };
-    const auto inCloud = [&](std::size_t p) { return marched.At(p, 3) > 0.0f; };
-    const double value = MeanOverPixels(
-      marched, [&](std::size_t p) { return marched.At(p, channel); },
-      [](std::size_t) { return 0.0; }, inCloud)
-                           .Mean;
-    ExpectNoDifference(
-      traced, 4, difference, variance, inCloud, value, 12, "channel " + std::to_string(channel));
+    lighting.Transmittance = transmittance;
+    march->GetLightingProperty()->SetParameters(lighting);
+    const Image marched = Render(march);
+    const std::string setting =
+      transmittance == LightTransmittance::Nested ? "nested march, " : "light volumes, ";
+    for (int channel = 0; channel < 4; ++channel)
+    {
+      const auto difference = [&](std::size_t p)
+      { return traced.At(p, channel) - marched.At(p, channel); };
+      const auto variance = [&](std::size_t p) { return traced.VarianceAt(p, channel); };
+      const auto inCloud = [&](std::size_t p) { return marched.At(p, 3) > 0.0f; };
+      const double value = MeanOverPixels(
+        marched,
+        [&](std::size_t p) { return marched.At(p, channel); },
+        [](std::size_t) { return 0.0; },
+        inCloud)
+                             .Mean;
+      ExpectNoDifference(traced,
+        4,
+        difference,
+        variance,
+        inCloud,
+        value,
+        12,
+        setting + "channel " + std::to_string(channel));
+    }
   }
 }
 

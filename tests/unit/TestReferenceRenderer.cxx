@@ -380,6 +380,7 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   p.LightStep = 1.0f / 64.0f;
   p.LightStepGrowth = 1.0f;
   p.LightSteps = 64;
+  p.Transmittance = LightTransmittance::Nested;
   Light behind;
   behind.Position = glm::vec3(0.5f, 0.5f, -10.0f);
   behind.FocalPoint = glm::vec3(0.5f);
@@ -472,6 +473,7 @@ TEST(ReferenceRenderer, MarchConvergesAsStepsShrink)
   renderer->SetVolumeProperty(test::LinearMedium(3.0f));
   LightingParameters p = Model(LightingModel::March);
   p.LightStepGrowth = 1.0f;
+  p.Transmittance = LightTransmittance::Nested;
   const std::vector<Light> lights = { Directional({ 1, 1, 0.5f }) };
 
   renderer->SetSampleDistance(spacing);
@@ -503,6 +505,8 @@ TEST(ReferenceRenderer, ZeroDistancesMeanFourAndTwoVoxels)
   EXPECT_NE(a.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
 
   automatic.Model = explicitly.Model = LightingModel::March;
+  // The light step shapes the nested march (the light volumes march at the view's step).
+  automatic.Transmittance = explicitly.Transmittance = LightTransmittance::Nested;
   explicitly.LightStep = 2.0f * smallest;
   const Image m = RenderWith(renderer, automatic, lights);
   EXPECT_EQ(m.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
@@ -743,6 +747,7 @@ TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
   property->SetExtinctionFalloff(0.35f);
   property->SetEccentricityFalloff(0.25f);
   property->SetPowderStrength(0.15f);
+  property->SetTransmittanceToNestedMarch();
   const LightingParameters p = property->GetParameters();
   EXPECT_EQ(p.Model, LightingModel::March);
   EXPECT_EQ(p.AmbientColor, glm::vec3(0.1f, 0.2f, 0.3f));
@@ -759,10 +764,12 @@ TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
   EXPECT_EQ(p.ExtinctionFalloff, 0.35f);
   EXPECT_EQ(p.EccentricityFalloff, 0.25f);
   EXPECT_EQ(p.PowderStrength, 0.15f);
+  EXPECT_EQ(p.Transmittance, LightTransmittance::Nested);
 
   vtkNew<vtkCloudLightingProperty> copy;
   copy->DeepCopy(property);
   EXPECT_EQ(copy->GetParameters().PhaseG2, -0.2f);
+  EXPECT_EQ(copy->GetParameters().Transmittance, LightTransmittance::Nested);
   const vtkMTimeType time = copy->GetMTime();
   copy->SetParameters(p); // the same values
   EXPECT_EQ(copy->GetMTime(), time);

@@ -1,0 +1,242 @@
+#include "CloudLightVolumeTexture.h"
+
+#include "CloudGpuMemory.h"
+#include "CloudLightVolumes.h"
+#include "CloudMarchShader.h"
+#include "CloudMarchUniforms.h"
+
+#include "CloudLightVolumeFS.h"
+
+#include <vtkOpenGLQuadHelper.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLShaderCache.h>
+#include <vtkOpenGLState.h>
+#include <vtkShaderProgram.h>
+#include <vtk_glew.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace cloudvis
+{
+
+namespace
+{
+// What the volumes depend on, as numbers: when one changes they are computed again.
+std::vector<double> SignatureOf(const MarchUniforms& u, const LightVolumeTexture::Inputs& inputs)
+{
+  std::vector<double> s = { inputs.DensityTime,
+    inputs.TableTime,
+    double(inputs.BrickSize),
+    double(inputs.SkipEmptySpace),
+    double(u.ExtinctionUnit),
+    double(u.Step),
+    double(u.LongestRaySamples),
+    double(u.Dimensions.x),
+    double(u.Dimensions.y),
+    double(u.Dimensions.z) };
+  const auto add = [&s](const float* values, int count)
+  { s.insert(s.end(), values, values + count); };
+  add(glm::value_ptr(u.IndexToLocal), 16);
+  add(glm::value_ptr(u.LocalToIndex), 9);
+  for (const LocalLight& light : u.Lights)
+  {
+    s.push_back(light.Positional ? 1.0 : 0.0);
+    add(glm::value_ptr(light.Position), 3);
+    add(glm::value_ptr(light.IndexDirection), 3);
+  }
+  return s;
+}
+
+// The pass's fragment shader: the march's (with the march model's lighting, for
+// LightOpticalDepth) up to its main(), then the pass's main().
+std::string PassSource(const std::vector<LocalLight>& lights)
+{
+  std::string source = MarchShaderSource(LightingModel::March, lights);
+  return source.substr(0, source.rfind("void main()")) + CloudLightVolumeFS;
+}
+}
+
+LightVolumeTexture::LightVolumeTexture() = default;
+LightVolumeTexture::~LightVolumeTexture() = default;
+
+bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
+  const MarchUniforms& u,
+  const Inputs& inputs,
+  GpuMemoryBudget& budget,
+  std::string& problem)
+{
+  std::vector<double> signature = SignatureOf(u, inputs);
+  if (signature == this->Signature && this->Texture->GetHandle())
+  {
+    return true;
+  }
+  const glm::ivec3 size = LightVolumeSize(u.Dimensions);
+  const int lights = int(u.Lights.size());
+  const int layers = size.z * std::max(lights, 1);
+  if (!this->Texture->GetHandle() || size.x != this->Size[0] || size.y != this->Size[1] ||
+    size.z != this->Size[2] || lights != this->Lights)
+  {
+    GLint largest = 0;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
+    if (size.x > largest || size.y > largest || layers > largest)
+    {
+      problem = "the light volumes need a 3-D texture of " + std::to_string(size.x) + " x " +
+        std::to_string(size.y) + " x " + std::to_string(layers) + " texels (" +
+        std::to_string(lights) + " lights), more than this GPU's " + std::to_string(largest) +
+        " per axis: use render.march.transmittance \"nested\" or fewer lights";
+      this->Release(window);
+      return false;
+    }
+    this->Texture->SetContext(window);
+    problem = budget.Allocate("the light volumes",
+      4LL * size.x * size.y * layers,
+      this->Bytes,
+      [&]() { return this->Texture->Allocate3D(size.x, size.y, layers, 1, VTK_FLOAT); });
+    if (!problem.empty())
+    {
+      this->Release(window);
+      return false;
+    }
+    SetSampling(this->Texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
+    this->Bytes = TextureBytes(this->Texture);
+    this->Size[0] = size.x;
+    this->Size[1] = size.y;
+    this->Size[2] = size.z;
+    this->Lights = lights;
+  }
+  if (!this->Compute(window, u, inputs, problem))
+  {
+    this->Signature.clear();
+    return false;
+  }
+  this->Signature = std::move(signature);
+  ++this->ComputeCount;
+  return true;
+}
+
+bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,
+  const MarchUniforms& u,
+  const Inputs& inputs,
+  std::string& problem)
+{
+  std::string key;
+  for (const LocalLight& light : u.Lights)
+  {
+    key += light.Positional ? 'P' : 'D';
+  }
+  if (!this->Pass || key != this->PassKey)
+  {
+    this->Pass =
+      std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, PassSource(u.Lights).c_str(), "");
+    this->PassKey = key;
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(this->Pass->Program);
+  }
+  vtkShaderProgram* program = this->Pass->Program;
+  if (!program || !program->GetCompiled())
+  {
+    problem = "the light-volume shader failed to compile or link (the driver's log is in VTK's "
+              "error output)";
+    return false;
+  }
+
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglViewport savedViewport(state);
+  vtkOpenGLState::ScopedglEnableDisable savedBlend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable savedScissor(state, GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglViewport(0, 0, this->Size[0], this->Size[1]);
+
+  vtkTextureObject* textures[] = { inputs.Density, inputs.Transfer, inputs.Occupancy };
+  for (vtkTextureObject* texture : textures)
+  {
+    texture->Activate();
+  }
+  SetMarchUniforms(program, LightVolumeMarch(u));
+  program->SetUniformi("DensityTexture", inputs.Density->GetTextureUnit());
+  program->SetUniformi("TransferTexture", inputs.Transfer->GetTextureUnit());
+  program->SetUniformi("EmptyDistanceTexture", inputs.Occupancy->GetTextureUnit());
+  const float brickCount[3] = {
+    float(inputs.BrickCount[0]), float(inputs.BrickCount[1]), float(inputs.BrickCount[2])
+  };
+  program->SetUniform3f("BrickCount", brickCount);
+  program->SetUniformf("BrickSize", float(inputs.BrickSize));
+  program->SetUniformi("SkipEmptySpace", inputs.SkipEmptySpace ? 1 : 0);
+  const float size[3] = { float(this->Size[0]), float(this->Size[1]), float(this->Size[2]) };
+  program->SetUniform3f("LightVolumeSize", size);
+
+  // One layer of the texture at a time is the framebuffer's colour attachment.
+  state->PushFramebufferBindings();
+  if (!this->Framebuffer)
+  {
+    glGenFramebuffers(1, &this->Framebuffer);
+  }
+  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
+  bool complete = true;
+  for (int light = 0; light < this->Lights && complete; ++light)
+  {
+    program->SetUniformi("LightVolumeLight", light);
+    for (int k = 0; k < this->Size[2]; ++k)
+    {
+      glFramebufferTextureLayer(GL_FRAMEBUFFER,
+        GL_COLOR_ATTACHMENT0,
+        this->Texture->GetHandle(),
+        0,
+        light * this->Size[2] + k);
+      if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      {
+        complete = false;
+        break;
+      }
+      program->SetUniformf("LightVolumeSlice", float(k));
+      this->Pass->Render();
+    }
+  }
+  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0, 0);
+  state->PopFramebufferBindings();
+  for (vtkTextureObject* texture : textures)
+  {
+    texture->Deactivate();
+  }
+  if (!complete)
+  {
+    problem = "the light volumes cannot be rendered into on this GPU (incomplete framebuffer)";
+  }
+  return complete;
+}
+
+void LightVolumeTexture::Activate(vtkShaderProgram* march)
+{
+  this->Texture->Activate();
+  march->SetUniformi("LightVolumeTexture", this->Texture->GetTextureUnit());
+  const float size[3] = { float(this->Size[0]), float(this->Size[1]), float(this->Size[2]) };
+  march->SetUniform3f("LightVolumeSize", size);
+  march->SetUniformf("LightVolumeCount", float(std::max(this->Lights, 1)));
+}
+
+void LightVolumeTexture::Deactivate()
+{
+  this->Texture->Deactivate();
+}
+
+void LightVolumeTexture::Release(vtkWindow* window)
+{
+  this->Texture->ReleaseGraphicsResources(window);
+  this->Pass.reset();
+  this->PassKey.clear();
+  if (this->Framebuffer)
+  {
+    glDeleteFramebuffers(1, &this->Framebuffer);
+    this->Framebuffer = 0;
+  }
+  this->Signature.clear();
+  this->Bytes = 0;
+  this->Lights = 0;
+}
+
+} // namespace cloudvis

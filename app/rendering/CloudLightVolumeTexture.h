@@ -1,0 +1,86 @@
+// The per-light optical-depth volumes of vtkCloudVolumeMapper (issue 12,
+// filters/CloudLightVolumes.h states the grid): one 3-D float texture holding every light's block,
+// computed on the GPU by a pass over its slices (shaders/CloudLightVolumeFS.glsl, rendered into one
+// layer of the texture at a time) when anything it depends on changed, and read by the march once
+// per sample per light. Its memory goes through the mapper's GpuMemoryBudget. Private to the
+// module.
+#ifndef CloudLightVolumeTexture_h
+#define CloudLightVolumeTexture_h
+
+#include <vtkNew.h>
+#include <vtkTextureObject.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkWindow;
+
+namespace cloudvis
+{
+class GpuMemoryBudget;
+struct MarchUniforms;
+
+class LightVolumeTexture
+{
+public:
+  LightVolumeTexture();
+  ~LightVolumeTexture();
+
+  // What the pass reads besides the uniforms: the march's textures and empty-space settings.
+  struct Inputs
+  {
+    vtkTextureObject* Density = nullptr;
+    vtkTextureObject* Transfer = nullptr;
+    vtkTextureObject* Occupancy = nullptr;
+    const int* BrickCount = nullptr;
+    int BrickSize = 1;
+    bool SkipEmptySpace = true;
+    // Changes of the density texture and the transfer table (their upload times).
+    double DensityTime = 0.0;
+    double TableTime = 0.0;
+  };
+
+  // Recomputes the volumes for u's lights when the field, the table, the extinction, the step,
+  // the geometry or the lights changed since the last time: false with `problem` when the
+  // texture cannot be allocated or the pass cannot run.
+  bool Update(vtkOpenGLRenderWindow* window,
+    const MarchUniforms& u,
+    const Inputs& inputs,
+    GpuMemoryBudget& budget,
+    std::string& problem);
+
+  // Binds the texture and sets the march's uniforms that read it (LightVolumeTexture,
+  // LightVolumeSize, LightVolumeCount); Deactivate after the draw.
+  void Activate(vtkShaderProgram* march);
+  void Deactivate();
+
+  vtkTextureObject* GetTexture() { return this->Texture; }
+  long long GetBytes() const { return this->Bytes; }
+  // How many times the volumes were computed (the tests check they are not recomputed per frame).
+  int GetComputeCount() const { return this->ComputeCount; }
+  void Release(vtkWindow* window);
+
+private:
+  bool Compute(vtkOpenGLRenderWindow* window,
+    const MarchUniforms& u,
+    const Inputs& inputs,
+    std::string& problem);
+
+  vtkNew<vtkTextureObject> Texture;
+  std::unique_ptr<vtkOpenGLQuadHelper> Pass;
+  std::string PassKey; // the kinds of lights the pass was compiled for
+  unsigned int Framebuffer = 0;
+  std::vector<double> Signature;
+  int Size[3] = { 0, 0, 0 }; // one light's block
+  int Lights = 0;
+  long long Bytes = 0;
+  int ComputeCount = 0;
+};
+
+} // namespace cloudvis
+
+#endif
