@@ -101,7 +101,8 @@ bool EmptyBrickAt(vec3 p)
 }
 
 // The lighting model: SourceTerm(p, density, albedo, d) and what it needs, or (the path tracer,
-// which defines CLOUD_OWN_MAIN) a main() of its own that uses the helpers above.
+// which defines CLOUD_OWN_MAIN) a main() of its own that uses the helpers above. The light-volume
+// pass defines CLOUD_OWN_MAIN too, after the march's lighting, and appends its own main().
 //CLOUD::Lighting::Dec
 
 #ifndef CLOUD_OWN_MAIN

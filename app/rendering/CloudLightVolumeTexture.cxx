@@ -16,6 +16,9 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <stdexcept>
+#include <string>
+
 namespace cloudvis
 {
 
@@ -48,11 +51,18 @@ std::vector<double> SignatureOf(const MarchUniforms& u, const LightVolumeTexture
 }
 
 // The pass's fragment shader: the march's (with the march model's lighting, for
-// LightOpticalDepth) up to its main(), then the pass's main().
+// LightOpticalDepth) without its main(), which CLOUD_OWN_MAIN leaves out as it does for the path
+// tracer, then the pass's main().
 std::string PassSource(const std::vector<LocalLight>& lights)
 {
   std::string source = MarchShaderSource(LightingModel::March, lights);
-  return source.substr(0, source.rfind("void main()")) + CloudLightVolumeFS;
+  const std::string marchMain = "#ifndef CLOUD_OWN_MAIN";
+  const std::size_t at = source.rfind(marchMain);
+  if (at == std::string::npos)
+  {
+    throw std::logic_error("the march shader has no \"" + marchMain + "\" around its main()");
+  }
+  return source.insert(at, "#define CLOUD_OWN_MAIN\n") + CloudLightVolumeFS;
 }
 }
 
