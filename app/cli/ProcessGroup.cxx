@@ -31,7 +31,8 @@ int FirstPositive(std::initializer_list<const char*> names)
 bool LaunchedByMpi()
 {
   // The variables each launcher sets in the processes it starts.
-  for (const char* name : { "OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK" })
+  for (const char* name :
+    { "OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK", "PMIX_SIZE" })
   {
     if (std::getenv(name))
     {
@@ -45,7 +46,9 @@ bool LaunchedByMpi()
 
 int LaunchedProcesses()
 {
-  const int size = FirstPositive({ "OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MPI_LOCALNRANKS" });
+  // The whole job's size (not a node's, as MPI_LOCALNRANKS would be), from each launcher that
+  // LaunchedByMpi recognises.
+  const int size = FirstPositive({ "OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE" });
   return size > 0 ? size : 1;
 }
 

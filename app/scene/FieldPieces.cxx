@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 namespace cloudvis
 {
@@ -177,6 +178,7 @@ void WriteFieldPieces(const FieldLattice& lattice,
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
   const int rank = controller ? controller->GetLocalProcessId() : 0;
   std::string problem;
+  std::vector<std::string> written; // this process's pieces, removed again if any process fails
   try
   {
     if (pieces < 1)
@@ -194,14 +196,23 @@ void WriteFieldPieces(const FieldLattice& lattice,
         produce(PieceExtent(lattice.WholeExtent, p, pieces));
       WriteFileAtomically(piecePath,
         [&](const std::string& temporary) { WriteVtkXmlImageFile(piece, temporary, piecePath); });
+      written.push_back(piecePath);
     }
   }
   catch (const std::exception& e)
   {
     problem = e.what();
   }
+  const auto removeWritten = [&written]
+  {
+    for (const std::string& piecePath : written)
+    {
+      std::remove(piecePath.c_str());
+    }
+  };
   if (AnyFailed(controller, !problem.empty()))
   {
+    removeWritten();
     throw InputError(problem.empty()
         ? path + ": another process could not write its pieces (its message says why); the " +
           "parallel image data file was not written"
@@ -220,6 +231,7 @@ void WriteFieldPieces(const FieldLattice& lattice,
   }
   if (AnyFailed(controller, !problem.empty()))
   {
+    removeWritten();
     throw InputError(problem.empty() ? path + ": process 0 could not write the file" : problem);
   }
 }

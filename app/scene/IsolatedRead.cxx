@@ -176,6 +176,13 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
     ::setrlimit(RLIMIT_AS, &memory);
   }
 #endif
+  // The time limit must end the child even when cloudvis was started with SIGALRM ignored or
+  // blocked (both are inherited through exec and fork).
+  std::signal(SIGALRM, SIG_DFL);
+  sigset_t alarmOnly;
+  sigemptyset(&alarmOnly);
+  sigaddset(&alarmOnly, SIGALRM);
+  ::pthread_sigmask(SIG_UNBLOCK, &alarmOnly, nullptr);
   ::alarm(seconds);
   int code = ChildReadCleanly;
   RecordWriter out(descriptor);

@@ -1,6 +1,6 @@
 // The processes a command runs in: one, or the ranks of an MPI job when cloudvis was started by
 // mpirun (docs/data.md). MPI is initialised only when the environment shows an MPI launcher
-// started this process (Open MPI's OMPI_COMM_WORLD_SIZE, MPICH's PMI_SIZE, PMIx's PMIX_RANK):
+// started this process (Open MPI's OMPI_COMM_WORLD_SIZE, MPICH's PMI_SIZE or PMI_RANK, PMIx's PMIX_RANK or PMIX_SIZE):
 // a plain `cloudvis` never calls MPI_Init, so it starts as fast as before and needs no MPI
 // runtime (Open MPI's singleton initialisation would start a helper daemon), and a cloudvis
 // under mpirun with one process works as a plain one. Only `generate` to a .pvti runs in
