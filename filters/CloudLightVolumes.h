@@ -2,7 +2,7 @@
 // a grid over the volume, computed once when the field, the transfer function, the extinction
 // scale, the step or the lights change, and read by the march (one trilinear lookup per sample
 // per light) instead of a nested march toward each light. The GPU computes the same grid in a
-// pass of its own (app/rendering/CloudLightVolumes.cxx, shaders/CloudLightVolumeFS.glsl, whose
+// pass of its own (app/rendering/CloudLightVolumeTexture.cxx, shaders/CloudLightVolumeFS.glsl, whose
 // main() is LightVolumeTexel here) and samples it with LightVolumeDepth, the twin of the GLSL
 // function of that name in shaders/CloudLightingMarch.glsl. docs/lighting.md states the
 // equations; the quality setting LightingParameters::Transmittance chooses between the two.

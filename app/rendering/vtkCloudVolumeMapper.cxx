@@ -534,7 +534,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
       "ExtinctionBoundsTexture", in.ExtinctionBounds.GetTexture()->GetTextureUnit());
     cloudvis::SetPathTraceUniforms(program, pathFrame);
   }
-  if (marchModel)
+  if (marchModel || pathTrace) // both programs hold the march's lighting code and its sampler
   {
     program->SetUniformi("LightTransmittanceVolumes", lightVolumes ? 1 : 0);
     if (lightVolumes)
