@@ -118,6 +118,12 @@ bool ViewTargets::AllocateMoments(vtkOpenGLRenderWindow* window,
   return true;
 }
 
+void ViewTargets::ReleaseMoments(vtkWindow* window)
+{
+  this->MomentTexture->ReleaseGraphicsResources(window);
+  this->MomentBytes = 0;
+}
+
 bool ViewTargets::BindTargets(vtkOpenGLRenderWindow* window, bool moments)
 {
   window->GetState()->PushFramebufferBindings();

@@ -48,6 +48,8 @@ public:
   bool AllocateMoments(vtkOpenGLRenderWindow* window,
     GpuMemoryBudget& budget,
     std::string& problem);
+  // Frees the moment target (a model other than the path tracer needs none).
+  void ReleaseMoments(vtkWindow* window);
 
   // Draws into both march targets, and the moment target as a third with `moments`; false
   // (bindings restored) when the framebuffer is incomplete.

@@ -468,6 +468,11 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     return this->Fail(problem);
   }
+  if (!pathTrace) // the path tracer's textures are not held for nothing, as the light volumes
+  {
+    in.ExtinctionBounds.Release(window);
+    view.ReleaseMoments(window);
+  }
   if (!view.BindTargets(window, pathTrace))
   {
     return this->Fail("the march framebuffer is incomplete on this GPU");

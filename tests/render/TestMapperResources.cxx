@@ -163,6 +163,26 @@ TEST(MapperResources, LightVolumesAreComputedWhenTheirInputsChangeAndCountInTheB
   EXPECT_EQ(mapper->GetLightVolumeBytes(), 0);
 }
 
+TEST(MapperResources, ThePathTracersTexturesAreReleasedWhenAnotherModelRenders)
+{
+  // The path tracer adds a moment target and a texture of extinction bounds per brick; back on
+  // another model the mapper holds what that model holds, and no more.
+  auto mapper = CloudMapper(0.05);
+  Scene scene(mapper, ImageSize, ImageSize);
+  SetField(scene, mapper, Storages[0]);
+  scene.RenderFloat();
+  ASSERT_EQ(mapper->GetLastError(), "");
+  const vtkTypeInt64 unlit = mapper->GetGPUMemoryBytes();
+  mapper->GetLightingProperty()->SetModelToPathTrace();
+  scene.RenderFloat();
+  ASSERT_EQ(mapper->GetLastError(), "");
+  EXPECT_GE(mapper->GetGPUMemoryBytes(), unlit + vtkTypeInt64(ImageSize) * ImageSize * 16);
+  mapper->GetLightingProperty()->SetModelToNone();
+  scene.RenderFloat();
+  ASSERT_EQ(mapper->GetLastError(), "");
+  EXPECT_EQ(mapper->GetGPUMemoryBytes(), unlit);
+}
+
 TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)
 {
   auto mapper = CloudMapper(0.05);
