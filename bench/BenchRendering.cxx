@@ -18,6 +18,8 @@
 //                                   e.g. under `valgrind --tool=callgrind` with LP_NUM_THREADS=0
 //                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts
 //   CLOUDVIS_BENCH_BRICK=N          the brick size of that run
+//   CLOUDVIS_BENCH_REPROJECTION=1   only temporal reprojection: an orbit of interactive frames
+//                                   with and without it, timed and compared with still renders
 #include "CloudFieldGeometry.h"
 #include "CloudLightVolumes.h"
 #include "CloudLighting.h"
@@ -356,6 +358,84 @@ void CompareLighting(vtkImageData* field, const Options& options)
   }
 }
 
+// Issue 12's interaction item: the sparse cloud after a still frame, orbiting 1 degree per
+// interactive frame (desired update rate 20, so the mapper lowers its scale to keep 20 frames per
+// second), with and without TemporalReprojection. Each interactive frame is compared with the
+// still render of its view by a second mapper (jitter on, 16 frames accumulated: converged);
+// prints ms/frame, the march's scale and the RMS error (8-bit levels) of both, and their ratios.
+void CompareReprojection(vtkImageData* field, const Options& options)
+{
+  const double step = 4.0 / (options.Size - 1);
+  const int orbit = std::max(options.Frames, 2);
+  std::printf("temporal reprojection on the sparse field (%d^3, %dx%d, step %.4f, %d interactive "
+              "frames orbiting 1 degree each):\n",
+    options.Size,
+    options.Width,
+    options.Height,
+    step,
+    orbit);
+  const auto converged = [&](int frame)
+  {
+    auto mapper = MatchedCloudMapper(step);
+    mapper->JitterOn();
+    mapper->SetMaximumAccumulatedFrames(16);
+    View still(mapper, field, options);
+    still.Renderer->GetActiveCamera()->Azimuth(double(frame));
+    for (int f = 0; f < 16; ++f)
+    {
+      still.Window->Render();
+    }
+    return GrabWindow(still.Window);
+  };
+  std::vector<cloudvis::support::Image> truth;
+  for (int frame = 1; frame <= orbit; ++frame)
+  {
+    truth.push_back(converged(frame));
+  }
+  double results[2][2] = {}; // [reprojection][ms, error]
+  for (const bool reprojection : { false, true })
+  {
+    auto mapper = MatchedCloudMapper(step);
+    mapper->JitterOn();
+    mapper->SetMaximumAccumulatedFrames(16);
+    mapper->SetTemporalReprojection(reprojection);
+    View cloud(mapper, field, options);
+    for (int f = 0; f < 16; ++f)
+    {
+      cloud.Window->Render(); // the converged still frame the interaction starts from
+    }
+    cloud.Window->SetDesiredUpdateRate(20.0);
+    double seconds = 0.0, squaredError = 0.0;
+    int scaledWidth = 0;
+    for (int frame = 1; frame <= orbit; ++frame)
+    {
+      cloud.Renderer->GetActiveCamera()->Azimuth(1.0);
+      const double start = vtkTimerLog::GetUniversalTime();
+      cloud.Window->Render();
+      cloud.Window->WaitForCompletion();
+      seconds += vtkTimerLog::GetUniversalTime() - start;
+      const double rms =
+        cloudvis::support::Compare(GrabWindow(cloud.Window), truth[frame - 1]).RmsLevels();
+      squaredError += rms * rms;
+      std::vector<float> rgba;
+      int height = 0;
+      mapper->ReadImage(cloud.Renderer, rgba, scaledWidth, height);
+    }
+    const double ms = 1000.0 * seconds / orbit;
+    const double error = std::sqrt(squaredError / orbit);
+    results[reprojection][0] = ms;
+    results[reprojection][1] = error;
+    std::printf("  %-22s %8.1f ms/frame  march %4d px wide  RMS error vs converged %.2f levels\n",
+      reprojection ? "with reprojection" : "without reprojection",
+      ms,
+      scaledWidth,
+      error);
+  }
+  std::printf(
+    "  reprojection frame-time ratio (with / without): %.2f\n", results[1][0] / results[0][0]);
+  std::printf("  reprojection error ratio (with / without): %.2f\n", results[1][1] / results[0][1]);
+}
+
 int main(int argc, char* argv[])
 {
   Options options;
@@ -420,6 +500,11 @@ int main(int argc, char* argv[])
     std::printf("useful-sample fraction %.1f%% of %.3g samples\n",
       100.0 * st.UsefulSamples / st.SamplesTaken,
       st.SamplesTaken);
+    return 0;
+  }
+  if (std::getenv("CLOUDVIS_BENCH_REPROJECTION"))
+  {
+    CompareReprojection(sparse, options);
     return 0;
   }
   if (std::getenv("CLOUDVIS_BENCH_STORAGE_ONLY"))

@@ -4,6 +4,16 @@
 // possibly at a lower resolution) over the viewport. The target holds the sum of the accumulated
 // frames; FrameWeight (1 / their number) makes it their mean. Below full resolution it upsamples
 // with a Catmull-Rom filter (16 texels); the blend state composites it over the opaque scene.
+//
+// With temporal reprojection the same program first resolves the frame into the history target
+// at full resolution (ResolveHistory: output 0 the image, output 1 its depth), then draws that
+// target over the scene as a full-resolution march target. On an interactive frame the resolve
+// reprojects the last image (Reproject): each pixel's point on the cloud (at the cloud's
+// opacity-weighted mean depth, from the march's count target) is projected into the last camera; the last image's value
+// there is kept when it lands on the screen, its depth agrees with that point's, and then only
+// within the colour bounds of the current neighbourhood (so a cloud edge that moved cannot leave
+// a ghost), blended with the current upsampled sample by HistoryWeight. Everywhere else the
+// current sample stands alone.
 
 in vec2 texCoord;
 
@@ -15,7 +25,22 @@ uniform int ShowSampleCount;
 uniform float SampleCountScale;
 uniform float FrameWeight;
 
+uniform int ResolveHistory;            // write the history target (image and depth)
+uniform int Reproject;                 // blend the last image, reprojected
+uniform sampler2D HistoryColorTexture; // the last image, premultiplied RGBA, viewport size
+uniform sampler2D HistoryDepthTexture; // its depth (MarchDepth; negative: no cloud)
+uniform vec2 HistorySize;
+uniform mat4 DCLocalMatrix;            // this frame: normalized device -> local frame
+uniform mat4 LastDCLocalMatrix;        // the last image's camera, both ways
+uniform mat4 LastLocalDCMatrix;
+uniform float HistoryWeight;           // share of the reprojected history in the blend
+uniform float DepthTolerance;          // local units a reprojected depth may differ by
+uniform float FadeAngle;               // radians of turn that leave no history
+
 //VTK::Output::Dec
+
+// Below this opacity (one 8-bit level) the cloud is too faint for its depth to mean anything.
+const float MinimumDepthOpacity = 1.0 / 255.0;
 
 // Catmull-Rom weights of the four texels around a fraction f.
 vec4 CatmullRomWeights(float f)
@@ -27,14 +52,15 @@ vec4 CatmullRomWeights(float f)
               0.5 * f3 - 0.5 * f2);
 }
 
-vec4 Bicubic(sampler2D image, vec2 uv)
+// The image of `size` texels (times `weight`) at uv, Catmull-Rom filtered.
+vec4 Bicubic(sampler2D image, vec2 uv, vec2 size, float weight)
 {
-  vec2 position = uv * MarchSize - 0.5;
+  vec2 position = uv * size - 0.5;
   vec2 base = floor(position);
   vec2 f = position - base;
   vec4 wx = CatmullRomWeights(f.x);
   vec4 wy = CatmullRomWeights(f.y);
-  ivec2 last = ivec2(MarchSize) - 1;
+  ivec2 last = ivec2(size) - 1;
   vec4 sum = vec4(0.0);
   for (int j = 0; j < 4; ++j)
   {
@@ -42,7 +68,7 @@ vec4 Bicubic(sampler2D image, vec2 uv)
     for (int i = 0; i < 4; ++i)
     {
       ivec2 texel = clamp(ivec2(base) + ivec2(i - 1, j - 1), ivec2(0), last);
-      row += wx[i] * (texelFetch(image, texel, 0) * FrameWeight);
+      row += wx[i] * (texelFetch(image, texel, 0) * weight);
     }
     sum += wy[j] * row;
   }
@@ -59,6 +85,100 @@ vec3 FalseColor(float x)
   return clamp(vec3(2.0 * x - 0.5, 1.5 - abs(2.0 * x - 1.0) * 1.5, 1.0 - 2.0 * x), 0.0, 1.0);
 }
 
+// The cloud's opacity-weighted mean depth (local units from the near plane) in the march target
+// at uv: the depth sums (the count target's fourth channel) and the opacities interpolated apart
+// over the 2 x 2 texels around uv, so the mean weighs each by its opacity. Negative where the
+// cloud is too faint.
+float MarchDepth(vec2 uv)
+{
+  vec2 position = uv * MarchSize - 0.5;
+  vec2 base = floor(position);
+  vec2 f = position - base;
+  ivec2 last = ivec2(MarchSize) - 1;
+  float depthSum = 0.0;
+  float alphaSum = 0.0;
+  for (int j = 0; j < 2; ++j)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      ivec2 texel = clamp(ivec2(base) + ivec2(i, j), ivec2(0), last);
+      float w = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+      depthSum += w * texelFetch(CountTexture, texel, 0).a;
+      alphaSum += w * texelFetch(MarchTexture, texel, 0).a;
+    }
+  }
+  return alphaSum * FrameWeight > MinimumDepthOpacity ? depthSum / alphaSum : -1.0;
+}
+
+vec3 LocalPoint(mat4 deviceToLocal, vec2 ndc, float ndcDepth)
+{
+  vec4 p = deviceToLocal * vec4(ndc, ndcDepth, 1.0);
+  return p.xyz / p.w;
+}
+
+// The current sample blended with the last image reprojected to this pixel, or the current
+// sample alone where the history does not hold this pixel's cloud.
+vec4 BlendHistory(vec4 current)
+{
+  float depth = MarchDepth(texCoord);
+  if (depth < 0.0)
+  {
+    return current; // no cloud here to follow
+  }
+  vec2 ndc = texCoord * 2.0 - 1.0;
+  vec3 nearPoint = LocalPoint(DCLocalMatrix, ndc, -1.0);
+  vec3 point = nearPoint + depth * normalize(LocalPoint(DCLocalMatrix, ndc, 1.0) - nearPoint);
+  vec4 clip = LastLocalDCMatrix * vec4(point, 1.0);
+  if (clip.w <= 0.0)
+  {
+    return current;
+  }
+  vec2 lastNdc = clip.xy / clip.w;
+  vec2 lastUV = lastNdc * 0.5 + 0.5;
+  if (any(lessThan(lastUV, vec2(0.0))) || any(greaterThan(lastUV, vec2(1.0))))
+  {
+    return current; // it was off the screen
+  }
+  // The colour bounds and the depth range of the 3 x 3 march texels around the pixel.
+  ivec2 centre = ivec2(texCoord * MarchSize);
+  ivec2 last = ivec2(MarchSize) - 1;
+  vec4 lo = vec4(1e30);
+  vec4 hi = vec4(-1e30);
+  vec2 depthRange = vec2(depth, depth);
+  for (int j = -1; j <= 1; ++j)
+  {
+    for (int i = -1; i <= 1; ++i)
+    {
+      ivec2 texel = clamp(centre + ivec2(i, j), ivec2(0), last);
+      vec4 c = texelFetch(MarchTexture, texel, 0) * FrameWeight;
+      lo = min(lo, c);
+      hi = max(hi, c);
+      if (c.a > MinimumDepthOpacity)
+      {
+        float d = texelFetch(CountTexture, texel, 0).a * FrameWeight / c.a;
+        depthRange = vec2(min(depthRange.x, d), max(depthRange.y, d));
+      }
+    }
+  }
+  // The last image's depth there must be this point's, give or take the depths the low
+  // resolution blurs together here.
+  float lastDepth = texelFetch(HistoryDepthTexture, ivec2(lastUV * HistorySize), 0).r;
+  vec3 lastNearPoint = LocalPoint(LastDCLocalMatrix, lastNdc, -1.0);
+  float expected = length(point - lastNearPoint);
+  float tolerance = DepthTolerance + (depthRange.y - depthRange.x);
+  if (lastDepth < 0.0 || abs(lastDepth - expected) > tolerance)
+  {
+    return current; // another part of the cloud (or none) was there: disoccluded, or it moved
+  }
+  vec4 history = clamp(Bicubic(HistoryColorTexture, lastUV, HistorySize, 1.0), lo, hi);
+  // A cloud is seen through: the more the ray through this point turned since the last image, the
+  // more what lies behind it changed, so the history's share fades out with that angle.
+  vec3 ray = normalize(point - nearPoint);
+  vec3 lastRay = normalize(point - lastNearPoint);
+  float turn = acos(clamp(dot(ray, lastRay), -1.0, 1.0));
+  return mix(current, history, HistoryWeight * clamp(1.0 - turn / FadeAngle, 0.0, 1.0));
+}
+
 void main()
 {
   if (ShowSampleCount != 0)
@@ -67,12 +187,20 @@ void main()
     gl_FragData[0] = vec4(FalseColor(samples * SampleCountScale), 1.0);
     return;
   }
+  vec4 current;
   if (Upsample != 0)
   {
-    gl_FragData[0] = Bicubic(MarchTexture, texCoord);
+    current = Bicubic(MarchTexture, texCoord, MarchSize, FrameWeight);
   }
   else
   {
-    gl_FragData[0] = texelFetch(MarchTexture, ivec2(texCoord * MarchSize), 0) * FrameWeight;
+    current = texelFetch(MarchTexture, ivec2(texCoord * MarchSize), 0) * FrameWeight;
   }
+  if (ResolveHistory == 0)
+  {
+    gl_FragData[0] = current;
+    return;
+  }
+  gl_FragData[0] = Reproject != 0 ? BlendHistory(current) : current;
+  gl_FragData[1] = vec4(MarchDepth(texCoord), 0.0, 0.0, 1.0);
 }

@@ -128,6 +128,8 @@ void main()
   float usefulSamples = 0.0;
   float firstSignificant = NoDepth; // local distance from the near plane where T first falls
                                     // below DepthTransmittance (NoDepth: it never does)
+  float depthSum = 0.0; // the distances weighted by the opacity each step adds: / alpha, the
+                        // cloud's mean depth (temporal reprojection follows it)
   if (tEnter < tExit)
   {
     // Samples are placed from the entry point, so their spacing keeps its precision however far
@@ -174,6 +176,7 @@ void main()
         // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
         // constant over the step, so the sum does not depend on the step size.
         radiance += T * SourceTerm(p, density, optical.rgb, d) * (1.0 - stepT);
+        depthSum += (tEnter + s) * T * (1.0 - stepT);
         T *= stepT;
         if (firstSignificant == NoDepth && T < DepthTransmittance)
         {
@@ -188,6 +191,6 @@ void main()
     }
   }
   gl_FragData[0] = vec4(radiance, 1.0 - T); // premultiplied: alpha is the opacity
-  gl_FragData[1] = vec4(samplesTaken, usefulSamples, firstSignificant, 1.0);
+  gl_FragData[1] = vec4(samplesTaken, usefulSamples, firstSignificant, depthSum);
 }
 #endif

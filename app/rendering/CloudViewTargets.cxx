@@ -190,6 +190,7 @@ void ViewTargets::Release(vtkWindow* window)
   this->CountTexture->ReleaseGraphicsResources(window);
   this->MomentTexture->ReleaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);
+  this->History.Release(window);
   this->ViewportSize[0] = this->ViewportSize[1] = 0;
   this->MarchSize[0] = this->MarchSize[1] = 0;
   this->AccumulatedFrames = 0;

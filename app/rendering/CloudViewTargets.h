@@ -1,10 +1,12 @@
 // What vtkCloudVolumeMapper keeps for one renderer: the opaque scene's depth (full viewport), the
-// march's float targets (at the march's resolution) and their framebuffer, and the state of the
-// progressive accumulation. The targets hold the SUM of the accumulated frames (additive
-// blending, no blend constant to keep outside vtkOpenGLState); readers divide by the frame count.
-// Private to the module.
+// march's float targets (at the march's resolution) and their framebuffer, the state of the
+// progressive accumulation, and the temporal reprojection's history (CloudTemporalHistory.h). The
+// targets hold the SUM of the accumulated frames (additive blending, no blend constant to keep
+// outside vtkOpenGLState); readers divide by the frame count. Private to the module.
 #ifndef CloudViewTargets_h
 #define CloudViewTargets_h
+
+#include "CloudTemporalHistory.h"
 
 #include <vtkNew.h>
 #include <vtkOpenGLFramebufferObject.h>
@@ -26,7 +28,7 @@ public:
   enum Target
   {
     Color = 0,  // premultiplied radiance and opacity, RGBA32F
-    Counts = 1, // samples taken, useful samples, depth of the cloud, 1
+    Counts = 1, // samples taken, useful samples, depth of the cloud, opacity-weighted depth sum
     Moments = 2 // the path tracer's mean square of its samples, RGBA32F (only when allocated)
   };
 
@@ -71,7 +73,10 @@ public:
                            : (target == Counts ? this->CountTexture : this->MomentTexture);
   }
   const int* GetMarchSize() const { return this->MarchSize; }
-  long long GetBytes() const { return this->DepthBytes + this->TargetBytes + this->MomentBytes; }
+  long long GetBytes() const
+  {
+    return this->DepthBytes + this->TargetBytes + this->MomentBytes + this->History.GetBytes();
+  }
   void Release(vtkWindow* window);
 
   int AccumulatedFrames = 0;
@@ -80,6 +85,8 @@ public:
   double LocalUnit = 1.0;         // world units per local unit of the march's frame, for depths
   bool PathTraced = false;        // the accumulated frames are the path tracer's
   int SamplesPerFrame = 1;        // samples per pixel in each accumulated frame (path tracer)
+  bool Marched = false;           // this frame added a march frame (else the targets held)
+  TemporalHistory History;        // allocated only while temporal reprojection is on
 
 private:
   vtkNew<vtkTextureObject> Depth;

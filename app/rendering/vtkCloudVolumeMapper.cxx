@@ -19,6 +19,7 @@
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkLightCollection.h>
+#include <vtkMath.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
@@ -52,6 +53,17 @@ namespace
 {
 constexpr double GoldenRatioFraction = 0.61803398874989484;
 
+// Temporal reprojection: the share of the reprojected history in each interactive frame; how
+// many march steps its depth may differ by from the current frame's (beyond the depths the low
+// resolution blurs together) before it is rejected; the turn of a pixel's ray since the last
+// image at which its share has faded to nothing (a cloud is seen through: what lies behind the
+// point changes with the angle). Measured on the sparse cloud (tests/render, docs/viewer.md): a
+// weight of 0.7 or 0.9 hardly differs after one frame; a fade at 12 degrees keeps most of the
+// gain at 1 to 3 degrees a frame and stays below the low-resolution frame's error at 6.
+constexpr float HistoryWeight = 0.9f;
+constexpr double HistoryDepthSteps = 4.0;
+constexpr double HistoryFadeDegrees = 12.0;
+
 // The matrix a vtkMatrix4x4 holds, as GLM (column-major) sees it.
 glm::dmat4 ToGlm(const vtkMatrix4x4* m)
 {
@@ -77,14 +89,19 @@ vtkOpenGLRenderWindow* WindowOf(vtkRenderer* renderer)
   return vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
 }
 
-vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer)
+// The latest change of the renderer's lights; without `cameraLights`, of its scene lights only:
+// the renderer moves headlights and camera lights with the camera, so a camera move changes them.
+vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer, bool cameraLights = true)
 {
   vtkMTimeType latest = renderer->GetLights()->GetMTime();
   vtkCollectionSimpleIterator it;
   renderer->GetLights()->InitTraversal(it);
   while (vtkLight* light = renderer->GetLights()->GetNextLight(it))
   {
-    latest = std::max(latest, light->GetMTime());
+    if (cameraLights || light->LightTypeIsSceneLight())
+    {
+      latest = std::max(latest, light->GetMTime());
+    }
   }
   return latest;
 }
@@ -308,11 +325,15 @@ bool vtkCloudVolumeMapper::UpdateTextures(vtkRenderer* renderer,
   return ready || this->Fail(problem);
 }
 
+bool vtkCloudVolumeMapper::IsInteracting(vtkRenderer* renderer) const
+{
+  return this->InteractiveFrameRate > 0.0 &&
+    renderer->GetRenderWindow()->GetDesiredUpdateRate() > 1.0;
+}
+
 double vtkCloudVolumeMapper::ChooseResolutionScale(vtkRenderer* renderer)
 {
-  const bool interacting =
-    this->InteractiveFrameRate > 0.0 && renderer->GetRenderWindow()->GetDesiredUpdateRate() > 1.0;
-  if (!interacting)
+  if (!this->IsInteracting(renderer))
   {
     return this->ResolutionScale;
   }
@@ -399,21 +420,44 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   const int iterations = uniforms.MaximumSamples + 3 * (bricks[0] + bricks[1] + bricks[2]);
 
   // Progressive accumulation: continue averaging while everything the image depends on holds.
-  std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
-  signature.insert(signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
+  // The temporal history survives a change of the camera (with the lights that follow it) and of
+  // the march's scale, not of the rest (the content).
+  std::vector<double> content(glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
   for (double v : { double(viewport[2]),
          double(viewport[3]),
-         scale,
          double(in.Density.GetUploadTime()),
          double(in.Transfer.GetTableTime()),
          double(this->GetMTime()),
          double(volume->GetMTime()),
          double(LatestChangeOfOtherProps(renderer, volume)),
-         double(LatestChangeOfLights(renderer)) })
+         double(LatestChangeOfLights(renderer, false)) })
   {
-    signature.push_back(v);
+    content.push_back(v);
   }
+  std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
+  signature.insert(signature.end(), content.begin(), content.end());
+  signature.push_back(scale);
+  signature.push_back(double(LatestChangeOfLights(renderer)));
   view.Continue(signature);
+
+  const bool interacting = this->IsInteracting(renderer);
+  const bool pathTrace = uniforms.Lighting.Model == cloudvis::LightingModel::PathTrace;
+  view.Marched = false;
+  if (this->TemporalReprojection && this->DisplayMode == Radiance && !pathTrace)
+  {
+    if (!view.History.Resize(window, viewport[2], viewport[3], budget, problem))
+    {
+      return this->Fail(problem);
+    }
+    view.History.BeginFrame(content, interacting, deviceToLocal);
+    // The depth where the opacity passes 2% moves by up to a step with the jitter, and the
+    // closest depth of a neighbourhood lies a little before a pixel's own.
+    view.History.DepthTolerance = HistoryDepthSteps * uniforms.Step;
+  }
+  else
+  {
+    view.History.Release(window);
+  }
   if (view.AccumulatedFrames >= this->MaximumAccumulatedFrames)
   {
     return true; // converged: the composite pass shows the accumulated image again
@@ -454,14 +498,12 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
                       "error output)");
   }
 
-  const bool interacting = this->InteractiveFrameRate > 0.0 && window->GetDesiredUpdateRate() > 1.0;
   const double start = vtkTimerLog::GetUniversalTime();
   if (interacting)
   {
     window->WaitForCompletion(); // time the march alone
   }
 
-  const bool pathTrace = uniforms.Lighting.Model == cloudvis::LightingModel::PathTrace;
   if (pathTrace &&
     (!in.ExtinctionBounds.Update(window, in.Occupancy.GetBricks(), budget, problem) ||
       !view.AllocateMoments(window, budget, problem)))
@@ -522,7 +564,10 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   program->SetUniformi("DepthTexture", view.GetDepth()->GetTextureUnit());
   program->SetUniformi("JitterTexture", in.Jitter.GetTexture()->GetTextureUnit());
   program->SetUniformf("JitterTextureSize", float(cloudvis::JitterTexture::Size));
-  program->SetUniformf("JitterOffset", float(std::fmod(frame * GoldenRatioFraction, 1.0)));
+  // Reprojected frames follow the golden-ratio sequence on from the history's, so the images
+  // blended into it have different jitter too.
+  const int jitterFrame = frame + (view.History.Reproject ? view.History.Sequence : 0);
+  program->SetUniformf("JitterOffset", float(std::fmod(jitterFrame * GoldenRatioFraction, 1.0)));
   program->SetUniformi("JitterEnabled", this->Jitter ? 1 : 0);
   program->SetUniformi("MaximumIterations", iterations);
   if (pathTrace)
@@ -561,6 +606,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     texture->Deactivate();
   }
   view.UnbindTargets(window);
+  view.Marched = true;
   view.AccumulatedFrames = frame + 1;
   view.LocalUnit = localFrame.Unit;
   view.PathTraced = pathTrace;
@@ -652,13 +698,15 @@ bool vtkCloudVolumeMapper::ReadAuxiliary(
   }
   // The march writes local distances, and NoDepth where the cloud never passes 2%: a mean over
   // frames that holds it in any one of them is still above NoDepth / 65536 (65536 being the most
-  // frames accumulated), so half of that tells them apart from any real distance.
+  // frames accumulated), so half of that tells them apart from any real distance. The fourth
+  // channel (the opacity-weighted depths temporal reprojection reads) is not part of this.
   const double unit = found->second->LocalUnit;
   const float noDepthInSomeFrame = cloudvis::NoDepth / (2.0f * 65536.0f);
   for (size_t i = 2; i < channels.size(); i += 4)
   {
     channels[i] = channels[i] >= noDepthInSomeFrame ? std::numeric_limits<float>::infinity()
                                                     : float(double(channels[i]) * unit);
+    channels[i + 1] = 1.0f;
   }
   return true;
 }
@@ -733,28 +781,88 @@ bool vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
   vtkOpenGLState::ScopedglEnableDisable savedDepthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglBlendFuncSeparate savedBlendFunction(state);
   vtkOpenGLState::ScopedglDepthMask savedDepthMask(state);
-  state->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
-  state->vtkglEnable(GL_BLEND);
-  // Premultiplied "over": the cloud in front of what the renderer has drawn.
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
   vtkTextureObject* color = view.GetTarget(cloudvis::ViewTargets::Color);
   vtkTextureObject* counts = view.GetTarget(cloudvis::ViewTargets::Counts);
+  cloudvis::TemporalHistory& history = view.History;
   color->Activate();
   counts->Activate();
-  program->SetUniformi("MarchTexture", color->GetTextureUnit());
   program->SetUniformi("CountTexture", counts->GetTextureUnit());
-  const int* marchSize = view.GetMarchSize();
-  const float size[2] = { float(marchSize[0]), float(marchSize[1]) };
-  program->SetUniform2f("MarchSize", size);
-  program->SetUniformi(
-    "Upsample", marchSize[0] != viewport[2] || marchSize[1] != viewport[3] ? 1 : 0);
   program->SetUniformi("ShowSampleCount", this->DisplayMode == SampleCount ? 1 : 0);
   program->SetUniformf("SampleCountScale", float(1.0 / view.MostSamplesPerRay));
-  program->SetUniformf("FrameWeight", 1.0f / float(std::max(1, view.AccumulatedFrames)));
-  in.Composite->Render();
+  // The samplers the pass does not read must still name units of their type.
+  program->SetUniformi("HistoryColorTexture", color->GetTextureUnit());
+  program->SetUniformi("HistoryDepthTexture", counts->GetTextureUnit());
+  // Draws `image` (its texels times `weight`) over the viewport, or into the history with
+  // `resolve`.
+  const auto draw = [&](vtkTextureObject* image, const int* size, float weight, bool resolve)
+  {
+    program->SetUniformi("MarchTexture", image->GetTextureUnit());
+    const float imageSize[2] = { float(size[0]), float(size[1]) };
+    program->SetUniform2f("MarchSize", imageSize);
+    program->SetUniformi("Upsample", size[0] != viewport[2] || size[1] != viewport[3] ? 1 : 0);
+    program->SetUniformf("FrameWeight", weight);
+    program->SetUniformi("ResolveHistory", resolve ? 1 : 0);
+    in.Composite->Render();
+  };
+  const float frameWeight = 1.0f / float(std::max(1, view.AccumulatedFrames));
+
+  if (history.IsAllocated() && (view.Marched || !history.HasImage))
+  {
+    // A new frame: resolved at full resolution into the history, blended with the last image
+    // reprojected on an interactive frame.
+    vtkTextureObject* lastColor = history.GetColor();
+    vtkTextureObject* lastDepth = history.GetDepth();
+    if (history.Reproject)
+    {
+      lastColor->Activate();
+      lastDepth->Activate();
+      program->SetUniformi("HistoryColorTexture", lastColor->GetTextureUnit());
+      program->SetUniformi("HistoryDepthTexture", lastDepth->GetTextureUnit());
+      const float historySize[2] = { float(history.GetSize()[0]), float(history.GetSize()[1]) };
+      program->SetUniform2f("HistorySize", historySize);
+      SetMatrix(program, "DCLocalMatrix", history.DeviceToLocal);
+      SetMatrix(program, "LastDCLocalMatrix", history.LastDeviceToLocal);
+      SetMatrix(program, "LastLocalDCMatrix", glm::inverse(history.LastDeviceToLocal));
+      program->SetUniformf("HistoryWeight", HistoryWeight);
+      program->SetUniformf("DepthTolerance", float(history.DepthTolerance));
+      program->SetUniformf("FadeAngle", float(HistoryFadeDegrees * vtkMath::Pi() / 180.0));
+    }
+    program->SetUniformi("Reproject", history.Reproject ? 1 : 0);
+    if (!history.BindNext(window))
+    {
+      color->Deactivate();
+      counts->Deactivate();
+      return this->Fail("the temporal history framebuffer is incomplete on this GPU");
+    }
+    state->vtkglViewport(0, 0, viewport[2], viewport[3]);
+    state->vtkglDisable(GL_BLEND);
+    draw(color, view.GetMarchSize(), frameWeight, true);
+    history.FinishNext(window);
+    if (history.Reproject)
+    {
+      lastColor->Deactivate();
+      lastDepth->Deactivate();
+    }
+  }
+
+  state->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  state->vtkglEnable(GL_BLEND);
+  // Premultiplied "over": the cloud in front of what the renderer has drawn.
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  if (history.IsAllocated())
+  {
+    vtkTextureObject* shown = history.GetColor();
+    shown->Activate();
+    draw(shown, history.GetSize(), 1.0f, false);
+    shown->Deactivate();
+  }
+  else
+  {
+    draw(color, view.GetMarchSize(), frameWeight, false);
+  }
   color->Deactivate();
   counts->Deactivate();
   return true;
@@ -790,6 +898,7 @@ void vtkCloudVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ExtinctionScale: " << this->ExtinctionScale << "\n";
   os << indent << "ResolutionScale: " << this->ResolutionScale << "\n";
   os << indent << "InteractiveFrameRate: " << this->InteractiveFrameRate << "\n";
+  os << indent << "TemporalReprojection: " << this->TemporalReprojection << "\n";
   os << indent << "MaximumAccumulatedFrames: " << this->MaximumAccumulatedFrames << "\n";
   os << indent << "DisplayMode: " << this->DisplayMode << "\n";
   os << indent << "CollectStatistics: " << this->CollectStatistics << "\n";

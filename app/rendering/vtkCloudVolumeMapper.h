@@ -168,6 +168,26 @@ public:
 
   ///@{
   /**
+   * Temporal reprojection of interactive frames: keep the image last shown at the viewport's
+   * full resolution, with the cloud's depth per pixel and the camera it was seen with, and blend
+   * it into each interactive frame (marched at the lowered scale) where it still holds: each
+   * pixel's point on the cloud (the closest cloud depth around it in the new frame) is projected
+   * into the last camera, and the last image's value there is kept when it was on the screen and
+   * its depth agrees, clamped to the colour range of the new frame's neighbourhood, with 90% of
+   * the weight. Disocclusions, what was off screen and moved cloud edges show the new frame
+   * alone. Anything but the camera and the scale changing (field, transfer function, lights,
+   * lighting, volume, other props, viewport size) starts the history afresh. Still frames and
+   * their progressive accumulation are unchanged. Costs two full-viewport RGBA16F + R32F targets
+   * (24 bytes a pixel, in GetGPUMemoryBytes). Not for the path tracer or the sample-count view.
+   * Default off (the viewer turns it on).
+   */
+  vtkSetMacro(TemporalReprojection, bool);
+  vtkGetMacro(TemporalReprojection, bool);
+  vtkBooleanMacro(TemporalReprojection, bool);
+  ///@}
+
+  ///@{
+  /**
    * Most frames averaged while the view does not change. 1 disables accumulation. Default 1.
    */
   vtkSetClampMacro(MaximumAccumulatedFrames, int, 1, 65536);
@@ -393,6 +413,7 @@ protected:
   double ExtinctionScale = 1.0;
   double ResolutionScale = 1.0;
   double InteractiveFrameRate = 20.0;
+  bool TemporalReprojection = false;
   int MaximumAccumulatedFrames = 1;
   int DisplayMode = Radiance;
   bool CollectStatistics = false;
@@ -409,6 +430,7 @@ private:
 
   bool Fail(const std::string& message);
   vtkImageData* ValidInput(vtkVolume* volume);
+  bool IsInteracting(vtkRenderer* renderer) const;
   double ChooseResolutionScale(vtkRenderer* renderer);
   bool ComputeUniforms(vtkRenderer* renderer,
     vtkVolume* volume,

@@ -130,13 +130,15 @@ void Scene::LookAlongMinusZ(double distance, bool parallel, double parallelScale
   camera->SetClippingRange(0.1, 2.0 * distance + 10.0);
 }
 
-Image Scene::Render()
+namespace
 {
-  this->Window->Render();
+Image Grab(vtkRenderWindow* window, bool render)
+{
   vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(this->Window);
+  grab->SetInput(window);
   grab->SetInputBufferTypeToRGBA();
   grab->ReadFrontBufferOff();
+  grab->SetShouldRerender(render);
   grab->Update();
   vtkImageData* pixels = grab->GetOutput();
   int dims[3];
@@ -151,6 +153,19 @@ Image Scene::Render()
     image.RGBA[i] = data->GetValue(vtkIdType(i)) / 255.0f;
   }
   return image;
+}
+}
+
+Image Scene::Render()
+{
+  this->Window->Render();
+  return Grab(this->Window, true);
+}
+
+Image Scene::RenderOnce()
+{
+  this->Window->Render();
+  return Grab(this->Window, false);
 }
 
 Image Scene::RenderFloat()

@@ -73,6 +73,7 @@ public:
   // Camera on +z looking at the origin; parallel projection when `parallel`.
   void LookAlongMinusZ(double distance = 6.0, bool parallel = true, double parallelScale = 2.2);
   Image Render();      // the window's 8-bit pixels as floats
+  Image RenderOnce();  // the same from exactly one render (Render's read-back renders again)
   Image RenderFloat(); // the cloudvis mapper's float image (mapper must be vtkCloudVolumeMapper)
 
   vtkNew<vtkRenderWindow> Window;
