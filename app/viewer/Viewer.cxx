@@ -311,6 +311,8 @@ Viewer::Viewer(const Scene& scene,
   window->AddRenderer(in.View);
   in.Mapper->SetInputData(field);
   ConfigureMapper(in.Mapper, in.Current.Render);
+  // Only the viewer interacts: exports never hold the reprojection's full-resolution history.
+  in.Mapper->SetTemporalReprojection(in.Current.Render.Reprojection);
   in.ApplyLighting();
   in.Property = MakeVolumeProperty(in.Current.TransferFunction);
   in.Volume->SetMapper(in.Mapper);
