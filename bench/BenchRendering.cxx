@@ -52,6 +52,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace
@@ -363,8 +364,22 @@ void CompareLighting(vtkImageData* field, const Options& options)
 // second), with and without TemporalReprojection. Each interactive frame is compared with the
 // still render of its view by a second mapper (jitter on, 16 frames accumulated: converged);
 // prints ms/frame, the march's scale and the RMS error (8-bit levels) of both, and their ratios.
+// The transfer function is the render tests' contrasted one (opacity 0.9 per 0.1 at density 0.5,
+// orange to blue), whose detail the reduced resolution loses; the default one is nearly uniform
+// white, which any resolution shows alike.
 void CompareReprojection(vtkImageData* field, const Options& options)
 {
+  const auto contrast = [](vtkVolumeProperty* property)
+  {
+    vtkNew<vtkPiecewiseFunction> opacity;
+    opacity->AddPoint(0.0, 0.0);
+    opacity->AddPoint(0.5, 0.9);
+    vtkNew<vtkColorTransferFunction> color;
+    color->AddRGBPoint(0.0, 0.9, 0.5, 0.2);
+    color->AddRGBPoint(0.5, 0.3, 0.6, 1.0);
+    property->SetScalarOpacity(opacity);
+    property->SetColor(color);
+  };
   const double step = 4.0 / (options.Size - 1);
   const int orbit = std::max(options.Frames, 2);
   std::printf("temporal reprojection on the sparse field (%d^3, %dx%d, step %.4f, %d interactive "
@@ -380,6 +395,7 @@ void CompareReprojection(vtkImageData* field, const Options& options)
     mapper->JitterOn();
     mapper->SetMaximumAccumulatedFrames(16);
     View still(mapper, field, options);
+    contrast(still.Property);
     still.Renderer->GetActiveCamera()->Azimuth(double(frame));
     for (int f = 0; f < 16; ++f)
     {
@@ -400,6 +416,7 @@ void CompareReprojection(vtkImageData* field, const Options& options)
     mapper->SetMaximumAccumulatedFrames(16);
     mapper->SetTemporalReprojection(reprojection);
     View cloud(mapper, field, options);
+    contrast(cloud.Property);
     for (int f = 0; f < 16; ++f)
     {
       cloud.Window->Render(); // the converged still frame the interaction starts from
@@ -414,9 +431,22 @@ void CompareReprojection(vtkImageData* field, const Options& options)
       cloud.Window->Render();
       cloud.Window->WaitForCompletion();
       seconds += vtkTimerLog::GetUniversalTime() - start;
-      const double rms =
-        cloudvis::support::Compare(GrabWindow(cloud.Window), truth[frame - 1]).RmsLevels();
+      const cloudvis::support::Image shown = GrabWindow(cloud.Window);
+      const double rms = cloudvis::support::Compare(shown, truth[frame - 1]).RmsLevels();
+      if (const char* dump = std::getenv("CLOUDVIS_BENCH_DUMP"))
+      {
+        const std::string name = std::string(dump) + "/frame" + std::to_string(frame);
+        cloudvis::support::WritePng(shown, name + (reprojection ? "-reprojected.png" : "-low.png"));
+        cloudvis::support::WritePng(truth[frame - 1], name + "-truth.png");
+      }
       squaredError += rms * rms;
+      if (frame == 1 || frame == orbit)
+      {
+        std::printf("  %s, interactive frame %d: RMS error %.2f levels\n",
+          reprojection ? "with reprojection" : "without reprojection",
+          frame,
+          rms);
+      }
       std::vector<float> rgba;
       int height = 0;
       mapper->ReadImage(cloud.Renderer, rgba, scaledWidth, height);

@@ -12,8 +12,8 @@
 // opacity-weighted mean depth, from the march's count target) is projected into the last camera; the last image's value
 // there is kept when it lands on the screen, its depth agrees with that point's, and then only
 // within the colour bounds of the current neighbourhood (so a cloud edge that moved cannot leave
-// a ghost), blended with the current upsampled sample by HistoryWeight. Everywhere else the
-// current sample stands alone.
+// a ghost), blended with the current upsampled sample by HistoryWeight, less as the views it holds
+// turn away from this one. Everywhere else the current sample stands alone.
 
 in vec2 texCoord;
 
@@ -28,7 +28,7 @@ uniform float FrameWeight;
 uniform int ResolveHistory;            // write the history target (image and depth)
 uniform int Reproject;                 // blend the last image, reprojected
 uniform sampler2D HistoryColorTexture; // the last image, premultiplied RGBA, viewport size
-uniform sampler2D HistoryDepthTexture; // its depth (MarchDepth; negative: no cloud)
+uniform sampler2D HistoryDepthTexture; // its depth (MarchDepth; negative: no cloud) and age
 uniform vec2 HistorySize;
 uniform mat4 DCLocalMatrix;            // this frame: normalized device -> local frame
 uniform mat4 LastDCLocalMatrix;        // the last image's camera, both ways
@@ -117,9 +117,11 @@ vec3 LocalPoint(mat4 deviceToLocal, vec2 ndc, float ndcDepth)
 }
 
 // The current sample blended with the last image reprojected to this pixel, or the current
-// sample alone where the history does not hold this pixel's cloud.
-vec4 BlendHistory(vec4 current)
+// sample alone where the history does not hold this pixel's cloud. `age` receives the blend's:
+// the angle (radians) the history's views lie from this one, weighted as the blend weighs them.
+vec4 BlendHistory(vec4 current, out float age)
 {
+  age = 0.0;
   float depth = MarchDepth(texCoord);
   if (depth < 0.0)
   {
@@ -162,7 +164,8 @@ vec4 BlendHistory(vec4 current)
   }
   // The last image's depth there must be this point's, give or take the depths the low
   // resolution blurs together here.
-  float lastDepth = texelFetch(HistoryDepthTexture, ivec2(lastUV * HistorySize), 0).r;
+  vec2 lastDepthAndAge = texelFetch(HistoryDepthTexture, ivec2(lastUV * HistorySize), 0).rg;
+  float lastDepth = lastDepthAndAge.x;
   vec3 lastNearPoint = LocalPoint(LastDCLocalMatrix, lastNdc, -1.0);
   float expected = length(point - lastNearPoint);
   float tolerance = DepthTolerance + (depthRange.y - depthRange.x);
@@ -171,12 +174,15 @@ vec4 BlendHistory(vec4 current)
     return current; // another part of the cloud (or none) was there: disoccluded, or it moved
   }
   vec4 history = clamp(Bicubic(HistoryColorTexture, lastUV, HistorySize, 1.0), lo, hi);
-  // A cloud is seen through: the more the ray through this point turned since the last image, the
-  // more what lies behind it changed, so the history's share fades out with that angle.
+  // A cloud is seen through: the more the ray through this point turned since the views the
+  // history holds, the more what lies behind it changed, so the history's share fades out with
+  // that angle (its age plus this frame's turn; the age keeps the lag of a steady orbit bounded).
   vec3 ray = normalize(point - nearPoint);
   vec3 lastRay = normalize(point - lastNearPoint);
-  float turn = acos(clamp(dot(ray, lastRay), -1.0, 1.0));
-  return mix(current, history, HistoryWeight * clamp(1.0 - turn / FadeAngle, 0.0, 1.0));
+  float turn = lastDepthAndAge.y + acos(clamp(dot(ray, lastRay), -1.0, 1.0));
+  float weight = HistoryWeight * clamp(1.0 - turn / FadeAngle, 0.0, 1.0);
+  age = weight * turn;
+  return mix(current, history, weight);
 }
 
 void main()
@@ -201,6 +207,7 @@ void main()
     gl_FragData[0] = current;
     return;
   }
-  gl_FragData[0] = Reproject != 0 ? BlendHistory(current) : current;
-  gl_FragData[1] = vec4(MarchDepth(texCoord), 0.0, 0.0, 1.0);
+  float age = 0.0;
+  gl_FragData[0] = Reproject != 0 ? BlendHistory(current, age) : current;
+  gl_FragData[1] = vec4(MarchDepth(texCoord), age, 0.0, 1.0);
 }

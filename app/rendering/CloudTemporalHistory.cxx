@@ -20,9 +20,9 @@ bool TemporalHistory::Resize(vtkOpenGLRenderWindow* window,
     return true;
   }
   // Half floats hold the displayed radiance (at most a few units) to 11 significant bits, far
-  // below what an 8-bit screen shows; the depth needs a float's range for NoDepth.
+  // below what an 8-bit screen shows; the depth (and the age beside it) keep a float's precision.
   problem = budget.Allocate("the temporal history targets",
-    2LL * width * height * (4 * 2 + sizeof(float)),
+    2LL * width * height * (4 * 2 + 2 * sizeof(float)),
     this->Bytes,
     [&]()
     {
@@ -35,9 +35,9 @@ bool TemporalHistory::Resize(vtkOpenGLRenderWindow* window,
         allocated = this->Color[i]->Allocate2D(width, height, 4, VTK_FLOAT) && allocated;
         SetSampling(this->Color[i], vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
         this->Depth[i]->SetContext(window);
-        this->Depth[i]->SetInternalFormat(GL_R32F);
-        this->Depth[i]->SetFormat(GL_RED);
-        allocated = this->Depth[i]->Allocate2D(width, height, 1, VTK_FLOAT) && allocated;
+        this->Depth[i]->SetInternalFormat(GL_RG32F);
+        this->Depth[i]->SetFormat(GL_RG);
+        allocated = this->Depth[i]->Allocate2D(width, height, 2, VTK_FLOAT) && allocated;
         SetSampling(this->Depth[i], vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
       }
       return allocated;

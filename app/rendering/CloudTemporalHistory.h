@@ -1,8 +1,9 @@
 // What vtkCloudVolumeMapper keeps of the cloud it last showed in one renderer, for temporal
 // reprojection (vtkCloudVolumeMapper::TemporalReprojection): the image at the viewport's full
-// resolution (premultiplied RGBA, before it is blended over the scene), a depth per pixel (the
-// local distance from the near plane along the pixel's ray to where the cloud's opacity passes
-// 2%, as the march's count target holds it) and the device-to-local matrix it was seen with.
+// resolution (premultiplied RGBA16F, before it is blended over the scene), per pixel the cloud's
+// opacity-weighted mean depth (local units from the near plane along the pixel's ray, from the
+// march's count target) and the age of the history there (the angle its views lie from the last
+// one, RG32F), and the device-to-local matrix it was seen with.
 // Two such pairs of targets alternate: the composite pass reads the last one while it writes the
 // next. The matrix is in the march's local frame (filters/CloudMarchUniforms.h), which only the
 // volume's placement changes, and a change of that invalidates the history anyway, so

@@ -174,12 +174,13 @@ public:
    * pixel's point on the cloud (the closest cloud depth around it in the new frame) is projected
    * into the last camera, and the last image's value there is kept when it was on the screen and
    * its depth agrees, clamped to the colour range of the new frame's neighbourhood, with 90% of
-   * the weight. Disocclusions, what was off screen and moved cloud edges show the new frame
+   * the weight, less as the views the history holds turn away from the new one (none at 12
+   * degrees). Disocclusions, what was off screen and moved cloud edges show the new frame
    * alone. Anything but the camera and the scale changing (field, transfer function, lights,
    * lighting, volume, other props, viewport size) starts the history afresh. Still frames and
-   * their progressive accumulation are unchanged. Costs two full-viewport RGBA16F + R32F targets
-   * (24 bytes a pixel, in GetGPUMemoryBytes). Not for the path tracer or the sample-count view.
-   * Default off (the viewer turns it on).
+   * their progressive accumulation are unchanged. Costs two full-viewport RGBA16F + RG32F targets
+   * (32 bytes a pixel, in GetGPUMemoryBytes). Not for the path tracer or the sample-count view.
+   * Default off (the viewer's render.reprojection; docs/viewer.md gives what it gains).
    */
   vtkSetMacro(TemporalReprojection, bool);
   vtkGetMacro(TemporalReprojection, bool);

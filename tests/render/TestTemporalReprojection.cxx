@@ -54,24 +54,30 @@ struct CloudScene
   Scene View;
 };
 
-// The still render of the view `move` leads to, and the interactive frames after a still frame
-// and that move, with and without reprojection.
+// The still render of the view `steps` times `move` lead to, and the last of the interactive
+// frames after a still frame and each move, with and without reprojection.
 struct Frames
 {
   Image Truth, Before, Reprojected, LowResolution;
 };
-Frames RenderMove(const std::function<void(vtkCamera*)>& move)
+Frames RenderMove(const std::function<void(vtkCamera*)>& move, int steps = 1)
 {
   Frames frames;
   CloudScene truth(false);
-  move(truth.Camera());
+  for (int step = 0; step < steps; ++step)
+  {
+    move(truth.Camera());
+  }
   frames.Truth = truth.Still();
   for (bool reprojection : { true, false })
   {
     CloudScene scene(reprojection);
     frames.Before = scene.Still();
-    move(scene.Camera());
-    (reprojection ? frames.Reprojected : frames.LowResolution) = scene.Interactive();
+    for (int step = 0; step < steps; ++step)
+    {
+      move(scene.Camera());
+      (reprojection ? frames.Reprojected : frames.LowResolution) = scene.Interactive();
+    }
     std::vector<float> rgba;
     int width = 0, height = 0;
     scene.Mapper->ReadImage(scene.View.Renderer, rgba, width, height);
@@ -96,6 +102,22 @@ TEST(TemporalReprojection, SharpensAnInteractiveFrameAfterASmallRotation)
   EXPECT_LT(reprojected, 0.6 * lowResolution);
 }
 
+TEST(TemporalReprojection, AnOrbitDoesNotLagBehindTheCamera)
+{
+  // Eight frames of 1 degree: the history ages as its views turn away from the camera, so the
+  // blend does not trail the orbit. (Without sub-pixel jitter of the march the current frames
+  // bring no detail finer than their own, so by then the gain of the first frames has faded to
+  // the low-resolution frame's error: measured 0.98 of it, 0.67 after three frames.)
+  const Frames frames = RenderMove([](vtkCamera* camera) { camera->Azimuth(1.0); }, 8);
+  Dump(frames.Reprojected, "reprojection-orbit-reprojected");
+  const double reprojected = RmsDifference(frames.Reprojected, frames.Truth);
+  const double lowResolution = RmsDifference(frames.LowResolution, frames.Truth);
+  std::cout << "after 8 frames: reprojected " << reprojected << " levels, low resolution "
+            << lowResolution << " levels\n";
+  // Measured 0.976 of it; with the age ignored, 1.022.
+  EXPECT_LT(reprojected, lowResolution);
+}
+
 TEST(TemporalReprojection, StillFramesAreUnchangedAndTheHistoryIsCounted)
 {
   CloudScene plain(false);
@@ -104,9 +126,9 @@ TEST(TemporalReprojection, StillFramesAreUnchangedAndTheHistoryIsCounted)
   const Image b = reprojecting.Still();
   // The history keeps the image in half floats: at most one 8-bit level of rounding.
   EXPECT_LE(MaxDifference(a, b), 1.0 / 255.0 + 1e-6);
-  // Two full-viewport pairs: RGBA16F (8 bytes) and R32F (4 bytes).
+  // Two full-viewport pairs: RGBA16F (8 bytes) and RG32F (8 bytes).
   EXPECT_EQ(reprojecting.Mapper->GetGPUMemoryBytes() - plain.Mapper->GetGPUMemoryBytes(),
-    2LL * Size * Size * (8 + 4));
+    2LL * Size * Size * (8 + 8));
   reprojecting.Mapper->TemporalReprojectionOff();
   reprojecting.Still();
   EXPECT_EQ(reprojecting.Mapper->GetGPUMemoryBytes(), plain.Mapper->GetGPUMemoryBytes())

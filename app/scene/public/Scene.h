@@ -91,7 +91,7 @@ struct RenderSpec
   bool Jitter = true;
   double ResolutionScale = 1.0;
   int Accumulate = 16; // frames averaged into a still
-  bool Reprojection = true;  // `cloudvis view`: interactive frames blend the last one, reprojected
+  bool Reprojection = false; // `cloudvis view`: interactive frames blend the last one, reprojected
   int SamplesPerPixel = 256; // pathtrace: paths averaged per pixel of a still
   bool SkipEmptySpace = true;
   std::array<int, 2> Size{ { 800, 600 } }; // pixels, width and height
