@@ -6,14 +6,15 @@
 // with a Catmull-Rom filter (16 texels); the blend state composites it over the opaque scene.
 //
 // With temporal reprojection the same program first resolves the frame into the history target
-// at full resolution (ResolveHistory: output 0 the image, output 1 its depth), then draws that
-// target over the scene as a full-resolution march target. On an interactive frame the resolve
-// reprojects the last image (Reproject): each pixel's point on the cloud (at the cloud's
-// opacity-weighted mean depth, from the march's count target) is projected into the last camera; the last image's value
-// there is kept when it lands on the screen, its depth agrees with that point's, and then only
-// within the colour bounds of the current neighbourhood (so a cloud edge that moved cannot leave
-// a ghost), blended with the current upsampled sample by HistoryWeight, less as the views it holds
-// turn away from this one. Everywhere else the current sample stands alone.
+// at full resolution (ResolveHistory: output 0 the image, output 1 its depth and age), then
+// draws that target over the scene as a full-resolution march target. On an interactive frame
+// the resolve reprojects the last image (Reproject): each pixel's point on the cloud (at the
+// cloud's opacity-weighted mean depth, from the march's count target) is projected into the last
+// camera; the last image's value there is kept when it lands on the screen, its depth agrees
+// with that point's, and then only within the colour bounds of the current neighbourhood (so a
+// cloud edge that moved cannot leave a ghost), blended with the current upsampled sample by
+// HistoryWeight, less as the views it holds turn away from this one. Everywhere else the current
+// sample stands alone.
 
 in vec2 texCoord;
 
@@ -25,7 +26,7 @@ uniform int ShowSampleCount;
 uniform float SampleCountScale;
 uniform float FrameWeight;
 
-uniform int ResolveHistory;            // write the history target (image and depth)
+uniform int ResolveHistory;            // write the history target (image; depth and age)
 uniform int Reproject;                 // blend the last image, reprojected
 uniform sampler2D HistoryColorTexture; // the last image, premultiplied RGBA, viewport size
 uniform sampler2D HistoryDepthTexture; // its depth (MarchDepth; negative: no cloud) and age
@@ -164,7 +165,8 @@ vec4 BlendHistory(vec4 current, out float age)
   }
   // The last image's depth there must be this point's, give or take the depths the low
   // resolution blurs together here.
-  vec2 lastDepthAndAge = texelFetch(HistoryDepthTexture, ivec2(lastUV * HistorySize), 0).rg;
+  ivec2 lastTexel = min(ivec2(lastUV * HistorySize), ivec2(HistorySize) - 1);
+  vec2 lastDepthAndAge = texelFetch(HistoryDepthTexture, lastTexel, 0).rg;
   float lastDepth = lastDepthAndAge.x;
   vec3 lastNearPoint = LocalPoint(LastDCLocalMatrix, lastNdc, -1.0);
   float expected = length(point - lastNearPoint);
