@@ -1021,12 +1021,6 @@ const Keys<RenderSpec>& RenderKeys()
       &R::Accumulate,
       "frames averaged into a still (with `jitter: false` one frame is rendered: every frame "
       "would be the same)" },
-    { "reprojection",
-      Boolean(),
-      &R::Reprojection,
-      "`cloudvis view`: while the camera moves, blend the last image, reprojected to the new "
-      "view, into each reduced-resolution frame where it still holds ([viewer.md](viewer.md)); "
-      "stills and exports are unchanged" },
     { "spp",
       IntegerIn(2, 1 << 24),
       &R::SamplesPerPixel,
@@ -1053,6 +1047,12 @@ const Keys<RenderSpec>& RenderKeys()
       }(),
       &R::ExrHalf,
       "pixel type of every EXR channel; `--exr-half` sets `\"half\"`" },
+    { "reprojection",
+      Boolean(),
+      &R::Reprojection,
+      "`cloudvis view`: while the camera moves, blend the last image, reprojected to the new "
+      "view, into each reduced-resolution frame where it still holds ([viewer.md](viewer.md)); "
+      "stills and exports are unchanged" },
     LightingObject("derivative",
       DerivativeKeys,
       "the derivative model's parameters ([below](#renderderivative-and-rendermarch))"),
