@@ -176,6 +176,12 @@ vtkTypeInt64 vtkCloudVolumeMapper::GetGPUMemoryBytes() const
   return this->Internal->Bytes();
 }
 
+vtkTypeInt64 vtkCloudVolumeMapper::GetFreeGPUMemoryBytes(vtkRenderWindow* window)
+{
+  auto* openGL = vtkOpenGLRenderWindow::SafeDownCast(window);
+  return openGL ? cloudvis::FreeGpuMemory(openGL) : -1;
+}
+
 int vtkCloudVolumeMapper::GetLightVolumeComputeCount() const
 {
   return this->Internal->LightVolumes.GetComputeCount();

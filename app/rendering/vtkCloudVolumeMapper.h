@@ -77,6 +77,7 @@
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
+class vtkRenderWindow;
 namespace cloudvis
 {
 struct LocalFrame;
@@ -252,6 +253,14 @@ public:
    * textures and every renderer's depth and march targets.
    */
   vtkTypeInt64 GetGPUMemoryBytes() const;
+
+  /**
+   * Bytes of video memory the driver of `window`'s context reports free (GL_NVX_gpu_memory_info
+   * on NVIDIA, GL_ATI_meminfo on AMD), or -1 when it reports nothing (Mesa's drivers, among
+   * others). The mapper checks its allocations against it; benchmarks measure other mappers'
+   * memory with it.
+   */
+  static vtkTypeInt64 GetFreeGPUMemoryBytes(vtkRenderWindow* window);
 
   /**
    * Bytes of GPU memory the density texture alone takes: voxels times 1 (unsigned char), 2
