@@ -404,6 +404,29 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   const int* bricks = in.Occupancy.GetBrickCount();
   const int iterations = uniforms.MaximumSamples + 3 * (bricks[0] + bricks[1] + bricks[2]);
 
+  // The march with light volumes reads the optical depth toward each light from them, computed
+  // (in a pass of their own, before the march's program is made current) when what they depend
+  // on changed. While the view is interacting, volumes made stale by the lights alone (a light
+  // that follows the camera changes with every frame) are not recomputed: that frame marches
+  // toward the lights (the nested march) and the still render after the interaction recomputes
+  // them once.
+  const bool interacting = this->InteractiveFrameRate > 0.0 && window->GetDesiredUpdateRate() > 1.0;
+  const bool marchModel = uniforms.Lighting.Model == cloudvis::LightingModel::March;
+  cloudvis::LightVolumeTexture::Inputs lightInputs;
+  lightInputs.Density = in.Density.GetTexture();
+  lightInputs.Transfer = in.Transfer.GetTexture();
+  lightInputs.Occupancy = in.Occupancy.GetTexture();
+  lightInputs.BrickCount = bricks;
+  lightInputs.BrickSize = this->BrickSize;
+  lightInputs.SkipEmptySpace = this->EmptySpaceSkipping;
+  lightInputs.DensityTime = double(in.Density.GetUploadTime());
+  lightInputs.TableTime = double(in.Transfer.GetTableTime());
+  const bool volumesAsked =
+    marchModel && uniforms.Lighting.Transmittance == cloudvis::LightTransmittance::Volumes;
+  const bool nestedWhileInteracting =
+    volumesAsked && interacting && in.LightVolumes.OnlyLightsChanged(uniforms, lightInputs);
+  const bool lightVolumes = volumesAsked && !nestedWhileInteracting;
+
   // Progressive accumulation: continue averaging while everything the image depends on holds.
   std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
   signature.insert(signature.end(), glm::value_ptr(modelToWorld), glm::value_ptr(modelToWorld) + 16);
@@ -415,7 +438,8 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
          double(this->GetMTime()),
          double(volume->GetMTime()),
          double(LatestChangeOfOtherProps(renderer, volume)),
-         double(LatestChangeOfLights(renderer)) })
+         double(LatestChangeOfLights(renderer)),
+         double(lightVolumes) })
   {
     signature.push_back(v);
   }
@@ -425,29 +449,14 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     return true; // converged: the composite pass shows the accumulated image again
   }
 
-  // The march with light volumes reads the optical depth toward each light from them: computed
-  // here (in a pass of their own) when what they depend on changed, before the march's program
-  // is made current.
-  const bool marchModel = uniforms.Lighting.Model == cloudvis::LightingModel::March;
-  const bool lightVolumes =
-    marchModel && uniforms.Lighting.Transmittance == cloudvis::LightTransmittance::Volumes;
   if (lightVolumes)
   {
-    cloudvis::LightVolumeTexture::Inputs lightInputs;
-    lightInputs.Density = in.Density.GetTexture();
-    lightInputs.Transfer = in.Transfer.GetTexture();
-    lightInputs.Occupancy = in.Occupancy.GetTexture();
-    lightInputs.BrickCount = bricks;
-    lightInputs.BrickSize = this->BrickSize;
-    lightInputs.SkipEmptySpace = this->EmptySpaceSkipping;
-    lightInputs.DensityTime = double(in.Density.GetUploadTime());
-    lightInputs.TableTime = double(in.Transfer.GetTableTime());
     if (!in.LightVolumes.Update(window, uniforms, lightInputs, budget, problem))
     {
       return this->Fail(problem);
     }
   }
-  else if (in.LightVolumes.GetBytes() > 0)
+  else if (!nestedWhileInteracting && in.LightVolumes.GetBytes() > 0)
   {
     in.LightVolumes.Release(window); // another model or the nested march: not held for nothing
   }
@@ -460,7 +469,6 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
                       "error output)");
   }
 
-  const bool interacting = this->InteractiveFrameRate > 0.0 && window->GetDesiredUpdateRate() > 1.0;
   const double start = vtkTimerLog::GetUniversalTime();
   if (interacting)
   {
