@@ -272,8 +272,11 @@ public:
    * The march with render.march.transmittance "volumes" (the default) reads the optical depth
    * toward each light from per-light volumes (docs/lighting.md) that the mapper computes on the
    * GPU when the field, the transfer function, the extinction scale, the step, the volume's
-   * placement or the lights change. How many times it has computed them (a frame that changes
-   * none of these does not), and the bytes they take (part of GetGPUMemoryBytes).
+   * placement or the lights change. While the window is interacting (its desired update rate
+   * above 1), volumes made stale by the lights alone (a headlight following the camera) are not
+   * recomputed: those frames take the nested march, and the still render after the interaction
+   * recomputes the volumes once. How many times it has computed them (a frame that changes none
+   * of these does not), and the bytes they take (part of GetGPUMemoryBytes).
    */
   int GetLightVolumeComputeCount() const;
   vtkTypeInt64 GetLightVolumeBytes() const;
