@@ -571,16 +571,18 @@ void PrintHeader()
 
 void PrintRow(const Row& row)
 {
-  std::printf("| %s | %d^3 | %dx%d | %s | %s |",
+  const std::string image = row.Image.Width > 0
+    ? std::to_string(row.Image.Width) + "x" + std::to_string(row.Image.Height)
+    : "-";
+  std::printf("| %s | %d^3 | %s | %s | %s |",
     row.Field.c_str(),
     row.Size,
-    row.Image.Width,
-    row.Image.Height,
+    image.c_str(),
     row.Model.c_str(),
     row.Lights ? std::to_string(row.Lights).c_str() : "-");
   if (!row.Refused.empty())
   {
-    std::printf(" refused: %s |||||||\n", row.Refused.c_str());
+    std::printf(" %s |||||||\n", row.Refused.c_str());
     std::fflush(stdout);
     return;
   }
@@ -649,7 +651,7 @@ VtkResults MeasureVtk(vtkImageData* field,
   const long long free = vtkCloudVolumeMapper::GetFreeGPUMemoryBytes(view.Window);
   if (size > largest || (free >= 0 && textureBytes > free))
   {
-    results.Refused = "VTK's mapper needs a 3-D texture of " + std::to_string(size) +
+    results.Refused = "refused: VTK's mapper needs a 3-D texture of " + std::to_string(size) +
       "^3 texels, " + cloudvis::FormatBytes(double(textureBytes)) + " (the GPU allows " +
       std::to_string(largest) + " per axis" +
       (free >= 0 ? ", reports " + cloudvis::FormatBytes(double(free)) + " free" : "") + ")";
@@ -727,7 +729,7 @@ void MeasureCloud(const std::string& fieldName,
       }
       if (!mapper->GetLastError().empty())
       {
-        row.Refused = "cloudvis: " + mapper->GetLastError();
+        row.Refused = "refused by cloudvis: " + mapper->GetLastError();
         PrintRow(row);
         rows.push_back(row);
         if (mapper->GetGPUMemoryBytes() == 0 || mapper->GetDensityTextureBytes() == 0)
