@@ -35,6 +35,10 @@ public:
     long long released,
     const std::function<bool()>& create);
 
+  // Bytes the mapper freed outside Allocate (a target that goes with another's resize): no longer
+  // held, so that the allocations after it are not checked against them.
+  void Release(long long bytes) { this->Held -= bytes; }
+
 private:
   vtkOpenGLRenderWindow* Window;
   long long Limit;

@@ -24,8 +24,11 @@ namespace cloudvis
 
 namespace
 {
-// What the volumes depend on, as numbers: when one changes they are computed again.
-std::vector<double> SignatureOf(const MarchUniforms& u, const LightVolumeTexture::Inputs& inputs)
+// What the volumes depend on, as numbers: when one changes they are computed again. The lights
+// apart from the rest (the field, the table, the march and the geometry), since a light that
+// follows the camera changes them every frame while the rest holds.
+std::vector<double> InputSignatureOf(const MarchUniforms& u,
+  const LightVolumeTexture::Inputs& inputs)
 {
   std::vector<double> s = { inputs.DensityTime,
     inputs.TableTime,
@@ -37,15 +40,20 @@ std::vector<double> SignatureOf(const MarchUniforms& u, const LightVolumeTexture
     double(u.Dimensions.x),
     double(u.Dimensions.y),
     double(u.Dimensions.z) };
-  const auto add = [&s](const float* values, int count)
-  { s.insert(s.end(), values, values + count); };
-  add(glm::value_ptr(u.IndexToLocal), 16);
-  add(glm::value_ptr(u.LocalToIndex), 9);
+  s.insert(s.end(), glm::value_ptr(u.IndexToLocal), glm::value_ptr(u.IndexToLocal) + 16);
+  s.insert(s.end(), glm::value_ptr(u.LocalToIndex), glm::value_ptr(u.LocalToIndex) + 9);
+  return s;
+}
+
+std::vector<double> LightSignatureOf(const MarchUniforms& u)
+{
+  std::vector<double> s;
   for (const LocalLight& light : u.Lights)
   {
     s.push_back(light.Positional ? 1.0 : 0.0);
-    add(glm::value_ptr(light.Position), 3);
-    add(glm::value_ptr(light.IndexDirection), 3);
+    s.insert(s.end(), glm::value_ptr(light.Position), glm::value_ptr(light.Position) + 3);
+    s.insert(
+      s.end(), glm::value_ptr(light.IndexDirection), glm::value_ptr(light.IndexDirection) + 3);
   }
   return s;
 }
@@ -75,8 +83,10 @@ bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   GpuMemoryBudget& budget,
   std::string& problem)
 {
-  std::vector<double> signature = SignatureOf(u, inputs);
-  if (signature == this->Signature && this->Texture->GetHandle())
+  std::vector<double> inputSignature = InputSignatureOf(u, inputs);
+  std::vector<double> lightSignature = LightSignatureOf(u);
+  if (inputSignature == this->InputSignature && lightSignature == this->LightSignature &&
+    this->Texture->GetHandle())
   {
     return true;
   }
@@ -116,12 +126,20 @@ bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   }
   if (!this->Compute(window, u, inputs, problem))
   {
-    this->Signature.clear();
+    this->InputSignature.clear();
+    this->LightSignature.clear();
     return false;
   }
-  this->Signature = std::move(signature);
+  this->InputSignature = std::move(inputSignature);
+  this->LightSignature = std::move(lightSignature);
   ++this->ComputeCount;
   return true;
+}
+
+bool LightVolumeTexture::OnlyLightsChanged(const MarchUniforms& u, const Inputs& inputs) const
+{
+  return this->Texture->GetHandle() && InputSignatureOf(u, inputs) == this->InputSignature &&
+    LightSignatureOf(u) != this->LightSignature;
 }
 
 bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,
@@ -244,7 +262,8 @@ void LightVolumeTexture::Release(vtkWindow* window)
     glDeleteFramebuffers(1, &this->Framebuffer);
     this->Framebuffer = 0;
   }
-  this->Signature.clear();
+  this->InputSignature.clear();
+  this->LightSignature.clear();
   this->Bytes = 0;
   this->Lights = 0;
 }

@@ -53,6 +53,12 @@ public:
     GpuMemoryBudget& budget,
     std::string& problem);
 
+  // True when the volumes hold what u and inputs ask for except the lights, which moved (or came
+  // or went) since they were computed: Update would recompute them for the lights alone. While
+  // the view is interacting the mapper then marches toward the lights instead (a light that
+  // follows the camera would otherwise recompute them every frame).
+  bool OnlyLightsChanged(const MarchUniforms& u, const Inputs& inputs) const;
+
   // Binds the texture and sets the march's uniforms that read it (LightVolumeTexture,
   // LightVolumeSize, LightVolumeCount); Deactivate after the draw.
   void Activate(vtkShaderProgram* march);
@@ -74,7 +80,8 @@ private:
   std::unique_ptr<vtkOpenGLQuadHelper> Pass;
   std::string PassKey; // the kinds of lights the pass was compiled for
   unsigned int Framebuffer = 0;
-  std::vector<double> Signature;
+  std::vector<double> InputSignature; // what the volumes were computed for, lights apart
+  std::vector<double> LightSignature;
   int Size[3] = { 0, 0, 0 }; // one light's block
   int Lights = 0;
   long long Bytes = 0;

@@ -40,6 +40,11 @@ bool ViewTargets::Resize(vtkOpenGLRenderWindow* window,
   if (this->MarchSize[0] != marchWidth || this->MarchSize[1] != marchHeight ||
     !this->ColorTexture->GetHandle())
   {
+    // The moment target has the march's size too: freed first, and no longer counted, so that
+    // the new targets and the moment target at the new size (AllocateMoments) are checked
+    // against what the mapper really holds.
+    budget.Release(this->MomentBytes);
+    this->ReleaseMoments(window);
     problem = budget.Allocate("the march targets",
       2LL * marchWidth * marchHeight * 4 * sizeof(float),
       this->TargetBytes,
@@ -62,8 +67,6 @@ bool ViewTargets::Resize(vtkOpenGLRenderWindow* window,
       return false;
     }
     this->TargetBytes = TextureBytes(this->ColorTexture) + TextureBytes(this->CountTexture);
-    this->MomentTexture->ReleaseGraphicsResources(window); // reallocated at the new size
-    this->MomentBytes = 0;
     this->Framebuffer->SetContext(window);
     this->MarchSize[0] = marchWidth;
     this->MarchSize[1] = marchHeight;

@@ -193,6 +193,12 @@ vtkTypeInt64 vtkCloudVolumeMapper::GetGPUMemoryBytes() const
   return this->Internal->Bytes();
 }
 
+vtkTypeInt64 vtkCloudVolumeMapper::GetFreeGPUMemoryBytes(vtkRenderWindow* window)
+{
+  auto* openGL = vtkOpenGLRenderWindow::SafeDownCast(window);
+  return openGL ? cloudvis::FreeGpuMemory(openGL) : -1;
+}
+
 int vtkCloudVolumeMapper::GetLightVolumeComputeCount() const
 {
   return this->Internal->LightVolumes.GetComputeCount();
@@ -419,6 +425,29 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   const int* bricks = in.Occupancy.GetBrickCount();
   const int iterations = uniforms.MaximumSamples + 3 * (bricks[0] + bricks[1] + bricks[2]);
 
+  // The march with light volumes reads the optical depth toward each light from them, computed
+  // (in a pass of their own, before the march's program is made current) when what they depend
+  // on changed. While the view is interacting, volumes made stale by the lights alone (a light
+  // that follows the camera changes with every frame) are not recomputed: that frame marches
+  // toward the lights (the nested march) and the still render after the interaction recomputes
+  // them once.
+  const bool interacting = this->IsInteracting(renderer);
+  const bool marchModel = uniforms.Lighting.Model == cloudvis::LightingModel::March;
+  cloudvis::LightVolumeTexture::Inputs lightInputs;
+  lightInputs.Density = in.Density.GetTexture();
+  lightInputs.Transfer = in.Transfer.GetTexture();
+  lightInputs.Occupancy = in.Occupancy.GetTexture();
+  lightInputs.BrickCount = bricks;
+  lightInputs.BrickSize = this->BrickSize;
+  lightInputs.SkipEmptySpace = this->EmptySpaceSkipping;
+  lightInputs.DensityTime = double(in.Density.GetUploadTime());
+  lightInputs.TableTime = double(in.Transfer.GetTableTime());
+  const bool volumesAsked =
+    marchModel && uniforms.Lighting.Transmittance == cloudvis::LightTransmittance::Volumes;
+  const bool nestedWhileInteracting =
+    volumesAsked && interacting && in.LightVolumes.OnlyLightsChanged(uniforms, lightInputs);
+  const bool lightVolumes = volumesAsked && !nestedWhileInteracting;
+
   // Progressive accumulation: continue averaging while everything the image depends on holds.
   // The temporal history survives a change of the camera (with the lights that follow it) and of
   // the march's scale, not of the rest (the content).
@@ -438,9 +467,11 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   signature.insert(signature.end(), content.begin(), content.end());
   signature.push_back(scale);
   signature.push_back(double(LatestChangeOfLights(renderer)));
+  // Frames marched toward the lights (while interacting) and through the volumes never average
+  // together; the history may blend them, as their difference is small against the motion's.
+  signature.push_back(double(lightVolumes));
   view.Continue(signature);
 
-  const bool interacting = this->IsInteracting(renderer);
   const bool pathTrace = uniforms.Lighting.Model == cloudvis::LightingModel::PathTrace;
   view.Marched = false;
   if (this->TemporalReprojection && this->DisplayMode == Radiance && !pathTrace)
@@ -463,29 +494,14 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     return true; // converged: the composite pass shows the accumulated image again
   }
 
-  // The march with light volumes reads the optical depth toward each light from them: computed
-  // here (in a pass of their own) when what they depend on changed, before the march's program
-  // is made current.
-  const bool marchModel = uniforms.Lighting.Model == cloudvis::LightingModel::March;
-  const bool lightVolumes =
-    marchModel && uniforms.Lighting.Transmittance == cloudvis::LightTransmittance::Volumes;
   if (lightVolumes)
   {
-    cloudvis::LightVolumeTexture::Inputs lightInputs;
-    lightInputs.Density = in.Density.GetTexture();
-    lightInputs.Transfer = in.Transfer.GetTexture();
-    lightInputs.Occupancy = in.Occupancy.GetTexture();
-    lightInputs.BrickCount = bricks;
-    lightInputs.BrickSize = this->BrickSize;
-    lightInputs.SkipEmptySpace = this->EmptySpaceSkipping;
-    lightInputs.DensityTime = double(in.Density.GetUploadTime());
-    lightInputs.TableTime = double(in.Transfer.GetTableTime());
     if (!in.LightVolumes.Update(window, uniforms, lightInputs, budget, problem))
     {
       return this->Fail(problem);
     }
   }
-  else if (in.LightVolumes.GetBytes() > 0)
+  else if (!nestedWhileInteracting && in.LightVolumes.GetBytes() > 0)
   {
     in.LightVolumes.Release(window); // another model or the nested march: not held for nothing
   }

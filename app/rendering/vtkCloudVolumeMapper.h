@@ -77,6 +77,7 @@
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
+class vtkRenderWindow;
 namespace cloudvis
 {
 struct LocalFrame;
@@ -275,6 +276,14 @@ public:
   vtkTypeInt64 GetGPUMemoryBytes() const;
 
   /**
+   * Bytes of video memory the driver of `window`'s context reports free (GL_NVX_gpu_memory_info
+   * on NVIDIA, GL_ATI_meminfo on AMD), or -1 when it reports nothing (Mesa's drivers, among
+   * others). The mapper checks its allocations against it; benchmarks measure other mappers'
+   * memory with it.
+   */
+  static vtkTypeInt64 GetFreeGPUMemoryBytes(vtkRenderWindow* window);
+
+  /**
    * Bytes of GPU memory the density texture alone takes: voxels times 1 (unsigned char), 2
    * (unsigned short, or half floats) or 4 (float).
    */
@@ -284,8 +293,11 @@ public:
    * The march with render.march.transmittance "volumes" (the default) reads the optical depth
    * toward each light from per-light volumes (docs/lighting.md) that the mapper computes on the
    * GPU when the field, the transfer function, the extinction scale, the step, the volume's
-   * placement or the lights change. How many times it has computed them (a frame that changes
-   * none of these does not), and the bytes they take (part of GetGPUMemoryBytes).
+   * placement or the lights change. While the window is interacting (its desired update rate
+   * above 1), volumes made stale by the lights alone (a headlight following the camera) are not
+   * recomputed: those frames take the nested march, and the still render after the interaction
+   * recomputes the volumes once. How many times it has computed them (a frame that changes none
+   * of these does not), and the bytes they take (part of GetGPUMemoryBytes).
    */
   int GetLightVolumeComputeCount() const;
   vtkTypeInt64 GetLightVolumeBytes() const;

@@ -6,14 +6,18 @@
 #include "RenderFixture.h"
 
 #include <vtkCamera.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLState.h>
+#include <vtkPointData.h>
 #include <vtk_glew.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -235,4 +239,181 @@ TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)
   {
     EXPECT_EQ(state->GetEnumState(capability), glIsEnabled(capability) == GL_TRUE);
   }
+}
+
+namespace
+{
+// The largest difference of any channel between two float images of one size.
+double LargestDifference(const Image& a, const Image& b)
+{
+  EXPECT_EQ(a.RGBA.size(), b.RGBA.size());
+  double largest = 0.0;
+  for (size_t i = 0; i < std::min(a.RGBA.size(), b.RGBA.size()); ++i)
+  {
+    largest = std::max(largest, std::abs(double(a.RGBA[i]) - double(b.RGBA[i])));
+  }
+  return largest;
+}
+}
+
+TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomputingTheVolumes)
+{
+  // A light that follows the camera (VTK's headlight) changes with every frame of an
+  // interaction: the light volumes are not recomputed for each (that would cost more than the
+  // nested march); those frames are the nested march's, to the bit, and the still render after
+  // the interaction computes the volumes once. A second mapper with the nested march, looking
+  // from the same camera, is the image each interactive frame must be (the nested march is
+  // compared with the CPU reference in TestGpuMatchesCpuReference).
+  struct HeadlitScene
+  {
+    vtkSmartPointer<vtkCloudVolumeMapper> Mapper = CloudMapper(0.05);
+    Scene View{ Mapper, ImageSize, ImageSize };
+    explicit HeadlitScene(LightTransmittance transmittance)
+    {
+      this->Mapper->GetLightingProperty()->SetModelToMarch();
+      LightingParameters lighting = this->Mapper->GetLightingProperty()->GetParameters();
+      lighting.Transmittance = transmittance;
+      this->Mapper->GetLightingProperty()->SetParameters(lighting);
+      // While interacting the scale stays at ResolutionScale (a frame rate any frame meets), so
+      // that both mappers march the same pixels.
+      this->Mapper->SetResolutionScale(0.5);
+      this->Mapper->SetInteractiveFrameRate(0.01);
+      SetField(this->View, this->Mapper, Storages[0]);
+      vtkNew<vtkLight> headlight;
+      headlight->SetLightTypeToHeadlight();
+      this->View.Renderer->AddLight(headlight);
+    }
+  };
+  HeadlitScene volumes(LightTransmittance::Volumes);
+  HeadlitScene nested(LightTransmittance::Nested);
+  const auto turn = [](HeadlitScene& scene)
+  { scene.View.Renderer->GetActiveCamera()->Azimuth(15.0); };
+
+  const Image still = volumes.View.RenderFloat();
+  ASSERT_EQ(volumes.Mapper->GetLastError(), "");
+  EXPECT_GT(LargestAlpha(still), 0.3);
+  EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 1);
+
+  volumes.View.Window->SetDesiredUpdateRate(20.0); // what an interactor sets while dragging
+  nested.View.Window->SetDesiredUpdateRate(20.0);
+  for (int frame = 0; frame < 4; ++frame)
+  {
+    turn(volumes);
+    turn(nested);
+    const Image interactive = volumes.View.RenderFloat();
+    const Image reference = nested.View.RenderFloat();
+    ASSERT_EQ(volumes.Mapper->GetLastError(), "");
+    EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 1) << "frame " << frame;
+    EXPECT_LE(LargestDifference(interactive, reference), 1e-6) << "frame " << frame;
+    EXPECT_GT(volumes.Mapper->GetLightVolumeBytes(), 0) << "kept for the still render";
+  }
+
+  // The interaction ends: the still frame recomputes the volumes for the light where it is now,
+  // and reads them (no longer the nested march's image; the two differ by the grid's error).
+  volumes.View.Window->SetDesiredUpdateRate(0.0001);
+  nested.View.Window->SetDesiredUpdateRate(0.0001);
+  const Image after = volumes.View.RenderFloat();
+  const Image nestedAfter = nested.View.RenderFloat();
+  EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 2);
+  EXPECT_GT(LargestDifference(after, nestedAfter), 1e-4);
+  // A light that moves while the camera holds still (not interacting) recomputes them at once.
+  volumes.View.Renderer->RemoveAllLights();
+  AddDirectionalLight(volumes.View.Renderer, 1.0, 0.5, 0.3);
+  volumes.View.RenderFloat();
+  EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 3);
+}
+
+TEST(MapperResources, AResizeNearTheMemoryLimitCountsThePathTracersOldMomentTargetOnce)
+{
+  // The path tracer holds a moment target of the march's size. A resize replaces it: what the
+  // budget checks is what the mapper holds after, not that plus the target it freed.
+  constexpr int Larger = ImageSize + 16;
+  const auto pathTraced = [](long long limit)
+  {
+    auto mapper = CloudMapper(0.05);
+    mapper->GetLightingProperty()->SetModelToPathTrace();
+    mapper->SetMaximumGPUMemory(limit);
+    return mapper;
+  };
+  // What the path tracer holds at the larger size, from a mapper that renders only that.
+  long long needed = 0;
+  {
+    auto mapper = pathTraced(0);
+    Scene scene(mapper, Larger, Larger);
+    SetField(scene, mapper, Storages[0]);
+    scene.RenderFloat();
+    ASSERT_EQ(mapper->GetLastError(), "");
+    needed = mapper->GetGPUMemoryBytes();
+  }
+  auto mapper = pathTraced(needed);
+  Scene scene(mapper, ImageSize, ImageSize);
+  SetField(scene, mapper, Storages[0]);
+  scene.RenderFloat();
+  ASSERT_EQ(mapper->GetLastError(), "");
+  scene.Window->SetSize(Larger, Larger);
+  const Image resized = scene.RenderFloat();
+  EXPECT_EQ(mapper->GetLastError(), "") << "fits the limit exactly";
+  EXPECT_EQ(resized.Width, Larger);
+  EXPECT_GT(LargestAlpha(resized), 0.1);
+  EXPECT_EQ(mapper->GetGPUMemoryBytes(), needed);
+  // One byte less is refused: the limit above was tight.
+  mapper->SetMaximumGPUMemory(needed - 1);
+  scene.Window->SetSize(ImageSize, ImageSize);
+  scene.RenderFloat();
+  scene.Window->SetSize(Larger, Larger);
+  scene.Render();
+  EXPECT_NE(mapper->GetLastError().find("MaximumGPUMemory"), std::string::npos)
+    << mapper->GetLastError();
+}
+
+TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNestedMarch)
+{
+  // The light volumes stack one block per light along z in one 3-D texture: a field deep in z
+  // with two lights needs more layers than GL_MAX_3D_TEXTURE_SIZE (2048 on llvmpipe) although it
+  // is small (4 x 4 x that many voxels). It is refused in words, nothing drawn; the nested march,
+  // or one light, renders it.
+  auto mapper = CloudMapper(0.05);
+  mapper->GetLightingProperty()->SetModelToMarch();
+  Scene scene(mapper, ImageSize, ImageSize);
+  scene.Volume->VisibilityOff(); // a context, to ask its limit
+  scene.Render();
+  scene.Volume->VisibilityOn();
+  scene.Renderer->RemoveAllLights(); // the headlight VTK made for a renderer without lights
+  GLint largest = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
+  ASSERT_GE(largest, 256);
+  const int depth = largest; // one light's block: depth / 2 + 1 layers; two: more than largest
+  vtkNew<vtkImageData> field;
+  field->SetDimensions(4, 4, depth);
+  field->SetOrigin(-1.5, -1.5, -2.0);
+  field->SetSpacing(1.0, 1.0, 4.0 / (depth - 1));
+  field->AllocateScalars(VTK_FLOAT, 1);
+  field->GetPointData()->GetScalars()->SetName("density");
+  field->GetPointData()->GetScalars()->Fill(1.0);
+  scene.SetInput(field);
+  SetUniformMedium(scene.Property, 0.5, 1.0);
+  AddDirectionalLight(scene.Renderer, 1.0, 0.5, 0.3);
+  AddPointLight(scene.Renderer, 0.0, 3.0, 1.0);
+
+  const Image refused = scene.Render();
+  const std::string error = mapper->GetLastError();
+  EXPECT_NE(error.find("light volumes need a 3-D texture of 3 x 3 x " +
+              std::to_string(2 * (depth / 2 + 1)) + " texels (2 lights)"),
+    std::string::npos)
+    << error;
+  EXPECT_NE(error.find("render.march.transmittance \"nested\""), std::string::npos) << error;
+  for (size_t i = 0; i < refused.RGBA.size(); i += 4)
+  {
+    ASSERT_EQ(refused.RGBA[i] + refused.RGBA[i + 1] + refused.RGBA[i + 2], 0.0f)
+      << "nothing drawn: the background everywhere";
+  }
+
+  mapper->GetLightingProperty()->SetTransmittanceToNestedMarch();
+  EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
+  EXPECT_EQ(mapper->GetLastError(), "");
+  mapper->GetLightingProperty()->SetTransmittanceToLightVolumes();
+  scene.Renderer->RemoveAllLights();
+  AddDirectionalLight(scene.Renderer, 1.0, 0.5, 0.3);
+  EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
+  EXPECT_EQ(mapper->GetLastError(), "");
 }
