@@ -2,6 +2,8 @@
 #include "RenderFixture.h"
 
 #include <vtkCamera.h>
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
 #include <vtkTransform.h>
 
 #include <gtest/gtest.h>
@@ -157,6 +159,62 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     EXPECT_LT(statistics.SamplesTaken, 0.8 * allSamples);
     EXPECT_GT(statistics.UsefulSamples, 0.0);
   }
+}
+
+namespace
+{
+// Dots of 2^3 voxels of density 1, 6 voxels apart on each axis, over [-2, 2]^3 (zero elsewhere).
+// With the default bricks of 3 voxels, every other brick along each axis sees only zeros, and the
+// voxel just past its far face (on either side) is a dot's: a ray through the field meets empty
+// and occupied bricks in turn, and density starts right where a leap out of an empty brick lands.
+vtkSmartPointer<vtkImageData> DotsBetweenEmptyBricks(int size)
+{
+  auto field = vtkSmartPointer<vtkImageData>::New();
+  field->SetDimensions(size, size, size);
+  const double spacing = 4.0 / (size - 1);
+  field->SetSpacing(spacing, spacing, spacing);
+  field->SetOrigin(-2.0, -2.0, -2.0);
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(vtkIdType(size) * size * size);
+  const auto inDot = [](int i) { return i % 6 == 1 || i % 6 == 2; };
+  vtkIdType n = 0;
+  for (int z = 0; z < size; ++z)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x)
+        density->SetValue(n++, inDot(x) && inDot(y) && inDot(z) ? 1.0f : 0.0f);
+  field->GetPointData()->SetScalars(density);
+  return field;
+}
+}
+
+TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBricksAlternate)
+{
+  // Every leap must land on the first lattice sample past the empty bricks it leaves, whichever
+  // face it leaves them by, and the march must read the occupancy again wherever a ray may have
+  // entered another brick (it reads it every second sample): a leap one sample too far, or a
+  // sample skipped without its brick being read, drops density that the unskipped march keeps.
+  auto mapper = CloudMapper(0.03);
+  mapper->CollectStatisticsOn();
+  Scene scene(mapper, 96, 96);
+  scene.SetInput(DotsBetweenEmptyBricks(48));
+  scene.Volume->RotateX(23.0);
+  scene.Volume->RotateY(-37.0);
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  mapper->EmptySpaceSkippingOff();
+  const Image full = scene.RenderFloat();
+  const double allSamples = mapper->GetLastFrameStatistics().SamplesTaken;
+  mapper->EmptySpaceSkippingOn();
+  const Image skipped = scene.RenderFloat();
+  const auto& statistics = mapper->GetLastFrameStatistics();
+  Dump(skipped, "skipping-dots");
+  ASSERT_EQ(mapper->GetLastError(), "");
+  std::cout << "mean opacity " << MeanOver(full, 3, 0, 96) << ", samples " << allSamples
+            << " unskipped, " << statistics.SamplesTaken << " skipped\n";
+  ASSERT_GT(MeanOver(full, 3, 0, 96), 0.1) << "an empty window proves nothing";
+  ASSERT_LT(MeanOver(full, 3, 0, 96), 0.9) << "an opaque window hides what is missed";
+  EXPECT_EQ(MaxDifference(full, skipped), 0.0);
+  EXPECT_LT(statistics.SamplesTaken, 0.9 * allSamples) << "the march must leap";
 }
 
 TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)
