@@ -126,6 +126,32 @@ TEST(CloudVolumeMapper, MatchesVtkGpuRayCastOnAMovedScaledVolume)
     });
 }
 
+namespace
+{
+// The scene's float image without and with empty-space skipping, and the samples each took.
+struct SkippingRenders
+{
+  Image Full, Skipped;
+  double AllSamples = 0.0;                        // without skipping
+  vtkCloudVolumeMapper::FrameStatistics Skipping; // with it
+};
+SkippingRenders RenderWithAndWithoutSkipping(vtkCloudVolumeMapper* mapper,
+  Scene& scene,
+  const std::string& dumpName)
+{
+  SkippingRenders r;
+  mapper->CollectStatisticsOn();
+  mapper->EmptySpaceSkippingOff();
+  r.Full = scene.RenderFloat();
+  r.AllSamples = mapper->GetLastFrameStatistics().SamplesTaken;
+  mapper->EmptySpaceSkippingOn();
+  r.Skipped = scene.RenderFloat();
+  r.Skipping = mapper->GetLastFrameStatistics();
+  Dump(r.Skipped, dumpName);
+  return r;
+}
+}
+
 TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
 {
   // Skipping lands on the same lattice of samples and only leaps over samples whose extinction
@@ -135,7 +161,6 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
     auto mapper = CloudMapper(0.02);
-    mapper->CollectStatisticsOn();
     LightingParameters lighting;
     lighting.Model = model;
     mapper->GetLightingProperty()->SetParameters(lighting);
@@ -147,17 +172,11 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     SetRampMedium(scene.Property, 1.0, 0.6);
     AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0);
     AddPointLight(scene.Renderer, -2.0, 0.5, 1.5, 4.0);
-    mapper->EmptySpaceSkippingOff();
-    const Image full = scene.RenderFloat();
-    const double allSamples = mapper->GetLastFrameStatistics().SamplesTaken;
-    mapper->EmptySpaceSkippingOn();
-    const Image skipped = scene.RenderFloat();
-    const auto& statistics = mapper->GetLastFrameStatistics();
-    Dump(skipped, "skipping");
-    ASSERT_GT(MeanOver(full, 3, 0, 96), 0.05) << "an empty window proves nothing";
-    EXPECT_EQ(MaxDifference(full, skipped), 0.0) << "model " << int(model);
-    EXPECT_LT(statistics.SamplesTaken, 0.8 * allSamples);
-    EXPECT_GT(statistics.UsefulSamples, 0.0);
+    const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping");
+    ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.05) << "an empty window proves nothing";
+    EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0) << "model " << int(model);
+    EXPECT_LT(r.Skipping.SamplesTaken, 0.8 * r.AllSamples);
+    EXPECT_GT(r.Skipping.UsefulSamples, 0.0);
   }
 }
 
@@ -191,30 +210,24 @@ vtkSmartPointer<vtkImageData> DotsBetweenEmptyBricks(int size)
 TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBricksAlternate)
 {
   // Every leap must land on the first lattice sample past the empty bricks it leaves, whichever
-  // face it leaves them by, and the march must read the occupancy again wherever a ray may have
-  // entered another brick (it reads it every second sample): a leap one sample too far, or a
-  // sample skipped without its brick being read, drops density that the unskipped march keeps.
+  // face it leaves them by (the march computes only the far face's distance on each axis), and
+  // the march must read the occupancy again wherever a ray may have entered another brick: a
+  // leap one sample too far, or a sample skipped without its brick being read, drops density
+  // that the unskipped march keeps.
   auto mapper = CloudMapper(0.03);
-  mapper->CollectStatisticsOn();
   Scene scene(mapper, 96, 96);
   scene.SetInput(DotsBetweenEmptyBricks(48));
   scene.Volume->RotateX(23.0);
   scene.Volume->RotateY(-37.0);
   SetRampMedium(scene.Property, 1.0, 0.6);
-  mapper->EmptySpaceSkippingOff();
-  const Image full = scene.RenderFloat();
-  const double allSamples = mapper->GetLastFrameStatistics().SamplesTaken;
-  mapper->EmptySpaceSkippingOn();
-  const Image skipped = scene.RenderFloat();
-  const auto& statistics = mapper->GetLastFrameStatistics();
-  Dump(skipped, "skipping-dots");
+  const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping-dots");
   ASSERT_EQ(mapper->GetLastError(), "");
-  std::cout << "mean opacity " << MeanOver(full, 3, 0, 96) << ", samples " << allSamples
-            << " unskipped, " << statistics.SamplesTaken << " skipped\n";
-  ASSERT_GT(MeanOver(full, 3, 0, 96), 0.1) << "an empty window proves nothing";
-  ASSERT_LT(MeanOver(full, 3, 0, 96), 0.9) << "an opaque window hides what is missed";
-  EXPECT_EQ(MaxDifference(full, skipped), 0.0);
-  EXPECT_LT(statistics.SamplesTaken, 0.9 * allSamples) << "the march must leap";
+  std::cout << "mean opacity " << MeanOver(r.Full, 3, 0, 96) << ", samples " << r.AllSamples
+            << " unskipped, " << r.Skipping.SamplesTaken << " skipped\n";
+  ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.1) << "an empty window proves nothing";
+  ASSERT_LT(MeanOver(r.Full, 3, 0, 96), 0.9) << "an opaque window hides what is missed";
+  EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0);
+  EXPECT_LT(r.Skipping.SamplesTaken, 0.9 * r.AllSamples) << "the march must leap";
 }
 
 TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)
@@ -276,12 +289,10 @@ TEST(CloudVolumeMapper, OpaqueGeometryOccludesAndIsOccludedThroughTheDepthBuffer
   AddOpaqueSphere(scene, 0.6, 0.0, -1.0, 0.3);
   const Image image = scene.Render();
   Dump(image, "depth");
-  const auto green = [&](double x, double y) {
-    return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 1);
-  };
-  const auto red = [&](double x, double y) {
-    return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 0);
-  };
+  const auto green = [&](double x, double y)
+  { return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 1); };
+  const auto red = [&](double x, double y)
+  { return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 0); };
   EXPECT_NEAR(green(-0.6, 0.0), 0.0, 0.02) << "a sphere in front of the cloud is not covered";
   EXPECT_NEAR(red(-0.6, 0.0), 1.0, 0.02);
   EXPECT_NEAR(green(0.0, 0.6), 1.0 - std::exp(-sigma * 0.7), 0.03) << "0.7 of cloud in front";
@@ -494,7 +505,7 @@ TEST(CloudVolumeMapper, AuxiliaryChannelsGiveTheCloudsDepthAndSampleCounts)
   const float* centre = &channels[(size_t(16) * w + 16) * 4];
   // useful: 2 units of slab at step 0.005, give or take the faces blurred over a voxel (0.0635)
   EXPECT_NEAR(centre[1], 400.0f, 13.0f);
-  EXPECT_GE(centre[0], centre[1]);      // taken: also the empty part of the slab's face bricks
+  EXPECT_GE(centre[0], centre[1]); // taken: also the empty part of the slab's face bricks
   EXPECT_NEAR(centre[2], 4.9f, 0.05f);
   EXPECT_TRUE(std::isinf(channels[2])) << "no cloud in the corner: infinite depth";
 }
