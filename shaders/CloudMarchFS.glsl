@@ -4,7 +4,7 @@
 // A ray from the near to the far plane is clipped to the volume box and to the opaque depth,
 // then samples the density at s = (k + jitter) * Step past the point where it enters the box,
 // k = 0, 1, 2, ... Bricks the occupancy map marks empty are leapt over, landing on the same
-// lattice of k; the loop body has no division (docs/performance.md, "The march's per-sample
+// lattice of k; a sample costs no division (docs/performance.md, "The march's per-sample
 // cost"). Lighting models plug in by defining SourceTerm() at the lighting tag below, so all
 // share this march.
 // Quantities: everything is computed in the local frame of filters/CloudMarchUniforms.h (world
@@ -142,8 +142,8 @@ void main()
     }
 
     // What every sample would otherwise divide or recompute, once per ray (issue 12, the
-    // per-sample cost; docs/performance.md): the loop body below only multiplies and adds, and
-    // has no division. The density texture's coordinate of sample s is entryTexture +
+    // per-sample cost; docs/performance.md): the loop body below only multiplies and adds, with
+    // one division left, in a leap. The density texture's coordinate of sample s is entryTexture +
     // s * directionTexture, (p + 0.5) / Dimensions as DensityAt has it. The transfer table's
     // coordinate is one multiply-add of the density texel, TableCoordinate(texel * DensityScale
     // + DensityBias) with its clamp to [0, 1] moved to the first and last entries' centres. A
