@@ -27,7 +27,9 @@
 //   CLOUDVIS_BENCH_OCCUPANCY=1      only the occupancy recomputation time per brick size
 //   CLOUDVIS_BENCH_ONE_MODEL=0|1|2  only cloudvis with lighting none|derivative|march (one sun),
 //                                   e.g. under `valgrind --tool=callgrind` with LP_NUM_THREADS=0
-//                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts
+//                                   and VTK_SMP_BACKEND_IN_USE=Sequential for instruction counts;
+//                           =vtk    only vtkGPUVolumeRayCastMapper, unlit, the same way
+//   CLOUDVIS_BENCH_DENSE=1          that single run on the dense field instead of the sparse one
 //   CLOUDVIS_BENCH_BRICK=N          the brick size of that run
 //   CLOUDVIS_BENCH_REPROJECTION=1   only temporal reprojection: an orbit of interactive frames
 //                                   with and without it, timed and compared with still renders
@@ -1185,13 +1187,21 @@ int main(int argc, char* argv[])
   }
   if (const char* only = std::getenv("CLOUDVIS_BENCH_ONE_MODEL"))
   {
+    const auto field = std::getenv("CLOUDVIS_BENCH_DENSE") ? Field(options.Size, true) : sparse;
+    if (!std::strcmp(only, "vtk"))
+    {
+      auto vtkMapper = MatchedVtkMapper(4.0 / (options.Size - 1));
+      View vtk(vtkMapper, field, options);
+      std::printf("%.1f ms\n", vtk.MillisecondsPerFrame(options.Frames, [] {}));
+      return 0;
+    }
     auto mapper = MatchedCloudMapper(4.0 / (options.Size - 1));
     if (const char* brick = std::getenv("CLOUDVIS_BENCH_BRICK"))
       mapper->SetBrickSize(std::atoi(brick));
     cloudvis::LightingParameters lighting;
     lighting.Model = cloudvis::LightingModel(std::atoi(only));
     mapper->GetLightingProperty()->SetParameters(lighting);
-    View cloud(mapper, sparse, options);
+    View cloud(mapper, field, options);
     vtkNew<vtkLight> sun;
     sun->SetPosition(6.0, 8.0, 4.0);
     sun->SetFocalPoint(0.0, 0.0, 0.0);

@@ -4,8 +4,9 @@
 // A ray from the near to the far plane is clipped to the volume box and to the opaque depth,
 // then samples the density at s = (k + jitter) * Step past the point where it enters the box,
 // k = 0, 1, 2, ... Bricks the occupancy map marks empty are leapt over, landing on the same
-// lattice of k. Lighting models plug in by defining SourceTerm() at the lighting tag below, so
-// all share this march.
+// lattice of k; a sample costs no division (docs/performance.md, "The march's per-sample
+// cost"). Lighting models plug in by defining SourceTerm() at the lighting tag below, so all
+// share this march.
 // Quantities: everything is computed in the local frame of filters/CloudMarchUniforms.h (world
 // translated to the volume's centre and scaled by a power of two near the voxel size), never in
 // world coordinates, so precision does not depend on where the volume is or how large it is.
@@ -141,6 +142,31 @@ void main()
     {
       jitter = fract(texture(JitterTexture, gl_FragCoord.xy / JitterTextureSize).r + JitterOffset);
     }
+
+    // What every sample would otherwise divide or recompute, once per ray (issue 12, the
+    // per-sample cost; docs/performance.md): the loop body below only multiplies and adds, with
+    // one division left, in a leap. The density texture's coordinate of sample s is entryTexture +
+    // s * directionTexture, (p + 0.5) / Dimensions as DensityAt has it. The transfer table's
+    // coordinate is one multiply-add of the density texel, TableCoordinate(texel * DensityScale
+    // + DensityBias) with its clamp to [0, 1] moved to the first and last entries' centres. A
+    // step's transmittance is exp2 of the table's extinction times -ExtinctionUnit * Step /
+    // ln 2. A leap leaves the cube of empty bricks through its far face on each axis:
+    // exitSide picks it (the positive face for an axis the ray does not move along, as
+    // IntersectBox's 1e-30 does), inverseDirection is IntersectBox's, so sLeave is IntersectBox
+    // (entry, direction, lo, hi).y to the bit.
+    vec3 entryTexture = (entry + 0.5) / Dimensions;
+    vec3 directionTexture = direction / Dimensions;
+    float brickScale = 1.0 / BrickSize;
+    vec3 inverseDirection = 1.0 / mix(direction, vec3(1e-30), equal(direction, vec3(0.0)));
+    vec3 exitSide = mix(vec3(0.5), vec3(-0.5), lessThan(direction, vec3(0.0)));
+    // (A table over a single density holds one value: its first entry serves every density.)
+    float tableWidth = TableRange.y - TableRange.x;
+    float tableScale = tableWidth > 0.0 ? (TableSize - 1.0) / (TableSize * tableWidth) : 0.0;
+    float texelToTable = DensityScale * tableScale;
+    float tableOffset = (DensityBias - TableRange.x) * tableScale + 0.5 / TableSize;
+    vec2 tableEnds = vec2(0.5, TableSize - 0.5) / TableSize;
+    float stepLog2Transmittance = -ExtinctionUnit * Step / log(2.0);
+
     float k = 0.0;
     for (int i = 0; i < MaximumIterations; ++i)
     {
@@ -152,36 +178,37 @@ void main()
       vec3 p = entry + s * direction;
       if (SkipEmptySpace != 0)
       {
-        vec3 brick = BrickOf(p);
+        // BrickOf(p); the multiplication by 1 / BrickSize may put a p within an ulp of a brick
+        // face in the neighbouring brick, where the occupancy's footprint still covers it.
+        vec3 brick = clamp(floor(p * brickScale), vec3(0.0), BrickCount - 1.0);
         float emptyBricks = EmptyBricksAround(brick);
         if (emptyBricks > 0.0)
         {
           // Every brick within Chebyshev distance emptyBricks - 1 is empty: leave that cube
           // and resume at the first lattice sample beyond it.
-          vec3 lo = (brick - (emptyBricks - 1.0)) * BrickSize;
-          vec3 hi = (brick + emptyBricks) * BrickSize;
-          float sLeave = IntersectBox(entry, direction, lo, hi).y;
+          vec3 exitFace = (brick + 0.5 + exitSide * (2.0 * emptyBricks - 1.0)) * BrickSize;
+          vec3 tFar = (exitFace - entry) * inverseDirection;
+          float sLeave = min(min(tFar.x, tFar.y), tFar.z);
           k = max(k + 1.0, ceil(sLeave / Step - jitter));
           continue;
         }
       }
-      float density = DensityAt(p);
-      vec4 optical = Optical(density);
-      float sigma_t = optical.a;
+      float texel = texture(DensityTexture, entryTexture + s * directionTexture).r;
+      vec4 optical =
+        texture(TransferTexture, clamp(texel * texelToTable + tableOffset, tableEnds.x, tableEnds.y));
       samplesTaken += 1.0;
-      if (sigma_t > 0.0)
+      if (optical.a > 0.0)
       {
         usefulSamples += 1.0;
-        float stepT = exp(-sigma_t * Step);
+        float stepT = exp2(optical.a * stepLog2Transmittance);
+        float density = texel * DensityScale + DensityBias; // DensityAt(p)
         // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
         // constant over the step, so the sum does not depend on the step size.
         radiance += T * SourceTerm(p, density, optical.rgb, d) * (1.0 - stepT);
         depthSum += (tEnter + s) * T * (1.0 - stepT);
         T *= stepT;
-        if (firstSignificant == NoDepth && T < DepthTransmittance)
-        {
-          firstSignificant = tEnter + s;
-        }
+        // T only falls, so the first sample below DepthTransmittance keeps the smallest s.
+        firstSignificant = min(firstSignificant, T < DepthTransmittance ? tEnter + s : NoDepth);
         if (T < TerminationTransmittance)
         {
           break;

@@ -2,6 +2,8 @@
 #include "RenderFixture.h"
 
 #include <vtkCamera.h>
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
 #include <vtkTransform.h>
 
 #include <gtest/gtest.h>
@@ -124,6 +126,32 @@ TEST(CloudVolumeMapper, MatchesVtkGpuRayCastOnAMovedScaledVolume)
     });
 }
 
+namespace
+{
+// The scene's float image without and with empty-space skipping, and the samples each took.
+struct SkippingRenders
+{
+  Image Full, Skipped;
+  double AllSamples = 0.0;                        // without skipping
+  vtkCloudVolumeMapper::FrameStatistics Skipping; // with it
+};
+SkippingRenders RenderWithAndWithoutSkipping(vtkCloudVolumeMapper* mapper,
+  Scene& scene,
+  const std::string& dumpName)
+{
+  SkippingRenders r;
+  mapper->CollectStatisticsOn();
+  mapper->EmptySpaceSkippingOff();
+  r.Full = scene.RenderFloat();
+  r.AllSamples = mapper->GetLastFrameStatistics().SamplesTaken;
+  mapper->EmptySpaceSkippingOn();
+  r.Skipped = scene.RenderFloat();
+  r.Skipping = mapper->GetLastFrameStatistics();
+  Dump(r.Skipped, dumpName);
+  return r;
+}
+}
+
 TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
 {
   // Skipping lands on the same lattice of samples and only leaps over samples whose extinction
@@ -133,7 +161,6 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
     auto mapper = CloudMapper(0.02);
-    mapper->CollectStatisticsOn();
     LightingParameters lighting;
     lighting.Model = model;
     mapper->GetLightingProperty()->SetParameters(lighting);
@@ -145,18 +172,62 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     SetRampMedium(scene.Property, 1.0, 0.6);
     AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0);
     AddPointLight(scene.Renderer, -2.0, 0.5, 1.5, 4.0);
-    mapper->EmptySpaceSkippingOff();
-    const Image full = scene.RenderFloat();
-    const double allSamples = mapper->GetLastFrameStatistics().SamplesTaken;
-    mapper->EmptySpaceSkippingOn();
-    const Image skipped = scene.RenderFloat();
-    const auto& statistics = mapper->GetLastFrameStatistics();
-    Dump(skipped, "skipping");
-    ASSERT_GT(MeanOver(full, 3, 0, 96), 0.05) << "an empty window proves nothing";
-    EXPECT_EQ(MaxDifference(full, skipped), 0.0) << "model " << int(model);
-    EXPECT_LT(statistics.SamplesTaken, 0.8 * allSamples);
-    EXPECT_GT(statistics.UsefulSamples, 0.0);
+    const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping");
+    ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.05) << "an empty window proves nothing";
+    EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0) << "model " << int(model);
+    EXPECT_LT(r.Skipping.SamplesTaken, 0.8 * r.AllSamples);
+    EXPECT_GT(r.Skipping.UsefulSamples, 0.0);
   }
+}
+
+namespace
+{
+// Dots of 2^3 voxels of density 1, 6 voxels apart on each axis, over [-2, 2]^3 (zero elsewhere).
+// With the default bricks of 3 voxels, every other brick along each axis sees only zeros, and the
+// voxel just past its far face (on either side) is a dot's: a ray through the field meets empty
+// and occupied bricks in turn, and density starts right where a leap out of an empty brick lands.
+vtkSmartPointer<vtkImageData> DotsBetweenEmptyBricks(int size)
+{
+  auto field = vtkSmartPointer<vtkImageData>::New();
+  field->SetDimensions(size, size, size);
+  const double spacing = 4.0 / (size - 1);
+  field->SetSpacing(spacing, spacing, spacing);
+  field->SetOrigin(-2.0, -2.0, -2.0);
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(vtkIdType(size) * size * size);
+  const auto inDot = [](int i) { return i % 6 == 1 || i % 6 == 2; };
+  vtkIdType n = 0;
+  for (int z = 0; z < size; ++z)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x)
+        density->SetValue(n++, inDot(x) && inDot(y) && inDot(z) ? 1.0f : 0.0f);
+  field->GetPointData()->SetScalars(density);
+  return field;
+}
+}
+
+TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBricksAlternate)
+{
+  // Every leap must land on the first lattice sample past the empty bricks it leaves, whichever
+  // face it leaves them by (the march computes only the far face's distance on each axis), and
+  // the march must read the occupancy again wherever a ray may have entered another brick: a
+  // leap one sample too far, or a sample skipped without its brick being read, drops density
+  // that the unskipped march keeps.
+  auto mapper = CloudMapper(0.03);
+  Scene scene(mapper, 96, 96);
+  scene.SetInput(DotsBetweenEmptyBricks(48));
+  scene.Volume->RotateX(23.0);
+  scene.Volume->RotateY(-37.0);
+  SetRampMedium(scene.Property, 1.0, 0.6);
+  const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping-dots");
+  ASSERT_EQ(mapper->GetLastError(), "");
+  std::cout << "mean opacity " << MeanOver(r.Full, 3, 0, 96) << ", samples " << r.AllSamples
+            << " unskipped, " << r.Skipping.SamplesTaken << " skipped\n";
+  ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.1) << "an empty window proves nothing";
+  ASSERT_LT(MeanOver(r.Full, 3, 0, 96), 0.9) << "an opaque window hides what is missed";
+  EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0);
+  EXPECT_LT(r.Skipping.SamplesTaken, 0.9 * r.AllSamples) << "the march must leap";
 }
 
 TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)
@@ -218,12 +289,10 @@ TEST(CloudVolumeMapper, OpaqueGeometryOccludesAndIsOccludedThroughTheDepthBuffer
   AddOpaqueSphere(scene, 0.6, 0.0, -1.0, 0.3);
   const Image image = scene.Render();
   Dump(image, "depth");
-  const auto green = [&](double x, double y) {
-    return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 1);
-  };
-  const auto red = [&](double x, double y) {
-    return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 0);
-  };
+  const auto green = [&](double x, double y)
+  { return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 1); };
+  const auto red = [&](double x, double y)
+  { return image.At(PixelOf(image, x, 2.2, 128), PixelOf(image, y, 2.2, 128), 0); };
   EXPECT_NEAR(green(-0.6, 0.0), 0.0, 0.02) << "a sphere in front of the cloud is not covered";
   EXPECT_NEAR(red(-0.6, 0.0), 1.0, 0.02);
   EXPECT_NEAR(green(0.0, 0.6), 1.0 - std::exp(-sigma * 0.7), 0.03) << "0.7 of cloud in front";
@@ -436,7 +505,7 @@ TEST(CloudVolumeMapper, AuxiliaryChannelsGiveTheCloudsDepthAndSampleCounts)
   const float* centre = &channels[(size_t(16) * w + 16) * 4];
   // useful: 2 units of slab at step 0.005, give or take the faces blurred over a voxel (0.0635)
   EXPECT_NEAR(centre[1], 400.0f, 13.0f);
-  EXPECT_GE(centre[0], centre[1]);      // taken: also the empty part of the slab's face bricks
+  EXPECT_GE(centre[0], centre[1]); // taken: also the empty part of the slab's face bricks
   EXPECT_NEAR(centre[2], 4.9f, 0.05f);
   EXPECT_TRUE(std::isinf(channels[2])) << "no cloud in the corner: infinite depth";
 }
