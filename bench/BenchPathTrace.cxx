@@ -62,8 +62,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <memory>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -121,7 +121,13 @@ BenchScene ReadScene(const std::string& path)
         Fail(path + ": " + section + item.key() + ": not read by this benchmark");
   };
   refuse(scene,
-    { "description", "field", "transfer_function", "lights", "ambient", "camera", "background",
+    { "description",
+      "field",
+      "transfer_function",
+      "lights",
+      "ambient",
+      "camera",
+      "background",
       "render" },
     "");
   BenchScene s;
@@ -134,9 +140,21 @@ BenchScene ReadScene(const std::string& path)
 
   const json& field = scene.at("field");
   refuse(field,
-    { "dimensions", "bounds", "density_model", "density_scale", "falloff_width", "shape", "noise",
+    { "dimensions",
+      "bounds",
+      "density_model",
+      "density_scale",
+      "falloff_width",
+      "shape",
+      "noise",
       "octaves",
-      "lacunarity", "lacunarity_increment", "gain", "amplitude", "frequency", "seed", "wind",
+      "lacunarity",
+      "lacunarity_increment",
+      "gain",
+      "amplitude",
+      "frequency",
+      "seed",
+      "wind",
       "time" },
     "field.");
   if (field.contains("dimensions"))
@@ -188,8 +206,10 @@ BenchScene ReadScene(const std::string& path)
   for (const json& point : transfer.at("opacity"))
     s.Opacity.push_back({ point.at(0).get<double>(), point.at(1).get<double>() });
   for (const json& point : transfer.at("color"))
-    s.Color.push_back({ point.at(0).get<double>(), point.at(1).get<double>(),
-      point.at(2).get<double>(), point.at(3).get<double>() });
+    s.Color.push_back({ point.at(0).get<double>(),
+      point.at(1).get<double>(),
+      point.at(2).get<double>(),
+      point.at(3).get<double>() });
   s.UnitDistance = transfer.value("unit_distance", 1.0);
 
   if (scene.contains("lights"))
@@ -281,8 +301,11 @@ TransferTable TableOf(vtkVolumeProperty* medium)
 
 // The app's camera (render/OffscreenRender.cxx ApplyCamera) for the scene's keys read here: the
 // bounds' centre seen along -z from the distance that fits them, or from camera.position.
-void SetSceneCamera(vtkCloudReferenceRenderer* renderer, const BenchScene& scene,
-  vtkImageData* field, int width, int height)
+void SetSceneCamera(vtkCloudReferenceRenderer* renderer,
+  const BenchScene& scene,
+  vtkImageData* field,
+  int width,
+  int height)
 {
   vtkNew<vtkRenderer> fit;
   fit->SetAspect(double(width) / double(height), 1.0);
@@ -342,8 +365,11 @@ Rendered Run(vtkCloudReferenceRenderer* renderer)
 }
 
 // An image composited over black, clamped to [0, 1], as an 8-bit PNG (to look at).
-void WritePng(const std::string& directory, const std::string& name, const std::vector<float>& rgba,
-  int width, int height)
+void WritePng(const std::string& directory,
+  const std::string& name,
+  const std::vector<float>& rgba,
+  int width,
+  int height)
 {
   if (directory.empty())
     return;
@@ -372,9 +398,9 @@ struct Options
   int Bounces = 1024;
   int BrickSize = 8;
   unsigned Seed = 0;
-  int FitDimensions = 64;   // fit: the fields' voxels along each axis (0: the scenes' own)
-  int FitMaxOctaves = 6;    // fit: octave counts 1..this are fitted
-  int FitEvaluations = 60;  // fit: the most objective evaluations per octave count
+  int FitDimensions = 64;  // fit: the fields' voxels along each axis (0: the scenes' own)
+  int FitMaxOctaves = 6;   // fit: octave counts 1..this are fitted
+  int FitEvaluations = 60; // fit: the most objective evaluations per octave count
   std::string FitSplit = "stratified"; // fit: which fields are held out
   std::vector<std::string> Scenes;
 };
@@ -424,15 +450,21 @@ int Speed(const Options& options)
 {
   std::vector<std::string> files = options.Scenes;
   if (files.empty())
-    files = { "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json",
-      "data/scenes/sphere.json" };
+    files = {
+      "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json", "data/scenes/sphere.json"
+    };
   std::vector<BenchScene> scenes;
   for (const std::string& file : files)
     scenes.push_back(ReadScene(file)); // every scene checked before anything is printed
   std::printf("%d x %d, %d paths per pixel, bounce cap %d, bricks of %d voxels, vtkSMPTools %s "
               "with %d threads\n\n",
-    options.Width, options.Height, options.Samples, options.Bounces, options.BrickSize,
-    vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
+    options.Width,
+    options.Height,
+    options.Samples,
+    options.Bounces,
+    options.BrickSize,
+    vtkSMPTools::GetBackend(),
+    vtkSMPTools::GetEstimatedNumberOfThreads());
   std::printf("| scene | path tracer | paths/s (all pixels) | paths/s (cloud pixels) | relative "
               "standard error | time to 1%% at 800x600 | CPU march (%s) | one path per pixel "
               "costs |\n|---|---|---|---|---|---|---|---|\n",
@@ -460,9 +492,14 @@ int Speed(const Options& options)
       traced.Seconds / options.Samples * samplesNeeded * (800.0 * 600.0) / double(pixels);
     std::printf("| %s | %.2f s | %.0f | %.0f | %.2f%% | %.0f s (%.0f paths per pixel) | %.3f s | "
                 "%.1f march images |\n",
-      scene.Name.c_str(), traced.Seconds, paths / traced.Seconds,
-      double(noise.Pixels) * options.Samples / traced.Seconds, 100.0 * noise.RelativeStandardError,
-      seconds800x600, samplesNeeded, marched.Seconds,
+      scene.Name.c_str(),
+      traced.Seconds,
+      paths / traced.Seconds,
+      double(noise.Pixels) * options.Samples / traced.Seconds,
+      100.0 * noise.RelativeStandardError,
+      seconds800x600,
+      samplesNeeded,
+      marched.Seconds,
       traced.Seconds / options.Samples / marched.Seconds);
     std::fflush(stdout);
   }
@@ -516,18 +553,43 @@ double MeanRadiance(const Rendered& image)
 int Errors(const Options& options)
 {
   const ErrorModel models[] = {
-    { "march (defaults: light volumes, 3 octaves)", LightingModel::March, 3, false, false, false,
+    { "march (defaults: light volumes, 3 octaves)",
+      LightingModel::March,
+      3,
+      false,
+      false,
+      false,
       false },
-    { "march, nested light march (6 growing steps), 3 octaves", LightingModel::March, 3, false,
-      false, false, true },
+    { "march, nested light march (6 growing steps), 3 octaves",
+      LightingModel::March,
+      3,
+      false,
+      false,
+      false,
+      true },
     { "march, no octaves", LightingModel::March, 0, false, false, false, false },
     { "derivative", LightingModel::Derivative, 0, false, false, false, false },
-    { "single scattering: march, no octaves (light volumes)", LightingModel::March, 0, false, true,
-      true, false },
-    { "single scattering: march, no octaves, nested light march", LightingModel::March, 0, false,
-      true, true, true },
-    { "single scattering: march, no octaves, 64 uniform light steps", LightingModel::March, 0, true,
-      true, true, true },
+    { "single scattering: march, no octaves (light volumes)",
+      LightingModel::March,
+      0,
+      false,
+      true,
+      true,
+      false },
+    { "single scattering: march, no octaves, nested light march",
+      LightingModel::March,
+      0,
+      false,
+      true,
+      true,
+      true },
+    { "single scattering: march, no octaves, 64 uniform light steps",
+      LightingModel::March,
+      0,
+      true,
+      true,
+      true,
+      true },
   };
   const struct
   {
@@ -535,8 +597,11 @@ int Errors(const Options& options)
     glm::vec3 TowardLight;
   } lightings[] = { { "side-lit", { 1.0f, 0.0f, 0.0f } },
     { "backlit", glm::normalize(glm::vec3(0.2f, 0.3f, -1.0f)) } };
-  std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d\n\n", options.Width,
-    options.Height, options.Samples, options.Bounces);
+  std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d\n\n",
+    options.Width,
+    options.Height,
+    options.Samples,
+    options.Bounces);
   std::printf("| field | light | albedo | model | relative RMSE | noise-corrected | bias (ratio "
               "of means) | max error / peak | reference's relative standard error |\n"
               "|---|---|---|---|---|---|---|---|---|\n");
@@ -562,7 +627,7 @@ int Errors(const Options& options)
         const std::string label = std::string(errorField.Name) + "-" + lit.Name + "-albedo" +
           (albedo == 1.0f ? "1" : "0.9");
         std::vector<Rendered> references(2); // every order of scattering, single scattering
-        Rendered volumesImage;                // march with its defaults: the light volumes
+        Rendered volumesImage;               // march with its defaults: the light volumes
         for (const ErrorModel& model : models)
         {
           if (model.AlbedoOneOnly && albedo != 1.0f)
@@ -577,8 +642,10 @@ int Errors(const Options& options)
               model.SingleScattering ? 1 : options.Bounces,
               options));
             WritePng(options.PngDirectory,
-              label + (model.SingleScattering ? "-pathtrace1" : "-pathtrace"), reference.RGBA,
-              options.Width, options.Height);
+              label + (model.SingleScattering ? "-pathtrace1" : "-pathtrace"),
+              reference.RGBA,
+              options.Width,
+              options.Height);
           }
           LightingParameters lighting = scene.Lighting;
           lighting.Model = model.Model;
@@ -596,7 +663,9 @@ int Errors(const Options& options)
             label + "-" + (model.Model == LightingModel::Derivative ? "derivative" : "march") +
               std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : "") +
               (model.Nested ? "n" : ""),
-            image.RGBA, options.Width, options.Height);
+            image.RGBA,
+            options.Width,
+            options.Height);
           if (&model == &models[0])
           {
             marchMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(image);
@@ -605,19 +674,35 @@ int Errors(const Options& options)
           if (&model == &models[1]) // the two settings against each other, noise-free
           {
             const std::vector<float> exact(image.RGBA.size(), 0.0f);
-            const ImageError d = CompareWithReference(volumesImage.RGBA.data(), image.RGBA.data(),
-              exact.data(), std::size_t(options.Width) * options.Height);
+            const ImageError d = CompareWithReference(volumesImage.RGBA.data(),
+              image.RGBA.data(),
+              exact.data(),
+              std::size_t(options.Width) * options.Height);
             char line[200];
-            std::snprintf(line, sizeof(line), "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
-              errorField.Name, lit.Name, double(albedo), 100.0 * d.RelativeRMSE, d.BiasRatio,
+            std::snprintf(line,
+              sizeof(line),
+              "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
+              errorField.Name,
+              lit.Name,
+              double(albedo),
+              100.0 * d.RelativeRMSE,
+              d.BiasRatio,
               100.0 * d.MaxErrorOverPeak);
             settingDifferences.push_back(line);
           }
-          const ImageError e = CompareWithReference(image.RGBA.data(), reference.RGBA.data(),
-            reference.Variance.data(), std::size_t(options.Width) * options.Height);
+          const ImageError e = CompareWithReference(image.RGBA.data(),
+            reference.RGBA.data(),
+            reference.Variance.data(),
+            std::size_t(options.Width) * options.Height);
           std::printf("| %s | %s | %.1f | %s | %.1f%% | %.1f%% | %.3f | %.1f%% | %.2f%% |\n",
-            errorField.Name, lit.Name, double(albedo), model.Name, 100.0 * e.RelativeRMSE,
-            100.0 * e.NoiseCorrectedRelativeRMSE, e.BiasRatio, 100.0 * e.MaxErrorOverPeak,
+            errorField.Name,
+            lit.Name,
+            double(albedo),
+            model.Name,
+            100.0 * e.RelativeRMSE,
+            100.0 * e.NoiseCorrectedRelativeRMSE,
+            e.BiasRatio,
+            100.0 * e.MaxErrorOverPeak,
             100.0 * e.ReferenceRelativeStandardError);
           std::fflush(stdout);
         }
@@ -653,8 +738,10 @@ int Errors(const Options& options)
 // means (of the green channel, over all pixels) is that loss, nearly free of noise.
 int Bounces(const Options& options)
 {
-  std::printf("%d x %d, %d paths per pixel; loss = 1 - mean(cap) / mean(no cap)\n\n", options.Width,
-    options.Height, options.Samples);
+  std::printf("%d x %d, %d paths per pixel; loss = 1 - mean(cap) / mean(no cap)\n\n",
+    options.Width,
+    options.Height,
+    options.Samples);
   std::printf("| scene | cap | image mean | loss | relative standard error of the image mean | "
               "time |\n"
               "|---|---|---|---|---|---|\n");
@@ -686,8 +773,13 @@ int Bounces(const Options& options)
       }
       if (cap == (1 << 24))
         uncapped = mean;
-      std::printf("| %s | %d | %.5f | %.2e | %.2e | %.1f s |\n", errorField.Name, cap, mean,
-        1.0 - mean / uncapped, std::sqrt(variance) / mean, image.Seconds);
+      std::printf("| %s | %d | %.5f | %.2e | %.2e | %.1f s |\n",
+        errorField.Name,
+        cap,
+        mean,
+        1.0 - mean / uncapped,
+        std::sqrt(variance) / mean,
+        image.Seconds);
       std::fflush(stdout);
     }
   }
@@ -715,8 +807,12 @@ MarchUniforms UniformsOf(vtkImageData* field, const TransferTable& table, LocalF
 
 // The optical depth from index point p along the direction l over [s0, s1] (local units), by
 // the midpoint rule with steps of 1/16 of the smallest voxel: the exact integral to 1e-4.
-double OpticalDepth(
-  const MarchUniforms& u, const LocalFrame& frame, glm::vec3 p, glm::vec3 l, double s0, double s1)
+double OpticalDepth(const MarchUniforms& u,
+  const LocalFrame& frame,
+  glm::vec3 p,
+  glm::vec3 l,
+  double s0,
+  double s1)
 {
   const double ds = frame.SmallestVoxelEdge / frame.Unit / 16.0;
   const glm::vec3 indexStep = LocalToIndex(u, l);
@@ -744,8 +840,15 @@ struct Percentiles
       mean += x;
     mean /= double(v.size());
     char text[160];
-    std::snprintf(text, sizeof(text), "mean %.4f%s, 5%% %.4f, median %.4f, 95%% %.4f, max %.4f",
-      mean, unit, v[v.size() / 20], v[v.size() / 2], v[v.size() * 19 / 20], v.back());
+    std::snprintf(text,
+      sizeof(text),
+      "mean %.4f%s, 5%% %.4f, median %.4f, 95%% %.4f, max %.4f",
+      mean,
+      unit,
+      v[v.size() / 20],
+      v[v.size() / 2],
+      v[v.size() * 19 / 20],
+      v.back());
     return text;
   }
 };
@@ -821,8 +924,11 @@ void OpacityBins(const char* label, const Rendered& image, const Rendered& refer
       }
     }
     if (pixels > 0)
-      std::printf(" opacity [%.2f, %.2f): %.2f (%d px);", edges[b], std::min(edges[b + 1], 1.0),
-        sum / referenceSum, pixels);
+      std::printf(" opacity [%.2f, %.2f): %.2f (%d px);",
+        edges[b],
+        std::min(edges[b + 1], 1.0),
+        sum / referenceSum,
+        pixels);
   }
   std::printf("\n");
 }
@@ -854,7 +960,9 @@ std::vector<int> Outliers(const Rendered& image, int width, int height, double f
 int Defects(const Options& options)
 {
   std::printf("The march's defects, measured (%d x %d images, path tracer %d paths per pixel).\n",
-    options.Width, options.Height, options.Samples);
+    options.Width,
+    options.Height,
+    options.Samples);
   for (const ErrorField& errorField : ErrorFields())
   {
     const BenchScene& scene = errorField.Scene;
@@ -874,12 +982,15 @@ int Defects(const Options& options)
       lighting.Model = LightingModel::March;
       auto march = NewMarch(scene, field, gray, lighting, { side }, options);
       char label[120];
-      std::snprintf(label, sizeof(label), "side-lit, albedo %.1f, march (defaults) / path tracer",
+      std::snprintf(label,
+        sizeof(label),
+        "side-lit, albedo %.1f, march (defaults) / path tracer",
         double(albedo));
       OpacityBins(label, Run(march), reference);
       lighting.LightSteps = 12; // twice the segments, over the same way to the exit
       march->GetLightingProperty()->SetParameters(lighting);
-      std::snprintf(label, sizeof(label),
+      std::snprintf(label,
+        sizeof(label),
         "side-lit, albedo %.1f, march with 12 growing light "
         "steps / path tracer",
         double(albedo));
@@ -921,8 +1032,13 @@ int Defects(const Options& options)
     const auto firstSampleOutside = [&](int pixel)
     {
       glm::dvec3 nearPoint, farPoint;
-      vtkCloudReferenceRenderer::PixelRay(deviceToLocal, pixel % options.Width,
-        pixel / options.Width, options.Width, options.Height, nearPoint, farPoint);
+      vtkCloudReferenceRenderer::PixelRay(deviceToLocal,
+        pixel % options.Width,
+        pixel / options.Width,
+        options.Width,
+        options.Height,
+        nearPoint,
+        farPoint);
       const glm::vec3 toFar = glm::vec3(farPoint) - glm::vec3(nearPoint);
       const glm::vec3 origin = IndexOfLocal(u, glm::vec3(nearPoint));
       const glm::vec3 direction = LocalToIndex(u, toFar / glm::length(toFar));
@@ -949,8 +1065,11 @@ int Defects(const Options& options)
     std::printf("  step %s: %d of %d pixels have their first sample outside by rounding, and are "
                 "on average %.1fx brighter than the others; %d pixels are > 3x the median of "
                 "their neighbours, %d of them with the first sample outside\n",
-      step > 0.0 ? "0.005" : "default (1 voxel)", outside, dense,
-      (radiance[1] / std::max(outside, 1)) / (radiance[0] / std::max(dense - outside, 1)), outliers,
+      step > 0.0 ? "0.005" : "default (1 voxel)",
+      outside,
+      dense,
+      (radiance[1] / std::max(outside, 1)) / (radiance[0] / std::max(dense - outside, 1)),
+      outliers,
       outlierOutside);
   }
   return 0;
@@ -1000,9 +1119,12 @@ std::vector<FitField> FitFields(const std::string& split)
   thick.Opacity = { { 0.0, 0.0 }, { 8.0, 0.4 } };
   BenchScene sparse = fbm; // wisps: the fbm noise on a sphere of radius 0.5
   sparse.Field.Shapes[0].Radius = 0.5f;
-  std::vector<FitField> fields = { { "fbm-sphere", fbm }, { "dense", dense },
-    { "fbm-box", box }, { "thick-sphere", thick },
-    { "perlin-falloff", ReadScene("data/scenes/perlin-falloff.json") }, { "sphere", sphere },
+  std::vector<FitField> fields = { { "fbm-sphere", fbm },
+    { "dense", dense },
+    { "fbm-box", box },
+    { "thick-sphere", thick },
+    { "perlin-falloff", ReadScene("data/scenes/perlin-falloff.json") },
+    { "sphere", sphere },
     { "sparse", sparse } };
   std::vector<std::string> heldOut;
   if (split == "first")
@@ -1028,7 +1150,8 @@ struct FitLight
 
 const FitLight FitLights[] = { { "side", { 1.0f, 0.0f, 0.0f } },
   { "back", glm::normalize(glm::vec3(0.2f, 0.3f, -1.0f)) },
-  { "front", glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f)) }, { "above", { 0.0f, 1.0f, 0.0f } } };
+  { "front", glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f)) },
+  { "above", { 0.0f, 1.0f, 0.0f } } };
 const float FitAlbedos[] = { 1.0f, 0.9f, 0.7f };
 
 // The split, as a rule on (field, light, albedo): every combination is one of training, held
@@ -1069,14 +1192,18 @@ struct PreparedMarch
   PreparedMarch(vtkCloudReferenceRenderer* renderer, vtkImageData* field)
   {
     std::string tableProblem;
-    this->Table = TransferTableOf(
-      renderer->GetVolumeProperty(), renderer->GetExtinctionScale(), tableProblem);
+    this->Table =
+      TransferTableOf(renderer->GetVolumeProperty(), renderer->GetExtinctionScale(), tableProblem);
     if (!tableProblem.empty())
       Fail(tableProblem);
-    const MarchSetup setup = MakeMarchSetup(field, renderer->GetVolumeMatrix(),
-      DensityTexelsOf(field->GetPointData()->GetScalars()), &this->Table,
-      renderer->GetSampleDistance(), renderer->GetTerminationTransmittance(),
-      renderer->GetLightingProperty(), renderer->GetLights());
+    const MarchSetup setup = MakeMarchSetup(field,
+      renderer->GetVolumeMatrix(),
+      DensityTexelsOf(field->GetPointData()->GetScalars()),
+      &this->Table,
+      renderer->GetSampleDistance(),
+      renderer->GetTerminationTransmittance(),
+      renderer->GetLightingProperty(),
+      renderer->GetLights());
     LocalFrame frame;
     const MarchProblem problem = SetUpMarch(setup, this->Uniforms, &frame);
     if (problem)
@@ -1104,7 +1231,8 @@ struct PreparedMarch
     this->Uniforms.Lighting.ExtinctionFalloff = octaves.ExtinctionFalloff;
     this->Uniforms.Lighting.EccentricityFalloff = octaves.EccentricityFalloff;
     std::vector<float> rgba(std::size_t(this->Width) * this->Height * 4);
-    vtkSMPTools::For(0, this->Height,
+    vtkSMPTools::For(0,
+      this->Height,
       [&](int begin, int end)
       {
         for (int j = begin; j < end; ++j)
@@ -1128,7 +1256,7 @@ struct FitCase
   bool HeldOut = false;
   Rendered Reference;
   vtkSmartPointer<vtkCloudReferenceRenderer> March; // its lighting is set per evaluation
-  std::unique_ptr<PreparedMarch> Octaves;            // the same march, for the octaves' fit
+  std::unique_ptr<PreparedMarch> Octaves;           // the same march, for the octaves' fit
   double ReferenceSeconds = 0.0;
   double VoxelEdge = 0.0; // the field's smallest voxel edge, world units
 };
@@ -1137,7 +1265,8 @@ struct FitCase
 // `only` is given: the objective renders the training cases alone). With `octavesOnly` the
 // prepared marches render, with `lighting`'s octaves and the rest as prepared.
 std::vector<ImageError> FitErrors(std::vector<FitCase>& cases,
-  const std::function<LightingParameters(const FitCase&)>& lightingOf, bool octavesOnly = false,
+  const std::function<LightingParameters(const FitCase&)>& lightingOf,
+  bool octavesOnly = false,
   std::optional<bool> onlyHeldOut = std::nullopt)
 {
   std::vector<ImageError> errors(cases.size());
@@ -1162,8 +1291,10 @@ std::vector<ImageError> FitErrors(std::vector<FitCase>& cases,
 }
 
 // The same lighting for every case.
-std::vector<ImageError> FitErrors(std::vector<FitCase>& cases, const LightingParameters& lighting,
-  bool octavesOnly = false, std::optional<bool> onlyHeldOut = std::nullopt)
+std::vector<ImageError> FitErrors(std::vector<FitCase>& cases,
+  const LightingParameters& lighting,
+  bool octavesOnly = false,
+  std::optional<bool> onlyHeldOut = std::nullopt)
 {
   return FitErrors(
     cases, [&lighting](const FitCase&) { return lighting; }, octavesOnly, onlyHeldOut);
@@ -1172,7 +1303,8 @@ std::vector<ImageError> FitErrors(std::vector<FitCase>& cases, const LightingPar
 // The objective: the mean over the training cases of the noise-corrected relative RMSE (each
 // case counts the same, whatever its brightness; the reference's noise, which no parameter can
 // explain, is taken out).
-double MeanError(const std::vector<FitCase>& cases, const std::vector<ImageError>& errors,
+double MeanError(const std::vector<FitCase>& cases,
+  const std::vector<ImageError>& errors,
   bool heldOut)
 {
   double sum = 0.0;
@@ -1189,11 +1321,15 @@ double MeanError(const std::vector<FitCase>& cases, const std::vector<ImageError
 // Nelder-Mead in a box: points are clamped into [lower, upper] before they are evaluated, the
 // simplex starts at `start` with edges of `step`, and stops when its values differ by less than
 // `tolerance` or after `maxEvaluations`.
-template <std::size_t D>
+template<std::size_t D>
 std::pair<std::array<double, D>, double> NelderMead(
-  const std::function<double(const std::array<double, D>&)>& f, std::array<double, D> start,
-  const std::array<double, D>& step, const std::array<double, D>& lower,
-  const std::array<double, D>& upper, double tolerance, int maxEvaluations)
+  const std::function<double(const std::array<double, D>&)>& f,
+  std::array<double, D> start,
+  const std::array<double, D>& step,
+  const std::array<double, D>& lower,
+  const std::array<double, D>& upper,
+  double tolerance,
+  int maxEvaluations)
 {
   using Point = std::array<double, D>;
   const auto clamp = [&](Point p)
@@ -1227,7 +1363,8 @@ std::pair<std::array<double, D>, double> NelderMead(
   };
   while (evaluations < maxEvaluations)
   {
-    std::sort(simplex.begin(), simplex.end(),
+    std::sort(simplex.begin(),
+      simplex.end(),
       [](const auto& x, const auto& y) { return x.second < y.second; });
     if (simplex.back().second - simplex.front().second < tolerance)
       break;
@@ -1260,14 +1397,17 @@ std::pair<std::array<double, D>, double> NelderMead(
         }
     }
   }
-  std::sort(simplex.begin(), simplex.end(),
+  std::sort(simplex.begin(),
+    simplex.end(),
     [](const auto& x, const auto& y) { return x.second < y.second; });
   return { simplex.front().first, simplex.front().second };
 }
 
 // Golden-section search of a unimodal f on [a, b], to a bracket of `tolerance`.
-std::pair<double, double> GoldenSection(
-  const std::function<double(double)>& f, double a, double b, double tolerance)
+std::pair<double, double> GoldenSection(const std::function<double(double)>& f,
+  double a,
+  double b,
+  double tolerance)
 {
   const double r = 0.5 * (std::sqrt(5.0) - 1.0);
   double x1 = b - r * (b - a), x2 = a + r * (b - a);
@@ -1295,8 +1435,10 @@ std::pair<double, double> GoldenSection(
 }
 
 // The per-case table of two settings' errors, and the aggregates of each set.
-void PrintBeforeAfter(const char* title, const std::vector<FitCase>& cases,
-  const std::vector<ImageError>& before, const std::vector<ImageError>& after)
+void PrintBeforeAfter(const char* title,
+  const std::vector<FitCase>& cases,
+  const std::vector<ImageError>& before,
+  const std::vector<ImageError>& after)
 {
   std::printf("\n%s\n\n| case | set | relative RMSE before | after | noise-corrected before | "
               "after | bias before | after | reference's standard error |\n"
@@ -1306,10 +1448,14 @@ void PrintBeforeAfter(const char* title, const std::vector<FitCase>& cases,
     for (std::size_t i = 0; i < cases.size(); ++i)
       if (cases[i].HeldOut == heldOut)
         std::printf("| %s | %s | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.3f | %.3f | %.2f%% |\n",
-          cases[i].Name.c_str(), heldOut ? "held out" : "training",
-          100.0 * before[i].RelativeRMSE, 100.0 * after[i].RelativeRMSE,
+          cases[i].Name.c_str(),
+          heldOut ? "held out" : "training",
+          100.0 * before[i].RelativeRMSE,
+          100.0 * after[i].RelativeRMSE,
           100.0 * before[i].NoiseCorrectedRelativeRMSE,
-          100.0 * after[i].NoiseCorrectedRelativeRMSE, before[i].BiasRatio, after[i].BiasRatio,
+          100.0 * after[i].NoiseCorrectedRelativeRMSE,
+          before[i].BiasRatio,
+          after[i].BiasRatio,
           100.0 * before[i].ReferenceRelativeStandardError);
   for (bool heldOut : { false, true })
   {
@@ -1322,9 +1468,12 @@ void PrintBeforeAfter(const char* title, const std::vector<FitCase>& cases,
       }
     std::printf("| **mean, %s** | | | | %.1f%% | %.1f%% | | | |\n"
                 "| **worst, %s** | | | | %.1f%% | %.1f%% | | | |\n",
-      heldOut ? "held out" : "training", 100.0 * MeanError(cases, before, heldOut),
-      100.0 * MeanError(cases, after, heldOut), heldOut ? "held out" : "training",
-      100.0 * worstBefore, 100.0 * worstAfter);
+      heldOut ? "held out" : "training",
+      100.0 * MeanError(cases, before, heldOut),
+      100.0 * MeanError(cases, after, heldOut),
+      heldOut ? "held out" : "training",
+      100.0 * worstBefore,
+      100.0 * worstAfter);
   }
   std::fflush(stdout);
 }
@@ -1334,7 +1483,11 @@ int Fit(const Options& options)
   const double start = vtkTimerLog::GetUniversalTime();
   std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d, seed %u; fields on %s "
               "voxels; split %s\n",
-    options.Width, options.Height, options.Samples, options.Bounces, options.Seed,
+    options.Width,
+    options.Height,
+    options.Samples,
+    options.Bounces,
+    options.Seed,
     options.FitDimensions > 0 ? std::to_string(options.FitDimensions).append("^3").c_str()
                               : "their own",
     options.FitSplit.c_str());
@@ -1359,8 +1512,12 @@ int Fit(const Options& options)
         const auto medium = MakeMedium(scene, albedo);
         FitCase c;
         char name[120];
-        std::snprintf(name, sizeof(name), "%s, %s, albedo %.1f", fitField.Name.c_str(),
-          light.Name, double(albedo));
+        std::snprintf(name,
+          sizeof(name),
+          "%s, %s, albedo %.1f",
+          fitField.Name.c_str(),
+          light.Name,
+          double(albedo));
         c.Name = name;
         c.HeldOut = role == FitRole::HeldOut;
         c.Reference = Run(NewTracer(scene, field, medium, { sun }, options.Bounces, options));
@@ -1375,7 +1532,10 @@ int Fit(const Options& options)
           Fail(c.Name + ": the prepared march differs from vtkCloudReferenceRenderer's");
         std::string label = c.Name;
         std::replace(label.begin(), label.end(), ' ', '_');
-        WritePng(options.PngDirectory, label + "-pathtrace", c.Reference.RGBA, options.Width,
+        WritePng(options.PngDirectory,
+          label + "-pathtrace",
+          c.Reference.RGBA,
+          options.Width,
           options.Height);
         cases.push_back(std::move(c));
       }
@@ -1383,7 +1543,8 @@ int Fit(const Options& options)
   double referenceSeconds = 0.0;
   for (const FitCase& c : cases)
     referenceSeconds += c.ReferenceSeconds;
-  std::printf("%zu cases (%d held out); the references took %.0f s\n", cases.size(),
+  std::printf("%zu cases (%d held out); the references took %.0f s\n",
+    cases.size(),
     int(std::count_if(cases.begin(), cases.end(), [](const FitCase& c) { return c.HeldOut; })),
     referenceSeconds);
 
@@ -1396,12 +1557,16 @@ int Fit(const Options& options)
   const std::vector<ImageError> before = FitErrors(cases, base);
   std::printf("\nbefore the fit (N %d, a %.3f, b %.3f, c %.3f): training %.2f%%, held out "
               "%.2f%%\n",
-    base.MultipleScatteringOctaves, double(base.ScatteringFalloff),
-    double(base.ExtinctionFalloff), double(base.EccentricityFalloff),
-    100.0 * MeanError(cases, before, false), 100.0 * MeanError(cases, before, true));
+    base.MultipleScatteringOctaves,
+    double(base.ScatteringFalloff),
+    double(base.ExtinctionFalloff),
+    double(base.EccentricityFalloff),
+    100.0 * MeanError(cases, before, false),
+    100.0 * MeanError(cases, before, true));
   std::printf("\nOctave counts 1 to %d: the best of a 4^3 grid over (a, b, c) starts Nelder-Mead "
               "(at most %d evaluations after it), bounded to [0, 1]^3.\n",
-    options.FitMaxOctaves, options.FitEvaluations);
+    options.FitMaxOctaves,
+    options.FitEvaluations);
   std::printf("\n| octaves N | a | b | c | training mean | held-out mean | evaluations | time |\n"
               "|---|---|---|---|---|---|---|---|\n");
   std::vector<std::pair<LightingParameters, double>> fits; // per N, with its training mean
@@ -1438,12 +1603,23 @@ int Fit(const Options& options)
             start = { a, b, c };
           }
         }
-    const auto [x, training] = NelderMead<3>(objective, start, { 0.1, 0.1, 0.1 },
-      { 0.0, 0.0, 0.0 }, { 1.0, 1.0, 1.0 }, 1e-4, options.FitEvaluations);
+    const auto [x, training] = NelderMead<3>(objective,
+      start,
+      { 0.1, 0.1, 0.1 },
+      { 0.0, 0.0, 0.0 },
+      { 1.0, 1.0, 1.0 },
+      1e-4,
+      options.FitEvaluations);
     const LightingParameters fitted = withParameters(x);
     const double heldOut = MeanError(cases, FitErrors(cases, fitted, true, true), true);
-    std::printf("| %d | %.3f | %.3f | %.3f | %.2f%% | %.2f%% | %d | %.0f s |\n", octaves, x[0],
-      x[1], x[2], 100.0 * training, 100.0 * heldOut, evaluations,
+    std::printf("| %d | %.3f | %.3f | %.3f | %.2f%% | %.2f%% | %d | %.0f s |\n",
+      octaves,
+      x[0],
+      x[1],
+      x[2],
+      100.0 * training,
+      100.0 * heldOut,
+      evaluations,
       vtkTimerLog::GetUniversalTime() - nStart);
     std::fflush(stdout);
     fits.push_back({ fitted, training });
@@ -1466,12 +1642,17 @@ int Fit(const Options& options)
     *f = std::round(*f * 100.0f) / 100.0f;
   std::printf("\nchosen (the fewest octaves within 0.5 points of the best training mean, "
               "rounded): N %d, a %.2f, b %.2f, c %.2f\n",
-    best.MultipleScatteringOctaves, double(best.ScatteringFalloff), double(best.ExtinctionFalloff),
+    best.MultipleScatteringOctaves,
+    double(best.ScatteringFalloff),
+    double(best.ExtinctionFalloff),
     double(best.EccentricityFalloff));
   const LightingParameters shipped;
-  std::printf("the shipped defaults (filters/CloudLighting.h) are N %d, a %.2f, b %.2f, c %.2f: %s\n",
-    shipped.MultipleScatteringOctaves, double(shipped.ScatteringFalloff),
-    double(shipped.ExtinctionFalloff), double(shipped.EccentricityFalloff),
+  std::printf(
+    "the shipped defaults (filters/CloudLighting.h) are N %d, a %.2f, b %.2f, c %.2f: %s\n",
+    shipped.MultipleScatteringOctaves,
+    double(shipped.ScatteringFalloff),
+    double(shipped.ExtinctionFalloff),
+    double(shipped.EccentricityFalloff),
     shipped.MultipleScatteringOctaves == best.MultipleScatteringOctaves &&
         shipped.ScatteringFalloff == best.ScatteringFalloff &&
         shipped.ExtinctionFalloff == best.ExtinctionFalloff &&
@@ -1479,25 +1660,33 @@ int Fit(const Options& options)
       ? "the fit's"
       : "not the fit's");
   const std::vector<ImageError> after = FitErrors(cases, best);
-  PrintBeforeAfter("march, light volumes (the default): before the fit, and fitted", cases,
-    before, after);
+  PrintBeforeAfter(
+    "march, light volumes (the default): before the fit, and fitted", cases, before, after);
   for (FitCase& c : cases)
   {
     std::string label = c.Name;
     std::replace(label.begin(), label.end(), ' ', '_');
     c.March->GetLightingProperty()->SetParameters(best);
-    WritePng(options.PngDirectory, label + "-march-fitted", Run(c.March).RGBA, options.Width,
+    WritePng(options.PngDirectory,
+      label + "-march-fitted",
+      Run(c.March).RGBA,
+      options.Width,
       options.Height);
     c.March->GetLightingProperty()->SetParameters(base);
-    WritePng(options.PngDirectory, label + "-march-defaults", Run(c.March).RGBA, options.Width,
+    WritePng(options.PngDirectory,
+      label + "-march-defaults",
+      Run(c.March).RGBA,
+      options.Width,
       options.Height);
   }
 
   // The check with the nested light march.
   LightingParameters baseNested = base, bestNested = best;
   baseNested.Transmittance = bestNested.Transmittance = LightTransmittance::Nested;
-  PrintBeforeAfter("march, nested light march: before the fit, and fitted", cases,
-    FitErrors(cases, baseNested), FitErrors(cases, bestNested));
+  PrintBeforeAfter("march, nested light march: before the fit, and fitted",
+    cases,
+    FitErrors(cases, baseNested),
+    FitErrors(cases, bestNested));
 
   // The derivative model: h in voxel spacings of each field (as its default, 4, is stated),
   // golden-section search of log2(h) over [1/2, 64] voxels: its one length; the model has no
@@ -1513,18 +1702,23 @@ int Fit(const Options& options)
     };
   };
   const std::vector<ImageError> derivativeBefore = FitErrors(cases, derivativeAt(2.0));
-  const auto [log2h, derivativeTraining] = GoldenSection(
-    [&](double x)
+  const auto [log2h, derivativeTraining] = GoldenSection([&](double x)
     { return MeanError(cases, FitErrors(cases, derivativeAt(x), false, false), false); },
-    -1.0, 6.0, 0.05);
+    -1.0,
+    6.0,
+    0.05);
   std::printf("\nderivative: h = %.2f voxels gives training %.2f%% (4 voxels: %.2f%%)\n",
-    std::exp2(log2h), 100.0 * derivativeTraining,
+    std::exp2(log2h),
+    100.0 * derivativeTraining,
     100.0 * MeanError(cases, derivativeBefore, false));
-  PrintBeforeAfter("derivative: h = 4 voxels before, fitted after", cases, derivativeBefore,
+  PrintBeforeAfter("derivative: h = 4 voxels before, fitted after",
+    cases,
+    derivativeBefore,
     FitErrors(cases, derivativeAt(log2h)));
 
   std::printf("\nthe whole fit took %.0f s (references %.0f s)\n",
-    vtkTimerLog::GetUniversalTime() - start, referenceSeconds);
+    vtkTimerLog::GetUniversalTime() - start,
+    referenceSeconds);
   return 0;
 }
 
@@ -1538,7 +1732,11 @@ int Usage(const char* program)
     "       %s defects [--size WxH] [--spp N] [--bounces B]\n"
     "       %s fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--split first|stratified] "
     "[--voxels N] [--max-octaves N] [--evaluations E] [--png DIR]\n",
-    program, program, program, program, program);
+    program,
+    program,
+    program,
+    program,
+    program);
   return 2;
 }
 }
