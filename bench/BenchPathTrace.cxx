@@ -121,13 +121,7 @@ BenchScene ReadScene(const std::string& path)
         Fail(path + ": " + section + item.key() + ": not read by this benchmark");
   };
   refuse(scene,
-    { "description",
-      "field",
-      "transfer_function",
-      "lights",
-      "ambient",
-      "camera",
-      "background",
+    { "description", "field", "transfer_function", "lights", "ambient", "camera", "background",
       "render" },
     "");
   BenchScene s;
@@ -206,10 +200,8 @@ BenchScene ReadScene(const std::string& path)
   for (const json& point : transfer.at("opacity"))
     s.Opacity.push_back({ point.at(0).get<double>(), point.at(1).get<double>() });
   for (const json& point : transfer.at("color"))
-    s.Color.push_back({ point.at(0).get<double>(),
-      point.at(1).get<double>(),
-      point.at(2).get<double>(),
-      point.at(3).get<double>() });
+    s.Color.push_back({ point.at(0).get<double>(), point.at(1).get<double>(),
+      point.at(2).get<double>(), point.at(3).get<double>() });
   s.UnitDistance = transfer.value("unit_distance", 1.0);
 
   if (scene.contains("lights"))
@@ -301,11 +293,8 @@ TransferTable TableOf(vtkVolumeProperty* medium)
 
 // The app's camera (render/OffscreenRender.cxx ApplyCamera) for the scene's keys read here: the
 // bounds' centre seen along -z from the distance that fits them, or from camera.position.
-void SetSceneCamera(vtkCloudReferenceRenderer* renderer,
-  const BenchScene& scene,
-  vtkImageData* field,
-  int width,
-  int height)
+void SetSceneCamera(vtkCloudReferenceRenderer* renderer, const BenchScene& scene,
+  vtkImageData* field, int width, int height)
 {
   vtkNew<vtkRenderer> fit;
   fit->SetAspect(double(width) / double(height), 1.0);
@@ -365,11 +354,8 @@ Rendered Run(vtkCloudReferenceRenderer* renderer)
 }
 
 // An image composited over black, clamped to [0, 1], as an 8-bit PNG (to look at).
-void WritePng(const std::string& directory,
-  const std::string& name,
-  const std::vector<float>& rgba,
-  int width,
-  int height)
+void WritePng(const std::string& directory, const std::string& name, const std::vector<float>& rgba,
+  int width, int height)
 {
   if (directory.empty())
     return;
@@ -450,21 +436,15 @@ int Speed(const Options& options)
 {
   std::vector<std::string> files = options.Scenes;
   if (files.empty())
-    files = {
-      "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json", "data/scenes/sphere.json"
-    };
+    files = { "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json",
+      "data/scenes/sphere.json" };
   std::vector<BenchScene> scenes;
   for (const std::string& file : files)
     scenes.push_back(ReadScene(file)); // every scene checked before anything is printed
   std::printf("%d x %d, %d paths per pixel, bounce cap %d, bricks of %d voxels, vtkSMPTools %s "
               "with %d threads\n\n",
-    options.Width,
-    options.Height,
-    options.Samples,
-    options.Bounces,
-    options.BrickSize,
-    vtkSMPTools::GetBackend(),
-    vtkSMPTools::GetEstimatedNumberOfThreads());
+    options.Width, options.Height, options.Samples, options.Bounces, options.BrickSize,
+    vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
   std::printf("| scene | path tracer | paths/s (all pixels) | paths/s (cloud pixels) | relative "
               "standard error | time to 1%% at 800x600 | CPU march (%s) | one path per pixel "
               "costs |\n|---|---|---|---|---|---|---|---|\n",
@@ -492,14 +472,9 @@ int Speed(const Options& options)
       traced.Seconds / options.Samples * samplesNeeded * (800.0 * 600.0) / double(pixels);
     std::printf("| %s | %.2f s | %.0f | %.0f | %.2f%% | %.0f s (%.0f paths per pixel) | %.3f s | "
                 "%.1f march images |\n",
-      scene.Name.c_str(),
-      traced.Seconds,
-      paths / traced.Seconds,
-      double(noise.Pixels) * options.Samples / traced.Seconds,
-      100.0 * noise.RelativeStandardError,
-      seconds800x600,
-      samplesNeeded,
-      marched.Seconds,
+      scene.Name.c_str(), traced.Seconds, paths / traced.Seconds,
+      double(noise.Pixels) * options.Samples / traced.Seconds, 100.0 * noise.RelativeStandardError,
+      seconds800x600, samplesNeeded, marched.Seconds,
       traced.Seconds / options.Samples / marched.Seconds);
     std::fflush(stdout);
   }
@@ -553,43 +528,18 @@ double MeanRadiance(const Rendered& image)
 int Errors(const Options& options)
 {
   const ErrorModel models[] = {
-    { "march (defaults: light volumes, 3 octaves)",
-      LightingModel::March,
-      3,
-      false,
-      false,
-      false,
+    { "march (defaults: light volumes, 3 octaves)", LightingModel::March, 3, false, false, false,
       false },
-    { "march, nested light march (6 growing steps), 3 octaves",
-      LightingModel::March,
-      3,
-      false,
-      false,
-      false,
-      true },
+    { "march, nested light march (6 growing steps), 3 octaves", LightingModel::March, 3, false,
+      false, false, true },
     { "march, no octaves", LightingModel::March, 0, false, false, false, false },
     { "derivative", LightingModel::Derivative, 0, false, false, false, false },
-    { "single scattering: march, no octaves (light volumes)",
-      LightingModel::March,
-      0,
-      false,
-      true,
-      true,
-      false },
-    { "single scattering: march, no octaves, nested light march",
-      LightingModel::March,
-      0,
-      false,
-      true,
-      true,
-      true },
-    { "single scattering: march, no octaves, 64 uniform light steps",
-      LightingModel::March,
-      0,
-      true,
-      true,
-      true,
-      true },
+    { "single scattering: march, no octaves (light volumes)", LightingModel::March, 0, false, true,
+      true, false },
+    { "single scattering: march, no octaves, nested light march", LightingModel::March, 0, false,
+      true, true, true },
+    { "single scattering: march, no octaves, 64 uniform light steps", LightingModel::March, 0, true,
+      true, true, true },
   };
   const struct
   {
@@ -597,11 +547,8 @@ int Errors(const Options& options)
     glm::vec3 TowardLight;
   } lightings[] = { { "side-lit", { 1.0f, 0.0f, 0.0f } },
     { "backlit", glm::normalize(glm::vec3(0.2f, 0.3f, -1.0f)) } };
-  std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d\n\n",
-    options.Width,
-    options.Height,
-    options.Samples,
-    options.Bounces);
+  std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d\n\n", options.Width,
+    options.Height, options.Samples, options.Bounces);
   std::printf("| field | light | albedo | model | relative RMSE | noise-corrected | bias (ratio "
               "of means) | max error / peak | reference's relative standard error |\n"
               "|---|---|---|---|---|---|---|---|---|\n");
@@ -627,7 +574,7 @@ int Errors(const Options& options)
         const std::string label = std::string(errorField.Name) + "-" + lit.Name + "-albedo" +
           (albedo == 1.0f ? "1" : "0.9");
         std::vector<Rendered> references(2); // every order of scattering, single scattering
-        Rendered volumesImage;               // march with its defaults: the light volumes
+        Rendered volumesImage;                // march with its defaults: the light volumes
         for (const ErrorModel& model : models)
         {
           if (model.AlbedoOneOnly && albedo != 1.0f)
@@ -642,10 +589,8 @@ int Errors(const Options& options)
               model.SingleScattering ? 1 : options.Bounces,
               options));
             WritePng(options.PngDirectory,
-              label + (model.SingleScattering ? "-pathtrace1" : "-pathtrace"),
-              reference.RGBA,
-              options.Width,
-              options.Height);
+              label + (model.SingleScattering ? "-pathtrace1" : "-pathtrace"), reference.RGBA,
+              options.Width, options.Height);
           }
           LightingParameters lighting = scene.Lighting;
           lighting.Model = model.Model;
@@ -663,9 +608,7 @@ int Errors(const Options& options)
             label + "-" + (model.Model == LightingModel::Derivative ? "derivative" : "march") +
               std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : "") +
               (model.Nested ? "n" : ""),
-            image.RGBA,
-            options.Width,
-            options.Height);
+            image.RGBA, options.Width, options.Height);
           if (&model == &models[0])
           {
             marchMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(image);
@@ -674,35 +617,19 @@ int Errors(const Options& options)
           if (&model == &models[1]) // the two settings against each other, noise-free
           {
             const std::vector<float> exact(image.RGBA.size(), 0.0f);
-            const ImageError d = CompareWithReference(volumesImage.RGBA.data(),
-              image.RGBA.data(),
-              exact.data(),
-              std::size_t(options.Width) * options.Height);
+            const ImageError d = CompareWithReference(volumesImage.RGBA.data(), image.RGBA.data(),
+              exact.data(), std::size_t(options.Width) * options.Height);
             char line[200];
-            std::snprintf(line,
-              sizeof(line),
-              "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
-              errorField.Name,
-              lit.Name,
-              double(albedo),
-              100.0 * d.RelativeRMSE,
-              d.BiasRatio,
+            std::snprintf(line, sizeof(line), "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
+              errorField.Name, lit.Name, double(albedo), 100.0 * d.RelativeRMSE, d.BiasRatio,
               100.0 * d.MaxErrorOverPeak);
             settingDifferences.push_back(line);
           }
-          const ImageError e = CompareWithReference(image.RGBA.data(),
-            reference.RGBA.data(),
-            reference.Variance.data(),
-            std::size_t(options.Width) * options.Height);
+          const ImageError e = CompareWithReference(image.RGBA.data(), reference.RGBA.data(),
+            reference.Variance.data(), std::size_t(options.Width) * options.Height);
           std::printf("| %s | %s | %.1f | %s | %.1f%% | %.1f%% | %.3f | %.1f%% | %.2f%% |\n",
-            errorField.Name,
-            lit.Name,
-            double(albedo),
-            model.Name,
-            100.0 * e.RelativeRMSE,
-            100.0 * e.NoiseCorrectedRelativeRMSE,
-            e.BiasRatio,
-            100.0 * e.MaxErrorOverPeak,
+            errorField.Name, lit.Name, double(albedo), model.Name, 100.0 * e.RelativeRMSE,
+            100.0 * e.NoiseCorrectedRelativeRMSE, e.BiasRatio, 100.0 * e.MaxErrorOverPeak,
             100.0 * e.ReferenceRelativeStandardError);
           std::fflush(stdout);
         }
@@ -738,10 +665,8 @@ int Errors(const Options& options)
 // means (of the green channel, over all pixels) is that loss, nearly free of noise.
 int Bounces(const Options& options)
 {
-  std::printf("%d x %d, %d paths per pixel; loss = 1 - mean(cap) / mean(no cap)\n\n",
-    options.Width,
-    options.Height,
-    options.Samples);
+  std::printf("%d x %d, %d paths per pixel; loss = 1 - mean(cap) / mean(no cap)\n\n", options.Width,
+    options.Height, options.Samples);
   std::printf("| scene | cap | image mean | loss | relative standard error of the image mean | "
               "time |\n"
               "|---|---|---|---|---|---|\n");
@@ -773,13 +698,8 @@ int Bounces(const Options& options)
       }
       if (cap == (1 << 24))
         uncapped = mean;
-      std::printf("| %s | %d | %.5f | %.2e | %.2e | %.1f s |\n",
-        errorField.Name,
-        cap,
-        mean,
-        1.0 - mean / uncapped,
-        std::sqrt(variance) / mean,
-        image.Seconds);
+      std::printf("| %s | %d | %.5f | %.2e | %.2e | %.1f s |\n", errorField.Name, cap, mean,
+        1.0 - mean / uncapped, std::sqrt(variance) / mean, image.Seconds);
       std::fflush(stdout);
     }
   }
@@ -807,12 +727,8 @@ MarchUniforms UniformsOf(vtkImageData* field, const TransferTable& table, LocalF
 
 // The optical depth from index point p along the direction l over [s0, s1] (local units), by
 // the midpoint rule with steps of 1/16 of the smallest voxel: the exact integral to 1e-4.
-double OpticalDepth(const MarchUniforms& u,
-  const LocalFrame& frame,
-  glm::vec3 p,
-  glm::vec3 l,
-  double s0,
-  double s1)
+double OpticalDepth(
+  const MarchUniforms& u, const LocalFrame& frame, glm::vec3 p, glm::vec3 l, double s0, double s1)
 {
   const double ds = frame.SmallestVoxelEdge / frame.Unit / 16.0;
   const glm::vec3 indexStep = LocalToIndex(u, l);
@@ -840,15 +756,8 @@ struct Percentiles
       mean += x;
     mean /= double(v.size());
     char text[160];
-    std::snprintf(text,
-      sizeof(text),
-      "mean %.4f%s, 5%% %.4f, median %.4f, 95%% %.4f, max %.4f",
-      mean,
-      unit,
-      v[v.size() / 20],
-      v[v.size() / 2],
-      v[v.size() * 19 / 20],
-      v.back());
+    std::snprintf(text, sizeof(text), "mean %.4f%s, 5%% %.4f, median %.4f, 95%% %.4f, max %.4f",
+      mean, unit, v[v.size() / 20], v[v.size() / 2], v[v.size() * 19 / 20], v.back());
     return text;
   }
 };
@@ -924,11 +833,8 @@ void OpacityBins(const char* label, const Rendered& image, const Rendered& refer
       }
     }
     if (pixels > 0)
-      std::printf(" opacity [%.2f, %.2f): %.2f (%d px);",
-        edges[b],
-        std::min(edges[b + 1], 1.0),
-        sum / referenceSum,
-        pixels);
+      std::printf(" opacity [%.2f, %.2f): %.2f (%d px);", edges[b], std::min(edges[b + 1], 1.0),
+        sum / referenceSum, pixels);
   }
   std::printf("\n");
 }
@@ -960,9 +866,7 @@ std::vector<int> Outliers(const Rendered& image, int width, int height, double f
 int Defects(const Options& options)
 {
   std::printf("The march's defects, measured (%d x %d images, path tracer %d paths per pixel).\n",
-    options.Width,
-    options.Height,
-    options.Samples);
+    options.Width, options.Height, options.Samples);
   for (const ErrorField& errorField : ErrorFields())
   {
     const BenchScene& scene = errorField.Scene;
@@ -982,15 +886,12 @@ int Defects(const Options& options)
       lighting.Model = LightingModel::March;
       auto march = NewMarch(scene, field, gray, lighting, { side }, options);
       char label[120];
-      std::snprintf(label,
-        sizeof(label),
-        "side-lit, albedo %.1f, march (defaults) / path tracer",
+      std::snprintf(label, sizeof(label), "side-lit, albedo %.1f, march (defaults) / path tracer",
         double(albedo));
       OpacityBins(label, Run(march), reference);
       lighting.LightSteps = 12; // twice the segments, over the same way to the exit
       march->GetLightingProperty()->SetParameters(lighting);
-      std::snprintf(label,
-        sizeof(label),
+      std::snprintf(label, sizeof(label),
         "side-lit, albedo %.1f, march with 12 growing light "
         "steps / path tracer",
         double(albedo));
@@ -1032,13 +933,8 @@ int Defects(const Options& options)
     const auto firstSampleOutside = [&](int pixel)
     {
       glm::dvec3 nearPoint, farPoint;
-      vtkCloudReferenceRenderer::PixelRay(deviceToLocal,
-        pixel % options.Width,
-        pixel / options.Width,
-        options.Width,
-        options.Height,
-        nearPoint,
-        farPoint);
+      vtkCloudReferenceRenderer::PixelRay(deviceToLocal, pixel % options.Width,
+        pixel / options.Width, options.Width, options.Height, nearPoint, farPoint);
       const glm::vec3 toFar = glm::vec3(farPoint) - glm::vec3(nearPoint);
       const glm::vec3 origin = IndexOfLocal(u, glm::vec3(nearPoint));
       const glm::vec3 direction = LocalToIndex(u, toFar / glm::length(toFar));
@@ -1065,11 +961,8 @@ int Defects(const Options& options)
     std::printf("  step %s: %d of %d pixels have their first sample outside by rounding, and are "
                 "on average %.1fx brighter than the others; %d pixels are > 3x the median of "
                 "their neighbours, %d of them with the first sample outside\n",
-      step > 0.0 ? "0.005" : "default (1 voxel)",
-      outside,
-      dense,
-      (radiance[1] / std::max(outside, 1)) / (radiance[0] / std::max(dense - outside, 1)),
-      outliers,
+      step > 0.0 ? "0.005" : "default (1 voxel)", outside, dense,
+      (radiance[1] / std::max(outside, 1)) / (radiance[0] / std::max(dense - outside, 1)), outliers,
       outlierOutside);
   }
   return 0;

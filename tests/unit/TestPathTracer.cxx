@@ -53,10 +53,8 @@ vtkSmartPointer<vtkCloudPathTracer> Tracer(vtkImageData* field,
 // constant sigma_t, wide enough that light reaching the framed middle enters through its faces.
 vtkSmartPointer<vtkImageData> ConstantSlab(double thickness)
 {
-  return MakeBoxField({ 17, 17, 9 },
-    { -2.0, -2.0, -0.5 * thickness },
-    { 2.0, 2.0, 0.5 * thickness },
-    [](double, double, double) { return 1.0; });
+  return MakeBoxField({ 17, 17, 9 }, { -2.0, -2.0, -0.5 * thickness },
+    { 2.0, 2.0, 0.5 * thickness }, [](double, double, double) { return 1.0; });
 }
 
 // Seen along `view`, the opacity of each pixel of the field over [0, 1]^3 is 1 - exp(-optical
@@ -82,19 +80,13 @@ void ExpectOpacityOfTheOpticalDepth(vtkImageData* field,
   const Image exact = Render(march);
   const auto inCloud = [&](std::size_t p) { return exact.At(p, 3) > 0.0f; };
   ExpectNoDifference(
-    traced,
-    3,
-    [&](std::size_t p) { return traced.At(p, 3) - exact.At(p, 3); },
-    [&](std::size_t p) { return traced.VarianceAt(p, 3); },
-    inCloud,
+    traced, 3, [&](std::size_t p) { return traced.At(p, 3) - exact.At(p, 3); },
+    [&](std::size_t p) { return traced.VarianceAt(p, 3); }, inCloud,
     MeanOverPixels(
-      exact,
-      [&](std::size_t p) { return exact.At(p, 3); },
-      [](std::size_t) { return 0.0; },
+      exact, [&](std::size_t p) { return exact.At(p, 3); }, [](std::size_t) { return 0.0; },
       inCloud)
       .Mean,
-    8,
-    "opacity");
+    8, "opacity");
 }
 }
 
@@ -233,9 +225,7 @@ TEST(PathTracer, SlabTransmittanceIsExpOfMinusSigmaTimesPath)
   // reports.
   const double thickness = 9.0 / 16.0;
   const float sigma_t = 2.5f;
-  auto slab = MakeBoxField({ 17, 17, 33 },
-    { -2.0, -2.0, -1.0 },
-    { 2.0, 2.0, 1.0 },
+  auto slab = MakeBoxField({ 17, 17, 33 }, { -2.0, -2.0, -1.0 }, { 2.0, 2.0, 1.0 },
     [](double, double, double z) { return std::abs(z) <= 0.25 + 1e-9 ? 1.0 : 0.0; });
   auto tracer = Tracer(slab, 32, LinearMedium(sigma_t));
   SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(-0.6, 0.0, -0.8), 0.5);
@@ -244,8 +234,7 @@ TEST(PathTracer, SlabTransmittanceIsExpOfMinusSigmaTimesPath)
   ASSERT_EQ(image.Pixels(), 32u * 32u);
   const double alpha = 1.0 - std::exp(-sigma_t * thickness / 0.8);
   const Estimate mean = MeanOverPixels(
-    image,
-    [&](std::size_t p) { return image.At(p, 3); },
+    image, [&](std::size_t p) { return image.At(p, 3); },
     [&](std::size_t p) { return image.VarianceAt(p, 3); });
   EXPECT_NEAR(mean.Mean, alpha, Sigmas * mean.StandardError);
   EXPECT_LT(mean.StandardError, 0.01 * alpha); // the check is tight
@@ -269,9 +258,7 @@ TEST(PathTracer, SphereTransmittanceAlongItsDiameterAndEverywhereAsTheOpticalDep
   // ray the trilinear ramps add half a voxel at each end, so the chord is 2 r, r = 16 voxels.
   const int n = 48;
   const double spacing = 1.0 / (n - 1), radius = 15.6 * spacing;
-  auto field = MakeBoxField({ n, n, n },
-    glm::dvec3(0.0),
-    glm::dvec3(1.0),
+  auto field = MakeBoxField({ n, n, n }, glm::dvec3(0.0), glm::dvec3(1.0),
     [=](double x, double y, double z)
     {
       const double dx = x - 0.5, dy = y - 0.5, dz = z - 0.5;
@@ -285,8 +272,7 @@ TEST(PathTracer, SphereTransmittanceAlongItsDiameterAndEverywhereAsTheOpticalDep
   centre->SetSamplesPerPixel(512);
   const Image image = Render(centre);
   const Estimate mean = MeanOverPixels(
-    image,
-    [&](std::size_t p) { return image.At(p, 3); },
+    image, [&](std::size_t p) { return image.At(p, 3); },
     [&](std::size_t p) { return image.VarianceAt(p, 3); });
   EXPECT_NEAR(mean.Mean, 1.0 - std::exp(-1.2), Sigmas * mean.StandardError);
   EXPECT_LT(mean.StandardError, 0.01);
@@ -300,12 +286,9 @@ TEST(PathTracer, EmptySpaceIsLeaptWithoutMissingTheCloud)
   // Three small homogeneous balls far apart in a large empty box: walks leap over blocks of
   // empty bricks, yet every ray's opacity is that of the balls it crosses.
   const int n = 64;
-  const std::vector<glm::dvec3> centres = {
-    { 0.25, 0.3, 0.7 }, { 0.7, 0.65, 0.3 }, { 0.45, 0.5, 0.5 }
-  };
-  auto field = MakeBoxField({ n, n, n },
-    glm::dvec3(0.0),
-    glm::dvec3(1.0),
+  const std::vector<glm::dvec3> centres = { { 0.25, 0.3, 0.7 }, { 0.7, 0.65, 0.3 },
+    { 0.45, 0.5, 0.5 } };
+  auto field = MakeBoxField({ n, n, n }, glm::dvec3(0.0), glm::dvec3(1.0),
     [&](double x, double y, double z)
     {
       // Sharp edges: the first occupied brick a walk meets holds dense voxels.
@@ -358,8 +341,7 @@ TEST(PathTracer, SingleScatteringOfASlabMatchesItsClosedForm)
       {
         const double expected = PhaseToRadiance * 1.5 * albedo[channel] * phase * path;
         const Estimate mean = MeanOverPixels(
-          image,
-          [&](std::size_t p) { return image.At(p, channel); },
+          image, [&](std::size_t p) { return image.At(p, channel); },
           [&](std::size_t p) { return image.VarianceAt(p, channel); });
         EXPECT_NEAR(mean.Mean, expected, Sigmas * mean.StandardError)
           << "sigma_t " << sigma_t << ", cosine " << c << ", channel " << channel;
@@ -393,9 +375,7 @@ TEST(PathTracer, WhiteFurnaceMediumVanishesIntoTheEnvironment)
     };
     const auto all = [](std::size_t) { return true; };
     const double radiance = MeanOverPixels(
-      image,
-      [&](std::size_t p) { return image.At(p, channel); },
-      [](std::size_t) { return 0.0; },
+      image, [&](std::size_t p) { return image.At(p, channel); }, [](std::size_t) { return 0.0; },
       all)
                               .Mean;
     ExpectNoDifference(
@@ -426,8 +406,7 @@ TEST(PathTracer, AbsorptionRemovesOneMinusAlbedoOfTheExtinguishedLight)
     const Image image = Render(tracer);
     const double expected = std::exp(-(1.0 - a) * sigma_t * L) - std::exp(-sigma_t * L);
     const Estimate mean = MeanOverPixels(
-      image,
-      [&](std::size_t p) { return image.At(p, 1); },
+      image, [&](std::size_t p) { return image.At(p, 1); },
       [&](std::size_t p) { return image.VarianceAt(p, 1); });
     EXPECT_NEAR(mean.Mean, expected, Sigmas * mean.StandardError) << "albedo " << a;
     EXPECT_LT(mean.StandardError, 0.01 * expected);
@@ -534,21 +513,12 @@ TEST(PathTracer, BrickSizeChangesOnlyTheNoise)
     { return images[0].VarianceAt(p, channel) + images[1].VarianceAt(p, channel); };
     const auto inCloud = [&](std::size_t p) { return images[0].At(p, 3) > 0.0f; };
     const double value = MeanOverPixels(
-      images[0],
-      [&](std::size_t p) { return images[0].At(p, channel); },
-      [](std::size_t) { return 0.0; },
-      inCloud)
+      images[0], [&](std::size_t p) { return images[0].At(p, channel); },
+      [](std::size_t) { return 0.0; }, inCloud)
                            .Mean;
     // Two noisy images: their difference has twice the variance of either.
-    ExpectNoDifference(images[0],
-      4,
-      difference,
-      variance,
-      inCloud,
-      value,
-      8,
-      "channel " + std::to_string(channel),
-      0.03);
+    ExpectNoDifference(images[0], 4, difference, variance, inCloud, value, 8,
+      "channel " + std::to_string(channel), 0.03);
   }
 }
 
@@ -558,9 +528,7 @@ TEST(PathTracer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
   // each placement moves the field, the camera and the light alike, so the picture, with every
   // order of scattering, a light and the ambient, must not change beyond the noise. (The path
   // tracer computes in the march's local frame with its uniforms, SetUpMarch's.)
-  auto field = MakeBoxField({ 24, 24, 24 },
-    glm::dvec3(-1.0),
-    glm::dvec3(1.0),
+  auto field = MakeBoxField({ 24, 24, 24 }, glm::dvec3(-1.0), glm::dvec3(1.0),
     [](double x, double y, double z)
     {
       const double u = (x - 0.3) / 0.5, v = (y + 0.1) / 0.3, w = z / 0.4;
@@ -588,21 +556,13 @@ TEST(PathTracer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
     {
       const auto inCloud = [&](std::size_t p) { return base.At(p, 3) > 0.0f; };
       const double value = MeanOverPixels(
-        base,
-        [&](std::size_t p) { return base.At(p, channel); },
-        [](std::size_t) { return 0.0; },
+        base, [&](std::size_t p) { return base.At(p, channel); }, [](std::size_t) { return 0.0; },
         inCloud)
                              .Mean;
       ExpectNoDifference(
-        image,
-        4,
-        [&](std::size_t p) { return image.At(p, channel) - base.At(p, channel); },
+        image, 4, [&](std::size_t p) { return image.At(p, channel) - base.At(p, channel); },
         [&](std::size_t p) { return image.VarianceAt(p, channel) + base.VarianceAt(p, channel); },
-        inCloud,
-        value,
-        6,
-        what + ", channel " + std::to_string(channel),
-        0.03);
+        inCloud, value, 6, what + ", channel " + std::to_string(channel), 0.03);
     }
   };
 
@@ -679,9 +639,7 @@ TEST(PathTracer, AnExtinctionTooLargeForFloatStillEndsEveryPath)
   // majorant spaces tentative collisions 1e-9 apart, which cannot move a float t of order 1,
   // and nearly all are rejected. The render still ends, and quickly (the tracking gives up
   // after MaxTentativeCollisions: the ray is opaque, the path ends).
-  auto field = MakeBoxField({ 5, 5, 5 },
-    glm::dvec3(-1.0),
-    glm::dvec3(1.0),
+  auto field = MakeBoxField({ 5, 5, 5 }, glm::dvec3(-1.0), glm::dvec3(1.0),
     [](double x, double y, double z) { return x == 0.0 && y == 0.0 && z == 0.0 ? 1.0 : 0.0; });
   auto tracer = Tracer(field, 2, LinearMedium(1e9f));
   SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), 0.5);
