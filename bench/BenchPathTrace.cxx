@@ -1373,7 +1373,7 @@ void PrintBeforeAfter(const char* title,
 
 int Fit(const Options& options)
 {
-  const double start = vtkTimerLog::GetUniversalTime();
+  const double fitStart = vtkTimerLog::GetUniversalTime();
   std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d, seed %u; fields on %s "
               "voxels; split %s\n",
     options.Width,
@@ -1610,7 +1610,7 @@ int Fit(const Options& options)
     FitErrors(cases, derivativeAt(log2h)));
 
   std::printf("\nthe whole fit took %.0f s (references %.0f s)\n",
-    vtkTimerLog::GetUniversalTime() - start,
+    vtkTimerLog::GetUniversalTime() - fitStart,
     referenceSeconds);
   return 0;
 }
