@@ -1327,6 +1327,13 @@ std::pair<double, double> GoldenSection(const std::function<double(double)>& f,
   return f1 < f2 ? std::make_pair(x1, f1) : std::make_pair(x2, f2);
 }
 
+// A case's name as a file name: "dense, side, albedo 1.0" -> "dense,_side,_albedo_1.0".
+std::string FileLabel(std::string name)
+{
+  std::replace(name.begin(), name.end(), ' ', '_');
+  return name;
+}
+
 // The per-case table of two settings' errors, and the aggregates of each set.
 void PrintBeforeAfter(const char* title,
   const std::vector<FitCase>& cases,
@@ -1423,10 +1430,8 @@ int Fit(const Options& options)
         c.Octaves = std::make_unique<PreparedMarch>(c.March, field);
         if (Run(c.March).RGBA != c.Octaves->Render(lighting))
           Fail(c.Name + ": the prepared march differs from vtkCloudReferenceRenderer's");
-        std::string label = c.Name;
-        std::replace(label.begin(), label.end(), ' ', '_');
         WritePng(options.PngDirectory,
-          label + "-pathtrace",
+          FileLabel(c.Name) + "-pathtrace",
           c.Reference.RGBA,
           options.Width,
           options.Height);
@@ -1555,23 +1560,18 @@ int Fit(const Options& options)
   const std::vector<ImageError> after = FitErrors(cases, best);
   PrintBeforeAfter(
     "march, light volumes (the default): before the fit, and fitted", cases, before, after);
-  for (FitCase& c : cases)
-  {
-    std::string label = c.Name;
-    std::replace(label.begin(), label.end(), ' ', '_');
-    c.March->GetLightingProperty()->SetParameters(best);
-    WritePng(options.PngDirectory,
-      label + "-march-fitted",
-      Run(c.March).RGBA,
-      options.Width,
-      options.Height);
-    c.March->GetLightingProperty()->SetParameters(base);
-    WritePng(options.PngDirectory,
-      label + "-march-defaults",
-      Run(c.March).RGBA,
-      options.Width,
-      options.Height);
-  }
+  if (!options.PngDirectory.empty())
+    for (FitCase& c : cases)
+      for (const auto& [lighting, suffix] :
+        { std::make_pair(best, "-march-fitted"), std::make_pair(base, "-march-before") })
+      {
+        c.March->GetLightingProperty()->SetParameters(lighting);
+        WritePng(options.PngDirectory,
+          FileLabel(c.Name) + suffix,
+          Run(c.March).RGBA,
+          options.Width,
+          options.Height);
+      }
 
   // The check with the nested light march.
   LightingParameters baseNested = base, bestNested = best;
