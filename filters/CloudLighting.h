@@ -96,11 +96,13 @@ struct LightingParameters
   float PhaseG2 = -0.3f;
   float PhaseLobeWeight = 0.8f;
   // Approximate multiple scattering: octaves n = 1..N added to single scattering (n = 0), each
-  // scaling scattering by a^n, extinction toward the light by b^n, eccentricity by c^n.
+  // scaling scattering by a^n, extinction toward the light by b^n, eccentricity by c^n. The
+  // values are fitted to the path tracer (`cloudvis-bench-pathtrace fit`, docs/lighting.md
+  // "Fitting the march to the path tracer"); until that fit they were 3 and 0.5, 0.5, 0.5.
   int MultipleScatteringOctaves = 3;
-  float ScatteringFalloff = 0.5f;   // a
-  float ExtinctionFalloff = 0.5f;   // b
-  float EccentricityFalloff = 0.5f; // c
+  float ScatteringFalloff = 0.41f;   // a
+  float ExtinctionFalloff = 0.26f;   // b
+  float EccentricityFalloff = 0.46f; // c
   // Non-physical "powder" darkening of thin regions (an artistic term): 0 disables.
   float PowderStrength = 0.0f;
 };

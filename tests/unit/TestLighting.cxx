@@ -155,6 +155,7 @@ TEST(Lighting, OctaveNCarriesTheAlbedoNMoreTimes)
   // once, so octave n carries albedo^n, per channel: F = sum a^n albedo^n P(mu, c^n) exp(-b^n tau).
   LightingParameters p;
   p.MultipleScatteringOctaves = 3;
+  p.ScatteringFalloff = p.ExtinctionFalloff = p.EccentricityFalloff = 0.5f; // as written below
   const glm::vec3 albedo(1.0f, 0.9f, 0.5f);
   for (float tau : { 0.0f, 1.2f })
   {

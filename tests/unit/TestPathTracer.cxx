@@ -5,17 +5,21 @@
 // sampling of the two-lobe phase, the random numbers, and determinism. Every statistical check
 // compares a difference with the standard error the path tracer reports (or an exact one), at
 // 4 sigma: tight, and a false alarm only once in ~16,000 checks.
+#include "CloudImageComparison.h"
 #include "CloudMarchUniforms.h"
 #include "CloudPathTrace.h"
 #include "RendererTestSupport.h"
+#include "vtkCloudDensitySource.h"
 #include "vtkCloudLightingProperty.h"
 #include "vtkCloudPathTracer.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCallbackCommand.h>
+#include <vtkColorTransferFunction.h>
 #include <vtkCommand.h>
 #include <vtkMath.h>
 #include <vtkMatrix4x4.h>
+#include <vtkPiecewiseFunction.h>
 #include <vtkSMPTools.h>
 
 #include <gtest/gtest.h>
@@ -23,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace cloudvis;
@@ -738,4 +743,70 @@ TEST(PathTracer, NextEventEstimationIsTheShadowedLightFromEachSource)
     EXPECT_NEAR(DirectLight(lit, pt, p, d, rng).g, expected[light], 1e-5 * expected[light])
       << "light " << light;
   }
+}
+
+TEST(PathTracer, ShippedMarchDefaultsStayNearThePathTracerOnAHeldOutCase)
+{
+  // What the fit of the octaves (docs/lighting.md, "Fitting the march to the path tracer")
+  // promises a user: with its shipped defaults (light volumes, the fitted octaves) the march is
+  // this close to the ground truth on a field the fit never saw. The field is the held-out
+  // perlin-falloff scene's (data/scenes/perlin-falloff.json: one octave of Perlin noise times a
+  // smooth falloff in a sphere) on 32^3 voxels, its opacity, albedo 1, lit from the side, no
+  // ambient; the error is the noise-corrected relative RMSE (CloudImageComparison.h).
+  FieldDescription description;
+  description.Model = DensityModel::FbmFalloff;
+  description.DensityScale = 2.0;
+  description.FalloffWidth = 1.0;
+  description.Noise.Type = noise::NoiseType::Perlin;
+  description.Noise.Octaves = 1;
+  description.Noise.Frequency = 2.0;
+  description.Noise.Amplitude = 1.0;
+  description.Wind = glm::dvec3(0.0);
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetDimensions(32, 32, 32);
+  const double bounds[6] = { -1.0, 1.0, -1.0, 1.0, -1.0, 1.0 };
+  source->SetBounds(bounds);
+  source->SetField(description);
+  source->Update();
+  vtkNew<vtkPiecewiseFunction> opacity;
+  for (const auto& [density, alpha] : std::vector<std::pair<double, double>>{
+         { 0.0, 0.0 }, { 0.05, 0.0 }, { 1.0, 0.25 }, { 2.0, 0.5 } })
+    opacity->AddPoint(density, alpha);
+  vtkNew<vtkColorTransferFunction> white;
+  white->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
+  white->AddRGBPoint(2.0, 1.0, 1.0, 1.0);
+  vtkNew<vtkVolumeProperty> medium;
+  medium->SetScalarOpacity(opacity);
+  medium->SetColor(white);
+  medium->SetScalarOpacityUnitDistance(0.1);
+  const auto lights = MakeLights({ DirectionalLight({ 1.0f, 0.0f, 0.0f }) });
+  const glm::dvec3 view(0.0, 0.0, -1.0);
+
+  auto tracer = Tracer(source->GetOutput(), 32, medium);
+  SetParallelView(tracer, glm::dvec3(0.0), view, 1.0);
+  tracer->SetLights(lights);
+  tracer->SetSamplesPerPixel(2048);
+  const Image traced = Render(tracer);
+
+  vtkNew<vtkCloudReferenceRenderer> march;
+  march->SetInputData(source->GetOutput());
+  march->SetImageSize(32, 32);
+  SetParallelView(march, glm::dvec3(0.0), view, 1.0);
+  march->SetVolumeProperty(medium);
+  LightingParameters defaults;
+  defaults.Model = LightingModel::March;
+  march->GetLightingProperty()->SetParameters(defaults);
+  march->SetLights(lights);
+  const Image marched = Render(march);
+
+  const ImageError error = CompareWithReference(
+    marched.RGBA.data(), traced.RGBA.data(), traced.Variance.data(), traced.Pixels());
+  // Measured: 94.3% from the ground truth, 1.71 times too bright (the octaves' limit on thin
+  // clouds, docs/lighting.md); with the octaves before the fit (0.5, 0.5, 0.5) 134.2% and 1.99.
+  // The reference's own noise: 7.0%.
+  EXPECT_GT(error.Pixels, 100u);
+  EXPECT_LT(error.ReferenceRelativeStandardError, 0.1); // the check is not drowned in noise
+  EXPECT_LT(error.NoiseCorrectedRelativeRMSE, 1.15);
+  EXPECT_LT(error.BiasRatio, 1.85);
+  EXPECT_GT(error.BiasRatio, 1.0);
 }
