@@ -294,27 +294,30 @@ void CompareStorage(vtkImageData* field, const Options& options)
 }
 }
 
+// The sun every lit measure uses (the lighting comparison, the matrix, one model alone): a
+// directional scene light of intensity 1 from (6, 8, 4) toward the origin.
+void AddSun(vtkRenderer* renderer)
+{
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(6.0, 8.0, 4.0);
+  sun->SetFocalPoint(0.0, 0.0, 0.0);
+  sun->SetIntensity(1.0);
+  renderer->AddLight(sun);
+}
+
 // Issue 4's figures: the cost of each lighting model on the sparse cloud with one sun, against
 // VTK's mapper with shading on; issue 12's: the march with light volumes against the nested
 // march, and the volumes' recompute time.
 void CompareLighting(vtkImageData* field, const Options& options)
 {
   const double step = 4.0 / (options.Size - 1);
-  const auto addSun = [](vtkRenderer* renderer)
-  {
-    vtkNew<vtkLight> sun;
-    sun->SetLightTypeToSceneLight();
-    sun->SetPositional(false);
-    sun->SetPosition(6.0, 8.0, 4.0);
-    sun->SetFocalPoint(0.0, 0.0, 0.0);
-    sun->SetIntensity(1.0);
-    renderer->AddLight(sun);
-  };
 
   auto vtkMapper = MatchedVtkMapper(step);
   View vtk(vtkMapper, field, options);
   vtk.Property->ShadeOn();
-  addSun(vtk.Renderer);
+  AddSun(vtk.Renderer);
   const double vtkShadedMs = vtk.MillisecondsPerFrame(options.Frames, [] {});
 
   std::printf("lighting on the sparse field (%d^3, %dx%d, one light):\n",
@@ -360,7 +363,7 @@ void CompareLighting(vtkImageData* field, const Options& options)
     lighting.Transmittance = setting.Transmittance;
     mapper->GetLightingProperty()->SetParameters(lighting);
     View cloud(mapper, field, options);
-    addSun(cloud.Renderer);
+    AddSun(cloud.Renderer);
     vtkLight* sun = vtkLight::SafeDownCast(cloud.Renderer->GetLights()->GetItemAsObject(0));
     int frame = 0;
     const double ms = cloud.MillisecondsPerFrame(options.Frames,
@@ -596,25 +599,21 @@ int PositiveInteger(const std::string& text)
 void SetLights(vtkRenderer* renderer, int count)
 {
   renderer->RemoveAllLights();
-  for (int i = 0; i < count; ++i)
+  if (count >= 1)
+  {
+    AddSun(renderer);
+  }
+  if (count >= 2)
   {
     vtkNew<vtkLight> light;
     light->SetLightTypeToSceneLight();
     light->SetFocalPoint(0.0, 0.0, 0.0);
-    if (i == 0)
-    {
-      light->SetPositional(false);
-      light->SetPosition(6.0, 8.0, 4.0);
-    }
-    else
-    {
-      light->SetPositional(true);
-      light->SetConeAngle(180.0);
-      light->SetPosition(-2.2, -0.5, 1.5);
-      light->SetDiffuseColor(1.0, 0.4, 0.7);
-      light->SetIntensity(1.5);
-      light->SetAttenuationValues(0.0, 0.0, 1.0);
-    }
+    light->SetPositional(true);
+    light->SetConeAngle(180.0);
+    light->SetPosition(-2.2, -0.5, 1.5);
+    light->SetDiffuseColor(1.0, 0.4, 0.7);
+    light->SetIntensity(1.5);
+    light->SetAttenuationValues(0.0, 0.0, 1.0);
     renderer->AddLight(light);
   }
 }
@@ -627,38 +626,6 @@ long long DriverBytesUsedBy(vtkRenderWindow* window, const std::function<void()>
   window->WaitForCompletion();
   const long long after = vtkCloudVolumeMapper::GetFreeGPUMemoryBytes(window);
   return before >= 0 && after >= 0 ? before - after : -1;
-}
-
-int BytesPerVoxel(int scalarType)
-{
-  return scalarType == VTK_UNSIGNED_CHAR ? 1 : (scalarType == VTK_UNSIGNED_SHORT ? 2 : 4);
-}
-
-const char* ScalarTypeName(int scalarType)
-{
-  return scalarType == VTK_UNSIGNED_CHAR
-    ? "unsigned char"
-    : (scalarType == VTK_UNSIGNED_SHORT ? "unsigned short" : "float");
-}
-
-// Host memory available now (MemAvailable), or -1.
-long long AvailableHostBytes()
-{
-  std::FILE* file = std::fopen("/proc/meminfo", "r");
-  long long kib = -1;
-  if (file)
-  {
-    char line[256];
-    while (std::fgets(line, sizeof line, file))
-    {
-      if (std::sscanf(line, "MemAvailable: %lld kB", &kib) == 1)
-      {
-        break;
-      }
-    }
-    std::fclose(file);
-  }
-  return kib >= 0 ? 1024 * kib : -1;
 }
 
 std::string Ms(double ms)
@@ -758,7 +725,7 @@ VtkResults MeasureVtk(vtkImageData* field,
   GLint largest = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
   const long long textureBytes =
-    (long long)size * size * size * BytesPerVoxel(field->GetScalarType());
+    (long long)size * size * size * vtkAbstractArray::GetDataTypeSize(field->GetScalarType());
   const long long free = vtkCloudVolumeMapper::GetFreeGPUMemoryBytes(view.Window);
   if (size > largest || (free >= 0 && textureBytes > free))
   {
@@ -1076,7 +1043,7 @@ int Run(int argc, char* argv[])
   std::printf("fields stored as %s; %d frames per measure (after one warm-up), %d interactive; "
               "ms/frame to the GPU's completion (glFinish); the path-traced model is measured "
               "by cloudvis-bench-gpu-pathtrace\n\n",
-    ScalarTypeName(settings.ScalarType),
+    vtkImageScalarTypeNameMacro(settings.ScalarType),
     settings.Frames,
     settings.InteractiveFrames);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -1091,17 +1058,18 @@ int Run(int argc, char* argv[])
       // The field once in host memory, and a copy in the driver's (llvmpipe's textures are host
       // memory too; a GPU driver may stage it).
       const long long fieldBytes =
-        (long long)size * size * size * BytesPerVoxel(settings.ScalarType);
+        (long long)size * size * size * vtkAbstractArray::GetDataTypeSize(settings.ScalarType);
       const long long needed = 2 * fieldBytes + 32LL * size * size * 4;
-      const long long available = AvailableHostBytes();
-      if (available >= 0 && needed > available)
+      const long long available = static_cast<long long>(cloudvis::AvailableMemoryBytes());
+      if (available > 0 && needed > available)
       {
         Row row;
         row.Field = fieldName;
         row.Size = size;
         row.Model = "all";
-        row.Refused = "skipped: the " + std::string(ScalarTypeName(settings.ScalarType)) +
-          " field needs about " + cloudvis::FormatBytes(double(needed)) + " of host memory, " +
+        row.Refused = "skipped: the " +
+          std::string(vtkImageScalarTypeNameMacro(settings.ScalarType)) + " field needs about " +
+          cloudvis::FormatBytes(double(needed)) + " of host memory, " +
           cloudvis::FormatBytes(double(available)) + " available";
         PrintRow(row);
         rows.push_back(row);
@@ -1202,10 +1170,7 @@ int main(int argc, char* argv[])
     lighting.Model = cloudvis::LightingModel(std::atoi(only));
     mapper->GetLightingProperty()->SetParameters(lighting);
     View cloud(mapper, field, options);
-    vtkNew<vtkLight> sun;
-    sun->SetPosition(6.0, 8.0, 4.0);
-    sun->SetFocalPoint(0.0, 0.0, 0.0);
-    cloud.Renderer->AddLight(sun);
+    AddSun(cloud.Renderer);
     std::printf(
       "%.1f ms\n", cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); }));
     mapper->CollectStatisticsOn();
