@@ -787,6 +787,35 @@ TEST(ParallelFiles, PiecesWrittenByVtkKeepTheDirectionOfTheirPieces)
   ExpectSameField(field, cloudvis::ReadField(path));
 }
 
+// Pieces that share points must agree there: VTK's reader takes each point from one piece and
+// never reads the other's, so a conflict was resolved silently by the pieces' order. Pieces are
+// named as their files are, from 0.
+TEST(ParallelFiles, OverlappingPiecesMustHoldEqualValuesWhereTheyOverlap)
+{
+  TemporaryDirectory dir;
+  const auto field = RotatedField();
+  const std::string path = dir.File("p.pvti");
+  cloudvis::WriteFieldPieces(field, path, 2);
+  ExpectSameField(field, cloudvis::ReadField(path)) /* a shared plane of equal values */;
+  // Piece 1 (x from 7 to 12) with another value at the first point of the plane x = 7 it shares
+  // with piece 0.
+  const cloudvis::Extent second =
+    cloudvis::PieceExtent(cloudvis::LatticeOf(field).WholeExtent, 1, 2);
+  ASSERT_EQ(second[0], 7);
+  const auto piece = cloudvis::ExtractPiece(field, second);
+  int first[3] = { 7, -3, 1 };
+  piece->GetPointData()->GetScalars()->SetComponent(piece->ComputePointId(first), 0, 999.0);
+  cloudvis::WriteVtkXmlImageFile(piece, dir.File("p_1.vti"), dir.File("p_1.vti"));
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
+              .find("p.pvti: piece 0 (p_0.vti) and piece 1 (p_1.vti) overlap and disagree: at "
+                    "point (7, -3, 1) \"density\" is 107 in piece 0 and 999 in piece 1"),
+    std::string::npos);
+  std::filesystem::remove(dir.File("p_1.vti"));
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
+              .find("p.pvti: piece 1 (p_1.vti): cannot read field piece"),
+    std::string::npos);
+}
+
 // `generate -o f.pvti --pieces N` generates each piece by itself (vtkCloudDensitySource fills
 // exactly the extent asked for): the pieces assemble into the field generated whole, bit for bit.
 TEST(ParallelFiles, GeneratedPiecesEqualTheWholeFieldBitForBit)
