@@ -513,7 +513,8 @@ std::vector<Piece> ListPieces(const std::string& path, const std::string& xml)
   return pieces;
 }
 
-// The points of `region` (inside the piece's extent) as the piece's file holds them.
+// The points of `region` (inside the piece's extent) as the piece's file holds them, in an image
+// that may cover more.
 vtkSmartPointer<vtkImageData> ReadPieceRegion(const std::string& path,
   const std::string& number,
   const Piece& piece,
@@ -523,7 +524,12 @@ vtkSmartPointer<vtkImageData> ReadPieceRegion(const std::string& path,
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName(piece.Path.c_str());
   reader->UpdateInformation();
-  static_cast<vtkAlgorithm*>(reader)->UpdateExtent(region.data());
+  // Whole rows of the piece: a part of a row (a plane x = const, as pieces split along x share)
+  // makes VTK decompress a block for every row, 20 times slower at 320^3 in 8 pieces.
+  Extent rows = region;
+  rows[0] = piece.Region[0];
+  rows[1] = piece.Region[1];
+  static_cast<vtkAlgorithm*>(reader)->UpdateExtent(rows.data());
   vtkImageData* image = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
   {
