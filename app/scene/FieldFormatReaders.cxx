@@ -61,6 +61,8 @@ const std::vector<RawType>& RawTypes()
     { "int16", VTK_SHORT, 2 },
     { "uint32", VTK_UNSIGNED_INT, 4 },
     { "int32", VTK_INT, 4 },
+    { "uint64", VTK_TYPE_UINT64, 8 },
+    { "int64", VTK_TYPE_INT64, 8 },
     { "float32", VTK_FLOAT, 4 },
     { "float64", VTK_DOUBLE, 8 },
   };

@@ -2,15 +2,15 @@
 // the one translation unit that includes OpenVDB's headers (they are heavy: keep them here).
 //
 // Reading: one float grid (field.array names it; by default "density", else the first float grid)
-// is copied onto a dense vtkImageData covering its active bounding box at its voxel size: VDB
-// index (i, j, k) is image point (i, j, k), so no value is interpolated, and inactive voxels inside
-// the box take the grid's background. The grid's transform becomes the image's geometry: a linear
-// map (scale, translation, rotation, or any affine map whose axes are perpendicular) gives the
-// origin, spacing and direction; a frustum or a sheared map is refused, since image data cannot
-// represent it. The size (field.max_voxels, memory) is checked against the tree's active
-// bounding box before the dense copy is allocated. OpenVDB parses the file in the isolated child
-// first (IsolatedRead.h), through a stream that throws at any short read; in the child the copies
-// run without TBB threads, which a forked child does not have.
+// (a level set first converted to a fog volume, below) is copied onto a dense vtkImageData covering
+// its active bounding box at its voxel size: VDB index (i, j, k) is image point (i, j, k), so no
+// value is interpolated, and inactive voxels inside the box take the grid's background. The grid's
+// transform becomes the image's geometry: a linear map (scale, translation, rotation, or any affine
+// map whose axes are perpendicular) gives the origin, spacing and direction; a frustum or a sheared
+// map is refused, since image data cannot represent it. The size (field.max_voxels, memory) is
+// checked against the tree's active bounding box before the dense copy is allocated. OpenVDB parses
+// the file in the isolated child first (IsolatedRead.h), through a stream that throws at any short
+// read; in the child the copies run without TBB threads, which a forked child does not have.
 //
 // Writing: a FloatGrid "density" of class fog volume, background 0, built from the field with
 // tools::copyFromDense, which stores no voxel equal to the background: empty space costs
@@ -33,9 +33,13 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Count.h>
 #include <openvdb/tools/Dense.h>
+#include <openvdb/tools/LevelSetUtil.h>
+
+#include <oneapi/tbb/global_control.h>
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace cloudvis
@@ -197,6 +201,22 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
       std::string others;
       const openvdb::FloatGrid::Ptr grid =
         openvdb::gridPtrCast<openvdb::FloatGrid>(ChooseGrid(path, *grids, options.Array, others));
+      // A level set holds signed distances to a surface (negative inside, the background
+      // outside), not densities: read as one it draws a solid block. It is converted to the fog
+      // volume Houdini and Blender make of it: OpenVDB's sdfToFogVolume, the narrow band's
+      // interior half a linear ramp from 0 at the surface to 1, the interior 1, the outside 0
+      // (inactive).
+      const bool levelSet = grid->getGridClass() == openvdb::GRID_LEVEL_SET;
+      const float halfBand = grid->background();
+      if (levelSet)
+      {
+        std::optional<oneapi::tbb::global_control> serial;
+        if (!threaded)
+        {
+          serial.emplace(oneapi::tbb::global_control::max_allowed_parallelism, 1);
+        }
+        openvdb::tools::sdfToFogVolume(*grid, halfBand);
+      }
       openvdb::CoordBBox box;
       if (!grid->tree().evalActiveVoxelBoundingBox(box))
       {
@@ -221,9 +241,18 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
       const openvdb::Index64 active = openvdb::tools::countActiveVoxels(grid->tree(), threaded);
       contents.Report.Add("grid",
         "\"" + grid->getName() + "\" (float, " +
-          openvdb::GridBase::gridClassToString(grid->getGridClass()) + ", " +
-          std::to_string(active) + " active voxels, background " + Number(grid->background()) +
-          ")" + (others.empty() ? "" : "; other grids (field.array): " + others));
+          (levelSet ? std::string("level set")
+                    : openvdb::GridBase::gridClassToString(grid->getGridClass())) +
+          ", " + std::to_string(active) + " active voxels" + (levelSet ? " once converted" : "") +
+          ", background " + Number(grid->background()) + ")" +
+          (others.empty() ? "" : "; other grids (field.array): " + others));
+      if (levelSet)
+      {
+        contents.Report.Add("converted",
+          "level set converted to a fog volume (OpenVDB's sdfToFogVolume): density 0 outside the "
+          "surface, rising linearly to 1 over the inner half of the narrow band (" +
+            Number(halfBand) + " world units deep), 1 inside");
+      }
       const std::string creator = grid->getCreator();
       if (!creator.empty())
       {

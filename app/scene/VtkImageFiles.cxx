@@ -1,39 +1,36 @@
-// The readers of single-array volume formats: NRRD (vtkNrrdReader), MetaImage (vtkMetaImageReader)
-// and raw volumes (read here: the file states nothing, field.raw says everything).
+// The readers of single-array volume formats whose headers cloudvis parses itself: NRRD,
+// MetaImage and raw volumes (the file states nothing, field.raw says everything).
 //
-// For NRRD and MetaImage cloudvis reads the text header itself before VTK does, for two reasons.
-// First, protection: the header states the dimensions, the value type, the encoding and where the
-// voxel bytes are (in the file, or in a separate data file), so the field's size is checked
-// against field.max_voxels and the memory available, and an uncompressed file against its own
-// size, before VTK allocates what the header claims; a separate data file must be a regular file
-// too. VTK's parsing then runs first in the isolated child (IsolatedRead.h). Second, geometry:
-// VTK 9.1's readers keep only the length of each axis (NRRD's "space directions", MetaImage's
-// TransformMatrix and the sign of its ElementSpacing are dropped), and vtkNrrdReader takes a
-// first axis of 9 voxels or fewer for vector components. The header's own geometry (origin,
-// spacing, direction) is therefore set on the image here, and VTK is used to decode the values
-// (types, byte order, gzip/zlib), whose count must match the header's.
+// cloudvis reads the header and decodes the values itself (StoredValues.cxx), with no library in
+// between. The header states the dimensions, the value type, the byte order, the encoding (raw,
+// zlib or gzip, text) and where the values are (in the file, or in a separate data file, after
+// skipped bytes or lines); the field's size is checked against field.max_voxels and the memory
+// available before anything of that size is allocated, and the data are then counted as they are
+// decoded: exactly the declared values, or the file is refused. VTK's readers were used to decode
+// before; they checked none of this (a .zraw cut in half read as garbage with exit 0), misread or
+// crashed on types they do not know (MetaImage's MET_LONG is 4 bytes, VTK read it as 8;
+// MET_LONG_LONG corrupted the heap), printed to the terminal, and dropped the geometry
+// (vtkNrrdReader keeps only the lengths of "space directions" and takes a first axis of 9 voxels or
+// fewer for vector components; vtkMetaImageReader drops TransformMatrix and the sign of
+// ElementSpacing). The header's own geometry (origin, spacing, direction) is set on the image.
 #include "FieldFormatReaders.h"
 
 #include "Errors.h"
 #include "FileNames.h"
 #include "InputFiles.h"
-#include "IsolatedRead.h"
-#include "VtkMessageCapture.h"
 
-#include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
-#include <vtkMetaImageReader.h>
-#include <vtkNew.h>
-#include <vtkNrrdReader.h>
 #include <vtkPointData.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace cloudvis
@@ -41,21 +38,20 @@ namespace cloudvis
 namespace
 {
 
-// The most a header may hold: VTK's NRRD reader reads 4 MiB at most, MetaImage headers are a few
-// hundred bytes.
+// The most a header may hold: NRRD headers (VTK reads 4 MiB at most) and MetaImage headers are a
+// few hundred bytes.
 constexpr std::size_t MaximumHeaderBytes = std::size_t(4) << 20;
 
-// What cloudvis takes from a header itself.
+// What cloudvis takes from a header.
 struct ImageHeader
 {
   std::array<double, 3> Dimensions{ { 1.0, 1.0, 1.0 } }; // voxels along x, y, z
   double Components = 1.0;                               // values per voxel
-  int ValueBytes = 0;                                    // 0: a type VTK will name itself
   std::string TypeName;                                  // as the header writes it
-  bool Compressed = false;
-  std::string DataFile;         // where the values are: the file itself or a separate one
-  std::uint64_t DataOffset = 0; // where they start in it (uncompressed data)
-  bool DataAtEnd = false;       // MetaImage HeaderSize = -1: the values end the data file
+  std::string DataFile;       // where the values are: the file itself or a separate one
+  StoredValues Stored;        // how they are stored there (Offset: from the start of DataFile)
+  std::uint64_t LineSkip = 0; // NRRD: lines of the data file skipped after the offset
+  std::uint64_t ByteSkip = 0; // NRRD, raw encoding: bytes skipped after those lines
   std::array<double, 3> Origin{ { 0.0, 0.0, 0.0 } };
   std::array<std::array<double, 3>, 3> Axes{
     { { { 1.0, 0.0, 0.0 } }, { { 0.0, 1.0, 0.0 } }, { { 0.0, 0.0, 1.0 } } }
@@ -100,54 +96,91 @@ std::string Beside(const std::string& header, const std::string& name)
   return std::filesystem::path(path).lexically_normal().string(); // "dir/./data.raw": dir/data.raw
 }
 
-// The bytes per value of the type `name` in a table of a header format's type names; 0 for a
-// name the table lacks (VTK's reader then names the problem).
+// The value type of a header's type name in a table of (format's name, RawTypes() name); nullptr
+// for a name the table lacks.
 template<std::size_t N>
-int BytesOfType(const std::pair<const char*, int> (&types)[N], const std::string& name)
+const RawType* TypeNamed(const std::pair<const char*, const char*> (&types)[N],
+  const std::string& name)
 {
   for (const auto& known : types)
   {
     if (name == known.first)
     {
-      return known.second;
+      for (const RawType& type : RawTypes())
+      {
+        if (std::strcmp(type.Name, known.second) == 0)
+        {
+          return &type;
+        }
+      }
     }
   }
-  return 0;
+  return nullptr;
+}
+
+// A whole number of at least `minimum` written in a header field, or a refusal naming it.
+long long HeaderInteger(const std::string& path,
+  const std::string& field,
+  const std::string& value,
+  long long minimum)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long long number = std::strtoll(value.c_str(), &end, 10);
+  if (value.empty() || *end != '\0' || errno != 0 || number < minimum)
+  {
+    Fail(path,
+      "the header's " + field + " is not a whole number of at least " + std::to_string(minimum) +
+        " (\"" + value.substr(0, 40) + "\")");
+  }
+  return number;
 }
 
 // ---- NRRD ---------------------------------------------------------------------------------
 
-int NrrdValueBytes(const std::string& type)
+const RawType* NrrdType(const std::string& type)
 {
-  static const std::pair<const char*, int> types[] = { { "signed char", 1 },
-    { "int8", 1 },
-    { "int8_t", 1 },
-    { "uchar", 1 },
-    { "unsigned char", 1 },
-    { "uint8", 1 },
-    { "uint8_t", 1 },
-    { "short", 2 },
-    { "short int", 2 },
-    { "signed short", 2 },
-    { "signed short int", 2 },
-    { "int16", 2 },
-    { "int16_t", 2 },
-    { "ushort", 2 },
-    { "unsigned short", 2 },
-    { "unsigned short int", 2 },
-    { "uint16", 2 },
-    { "uint16_t", 2 },
-    { "int", 4 },
-    { "signed int", 4 },
-    { "int32", 4 },
-    { "int32_t", 4 },
-    { "uint", 4 },
-    { "unsigned int", 4 },
-    { "uint32", 4 },
-    { "uint32_t", 4 },
-    { "float", 4 },
-    { "double", 8 } };
-  return BytesOfType(types, type);
+  static const std::pair<const char*, const char*> types[] = { { "signed char", "int8" },
+    { "int8", "int8" },
+    { "int8_t", "int8" },
+    { "uchar", "uint8" },
+    { "unsigned char", "uint8" },
+    { "uint8", "uint8" },
+    { "uint8_t", "uint8" },
+    { "short", "int16" },
+    { "short int", "int16" },
+    { "signed short", "int16" },
+    { "signed short int", "int16" },
+    { "int16", "int16" },
+    { "int16_t", "int16" },
+    { "ushort", "uint16" },
+    { "unsigned short", "uint16" },
+    { "unsigned short int", "uint16" },
+    { "uint16", "uint16" },
+    { "uint16_t", "uint16" },
+    { "int", "int32" },
+    { "signed int", "int32" },
+    { "int32", "int32" },
+    { "int32_t", "int32" },
+    { "uint", "uint32" },
+    { "unsigned int", "uint32" },
+    { "uint32", "uint32" },
+    { "uint32_t", "uint32" },
+    { "longlong", "int64" },
+    { "long long", "int64" },
+    { "long long int", "int64" },
+    { "signed long long", "int64" },
+    { "signed long long int", "int64" },
+    { "int64", "int64" },
+    { "int64_t", "int64" },
+    { "ulonglong", "uint64" },
+    { "unsigned long long", "uint64" },
+    { "unsigned long long int", "uint64" },
+    { "uint64", "uint64" },
+    { "uint64_t", "uint64" },
+    { "float", "float32" },
+    { "double", "float64" } };
+  return TypeNamed(types, type);
 }
 
 ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
@@ -181,7 +214,7 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
       end = at + std::strlen(blank);
     }
   }
-  header.DataOffset = end;
+  header.Stored.Offset = end;
   std::istringstream lines(text.substr(0, end));
   std::string line;
   std::getline(lines, line); // the magic
@@ -189,6 +222,8 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   std::vector<std::string> directions;
   std::vector<double> spacings;
   std::string encoding = "raw";
+  std::string endian;
+  long long byteSkip = 0;
   int dimension = 0;
   while (std::getline(lines, line) && !Trim(line).empty())
   {
@@ -238,24 +273,37 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
       }
       std::copy(origin.begin(), origin.end(), header.Origin.begin());
     }
-    else if (field == "space")
-    {
-      // VTK flips the rows of these spaces as it reads them, which the geometry set here would
-      // then contradict.
-      if (value == "left-anterior-superior" || value == "LAS" || value == "3D-left-handed")
-      {
-        Fail(
-          path, "the NRRD space \"" + value + "\" is not supported (VTK's reader flips its rows)");
-      }
-    }
     else if (field == "type")
     {
       header.TypeName = value;
-      header.ValueBytes = NrrdValueBytes(value);
+      header.Stored.Type = NrrdType(value);
+      if (!header.Stored.Type)
+      {
+        Fail(path,
+          "the NRRD type \"" + value +
+            "\" is not a numeric type cloudvis reads (it reads 8, 16, 32 and 64-bit integers, "
+            "signed or not, float and double)");
+      }
     }
     else if (field == "encoding")
     {
       encoding = value;
+      std::transform(encoding.begin(),
+        encoding.end(),
+        encoding.begin(),
+        [](unsigned char c) { return char(std::tolower(c)); });
+    }
+    else if (field == "endian")
+    {
+      endian = value;
+    }
+    else if (field == "byte skip" || field == "byteskip")
+    {
+      byteSkip = HeaderInteger(path, "NRRD \"byte skip\"", value, -1);
+    }
+    else if (field == "line skip" || field == "lineskip")
+    {
+      header.LineSkip = std::uint64_t(HeaderInteger(path, "NRRD \"line skip\"", value, 0));
     }
     else if (field == "data file" || field == "datafile")
     {
@@ -265,8 +313,55 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
           path, "NRRD data split over several files is not supported (data file: " + value + ")");
       }
       header.DataFile = Beside(path, value);
-      header.DataOffset = 0;
+      header.Stored.Offset = 0;
     }
+  }
+  if (!header.Stored.Type)
+  {
+    Fail(path, "the NRRD header states no type");
+  }
+  if (encoding == "raw")
+  {
+    header.Stored.Encoding = ValueEncoding::Raw;
+  }
+  else if (encoding == "gzip" || encoding == "gz")
+  {
+    header.Stored.Encoding = ValueEncoding::Zlib;
+  }
+  else if (encoding == "ascii" || encoding == "text" || encoding == "txt")
+  {
+    header.Stored.Encoding = ValueEncoding::Text;
+  }
+  else
+  {
+    Fail(path,
+      "the NRRD encoding \"" + encoding +
+        "\" is not supported (cloudvis reads raw, gzip and ascii; convert with "
+        "`unu save -e gzip`)");
+  }
+  if (header.Stored.Type->Bytes > 1 && header.Stored.Encoding != ValueEncoding::Text &&
+    endian != "little" && endian != "big")
+  {
+    Fail(path,
+      "the NRRD header's endian is \"" + endian + "\"; values of " +
+        std::to_string(header.Stored.Type->Bytes) + " bytes need \"little\" or \"big\"");
+  }
+  header.Stored.BigEndian = endian == "big";
+  // NRRD's byte skip: bytes of the file before the values (-1: the values end the file) for raw
+  // data, bytes of the decompressed stream for gzip.
+  if (byteSkip != 0 && header.Stored.Encoding == ValueEncoding::Text)
+  {
+    Fail(path, "a NRRD \"byte skip\" with ascii encoding is not supported");
+  }
+  if (byteSkip == -1 && header.Stored.Encoding != ValueEncoding::Raw)
+  {
+    Fail(path, "the NRRD \"byte skip: -1\" (the values end the file) needs raw encoding");
+  }
+  header.Stored.AtEnd = byteSkip == -1;
+  if (byteSkip > 0)
+  {
+    (header.Stored.Encoding == ValueEncoding::Raw ? header.ByteSkip : header.Stored.SkipDecoded) =
+      std::uint64_t(byteSkip);
   }
   if (dimension < 1 || dimension > 4 || int(sizes.size()) != dimension)
   {
@@ -315,23 +410,27 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
       header.Axes[a][a] = spacings[first + a];
     }
   }
-  header.Compressed = encoding != "raw";
   return header;
 }
 
 // ---- MetaImage ----------------------------------------------------------------------------
 
-int MetaValueBytes(const std::string& type)
+// MetaIO's sizes: MET_LONG and MET_ULONG are 4 bytes (ITK writes a 64-bit long as MET_LONG_LONG).
+const RawType* MetaImageType(const std::string& type)
 {
-  static const std::pair<const char*, int> types[] = { { "MET_CHAR", 1 },
-    { "MET_UCHAR", 1 },
-    { "MET_SHORT", 2 },
-    { "MET_USHORT", 2 },
-    { "MET_INT", 4 },
-    { "MET_UINT", 4 },
-    { "MET_FLOAT", 4 },
-    { "MET_DOUBLE", 8 } };
-  return BytesOfType(types, type);
+  static const std::pair<const char*, const char*> types[] = { { "MET_CHAR", "int8" },
+    { "MET_UCHAR", "uint8" },
+    { "MET_SHORT", "int16" },
+    { "MET_USHORT", "uint16" },
+    { "MET_INT", "int32" },
+    { "MET_UINT", "uint32" },
+    { "MET_LONG", "int32" },
+    { "MET_ULONG", "uint32" },
+    { "MET_LONG_LONG", "int64" },
+    { "MET_ULONG_LONG", "uint64" },
+    { "MET_FLOAT", "float32" },
+    { "MET_DOUBLE", "float64" } };
+  return TypeNamed(types, type);
 }
 
 ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& text)
@@ -341,6 +440,9 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
   int dimensions = 0;
   bool dataFileSeen = false;
   long long headerSize = 0;
+  bool compressed = false;
+  bool binary = true;
+  std::optional<std::uint64_t> compressedBytes;
   std::size_t at = 0;
   while (at < text.size() && !dataFileSeen)
   {
@@ -379,7 +481,29 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     else if (key == "ElementType")
     {
       header.TypeName = value;
-      header.ValueBytes = MetaValueBytes(value);
+      header.Stored.Type = MetaImageType(value);
+      if (!header.Stored.Type)
+      {
+        Fail(path,
+          "the MetaImage ElementType " + value +
+            (value.size() > 6 && value.compare(value.size() - 6, 6, "_ARRAY") == 0
+                ? " holds vectors; a density field needs one value per voxel"
+                : " is not a numeric type cloudvis reads (it reads MET_CHAR, MET_UCHAR, "
+                  "MET_SHORT, MET_USHORT, MET_INT, MET_UINT, MET_LONG, MET_ULONG, "
+                  "MET_LONG_LONG, MET_ULONG_LONG, MET_FLOAT and MET_DOUBLE)"));
+      }
+    }
+    else if (key == "BinaryData")
+    {
+      binary = value == "True" || value == "true";
+    }
+    else if (key == "BinaryDataByteOrderMSB" || key == "ElementByteOrderMSB")
+    {
+      header.Stored.BigEndian = value == "True" || value == "true";
+    }
+    else if (key == "CompressedDataSize")
+    {
+      compressedBytes = std::uint64_t(HeaderInteger(path, "CompressedDataSize", value, 1));
     }
     else if (key == "ElementNumberOfChannels")
     {
@@ -387,11 +511,11 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     }
     else if (key == "CompressedData")
     {
-      header.Compressed = value == "True" || value == "true";
+      compressed = value == "True" || value == "true";
     }
     else if (key == "HeaderSize")
     {
-      headerSize = std::atoll(value.c_str());
+      headerSize = HeaderInteger(path, "HeaderSize", value, -1);
     }
     else if (key == "ElementDataFile")
     {
@@ -400,7 +524,7 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
       if (value == "LOCAL" || value == "Local" || value == "local")
       {
         header.DataFile = path;
-        header.DataOffset = at > text.size() ? text.size() : at;
+        header.Stored.Offset = at > text.size() ? text.size() : at;
       }
       else if (value.rfind("LIST", 0) == 0 || value.find('%') != std::string::npos)
       {
@@ -411,8 +535,8 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
       else
       {
         header.DataFile = Beside(path, value);
-        header.DataOffset = headerSize > 0 ? std::uint64_t(headerSize) : 0;
-        header.DataAtEnd = headerSize == -1;
+        header.Stored.Offset = headerSize > 0 ? std::uint64_t(headerSize) : 0;
+        header.Stored.AtEnd = headerSize == -1;
       }
     }
   }
@@ -421,6 +545,25 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     Fail(path,
       "not a MetaImage file (no ElementDataFile in its first " + std::to_string(text.size()) +
         " bytes)");
+  }
+  if (!header.Stored.Type)
+  {
+    Fail(path, "the MetaImage header states no ElementType");
+  }
+  header.Stored.Encoding = compressed ? ValueEncoding::Zlib
+    : binary                          ? ValueEncoding::Raw
+                                      : ValueEncoding::Text;
+  if (compressed)
+  {
+    if (header.Stored.AtEnd)
+    {
+      Fail(path, "HeaderSize = -1 (the values end the file) applies to uncompressed data only");
+    }
+    header.Stored.Length = compressedBytes;
+  }
+  else if (!binary && header.Stored.AtEnd)
+  {
+    Fail(path, "HeaderSize = -1 (the values end the file) applies to binary data only");
   }
   if (dimensions < 2 || dimensions > 3 || int(sizes.size()) != dimensions)
   {
@@ -457,24 +600,39 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
   return header;
 }
 
-// ---- both: the checks, then VTK's reader -------------------------------------------------
+// ---- both: the header's checks, then the values ---------------------------------------------
 
-template<typename Reader>
+// The offset of the line after `lines` line breaks from `offset` on (NRRD's line skip).
+std::uint64_t SkipLines(const std::string& path,
+  const RegularInputFile& file,
+  std::uint64_t offset,
+  std::uint64_t lines)
+{
+  constexpr std::size_t block = std::size_t(1) << 16;
+  while (lines > 0)
+  {
+    const std::string text = file.ReadAt(offset, block);
+    if (text.empty())
+    {
+      Fail(path, "the file ends before the lines its header's \"line skip\" skips");
+    }
+    for (std::size_t i = 0; i < text.size() && lines > 0; ++i)
+    {
+      lines -= text[i] == '\n' ? 1 : 0;
+      offset += 1;
+    }
+  }
+  return offset;
+}
+
 FieldFileContents ReadHeaderedImage(const std::string& path,
   const FieldReadOptions& options,
   const std::string& formatName,
   ImageHeader (*parse)(const std::string&, const std::string&))
 {
-  std::uint64_t fileBytes = 0;
-  ImageHeader header;
-  {
-    const RegularInputFile file(path, "field");
-    fileBytes = file.Size();
-    header = parse(
-      path, file.ReadAt(0, std::size_t(std::min<std::uint64_t>(fileBytes, MaximumHeaderBytes))));
-  }
-  const std::uint64_t dataBytes =
-    header.DataFile == path ? fileBytes : CheckRegularInputFile(header.DataFile, "field data file");
+  const RegularInputFile file(path, "field");
+  ImageHeader header = parse(
+    path, file.ReadAt(0, std::size_t(std::min<std::uint64_t>(file.Size(), MaximumHeaderBytes))));
   if (header.Components != 1.0)
   {
     std::ostringstream text;
@@ -482,66 +640,45 @@ FieldFileContents ReadHeaderedImage(const std::string& path,
          << " values per voxel; a density field needs 1";
     Fail(path, text.str());
   }
-  const double voxels = header.Dimensions[0] * header.Dimensions[1] * header.Dimensions[2];
-  // VTK's array of the file's type, then the float copy made here.
-  CheckFieldSize(
-    path, header.Dimensions, std::max(header.ValueBytes, 1) + 4.0, options.MaximumVoxels);
-  if (!header.Compressed && header.ValueBytes > 0)
+  // Only the float array of the field is allocated.
+  CheckFieldSize(path, header.Dimensions, 0.0, options.MaximumVoxels);
+  const bool detached = header.DataFile != path;
+  std::unique_ptr<RegularInputFile> dataFile;
+  if (detached)
   {
-    const double needed = voxels * header.ValueBytes;
-    const std::uint64_t offset = header.DataAtEnd
-      ? (dataBytes > needed ? dataBytes - std::uint64_t(needed) : 0)
-      : header.DataOffset;
-    CheckFileHoldsData(
-      header.DataFile == path ? path : path + " (data file " + header.DataFile + ")",
-      dataBytes,
-      offset,
-      needed,
-      "an image of " + std::to_string(std::uint64_t(voxels)) + " " + header.TypeName + " values");
+    dataFile = std::make_unique<RegularInputFile>(header.DataFile, "field data file");
   }
-
-  const auto read = [&]()
+  const RegularInputFile& data = detached ? *dataFile : file;
+  const std::string named = detached ? path + " (data file " + header.DataFile + ")" : path;
+  StoredValues stored = header.Stored;
+  stored.Offset = SkipLines(named, data, stored.Offset, header.LineSkip) + header.ByteSkip;
+  const std::uint64_t voxels =
+    std::uint64_t(header.Dimensions[0] * header.Dimensions[1] * header.Dimensions[2]);
+  auto field = vtkSmartPointer<vtkImageData>::New();
+  field->SetExtent(0,
+    int(header.Dimensions[0]) - 1,
+    0,
+    int(header.Dimensions[1]) - 1,
+    0,
+    int(header.Dimensions[2]) - 1);
+  field->SetOrigin(header.Origin.data());
+  SetAxes(path, field, header.Axes);
+  field->GetPointData()->SetScalars(ReadStoredValues(named,
+    data,
+    stored,
+    voxels,
+    "an image of " + std::to_string(voxels) + " " + header.TypeName + " values"));
+  FieldFileContents contents{ field, "", {} };
+  contents.Report.Add("values",
+    header.TypeName + (stored.Type->VtkType == VTK_FLOAT ? "" : ", converted to float") +
+      (stored.Encoding == ValueEncoding::Zlib      ? " (compressed)"
+          : stored.Encoding == ValueEncoding::Text ? " (text)"
+                                                   : ""));
+  if (detached)
   {
-    VtkMessageCapture messages;
-    vtkNew<Reader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkImageData* image = reader->GetOutput();
-    vtkDataArray* values = image ? image->GetPointData()->GetScalars() : nullptr;
-    if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !values)
-    {
-      const std::string summary = messages.Summary();
-      Fail(path, "cannot read " + formatName + (summary.empty() ? "" : " (VTK: " + summary + ")"));
-    }
-    if (double(values->GetNumberOfValues()) != voxels)
-    {
-      std::ostringstream text;
-      text << "VTK's reader read " << values->GetNumberOfValues() << " values, the header states "
-           << voxels;
-      Fail(path, text.str());
-    }
-    auto field = vtkSmartPointer<vtkImageData>::New();
-    field->SetExtent(0,
-      int(header.Dimensions[0]) - 1,
-      0,
-      int(header.Dimensions[1]) - 1,
-      0,
-      int(header.Dimensions[2]) - 1);
-    field->SetOrigin(header.Origin.data());
-    SetAxes(path, field, header.Axes);
-    field->GetPointData()->SetScalars(ToFloat(path, values, "density"));
-    FieldFileContents contents{ field, "", {} };
-    contents.Report.Add("values",
-      (header.TypeName.empty() ? TypeInWords(values->GetDataType()) : header.TypeName) +
-        (values->GetDataType() == VTK_FLOAT ? "" : ", converted to float") +
-        (header.Compressed ? " (compressed)" : ""));
-    if (header.DataFile != path)
-    {
-      contents.Report.Add("data file", header.DataFile);
-    }
-    return contents;
-  };
-  return ReadInIsolation(path, dataBytes, "VTK's " + formatName + " reader", read);
+    contents.Report.Add("data file", header.DataFile);
+  }
+  return contents;
 }
 
 // ---- raw ----------------------------------------------------------------------------------
@@ -558,53 +695,16 @@ const RawType& RawTypeNamed(const std::string& path, const std::string& name)
   Fail(path, "unknown raw type \"" + name + "\" (field.raw.type)");
 }
 
-// Value `i` of a block of raw bytes, as a double.
-template<typename T>
-double RawValue(const unsigned char* bytes, bool swap)
-{
-  unsigned char copy[sizeof(T)];
-  for (std::size_t b = 0; b < sizeof(T); ++b)
-  {
-    copy[b] = bytes[swap ? sizeof(T) - 1 - b : b];
-  }
-  T value;
-  std::memcpy(&value, copy, sizeof(T));
-  return double(value);
-}
-
-double (*RawDecoder(int vtkType))(const unsigned char*, bool)
-{
-  switch (vtkType)
-  {
-    case VTK_UNSIGNED_CHAR:
-      return RawValue<std::uint8_t>;
-    case VTK_SIGNED_CHAR:
-      return RawValue<std::int8_t>;
-    case VTK_UNSIGNED_SHORT:
-      return RawValue<std::uint16_t>;
-    case VTK_SHORT:
-      return RawValue<std::int16_t>;
-    case VTK_UNSIGNED_INT:
-      return RawValue<std::uint32_t>;
-    case VTK_INT:
-      return RawValue<std::int32_t>;
-    case VTK_DOUBLE:
-      return RawValue<double>;
-    default:
-      return RawValue<float>;
-  }
-}
-
 } // namespace
 
 FieldFileContents ReadNrrdFile(const std::string& path, const FieldReadOptions& options)
 {
-  return ReadHeaderedImage<vtkNrrdReader>(path, options, "NRRD", ParseNrrdHeader);
+  return ReadHeaderedImage(path, options, "NRRD", ParseNrrdHeader);
 }
 
 FieldFileContents ReadMetaImageFile(const std::string& path, const FieldReadOptions& options)
 {
-  return ReadHeaderedImage<vtkMetaImageReader>(path, options, "MetaImage", ParseMetaImageHeader);
+  return ReadHeaderedImage(path, options, "MetaImage", ParseMetaImageHeader);
 }
 
 FieldFileContents ReadRawFile(const std::string& path, const FieldReadOptions& options)
@@ -633,46 +733,12 @@ FieldFileContents ReadRawFile(const std::string& path, const FieldReadOptions& o
         " is " + std::to_string(expected) + " bytes, but the file holds " +
         std::to_string(file.Size()) + ": check field.raw.dimensions, type and header_bytes");
   }
-  auto density = vtkSmartPointer<vtkFloatArray>::New();
-  density->SetName("density");
-  density->SetNumberOfTuples(vtkIdType(voxels));
-  const bool littleEndianHost = []
-  {
-    const std::uint16_t one = 1;
-    unsigned char first = 0;
-    std::memcpy(&first, &one, 1);
-    return first == 1;
-  }();
-  const bool reverse = type.Bytes > 1 && layout.BigEndian == littleEndianHost;
-  const auto decode = RawDecoder(type.VtkType);
-  // In blocks, so the bytes are never held whole next to the floats.
-  constexpr std::uint64_t blockValues = std::uint64_t(1) << 22;
-  float* out = density->GetPointer(0);
-  std::uint64_t beyond = 0;
-  constexpr double largest = std::numeric_limits<float>::max();
-  for (std::uint64_t first = 0; first < voxels; first += blockValues)
-  {
-    const std::uint64_t count = std::min(blockValues, voxels - first);
-    const std::string bytes =
-      file.ReadAt(layout.HeaderBytes + first * type.Bytes, std::size_t(count * type.Bytes));
-    if (bytes.size() != count * type.Bytes)
-    {
-      Fail(path, "the file became shorter while it was read");
-    }
-    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-    for (std::uint64_t i = 0; i < count; ++i)
-    {
-      const double value = decode(data + i * type.Bytes, reverse);
-      beyond += std::isfinite(value) && std::fabs(value) > largest ? 1 : 0;
-      out[first + i] = float(value);
-    }
-  }
-  if (beyond > 0)
-  {
-    Fail(path,
-      "the raw volume holds " + std::to_string(beyond) +
-        " values beyond the range of float (about 3.4e38)");
-  }
+  StoredValues stored;
+  stored.Type = &type;
+  stored.BigEndian = layout.BigEndian;
+  stored.Offset = layout.HeaderBytes;
+  const vtkSmartPointer<vtkFloatArray> density =
+    ReadStoredValues(path, file, stored, voxels, "a raw volume of " + described);
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetExtent(
     0, layout.Dimensions[0] - 1, 0, layout.Dimensions[1] - 1, 0, layout.Dimensions[2] - 1);

@@ -7,6 +7,7 @@
 // memory, non-finite values) are refused with the numbers in the message. OpenVDB has its own
 // file (OpenVdbTests.cxx), the only test that includes OpenVDB's headers.
 #include "FieldTestFiles.h"
+#include "KnownFieldFiles.h"
 
 #include "CommandLine.h"
 #include "FieldPieces.h"
@@ -44,36 +45,15 @@ using cloudvis::support::WriteText;
 using cloudvis::test::Density;
 using cloudvis::test::Detail;
 using cloudvis::test::ErrorOf;
+using cloudvis::test::ExpectKnownValues;
 using cloudvis::test::ExpectSameField;
+using cloudvis::test::Known;
+using cloudvis::test::KnownImage;
 using cloudvis::test::RunTool;
-
-// The value every test file holds at voxel (i, j, k), unless a test says otherwise.
-double Known(int i, int j, int k)
-{
-  return i + 10.0 * j + 100.0 * k;
-}
-
-void Truncate(const std::string& path, std::size_t bytes)
-{
-  WriteText(path, ReadText(path).substr(0, bytes));
-}
-
-// Every voxel of `field` (extent from 0) holds Known(i, j, k) + offset; with `flippedRows`, the
-// rows come in the opposite order (j counted from the top), as VTK's raw writer stores them.
-void ExpectKnownValues(vtkImageData* field, double offset = 0.0, bool flippedRows = false)
-{
-  int d[3];
-  field->GetDimensions(d);
-  int wrong = 0;
-  for (int k = 0; k < d[2]; ++k)
-    for (int j = 0; j < d[1]; ++j)
-      for (int i = 0; i < d[0]; ++i)
-      {
-        const int row = flippedRows ? d[1] - 1 - j : j;
-        wrong += Density(field, i, j, k) == Known(i, row, k) + offset ? 0 : 1;
-      }
-  EXPECT_EQ(wrong, 0) << "voxels whose value is not the one the file holds";
-}
+using cloudvis::test::Truncate;
+using cloudvis::test::Unu;
+using cloudvis::test::WriteKnownRaw;
+using cloudvis::test::WriteMetaImage;
 
 void ExpectVector(const double* actual, std::array<double, 3> expected, double tolerance = 1e-12)
 {
@@ -441,27 +421,6 @@ TEST(NetCdf, TruncatedAndForeignFilesAreRefused)
 
 // ---- NRRD, written by teem's own tool ----------------------------------------------------------
 
-// 5 x 4 x 3 floats Known(i, j, k) in a raw little-endian file, for unu to wrap.
-std::string WriteKnownRaw(const TemporaryDirectory& dir, const std::string& name = "known.raw")
-{
-  std::string bytes;
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 5; ++i)
-      {
-        const float value = float(Known(i, j, k));
-        bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
-      }
-  WriteText(dir.File(name), bytes);
-  return dir.File(name);
-}
-
-std::string Unu(const std::string& raw, const std::string& output, const std::string& options)
-{
-  return "teem-unu make -i '" + raw + "' -t float -s 5 4 3 -en little " + options + " -o '" +
-    output + "' 2>/dev/null";
-}
-
 // The lattice is rotated (i along +y, j along -x), and its first axis (5 voxels) is one VTK's
 // reader would take for vector components: geometry and values are the file's anyway.
 TEST(Nrrd, ReadsARotatedLatticeVoxelForVoxel)
@@ -547,34 +506,6 @@ TEST(Nrrd, HostileHeadersAreRefused)
 }
 
 // ---- MetaImage, written by VTK's writer --------------------------------------------------------
-
-vtkSmartPointer<vtkImageData> KnownImage(int type)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(5, 4, 3);
-  image->SetSpacing(0.5, 1.0, 2.0);
-  image->SetOrigin(1.0, 2.0, 3.0);
-  image->AllocateScalars(type, 1);
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 5; ++i)
-      {
-        int ijk[3] = { i, j, k };
-        image->GetPointData()->GetScalars()->SetComponent(
-          image->ComputePointId(ijk), 0, Known(i, j, k));
-      }
-  return image;
-}
-
-std::string WriteMetaImage(const std::string& path, int type, bool compressed)
-{
-  vtkNew<vtkMetaImageWriter> writer;
-  writer->SetInputData(KnownImage(type));
-  writer->SetFileName(path.c_str());
-  writer->SetCompression(compressed);
-  writer->Write();
-  return path;
-}
 
 TEST(MetaImage, ReadsWhatVtkWroteVoxelForVoxel)
 {
@@ -733,7 +664,7 @@ TEST(Raw, ValuesBeyondFloatAndNonFiniteValuesAreRefusedWithTheirCount)
   values[11] = std::numeric_limits<double>::quiet_NaN();
   WriteText(dir.File("d.raw"), std::string(reinterpret_cast<const char*>(values.data()), 480));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(dir.File("d.raw"), RawOptions("float64")); })
-              .find("the raw volume holds 2 values beyond the range of float"),
+              .find("holds 2 values beyond the range of float"),
     std::string::npos);
   values[3] = values[7] = std::numeric_limits<double>::infinity();
   WriteText(dir.File("d.raw"), std::string(reinterpret_cast<const char*>(values.data()), 480));
@@ -854,6 +785,35 @@ TEST(ParallelFiles, PiecesWrittenByVtkKeepTheDirectionOfTheirPieces)
   ASSERT_EQ(ReadText(path).find("Direction"), std::string::npos)
     << "VTK's writer now states the direction in the .pvti: this test no longer tests the pieces'";
   ExpectSameField(field, cloudvis::ReadField(path));
+}
+
+// Pieces that share points must agree there: VTK's reader takes each point from one piece and
+// never reads the other's, so a conflict was resolved silently by the pieces' order. Pieces are
+// named as their files are, from 0.
+TEST(ParallelFiles, OverlappingPiecesMustHoldEqualValuesWhereTheyOverlap)
+{
+  TemporaryDirectory dir;
+  const auto field = RotatedField();
+  const std::string path = dir.File("p.pvti");
+  cloudvis::WriteFieldPieces(field, path, 2);
+  ExpectSameField(field, cloudvis::ReadField(path)) /* a shared plane of equal values */;
+  // Piece 1 (x from 7 to 12) with another value at the first point of the plane x = 7 it shares
+  // with piece 0.
+  const cloudvis::Extent second =
+    cloudvis::PieceExtent(cloudvis::LatticeOf(field).WholeExtent, 1, 2);
+  ASSERT_EQ(second[0], 7);
+  const auto piece = cloudvis::ExtractPiece(field, second);
+  int first[3] = { 7, -3, 1 };
+  piece->GetPointData()->GetScalars()->SetComponent(piece->ComputePointId(first), 0, 999.0);
+  cloudvis::WriteVtkXmlImageFile(piece, dir.File("p_1.vti"), dir.File("p_1.vti"));
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
+              .find("p.pvti: piece 0 (p_0.vti) and piece 1 (p_1.vti) overlap and disagree: at "
+                    "point (7, -3, 1) \"density\" is 107 in piece 0 and 999 in piece 1"),
+    std::string::npos);
+  std::filesystem::remove(dir.File("p_1.vti"));
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
+              .find("p.pvti: piece 1 (p_1.vti): cannot read field piece"),
+    std::string::npos);
 }
 
 // `generate -o f.pvti --pieces N` generates each piece by itself (vtkCloudDensitySource fills

@@ -11,12 +11,14 @@
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetSphere.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkMatrix3x3.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -309,6 +311,55 @@ void ExpectGridHoldsField(const std::string& path, vtkImageData* field)
   EXPECT_EQ(grid->activeVoxelCount(), nonZero) << "only the non-zero voxels are stored";
   EXPECT_LT(nonZero, openvdb::Index64(field->GetNumberOfPoints()))
     << "the test field has empty space";
+}
+
+// A level set (signed distances, negative inside) was read as a density and drawn as a solid
+// block. It is converted to the fog volume Houdini and Blender make of it: a sphere of radius R
+// becomes density 1 inside, 0 outside, and (R - distance) / w between, w the inner half of the
+// narrow band (3 voxels here).
+TEST_F(OpenVdb, ALevelSetIsConvertedToAFogVolume)
+{
+  const float radius = 6.0f, voxel = 0.5f, halfWidth = 3.0f;
+  const openvdb::Vec3f centre(0.5f, 0.25f, -1.0f);
+  openvdb::FloatGrid::Ptr sphere =
+    openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(radius, centre, voxel, halfWidth);
+  sphere->setName("surface");
+  const std::string path = Directory.File("sphere.vdb");
+  Write(path, { sphere });
+
+  FieldReport report;
+  const auto field = cloudvis::ReadField(path, {}, &report);
+  int extent[6];
+  field->GetExtent(extent);
+  const double ramp = halfWidth * voxel;
+  int inside = 0, ramped = 0, wrong = 0, uncovered = 0;
+  for (int k = -20; k <= 20; ++k)
+    for (int j = -20; j <= 20; ++j)
+      for (int i = -20; i <= 20; ++i)
+      {
+        const openvdb::Vec3d p = sphere->indexToWorld(openvdb::Coord(i, j, k));
+        const double distance = (p - openvdb::Vec3d(centre)).length();
+        const double expected = std::clamp((radius - distance) / ramp, 0.0, 1.0);
+        const bool covered = i >= extent[0] && i <= extent[1] && j >= extent[2] && j <= extent[3] &&
+          k >= extent[4] && k <= extent[5];
+        if (!covered)
+        {
+          uncovered += expected > 0.0 ? 1 : 0; // density outside the field's box
+          continue;
+        }
+        wrong += std::fabs(Density(field, i, j, k) - expected) < 1e-5 ? 0 : 1;
+        inside += expected == 1.0 ? 1 : 0;
+        ramped += expected > 0.0 && expected < 1.0 ? 1 : 0;
+      }
+  EXPECT_EQ(wrong, 0) << "voxels whose density differs from the converted sphere's";
+  EXPECT_EQ(uncovered, 0) << "voxels of the sphere outside the field";
+  EXPECT_GT(inside, 1000);
+  EXPECT_GT(ramped, 1000);
+  EXPECT_EQ(Detail(report, "grid").find("\"surface\" (float, level set, "), 0u);
+  EXPECT_EQ(Detail(report, "converted"),
+    "level set converted to a fog volume (OpenVDB's sdfToFogVolume): density 0 outside the "
+    "surface, rising linearly to 1 over the inner half of the narrow band (1.5 world units "
+    "deep), 1 inside");
 }
 
 TEST_F(OpenVdb, GeneratedFieldsAreWrittenAsSparseFogVolumes)

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 class vtkDataArray;
@@ -18,6 +19,7 @@ class vtkMatrix3x3;
 
 namespace cloudvis
 {
+class RegularInputFile;
 
 // VtkXmlImageFiles.cxx
 FieldFileContents ReadVtkXmlImageFile(const std::string& path, const FieldReadOptions& options);
@@ -49,6 +51,39 @@ struct RawType
   int Bytes;
 };
 const std::vector<RawType>& RawTypes();
+
+// How the values after a header are stored.
+enum class ValueEncoding
+{
+  Raw,  // the bytes of the values, one after the other
+  Zlib, // one zlib or gzip stream of those bytes
+  Text  // numbers written as text, separated by white space or commas
+};
+
+// Where and how a file stores the values its header declares (StoredValues.cxx).
+struct StoredValues
+{
+  const RawType* Type = nullptr;
+  bool BigEndian = false;
+  ValueEncoding Encoding = ValueEncoding::Raw;
+  std::uint64_t Offset = 0;            // the first byte of the data in the file
+  std::optional<std::uint64_t> Length; // bytes of (compressed) data, when the header says
+  bool AtEnd = false;                  // raw: the values end the file, bytes before them skipped
+  std::uint64_t SkipDecoded = 0;       // compressed: decompressed bytes to skip before the values
+};
+
+// The `count` values `file` stores as `stored` says, as floats named "density". The data region
+// (from the offset to the end of the file) must hold exactly those values: a region too short or
+// too long, a compressed stream that cannot expand to the declared size (checked before anything
+// of that size is allocated), ends early, is corrupt or yields more, text with fewer or more
+// numbers, and values beyond float's range are refused (InputError naming `path`; `what`, such as
+// "an image of 60 float values", says what was expected). The caller checks `count` with
+// CheckFieldSize first.
+vtkSmartPointer<vtkFloatArray> ReadStoredValues(const std::string& path,
+  const RegularInputFile& file,
+  const StoredValues& stored,
+  std::uint64_t count,
+  const std::string& what);
 
 // "a field of 2048 x 2048 x 1024 voxels (4.29e+09 voxels, 16 GiB as float) is more than
 // field.max_voxels allows (1073741824): ..." for messages.
