@@ -60,6 +60,10 @@ File::File(const std::string& path)
     Variable variable;
     variable.Id = ids[v];
     status = nc_inq_varndims(this->Id, ids[v], &count);
+    if (status == NC_NOERR && (count < 0 || count > NC_MAX_VAR_DIMS))
+    {
+      status = NC_EMAXDIMS; // the library's own limit, which nc_inq_var would write beyond
+    }
     variable.Dimensions.assign(std::size_t(std::clamp(count, 0, NC_MAX_VAR_DIMS)), 0);
     if (status == NC_NOERR)
     {
@@ -108,7 +112,10 @@ void File::Fail(int status, const std::string& doing) const
     case NC_ENOMEM:
       cloudvis::Fail(this->Name, "cannot " + doing + ": not enough memory" + library);
     default:
-      cloudvis::Fail(this->Name, "cannot " + doing + library);
+      // What the library refuses when it opens a file (sizes beyond the format's, counts that
+      // do not fit) is in the file.
+      cloudvis::Fail(
+        this->Name, "cannot " + doing + (this->Id < 0 ? ": the file is malformed" : "") + library);
   }
 }
 
