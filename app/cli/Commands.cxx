@@ -694,7 +694,7 @@ const std::vector<CommandSpec>& Commands()
         "units, time step, resampling), dimensions, spacing, origin, direction, bounds, value\n"
         "range, mean, the fraction of non-empty voxels (density > 0) and a 16-bin histogram over\n"
         "[min, max]. With a field file, --set takes only the keys that say how it is read\n"
-        "(field.format, field.array, field.time_step, field.max_voxels, field.raw).",
+        "(field.format, field.array, field.time_step, field.missing, field.max_voxels, field.raw).",
       { JsonOption,
         SetOption,
         FieldFileOptions[0],

@@ -207,7 +207,7 @@ const std::vector<FieldFormat>& FieldFormats()
     { "netcdf",
       "NetCDF (CF conventions)",
       { ".nc", ".nc4", ".cdf" },
-      TakesArray | TakesTimeStep,
+      TakesArray | TakesTimeStep | TakesMissing,
       ReadNetCdfFile },
     { "nrrd", "NRRD", { ".nrrd", ".nhdr" }, 0, ReadNrrdFile },
     { "metaimage", "MetaImage", { ".mha", ".mhd" }, 0, ReadMetaImageFile },
@@ -300,6 +300,12 @@ std::optional<FieldOptionProblem> CheckFieldReadOptions(const std::string& path,
   {
     return FieldOptionProblem{ "time_step",
       "a " + format->Id + " file" + of + " holds one time step" };
+  }
+  if (options.Missing && !(format->Options & TakesMissing))
+  {
+    return FieldOptionProblem{ "missing",
+      "applies to NetCDF files only; a " + format->Id + " file" + of +
+        " marks no values as missing" };
   }
   const bool rawGiven = options.Raw.Dimensions[0] > 0;
   if (format->Options & TakesRawLayout)

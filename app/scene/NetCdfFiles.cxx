@@ -1,173 +1,84 @@
 // The NetCDF reader: one variable at one time step of a file that follows the CF conventions, as
 // large-eddy simulations of clouds write them (liquid water, ice, on regular or vertically
-// stretched grids, with a time axis), read by VTK's vtkNetCDFCFReader. The netCDF C library (and
-// HDF5 under it for netCDF-4 files) parses the file; the whole read, VTK's and the few attribute
-// queries made here for the report, runs first in the isolated child (IsolatedRead.h).
+// stretched grids, with a time axis). The netCDF C library (and HDF5 under it for netCDF-4 files)
+// parses the file; cloudvis asks it for the variables, their attributes and the values of the
+// chosen one in any numeric type, and applies the CF conventions itself (NetCdfVariables.h): the
+// default variable, the time axis, which dimension is x, y and z, missing values, packing. The
+// whole read runs in the isolated child (IsolatedRead.h).
 //
-// Geometry: the reader returns image data when every coordinate is evenly spaced (to 1% of the
-// step, VTK's rule) and a rectilinear grid when one is not, as a stretched vertical coordinate
-// is. A rectilinear grid is resampled here onto a regular lattice, linearly along each stretched
+// Geometry: the coordinate variables of the dimensions become the lattice, each dimension placed
+// on the world axis it stands for whatever its position in the variable (a variable on (x, y, z)
+// is transposed). A coordinate that is not evenly spaced (to 1e-3 of a step), as a stretched
+// vertical coordinate is, is resampled here onto a regular lattice, linearly along each stretched
 // axis, at the smallest spacing of that axis (so no level is skipped), with fewer points only
 // when field.max_voxels would be exceeded; `info` reports how. Coordinates that decrease (pressure
 // levels, latitudes from north to south) are turned around so that the spacing is positive.
-// Curvilinear coordinates (2-D latitude and longitude) and data on cells are refused.
+// Curvilinear coordinates (2-D latitude and longitude) are refused.
+//
+// Missing values (CF's _FillValue, missing_value, valid_min, valid_max, valid_range) are refused
+// with their count unless field.missing is "empty", which reads them as density 0: cloudvis does
+// not guess what a missing density is.
 #include "FieldFormatReaders.h"
 
 #include "Errors.h"
 #include "InputFiles.h"
 #include "IsolatedRead.h"
-#include "VtkMessageCapture.h"
+#include "NetCdfVariables.h"
 
-#include <vtkCellData.h>
-#include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
-#include <vtkInformation.h>
-#include <vtkNetCDFCFReader.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkRectilinearGrid.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
-#include <vtkStringArray.h>
-#include <vtk_netcdf.h>
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <limits>
 
 namespace cloudvis
 {
 namespace
 {
 
-// A text attribute of a variable ("" when absent or not text), through the netCDF C API.
-class NetCdfAttributes
+// ---- the superblock of a netCDF-4 (HDF5) file -------------------------------------------------
+
+// The number of bytes a netCDF-4 file says it holds: the end-of-file address of its HDF5
+// superblock (versions 0 to 3), plus the base address; 0 when the superblock is not one of these.
+// HDF5 compares it with the file's size when it opens the file and refuses a shorter one, in its
+// own words; cloudvis says the same first, with the numbers.
+std::uint64_t Hdf5FileEnd(const std::string& superblock)
 {
-public:
-  explicit NetCdfAttributes(const std::string& path)
+  if (superblock.size() < 9)
   {
-    if (nc_open(path.c_str(), NC_NOWRITE, &this->Id) != NC_NOERR)
-    {
-      this->Id = -1;
-    }
+    return 0;
   }
-  ~NetCdfAttributes()
+  const int version = static_cast<unsigned char>(superblock[8]);
+  // Where the size of an address is, and where the base address begins.
+  const std::size_t sizeAt = version <= 1 ? 13 : 9;
+  const std::size_t baseAt = version == 0 ? 24 : version == 1 ? 28 : 12;
+  if (version > 3 || superblock.size() <= sizeAt)
   {
-    if (this->Id >= 0)
-    {
-      nc_close(this->Id);
-    }
+    return 0;
   }
-  NetCdfAttributes(const NetCdfAttributes&) = delete;
-  NetCdfAttributes& operator=(const NetCdfAttributes&) = delete;
-
-  std::string Text(const std::string& variable, const char* attribute) const
+  const std::size_t addressBytes = static_cast<unsigned char>(superblock[sizeAt]);
+  // Base address, then (versions 0 and 1) the free-space address or (2 and 3) the superblock
+  // extension's, then the end-of-file address; little-endian.
+  const std::size_t endAt = baseAt + 2 * addressBytes;
+  if ((addressBytes != 2 && addressBytes != 4 && addressBytes != 8) ||
+    superblock.size() < endAt + addressBytes)
   {
-    int variableId = 0;
-    nc_type type = NC_NAT;
-    std::size_t length = 0;
-    if (this->Id < 0 || nc_inq_varid(this->Id, variable.c_str(), &variableId) != NC_NOERR ||
-      nc_inq_att(this->Id, variableId, attribute, &type, &length) != NC_NOERR || type != NC_CHAR ||
-      length > 4096)
-    {
-      return "";
-    }
-    std::string text(length, '\0');
-    if (nc_get_att_text(this->Id, variableId, attribute, &text[0]) != NC_NOERR)
-    {
-      return "";
-    }
-    return text.substr(0, text.find('\0'));
+    return 0;
   }
-
-  // Bytes per value of a variable's type, 0 when unknown.
-  int ValueBytes(const std::string& variable) const
+  const auto address = [&superblock, addressBytes](std::size_t at)
   {
-    int variableId = 0;
-    nc_type type = NC_NAT;
-    std::size_t bytes = 0;
-    if (this->Id < 0 || nc_inq_varid(this->Id, variable.c_str(), &variableId) != NC_NOERR ||
-      nc_inq_vartype(this->Id, variableId, &type) != NC_NOERR ||
-      nc_inq_type(this->Id, type, nullptr, &bytes) != NC_NOERR)
+    std::uint64_t value = 0;
+    for (std::size_t b = addressBytes; b-- > 0;)
     {
-      return 0;
+      value = (value << 8) | static_cast<unsigned char>(superblock[at + b]);
     }
-    return int(bytes);
-  }
-
-private:
-  int Id = -1;
-};
-
-// The dimension names of a variable as vtkNetCDFReader lists them ("(z, y, x)", time left out),
-// slowest first.
-std::vector<std::string> DimensionNames(const std::string& encoded)
-{
-  std::vector<std::string> names;
-  std::string inner = encoded.size() >= 2 ? encoded.substr(1, encoded.size() - 2) : "";
-  std::istringstream in(inner);
-  for (std::string name; std::getline(in, name, ',');)
-  {
-    const auto begin = name.find_first_not_of(' ');
-    if (begin != std::string::npos)
-    {
-      names.push_back(name.substr(begin));
-    }
-  }
-  return names;
-}
-
-struct Variable
-{
-  std::string Name;
-  std::vector<std::string> Dimensions; // slowest first: (z, y, x)
-};
-
-// The variable field.array names, else "density", else the first with three spatial dimensions,
-// else the first with two.
-Variable ChooseVariable(const std::string& path,
-  const std::vector<Variable>& variables,
-  const std::string& wanted)
-{
-  std::string candidates;
-  for (const Variable& v : variables)
-  {
-    if (v.Dimensions.size() >= 2 && v.Dimensions.size() <= 3)
-    {
-      candidates += (candidates.empty() ? "" : ", ") + v.Name;
-    }
-  }
-  for (const Variable& v : variables)
-  {
-    if (v.Name == (wanted.empty() ? "density" : wanted))
-    {
-      if (v.Dimensions.size() < 2 || v.Dimensions.size() > 3)
-      {
-        Fail(path,
-          "variable \"" + v.Name + "\" has " + std::to_string(v.Dimensions.size()) +
-            " spatial dimensions; a density field needs 2 or 3 (variables that have: " +
-            (candidates.empty() ? "none" : candidates) + ")");
-      }
-      return v;
-    }
-  }
-  if (!wanted.empty())
-  {
-    Fail(path,
-      "no variable named \"" + wanted + "\" (field.array); variables on 2 or 3 spatial " +
-        "dimensions: " + (candidates.empty() ? "none" : candidates));
-  }
-  for (std::size_t spatial : { 3u, 2u })
-  {
-    for (const Variable& v : variables)
-    {
-      if (v.Dimensions.size() == spatial)
-      {
-        return v;
-      }
-    }
-  }
-  Fail(path, "no variable on 2 or 3 spatial dimensions: nothing to read as a density");
+    return value;
+  };
+  const std::uint64_t base = address(baseAt), end = address(endAt);
+  return end > std::numeric_limits<std::uint64_t>::max() - base ? 0 : base + end;
 }
 
 // ---- the header of a classic file -------------------------------------------------------------
@@ -378,14 +289,13 @@ struct AxisSampling
   double SmallestStep = 0.0, LargestStep = 0.0;
 };
 
-AxisSampling SampleAxis(const std::string& path, vtkDataArray* coordinates, const std::string& name)
+AxisSampling SampleAxis(const std::string& path,
+  std::vector<double> coordinates,
+  const std::string& name)
 {
   AxisSampling axis;
-  const vtkIdType n = coordinates->GetNumberOfTuples();
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    axis.Coordinates.push_back(coordinates->GetComponent(i, 0));
-  }
+  axis.Coordinates = std::move(coordinates);
+  const std::size_t n = axis.Coordinates.size();
   if (n > 1 && axis.Coordinates.back() < axis.Coordinates.front())
   {
     std::reverse(axis.Coordinates.begin(), axis.Coordinates.end());
@@ -398,7 +308,7 @@ AxisSampling SampleAxis(const std::string& path, vtkDataArray* coordinates, cons
     return axis;
   }
   axis.SmallestStep = std::numeric_limits<double>::max();
-  for (vtkIdType i = 1; i < n; ++i)
+  for (std::size_t i = 1; i < n; ++i)
   {
     const double step = axis.Coordinates[i] - axis.Coordinates[i - 1];
     if (!(step > 0.0) || !std::isfinite(step))
@@ -482,13 +392,171 @@ std::vector<float> ResampleAlong(const std::vector<float>& values,
   return result;
 }
 
+// ---- the values ---------------------------------------------------------------------------------
+
+// "1 missing value", "12 missing values".
+std::string Values(std::uint64_t count, const std::string& kind = "")
+{
+  return std::to_string(count) + " " + kind + (count == 1 ? "value" : "values");
+}
+
+// How the values of the chosen variable are read: its layout, time step and missing values, and
+// the axes of the lattice they go to.
+struct ValueSource
+{
+  const netcdf::File& File;
+  const netcdf::Variable& Variable;
+  const netcdf::Layout& Layout;
+  std::size_t Step = 0;
+  bool MissingIsEmpty = false;
+  std::size_t SlabSlices = 1; // of its slowest spatial dimension, read at a time
+};
+
+// The values of the variable at the time step as floats, x fastest, each axis in the order of its
+// increasing coordinate, so that a variable on (x, y, z) or on decreasing coordinates lands on
+// the lattice as it lies in the world. The file is read in slabs of whole chunks along its
+// slowest spatial dimension, as doubles (the library converts every numeric type exactly, and
+// int64 and uint64 nearly), which are compared with the missing-value markers as stored, then
+// unpacked. Missing values become 0 and are counted in `missing`.
+std::vector<float> ReadValues(const ValueSource& source,
+  const std::array<AxisSampling, 3>& axes,
+  netcdf::MissingValues& missing)
+{
+  const std::string& path = source.File.Path();
+  const std::array<std::size_t, 3> lattice{
+    { axes[0].Coordinates.size(), axes[1].Coordinates.size(), axes[2].Coordinates.size() }
+  };
+  const std::array<std::ptrdiff_t, 3> latticeStride{
+    { 1, std::ptrdiff_t(lattice[0]), std::ptrdiff_t(lattice[0] * lattice[1]) }
+  };
+  // The spatial dimensions in file order (a 2-D variable's third is a placeholder of one point),
+  // with the step in the lattice that one step along each makes.
+  const std::size_t dimensions = source.Variable.Dimensions.size();
+  std::array<int, 3> position{ { -1, -1, -1 } };
+  std::array<std::size_t, 3> length{ { 1, 1, 1 } };
+  std::array<std::ptrdiff_t, 3> stride{ { 0, 0, 0 } };
+  std::ptrdiff_t first = 0; // the lattice index of the file's first value
+  int s = 0;
+  for (int p = 0; p < int(dimensions); ++p)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (source.Layout.Space[std::size_t(a)].Position == p)
+      {
+        position[std::size_t(s)] = p;
+        length[std::size_t(s)] = lattice[std::size_t(a)];
+        stride[std::size_t(s)] = axes[std::size_t(a)].Reversed ? -latticeStride[std::size_t(a)]
+                                                               : latticeStride[std::size_t(a)];
+        first += axes[std::size_t(a)].Reversed
+          ? std::ptrdiff_t(lattice[std::size_t(a)] - 1) * latticeStride[std::size_t(a)]
+          : 0;
+        ++s;
+      }
+    }
+  }
+  std::vector<std::size_t> start(dimensions, 0), count(dimensions, 1);
+  for (int a = 0; a < s; ++a)
+  {
+    count[std::size_t(position[std::size_t(a)])] = length[std::size_t(a)];
+  }
+  if (source.Layout.Time.Position >= 0)
+  {
+    start[std::size_t(source.Layout.Time.Position)] = source.Step;
+  }
+  const netcdf::Packing packing = netcdf::PackingOf(source.File, source.Variable);
+  std::vector<float> values(lattice[0] * lattice[1] * lattice[2]);
+  std::vector<double> slab(std::min(source.SlabSlices, length[0]) * length[1] * length[2]);
+  std::uint64_t beyond = 0;
+  constexpr double largest = std::numeric_limits<float>::max();
+  for (std::size_t from = 0; from < length[0]; from += source.SlabSlices)
+  {
+    const std::size_t slices = std::min(source.SlabSlices, length[0] - from);
+    start[std::size_t(position[0])] = from;
+    count[std::size_t(position[0])] = slices;
+    source.File.Read(source.Variable, start, count, slab.data());
+    const double* stored = slab.data();
+    for (std::size_t i0 = from; i0 < from + slices; ++i0)
+      for (std::size_t i1 = 0; i1 < length[1]; ++i1)
+        for (std::size_t i2 = 0; i2 < length[2]; ++i2)
+        {
+          const double packed = *stored++;
+          float& value = values[std::size_t(first + std::ptrdiff_t(i0) * stride[0] +
+            std::ptrdiff_t(i1) * stride[1] + std::ptrdiff_t(i2) * stride[2])];
+          if (missing.Match(packed) >= 0)
+          {
+            value = 0.0f;
+            continue;
+          }
+          const double unpacked = packed * packing.Scale + packing.Offset;
+          beyond += std::isfinite(unpacked) && std::fabs(unpacked) > largest ? 1 : 0;
+          value = float(unpacked); // NaN and infinity stay, for ReadField to count and refuse
+        }
+  }
+  if (beyond > 0)
+  {
+    Fail(path,
+      "\"" + source.Variable.Name + "\" holds " + std::to_string(beyond) +
+        " values beyond the range of float (about 3.4e38)");
+  }
+  if (missing.Count() > 0 && !source.MissingIsEmpty)
+  {
+    Fail(path,
+      "variable \"" + source.Variable.Name + "\" holds " + Values(missing.Count(), "missing ") +
+        " (" + missing.Describe() +
+        "): cloudvis does not guess what a missing density is; field.missing = \"empty\" reads "
+        "them as empty space (density 0)");
+  }
+  return values;
+}
+
+// "1 of 0 .. 3: t = 3600 seconds since 2020-06-01" for the report, and the refusals of a time
+// axis without records and of a step beyond it.
+std::string TimeStep(const netcdf::File& file,
+  const netcdf::Variable& chosen,
+  const netcdf::Layout& layout,
+  const FieldReadOptions& options)
+{
+  const int step = options.TimeStep.value_or(0);
+  if (layout.Time.Position < 0)
+  {
+    if (step > 0)
+    {
+      Fail(file.Path(),
+        "field.time_step: " + std::to_string(step) +
+          " is out of range: the file holds no time axis (one step, 0)");
+    }
+    return "";
+  }
+  const std::string name = file.DimensionOf(layout.Time.Dimension).Name;
+  const std::size_t steps = file.DimensionOf(layout.Time.Dimension).Length;
+  if (steps == 0)
+  {
+    Fail(file.Path(),
+      "variable \"" + chosen.Name + "\" holds no values: its time axis \"" + name +
+        "\" has no records");
+  }
+  if (std::size_t(step) >= steps)
+  {
+    Fail(file.Path(),
+      "field.time_step: " + std::to_string(step) + " is out of range: the file holds " +
+        std::to_string(steps) + " time steps (0 .. " + std::to_string(steps - 1) + ")");
+  }
+  std::string text = std::to_string(step) + " of 0 .. " + std::to_string(steps - 1);
+  if (const netcdf::Variable* times = file.CoordinateOf(layout.Time.Dimension))
+  {
+    const std::string units = file.Text(*times, "units");
+    text += ": t = " + Number(file.Coordinates(*times)[std::size_t(step)]) +
+      (units.empty() ? "" : " " + units);
+  }
+  return text + (options.TimeStep ? "" : " (the first; field.time_step picks another)");
+}
+
 } // namespace
 
 FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions& options)
 {
   std::uint64_t fileBytes = 0;
-  bool classic = false;    // CDF-1, -2 and -5 files hold every value uncompressed
-  std::string headerBytes; // of a classic file: its first 16 MiB, more than any header needs
+  bool classic = false; // CDF-1, -2 and -5 files hold every value uncompressed
   ClassicHeader header;
   {
     const RegularInputFile file(path, "field");
@@ -502,87 +570,34 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     }
     if (classic)
     {
-      headerBytes = file.ReadAt(0, std::size_t(std::min<std::uint64_t>(fileBytes, 16u << 20)));
+      // Its first 16 MiB, more than any header needs.
+      const std::string headerBytes =
+        file.ReadAt(0, std::size_t(std::min<std::uint64_t>(fileBytes, 16u << 20)));
       const std::string problem = header.Parse(headerBytes, fileBytes);
       if (!problem.empty())
       {
         Fail(path, "malformed NetCDF header: " + problem);
       }
     }
+    else if (const std::uint64_t end = Hdf5FileEnd(file.ReadAt(0, 64)); end > fileBytes)
+    {
+      Fail(path,
+        "the netCDF-4 (HDF5) file says it holds " + std::to_string(end) + " bytes but holds " +
+          std::to_string(fileBytes) + ": it is truncated");
+    }
   }
 
   const auto read = [&]() -> FieldFileContents
   {
-    VtkMessageCapture messages;
-    const auto failWithVtk = [&](const std::string& problem)
-    {
-      const std::string summary = messages.Summary();
-      Fail(path, problem + (summary.empty() ? "" : " (VTK: " + summary + ")"));
-    };
-    vtkNew<vtkNetCDFCFReader> reader;
-    reader->SetFileName(path.c_str());
-    // Cartesian lattices as the file's coordinates state them: no projection of latitude and
-    // longitude onto a sphere, no vertical exaggeration.
-    reader->SphericalCoordinatesOff();
-    reader->SetVerticalScale(1.0);
-    reader->SetVerticalBias(0.0);
-    // Missing values become NaN, which ReadField then counts and refuses.
-    reader->ReplaceFillValueWithNanOn();
-    // The coordinates themselves: VTK makes image data of coordinates even to 1% of a step, which
-    // would move points by up to that much; the evenness is judged below, more strictly.
-    reader->SetOutputTypeToRectilinear();
-    if (!reader->UpdateMetaData() || !messages.Messages().empty())
-    {
-      failWithVtk("cannot read NetCDF");
-    }
-    std::vector<Variable> variables;
-    vtkStringArray* dimensions = reader->GetVariableDimensions();
-    for (int i = 0; i < reader->GetNumberOfVariableArrays(); ++i)
-    {
-      variables.push_back({ reader->GetVariableArrayName(i),
-        i < dimensions->GetNumberOfValues() ? DimensionNames(dimensions->GetValue(i))
-                                            : std::vector<std::string>{} });
-    }
-    const Variable chosen = ChooseVariable(path, variables, options.Array);
-    for (const Variable& v : variables)
-    {
-      reader->SetVariableArrayStatus(v.Name.c_str(), v.Name == chosen.Name ? 1 : 0);
-    }
-    reader->UpdateInformation();
-    vtkInformation* information = reader->GetOutputInformation(0);
-    if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !information ||
-      !information->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-    {
-      failWithVtk("cannot read the variable \"" + chosen.Name + "\"");
-    }
-    int extent[6];
-    information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-    const std::array<double, 3> fileDimensions{ { double(extent[1]) - extent[0] + 1.0,
-      double(extent[3]) - extent[2] + 1.0,
-      double(extent[5]) - extent[4] + 1.0 } };
-    const NetCdfAttributes attributes(path);
-    const int valueBytes = attributes.ValueBytes(chosen.Name);
-    // VTK's array of the file's type, a double copy when the variable is packed (scale_factor,
-    // add_offset), then the float copy made here.
-    CheckFieldSize(
-      path, fileDimensions, std::max(valueBytes, 1) + 8.0 + 4.0, options.MaximumVoxels);
-    // The time step: field.time_step indexes the file's times (0 when not given).
+    const netcdf::File file(path);
+    const netcdf::Variable& chosen = netcdf::ChooseVariable(file, options.Array);
+    const netcdf::Layout layout = netcdf::LayoutOf(file, chosen);
     FieldFileContents contents;
-    const int steps = information->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
-      ? information->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
-      : 0;
-    const int step = options.TimeStep.value_or(0);
-    if (options.TimeStep && step >= std::max(steps, 1))
-    {
-      Fail(path,
-        "field.time_step: " + std::to_string(step) + " is out of range: the file holds " +
-          (steps == 0
-              ? std::string("no time axis (one step, 0)")
-              : std::to_string(steps) + " time steps (0 .. " + std::to_string(steps - 1) + ")"));
-    }
+    const std::string step = TimeStep(file, chosen, layout, options);
     if (classic)
     {
-      const std::uint64_t end = header.EndOf(chosen.Name, std::uint64_t(step));
+      const std::uint64_t end =
+        header.EndOf(chosen.Name, std::uint64_t(options.TimeStep.value_or(0)));
       if (end > fileBytes)
       {
         Fail(path,
@@ -590,107 +605,109 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
             " but the file holds " + std::to_string(fileBytes) + ": it is truncated");
       }
     }
-    if (steps > 0)
-    {
-      const double* times = information->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-      reader->UpdateTimeStep(times[step]);
-      const char* units = reader->GetTimeUnits();
-      contents.Report.Add("time step",
-        std::to_string(step) + " of 0 .. " + std::to_string(steps - 1) +
-          ": t = " + Number(times[step]) + (units && *units ? " " + std::string(units) : "") +
-          (options.TimeStep ? "" : " (the first; field.time_step picks another)"));
-    }
-    else
-    {
-      reader->Update();
-    }
-    if (reader->GetErrorCode() != 0 || !messages.Messages().empty())
-    {
-      failWithVtk("cannot read the variable \"" + chosen.Name + "\"");
-    }
 
-    vtkDataSet* output = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
-    vtkDataArray* values = output ? output->GetPointData()->GetArray(chosen.Name.c_str()) : nullptr;
-    if (!values)
-    {
-      if (output && output->GetCellData()->GetArray(chosen.Name.c_str()))
-      {
-        Fail(path,
-          "the variable \"" + chosen.Name +
-            "\" is given on cells (its coordinates have "
-            "bounds): cloudvis reads values on points only");
-      }
-      Fail(path,
-        "the variable \"" + chosen.Name + "\" is on curvilinear coordinates (" +
-          (output ? output->GetClassName() : "no data") +
-          "): cloudvis reads regular and rectilinear grids only");
-    }
-    const std::string units = reader->QueryArrayUnits(chosen.Name.c_str());
-    const std::string longName = attributes.Text(chosen.Name, "long_name");
-    std::string dimensionsText;
-    for (const std::string& d : chosen.Dimensions)
-    {
-      dimensionsText += (dimensionsText.empty() ? "" : ", ") + d;
-    }
-    contents.Report.Details.insert(contents.Report.Details.begin(),
-      { "variable",
-        "\"" + chosen.Name + "\"" + (longName.empty() ? "" : " (" + longName + ")") + " on (" +
-          dimensionsText + "), " + TypeInWords(values->GetDataType()) +
-          (values->GetDataType() == VTK_FLOAT ? "" : ", converted to float") });
-    contents.Report.Details.insert(
-      contents.Report.Details.begin() + 1, { "units", units.empty() ? "not stated" : units });
-
-    // The axes, x fastest: NetCDF lists dimensions slowest first.
-    const auto dimensionName = [&chosen](int axis) -> std::string
-    {
-      const int n = int(chosen.Dimensions.size());
-      return axis < n ? chosen.Dimensions[std::size_t(n - 1 - axis)] : "";
-    };
+    // The lattice: each axis's dimension, and its coordinates (the indices without a coordinate
+    // variable; one point at 0 for the axis a 2-D variable lacks).
     std::array<AxisSampling, 3> axes;
-    vtkRectilinearGrid* grid = vtkRectilinearGrid::SafeDownCast(output);
-    if (!grid)
+    std::array<double, 3> fileDimensions{ { 1.0, 1.0, 1.0 } };
+    std::array<std::string, 3> axisNames;
+    for (std::size_t a = 0; a < 3; ++a)
     {
-      Fail(path,
-        "the variable \"" + chosen.Name + "\" is on curvilinear coordinates (" +
-          output->GetClassName() + "): cloudvis reads regular and rectilinear grids only");
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      vtkDataArray* coordinates = a == 0 ? grid->GetXCoordinates()
-        : a == 1                         ? grid->GetYCoordinates()
-                                         : grid->GetZCoordinates();
-      if (!coordinates || coordinates->GetNumberOfTuples() != vtkIdType(fileDimensions[a]))
+      const netcdf::Layout::Axis& axis = layout.Space[a];
+      std::vector<double> coordinates{ 0.0 };
+      if (axis.Position >= 0)
       {
-        Fail(path, "VTK's reader returned no coordinates for axis " + std::string(1, "xyz"[a]));
-      }
-      axes[a] = SampleAxis(path, coordinates, dimensionName(a));
-    }
-
-    // The values, float, x fastest, with decreasing axes turned around.
-    std::array<int, 3> dims{
-      { int(fileDimensions[0]), int(fileDimensions[1]), int(fileDimensions[2]) }
-    };
-    vtkSmartPointer<vtkFloatArray> floats = ToFloat(path, values, chosen.Name);
-    std::vector<float> data(
-      floats->GetPointer(0), floats->GetPointer(0) + floats->GetNumberOfValues());
-    floats = nullptr;
-    if (axes[0].Reversed || axes[1].Reversed || axes[2].Reversed)
-    {
-      std::vector<float> turned(data.size());
-      for (int k = 0; k < dims[2]; ++k)
-        for (int j = 0; j < dims[1]; ++j)
-          for (int i = 0; i < dims[0]; ++i)
+        const netcdf::Dimension& dimension = file.DimensionOf(axis.Dimension);
+        axisNames[a] = dimension.Name;
+        if (dimension.Length == 0)
+        {
+          Fail(path,
+            "variable \"" + chosen.Name + "\" holds no values: its dimension \"" + dimension.Name +
+              "\" has length 0");
+        }
+        fileDimensions[a] = double(dimension.Length);
+        const netcdf::Variable* c = file.CoordinateOf(axis.Dimension);
+        if (!c)
+        {
+          coordinates.resize(dimension.Length);
+          for (std::size_t i = 0; i < coordinates.size(); ++i)
           {
-            const int si = axes[0].Reversed ? dims[0] - 1 - i : i;
-            const int sj = axes[1].Reversed ? dims[1] - 1 - j : j;
-            const int sk = axes[2].Reversed ? dims[2] - 1 - k : k;
-            turned[(std::size_t(k) * dims[1] + j) * dims[0] + i] =
-              data[(std::size_t(sk) * dims[1] + sj) * dims[0] + si];
+            coordinates[i] = double(i);
           }
-      data.swap(turned);
+        }
+        else
+        {
+          // Before the coordinates are read: a chunked coordinate may claim any length too.
+          CheckFieldSize(path, fileDimensions, 4.0, options.MaximumVoxels);
+          coordinates = file.Coordinates(*c);
+        }
+      }
+      axes[a] = SampleAxis(path, coordinates, axisNames[a]);
+    }
+    // The float lattice, and the slab of doubles read at a time: whole chunks of the slowest
+    // spatial dimension (a chunk is then decompressed once), else about 8 MiB.
+    int slowest = -1;
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      const int p = layout.Space[a].Position;
+      slowest = p >= 0 && (slowest < 0 || p < layout.Space[std::size_t(slowest)].Position)
+        ? int(a)
+        : slowest;
+    }
+    const double slice = fileDimensions[0] * fileDimensions[1] * fileDimensions[2] /
+      fileDimensions[std::size_t(slowest)];
+    const std::size_t chunk = file.ChunkLength(chosen, layout.Space[std::size_t(slowest)].Position);
+    const std::size_t slabSlices =
+      chunk > 0 ? chunk : std::size_t(std::max(1.0, std::floor((8u << 20) / 8.0 / slice)));
+    CheckFieldSize(path,
+      fileDimensions,
+      4.0,
+      options.MaximumVoxels,
+      8.0 * slice *
+        double(
+          std::min<std::size_t>(slabSlices, std::size_t(fileDimensions[std::size_t(slowest)]))));
+    netcdf::MissingValues missing(file, chosen);
+    const ValueSource source{ file,
+      chosen,
+      layout,
+      std::size_t(options.TimeStep.value_or(0)),
+      options.Missing.value_or(MissingValueRule::Refuse) == MissingValueRule::Empty,
+      slabSlices };
+    std::vector<float> data = ReadValues(source, axes, missing);
+
+    // The report: what was read, then each axis.
+    const std::string units = file.Text(chosen, "units");
+    const std::string longName = file.Text(chosen, "long_name");
+    const netcdf::Packing packing = netcdf::PackingOf(file, chosen);
+    std::string dimensionsText;
+    for (const int d : chosen.Dimensions)
+    {
+      dimensionsText += (dimensionsText.empty() ? "" : ", ") + file.DimensionOf(d).Name;
+    }
+    const std::string type = netcdf::TypeName(chosen.Type);
+    contents.Report.Add("variable",
+      "\"" + chosen.Name + "\"" + (longName.empty() ? "" : " (" + longName + ")") + " on (" +
+        dimensionsText + "), " + type +
+        (packing.Packed ? ", packed (scale_factor " + Number(packing.Scale) + ", add_offset " +
+              Number(packing.Offset) + "), unpacked to float"
+            : type == "float" ? ""
+                              : ", converted to float"));
+    contents.Report.Add("units", units.empty() ? "not stated" : units);
+    if (!step.empty())
+    {
+      contents.Report.Add("time step", step);
+    }
+    if (missing.Count() > 0)
+    {
+      contents.Report.Add("missing",
+        Values(missing.Count()) + ", read as empty space (field.missing); marked by " +
+          missing.Describe());
     }
 
     // Stretched axes: their regular lattice, coarser if field.max_voxels requires it.
+    std::array<int, 3> dims{
+      { int(fileDimensions[0]), int(fileDimensions[1]), int(fileDimensions[2]) }
+    };
     std::array<double, 3> resampled{
       { double(axes[0].Points), double(axes[1].Points), double(axes[2].Points) }
     };
@@ -719,12 +736,17 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     for (int a = 0; a < 3; ++a)
     {
       AxisSampling& axis = axes[a];
-      const std::string name = dimensionName(a);
-      const std::string coordinateUnits = name.empty() ? "" : attributes.Text(name, "units");
-      std::string text = (name.empty() ? std::string("(none)") : "\"" + name + "\"") + ": " +
-        Number(axis.Coordinates.front()) + " .. " + Number(axis.Coordinates.back()) +
+      const netcdf::Layout::Axis& identified = layout.Space[std::size_t(a)];
+      const netcdf::Variable* coordinate =
+        identified.Position >= 0 ? file.CoordinateOf(identified.Dimension) : nullptr;
+      const std::string coordinateUnits = coordinate ? file.Text(*coordinate, "units") : "";
+      std::string text = (identified.Position < 0 ? std::string("(none)")
+                                                  : "\"" + axisNames[std::size_t(a)] + "\" (" +
+                               "xyz"[a] + " by " + identified.How + ")") +
+        ": " + Number(axis.Coordinates.front()) + " .. " + Number(axis.Coordinates.back()) +
         (coordinateUnits.empty() ? "" : " " + coordinateUnits) + ", " +
-        std::to_string(axis.Coordinates.size()) + " points";
+        std::to_string(axis.Coordinates.size()) + " points" +
+        (identified.Position >= 0 && !coordinate ? " (no coordinate variable: its indices)" : "");
       if (axis.Reversed)
       {
         text += ", decreasing in the file (turned around)";
@@ -768,7 +790,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     contents.Array = chosen.Name;
     return contents;
   };
-  return ReadInIsolation(path, fileBytes, "VTK's NetCDF reader", read);
+  return ReadInIsolation(path, fileBytes, "the netCDF library", read);
 }
 
 } // namespace cloudvis

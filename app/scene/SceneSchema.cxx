@@ -674,6 +674,19 @@ const Keys<FieldSpec>& FieldFileKeys()
       IntegerIn(0, std::numeric_limits<int>::max()).DefaultIs("`0`, the first"),
       Nested(&F::Read, &R::TimeStep),
       "the time step of a NetCDF file, from 0; refused for a format that holds one time step" },
+    { "missing",
+      ChoiceOf(
+        { { "refuse",
+            int(MissingValueRule::Refuse),
+            "a file with missing values is refused, with their count and marking" },
+          { "empty", int(MissingValueRule::Empty), "missing values are read as density 0" } })
+        .DefaultIs("`refuse`"),
+      Nested(&F::Read, &R::Missing),
+      "what the values a NetCDF file marks as missing (`_FillValue`, `missing_value`, "
+      "`valid_min`, `valid_max`, `valid_range`) become: cloudvis does not guess what a missing "
+      "density is, so the file is refused unless this says to read them as empty space; `info` "
+      "then reports their count. NetCDF only: refused for a format that marks no values as "
+      "missing" },
     { "max_voxels",
       IntegerIn(1, 1LL << 62),
       Nested(&F::Read, &R::MaximumVoxels),

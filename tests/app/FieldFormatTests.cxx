@@ -198,11 +198,12 @@ TEST(NetCdf, ReadsTheChosenVariableAndTimeStepVoxelForVoxel)
     ExpectVector(field->GetSpacing(), { { 2, 3, 50 } });
     ExpectKnownValues(field, 1000.0 + 5000.0);
     EXPECT_EQ(report.Format, "NetCDF (CF conventions)");
-    EXPECT_NE(Detail(report, "variable").find("\"qc\" on (z, y, x), float"), std::string::npos);
+    EXPECT_NE(
+      Detail(report, "variable").find("\"qc\" on (time, z, y, x), float"), std::string::npos);
     EXPECT_EQ(Detail(report, "units"), "g kg-1");
     EXPECT_EQ(
       Detail(report, "time step"), "1 of 0 .. 1: t = 3600 seconds since 2020-06-01 00:00:00");
-    EXPECT_EQ(Detail(report, "axis z"), "\"z\": 100 .. 200 m, 3 points");
+    EXPECT_EQ(Detail(report, "axis z"), "\"z\" (z by its name): 100 .. 200 m, 3 points");
     EXPECT_EQ(Detail(report, "resampled"), "no: the coordinates are evenly spaced");
   }
 }
@@ -221,8 +222,8 @@ TEST(NetCdf, DefaultVariableIsDensityElseTheFirstOnThreeDimensions)
   ExpectKnownValues(cloudvis::ReadField(without, {}, &report), 0.0);
   EXPECT_EQ(Detail(report, "time step"), "") << "a file without a time axis has no time step";
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(without, WithArray("ql")); })
-              .find("no variable named \"ql\" (field.array); variables on 2 or 3 spatial "
-                    "dimensions: qc, qi"),
+              .find("no variable named \"ql\" (field.array); variables that can be read as "
+                    "a density: qc, qi"),
     std::string::npos);
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(without, WithArray("qc", 1)); })
               .find("field.time_step: 1 is out of range: the file holds no time axis"),
@@ -294,8 +295,8 @@ TEST(NetCdf, StretchedVerticalCoordinateIsResampledLinearlyAtTheSmallestStep)
   // The levels and weights here (steps of 10 between levels 0, 10, 30, 70, 150) make every
   // interpolated value a float exactly; observed error 0.
   EXPECT_LT(largestError, 1e-6);
-  EXPECT_EQ(
-    Detail(report, "axis z"), "\"height\": 0 .. 150 m, 5 points, stretched (steps 10 .. 80)");
+  EXPECT_EQ(Detail(report, "axis z"),
+    "\"height\" (z by its name): 0 .. 150 m, 5 points, stretched (steps 10 .. 80)");
   EXPECT_EQ(Detail(report, "resampled"),
     "z: linearly onto 16 regular points 10 apart (the smallest step of the file)");
 
@@ -352,7 +353,7 @@ TEST(NetCdf, FillValuesAreRefusedWithTheirCount)
     [fill](int file, int variable)
     { nc_put_att_float(file, variable, "_FillValue", NC_FLOAT, 1, &fill); });
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
-              .find("point array \"qc\" holds 3 values that are NaN or infinite"),
+              .find("variable \"qc\" holds 3 missing values (_FillValue -999)"),
     std::string::npos);
 }
 

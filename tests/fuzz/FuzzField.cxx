@@ -9,8 +9,8 @@
 //     pieces together (seeds name their pieces that way);
 //   - a first line "#field {...}" holding the scene's field section as JSON, whose "file" (a
 //     plain name such as "input.nc") names the file the rest of the input is written to: its
-//     extension (or "format") chooses the reader, and "array", "time_step", "max_voxels" and
-//     "raw" are fuzzed with it. (A .pvti named so is split at "#piece" lines too.)
+//     extension (or "format") chooses the reader, and "array", "time_step", "missing",
+//     "max_voxels" and "raw" are fuzzed with it. (A .pvti named so is split at "#piece" lines too.)
 // Contract: a field is returned or an InputError names the problem; VTK's own messages must not
 // escape to the terminal, and nothing may crash, leak or allocate without bound.
 #include "FuzzInput.h"

@@ -42,13 +42,24 @@ struct RawLayout
   std::uint64_t HeaderBytes = 0; // bytes before the first voxel
 };
 
+// What the values a file marks as missing (NetCDF's _FillValue, missing_value, valid_min,
+// valid_max, valid_range) become: field.missing. cloudvis does not guess what a missing density
+// is: by default such a file is refused with the count; "empty" reads them as empty space.
+enum class MissingValueRule
+{
+  Refuse,
+  Empty // density 0
+};
+
 // How a field file is read beyond its path: the scene's field.format, field.array,
-// field.time_step, field.max_voxels and field.raw (or --format, --array, --time-step).
+// field.time_step, field.missing, field.max_voxels and field.raw (or --format, --array,
+// --time-step).
 struct FieldReadOptions
 {
   std::string Format;          // a FieldFormat's Id; empty: chosen by the extension
   std::string Array;           // grid, variable or point array; empty: the format's default
   std::optional<int> TimeStep; // index from 0; empty: the first
+  std::optional<MissingValueRule> Missing; // empty: Refuse
   std::uint64_t MaximumVoxels = DefaultMaximumFieldVoxels;
   RawLayout Raw;
 };
@@ -78,9 +89,10 @@ struct FieldFileContents
 // The read options a format takes beyond the path (bits of FieldFormat::Options).
 enum FieldReadOption : unsigned
 {
-  TakesArray = 1u,    // field.array
-  TakesTimeStep = 2u, // field.time_step
-  TakesRawLayout = 4u // field.raw (and requires its dimensions)
+  TakesArray = 1u,     // field.array
+  TakesTimeStep = 2u,  // field.time_step
+  TakesRawLayout = 4u, // field.raw (and requires its dimensions)
+  TakesMissing = 8u    // field.missing: the format marks missing values
 };
 
 struct FieldFormat

@@ -32,7 +32,8 @@ struct FieldSpec
   // Path of a field file (FieldIO.h) to load instead of generating, already resolved against the
   // scene file's folder; empty for a procedural field (then the members below Read apply).
   std::string File;
-  // How File is read: field.format, field.array, field.time_step, field.max_voxels, field.raw.
+  // How File is read: field.format, field.array, field.time_step, field.missing,
+  // field.max_voxels, field.raw.
   FieldReadOptions Read;
   std::array<int, 3> Dimensions{ { 128, 128, 128 } };
   std::array<double, 6> Bounds{ { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 } };

@@ -1,0 +1,722 @@
+// The netCDF C API and the CF conventions as the NetCDF reader uses them (NetCdfVariables.h).
+// cloudvis reads the variable itself rather than through VTK's vtkNetCDFCFReader: the library
+// converts every numeric type (VTK 9.1's reader knows the classic types only and refused ubyte
+// and int64), lists variables in file order (VTK sorts them by name), and the CF rules that turn
+// stored numbers into densities (missing values in every marking, packing, which dimension is
+// which axis) are applied here, in one place, where VTK applied some of them to some types.
+#include "NetCdfVariables.h"
+
+#include "FieldFormatReaders.h"
+
+#include <vtk_netcdf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+namespace cloudvis
+{
+namespace netcdf
+{
+
+// ---- the file -----------------------------------------------------------------------------------
+
+File::File(const std::string& path)
+  : Name(path)
+{
+  int status = nc_open(path.c_str(), NC_NOWRITE, &this->Id);
+  if (status != NC_NOERR)
+  {
+    this->Id = -1;
+    this->Fail(status, "open it");
+  }
+  int dimensions = 0, variables = 0, unlimited = -1;
+  status = nc_inq(this->Id, &dimensions, &variables, nullptr, &unlimited);
+  std::vector<int> ids(std::size_t(std::max(dimensions, 0)));
+  if (status == NC_NOERR && dimensions > 0)
+  {
+    status = nc_inq_dimids(this->Id, &dimensions, ids.data(), 0);
+  }
+  for (std::size_t d = 0; status == NC_NOERR && d < ids.size(); ++d)
+  {
+    char name[NC_MAX_NAME + 1] = {};
+    Dimension dimension;
+    status = nc_inq_dim(this->Id, ids[d], name, &dimension.Length);
+    dimension.Name = name;
+    dimension.Unlimited = ids[d] == unlimited;
+    this->Dimensions.emplace_back(ids[d], dimension);
+  }
+  // nc_inq_varids lists the variables in the order the file defines them.
+  ids.assign(std::size_t(std::max(variables, 0)), 0);
+  if (status == NC_NOERR && variables > 0)
+  {
+    status = nc_inq_varids(this->Id, &variables, ids.data());
+  }
+  for (std::size_t v = 0; status == NC_NOERR && v < ids.size(); ++v)
+  {
+    char name[NC_MAX_NAME + 1] = {};
+    int count = 0;
+    Variable variable;
+    variable.Id = ids[v];
+    status = nc_inq_varndims(this->Id, ids[v], &count);
+    if (status == NC_NOERR && (count < 0 || count > NC_MAX_VAR_DIMS))
+    {
+      status = NC_EMAXDIMS; // the library's own limit, which nc_inq_var would write beyond
+    }
+    variable.Dimensions.assign(std::size_t(std::clamp(count, 0, NC_MAX_VAR_DIMS)), 0);
+    if (status == NC_NOERR)
+    {
+      status = nc_inq_var(
+        this->Id, ids[v], name, &variable.Type, nullptr, variable.Dimensions.data(), nullptr);
+    }
+    variable.Name = name;
+    this->All.push_back(variable);
+  }
+  if (status != NC_NOERR)
+  {
+    this->Fail(status, "list its dimensions and variables");
+  }
+}
+
+File::~File()
+{
+  if (this->Id >= 0)
+  {
+    nc_close(this->Id);
+  }
+}
+
+void File::Fail(int status, const std::string& doing) const
+{
+  const std::string library = std::string(" (the netCDF library: ") + nc_strerror(status) + ")";
+  switch (status)
+  {
+    // The HDF5 layer of a netCDF-4 file: the structures it found do not hold together.
+    case NC_EHDFERR:
+    case NC_EFILEMETA:
+    case NC_EDIMMETA:
+    case NC_EATTMETA:
+    case NC_EVARMETA:
+    case NC_ETRUNC:
+    case NC_EIO:
+      cloudvis::Fail(
+        this->Name, "cannot " + doing + ": the file is damaged or truncated" + library);
+    case NC_ENOTNC:
+      cloudvis::Fail(this->Name, "not a NetCDF file the netCDF library can read" + library);
+    case NC_EFILTER:
+    case NC_ENOFILTER:
+      cloudvis::Fail(this->Name,
+        "cannot " + doing + ": the values are compressed with a filter this netCDF library " +
+          "does not have" + library);
+    case NC_ENOMEM:
+      cloudvis::Fail(this->Name, "cannot " + doing + ": not enough memory" + library);
+    default:
+      // What the library refuses when it opens a file (sizes beyond the format's, counts that
+      // do not fit) is in the file.
+      cloudvis::Fail(
+        this->Name, "cannot " + doing + (this->Id < 0 ? ": the file is malformed" : "") + library);
+  }
+}
+
+const Variable* File::Find(const std::string& name) const
+{
+  for (const Variable& v : this->All)
+  {
+    if (v.Name == name)
+    {
+      return &v;
+    }
+  }
+  return nullptr;
+}
+
+const Dimension& File::DimensionOf(int id) const
+{
+  for (const auto& d : this->Dimensions)
+  {
+    if (d.first == id)
+    {
+      return d.second;
+    }
+  }
+  // A variable of the root group uses dimensions of the root group (or of none, netCDF-4 groups
+  // aside, which CF files do not use for the data read here).
+  cloudvis::Fail(this->Name,
+    "a variable uses dimension " + std::to_string(id) + ", which is not one of the root group's");
+}
+
+const Variable* File::CoordinateOf(int dimension) const
+{
+  const Variable* v = this->Find(this->DimensionOf(dimension).Name);
+  return v && v->Dimensions.size() == 1 && v->Dimensions[0] == dimension && IsNumeric(v->Type)
+    ? v
+    : nullptr;
+}
+
+std::string File::Text(const Variable& variable, const char* attribute) const
+{
+  nc_type type = NC_NAT;
+  std::size_t length = 0;
+  if (nc_inq_att(this->Id, variable.Id, attribute, &type, &length) != NC_NOERR || type != NC_CHAR ||
+    length > 4096)
+  {
+    return "";
+  }
+  std::string text(length, '\0');
+  if (length > 0 && nc_get_att_text(this->Id, variable.Id, attribute, &text[0]) != NC_NOERR)
+  {
+    return "";
+  }
+  return text.substr(0, text.find('\0'));
+}
+
+std::vector<double> File::Numbers(const Variable& variable, const char* attribute) const
+{
+  nc_type type = NC_NAT;
+  std::size_t length = 0;
+  if (nc_inq_att(this->Id, variable.Id, attribute, &type, &length) != NC_NOERR ||
+    !IsNumeric(type) || length == 0 || length > 4096)
+  {
+    return {};
+  }
+  std::vector<double> values(length);
+  return nc_get_att_double(this->Id, variable.Id, attribute, values.data()) == NC_NOERR
+    ? values
+    : std::vector<double>{};
+}
+
+bool File::Has(const Variable& variable, const char* attribute) const
+{
+  return nc_inq_attid(this->Id, variable.Id, attribute, nullptr) == NC_NOERR;
+}
+
+void File::Read(const Variable& variable,
+  const std::vector<std::size_t>& start,
+  const std::vector<std::size_t>& count,
+  double* values) const
+{
+  // NC_ERANGE cannot happen: every numeric type fits a double.
+  const int status = nc_get_vara_double(this->Id, variable.Id, start.data(), count.data(), values);
+  if (status != NC_NOERR)
+  {
+    this->Fail(status, "read the values of \"" + variable.Name + "\"");
+  }
+}
+
+std::vector<double> File::Coordinates(const Variable& variable) const
+{
+  std::vector<double> values(this->DimensionOf(variable.Dimensions.at(0)).Length);
+  if (!values.empty())
+  {
+    this->Read(variable, { 0 }, { values.size() }, values.data());
+  }
+  const Packing packing = PackingOf(*this, variable);
+  for (double& value : values)
+  {
+    value = value * packing.Scale + packing.Offset;
+  }
+  return values;
+}
+
+std::size_t File::ChunkLength(const Variable& variable, int position) const
+{
+  int storage = NC_CONTIGUOUS;
+  std::vector<std::size_t> chunks(variable.Dimensions.size());
+  if (chunks.empty() ||
+    nc_inq_var_chunking(this->Id, variable.Id, &storage, chunks.data()) != NC_NOERR ||
+    storage != NC_CHUNKED)
+  {
+    return 0;
+  }
+  return chunks[std::size_t(position)];
+}
+
+bool IsNumeric(int type)
+{
+  switch (type)
+  {
+    case NC_BYTE:
+    case NC_UBYTE:
+    case NC_SHORT:
+    case NC_USHORT:
+    case NC_INT:
+    case NC_UINT:
+    case NC_INT64:
+    case NC_UINT64:
+    case NC_FLOAT:
+    case NC_DOUBLE:
+      return true;
+    default:
+      return false;
+  }
+}
+
+std::string TypeName(int type)
+{
+  static const char* const names[] = { "",
+    "byte",
+    "char",
+    "short",
+    "int",
+    "float",
+    "double",
+    "ubyte",
+    "ushort",
+    "uint",
+    "int64",
+    "uint64",
+    "string" };
+  return type > 0 && type <= NC_STRING ? names[type]
+                                       : "a user-defined type (compound, enum, opaque or vlen)";
+}
+
+// ---- roles of dimensions ------------------------------------------------------------------------
+
+namespace
+{
+
+std::string Lower(std::string text)
+{
+  std::transform(
+    text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return text;
+}
+
+bool StartsWith(const std::string& text, const std::string& prefix)
+{
+  return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+bool OneOf(const std::string& text, std::initializer_list<const char*> words)
+{
+  return std::any_of(words.begin(), words.end(), [&text](const char* w) { return text == w; });
+}
+
+struct Identified
+{
+  Role Is = Role::Unknown;
+  std::string How;
+};
+
+Role RoleOfUnits(const std::string& units)
+{
+  const std::string u = Lower(units);
+  if (u.find(" since ") != std::string::npos)
+  {
+    return Role::Time;
+  }
+  // CF 4.1 and 4.2: the spellings of degrees east and north.
+  if (OneOf(u, { "degrees_east", "degree_east", "degree_e", "degrees_e", "degreee", "degreese" }))
+  {
+    return Role::X;
+  }
+  if (OneOf(u, { "degrees_north", "degree_north", "degree_n", "degrees_n", "degreen", "degreesn" }))
+  {
+    return Role::Y;
+  }
+  // CF 4.3: a pressure is a vertical coordinate.
+  if (OneOf(u, { "pa", "hpa", "kpa", "mbar", "millibar", "bar", "decibar", "dbar", "atm", "mb" }))
+  {
+    return Role::Z;
+  }
+  return Role::Unknown;
+}
+
+Role RoleOfStandardName(const std::string& name)
+{
+  if (name == "time")
+  {
+    return Role::Time;
+  }
+  if (OneOf(name, { "longitude", "grid_longitude", "projection_x_coordinate" }))
+  {
+    return Role::X;
+  }
+  if (OneOf(name, { "latitude", "grid_latitude", "projection_y_coordinate" }))
+  {
+    return Role::Y;
+  }
+  if (OneOf(name, { "altitude", "height", "depth", "air_pressure", "model_level_number" }) ||
+    StartsWith(name, "height_above") || StartsWith(name, "atmosphere_") ||
+    StartsWith(name, "ocean_"))
+  {
+    return Role::Z;
+  }
+  return Role::Unknown;
+}
+
+// Names of dimensions in the files of atmospheric models: CF's usual ones, WRF's (west_east,
+// south_north, bottom_top and their _stag), and the staggered names of LES codes (xt, xm, zt, zm
+// in UCLA-LES, DALES and MicroHH).
+Role RoleOfName(const std::string& dimension)
+{
+  const std::string n = Lower(dimension);
+  if (OneOf(n, { "time", "t", "times" }))
+  {
+    return Role::Time;
+  }
+  if (OneOf(n, { "x", "xt", "xm", "xc", "xh", "xu", "xf", "nx", "lon" }) || StartsWith(n, "x_") ||
+    StartsWith(n, "lon") || StartsWith(n, "west_east"))
+  {
+    return Role::X;
+  }
+  if (OneOf(n, { "y", "yt", "ym", "yc", "yh", "yv", "yf", "ny", "lat" }) || StartsWith(n, "y_") ||
+    StartsWith(n, "lat") || StartsWith(n, "south_north"))
+  {
+    return Role::Y;
+  }
+  if (OneOf(n,
+        { "z",
+          "zt",
+          "zm",
+          "zc",
+          "zh",
+          "zw",
+          "zf",
+          "zu",
+          "nz",
+          "alt",
+          "p",
+          "pres",
+          "plev",
+          "sigma",
+          "depth" }) ||
+    StartsWith(n, "z_") || StartsWith(n, "lev") || StartsWith(n, "height") ||
+    StartsWith(n, "altitude") || StartsWith(n, "pressure") || StartsWith(n, "bottom_top"))
+  {
+    return Role::Z;
+  }
+  return Role::Unknown;
+}
+
+Identified Identify(const File& file, int dimension)
+{
+  if (const Variable* c = file.CoordinateOf(dimension))
+  {
+    const std::string axis = Lower(file.Text(*c, "axis"));
+    const Role byAxis = axis == "x" ? Role::X
+      : axis == "y"                 ? Role::Y
+      : axis == "z"                 ? Role::Z
+      : axis == "t"                 ? Role::Time
+                                    : Role::Unknown;
+    if (byAxis != Role::Unknown)
+    {
+      return { byAxis, "its coordinate's axis attribute \"" + file.Text(*c, "axis") + "\"" };
+    }
+    const std::string standardName = file.Text(*c, "standard_name");
+    if (const Role r = RoleOfStandardName(Lower(standardName)); r != Role::Unknown)
+    {
+      return { r, "its coordinate's standard_name \"" + standardName + "\"" };
+    }
+    const std::string units = file.Text(*c, "units");
+    if (const Role r = RoleOfUnits(units); r != Role::Unknown)
+    {
+      return { r, "its coordinate's units \"" + units + "\"" };
+    }
+    const std::string positive = Lower(file.Text(*c, "positive"));
+    if (positive == "up" || positive == "down")
+    {
+      return { Role::Z, "its coordinate's positive attribute \"" + positive + "\"" };
+    }
+  }
+  if (const Role r = RoleOfName(file.DimensionOf(dimension).Name); r != Role::Unknown)
+  {
+    return { r, "its name" };
+  }
+  return {};
+}
+
+const char* const AxisNames[] = { "x", "y", "z" };
+
+} // namespace
+
+Layout LayoutOf(const File& file, const Variable& variable)
+{
+  Layout layout;
+  const auto problem = [&layout](const std::string& text)
+  {
+    if (layout.Problem.empty())
+    {
+      layout.Problem = text;
+    }
+  };
+  if (!IsNumeric(variable.Type))
+  {
+    problem("is of type " + TypeName(variable.Type) + ", not numbers");
+  }
+  const int n = int(variable.Dimensions.size());
+  std::vector<Identified> roles;
+  for (int p = 0; p < n; ++p)
+  {
+    roles.push_back(Identify(file, variable.Dimensions[std::size_t(p)]));
+    if (roles.back().Is == Role::Unknown && p == 0 && n > 2 &&
+      file.DimensionOf(variable.Dimensions[0]).Unlimited)
+    {
+      roles.back() = { Role::Time, "it is the record (unlimited) dimension" };
+    }
+  }
+  std::vector<int> unknown; // positions of spatial dimensions nothing identifies, fastest first
+  for (int p = n - 1; p >= 0; --p)
+  {
+    const Identified& role = roles[std::size_t(p)];
+    const Layout::Axis axis{ p, variable.Dimensions[std::size_t(p)], role.How };
+    const std::string name = "\"" + file.DimensionOf(axis.Dimension).Name + "\"";
+    if (role.Is == Role::Time)
+    {
+      if (layout.Time.Position >= 0)
+      {
+        problem("has two time dimensions, " + name + " and \"" +
+          file.DimensionOf(layout.Time.Dimension).Name + "\"");
+      }
+      layout.Time = axis;
+      continue;
+    }
+    ++layout.SpatialDimensions;
+    if (role.Is == Role::Unknown)
+    {
+      unknown.push_back(p);
+      continue;
+    }
+    Layout::Axis& slot = layout.Space[std::size_t(int(role.Is) - int(Role::X))];
+    if (slot.Position >= 0)
+    {
+      problem("has two dimensions that are its " +
+        std::string(AxisNames[int(role.Is) - int(Role::X)]) + " axis: " + name + " (by " +
+        role.How + ") and \"" + file.DimensionOf(slot.Dimension).Name + "\" (by " + slot.How + ")");
+    }
+    slot = axis;
+  }
+  if (layout.SpatialDimensions < 2 || layout.SpatialDimensions > 3)
+  {
+    problem("has " + std::to_string(layout.SpatialDimensions) +
+      " spatial dimensions; a density field needs 2 or 3");
+    return layout;
+  }
+  // The others by position: CF orders dimensions T, Z, Y, X, so the fastest free one is x.
+  for (const int p : unknown)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (layout.Space[std::size_t(a)].Position < 0)
+      {
+        layout.Space[std::size_t(a)] = { p,
+          variable.Dimensions[std::size_t(p)],
+          "position (nothing in the file names it; dimensions are taken as ordered z, y, x)" };
+        break;
+      }
+    }
+  }
+  // Auxiliary coordinates of two or more of its dimensions (2-D latitude and longitude) make
+  // the grid curvilinear: its points are not where a lattice puts them.
+  std::istringstream names(file.Text(variable, "coordinates"));
+  for (std::string name; names >> name;)
+  {
+    const Variable* auxiliary = file.Find(name);
+    if (auxiliary && auxiliary->Dimensions.size() >= 2)
+    {
+      problem("is on curvilinear coordinates (\"" + name + "\" of its `coordinates` attribute " +
+        "has " + std::to_string(auxiliary->Dimensions.size()) +
+        " dimensions): cloudvis reads regular and rectilinear grids only");
+    }
+  }
+  return layout;
+}
+
+const Variable& ChooseVariable(const File& file, const std::string& wanted)
+{
+  // Variables that describe others: coordinates (named as their dimension), auxiliary
+  // coordinates (in a `coordinates` attribute) and cell bounds (`bounds`, `climatology`).
+  std::vector<std::string> describing;
+  for (const Variable& v : file.Variables())
+  {
+    if (v.Dimensions.size() == 1 && file.DimensionOf(v.Dimensions[0]).Name == v.Name)
+    {
+      describing.push_back(v.Name);
+    }
+    for (const char* attribute : { "coordinates", "bounds", "climatology" })
+    {
+      std::istringstream names(file.Text(v, attribute));
+      for (std::string name; names >> name;)
+      {
+        describing.push_back(name);
+      }
+    }
+  }
+  std::string candidates, problems;
+  const Variable* first = nullptr;
+  for (const Variable& v : file.Variables())
+  {
+    if (std::find(describing.begin(), describing.end(), v.Name) != describing.end())
+    {
+      continue;
+    }
+    const std::string problem = LayoutOf(file, v).Problem;
+    if (problem.empty())
+    {
+      candidates += (candidates.empty() ? "" : ", ") + v.Name;
+      first = first ? first : &v;
+    }
+    else if (v.Dimensions.size() >= 2)
+    {
+      problems += "; variable \"" + v.Name + "\" " + problem;
+    }
+  }
+  const std::string readable = candidates.empty() ? "none" : candidates;
+  if (const Variable* named = file.Find(wanted.empty() ? "density" : wanted))
+  {
+    const Layout layout = LayoutOf(file, *named);
+    if (!layout.Problem.empty())
+    {
+      cloudvis::Fail(file.Path(),
+        "variable \"" + named->Name + "\"" + (wanted.empty() ? "" : " (field.array)") + " " +
+          layout.Problem + " (variables that can be read as a density: " + readable + ")");
+    }
+    return *named;
+  }
+  if (!wanted.empty())
+  {
+    cloudvis::Fail(file.Path(),
+      "no variable named \"" + wanted +
+        "\" (field.array); variables that can be read as a density: " + readable);
+  }
+  if (!first)
+  {
+    cloudvis::Fail(file.Path(),
+      "no variable can be read as a density (numbers on 2 or 3 spatial dimensions)" + problems);
+  }
+  return *first;
+}
+
+// ---- missing values and packing ---------------------------------------------------------------
+
+MissingValues::MissingValues(const File& file, const Variable& variable)
+  : Float(variable.Type == NC_FLOAT)
+{
+  const auto equal = [this](const std::string& text, double value) {
+    this->Markers.push_back({ text + " " + Number(value), value });
+  };
+  const std::vector<double> fill = file.Numbers(variable, "_FillValue");
+  if (!fill.empty())
+  {
+    equal("_FillValue", fill[0]);
+  }
+  else if (variable.Type != NC_BYTE && variable.Type != NC_UBYTE && IsNumeric(variable.Type))
+  {
+    static const double defaults[] = { 0,
+      0,
+      0,
+      NC_FILL_SHORT,
+      NC_FILL_INT,
+      NC_FILL_FLOAT,
+      NC_FILL_DOUBLE,
+      0,
+      NC_FILL_USHORT,
+      NC_FILL_UINT,
+      double(NC_FILL_INT64),
+      double(NC_FILL_UINT64) };
+    equal("the default fill value", defaults[variable.Type]);
+  }
+  for (const double value : file.Numbers(variable, "missing_value"))
+  {
+    equal("missing_value", value);
+  }
+  const auto range = [this](const std::string& text, double low, double high)
+  {
+    Marker m;
+    m.Text = text;
+    m.Low = low;
+    m.High = high;
+    m.Range = true;
+    this->Markers.push_back(m);
+  };
+  const std::vector<double> validRange = file.Numbers(variable, "valid_range");
+  const std::vector<double> low = file.Numbers(variable, "valid_min");
+  const std::vector<double> high = file.Numbers(variable, "valid_max");
+  if (validRange.size() == 2)
+  {
+    range("outside valid_range [" + Number(validRange[0]) + ", " + Number(validRange[1]) + "]",
+      validRange[0],
+      validRange[1]);
+  }
+  if (!low.empty())
+  {
+    range("below valid_min " + Number(low[0]), low[0], std::numeric_limits<double>::infinity());
+  }
+  if (!high.empty())
+  {
+    range("above valid_max " + Number(high[0]), -std::numeric_limits<double>::infinity(), high[0]);
+  }
+  // A float variable's values are floats: a marker written as a double (missing_value = -999.9)
+  // means the float nearest to it, as the value stored for it is.
+  for (Marker& m : this->Markers)
+  {
+    const auto asStored = [this](double v) { return this->Float ? double(float(v)) : v; };
+    m.Value = asStored(m.Value);
+    m.Low = std::isinf(m.Low) ? m.Low : asStored(m.Low);
+    m.High = std::isinf(m.High) ? m.High : asStored(m.High);
+  }
+}
+
+int MissingValues::Match(double packed)
+{
+  for (std::size_t i = 0; i < this->Markers.size(); ++i)
+  {
+    Marker& m = this->Markers[i];
+    const bool missing = m.Range
+      ? (packed < m.Low || packed > m.High)
+      : (packed == m.Value || (std::isnan(packed) && std::isnan(m.Value)));
+    if (missing)
+    {
+      ++m.Count;
+      return int(i);
+    }
+  }
+  return -1;
+}
+
+std::uint64_t MissingValues::Count() const
+{
+  std::uint64_t count = 0;
+  for (const Marker& m : this->Markers)
+  {
+    count += m.Count;
+  }
+  return count;
+}
+
+std::string MissingValues::Describe() const
+{
+  std::vector<const Marker*> found;
+  for (const Marker& m : this->Markers)
+  {
+    if (m.Count > 0)
+    {
+      found.push_back(&m);
+    }
+  }
+  if (found.size() == 1)
+  {
+    return found[0]->Text;
+  }
+  std::string text;
+  for (const Marker* m : found)
+  {
+    text += (text.empty() ? "" : ", ") + std::to_string(m->Count) + " " + m->Text;
+  }
+  return text;
+}
+
+Packing PackingOf(const File& file, const Variable& variable)
+{
+  Packing packing;
+  const std::vector<double> scale = file.Numbers(variable, "scale_factor");
+  const std::vector<double> offset = file.Numbers(variable, "add_offset");
+  packing.Scale = scale.empty() ? 1.0 : scale[0];
+  packing.Offset = offset.empty() ? 0.0 : offset[0];
+  packing.Packed = !scale.empty() || !offset.empty();
+  return packing;
+}
+
+} // namespace netcdf
+} // namespace cloudvis
