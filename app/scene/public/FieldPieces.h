@@ -8,15 +8,16 @@
 // (one piece in memory at a time) and, under MPI, each process makes and writes only its own
 // pieces: process r of R takes the pieces p with p % R == r.
 //
-// The output is replaced as one: every process writes its pieces to temporaries (PendingFile,
-// AtomicFile.h) and process 0 the .pvti; the processes agree that all were written (RunAgreed);
-// only then, with interruptions held (InterruptionHold), each renames its pieces into place, they
-// agree again, and process 0 removes the pieces of an older output that the new one no longer
-// names and renames the .pvti last. A failure anywhere before the renames, or a signal (Ctrl-C,
-// mpirun's SIGTERM), leaves the previous output untouched and no temporary. The .pvti and every
-// piece record the run that wrote them (PieceRunAttribute, a random 128-bit id), which the reader
-// checks: what the renames cannot make atomic (a process killed by SIGKILL or a crash between
-// two renames) is refused when read, never read as a field mixed from two runs.
+// The output is replaced as one: every process writes its pieces, and process 0 the .pvti, into
+// one directory of temporaries named after the run (TemporaryGroup, AtomicFile.h), which the
+// signal handler of any process removes whole; the processes agree that all were written
+// (RunAgreed); only then, with interruptions held (InterruptionHold), each renames its pieces
+// into place, they agree again, and process 0 removes the pieces of an older output that the new
+// one no longer names and renames the .pvti last. A failure anywhere before the renames, or a
+// signal (Ctrl-C, mpirun's SIGTERM), leaves the previous output untouched and no temporary. The
+// .pvti and every piece record the run that wrote them (PieceRunAttribute, a random 128-bit id),
+// which the reader checks: what renames cannot make atomic (a process killed by SIGKILL or a
+// crash between two renames) is refused when read, never read as a field mixed from two runs.
 #ifndef cloudvis_FieldPieces_h
 #define cloudvis_FieldPieces_h
 
