@@ -491,7 +491,8 @@ TemporaryGroup::~TemporaryGroup()
   {
     std::remove(member.c_str());
   }
-  ::rmdir(this->Directory.c_str()); // fails while another process's members remain: its to do
+  ::rmdir(
+    this->Directory.c_str()); // fails while another process's members remain: the last removes it
   static_cast<GroupSlot*>(this->Registration)->State.store(Free);
 }
 
