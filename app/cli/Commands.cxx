@@ -273,32 +273,42 @@ int Generate(const Arguments& arguments, std::ostream& out)
                      "name (got " +
       output + ")");
   }
-  // Before the work: a bad -o should not cost a field's generation time.
-  CheckFieldOutput(output);
   const std::string input = arguments.Operands.empty() ? "" : arguments.Operands[0];
-  const Scene scene = LoadOperandScene("generate", input, arguments, {});
   if (!parallelFile)
   {
+    // Before the work: a bad -o should not cost a field's generation time.
+    CheckFieldOutput(output);
+    const Scene scene = LoadOperandScene("generate", input, arguments, {});
     const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
     WriteField(field, output, { ResolvedSceneJson(scene, field) });
     out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
     return ExitSuccess;
   }
   const int pieces = requestedPieces > 0 ? requestedPieces : processes.Size();
+  // Under MPI each step is agreed between the processes (RunAgreed): a scene or field file one
+  // process cannot read, or memory one node lacks, ends every process with its message instead
+  // of leaving the others waiting for it.
   FieldLattice lattice;
-  if (scene.Field.FromFile())
-  {
-    // A field file is read whole by every process, which writes its own pieces of it.
-    const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
-    lattice = LatticeOf(field);
-    WriteFieldPieces(field, output, pieces, processes.Controller());
-  }
-  else
-  {
-    // A procedural field is generated piece by piece, each process its own pieces.
-    const PieceProducer produce = ProceduralPieces(scene, lattice);
-    WriteFieldPieces(lattice, output, pieces, produce, processes.Controller());
-  }
+  PieceProducer produce;
+  RunAgreed(processes.Controller(),
+    [&]
+    {
+      CheckFieldOutput(output);
+      const Scene scene = LoadOperandScene("generate", input, arguments, {});
+      if (scene.Field.FromFile())
+      {
+        // A field file is read whole by every process, which writes its own pieces of it.
+        const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
+        lattice = LatticeOf(field);
+        produce = [field](const Extent& extent) { return ExtractPiece(field, extent); };
+      }
+      else
+      {
+        // A procedural field is generated piece by piece, each process its own pieces.
+        produce = ProceduralPieces(scene, lattice);
+      }
+    });
+  WriteFieldPieces(lattice, output, pieces, produce, processes.Controller());
   if (processes.Rank() == 0)
   {
     const Extent& e = lattice.WholeExtent;

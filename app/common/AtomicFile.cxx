@@ -5,7 +5,11 @@
 // touch std::string or the heap, so each slot is a char buffer guarded by a lock-free atomic
 // state. The handler covers every signal whose default action ends the process and that can be
 // caught; after removing the temporaries it restores the default action and raises the signal
-// again, so the process ends exactly as it would have without cloudvis's handler.
+// again, so the process ends exactly as it would have without cloudvis's handler. The
+// temporaries of a group replaced together (TemporaryGroup) live in one hidden directory whose
+// members the handler names from a pattern, so a group may hold any number of them. During an
+// InterruptionHold the handler records an asynchronous signal instead, and the hold's end acts
+// on it.
 #include "AtomicFile.h"
 
 #include "Errors.h"
@@ -55,10 +59,30 @@ struct Slot
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
 Slot Slots[SlotCount];
 
+// A group's directory and the pattern of its members' names (TemporaryGroup): members
+// PREFIX<i>SUFFIX for i < Count, and EXTRA; registered like a slot.
+struct GroupSlot
+{
+  std::atomic<int> State{ Free };
+  char Directory[PATH_MAX] = {};
+  char Prefix[NAME_MAX + 1] = {};
+  char Suffix[NAME_MAX + 1] = {};
+  char Extra[NAME_MAX + 1] = {};
+  long Count = 0;
+};
+GroupSlot Groups[4];
+
+// The hold (InterruptionHold): while HoldDepth > 0 an asynchronous signal is recorded in
+// HeldSignal instead of acted on; whichever of the handler and the hold's end finds the depth 0
+// afterwards takes the recorded signal (exchange) and acts on it, so none is lost or acted on
+// twice, whatever thread the kernel gave it to.
+std::atomic<int> HoldDepth{ 0 };
+std::atomic<int> HeldSignal{ 0 };
+
 // The signals whose default action ends the process (signal(7): "Term" and "Core") and that a
 // handler can catch, apart from the real-time signals, which are added at run time. The first
-// group is raised by the program's own faults (synchronously, in the faulting thread); blocking
-// them is undefined, so ScopedSignalBlock leaves them alone.
+// group is raised by the program's own faults (synchronously, in the faulting thread): returning
+// from their handler would fault again, so they are never held.
 constexpr int FaultSignals[] = { SIGILL, SIGTRAP, SIGABRT, SIGBUS, SIGFPE, SIGSEGV, SIGSYS };
 constexpr int AsynchronousSignals[] = {
   SIGHUP,
@@ -99,13 +123,89 @@ sigset_t AsynchronousSignalSet()
   return set;
 }
 
-extern "C" void RemoveTemporariesAndReraise(int signal)
+// Appends `text` to `path` (of `capacity` bytes, NUL-terminated) without allocating; false
+// when it does not fit.
+bool AppendSafely(char* path, std::size_t capacity, const char* text)
+{
+  std::size_t length = 0;
+  while (length < capacity && path[length])
+  {
+    ++length;
+  }
+  for (; *text; ++text, ++length)
+  {
+    if (length + 1 >= capacity)
+    {
+      return false;
+    }
+    path[length] = *text;
+  }
+  path[length] = '\0';
+  return true;
+}
+
+// Removes a group's members and its directory, async-signal-safely: unlink and rmdir, names
+// built in a buffer on the stack. A member another process creates meanwhile makes rmdir fail:
+// then again, a few times; once the directory is gone, nothing can be created in it.
+void RemoveGroup(const GroupSlot& group)
+{
+  for (int attempt = 0; attempt < 5; ++attempt)
+  {
+    char path[PATH_MAX];
+    for (long i = -1; i < group.Count; ++i)
+    {
+      path[0] = '\0';
+      bool fits =
+        AppendSafely(path, sizeof(path), group.Directory) && AppendSafely(path, sizeof(path), "/");
+      if (i < 0)
+      {
+        fits = fits && AppendSafely(path, sizeof(path), group.Extra);
+      }
+      else
+      {
+        char digits[24];
+        int n = 0;
+        for (long v = i; n == 0 || v > 0; v /= 10)
+        {
+          digits[n++] = char('0' + v % 10);
+        }
+        char number[24];
+        for (int d = 0; d < n; ++d)
+        {
+          number[d] = digits[n - 1 - d];
+        }
+        number[n] = '\0';
+        fits = fits && AppendSafely(path, sizeof(path), group.Prefix) &&
+          AppendSafely(path, sizeof(path), number) &&
+          AppendSafely(path, sizeof(path), group.Suffix);
+      }
+      if (fits)
+      {
+        ::unlink(path);
+      }
+    }
+    if (::rmdir(group.Directory) == 0 || errno != ENOTEMPTY)
+    {
+      return;
+    }
+  }
+}
+
+// Called by the handler, and by the end of a hold that recorded a signal.
+void RemoveTemporariesAndReraise(int signal)
 {
   for (Slot& slot : Slots)
   {
     if (slot.State.load() == Registered)
     {
       ::unlink(slot.Path);
+    }
+  }
+  for (GroupSlot& group : Groups)
+  {
+    if (group.State.load() == Registered)
+    {
+      RemoveGroup(group);
     }
   }
   // End as the default action would: the parent sees "killed by signal" (a shell's $? is
@@ -122,6 +222,38 @@ extern "C" void RemoveTemporariesAndReraise(int signal)
   ::pthread_sigmask(SIG_UNBLOCK, &only, nullptr);
   ::raise(signal);
   ::_exit(128 + signal); // not reached: every signal handled here ends the process by default
+}
+
+bool IsFaultSignal(int signal)
+{
+  for (int fault : FaultSignals)
+  {
+    if (signal == fault)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+extern "C" void OnTerminatingSignal(int signal)
+{
+  if (!IsFaultSignal(signal) && HoldDepth.load() > 0)
+  {
+    int none = 0;
+    HeldSignal.compare_exchange_strong(none, signal); // the first signal held is acted on
+    if (HoldDepth.load() > 0)
+    {
+      return;
+    }
+    // The hold ended meanwhile, perhaps before the signal was recorded: act unless it did.
+    signal = HeldSignal.exchange(0);
+    if (signal == 0)
+    {
+      return;
+    }
+  }
+  RemoveTemporariesAndReraise(signal);
 }
 
 // Returns the slot now holding `path`, or -1 when none is free or the path does not fit.
@@ -152,24 +284,6 @@ void UnregisterTemporary(int slot)
     Slots[slot].State.store(Free);
   }
 }
-
-// Blocks the asynchronous signals in this thread for its lifetime: between mkstemps creating the
-// temporary and its registration, a signal would otherwise leave it behind.
-class ScopedSignalBlock
-{
-public:
-  ScopedSignalBlock()
-  {
-    const sigset_t block = AsynchronousSignalSet();
-    pthread_sigmask(SIG_BLOCK, &block, &this->Previous);
-  }
-  ~ScopedSignalBlock() { pthread_sigmask(SIG_SETMASK, &this->Previous, nullptr); }
-  ScopedSignalBlock(const ScopedSignalBlock&) = delete;
-  ScopedSignalBlock& operator=(const ScopedSignalBlock&) = delete;
-
-private:
-  sigset_t Previous;
-};
 
 // Removes the temporary unless it has been renamed: covers exceptions from the writer as well as
 // our own failures. Registered for the signal handler while it exists.
@@ -208,7 +322,8 @@ private:
 
 // The mkstemps pattern of a target's temporary: DIRECTORY/.NAME.tmp-XXXXXX.EXT, hidden, and named
 // after the target so that a leftover from a killed process is recognisable, with the target's
-// extension for writers that look at it. The temporary's name must fit the directory's file-name
+// extension for writers that look at it (a group's directory takes the group's TAG for XXXXXX,
+// and no extension). The temporary's name must fit the directory's file-name
 // limit (pathconf _PC_NAME_MAX, 255 bytes on most file systems) however long the target's name
 // is, so NAME is shortened as far as needed (at a UTF-8 character boundary), and EXT is dropped
 // when it alone would not fit; XXXXXX keeps the name unique.
@@ -217,13 +332,17 @@ struct TemporaryName
   std::string Pattern;
   int SuffixLength; // the characters after XXXXXX
 };
-TemporaryName TemporaryNameFor(const std::string& directory, const std::string& name)
+TemporaryName TemporaryNameFor(const std::string& directory,
+  const std::string& name,
+  const std::string& tag = "XXXXXX",
+  bool keepExtension = true)
 {
   const long limit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
   const std::size_t nameMax = limit > 0 ? std::size_t(limit) : std::size_t(NAME_MAX);
-  const std::string marker = ".tmp-XXXXXX";
+  const std::string marker = ".tmp-" + tag;
   const auto dot = name.find_last_of('.');
-  std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
+  std::string extension =
+    dot == std::string::npos || dot == 0 || !keepExtension ? "" : name.substr(dot);
   if (1 + marker.size() + extension.size() > nameMax)
   {
     extension.clear();
@@ -266,7 +385,7 @@ void InstallInterruptCleanup()
     }
     struct sigaction action;
     std::memset(&action, 0, sizeof(action));
-    action.sa_handler = RemoveTemporariesAndReraise;
+    action.sa_handler = OnTerminatingSignal;
     // One cleanup at a time: another signal arriving during it waits, and is moot once the
     // process ends.
     action.sa_mask = AsynchronousSignalSet();
@@ -292,6 +411,105 @@ void ForgetTemporariesInChild()
   for (Slot& slot : Slots)
   {
     slot.State.store(Free);
+  }
+  for (GroupSlot& group : Groups)
+  {
+    group.State.store(Free);
+  }
+  HoldDepth.store(0);
+  HeldSignal.store(0);
+}
+
+InterruptionHold::InterruptionHold()
+{
+  InstallInterruptCleanup();
+  HoldDepth.fetch_add(1);
+}
+
+InterruptionHold::~InterruptionHold()
+{
+  if (HoldDepth.fetch_sub(1) == 1)
+  {
+    if (const int signal = HeldSignal.exchange(0))
+    {
+      RemoveTemporariesAndReraise(signal);
+    }
+  }
+}
+
+TemporaryGroup::TemporaryGroup(const std::string& target,
+  const std::string& tag,
+  bool create,
+  const std::string& prefix,
+  const std::string& suffix,
+  long count,
+  const std::string& extra)
+{
+  CheckOutputTarget(target);
+  const std::string directory = DirectoryOf(target);
+  this->Directory = TemporaryNameFor(directory, FileNameOf(target), tag, false).Pattern;
+  if (this->Directory.size() >= PATH_MAX || prefix.size() > NAME_MAX || suffix.size() > NAME_MAX ||
+    extra.size() > NAME_MAX)
+  {
+    throw InputError(target + ": the path of its temporary directory is too long");
+  }
+  // Between mkdir and the registration a signal would leave the directory behind.
+  const InterruptionHold noSignalUntilRegistered;
+  if (create && ::mkdir(this->Directory.c_str(), 0700) != 0)
+  {
+    throw InputError(target + ": cannot create the temporary directory " + this->Directory + " (" +
+      SystemReason() + ")");
+  }
+  for (GroupSlot& group : Groups)
+  {
+    int expected = Free;
+    if (group.State.compare_exchange_strong(expected, Claimed))
+    {
+      std::memcpy(group.Directory, this->Directory.c_str(), this->Directory.size() + 1);
+      std::memcpy(group.Prefix, prefix.c_str(), prefix.size() + 1);
+      std::memcpy(group.Suffix, suffix.c_str(), suffix.size() + 1);
+      std::memcpy(group.Extra, extra.c_str(), extra.size() + 1);
+      group.Count = count;
+      group.State.store(Registered); // publishes it to the handler
+      this->Registration = &group;
+      break;
+    }
+  }
+  if (!this->Registration)
+  {
+    if (create)
+    {
+      ::rmdir(this->Directory.c_str());
+    }
+    throw InputError(target + ": too many groups of files are being written at once");
+  }
+}
+
+TemporaryGroup::~TemporaryGroup()
+{
+  for (const std::string& member : this->Created)
+  {
+    std::remove(member.c_str());
+  }
+  ::rmdir(
+    this->Directory.c_str()); // fails while another process's members remain: the last removes it
+  static_cast<GroupSlot*>(this->Registration)->State.store(Free);
+}
+
+std::string TemporaryGroup::Member(const std::string& name)
+{
+  const std::string path = this->Directory + "/" + name;
+  this->Created.push_back(path);
+  return path;
+}
+
+void TemporaryGroup::Commit(const std::string& name, const std::string& target)
+{
+  const std::string member = this->Directory + "/" + name;
+  if (::rename(member.c_str(), target.c_str()) != 0)
+  {
+    throw InputError(
+      target + ": cannot replace the target with " + member + " (" + SystemReason() + ")");
   }
 }
 
@@ -335,7 +553,8 @@ void WriteFileAtomically(
   int fd = -1;
   std::unique_ptr<TemporaryFile> created;
   {
-    ScopedSignalBlock noSignalUntilRegistered;
+    // Held process-wide, whichever thread the kernel gives a signal to.
+    const InterruptionHold noSignalUntilRegistered;
     fd = ::mkstemps(buffer.data(), name.SuffixLength);
     if (fd < 0)
     {

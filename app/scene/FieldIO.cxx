@@ -17,6 +17,7 @@
 #include <vtkImageData.h>
 #include <vtkMatrix3x3.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkXMLImageDataWriter.h>
 
@@ -170,6 +171,33 @@ const FieldFormat& FormatFor(const std::string& path, const FieldReadOptions& op
                        : "unsupported field format \"" + extension + "\"") +
       "; supported: " + FieldFileExtensions() + " (or name the format with field.format)");
 }
+
+// vtkXMLImageDataWriter that also states, when given one, the generation run a piece of a .pvti
+// belongs to: an attribute of its ImageData element (PieceRunAttribute, FieldPieces.h), which
+// VTK's and ParaView's readers ignore and cloudvis's .pvti reader compares with the .pvti's.
+class vtkCloudRunImageDataWriter : public vtkXMLImageDataWriter
+{
+public:
+  static vtkCloudRunImageDataWriter* New();
+  vtkTypeMacro(vtkCloudRunImageDataWriter, vtkXMLImageDataWriter);
+  std::string Run;
+
+protected:
+  vtkCloudRunImageDataWriter() = default;
+  void WritePrimaryElementAttributes(ostream& os, vtkIndent indent) override
+  {
+    this->Superclass::WritePrimaryElementAttributes(os, indent);
+    if (!this->Run.empty())
+    {
+      this->WriteStringAttribute(PieceRunAttribute, this->Run.c_str());
+    }
+  }
+
+private:
+  vtkCloudRunImageDataWriter(const vtkCloudRunImageDataWriter&) = delete;
+  void operator=(const vtkCloudRunImageDataWriter&) = delete;
+};
+vtkStandardNewMacro(vtkCloudRunImageDataWriter);
 
 // The writers, by the extension of the output.
 struct FieldWriter
@@ -385,10 +413,14 @@ void WriteField(vtkImageData* field, const std::string& path, const FieldMetadat
   }
 }
 
-void WriteVtkXmlImageFile(vtkImageData* field, const std::string& path, const std::string& target)
+void WriteVtkXmlImageFile(vtkImageData* field,
+  const std::string& path,
+  const std::string& target,
+  const std::string& run)
 {
   VtkMessageCapture messages;
-  vtkNew<vtkXMLImageDataWriter> writer;
+  vtkNew<vtkCloudRunImageDataWriter> writer;
+  writer->Run = run;
   writer->SetInputData(field);
   writer->SetFileName(path.c_str());
   // Raw appended binary (no base64) compressed with zlib: the smallest file VTK and

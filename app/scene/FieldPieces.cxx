@@ -1,7 +1,8 @@
 // The .pvti writer (FieldPieces.h says what it promises). The .pvti is written here as text, not
 // by vtkXMLPImageDataWriter: that writer names the files it writes after its own file name, so it
 // cannot write through the temporary files of AtomicFile.h, and VTK 9.1's does not record the
-// direction. The pieces are written by vtkXMLImageDataWriter (WriteVtkXmlImageFile).
+// direction. The pieces are written by vtkXMLImageDataWriter (WriteVtkXmlImageFile), each
+// recording the run.
 #include "FieldPieces.h"
 
 #include "AtomicFile.h"
@@ -18,9 +19,21 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 
+#include <dirent.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
 #include <fstream>
+#include <optional>
+#include <random>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 namespace cloudvis
@@ -82,7 +95,11 @@ std::string Joined(const Values& values)
   return text.str();
 }
 
-void WritePvti(const FieldLattice& lattice, const std::string& path, int pieces)
+// The text of the .pvti of run `run`.
+std::string PvtiText(const FieldLattice& lattice,
+  const std::string& path,
+  int pieces,
+  const std::string& run)
 {
   std::ostringstream xml;
   const std::uint16_t one = 1;
@@ -92,7 +109,8 @@ void WritePvti(const FieldLattice& lattice, const std::string& path, int pieces)
       << (littleEndian ? "LittleEndian" : "BigEndian") << "\" header_type=\"UInt64\">\n"
       << "  <PImageData WholeExtent=\"" << Joined(lattice.WholeExtent)
       << "\" GhostLevel=\"0\" Origin=\"" << Joined(lattice.Origin) << "\" Spacing=\""
-      << Joined(lattice.Spacing) << "\" Direction=\"" << Joined(lattice.Direction) << "\">\n"
+      << Joined(lattice.Spacing) << "\" Direction=\"" << Joined(lattice.Direction) << "\" "
+      << PieceRunAttribute << "=\"" << run << "\">\n"
       << "    <PPointData Scalars=\"density\">\n"
       << "      <PDataArray type=\"Float32\" Name=\"density\"/>\n"
       << "    </PPointData>\n";
@@ -102,31 +120,136 @@ void WritePvti(const FieldLattice& lattice, const std::string& path, int pieces)
         << "\" Source=\"" << EscapedAttribute(PieceSource(path, p)) << "\"/>\n";
   }
   xml << "  </PImageData>\n</VTKFile>\n";
-  const std::string text = xml.str();
-  WriteFileAtomically(path,
-    [&](const std::string& temporary)
-    {
-      std::ofstream out(temporary, std::ios::binary);
-      out << text;
-      out.close();
-      if (!out)
-      {
-        Fail(path, "cannot write the parallel image data file");
-      }
-    });
+  return xml.str();
 }
 
-// Whether any process reported a failure (`failed` on this one); with no controller, this one's.
-bool AnyFailed(vtkMultiProcessController* controller, bool failed)
+void WriteText(const std::string& text, const std::string& file, const std::string& target)
 {
-  if (!controller || controller->GetNumberOfProcesses() < 2)
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out)
   {
-    return failed;
+    Fail(target, "cannot write the parallel image data file");
   }
-  const int mine = failed ? 1 : 0;
-  int all = 0;
-  controller->AllReduce(&mine, &all, 1, vtkCommunicator::SUM_OP);
-  return all > 0;
+}
+
+// The first `bytes` of a file (less when it is shorter), empty when it cannot be read.
+std::string Head(const std::string& path, std::size_t bytes)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string text(bytes, '\0');
+  in.read(&text[0], std::streamsize(bytes));
+  text.resize(std::size_t(in.gcount()));
+  return text;
+}
+
+// A new run id: 128 random bits from the system's entropy source, as 32 hexadecimal digits.
+std::string NewRunId()
+{
+  std::random_device entropy;
+  char id[33] = {};
+  for (int word = 0; word < 4; ++word)
+  {
+    std::snprintf(id + 8 * word, 9, "%08x", unsigned(entropy()));
+  }
+  return id;
+}
+
+// Process 0's `run`, on every process.
+std::string SharedRunId(vtkMultiProcessController* controller, std::string run)
+{
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    run.resize(32);
+    controller->Broadcast(&run[0], 32, 0);
+  }
+  return run;
+}
+
+// Removes the files <stem>_<N>.vti beside `path` with N >= `pieces`: pieces of an older output
+// that the new one does not name, when the .pvti being replaced names them or they record a run
+// (cloudvis wrote them as pieces). Left in place they would look like valid pieces. Other files
+// are not touched.
+void RemovePiecesBeyond(const std::string& path, int pieces)
+{
+  const std::string previous = Head(path, std::size_t(16) << 20);
+  const std::string directory = DirectoryOf(path);
+  DIR* listing = ::opendir(directory.c_str());
+  if (!listing)
+  {
+    Fail(directory, std::string("cannot list the directory (") + std::strerror(errno) + ")");
+  }
+  std::vector<std::string> stale;
+  const std::string prefix = Stem(path) + "_";
+  while (const dirent* entry = ::readdir(listing))
+  {
+    const std::string name = entry->d_name;
+    if (name.size() <= prefix.size() + 4 || name.compare(0, prefix.size(), prefix) != 0)
+    {
+      continue;
+    }
+    const std::string number = name.substr(prefix.size(), name.size() - prefix.size() - 4);
+    if (number.empty() || number.size() > 9 ||
+      number.find_first_not_of("0123456789") != std::string::npos)
+    {
+      continue;
+    }
+    const int index = std::atoi(number.c_str());
+    if (index < pieces || PieceSource(path, index) != name)
+    {
+      continue;
+    }
+    const std::string file = path.find('/') == std::string::npos ? name : directory + "/" + name;
+    const bool named =
+      previous.find("Source=\"" + EscapedAttribute(name) + "\"") != std::string::npos;
+    const bool cloudvisPiece =
+      Head(file, 4096).find(std::string(" ") + PieceRunAttribute + "=\"") != std::string::npos;
+    if (named || cloudvisPiece)
+    {
+      stale.push_back(file);
+    }
+  }
+  ::closedir(listing);
+  for (const std::string& file : stale)
+  {
+    if (::unlink(file.c_str()) != 0 && errno != ENOENT)
+    {
+      Fail(file,
+        std::string("cannot remove this piece of the previous output (") + std::strerror(errno) +
+          ")");
+    }
+  }
+}
+
+// After a failure once renames have begun: the previous output is no longer whole, so none is
+// left, rather than a .pvti naming pieces of two runs. Each process removes its pieces, process
+// 0 the pieces beyond the new count and the .pvti.
+void RemoveOutput(const std::string& path, int pieces, int rank, int processes)
+{
+  for (int p = rank; p < pieces; p += processes)
+  {
+    std::remove(PieceFileName(path, p).c_str());
+  }
+  if (rank == 0)
+  {
+    try
+    {
+      RemovePiecesBeyond(path, pieces);
+    }
+    catch (const InputError&)
+    {
+      // The failure being reported says enough; without the .pvti these name nothing.
+    }
+    std::remove(path.c_str());
+  }
+}
+
+// CLOUDVIS_TEST_PAUSE_AFTER_PIECE (FieldPieces.h): seconds to pause after each piece, 0: none.
+double TestPauseAfterPiece()
+{
+  const char* value = std::getenv("CLOUDVIS_TEST_PAUSE_AFTER_PIECE");
+  return value ? std::max(0.0, std::atof(value)) : 0.0;
 }
 
 } // namespace
@@ -169,6 +292,79 @@ std::string PieceFileName(const std::string& path, int piece)
                                              : DirectoryOf(path) + "/" + PieceSource(path, piece);
 }
 
+void RunAgreed(vtkMultiProcessController* controller, const std::function<void()>& step)
+{
+  const int processes = controller ? controller->GetNumberOfProcesses() : 1;
+  if (processes < 2)
+  {
+    step();
+    return;
+  }
+  const int rank = controller->GetLocalProcessId();
+  enum Outcome : int
+  {
+    Succeeded,
+    InputFailure,
+    UsageFailure
+  };
+  int outcome = Succeeded;
+  std::string message;
+  std::exception_ptr failure;
+  try
+  {
+    step();
+  }
+  catch (const UsageError& e)
+  {
+    outcome = UsageFailure;
+    message = e.what();
+    failure = std::current_exception();
+  }
+  catch (const std::bad_alloc&)
+  {
+    outcome = InputFailure;
+    message = "out of memory";
+    failure = std::current_exception();
+  }
+  catch (const std::exception& e)
+  {
+    outcome = InputFailure;
+    message = e.what();
+    failure = std::current_exception();
+  }
+  // The lowest-ranked failing process (`processes` when none failed), then its outcome and
+  // message, sent by it: every process takes part in both, so none waits for another in vain.
+  const int mine = outcome == Succeeded ? processes : rank;
+  int first = processes;
+  controller->AllReduce(&mine, &first, 1, vtkCommunicator::MIN_OP);
+  if (first == processes)
+  {
+    return;
+  }
+  int header[2] = { outcome, int(std::min<std::size_t>(message.size(), 1 << 20)) };
+  controller->Broadcast(header, 2, first);
+  std::vector<char> text(static_cast<std::size_t>(header[1]));
+  if (rank == first)
+  {
+    std::copy(message.begin(), message.begin() + header[1], text.begin());
+  }
+  if (!text.empty())
+  {
+    controller->Broadcast(text.data(), vtkIdType(text.size()), first);
+  }
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  const std::string agreed = "process " + std::to_string(first) + " of " +
+    std::to_string(processes) + " failed: " + std::string(text.begin(), text.end());
+  if (header[0] == UsageFailure)
+  {
+    throw UsageError(agreed);
+  }
+  throw InputError(agreed);
+}
+
 void WriteFieldPieces(const FieldLattice& lattice,
   const std::string& path,
   int pieces,
@@ -177,62 +373,108 @@ void WriteFieldPieces(const FieldLattice& lattice,
 {
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
   const int rank = controller ? controller->GetLocalProcessId() : 0;
-  std::string problem;
-  std::vector<std::string> written; // this process's pieces, removed again if any process fails
+  // The temporaries of the whole run: one directory, named after the run, holding the pieces
+  // under their own names and the .pvti (AtomicFile.h). Process 0 creates it before the others
+  // learn the run, so no process can create it again once a signal has removed it.
+  std::string run;
+  std::optional<TemporaryGroup> temporaries;
+  const auto group = [&](bool create)
+  { temporaries.emplace(path, run, create, Stem(path) + "_", ".vti", pieces, FileNameOf(path)); };
+  RunAgreed(controller,
+    [&]
+    {
+      if (pieces < 1)
+      {
+        Fail(path, "the number of pieces must be at least 1");
+      }
+      for (int p = 0; p < pieces; ++p)
+      {
+        PieceExtent(lattice.WholeExtent, p, pieces); // every piece non-empty, before any work
+      }
+      CheckOutputTarget(path);
+      for (int p = rank; p < pieces; p += processes)
+      {
+        CheckOutputTarget(PieceFileName(path, p));
+      }
+      if (rank == 0)
+      {
+        run = NewRunId();
+        group(true);
+      }
+    });
+  run = SharedRunId(controller, run);
+
+  // 1. This process's pieces, and the .pvti on process 0, into the run's directory. A signal
+  // now ends the process at once and removes the directory with everything in it, whichever
+  // process wrote it (AtomicFile.h); under mpirun the others end too: mpirun passes its own
+  // SIGINT or SIGTERM on to every process as SIGTERM, and kills the job when one process dies.
+  const double pause = TestPauseAfterPiece();
+  RunAgreed(controller,
+    [&]
+    {
+      if (rank != 0)
+      {
+        group(false);
+      }
+      for (int p = rank; p < pieces; p += processes)
+      {
+        const Extent extent = PieceExtent(lattice.WholeExtent, p, pieces);
+        try
+        {
+          WriteVtkXmlImageFile(produce(extent),
+            temporaries->Member(PieceSource(path, p)),
+            PieceFileName(path, p),
+            run);
+        }
+        catch (const std::bad_alloc&)
+        {
+          Fail(PieceFileName(path, p),
+            "out of memory while making this piece (" + std::to_string(extent[1] - extent[0] + 1) +
+              " x " + std::to_string(extent[3] - extent[2] + 1) + " x " +
+              std::to_string(extent[5] - extent[4] + 1) + " voxels)");
+        }
+        if (pause > 0.0)
+        {
+          std::fprintf(stderr, "cloudvis: paused after piece %d\n", p);
+          std::fflush(stderr);
+          std::this_thread::sleep_for(std::chrono::duration<double>(pause));
+        }
+      }
+      if (rank == 0)
+      {
+        WriteText(
+          PvtiText(lattice, path, pieces, run), temporaries->Member(FileNameOf(path)), path);
+      }
+    });
+
+  // 2. All written everywhere: put the new output in place, with signals held so that none cuts
+  // the renames in two (one arriving now ends the process once they are done). Pieces first,
+  // the .pvti last. A failure now leaves no output rather than a mixed one.
+  const InterruptionHold hold;
   try
   {
-    if (pieces < 1)
-    {
-      Fail(path, "the number of pieces must be at least 1");
-    }
-    for (int p = 0; p < pieces; ++p)
-    {
-      PieceExtent(lattice.WholeExtent, p, pieces); // every piece non-empty, before any work
-    }
-    for (int p = rank; p < pieces; p += processes)
-    {
-      const std::string piecePath = PieceFileName(path, p);
-      const vtkSmartPointer<vtkImageData> piece =
-        produce(PieceExtent(lattice.WholeExtent, p, pieces));
-      WriteFileAtomically(piecePath,
-        [&](const std::string& temporary) { WriteVtkXmlImageFile(piece, temporary, piecePath); });
-      written.push_back(piecePath);
-    }
+    RunAgreed(controller,
+      [&]
+      {
+        for (int p = rank; p < pieces; p += processes)
+        {
+          temporaries->Commit(PieceSource(path, p), PieceFileName(path, p));
+        }
+      });
+    RunAgreed(controller,
+      [&]
+      {
+        if (rank == 0)
+        {
+          RemovePiecesBeyond(path, pieces);
+          temporaries->Commit(FileNameOf(path), path);
+        }
+      });
   }
-  catch (const std::exception& e)
+  catch (...)
   {
-    problem = e.what();
-  }
-  const auto removeWritten = [&written]
-  {
-    for (const std::string& piecePath : written)
-    {
-      std::remove(piecePath.c_str());
-    }
-  };
-  if (AnyFailed(controller, !problem.empty()))
-  {
-    removeWritten();
-    throw InputError(problem.empty()
-        ? path + ": another process could not write its pieces (its message says why); the " +
-          "parallel image data file was not written"
-        : problem);
-  }
-  if (rank == 0)
-  {
-    try
-    {
-      WritePvti(lattice, path, pieces);
-    }
-    catch (const std::exception& e)
-    {
-      problem = e.what();
-    }
-  }
-  if (AnyFailed(controller, !problem.empty()))
-  {
-    removeWritten();
-    throw InputError(problem.empty() ? path + ": process 0 could not write the file" : problem);
+    RemoveOutput(path, pieces, rank, processes);
+    throw;
   }
 }
 

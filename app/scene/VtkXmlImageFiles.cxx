@@ -20,6 +20,7 @@
 #include "FieldFormatReaders.h"
 
 #include "Errors.h"
+#include "FieldPieces.h" // PieceRunAttribute
 #include "FileNames.h"
 #include "InputFiles.h"
 #include "IsolatedRead.h"
@@ -289,8 +290,8 @@ void CheckAppendedHeaders(const std::string& path,
   }
 }
 
-// Layer 1 for one .vti file (a field, or a piece of a .pvti).
-void CheckVtiText(const std::string& path, const RegularInputFile& file)
+// Layer 1 for one .vti file (a field, or a piece of a .pvti). Returns the markup read.
+std::string CheckVtiText(const std::string& path, const RegularInputFile& file)
 {
   // The XML part: up to the '_' that starts the raw appended bytes (1 MiB is far more than the
   // markup of any image file needs).
@@ -300,6 +301,7 @@ void CheckVtiText(const std::string& path, const RegularInputFile& file)
   const auto appended = xml.find("<AppendedData");
   CheckArrayElements(path, xml, appended == std::string::npos ? xml.size() : appended);
   CheckAppendedHeaders(path, file, xml, header, appended);
+  return xml;
 }
 
 double VoxelCount(const Extent& e)
@@ -601,6 +603,50 @@ void CheckOverlapsAgree(const std::string& path, const std::vector<Piece>& piece
   }
 }
 
+// The generation run that the start tag of `element` records (PieceRunAttribute, FieldPieces.h:
+// cloudvis writes it in a .pvti's PImageData and each piece's ImageData), nothing when none.
+std::optional<std::string> RecordedRun(const std::string& xml, const std::string& element)
+{
+  const auto at = xml.find("<" + element);
+  return at == std::string::npos ? std::nullopt : Attribute(StartTag(xml, at), PieceRunAttribute);
+}
+
+// A .pvti names its pieces by file name alone, so the pieces of two generate runs (one
+// interrupted by SIGKILL between its renames, or two running at once) could be read as one
+// field. Every piece must record the run the .pvti records; where the .pvti records none
+// (VTK's writer, cloudvis before runs were recorded), the pieces that record one must agree.
+void CheckPiecesOfOneRun(const std::string& path,
+  const std::optional<std::string>& run,
+  const std::vector<Piece>& listed,
+  const std::vector<std::optional<std::string>>& runs)
+{
+  const auto piece = [&listed](std::size_t index)
+  { return "piece " + std::to_string(index) + " (" + listed[index].Source + ")"; };
+  const std::string advice = ": the pieces of two generate runs are mixed (a run killed while "
+                             "renaming its pieces, or two runs writing the same .pvti at once); "
+                             "generate the field again";
+  std::optional<std::size_t> reference; // the first piece recording a run, without one here
+  for (std::size_t i = 0; i < runs.size(); ++i)
+  {
+    if (run && runs[i] != run)
+    {
+      Fail(path,
+        piece(i) + (runs[i] ? " was written by run " + Shorten(*runs[i], 40) : " records no run") +
+          ", the .pvti by run " + Shorten(*run, 40) + advice);
+    }
+    if (!run && runs[i])
+    {
+      if (reference && runs[*reference] != runs[i])
+      {
+        Fail(path,
+          piece(i) + " was written by run " + Shorten(*runs[i], 40) + ", " + piece(*reference) +
+            " by run " + Shorten(*runs[*reference], 40) + advice);
+      }
+      reference = reference ? reference : i;
+    }
+  }
+}
+
 // What both readers return: the image, the array field.array names (if any) and the report.
 FieldFileContents Contents(const vtkSmartPointer<vtkImageData>& image,
   const FieldReadOptions& options)
@@ -629,14 +675,18 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
   const FieldReadOptions& options)
 {
   std::vector<Piece> listed;
+  std::optional<std::string> run;
   {
     const RegularInputFile file(path, "field");
-    listed = ListPieces(path, file.ReadAll(MaximumParallelFileBytes));
+    const std::string xml = file.ReadAll(MaximumParallelFileBytes);
+    listed = ListPieces(path, xml);
+    run = RecordedRun(xml, "PImageData");
   }
   // Every piece as a .vti: a regular file that passes the text checks. Errors name the .pvti,
   // the piece and what is wrong with it.
   std::uint64_t totalBytes = 0;
   double largestPiece = 0.0;
+  std::vector<std::optional<std::string>> runs;
   for (std::size_t number = 0; number < listed.size(); ++number)
   {
     const Piece& piece = listed[number];
@@ -644,7 +694,7 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
     {
       const RegularInputFile file(piece.Path, "field piece");
       totalBytes += file.Size();
-      CheckVtiText(piece.Path, file);
+      runs.push_back(RecordedRun(CheckVtiText(piece.Path, file), "ImageData"));
       largestPiece = std::max(largestPiece, VoxelCount(piece.Region));
     }
     catch (const InputError& e)
@@ -658,6 +708,7 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
       Fail(path, "piece " + std::to_string(number) + " (" + piece.Source + "): " + problem);
     }
   }
+  CheckPiecesOfOneRun(path, run, listed, runs);
   // Beyond the output: a piece's arrays while it is copied in (one piece at a time; counted as
   // two arrays of 4 bytes per voxel).
   const auto read = [&path, &options, &listed, largestPiece]()

@@ -38,6 +38,7 @@
 #include <random>
 #include <stdexcept>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace
@@ -756,6 +757,52 @@ TEST(Utf8, EscapesExactlyTheBytesJsonRefuses)
     }
   }
   EXPECT_GT(valid, 2000) << "too few valid strings to test the multi-byte forms";
+}
+
+// The temporaries of a .pvti's pieces, written by several processes into one group directory: a
+// signal ending any one of them removes every member, the others' too, and the directory, since
+// mpirun may SIGKILL the others before their own handler runs. Here a child writes the even
+// members and this process the odd ones; SIGTERM to the child leaves nothing.
+TEST(AtomicFile, ASignalToOneProcessRemovesTheWholeGroupWhoeverWroteItsMembers)
+{
+  TemporaryDirectory dir;
+  const std::string target = dir.File("g.pvti");
+  const std::string tag = "0123456789abcdef0123456789abcdef";
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0)
+  {
+    cloudvis::TemporaryGroup group(target, tag, true, "g_", ".vti", 20, "g.pvti");
+    for (int i = 0; i < 20; i += 2)
+    {
+      WriteText(group.Member("g_" + std::to_string(i) + ".vti"), "piece");
+    }
+    WriteText(group.Member("g.pvti"), "parallel file");
+    (void)!::write(ready[1], "x", 1);
+    for (;;)
+    {
+      ::pause();
+    }
+  }
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1);
+  {
+    cloudvis::TemporaryGroup group(target, tag, false, "g_", ".vti", 20, "g.pvti");
+    for (int i = 1; i < 20; i += 2)
+    {
+      WriteText(group.Member("g_" + std::to_string(i) + ".vti"), "piece");
+    }
+    EXPECT_EQ(dir.Files().size(), 1u) << "the group's directory, beside the target";
+    ASSERT_EQ(::kill(child, SIGTERM), 0);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+    EXPECT_EQ(dir.Files(), std::vector<std::string>{}) << "members or the directory left";
+  }
+  ::close(ready[0]);
+  ::close(ready[1]);
 }
 
 // Class "temporary names beyond the file-name limit": the temporary of any legal name fits.

@@ -49,6 +49,8 @@ using cloudvis::test::ExpectKnownValues;
 using cloudvis::test::ExpectSameField;
 using cloudvis::test::Known;
 using cloudvis::test::KnownImage;
+using cloudvis::test::RecordedRun;
+using cloudvis::test::RotatedField;
 using cloudvis::test::RunTool;
 using cloudvis::test::Truncate;
 using cloudvis::test::Unu;
@@ -718,28 +720,6 @@ TEST(FieldReadOptions, OptionsThatDoNotSuitTheFormatAreRefusedByKey)
 
 // ---- .pvti written by cloudvis ----------------------------------------------------------------
 
-// A field with a rotated lattice, values Known(i, j, k) over an extent that does not start at 0.
-vtkSmartPointer<vtkImageData> RotatedField()
-{
-  auto field = vtkSmartPointer<vtkImageData>::New();
-  field->SetExtent(2, 12, -3, 5, 1, 7);
-  field->SetOrigin(0.5, -1.0, 2.0);
-  field->SetSpacing(0.25, 0.5, 1.0);
-  field->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(field->GetNumberOfPoints());
-  for (int k = 1; k <= 7; ++k)
-    for (int j = -3; j <= 5; ++j)
-      for (int i = 2; i <= 12; ++i)
-      {
-        int ijk[3] = { i, j, k };
-        density->SetValue(field->ComputePointId(ijk), float(Known(i, j + 3, k)));
-      }
-  field->GetPointData()->SetScalars(density);
-  return field;
-}
-
 TEST(ParallelFiles, PiecesWrittenByCloudvisReadBackByCloudvisAndVtk)
 {
   TemporaryDirectory dir;
@@ -806,7 +786,9 @@ TEST(ParallelFiles, OverlappingPiecesMustHoldEqualValuesWhereTheyOverlap)
   const auto piece = cloudvis::ExtractPiece(field, second);
   int first[3] = { 7, -3, 1 };
   piece->GetPointData()->GetScalars()->SetComponent(piece->ComputePointId(first), 0, 999.0);
-  cloudvis::WriteVtkXmlImageFile(piece, dir.File("p_1.vti"), dir.File("p_1.vti"));
+  // Written with the run the .pvti records, so the pieces are of one run and only disagree.
+  cloudvis::WriteVtkXmlImageFile(
+    piece, dir.File("p_1.vti"), dir.File("p_1.vti"), RecordedRun(path));
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
               .find("p.pvti: piece 0 (p_0.vti) and piece 1 (p_1.vti) overlap and disagree: at "
                     "point (7, -3, 1) \"density\" is 107 in piece 0 and 999 in piece 1"),

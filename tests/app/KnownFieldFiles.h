@@ -4,13 +4,16 @@
 #ifndef cloudvis_KnownFieldFiles_h
 #define cloudvis_KnownFieldFiles_h
 
+#include "FieldPieces.h"
 #include "FieldTestFiles.h"
 #include "SupportRun.h"
 
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkMetaImageWriter.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkSmartPointer.h>
 
 #include <string>
 
@@ -97,6 +100,41 @@ inline std::string WriteMetaImage(const std::string& path, int type, bool compre
   writer->SetCompression(compressed);
   writer->Write();
   return path;
+}
+
+// A field with a rotated lattice, values Known(i, j, k) over an extent that does not start at 0.
+inline vtkSmartPointer<vtkImageData> RotatedField()
+{
+  auto field = vtkSmartPointer<vtkImageData>::New();
+  field->SetExtent(2, 12, -3, 5, 1, 7);
+  field->SetOrigin(0.5, -1.0, 2.0);
+  field->SetSpacing(0.25, 0.5, 1.0);
+  field->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(field->GetNumberOfPoints());
+  for (int k = 1; k <= 7; ++k)
+    for (int j = -3; j <= 5; ++j)
+      for (int i = 2; i <= 12; ++i)
+      {
+        int ijk[3] = { i, j, k };
+        density->SetValue(field->ComputePointId(ijk), float(Known(i, j + 3, k)));
+      }
+  field->GetPointData()->SetScalars(density);
+  return field;
+}
+
+// The run a .pvti or piece records (CloudvisRun="..."), empty when none.
+inline std::string RecordedRun(const std::string& path)
+{
+  const std::string text = support::ReadText(path).substr(0, 4096);
+  const auto at = text.find(std::string(" ") + cloudvis::PieceRunAttribute + "=\"");
+  if (at == std::string::npos)
+  {
+    return "";
+  }
+  const auto begin = text.find('"', at) + 1;
+  return text.substr(begin, text.find('"', begin) - begin);
 }
 
 } // namespace test

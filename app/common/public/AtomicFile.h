@@ -11,11 +11,15 @@
 // temporaries, restores the default action and raises the signal again, so the process ends by
 // that signal (a shell reports 128 + signal: 129 for SIGHUP, 130 for SIGINT, 143 for SIGTERM).
 // The temporary's name stays within the directory's file-name limit whatever the target's.
+// Files replaced together (the pieces of a .pvti and the .pvti) are written into a
+// TemporaryGroup and renamed by their owner once all are written, with interruptions held
+// (InterruptionHold) so that no signal cuts the renames in two.
 #ifndef cloudvis_AtomicFile_h
 #define cloudvis_AtomicFile_h
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace cloudvis
 {
@@ -32,13 +36,61 @@ void CheckOutputTarget(const std::string& target);
 void WriteFileAtomically(
   const std::string& target, const std::function<void(const std::string& temporaryPath)>& write);
 
+// Holds back the asynchronous terminating signals (SIGINT, SIGTERM, SIGHUP, ..., not the fault
+// signals) of the whole process while it lives, whichever thread the kernel delivers them to: a
+// signal arriving meanwhile is recorded, not acted on, and when the last hold ends it is acted
+// on as above (temporaries removed, the process ended by it). For the steps that must not be
+// cut in two: creating and registering a temporary, renaming a group's members. Holds nest.
+class InterruptionHold
+{
+public:
+  InterruptionHold();
+  ~InterruptionHold();
+  InterruptionHold(const InterruptionHold&) = delete;
+  InterruptionHold& operator=(const InterruptionHold&) = delete;
+};
+
+// The temporaries of a group of files replaced together, possibly by several processes (the
+// pieces of a .pvti and the .pvti), in one hidden directory beside `target` (the group's main
+// file): DIRECTORY/.NAME.tmp-TAG. Every process of an MPI job passes the same TAG (the run id),
+// so all use one directory, which one of them creates (`create`) before the others learn the
+// tag. Its members are named PREFIX<i>SUFFIX for i < count, and EXTRA. A signal ending any
+// process that holds the group removes every member and the directory (the handler builds the
+// names from this pattern): once the directory is gone no process can create a file in it, so
+// a process that mpirun kills with SIGKILL, whose handler never runs, leaves nothing behind
+// either. The destructor removes the members this process made and then, when it is empty, the
+// directory.
+class TemporaryGroup
+{
+public:
+  TemporaryGroup(const std::string& target,
+    const std::string& tag,
+    bool create,
+    const std::string& prefix,
+    const std::string& suffix,
+    long count,
+    const std::string& extra);
+  ~TemporaryGroup();
+  TemporaryGroup(const TemporaryGroup&) = delete;
+  TemporaryGroup& operator=(const TemporaryGroup&) = delete;
+  // The path of member `name` (one of the pattern's), which this process will write.
+  std::string Member(const std::string& name);
+  // Renames member `name` over `target`; throws InputError naming the target when it cannot.
+  void Commit(const std::string& name, const std::string& target);
+
+private:
+  std::string Directory;
+  std::vector<std::string> Created;
+  void* Registration = nullptr; // the signal handler's entry
+};
+
 // Installs the signal handler that removes registered temporaries (see above); called by
 // WriteFileAtomically, idempotent, and safe to call earlier (at start-up).
 void InstallInterruptCleanup();
 
 // For a child made by fork(): its copy of the table of temporaries names its parent's files,
-// which a signal ending the child must not remove. Async-signal-safe, as a child of a
-// multi-threaded parent requires.
+// which a signal ending the child must not remove; and it inherits no hold. Async-signal-safe,
+// as a child of a multi-threaded parent requires.
 void ForgetTemporariesInChild();
 
 } // namespace cloudvis

@@ -167,8 +167,12 @@ void WriteField(vtkImageData* field, const std::string& path, const FieldMetadat
 
 // Writes `field` as VTK XML image data (.vti) at exactly `path`, not atomically: WriteField and
 // the pieces of a .pvti (FieldPieces.h) call it inside their own atomic write. Errors name
-// `target`, the file the user asked for.
-void WriteVtkXmlImageFile(vtkImageData* field, const std::string& path, const std::string& target);
+// `target`, the file the user asked for. `run`, when not empty, is recorded as the generation
+// run of a piece (PieceRunAttribute, FieldPieces.h).
+void WriteVtkXmlImageFile(vtkImageData* field,
+  const std::string& path,
+  const std::string& target,
+  const std::string& run = {});
 
 } // namespace cloudvis
 

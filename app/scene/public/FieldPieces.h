@@ -6,10 +6,18 @@
 //
 // A piece is made by a function of its extent, so a procedural field is generated piece by piece
 // (one piece in memory at a time) and, under MPI, each process makes and writes only its own
-// pieces: process r of R takes the pieces p with p % R == r, and process 0 writes the .pvti once
-// every process has written its pieces. Every file is written atomically (AtomicFile.h); the
-// .pvti, which is what a reader opens, is replaced last, so it never names a piece that is not
-// complete. A failure on any process fails the write on every process (no .pvti is written).
+// pieces: process r of R takes the pieces p with p % R == r.
+//
+// The output is replaced as one: every process writes its pieces, and process 0 the .pvti, into
+// one directory of temporaries named after the run (TemporaryGroup, AtomicFile.h), which the
+// signal handler of any process removes whole; the processes agree that all were written
+// (RunAgreed); only then, with interruptions held (InterruptionHold), each renames its pieces
+// into place, they agree again, and process 0 removes the pieces of an older output that the new
+// one no longer names and renames the .pvti last. A failure anywhere before the renames, or a
+// signal (Ctrl-C, mpirun's SIGTERM), leaves the previous output untouched and no temporary. The
+// .pvti and every piece record the run that wrote them (PieceRunAttribute, a random 128-bit id),
+// which the reader checks: what renames cannot make atomic (a process killed by SIGKILL or a
+// crash between two renames) is refused when read, never read as a field mixed from two runs.
 #ifndef cloudvis_FieldPieces_h
 #define cloudvis_FieldPieces_h
 
@@ -53,10 +61,26 @@ std::string PieceSource(const std::string& path, int piece);
 // direction and a float array "density".
 using PieceProducer = std::function<vtkSmartPointer<vtkImageData>(const Extent& extent)>;
 
-// Writes `path` (a .pvti) and its `pieces` pieces, each made by `produce`. `controller` (may be
-// null: one process) says which pieces this process writes. Throws InputError on every process
-// when any piece or the .pvti could not be made or written; the failing process's message names
-// the file and the problem, the others say which process failed.
+// The attribute, on the PImageData element of a .pvti and the ImageData element of each of its
+// pieces, that records the generation run (32 hexadecimal digits). VTK's readers ignore it.
+constexpr const char* PieceRunAttribute = "CloudvisRun";
+
+// Runs `step` here and agrees with the other processes of `controller` on the outcome: a
+// collective call, which every process makes at the same point whatever its own work did, so no
+// process ever waits for one that has given up. When `step` throws on any process, every process
+// throws: a failing one its own exception, the others an InputError (a UsageError when that was
+// the failure) "process R of N failed: MESSAGE" with the message of the lowest-ranked failing
+// process R. With no controller or one process, `step` simply runs.
+void RunAgreed(vtkMultiProcessController* controller, const std::function<void()>& step);
+
+// Writes `path` (a .pvti) and its `pieces` pieces, each made by `produce`, as one replacement
+// (see above). `controller` (may be null: one process) says which pieces this process writes.
+// Throws on every process when any piece or the .pvti could not be made or written (RunAgreed);
+// the failing process's message names the file and the problem.
+// For the interruption tests (tests/faults/InterruptPieces.sh): when the environment variable
+// CLOUDVIS_TEST_PAUSE_AFTER_PIECE holds a number of seconds, each process writes
+// "cloudvis: paused after piece P" to stderr and sleeps that long after each piece it wrote, so
+// that a signal can be sent while the pieces wait as temporaries.
 void WriteFieldPieces(const FieldLattice& lattice,
   const std::string& path,
   int pieces,
