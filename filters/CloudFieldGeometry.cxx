@@ -1,6 +1,8 @@
 #include "CloudFieldGeometry.h"
 
 #include <vtkDataArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationIntegerVectorKey.h>
 
 #include <algorithm>
 #include <cmath>
@@ -154,6 +156,35 @@ std::string ValidateExtentMemory(const int extent[6], int bytesPerVoxel)
           << " voxels needs " << FormatBytes(needed) << " but only "
           << FormatBytes(double(available)) << " of memory is available";
     return error.str();
+  }
+  return {};
+}
+
+std::string PipelineExtent(vtkInformation* info, vtkInformationIntegerVectorKey* key, int extent[6])
+{
+  if (!info || !info->Has(key) || info->Length(key) != 6)
+  {
+    return std::string("no ") + key->GetName() +
+      " in the pipeline information: the input's source failed or has not run";
+  }
+  info->Get(key, extent);
+  return {};
+}
+
+std::string ValidateSubExtent(const int extent[6], const int whole[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[2 * a] > extent[2 * a + 1] || extent[2 * a] < whole[2 * a] ||
+      extent[2 * a + 1] > whole[2 * a + 1])
+    {
+      std::ostringstream error;
+      error << "the extent asked for, [" << extent[0] << ", " << extent[1] << ", " << extent[2]
+            << ", " << extent[3] << ", " << extent[4] << ", " << extent[5]
+            << "], is empty or leaves the whole extent [" << whole[0] << ", " << whole[1] << ", "
+            << whole[2] << ", " << whole[3] << ", " << whole[4] << ", " << whole[5] << "]";
+      return error.str();
+    }
   }
   return {};
 }

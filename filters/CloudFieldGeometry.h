@@ -10,6 +10,8 @@
 #include <string>
 
 class vtkDataArray;
+class vtkInformation;
+class vtkInformationIntegerVectorKey;
 
 namespace cloudvis
 {
@@ -31,6 +33,18 @@ CLOUDVISFILTERS_EXPORT std::string ValidateFieldGeometry(const int dimensions[3]
 // source is asked to fill that must fit, not its whole extent: a process that generates one piece
 // of a field larger than its memory needs only the piece's.
 CLOUDVISFILTERS_EXPORT std::string ValidateExtentMemory(const int extent[6], int bytesPerVoxel = 4);
+
+// Copies the extent `key` (WHOLE_EXTENT, UPDATE_EXTENT) holds in the pipeline information `info`
+// into `extent`; empty when it holds one, else the problem. VTK runs an algorithm's later passes
+// even after an upstream RequestInformation refused its parameters (vtkVolume updates its mapper
+// to render regardless), with extents that were never set: read unchecked, such an extent is
+// whatever the stack held, and a source asked to fill it allocates gigabytes or throws.
+CLOUDVISFILTERS_EXPORT std::string PipelineExtent(vtkInformation* info,
+  vtkInformationIntegerVectorKey* key,
+  int extent[6]);
+
+// Empty when `extent` lies inside `whole` and holds at least one voxel, else the problem.
+CLOUDVISFILTERS_EXPORT std::string ValidateSubExtent(const int extent[6], const int whole[6]);
 
 // Empty when `scalars` can be rendered as a density (one component of float, unsigned char or
 // unsigned short), else the problem, naming the array.

@@ -374,12 +374,31 @@ int vtkCloudDensitySource::RequestData(
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
-  int extent[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
-  const std::string memoryError = this->ValidateExtent(extent);
-  if (!memoryError.empty())
+  // The pipeline asks for data even when RequestInformation refused the parameters (a render
+  // updates its volume's mapper regardless), and then with an extent nobody set: the parameters
+  // are checked again, and the extent must lie in the lattice they make.
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  const int wholeExtent[6] = {
+    0, this->Dimensions[0] - 1, 0, this->Dimensions[1] - 1, 0, this->Dimensions[2] - 1
+  };
+  std::string error = this->Validate();
+  if (error.empty())
   {
-    vtkErrorMacro(<< memoryError);
+    error =
+      cloudvis::PipelineExtent(outInfo, vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+  }
+  if (error.empty())
+  {
+    error = cloudvis::ValidateSubExtent(extent, wholeExtent);
+  }
+  if (error.empty())
+  {
+    error = this->ValidateExtent(extent);
+  }
+  if (!error.empty())
+  {
+    output->Initialize();
+    vtkErrorMacro(<< error);
     return 0;
   }
   double origin[3], spacing[3];

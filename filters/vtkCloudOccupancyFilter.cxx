@@ -187,7 +187,13 @@ int vtkCloudOccupancyFilter::RequestInformation(vtkInformation*,
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int inExtent[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), inExtent);
+  const std::string extentError =
+    cloudvis::PipelineExtent(inInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), inExtent);
+  if (!extentError.empty())
+  {
+    vtkErrorMacro(<< extentError);
+    return 0;
+  }
   double origin[3] = { 0.0, 0.0, 0.0 }, spacing[3] = { 1.0, 1.0, 1.0 };
   if (inInfo->Has(vtkDataObject::ORIGIN()))
   {
@@ -241,7 +247,13 @@ int vtkCloudOccupancyFilter::RequestUpdateExtent(
   // distances on all bricks: always ask for the whole input.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   int wholeExtent[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  const std::string extentError =
+    cloudvis::PipelineExtent(inInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  if (!extentError.empty())
+  {
+    vtkErrorMacro(<< extentError);
+    return 0;
+  }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), wholeExtent, 6);
   return 1;
 }

@@ -235,7 +235,13 @@ int vtkCloudReferenceRenderer::RequestUpdateExtent(
   // Any pixel's ray may cross any voxel: always ask for the whole field.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   int wholeExtent[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  const std::string extentError =
+    cloudvis::PipelineExtent(inInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  if (!extentError.empty())
+  {
+    vtkErrorMacro(<< extentError);
+    return 0;
+  }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), wholeExtent, 6);
   return 1;
 }
