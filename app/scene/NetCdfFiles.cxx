@@ -27,12 +27,13 @@
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
-#include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkSmartPointer.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 
 namespace cloudvis
 {
@@ -284,6 +285,7 @@ struct AxisSampling
   bool Reversed = false;           // the file's coordinates decrease
   bool Stretched = false;
   int Points = 0;       // of the regular output
+  double FinestPoints = 0.0; // stretched: at the smallest step, beyond int if one step is tiny
   double Origin = 0.0;  // of the regular output
   double Spacing = 1.0; // of the regular output
   double SmallestStep = 0.0, LargestStep = 0.0;
@@ -327,23 +329,47 @@ AxisSampling SampleAxis(const std::string& path,
   if (axis.Stretched)
   {
     // The smallest step, rounded down so that the first and last coordinates are lattice points.
-    axis.Points = int(std::ceil(length / axis.SmallestStep - 1e-9)) + 1;
-    axis.Spacing = length / double(axis.Points - 1);
+    // Counted in double: one tiny step asks for more points than an int holds, and
+    // field.max_voxels coarsens the lattice from there (Points is set then).
+    axis.FinestPoints = std::ceil(length / axis.SmallestStep - 1e-9) + 1.0;
+    if (!std::isfinite(axis.FinestPoints))
+    {
+      Fail(path,
+        "the coordinates of dimension \"" + name + "\" span " + Number(length) +
+          " with a smallest step of " + Number(axis.SmallestStep) +
+          ": a regular lattice at that step would need more points than can be counted");
+    }
+    axis.Spacing = length / (axis.FinestPoints - 1.0);
   }
   return axis;
 }
 
-// Resamples `values` (dimensions `in`, x fastest) along `axisIndex` from the file's coordinates
-// onto the axis's regular lattice, linearly. Axes resampled one after the other give trilinear
-// interpolation, the interpolation of a rectilinear grid.
-std::vector<float> ResampleAlong(const std::vector<float>& values,
+// `count` floats, uninitialised. The values are read and resampled into the array the field
+// will hold, so that no lattice is copied at the end (CheckFieldSize counts each one alive).
+vtkSmartPointer<vtkFloatArray> NewFloats(std::size_t count)
+{
+  auto values = vtkSmartPointer<vtkFloatArray>::New();
+  values->SetNumberOfTuples(vtkIdType(count));
+  if (std::size_t(values->GetNumberOfValues()) != count)
+  {
+    throw std::bad_alloc(); // VTK reports a failed allocation only on its error stream
+  }
+  return values;
+}
+
+// Resamples `in` (dimensions `dimensions`, x fastest) along `axisIndex` from the file's
+// coordinates onto the axis's regular lattice, linearly. Axes resampled one after the other give
+// trilinear interpolation, the interpolation of a rectilinear grid.
+vtkSmartPointer<vtkFloatArray> ResampleAlong(vtkFloatArray* in,
   std::array<int, 3>& dimensions,
   int axisIndex,
   const AxisSampling& axis)
 {
   std::array<int, 3> out = dimensions;
   out[axisIndex] = axis.Points;
-  std::vector<float> result(std::size_t(out[0]) * out[1] * out[2]);
+  vtkSmartPointer<vtkFloatArray> resampled = NewFloats(std::size_t(out[0]) * out[1] * out[2]);
+  const float* values = in->GetPointer(0);
+  float* result = resampled->GetPointer(0);
   // For each output point along the axis: the file's interval and the weight of its upper end.
   std::vector<int> lower(std::size_t(axis.Points));
   std::vector<double> weight(std::size_t(axis.Points));
@@ -389,7 +415,7 @@ std::vector<float> ResampleAlong(const std::vector<float>& values,
     }
   }
   dimensions = out;
-  return result;
+  return resampled;
 }
 
 // ---- the values ---------------------------------------------------------------------------------
@@ -418,7 +444,7 @@ struct ValueSource
 // slowest spatial dimension, as doubles (the library converts every numeric type exactly, and
 // int64 and uint64 nearly), which are compared with the missing-value markers as stored, then
 // unpacked. Missing values become 0 and are counted in `missing`.
-std::vector<float> ReadValues(const ValueSource& source,
+vtkSmartPointer<vtkFloatArray> ReadValues(const ValueSource& source,
   const std::array<AxisSampling, 3>& axes,
   netcdf::MissingValues& missing)
 {
@@ -464,7 +490,8 @@ std::vector<float> ReadValues(const ValueSource& source,
     start[std::size_t(source.Layout.Time.Position)] = source.Step;
   }
   const netcdf::Packing packing = netcdf::PackingOf(source.File, source.Variable);
-  std::vector<float> values(lattice[0] * lattice[1] * lattice[2]);
+  vtkSmartPointer<vtkFloatArray> read = NewFloats(lattice[0] * lattice[1] * lattice[2]);
+  float* values = read->GetPointer(0);
   std::vector<double> slab(std::min(source.SlabSlices, length[0]) * length[1] * length[2]);
   std::uint64_t beyond = 0;
   constexpr double largest = std::numeric_limits<float>::max();
@@ -506,7 +533,7 @@ std::vector<float> ReadValues(const ValueSource& source,
         "): cloudvis does not guess what a missing density is; field.missing = \"empty\" reads "
         "them as empty space (density 0)");
   }
-  return values;
+  return read;
 }
 
 // "1 of 0 .. 3: t = 3600 seconds since 2020-06-01" for the report, and the refusals of a time
@@ -673,7 +700,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
       std::size_t(options.TimeStep.value_or(0)),
       options.Missing.value_or(MissingValueRule::Refuse) == MissingValueRule::Empty,
       slabSlices };
-    std::vector<float> data = ReadValues(source, axes, missing);
+    vtkSmartPointer<vtkFloatArray> density = ReadValues(source, axes, missing);
 
     // The report: what was read, then each axis.
     const std::string units = file.Text(chosen, "units");
@@ -708,10 +735,12 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     std::array<int, 3> dims{
       { int(fileDimensions[0]), int(fileDimensions[1]), int(fileDimensions[2]) }
     };
-    std::array<double, 3> resampled{
-      { double(axes[0].Points), double(axes[1].Points), double(axes[2].Points) }
-    };
-    std::array<int, 3> finest{ { axes[0].Points, axes[1].Points, axes[2].Points } };
+    std::array<double, 3> finest{};
+    for (int a = 0; a < 3; ++a)
+    {
+      finest[a] = axes[a].Stretched ? axes[a].FinestPoints : double(axes[a].Points);
+    }
+    std::array<double, 3> resampled = finest;
     while (resampled[0] * resampled[1] * resampled[2] > double(options.MaximumVoxels))
     {
       int widest = -1;
@@ -731,7 +760,23 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
       }
       resampled[widest] = std::max(fileDimensions[widest], std::floor(resampled[widest] * 0.9));
     }
-    CheckFieldSize(path, resampled, 4.0, options.MaximumVoxels);
+    // Each stretched axis is resampled from one lattice into the next, both alive at once: the
+    // peak beyond the final lattice (which the 4 bytes per voxel count) is counted too.
+    const auto voxels = [](const std::array<double, 3>& d) { return d[0] * d[1] * d[2]; };
+    std::array<double, 3> before = fileDimensions;
+    double peak = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (axes[a].Stretched)
+      {
+        std::array<double, 3> after = before;
+        after[a] = resampled[a];
+        peak = std::max(peak, voxels(before) + voxels(after));
+        before = after;
+      }
+    }
+    CheckFieldSize(
+      path, resampled, 4.0, options.MaximumVoxels, 4.0 * std::max(0.0, peak - voxels(resampled)));
     std::vector<std::string> resampling;
     for (int a = 0; a < 3; ++a)
     {
@@ -760,11 +805,12 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
           Number(axis.LargestStep) + ")";
         resampling.push_back(std::string(1, "xyz"[a]) + ": linearly onto " +
           std::to_string(axis.Points) + " regular points " + Number(axis.Spacing) + " apart" +
-          (axis.Points == finest[a]
-              ? " (the smallest step of the file)"
-              : " (coarser than the smallest step, " + Number(axis.SmallestStep) +
-                ", which would need " + std::to_string(finest[a]) + " points: field.max_voxels)"));
-        data = ResampleAlong(data, dims, a, axis);
+          (double(axis.Points) == finest[a] ? " (the smallest step of the file)"
+                                            : " (coarser than the smallest step, " +
+                Number(axis.SmallestStep) + ", which would need " +
+                (finest[a] < 1e15 ? std::to_string(std::uint64_t(finest[a])) : Number(finest[a])) +
+                " points: field.max_voxels)"));
+        density = ResampleAlong(density, dims, a, axis);
       }
       contents.Report.Add("axis " + std::string(1, "xyz"[a]), text);
     }
@@ -781,10 +827,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     field->SetExtent(0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1);
     field->SetOrigin(axes[0].Origin, axes[1].Origin, axes[2].Origin);
     field->SetSpacing(axes[0].Spacing, axes[1].Spacing, axes[2].Spacing);
-    vtkNew<vtkFloatArray> density;
     density->SetName(chosen.Name.c_str());
-    density->SetNumberOfTuples(vtkIdType(data.size()));
-    std::copy(data.begin(), data.end(), density->GetPointer(0));
     field->GetPointData()->SetScalars(density);
     contents.Image = field;
     contents.Array = chosen.Name;

@@ -31,51 +31,61 @@ File::File(const std::string& path)
     this->Id = -1;
     this->Fail(status, "open it");
   }
-  int dimensions = 0, variables = 0, unlimited = -1;
-  status = nc_inq(this->Id, &dimensions, &variables, nullptr, &unlimited);
-  std::vector<int> ids(std::size_t(std::max(dimensions, 0)));
-  if (status == NC_NOERR && dimensions > 0)
+  // A constructor that throws runs no destructor: whatever fails from here on (the library, or
+  // memory), the file is closed before the error leaves.
+  try
   {
-    status = nc_inq_dimids(this->Id, &dimensions, ids.data(), 0);
-  }
-  for (std::size_t d = 0; status == NC_NOERR && d < ids.size(); ++d)
-  {
-    char name[NC_MAX_NAME + 1] = {};
-    Dimension dimension;
-    status = nc_inq_dim(this->Id, ids[d], name, &dimension.Length);
-    dimension.Name = name;
-    dimension.Unlimited = ids[d] == unlimited;
-    this->Dimensions.emplace_back(ids[d], dimension);
-  }
-  // nc_inq_varids lists the variables in the order the file defines them.
-  ids.assign(std::size_t(std::max(variables, 0)), 0);
-  if (status == NC_NOERR && variables > 0)
-  {
-    status = nc_inq_varids(this->Id, &variables, ids.data());
-  }
-  for (std::size_t v = 0; status == NC_NOERR && v < ids.size(); ++v)
-  {
-    char name[NC_MAX_NAME + 1] = {};
-    int count = 0;
-    Variable variable;
-    variable.Id = ids[v];
-    status = nc_inq_varndims(this->Id, ids[v], &count);
-    if (status == NC_NOERR && (count < 0 || count > NC_MAX_VAR_DIMS))
+    int dimensions = 0, variables = 0, unlimited = -1;
+    status = nc_inq(this->Id, &dimensions, &variables, nullptr, &unlimited);
+    std::vector<int> ids(std::size_t(std::max(dimensions, 0)));
+    if (status == NC_NOERR && dimensions > 0)
     {
-      status = NC_EMAXDIMS; // the library's own limit, which nc_inq_var would write beyond
+      status = nc_inq_dimids(this->Id, &dimensions, ids.data(), 0);
     }
-    variable.Dimensions.assign(std::size_t(std::clamp(count, 0, NC_MAX_VAR_DIMS)), 0);
-    if (status == NC_NOERR)
+    for (std::size_t d = 0; status == NC_NOERR && d < ids.size(); ++d)
     {
-      status = nc_inq_var(
-        this->Id, ids[v], name, &variable.Type, nullptr, variable.Dimensions.data(), nullptr);
+      char name[NC_MAX_NAME + 1] = {};
+      Dimension dimension;
+      status = nc_inq_dim(this->Id, ids[d], name, &dimension.Length);
+      dimension.Name = name;
+      dimension.Unlimited = ids[d] == unlimited;
+      this->Dimensions.emplace_back(ids[d], dimension);
     }
-    variable.Name = name;
-    this->All.push_back(variable);
+    // nc_inq_varids lists the variables in the order the file defines them.
+    ids.assign(std::size_t(std::max(variables, 0)), 0);
+    if (status == NC_NOERR && variables > 0)
+    {
+      status = nc_inq_varids(this->Id, &variables, ids.data());
+    }
+    for (std::size_t v = 0; status == NC_NOERR && v < ids.size(); ++v)
+    {
+      char name[NC_MAX_NAME + 1] = {};
+      int count = 0;
+      Variable variable;
+      variable.Id = ids[v];
+      status = nc_inq_varndims(this->Id, ids[v], &count);
+      if (status == NC_NOERR && (count < 0 || count > NC_MAX_VAR_DIMS))
+      {
+        status = NC_EMAXDIMS; // the library's own limit, which nc_inq_var would write beyond
+      }
+      variable.Dimensions.assign(std::size_t(std::clamp(count, 0, NC_MAX_VAR_DIMS)), 0);
+      if (status == NC_NOERR)
+      {
+        status = nc_inq_var(
+          this->Id, ids[v], name, &variable.Type, nullptr, variable.Dimensions.data(), nullptr);
+      }
+      variable.Name = name;
+      this->All.push_back(variable);
+    }
+    if (status != NC_NOERR)
+    {
+      this->Fail(status, "list its dimensions and variables");
+    }
   }
-  if (status != NC_NOERR)
+  catch (...)
   {
-    this->Fail(status, "list its dimensions and variables");
+    nc_close(this->Id);
+    throw;
   }
 }
 

@@ -316,6 +316,40 @@ TEST(NetCdf, StretchedVerticalCoordinateIsResampledLinearlyAtTheSmallestStep)
   EXPECT_EQ(Density(coarse, 2, 1, d[2] - 1), value(2, 1, 4)) << "the top level stays the file's";
 }
 
+// One tiny step (1e-12 of a 2 m column) asks for 2e12 points at the smallest step, beyond an
+// int: the count is kept exact, reported, and field.max_voxels coarsens the lattice from it.
+TEST(NetCdf, OneTinyStepIsCountedBeyondIntAndCoarsened)
+{
+  TemporaryDirectory dir;
+  const std::array<NetCdfAxis, 3> axes = { { { "height", { 0, 1e-12, 1, 2 }, "m" },
+    { "y", { 0, 100 }, "m" },
+    { "x", { 0, 100, 200 }, "m" } } };
+  const std::string path = dir.File("tiny.nc");
+  WriteNetCdf(path,
+    0,
+    0,
+    axes,
+    { "ql" },
+    [](std::size_t, int, int i, int j, int k) { return float(Known(i, j, k)); });
+  FieldReadOptions capped;
+  capped.MaximumVoxels = 600;
+  FieldReport report;
+  const auto field = cloudvis::ReadField(path, capped, &report);
+  int d[3];
+  field->GetDimensions(d);
+  EXPECT_EQ(d[0], 3);
+  EXPECT_EQ(d[1], 2);
+  EXPECT_GE(d[2], 4);
+  EXPECT_LE(d[0] * d[1] * d[2], 600);
+  const std::string resampled = Detail(report, "resampled");
+  const std::string need = "which would need ";
+  const std::size_t at = resampled.find(need);
+  ASSERT_NE(at, std::string::npos) << resampled;
+  const double points = std::stod(resampled.substr(at + need.size()));
+  EXPECT_NEAR(points, 2e12, 2.0) << resampled;
+  EXPECT_EQ(Density(field, 2, 1, d[2] - 1), Known(2, 1, 3)) << "the top level stays the file's";
+}
+
 TEST(NetCdf, DecreasingCoordinatesAreTurnedAround)
 {
   TemporaryDirectory dir;
