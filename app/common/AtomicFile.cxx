@@ -210,7 +210,10 @@ void RemoveTemporariesAndReraise(int signal)
   }
   // End as the default action would: the parent sees "killed by signal" (a shell's $? is
   // 128 + signal), and a core-dumping signal still dumps core. The signal is blocked while its
-  // handler runs, so it is unblocked for the raise to take effect at once.
+  // handler runs, so it is unblocked for the raise to take effect at once. pthread_sigmask, not
+  // sigprocmask: both are async-signal-safe (signal-safety(7): pthread_sigmask since POSIX.1-2008
+  // TC1), but sigprocmask is unspecified in a multi-threaded process (VTK's and MPI's threads),
+  // and the mask to change is this thread's, which the kernel blocked the signal in.
   struct sigaction defaultAction;
   std::memset(&defaultAction, 0, sizeof(defaultAction));
   defaultAction.sa_handler = SIG_DFL;

@@ -332,6 +332,14 @@ void RunAgreed(vtkMultiProcessController* controller, const std::function<void()
     message = e.what();
     failure = std::current_exception();
   }
+  catch (...)
+  {
+    // Whatever was thrown (a library's own type, an int), this process still votes: letting it
+    // pass the vote would leave every other process waiting for it for ever.
+    outcome = InputFailure;
+    message = "an unknown error";
+    failure = std::current_exception();
+  }
   // The lowest-ranked failing process (`processes` when none failed), then its outcome and
   // message, sent by it: every process takes part in both, so none waits for another in vain.
   const int mine = outcome == Succeeded ? processes : rank;
@@ -373,13 +381,16 @@ void WriteFieldPieces(const FieldLattice& lattice,
 {
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
   const int rank = controller ? controller->GetLocalProcessId() : 0;
+  // From the start, so that a signal on any process, whenever it comes, goes through the handler
+  // that removes the run's temporaries (AtomicFile.h), not the default action.
+  InstallInterruptCleanup();
   // The temporaries of the whole run: one directory, named after the run, holding the pieces
-  // under their own names and the .pvti (AtomicFile.h). Process 0 creates it before the others
-  // learn the run, so no process can create it again once a signal has removed it.
+  // under their own names and the .pvti (AtomicFile.h). Process 0 draws the run id; every process
+  // learns it before the directory exists, and registers the group (process 0 creating the
+  // directory) as soon as it knows it, with no collective call in between: from the directory's
+  // creation on, a signal to any process removes it.
   std::string run;
   std::optional<TemporaryGroup> temporaries;
-  const auto group = [&](bool create)
-  { temporaries.emplace(path, run, create, Stem(path) + "_", ".vti", pieces, FileNameOf(path)); };
   RunAgreed(controller,
     [&]
     {
@@ -399,10 +410,13 @@ void WriteFieldPieces(const FieldLattice& lattice,
       if (rank == 0)
       {
         run = NewRunId();
-        group(true);
       }
     });
   run = SharedRunId(controller, run);
+  RunAgreed(controller,
+    [&] {
+      temporaries.emplace(path, run, rank == 0, Stem(path) + "_", ".vti", pieces, FileNameOf(path));
+    });
 
   // 1. This process's pieces, and the .pvti on process 0, into the run's directory. A signal
   // now ends the process at once and removes the directory with everything in it, whichever
@@ -412,10 +426,6 @@ void WriteFieldPieces(const FieldLattice& lattice,
   RunAgreed(controller,
     [&]
     {
-      if (rank != 0)
-      {
-        group(false);
-      }
       for (int p = rank; p < pieces; p += processes)
       {
         const Extent extent = PieceExtent(lattice.WholeExtent, p, pieces);
@@ -447,15 +457,19 @@ void WriteFieldPieces(const FieldLattice& lattice,
       }
     });
 
-  // 2. All written everywhere: put the new output in place, with signals held so that none cuts
-  // the renames in two (one arriving now ends the process once they are done). Pieces first,
-  // the .pvti last. A failure now leaves no output rather than a mixed one.
-  const InterruptionHold hold;
+  // 2. All written everywhere: put the new output in place, pieces first, the .pvti last. Each
+  // process holds signals only while it renames its own files, so that none cuts those renames
+  // in two (one arriving meanwhile ends the process once they are done); the votes between them
+  // are made with signals acted on, so a process waiting for a peer that died or stalls still
+  // ends on SIGINT or SIGTERM. A signal between the two steps leaves the new pieces beside the
+  // old .pvti, which the reader refuses by their run (FieldPieces.h). A failure leaves no
+  // output rather than a mixed one.
   try
   {
     RunAgreed(controller,
       [&]
       {
+        const InterruptionHold hold;
         for (int p = rank; p < pieces; p += processes)
         {
           temporaries->Commit(PieceSource(path, p), PieceFileName(path, p));
@@ -466,6 +480,7 @@ void WriteFieldPieces(const FieldLattice& lattice,
       {
         if (rank == 0)
         {
+          const InterruptionHold hold;
           RemovePiecesBeyond(path, pieces);
           temporaries->Commit(FileNameOf(path), path);
         }

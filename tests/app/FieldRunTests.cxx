@@ -8,10 +8,14 @@
 #include "SupportRun.h"
 
 #include <gtest/gtest.h>
+#include <vtkDummyCommunicator.h>
+#include <vtkDummyController.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -111,6 +115,62 @@ TEST(ParallelFiles, PiecesOfAnOlderOutputBeyondTheNewCountAreRemoved)
   EXPECT_EQ(dir.Files(),
     (std::vector<std::string>{ "p.pvti", "p_0.vti", "p_1.vti", "p_9.vti", "p_x.vti" }));
   ExpectSameField(field, cloudvis::ReadField(path));
+}
+
+// Process 0 of two, in this process: the collective calls RunAgreed makes are recorded and
+// answered as the one process taking part would see them (the lowest failing rank is its own).
+class RecordingCommunicator : public vtkDummyCommunicator
+{
+public:
+  static RecordingCommunicator* New();
+  vtkTypeMacro(RecordingCommunicator, vtkDummyCommunicator);
+  int Votes = 0;
+  std::string Broadcast; // the characters process 0 sent to the others
+  RecordingCommunicator()
+  {
+    this->NumberOfProcesses = 2;
+    this->LocalProcessId = 0;
+  }
+  int AllReduceVoidArray(const void* send,
+    void* receive,
+    vtkIdType length,
+    int type,
+    int operation) override
+  {
+    ++this->Votes;
+    EXPECT_EQ(type, VTK_INT);
+    EXPECT_EQ(operation, vtkCommunicator::MIN_OP);
+    std::memcpy(receive, send, std::size_t(length) * sizeof(int));
+    return 1;
+  }
+  int BroadcastVoidArray(void* data, vtkIdType length, int type, int source) override
+  {
+    EXPECT_EQ(source, 0);
+    if (type == VTK_CHAR)
+    {
+      this->Broadcast.assign(static_cast<const char*>(data), std::size_t(length));
+    }
+    return 1;
+  }
+};
+vtkStandardNewMacro(RecordingCommunicator);
+
+// Whatever a step throws, not only a std::exception, the process still takes part in the vote
+// (else the other processes would wait for it for ever), tells them it failed, and then rethrows
+// its own exception.
+TEST(ParallelFiles, AStepThrowingAnythingStillTakesPartInTheVote)
+{
+  vtkNew<RecordingCommunicator> communicator;
+  vtkNew<vtkDummyController> controller;
+  controller->SetCommunicator(communicator);
+  ASSERT_EQ(controller->GetNumberOfProcesses(), 2);
+  struct NotAStandardException
+  {
+  };
+  EXPECT_THROW(
+    cloudvis::RunAgreed(controller, [] { throw NotAStandardException{}; }), NotAStandardException);
+  EXPECT_EQ(communicator->Votes, 1);
+  EXPECT_EQ(communicator->Broadcast, "an unknown error");
 }
 
 } // namespace

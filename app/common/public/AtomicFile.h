@@ -53,13 +53,13 @@ public:
 // The temporaries of a group of files replaced together, possibly by several processes (the
 // pieces of a .pvti and the .pvti), in one hidden directory beside `target` (the group's main
 // file): DIRECTORY/.NAME.tmp-TAG. Every process of an MPI job passes the same TAG (the run id),
-// so all use one directory, which one of them creates (`create`) before the others learn the
-// tag. Its members are named PREFIX<i>SUFFIX for i < count, and EXTRA. A signal ending any
-// process that holds the group removes every member and the directory (the handler builds the
-// names from this pattern): once the directory is gone no process can create a file in it, so
-// a process that mpirun kills with SIGKILL, whose handler never runs, leaves nothing behind
-// either. The destructor removes the members this process made and then, when it is empty, the
-// directory.
+// so all use one directory, which exactly one of them creates (`create`); the others never do,
+// so once a signal has removed it no process can create it again. Its members are named
+// PREFIX<i>SUFFIX for i < count, and EXTRA. A signal ending any process that holds the group
+// removes every member and the directory (the handler builds the names from this pattern): once the
+// directory is gone no process can create a file in it, so a process that mpirun kills with
+// SIGKILL, whose handler never runs, leaves nothing behind either. The destructor removes the
+// members this process made and then, when it is empty, the directory.
 class TemporaryGroup
 {
 public:

@@ -11,13 +11,16 @@
 // The output is replaced as one: every process writes its pieces, and process 0 the .pvti, into
 // one directory of temporaries named after the run (TemporaryGroup, AtomicFile.h), which the
 // signal handler of any process removes whole; the processes agree that all were written
-// (RunAgreed); only then, with interruptions held (InterruptionHold), each renames its pieces
-// into place, they agree again, and process 0 removes the pieces of an older output that the new
-// one no longer names and renames the .pvti last. A failure anywhere before the renames, or a
-// signal (Ctrl-C, mpirun's SIGTERM), leaves the previous output untouched and no temporary. The
-// .pvti and every piece record the run that wrote them (PieceRunAttribute, a random 128-bit id),
-// which the reader checks: what renames cannot make atomic (a process killed by SIGKILL or a
-// crash between two renames) is refused when read, never read as a field mixed from two runs.
+// (RunAgreed); only then each renames its pieces into place, they agree again, and process 0
+// removes the pieces of an older output that the new one no longer names and renames the .pvti
+// last. Interruptions are held (InterruptionHold) only while a process renames its own files,
+// never across a vote, so a process waiting for a peer still ends on a signal. A failure anywhere
+// before the renames, or a signal (Ctrl-C, mpirun's SIGTERM) before them, leaves the previous
+// output untouched and no temporary. The .pvti and every piece record the run that wrote them
+// (PieceRunAttribute, a random 128-bit id), which the reader checks: what renames cannot make
+// atomic (a signal between the pieces' renames and the .pvti's, a process killed by SIGKILL or a
+// crash during the renames) may leave new pieces beside the old .pvti, which is refused when
+// read, never read as a field mixed from two runs.
 #ifndef cloudvis_FieldPieces_h
 #define cloudvis_FieldPieces_h
 
@@ -67,8 +70,9 @@ constexpr const char* PieceRunAttribute = "CloudvisRun";
 
 // Runs `step` here and agrees with the other processes of `controller` on the outcome: a
 // collective call, which every process makes at the same point whatever its own work did, so no
-// process ever waits for one that has given up. When `step` throws on any process, every process
-// throws: a failing one its own exception, the others an InputError (a UsageError when that was
+// process ever waits for one that has given up. When `step` throws on any process (anything, not
+// only a std::exception: "an unknown error" then), every process throws: a failing one its own
+// exception, the others an InputError (a UsageError when that was
 // the failure) "process R of N failed: MESSAGE" with the message of the lowest-ranked failing
 // process R. With no controller or one process, `step` simply runs.
 void RunAgreed(vtkMultiProcessController* controller, const std::function<void()>& step);
