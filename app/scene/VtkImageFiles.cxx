@@ -86,6 +86,35 @@ std::vector<double> Numbers(const std::string& text)
   return values;
 }
 
+// The entries of NRRD's "space directions": "(x,y,z)" vectors, in which teem allows spaces after
+// the commas, and "none" for an axis that is not spatial. A parenthesis left open is refused.
+std::vector<std::string> DirectionVectors(const std::string& path, const std::string& text)
+{
+  std::vector<std::string> entries;
+  std::size_t at = 0;
+  while ((at = text.find_first_not_of(" \t", at)) != std::string::npos)
+  {
+    std::size_t end = 0; // one past the entry
+    if (text[at] == '(')
+    {
+      end = text.find(')', at);
+      if (end == std::string::npos)
+      {
+        Fail(path,
+          "the NRRD \"space directions\" opens a vector it does not close (\"" + text + "\")");
+      }
+      ++end;
+    }
+    else
+    {
+      end = std::min(text.find_first_of(" \t(", at), text.size());
+    }
+    entries.push_back(text.substr(at, end - at));
+    at = end;
+  }
+  return entries;
+}
+
 // A data file named by a header, relative to the header's folder unless absolute (as VTK and
 // the formats' specifications resolve it).
 std::string Beside(const std::string& header, const std::string& name)
@@ -258,11 +287,7 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     }
     else if (field == "space directions")
     {
-      std::istringstream in(value);
-      for (std::string token; in >> token;)
-      {
-        directions.push_back(token);
-      }
+      directions = DirectionVectors(path, value);
     }
     else if (field == "space origin")
     {
@@ -384,6 +409,12 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     header.Components = sizes[0];
     first = 1;
   }
+  if (!directions.empty() && directions.size() != sizes.size())
+  {
+    Fail(path,
+      "the NRRD \"space directions\" gives " + std::to_string(directions.size()) +
+        " vectors (or \"none\") for " + std::to_string(sizes.size()) + " axes");
+  }
   const std::size_t spatial = sizes.size() - first;
   if (spatial < 2 || spatial > 3)
   {
@@ -393,7 +424,7 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   for (std::size_t a = 0; a < spatial; ++a)
   {
     header.Dimensions[a] = sizes[first + a];
-    if (directions.size() == sizes.size())
+    if (!directions.empty())
     {
       const std::vector<double> axis = Numbers(directions[first + a]);
       if (axis.size() != 3)
