@@ -15,7 +15,6 @@
 // ElementSpacing). The header's own geometry (origin, spacing, direction) is set on the image.
 #include "FieldFormatReaders.h"
 
-#include "Errors.h"
 #include "FileNames.h"
 #include "InputFiles.h"
 
@@ -29,7 +28,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -220,9 +218,9 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   }
   ImageHeader header;
   header.DataFile = path;
-  // VTK's reader reads the header as a C string (up to the first NUL byte) and then line by line
-  // until an empty line; a last line without its line break makes it loop forever (found by the
-  // fuzzer: a NUL byte in a comment). It must therefore end with a line break.
+  // A NRRD header is text that ends with an empty line (or, detached, with the file): a NUL byte
+  // before that line, or a last line without its line break, means the file is not a whole
+  // header (a binary file, or one cut short), so it is refused rather than read up to the NUL.
   const std::string visible = text.substr(0, std::min(text.find('\0'), MaximumHeaderBytes - 1));
   if (visible.find("\n\n") == std::string::npos && visible.find("\n\r\n") == std::string::npos &&
     (visible.empty() || visible.back() != '\n'))
@@ -269,8 +267,7 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     }
     else if (field == "sizes")
     {
-      // VTK's reader sizes its list by the dimension read so far (found by the fuzzer: sizes
-      // before the dimension made it read a 1-voxel image and crash).
+      // NRRD's format requires the dimension first: the number of sizes is checked against it.
       if (dimension == 0)
       {
         Fail(path, "the NRRD header gives its sizes before its dimension");
