@@ -25,7 +25,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <sstream>
 
 namespace cloudvis
@@ -124,8 +123,7 @@ public:
 
   void Number(double value)
   {
-    constexpr double largest = std::numeric_limits<float>::max();
-    this->Beyond += std::isfinite(value) && std::fabs(value) > largest ? 1 : 0;
+    this->Beyond += BeyondFloat(value) ? 1 : 0;
     this->Out[this->Done++] = float(value);
   }
 
@@ -436,12 +434,7 @@ vtkSmartPointer<vtkFloatArray> ReadStoredValues(const std::string& path,
       ReadText(path, file, stored, toEnd, sink, what);
       break;
   }
-  if (sink.Beyond > 0)
-  {
-    Fail(path,
-      "the file holds " + std::to_string(sink.Beyond) +
-        " values beyond the range of float (about 3.4e38)");
-  }
+  RefuseBeyondFloat(path, "the file", sink.Beyond);
   return sink.Values;
 }
 
