@@ -73,9 +73,10 @@ struct StoredValues
 
 // The `count` values `file` stores as `stored` says, as floats named "density". The data region
 // (from the offset to the end of the file) must hold exactly those values: a region too short or
-// too long, a compressed stream that cannot expand to the declared size (checked before anything
-// of that size is allocated), ends early, is corrupt or yields more, text with fewer or more
-// numbers, and values beyond float's range are refused (InputError naming `path`; `what`, such as
+// too long, a compressed stream that cannot expand to the declared size, ends early, is corrupt
+// or yields more, text too short for the numbers or with fewer or more of them, and values beyond
+// float's range are refused (whatever the region's size rules out, before anything of the
+// declared size is allocated) (InputError naming `path`; `what`, such as
 // "an image of 60 float values", says what was expected). The caller checks `count` with
 // CheckFieldSize first.
 vtkSmartPointer<vtkFloatArray> ReadStoredValues(const std::string& path,
