@@ -8,7 +8,6 @@
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
 #include <vtkDataArray.h>
-#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkMatrix3x3.h>
 #include <vtkNew.h>
@@ -144,29 +143,19 @@ void CheckFileHoldsData(const std::string& path,
   }
 }
 
-vtkSmartPointer<vtkFloatArray> ToFloat(const std::string& path,
-  vtkDataArray* values,
-  const std::string& name)
+bool BeyondFloat(double value)
 {
-  auto converted = vtkSmartPointer<vtkFloatArray>::New();
-  converted->SetName(name.c_str());
-  const int components = values->GetNumberOfComponents();
-  converted->SetNumberOfTuples(values->GetNumberOfValues());
-  vtkIdType beyond = 0;
-  constexpr double largest = std::numeric_limits<float>::max();
-  for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
-  {
-    const double value = values->GetComponent(i / components, int(i % components));
-    beyond += std::isfinite(value) && std::fabs(value) > largest ? 1 : 0;
-    converted->SetValue(i, float(value));
-  }
+  return std::isfinite(value) && std::fabs(value) > double(std::numeric_limits<float>::max());
+}
+
+void RefuseBeyondFloat(const std::string& path, const std::string& holder, std::uint64_t beyond)
+{
   if (beyond > 0)
   {
     Fail(path,
-      "\"" + name + "\" holds " + std::to_string(beyond) +
+      holder + " holds " + std::to_string(beyond) +
         " values beyond the range of float (about 3.4e38)");
   }
-  return converted;
 }
 
 std::string TypeInWords(int vtkType)

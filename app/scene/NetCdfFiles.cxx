@@ -494,7 +494,6 @@ vtkSmartPointer<vtkFloatArray> ReadValues(const ValueSource& source,
   float* values = read->GetPointer(0);
   std::vector<double> slab(std::min(source.SlabSlices, length[0]) * length[1] * length[2]);
   std::uint64_t beyond = 0;
-  constexpr double largest = std::numeric_limits<float>::max();
   for (std::size_t from = 0; from < length[0]; from += source.SlabSlices)
   {
     const std::size_t slices = std::min(source.SlabSlices, length[0] - from);
@@ -515,16 +514,11 @@ vtkSmartPointer<vtkFloatArray> ReadValues(const ValueSource& source,
             continue;
           }
           const double unpacked = packed * packing.Scale + packing.Offset;
-          beyond += std::isfinite(unpacked) && std::fabs(unpacked) > largest ? 1 : 0;
+          beyond += BeyondFloat(unpacked) ? 1 : 0;
           value = float(unpacked); // NaN and infinity stay, for ReadField to count and refuse
         }
   }
-  if (beyond > 0)
-  {
-    Fail(path,
-      "\"" + source.Variable.Name + "\" holds " + std::to_string(beyond) +
-        " values beyond the range of float (about 3.4e38)");
-  }
+  RefuseBeyondFloat(path, "\"" + source.Variable.Name + "\"", beyond);
   if (missing.Count() > 0 && !source.MissingIsEmpty)
   {
     Fail(path,

@@ -205,7 +205,8 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
       // outside), not densities: read as one it draws a solid block. It is converted to the fog
       // volume Houdini and Blender make of it: OpenVDB's sdfToFogVolume, the narrow band's
       // interior half a linear ramp from 0 at the surface to 1, the interior 1, the outside 0
-      // (inactive).
+      // (inactive). The ramp's depth is the background, clamped by sdfToFogVolume to the deepest
+      // distance the grid stores (a thin interior band).
       const bool levelSet = grid->getGridClass() == openvdb::GRID_LEVEL_SET;
       const float halfBand = grid->background();
       if (levelSet)
@@ -250,8 +251,10 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
       {
         contents.Report.Add("converted",
           "level set converted to a fog volume (OpenVDB's sdfToFogVolume): density 0 outside the "
-          "surface, rising linearly to 1 over the inner half of the narrow band (" +
-            Number(halfBand) + " world units deep), 1 inside");
+          "surface, rising linearly to 1 over the inner half of the narrow band (at most " +
+            Number(halfBand) +
+            " world units deep, the grid's background; less where the stored interior is "
+            "thinner), 1 inside");
       }
       const std::string creator = grid->getCreator();
       if (!creator.empty())

@@ -10,7 +10,9 @@
 // decoded: a stream that ends early, is corrupt, or yields more than declared is refused, and so
 // is a data region longer or shorter than the values need. Nothing of the declared size is
 // allocated before the declared size has been checked against field.max_voxels and memory (the
-// callers' CheckFieldSize) and, for a compressed stream, against the most its bytes can expand to.
+// callers' CheckFieldSize) and against what the data region can hold (CheckRegion): exactly the
+// bytes of raw values, at most deflate's 1032:1 expansion of a compressed stream, at least a
+// character and a separator per number of text.
 #include "FieldFormatReaders.h"
 
 #include "InputFiles.h"
@@ -23,7 +25,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <sstream>
 
 namespace cloudvis
@@ -122,8 +123,7 @@ public:
 
   void Number(double value)
   {
-    constexpr double largest = std::numeric_limits<float>::max();
-    this->Beyond += std::isfinite(value) && std::fabs(value) > largest ? 1 : 0;
+    this->Beyond += BeyondFloat(value) ? 1 : 0;
     this->Out[this->Done++] = float(value);
   }
 
@@ -139,32 +139,81 @@ private:
   float* Out = nullptr;
 };
 
-// Raw bytes: the region holds exactly the values (or ends with them: `AtEnd`).
+// The checks every encoding's data region must pass before the `count` values are allocated:
+// the region can hold them (raw: exactly, or ending with them when `AtEnd`; compressed: no more
+// than deflate's largest expansion of its bytes; text: one character and one separator per
+// number at the least). A header declaring a billion values beside a few bytes is refused here,
+// by sizes, not by running out of memory.
+void CheckRegion(const std::string& path,
+  const StoredValues& stored,
+  std::uint64_t regionBytes,
+  std::uint64_t count,
+  const std::string& what)
+{
+  const double values = double(count);
+  switch (stored.Encoding)
+  {
+    case ValueEncoding::Raw:
+    {
+      const double needed = values * stored.Type->Bytes;
+      CheckFileHoldsData(path, regionBytes + stored.Offset, stored.Offset, needed, what);
+      if (!stored.AtEnd && double(regionBytes) > needed)
+      {
+        std::ostringstream text;
+        text << what << " needs " << Count(needed) << " bytes of data";
+        if (stored.Offset > 0)
+        {
+          text << " after " << stored.Offset << " bytes of header";
+        }
+        text << " but the file holds " << regionBytes
+             << ": the sizes disagree, so its header or the file is wrong";
+        Fail(path, text.str());
+      }
+      break;
+    }
+    case ValueEncoding::Zlib:
+    {
+      const double declared = double(stored.SkipDecoded) + values * stored.Type->Bytes;
+      if (declared > (double(regionBytes) + 1.0) * MaximumInflation)
+      {
+        Fail(path,
+          what + " is " + Count(declared) + " bytes, but its " + std::to_string(regionBytes) +
+            " bytes of compressed data cannot decompress to more than " +
+            Count(double(regionBytes) * MaximumInflation) +
+            " (zlib expands at most about 1032:1): the file is truncated or its header is wrong");
+      }
+      break;
+    }
+    case ValueEncoding::Text:
+    {
+      const double needed = count > 0 ? 2.0 * values - 1.0 : 0.0;
+      if (double(regionBytes) < needed)
+      {
+        Fail(path,
+          what + " written as text needs at least " + Count(needed) +
+            " bytes (a digit and a separator per number) but the file holds " +
+            std::to_string(regionBytes) +
+            (stored.Offset > 0 ? " after its first " + std::to_string(stored.Offset) + " bytes"
+                               : "") +
+            ": it is truncated or its header is wrong");
+      }
+      break;
+    }
+  }
+}
+
+// Raw bytes: the region holds exactly the values (or ends with them: `AtEnd`), as CheckRegion
+// made sure.
 void ReadRaw(const std::string& path,
   const RegularInputFile& file,
   const StoredValues& stored,
   std::uint64_t regionBytes,
-  FloatSink& sink,
-  const std::string& what)
+  FloatSink& sink)
 {
-  const double needed = double(sink.Total) * stored.Type->Bytes;
-  CheckFileHoldsData(path, regionBytes + stored.Offset, stored.Offset, needed, what);
   std::uint64_t at = stored.Offset;
   if (stored.AtEnd)
   {
-    at += regionBytes - std::uint64_t(needed); // the bytes before the values are skipped
-  }
-  else if (double(regionBytes) > needed)
-  {
-    std::ostringstream text;
-    text << what << " needs " << Count(needed) << " bytes of data";
-    if (stored.Offset > 0)
-    {
-      text << " after " << stored.Offset << " bytes of header";
-    }
-    text << " but the file holds " << regionBytes
-         << ": the sizes disagree, so its header or the file is wrong";
-    Fail(path, text.str());
+    at += regionBytes - sink.Total * std::uint64_t(stored.Type->Bytes); // bytes before skipped
   }
   const std::uint64_t bytes = std::uint64_t(stored.Type->Bytes);
   for (std::uint64_t first = 0; first < sink.Total; first += BlockValues)
@@ -180,7 +229,7 @@ void ReadRaw(const std::string& path,
 }
 
 // A zlib or gzip stream (zlib's automatic detection) that must decompress to exactly the
-// declared bytes, using every byte of the region.
+// declared bytes, using every byte of the region (CheckRegion has bounded its expansion).
 void ReadCompressed(const std::string& path,
   const RegularInputFile& file,
   const StoredValues& stored,
@@ -190,14 +239,6 @@ void ReadCompressed(const std::string& path,
 {
   const std::uint64_t valueBytes = std::uint64_t(stored.Type->Bytes);
   const double declared = double(stored.SkipDecoded) + double(sink.Total) * valueBytes;
-  if (declared > (double(regionBytes) + 1.0) * MaximumInflation)
-  {
-    Fail(path,
-      what + " is " + Count(declared) + " bytes, but its " + std::to_string(regionBytes) +
-        " bytes of compressed data cannot decompress to more than " +
-        Count(double(regionBytes) * MaximumInflation) +
-        " (zlib expands at most about 1032:1): the file is truncated or its header is wrong");
-  }
   z_stream stream{};
   if (inflateInit2(&stream, 15 + 32) != Z_OK) // 15: the largest window; +32: zlib or gzip
   {
@@ -379,11 +420,12 @@ vtkSmartPointer<vtkFloatArray> ReadStoredValues(const std::string& path,
         (*stored.Length > toEnd ? "it is truncated or its header is wrong"
                                 : "the sizes disagree, so its header or the file is wrong"));
   }
+  CheckRegion(path, stored, toEnd, count, what);
   FloatSink sink(stored, count);
   switch (stored.Encoding)
   {
     case ValueEncoding::Raw:
-      ReadRaw(path, file, stored, toEnd, sink, what);
+      ReadRaw(path, file, stored, toEnd, sink);
       break;
     case ValueEncoding::Zlib:
       ReadCompressed(path, file, stored, toEnd, sink, what);
@@ -392,12 +434,7 @@ vtkSmartPointer<vtkFloatArray> ReadStoredValues(const std::string& path,
       ReadText(path, file, stored, toEnd, sink, what);
       break;
   }
-  if (sink.Beyond > 0)
-  {
-    Fail(path,
-      "the file holds " + std::to_string(sink.Beyond) +
-        " values beyond the range of float (about 3.4e38)");
-  }
+  RefuseBeyondFloat(path, "the file", sink.Beyond);
   return sink.Values;
 }
 

@@ -15,7 +15,6 @@
 // ElementSpacing). The header's own geometry (origin, spacing, direction) is set on the image.
 #include "FieldFormatReaders.h"
 
-#include "Errors.h"
 #include "FileNames.h"
 #include "InputFiles.h"
 
@@ -29,7 +28,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -84,6 +82,35 @@ std::vector<double> Numbers(const std::string& text)
     values.push_back(value);
   }
   return values;
+}
+
+// The entries of NRRD's "space directions": "(x,y,z)" vectors, in which teem allows spaces after
+// the commas, and "none" for an axis that is not spatial. A parenthesis left open is refused.
+std::vector<std::string> DirectionVectors(const std::string& path, const std::string& text)
+{
+  std::vector<std::string> entries;
+  std::size_t at = 0;
+  while ((at = text.find_first_not_of(" \t", at)) != std::string::npos)
+  {
+    std::size_t end = 0; // one past the entry
+    if (text[at] == '(')
+    {
+      end = text.find(')', at);
+      if (end == std::string::npos)
+      {
+        Fail(path,
+          "the NRRD \"space directions\" opens a vector it does not close (\"" + text + "\")");
+      }
+      ++end;
+    }
+    else
+    {
+      end = std::min(text.find_first_of(" \t(", at), text.size());
+    }
+    entries.push_back(text.substr(at, end - at));
+    at = end;
+  }
+  return entries;
 }
 
 // A data file named by a header, relative to the header's folder unless absolute (as VTK and
@@ -191,9 +218,9 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   }
   ImageHeader header;
   header.DataFile = path;
-  // VTK's reader reads the header as a C string (up to the first NUL byte) and then line by line
-  // until an empty line; a last line without its line break makes it loop forever (found by the
-  // fuzzer: a NUL byte in a comment). It must therefore end with a line break.
+  // A NRRD header is text that ends with an empty line (or, detached, with the file): a NUL byte
+  // before that line, or a last line without its line break, means the file is not a whole
+  // header (a binary file, or one cut short), so it is refused rather than read up to the NUL.
   const std::string visible = text.substr(0, std::min(text.find('\0'), MaximumHeaderBytes - 1));
   if (visible.find("\n\n") == std::string::npos && visible.find("\n\r\n") == std::string::npos &&
     (visible.empty() || visible.back() != '\n'))
@@ -240,8 +267,7 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     }
     else if (field == "sizes")
     {
-      // VTK's reader sizes its list by the dimension read so far (found by the fuzzer: sizes
-      // before the dimension made it read a 1-voxel image and crash).
+      // NRRD's format requires the dimension first: the number of sizes is checked against it.
       if (dimension == 0)
       {
         Fail(path, "the NRRD header gives its sizes before its dimension");
@@ -258,11 +284,7 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     }
     else if (field == "space directions")
     {
-      std::istringstream in(value);
-      for (std::string token; in >> token;)
-      {
-        directions.push_back(token);
-      }
+      directions = DirectionVectors(path, value);
     }
     else if (field == "space origin")
     {
@@ -384,6 +406,12 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     header.Components = sizes[0];
     first = 1;
   }
+  if (!directions.empty() && directions.size() != sizes.size())
+  {
+    Fail(path,
+      "the NRRD \"space directions\" gives " + std::to_string(directions.size()) +
+        " vectors (or \"none\") for " + std::to_string(sizes.size()) + " axes");
+  }
   const std::size_t spatial = sizes.size() - first;
   if (spatial < 2 || spatial > 3)
   {
@@ -393,7 +421,7 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   for (std::size_t a = 0; a < spatial; ++a)
   {
     header.Dimensions[a] = sizes[first + a];
-    if (directions.size() == sizes.size())
+    if (!directions.empty())
     {
       const std::vector<double> axis = Numbers(directions[first + a]);
       if (axis.size() != 3)

@@ -472,6 +472,13 @@ struct Piece
   Extent Region{};    // the piece's extent, as the .pvti states it
 };
 
+// "piece 2 (f_2.vti)": a piece in messages, numbered from 0 as listed, with the Source the .pvti
+// gives it.
+std::string PieceLabel(std::size_t number, const std::string& source)
+{
+  return "piece " + std::to_string(number) + " (" + source + ")";
+}
+
 // The markup of a .pvti, read whole (it lists pieces; it holds no data).
 constexpr std::uint64_t MaximumParallelFileBytes = std::uint64_t(16) << 20;
 
@@ -504,7 +511,7 @@ std::vector<Piece> ListPieces(const std::string& path, const std::string& xml)
     const std::optional<Extent> extent = region ? ParseExtent(*region) : std::nullopt;
     if (!extent)
     {
-      Fail(path, number + " (" + *source + ") states no extent of six integers");
+      Fail(path, PieceLabel(pieces.size(), *source) + " states no extent of six integers");
     }
     pieces.push_back({ *source, (*source)[0] == '/' ? *source : directory + *source, *extent });
   }
@@ -548,8 +555,7 @@ vtkSmartPointer<vtkImageData> ReadPieceRegion(const std::string& path,
 // hold), refused at the first point (x fastest) where they differ.
 void CheckOverlapsAgree(const std::string& path, const std::vector<Piece>& pieces)
 {
-  const auto number = [&pieces](std::size_t p)
-  { return "piece " + std::to_string(p) + " (" + pieces[p].Source + ")"; };
+  const auto number = [&pieces](std::size_t p) { return PieceLabel(p, pieces[p].Source); };
   for (std::size_t p = 0; p < pieces.size(); ++p)
   {
     for (std::size_t q = p + 1; q < pieces.size(); ++q)
@@ -621,7 +627,7 @@ void CheckPiecesOfOneRun(const std::string& path,
   const std::vector<std::optional<std::string>>& runs)
 {
   const auto piece = [&listed](std::size_t index)
-  { return "piece " + std::to_string(index) + " (" + listed[index].Source + ")"; };
+  { return PieceLabel(index, listed[index].Source); };
   const std::string advice = ": the pieces of two generate runs are mixed (a run killed while "
                              "renaming its pieces, or two runs writing the same .pvti at once); "
                              "generate the field again";
@@ -705,7 +711,7 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
       {
         problem.erase(0, piece.Path.size() + 2);
       }
-      Fail(path, "piece " + std::to_string(number) + " (" + piece.Source + "): " + problem);
+      Fail(path, PieceLabel(number, piece.Source) + ": " + problem);
     }
   }
   CheckPiecesOfOneRun(path, run, listed, runs);

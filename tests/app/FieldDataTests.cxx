@@ -12,8 +12,13 @@
 #include <gtest/gtest.h>
 #include <vtkImageData.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 
 namespace
 {
@@ -214,6 +219,11 @@ TEST(MetaImage, EveryNumericElementTypeIsReadAsFloat)
   WriteText(path, Replaced(header, "BinaryData = True", "BinaryData = False") + numbers);
   EXPECT_EQ(Density(cloudvis::ReadField(path), 4, 3, 2), 59.0);
   WriteText(path, Replaced(header, "BinaryData = True", "BinaryData = False") + "1 2 3\n");
+  ExpectRefused(path,
+    { "an image of 60 MET_FLOAT values written as text needs at least 119 bytes (a digit and a "
+      "separator per number) but the file holds 6 after its first " });
+  WriteText(path,
+    Replaced(header, "BinaryData = True", "BinaryData = False") + "1 2 3" + std::string(120, ' '));
   ExpectRefused(path, { "an image of 60 MET_FLOAT values: the text holds 3 numbers, not 60" });
   // Not numbers, or not one per voxel.
   WriteText(path, Replaced(header, "ElementType = MET_FLOAT", "ElementType = MET_STRING"));
@@ -300,6 +310,105 @@ TEST(Nrrd, ByteAndLineSkipsSayWhereTheValuesStart)
   ExpectRefused(dir.File("far.nhdr"),
     { "needs 240 bytes of data after 100 bytes of header but the "
       "file holds 182: it is truncated" });
+}
+
+// ---- Every encoding ----------------------------------------------------------------------------
+
+// The error reading `path` gives in a child process whose address space may grow by only 1 GiB
+// more, or what became of the child: a read that allocates the declared size before checking it
+// against the data dies of it there (bad_alloc, or VTK's failed allocation written through).
+std::string ErrorWithin1GiB(const std::string& path)
+{
+  int channel[2];
+  if (::pipe(channel) != 0)
+  {
+    return "no pipe";
+  }
+  const pid_t child = ::fork();
+  if (child == 0)
+  {
+    ::close(channel[0]);
+    std::uint64_t pages = 0;
+    std::ifstream("/proc/self/statm") >> pages; // the address space's size now
+    const rlim_t limit = rlim_t(pages * std::uint64_t(::sysconf(_SC_PAGESIZE)) + (1ull << 30));
+    const rlimit memory{ limit, limit };
+    ::setrlimit(RLIMIT_AS, &memory);
+    std::string message = "no InputError";
+    try
+    {
+      cloudvis::ReadField(path);
+    }
+    catch (const cloudvis::InputError& e)
+    {
+      message = e.what();
+    }
+    catch (const std::exception& e)
+    {
+      message = std::string("not an InputError: ") + e.what();
+    }
+    const ssize_t written = ::write(channel[1], message.data(), message.size());
+    ::_exit(written == ssize_t(message.size()) ? 0 : 1);
+  }
+  ::close(channel[1]);
+  std::string message;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(channel[0], buffer, sizeof buffer)) > 0;)
+  {
+    message.append(buffer, std::size_t(n));
+  }
+  ::close(channel[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  if (WIFSIGNALED(status))
+  {
+    return "the read died of signal " + std::to_string(WTERMSIG(status));
+  }
+  return message;
+}
+
+// A header declaring 1000^3 values (4 GB as float, within the default field.max_voxels of
+// 1024^3) beside a few bytes of data is refused by the sizes before anything of the declared size
+// is allocated, in every encoding: before, a 129-byte .zraw or a 10-byte ascii NRRD cost 4 GB (and
+// with less memory than that, the read died instead of naming the sizes).
+TEST(FieldData, HugeDeclaredSizesBesideLittleDataAreRefusedBeforeAllocation)
+{
+  TemporaryDirectory dir;
+  const std::string raw = WriteKnownRaw(dir);
+  RunTool(Unu(raw, dir.File("r.nrrd"), "-sp 1 1 1"));
+  RunTool(UnuSave(dir.File("r.nrrd"), dir.File("g.nrrd"), "gzip"));
+  RunTool(UnuSave(dir.File("r.nrrd"), dir.File("a.nrrd"), "ascii"));
+  const std::string huge = "sizes: 1000 1000 1000";
+  for (const char* name : { "r.nrrd", "g.nrrd", "a.nrrd" })
+  {
+    WriteText(dir.File(name), Replaced(ReadText(dir.File(name)), "sizes: 5 4 3", huge));
+  }
+  const std::string mhd = WriteMetaImage(dir.File("z.mhd"), VTK_FLOAT, true);
+  WriteText(mhd, Replaced(ReadText(mhd), "DimSize = 5 4 3", "DimSize = 1000 1000 1000"));
+  const std::string text = WriteMetaImage(dir.File("t.mha"), VTK_FLOAT, false);
+  const std::string binary = ReadText(text);
+  const std::string header = binary.substr(0, binary.size() - 240); // the 60 floats end the file
+  WriteText(text,
+    Replaced(Replaced(header, "DimSize = 5 4 3", "DimSize = 1000 1000 1000"),
+      "BinaryData = True",
+      "BinaryData = False") +
+      "1 2 3\n");
+  const std::pair<std::string, std::string> cases[] = {
+    { dir.File("r.nrrd"), "an image of 1000000000 float values needs 4000000000 bytes of data" },
+    { dir.File("g.nrrd"), "an image of 1000000000 float values is 4000000000 bytes, but its " },
+    { mhd, "an image of 1000000000 MET_FLOAT values is 4000000000 bytes, but its " },
+    { dir.File("a.nrrd"),
+      "an image of 1000000000 float values written as text needs at least 1999999999 bytes" },
+    { text,
+      "an image of 1000000000 MET_FLOAT values written as text needs at least 1999999999 "
+      "bytes (a digit and a separator per number) but the file holds 6" },
+  };
+  for (const auto& [path, expected] : cases)
+  {
+    SCOPED_TRACE(path);
+    const std::string error = ErrorWithin1GiB(path);
+    EXPECT_NE(error.find(expected), std::string::npos) << error;
+    EXPECT_EQ(error.find("memory"), std::string::npos) << error;
+  }
 }
 
 } // namespace

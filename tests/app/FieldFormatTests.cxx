@@ -487,6 +487,42 @@ TEST(Nrrd, ReadsARotatedLatticeVoxelForVoxel)
   EXPECT_EQ(Detail(report, "values"), "float");
 }
 
+// teem allows spaces inside a vector ("(0, 0.5, 0)"): split on them, the directions were
+// ignored and the lattice read as the identity (exit 0, wrong geometry). A vector that cannot be
+// read is refused, not ignored.
+TEST(Nrrd, SpaceDirectionsWithSpacesAreReadAndBrokenOnesRefused)
+{
+  TemporaryDirectory dir;
+  const std::string raw = WriteKnownRaw(dir);
+  const std::string path = dir.File("spaced.nrrd");
+  RunTool(Unu(raw, path, "-e raw -spc RAS -dirs '(0,0.5,0) (-1,0,0) (0,0,2)'"));
+  const std::string good = ReadText(path);
+  const std::string line = "space directions: (0,0.5,0) (-1,0,0) (0,0,2)";
+  ASSERT_NE(good.find(line), std::string::npos) << good;
+  const auto with = [&](const std::string& directions)
+  { return std::string(good).replace(good.find(line), line.size(), directions); };
+  WriteText(path, with("space directions: ( 0, 0.5, 0 ) (-1, 0, 0)\t(0,  0, 2)"));
+  const auto field = cloudvis::ReadField(path);
+  ExpectKnownValues(field);
+  ExpectVector(field->GetSpacing(), { { 0.5, 1, 2 } });
+  ExpectVector(Axis(field, 0).data(), { { 0, 1, 0 } });
+  ExpectVector(Axis(field, 1).data(), { { -1, 0, 0 } });
+  WriteText(path, with("space directions: (0, 0.5, 0) (-1, 0, 0)"));
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
+              .find("spaced.nrrd: the NRRD \"space directions\" gives 2 vectors (or \"none\") "
+                    "for 3 axes"),
+    std::string::npos);
+  WriteText(path, with("space directions: (0, 0.5, 0) (-1, 0, 0) (0, 0, 2"));
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
+              .find("the NRRD \"space directions\" opens a vector it does not close"),
+    std::string::npos);
+  WriteText(path, with("space directions: (0, 0.5, 0) (-1, 0, 0) (0, zero, 2)"));
+  EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(path); })
+              .find("the NRRD \"space directions\" of axis 2 is not a vector of three numbers "
+                    "(\"(0, zero, 2)\")"),
+    std::string::npos);
+}
+
 TEST(Nrrd, GzipEncodingAndDetachedHeadersAreRead)
 {
   TemporaryDirectory dir;

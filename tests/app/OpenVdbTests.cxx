@@ -358,8 +358,8 @@ TEST_F(OpenVdb, ALevelSetIsConvertedToAFogVolume)
   EXPECT_EQ(Detail(report, "grid").find("\"surface\" (float, level set, "), 0u);
   EXPECT_EQ(Detail(report, "converted"),
     "level set converted to a fog volume (OpenVDB's sdfToFogVolume): density 0 outside the "
-    "surface, rising linearly to 1 over the inner half of the narrow band (1.5 world units "
-    "deep), 1 inside");
+    "surface, rising linearly to 1 over the inner half of the narrow band (at most 1.5 world "
+    "units deep, the grid's background; less where the stored interior is thinner), 1 inside");
 }
 
 TEST_F(OpenVdb, GeneratedFieldsAreWrittenAsSparseFogVolumes)

@@ -1,6 +1,6 @@
 // The readers of the table in FieldIO.cxx, one per format, each in the file of its format, and
 // what they share (FieldFormatReaders.cxx): the size check every reader makes before it allocates,
-// the scalar types of raw files, the conversion of other numeric types to float and the lines of
+// the scalar types of raw files, the refusal of values beyond float's range and the lines of
 // the report that every format fills the same way.
 #ifndef cloudvis_FieldFormatReaders_h
 #define cloudvis_FieldFormatReaders_h
@@ -12,7 +12,6 @@
 #include <optional>
 #include <string>
 
-class vtkDataArray;
 class vtkFloatArray;
 class vtkImageData;
 class vtkMatrix3x3;
@@ -74,9 +73,10 @@ struct StoredValues
 
 // The `count` values `file` stores as `stored` says, as floats named "density". The data region
 // (from the offset to the end of the file) must hold exactly those values: a region too short or
-// too long, a compressed stream that cannot expand to the declared size (checked before anything
-// of that size is allocated), ends early, is corrupt or yields more, text with fewer or more
-// numbers, and values beyond float's range are refused (InputError naming `path`; `what`, such as
+// too long, a compressed stream that cannot expand to the declared size, ends early, is corrupt
+// or yields more, text too short for the numbers or with fewer or more of them, and values beyond
+// float's range are refused (whatever the region's size rules out, before anything of the
+// declared size is allocated) (InputError naming `path`; `what`, such as
 // "an image of 60 float values", says what was expected). The caller checks `count` with
 // CheckFieldSize first.
 vtkSmartPointer<vtkFloatArray> ReadStoredValues(const std::string& path,
@@ -108,12 +108,13 @@ void CheckFileHoldsData(const std::string& path,
   double needed,
   const std::string& what);
 
-// A float copy of every value of `values` (components one after the other, as they lie in
-// memory), named `name`; values beyond float's range are refused (InputError naming `path` and
-// the count), NaN and infinity are kept for ReadField to count.
-vtkSmartPointer<vtkFloatArray> ToFloat(const std::string& path,
-  vtkDataArray* values,
-  const std::string& name);
+// Whether `value` is finite but beyond float's range: converted, it would become infinite. (NaN
+// and infinity are kept, for ReadField to count and refuse.)
+bool BeyondFloat(double value);
+
+// Throws InputError "PATH: HOLDER holds N values beyond the range of float (about 3.4e38)" when
+// `beyond` (values for which BeyondFloat held) is not 0: every reader's one refusal of them.
+void RefuseBeyondFloat(const std::string& path, const std::string& holder, std::uint64_t beyond);
 
 // "float", "unsigned short", ...: a VTK type in words.
 std::string TypeInWords(int vtkType);

@@ -1,10 +1,11 @@
 // The second of the layers that stand between a hostile field file and the cloudvis process
-// (VtkXmlImageFiles.cxx describes all three): the libraries that parse field files (VTK's
-// readers, the netCDF and HDF5 libraries under VTK's NetCDF reader, MetaIO, OpenVDB) trust the
-// file, and crafted headers make them crash, loop or allocate without bound. Every reader
-// therefore runs in a forked child under an address-space and a time limit, and the child sends
-// what it read (the image: geometry and point arrays; the array to use; the report) back through
-// a pipe. A crash, a hang or a runaway allocation ends the child, not cloudvis, and becomes an
+// (VtkXmlImageFiles.cxx describes all three): the libraries that parse field files (VTK's XML
+// readers, the netCDF and HDF5 C libraries, OpenVDB) trust the file, and crafted headers make
+// them crash, loop or allocate without bound. Every reader that hands a file to such a library
+// therefore runs in a forked child under an address-space and a time limit (NRRD, MetaImage and
+// raw files are parsed and decoded by cloudvis itself, in its own process, every size checked
+// before it is allocated: StoredValues.cxx), and the child sends what it read (the image:
+// geometry and point arrays; the array to use; the report) back through a pipe. A crash, a hang or a runaway allocation ends the child, not cloudvis, and becomes an
 // InputError; the library never parses the file in the cloudvis process, and the file is read
 // once.
 #ifndef cloudvis_IsolatedRead_h
