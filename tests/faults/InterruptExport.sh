@@ -25,26 +25,14 @@ ulimit -c 0
 
 temporaries() { compgen -G '.out.vti.tmp-*' || true; }
 
-# perl runs cloudvis as its child and writes how it ended: "signal N" or "exit N".
-run_cloudvis() {
-  perl -e '
-    my $pid = fork() // die "fork: $!";
-    if ($pid == 0) { exec @ARGV or die "exec: $!" }
-    open(my $p, ">", "cloudvis.pid") or die; print $p $pid; close $p;
-    waitpid($pid, 0);
-    my $status = $?;
-    open(my $e, ">", "ending.txt") or die;
-    print $e (($status & 127) ? "signal " . ($status & 127) : "exit " . ($status >> 8)), "\n";
-    close $e;
-  ' -- "$@"
-}
+. "$(dirname "$0")/RunAndRecord.sh"
 
 # 320^3 voxels: about 130 MB of floats to compress, a second or more of writing (7 MB written).
 command=("$cloudvis" generate --set field.dimensions=320 --set field.octaves=1 -o out.vti)
 if [ "$mode" = limit ]; then
-  (ulimit -f 1024 && run_cloudvis "${command[@]}") > stdout.txt 2> stderr.txt &
+  (ulimit -f 1024 && run_and_record "${command[@]}") > stdout.txt 2> stderr.txt &
 else
-  run_cloudvis "${command[@]}" > stdout.txt 2> stderr.txt &
+  run_and_record "${command[@]}" > stdout.txt 2> stderr.txt &
 fi
 parent=$!
 
@@ -62,10 +50,10 @@ if [ "$mode" = kill ]; then
   done
   if [ -z "$(temporaries)" ]; then
     echo "FAIL: no temporary file appeared" >&2
-    kill -KILL "$(cat cloudvis.pid)"
+    kill -KILL "$(cat launched.pid)"
     exit 1
   fi
-  kill -s "$signal" "$(cat cloudvis.pid)"
+  kill -s "$signal" "$(cat launched.pid)"
 fi
 wait "$parent"
 

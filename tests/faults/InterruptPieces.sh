@@ -53,19 +53,7 @@ snapshot() { find . -maxdepth 1 -name 'out*' -type f -printf '%f\n' | sort | xar
 before=$(snapshot)
 temporaries() { compgen -G '.out*.tmp-*' || true; }
 
-# perl runs the command as its child and writes how it ended: "signal N" or "exit N".
-run_and_record() {
-  perl -e '
-    my $pid = fork() // die "fork: $!";
-    if ($pid == 0) { exec @ARGV or die "exec: $!" }
-    open(my $p, ">", "launched.pid") or die; print $p $pid; close $p;
-    waitpid($pid, 0);
-    my $status = $?;
-    open(my $e, ">", "ending.txt") or die;
-    print $e (($status & 127) ? "signal " . ($status & 127) : "exit " . ($status >> 8)), "\n";
-    close $e;
-  ' -- "$@"
-}
+. "$(dirname "$0")/RunAndRecord.sh"
 
 command=("$cloudvis" generate "${field[@]}" --set field.seed=22 -o "$output" --pieces 2)
 if [ "$launcher" != single ]; then
