@@ -173,16 +173,23 @@ std::string PipelineExtent(vtkInformation* info, vtkInformationIntegerVectorKey*
 
 std::string ValidateSubExtent(const int extent[6], const int whole[6])
 {
+  // An empty request is legal (a streaming piece with nothing in it): nothing is filled.
   for (int a = 0; a < 3; ++a)
   {
-    if (extent[2 * a] > extent[2 * a + 1] || extent[2 * a] < whole[2 * a] ||
-      extent[2 * a + 1] > whole[2 * a + 1])
+    if (extent[2 * a] > extent[2 * a + 1])
+    {
+      return {};
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[2 * a] < whole[2 * a] || extent[2 * a + 1] > whole[2 * a + 1])
     {
       std::ostringstream error;
       error << "the extent asked for, [" << extent[0] << ", " << extent[1] << ", " << extent[2]
             << ", " << extent[3] << ", " << extent[4] << ", " << extent[5]
-            << "], is empty or leaves the whole extent [" << whole[0] << ", " << whole[1] << ", "
-            << whole[2] << ", " << whole[3] << ", " << whole[4] << ", " << whole[5] << "]";
+            << "], leaves the whole extent [" << whole[0] << ", " << whole[1] << ", " << whole[2]
+            << ", " << whole[3] << ", " << whole[4] << ", " << whole[5] << "]";
       return error.str();
     }
   }

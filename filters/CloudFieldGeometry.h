@@ -43,7 +43,7 @@ CLOUDVISFILTERS_EXPORT std::string PipelineExtent(vtkInformation* info,
   vtkInformationIntegerVectorKey* key,
   int extent[6]);
 
-// Empty when `extent` lies inside `whole` and holds at least one voxel, else the problem.
+// Empty when `extent` lies inside `whole` or holds no voxel (nothing to fill), else the problem.
 CLOUDVISFILTERS_EXPORT std::string ValidateSubExtent(const int extent[6], const int whole[6]);
 
 // Empty when `scalars` can be rendered as a density (one component of float, unsigned char or
