@@ -58,6 +58,23 @@ std::string ValidateFieldDescription(const FieldDescription& f)
   {
     error << "at least one shape is needed";
   }
+  else if (n.Period < 0 || n.Period > noise::MaxPeriod)
+  {
+    error << "the noise period must be between 0 and " << noise::MaxPeriod << " lattice cells, got "
+          << n.Period;
+  }
+  else if (n.Period > 0 &&
+    (n.Lacunarity != std::round(n.Lacunarity) || n.LacunarityIncrement != 0.0 ||
+      n.Period * std::pow(n.Lacunarity, n.Octaves - 1) > double(noise::MaxPeriod)))
+  {
+    error << "a noise that repeats (period " << n.Period << ") needs a whole-number lacunarity and "
+          << "a lacunarity increment of 0, so that every octave repeats too, and its last octave's "
+          << "period within " << noise::MaxPeriod << " cells";
+  }
+  else if (f.Model == DensityModel::Cloud)
+  {
+    error << ValidateCloudLayer(f.Layer);
+  }
   if (!error.str().empty())
   {
     return error.str();
@@ -131,6 +148,10 @@ DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
   {
     this->MorphPhase = MorphTimeline::At(time);
   }
+  if (field.Model == DensityModel::Cloud)
+  {
+    this->CloudNoise = BakeCloudNoise(field.Noise.Seed);
+  }
   switch (field.Model)
   {
     case DensityModel::SdfPlusFbm:
@@ -138,6 +159,7 @@ DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
       break;
     case DensityModel::FbmFalloff:
     case DensityModel::Constant:
+    case DensityModel::Cloud:
       this->Bound = 0.0;
       break;
   }
@@ -170,7 +192,7 @@ float DensityEvaluator::Fbm(glm::dvec3 p) const
   {
     sum += o.Amplitude *
       noise::Evaluate(this->Field.Noise.Type, q.x * o.Frequency, q.y * o.Frequency,
-        q.z * o.Frequency, o.Seed);
+        q.z * o.Frequency, o.Seed, o.Period);
   }
   return sum;
 }
@@ -185,6 +207,7 @@ bool DensityEvaluator::NeedsNoise(float signedDistance) const
     case DensityModel::FbmFalloff:
       return signedDistance < 0.0f && !this->Octaves.empty();
     case DensityModel::Constant:
+    case DensityModel::Cloud:
       break;
   }
   return false;
@@ -205,12 +228,94 @@ float DensityEvaluator::Combine(float signedDistance, float fbm) const
     }
     case DensityModel::Constant:
       return signedDistance <= 0.0f ? scale : 0.0f;
+    case DensityModel::Cloud:
+      break;
   }
   return 0.0f;
 }
 
+namespace
+{
+float Saturate(float v)
+{
+  return std::min(1.0f, std::max(0.0f, v));
+}
+}
+
+float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
+{
+  const CloudLayer& l = this->Field.Layer;
+  float coverage = 0.0f;
+  if (l.Source == CoverageSource::Shapes)
+  {
+    const float width = static_cast<float>(this->Field.FalloffWidth);
+    coverage = static_cast<float>(l.Coverage) * Saturate(-this->SignedDistance(glm::vec3(leaned)) / width);
+  }
+  else
+  {
+    // The weather map drifts with the wind, like the noises.
+    const glm::dvec3 q = leaned + this->NoiseOffset;
+    const float map = l.Source == CoverageSource::Noise
+      ? WeatherNoise(l, this->Field.Noise.Seed, q.x, q.z)
+      : l.Map->Sample(q.x, q.z);
+    coverage = Saturate(noise::Remap(map, 1.0f - static_cast<float>(l.Coverage), 1.0f, 0.0f, 1.0f));
+  }
+  if (l.Type == CloudType::Cumulonimbus && l.Anvil > 0.0 && coverage > 0.0f)
+  {
+    // The anvil: near the top, a power below 1 lifts every coverage towards 1, spreading it.
+    const float t = glm::smoothstep(0.6f, 0.95f, h);
+    coverage = std::pow(coverage, 1.0f - 0.8f * static_cast<float>(l.Anvil) * t);
+  }
+  return coverage;
+}
+
+float DensityEvaluator::CloudDensity(glm::dvec3 p) const
+{
+  const CloudLayer& l = this->Field.Layer;
+  const double height = p.y - l.Base;
+  const float h = static_cast<float>(height / (l.Top - l.Base));
+  const float profile = HeightProfile(l.Type, h);
+  if (profile <= 0.0f)
+  {
+    return 0.0f;
+  }
+  // Shear leans the cloud: what is at height `height` above the base comes from straight below.
+  const glm::dvec3 leaned = p - glm::dvec3(l.Shear[0] * height, 0.0, l.Shear[1] * height);
+  const float coverage = this->CloudCoverage(leaned, h);
+  if (coverage <= 0.0f)
+  {
+    return 0.0f;
+  }
+  const glm::dvec3 q = leaned + this->NoiseOffset;
+  const CloudNoiseVolumes& volumes = *this->CloudNoise;
+  const float shape = volumes.Shape.Sample(q / l.ShapeScale);
+  const float base =
+    Saturate(noise::Remap(shape * profile, 1.0f - coverage, 1.0f, 0.0f, 1.0f)) * coverage;
+  if (base <= 0.0f)
+  {
+    return 0.0f;
+  }
+  glm::dvec3 u = q / l.DetailScale;
+  if (l.Curl > 0.0)
+  {
+    // Turbulence under the cloud, fading with height: the detail is read at displaced points.
+    const glm::dvec3 curl(volumes.Curl[0].Sample(u), volumes.Curl[1].Sample(u),
+      volumes.Curl[2].Sample(u));
+    u += curl * (0.25 * l.Curl * (1.0 - h));
+  }
+  const float detail = volumes.Detail.Sample(u);
+  const float modifier = detail + (1.0f - 2.0f * detail) * Saturate(10.0f * h);
+  const float eroded =
+    Saturate(noise::Remap(base, static_cast<float>(l.Erosion) * modifier, 1.0f, 0.0f, 1.0f));
+  return static_cast<float>(this->Field.DensityScale) * eroded;
+}
+
 float DensityEvaluator::Density(glm::dvec3 p) const
 {
+  if (this->Field.Model == DensityModel::Cloud)
+  {
+    return this->CloudDensity(p);
+  }
   const float d = this->SignedDistance(glm::vec3(p));
   return this->Combine(d, this->NeedsNoise(d) ? this->Fbm(p) : 0.0f);
 }
@@ -218,6 +323,19 @@ float DensityEvaluator::Density(glm::dvec3 p) const
 void DensityEvaluator::EvaluateRow(int firstIndex, int count, double originX, double spacingX,
   double y, double z, float* out, RowScratch& scratch) const
 {
+  if (this->Field.Model == DensityModel::Cloud)
+  {
+    // A row has one height: outside the cloud type's profile it is empty.
+    const CloudLayer& l = this->Field.Layer;
+    const bool inLayer =
+      HeightProfile(l.Type, static_cast<float>((y - l.Base) / (l.Top - l.Base))) > 0.0f;
+    for (int j = 0; j < count; ++j)
+    {
+      const double x = originX + static_cast<double>(firstIndex + j) * spacingX;
+      out[j] = inLayer ? this->CloudDensity(glm::dvec3(x, y, z)) : 0.0f;
+    }
+    return;
+  }
   scratch.SignedDistance.resize(count);
   int firstNoisy = count, lastNoisy = -1;
   for (int j = 0; j < count; ++j)
@@ -284,6 +402,16 @@ void DensityEvaluator::AccumulateOctaveAlongRow(const noise::Octave& octave, int
   const double noiseY = (y + this->NoiseOffset.y) * f, noiseZ = (z + this->NoiseOffset.z) * f;
   const NoiseType type = this->Field.Noise.Type;
 
+  if (IsCellular(type) || octave.Period > 0)
+  {
+    // No shared row work for these: each voxel is a point evaluation, as in Fbm().
+    for (int j = 0; j < count; ++j)
+    {
+      sum[j] += octave.Amplitude *
+        Evaluate(type, noiseX[j] * f, noiseY, noiseZ, octave.Seed, octave.Period);
+    }
+    return;
+  }
   if (type == NoiseType::White)
   {
     const std::uint32_t yz = HashYZ(Split(noiseY).Cell, Split(noiseZ).Cell, octave.Seed);

@@ -1,10 +1,12 @@
 // The density of a procedural cloud at a point in space and time, and the same for a whole row
 // of voxels at once.
 //
-// Three density models (see docs/scene-format.md):
+// Four density models (see docs/scene-format.md):
 //   SdfPlusFbm  rho = scale * max(0, -sdf(p) + fbm(p + wind * t))          (the article's cloud)
 //   FbmFalloff  rho = scale * max(0, fbm(p + wind * t)) * falloff(sdf(p))   (the three.js demo)
 //   Constant    rho = scale inside the shape, 0 outside                     (analytic tests)
+//   Cloud       a cloud layer: coverage, height profile, shape noise eroded by detail noise
+//               (CloudLayer.h, where its equations are)
 // where falloff(d) = smoothstep(0, -FalloffWidth, d). Density is exactly 0 outside the bound:
 // for SdfPlusFbm where sdf >= the fBm bound, for the others where sdf >= 0.
 //
@@ -15,6 +17,7 @@
 #ifndef CloudDensityEvaluator_h
 #define CloudDensityEvaluator_h
 
+#include "CloudLayer.h"
 #include "CloudNoise.h"
 #include "CloudShapes.h"
 #include "cloudvisFiltersModule.h"
@@ -33,6 +36,7 @@ enum class DensityModel
   SdfPlusFbm,
   FbmFalloff,
   Constant,
+  Cloud,
 };
 
 // Everything that defines a procedural field, apart from where it is sampled.
@@ -47,6 +51,7 @@ struct FieldDescription
   bool Morph = false; // when true, Shapes is ignored and the morph timeline is used
   noise::FbmParameters Noise;
   glm::dvec3 Wind{ 0.5, -0.1, -0.5 }; // the article's drift, 0.5 * (1, -0.2, -1), per second
+  CloudLayer Layer; // the Cloud model's layer; its noises take their seed from Noise.Seed
 };
 
 // Returns an empty string when the description can be evaluated, else what is wrong with it.
@@ -88,6 +93,8 @@ public:
 
 private:
   float Combine(float signedDistance, float fbm) const;
+  float CloudDensity(glm::dvec3 p) const;
+  float CloudCoverage(glm::dvec3 leaned, float h) const;
   bool NeedsNoise(float signedDistance) const;
   void AccumulateOctaveAlongRow(const noise::Octave& octave, int count, const double* noiseX,
     double y, double z, float* sum, RowScratch& scratch) const;
@@ -98,6 +105,7 @@ private:
   MorphTimeline::Phase MorphPhase{ 0, 1, 0.0f };
   std::vector<noise::Octave> Octaves;
   double Bound = 0.0;
+  std::shared_ptr<const CloudNoiseVolumes> CloudNoise; // the Cloud model's baked noises
 };
 
 } // namespace cloudvis

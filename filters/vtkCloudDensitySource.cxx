@@ -35,8 +35,17 @@ static_assert(
   static_cast<int>(cloudvis::ShapeBlend::SmoothUnion) == vtkCloudDensitySource::SmoothUnionBlend,
   "vtkCloudDensitySource::ShapeBlends follows cloudvis::ShapeBlend");
 static_assert(
-  static_cast<int>(cloudvis::noise::NoiseType::Perlin) == vtkCloudDensitySource::PerlinNoise,
+  static_cast<int>(cloudvis::noise::NoiseType::PerlinWorley) ==
+    vtkCloudDensitySource::PerlinWorleyNoise,
   "vtkCloudDensitySource::NoiseTypes follows cloudvis::noise::NoiseType");
+static_assert(static_cast<int>(cloudvis::DensityModel::Cloud) == vtkCloudDensitySource::CloudModel,
+  "vtkCloudDensitySource::DensityModels follows cloudvis::DensityModel");
+static_assert(
+  static_cast<int>(cloudvis::CloudType::Cumulonimbus) == vtkCloudDensitySource::Cumulonimbus,
+  "vtkCloudDensitySource::CloudTypes follows cloudvis::CloudType");
+static_assert(
+  static_cast<int>(cloudvis::CoverageSource::Map) == vtkCloudDensitySource::MapCoverage,
+  "vtkCloudDensitySource::CoverageSources follows cloudvis::CoverageSource");
 
 template<typename T>
 void vtkCloudDensitySource::SetFieldValue(T& member, const T& value)
@@ -50,10 +59,10 @@ void vtkCloudDensitySource::SetFieldValue(T& member, const T& value)
 
 void vtkCloudDensitySource::SetDensityModel(int model)
 {
-  if (model < SdfPlusFbmModel || model > ConstantModel)
+  if (model < SdfPlusFbmModel || model > CloudModel)
   {
     vtkErrorMacro(<< "density model " << model << " is not one of 0 (sdf+fbm), 1 (fbm falloff), "
-                  << "2 (constant); it stays " << this->GetDensityModel());
+                  << "2 (constant), 3 (cloud); it stays " << this->GetDensityModel());
     return;
   }
   this->SetFieldValue(this->Field.Model, static_cast<cloudvis::DensityModel>(model));
@@ -212,10 +221,11 @@ void vtkCloudDensitySource::SetMorph(bool morph)
 
 void vtkCloudDensitySource::SetNoiseType(int type)
 {
-  if (type < NoNoise || type > PerlinNoise)
+  if (type < NoNoise || type > PerlinWorleyNoise)
   {
     vtkErrorMacro(<< "noise type " << type << " is not one of 0 (none), 1 (white), 2 (value), "
-                  << "3 (perlin); it stays " << this->GetNoiseType());
+                  << "3 (perlin), 4 (worley), 5 (inverted worley), 6 (perlin-worley); it stays "
+                  << this->GetNoiseType());
     return;
   }
   this->SetFieldValue(this->Field.Noise.Type, static_cast<cloudvis::noise::NoiseType>(type));
@@ -261,6 +271,107 @@ void vtkCloudDensitySource::SetNoiseSeed(unsigned int seed)
   this->SetFieldValue(this->Field.Noise.Seed, static_cast<std::uint32_t>(seed));
 }
 
+void vtkCloudDensitySource::SetNoisePeriod(int period)
+{
+  this->SetFieldValue(this->Field.Noise.Period, static_cast<std::int32_t>(period));
+}
+
+void vtkCloudDensitySource::SetCloudType(int type)
+{
+  if (type < Stratus || type > Cumulonimbus)
+  {
+    vtkErrorMacro(<< "cloud type " << type << " is not one of 0 (stratus), 1 (stratocumulus), "
+                  << "2 (cumulus), 3 (cumulonimbus); it stays " << this->GetCloudType());
+    return;
+  }
+  this->SetFieldValue(this->Field.Layer.Type, static_cast<cloudvis::CloudType>(type));
+}
+
+int vtkCloudDensitySource::GetCloudType() const
+{
+  return static_cast<int>(this->Field.Layer.Type);
+}
+
+void vtkCloudDensitySource::SetCloudAltitudes(double base, double top)
+{
+  this->SetFieldValue(this->Field.Layer.Base, base);
+  this->SetFieldValue(this->Field.Layer.Top, top);
+}
+
+void vtkCloudDensitySource::SetCloudCoverage(double coverage)
+{
+  this->SetFieldValue(this->Field.Layer.Coverage, coverage);
+}
+
+void vtkCloudDensitySource::SetCoverageSource(int source)
+{
+  if (source < ShapesCoverage || source > MapCoverage)
+  {
+    vtkErrorMacro(<< "coverage source " << source << " is not one of 0 (shapes), 1 (noise), "
+                  << "2 (map); it stays " << this->GetCoverageSource());
+    return;
+  }
+  this->SetFieldValue(this->Field.Layer.Source, static_cast<cloudvis::CoverageSource>(source));
+}
+
+int vtkCloudDensitySource::GetCoverageSource() const
+{
+  return static_cast<int>(this->Field.Layer.Source);
+}
+
+void vtkCloudDensitySource::SetCoverageMap(vtkImageData* image)
+{
+  if (!image)
+  {
+    this->Field.Layer.Map.reset();
+    this->Modified();
+    return;
+  }
+  std::string problem;
+  auto map = cloudvis::CoverageMapOfImage(image, problem);
+  if (!map)
+  {
+    vtkErrorMacro(<< "coverage map: " << problem);
+    return;
+  }
+  this->Field.Layer.Map = std::move(map);
+  this->Field.Layer.Source = cloudvis::CoverageSource::Map;
+  this->Modified();
+}
+
+void vtkCloudDensitySource::SetWeatherMap(double scale, int octaves, double gain)
+{
+  this->SetFieldValue(this->Field.Layer.MapScale, scale);
+  this->SetFieldValue(this->Field.Layer.MapOctaves, octaves);
+  this->SetFieldValue(this->Field.Layer.MapGain, gain);
+}
+
+void vtkCloudDensitySource::SetCloudNoiseScales(double shape, double detail)
+{
+  this->SetFieldValue(this->Field.Layer.ShapeScale, shape);
+  this->SetFieldValue(this->Field.Layer.DetailScale, detail);
+}
+
+void vtkCloudDensitySource::SetCloudErosion(double erosion)
+{
+  this->SetFieldValue(this->Field.Layer.Erosion, erosion);
+}
+
+void vtkCloudDensitySource::SetCloudCurl(double curl)
+{
+  this->SetFieldValue(this->Field.Layer.Curl, curl);
+}
+
+void vtkCloudDensitySource::SetCloudAnvil(double anvil)
+{
+  this->SetFieldValue(this->Field.Layer.Anvil, anvil);
+}
+
+void vtkCloudDensitySource::SetCloudShear(double x, double z)
+{
+  this->SetFieldValue(this->Field.Layer.Shear, std::array<double, 2>{ { x, z } });
+}
+
 void vtkCloudDensitySource::SetWind(double x, double y, double z)
 {
   this->SetFieldValue(this->Field.Wind, glm::dvec3(x, y, z));
@@ -272,6 +383,22 @@ void vtkCloudDensitySource::GetWind(double wind[3]) const
   {
     wind[i] = this->Field.Wind[i];
   }
+}
+
+cloudvis::FieldDescription vtkCloudDensitySource::FieldToGenerate() const
+{
+  cloudvis::FieldDescription field = this->Field;
+  if (field.Layer.Map)
+  {
+    // The weather map spans the field's x and z bounds, whatever they are when it generates.
+    auto map = std::make_shared<cloudvis::CoverageMap>(*field.Layer.Map);
+    map->XMin = this->Bounds[0];
+    map->XMax = this->Bounds[1];
+    map->ZMin = this->Bounds[4];
+    map->ZMax = this->Bounds[5];
+    field.Layer.Map = std::move(map);
+  }
+  return field;
 }
 
 std::string vtkCloudDensitySource::Validate() const
@@ -431,7 +558,7 @@ int vtkCloudDensitySource::RequestData(
     return 1;
   }
 
-  const cloudvis::DensityEvaluator evaluator(this->Field, time);
+  const cloudvis::DensityEvaluator evaluator(this->FieldToGenerate(), time);
   const int ny = extent[3] - extent[2] + 1;
   const int nz = extent[5] - extent[4] + 1;
   // Work in blocks of z slices so progress and abort are handled on this thread between blocks.

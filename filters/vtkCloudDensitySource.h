@@ -22,6 +22,8 @@
 
 #include <vtkImageAlgorithm.h>
 
+class vtkImageData;
+
 // VTK's wrappers do not see the C++ field description (its glm types are neither wrappable nor
 // quick for their parser): wrapped languages use the Set/Get methods that expose its values.
 #ifndef __VTK_WRAP__
@@ -73,11 +75,12 @@ public:
     SdfPlusFbmModel = 0, // scale * max(0, -sdf + fbm): the article's cloud
     FbmFalloffModel = 1, // scale * max(0, fbm) * smooth falloff inside the shapes
     ConstantModel = 2,   // scale inside the shapes, 0 outside (analytic tests)
+    CloudModel = 3,      // a cloud layer: coverage, cloud type, eroded noise (CloudLayer.h)
   };
 
   ///@{
   /**
-   * The density model: SdfPlusFbmModel, FbmFalloffModel or ConstantModel. Default
+   * The density model: SdfPlusFbmModel, FbmFalloffModel, ConstantModel or CloudModel. Default
    * SdfPlusFbmModel.
    */
   void SetDensityModel(int model);
@@ -93,6 +96,10 @@ public:
   void SetDensityModelToConstant()
   {
     this->SetDensityModel(ConstantModel);
+  }
+  void SetDensityModelToCloud()
+  {
+    this->SetDensityModel(CloudModel);
   }
   ///@}
 
@@ -173,12 +180,14 @@ public:
     WhiteNoise = 1,  // an independent random value per lattice cell
     ValueNoise = 2,  // random lattice values, cubic interpolation
     PerlinNoise = 3, // random lattice gradients, quintic interpolation
+    WorleyNoise = 4, // F1 cellular noise, 2 F1 - 1
+    InvertedWorleyNoise = 5, // 1 - 2 F1: puffs around the feature points
+    PerlinWorleyNoise = 6,   // Perlin remapped by an inverted Worley fBm
   };
 
   ///@{
   /**
-   * The fBm noise: its type (NoNoise, WhiteNoise, ValueNoise or PerlinNoise), number of octaves
-   * (0 to 12), base frequency (cycles per world unit, > 0), lacunarity (the frequency factor
+   * The fBm noise: its type (one of NoiseTypes), number of octaves (1 to 12), base frequency (cycles per world unit, > 0), lacunarity (the frequency factor
    * between octaves) and its growth per octave, gain (the amplitude factor between octaves),
    * first amplitude and seed. Octave o samples frequency f_o, f_0 = frequency,
    * f_{o+1} = f_o * (lacunarity + o * increment), with amplitude amplitude * gain^o. Defaults:
@@ -221,6 +230,91 @@ public:
   {
     return this->Field.Noise.Seed;
   }
+  ///@}
+
+  ///@{
+  /**
+   * The noise's period in lattice cells of the first octave (0: it never repeats). With a period
+   * P > 0 the fBm repeats every P / frequency world units along each axis; it then needs a
+   * whole-number lacunarity and no lacunarity increment. Default 0.
+   */
+  void SetNoisePeriod(int period);
+  int GetNoisePeriod() const
+  {
+    return this->Field.Noise.Period;
+  }
+  ///@}
+
+  enum CloudTypes
+  {
+    Stratus = 0,
+    Stratocumulus = 1,
+    Cumulus = 2,
+    Cumulonimbus = 3,
+  };
+  enum CoverageSources
+  {
+    ShapesCoverage = 0, // the shapes, softened over FalloffWidth: one cloud
+    NoiseCoverage = 1,  // a procedural weather map: many clouds
+    MapCoverage = 2,    // a 2-D map given with SetCoverageMap
+  };
+
+  ///@{
+  /**
+   * The CloudModel's layer (CloudLayer.h has its equations): the cloud type (one of CloudTypes,
+   * default Cumulus), the base and top altitudes along y (world units, default -1 and 1), the
+   * coverage in [0, 1] (default 0.6) and where it comes from (one of CoverageSources, default
+   * ShapesCoverage).
+   */
+  void SetCloudType(int type);
+  int GetCloudType() const;
+  void SetCloudAltitudes(double base, double top);
+  double GetCloudBase() const
+  {
+    return this->Field.Layer.Base;
+  }
+  double GetCloudTop() const
+  {
+    return this->Field.Layer.Top;
+  }
+  void SetCloudCoverage(double coverage);
+  double GetCloudCoverage() const
+  {
+    return this->Field.Layer.Coverage;
+  }
+  void SetCoverageSource(int source);
+  int GetCoverageSource() const;
+  ///@}
+
+  /**
+   * The weather map of MapCoverage: a 2-D image (one axis of its dimensions 1) whose first
+   * point-data component holds values in [0, 1]; its first index axis runs along x over the
+   * field's x bounds, its second along z over the z bounds. The values are copied. Setting a map
+   * also selects MapCoverage; null clears it.
+   */
+  void SetCoverageMap(vtkImageData* map);
+
+  ///@{
+  /**
+   * The procedural weather map (NoiseCoverage): the world size of its largest features (default
+   * 4), its octaves (default 6) and the gain between them (default 0.6; the rougher the cloud
+   * edges seen from above, the higher).
+   */
+  void SetWeatherMap(double scale, int octaves, double gain);
+  ///@}
+
+  ///@{
+  /**
+   * The CloudModel's noises: the world lengths over which the shape and the detail noise repeat
+   * (defaults 2 and 0.5), the erosion of the edges by the detail, in [0, 1] (default 0.4), the
+   * curl-noise turbulence under the cloud, in [0, 1] (default 0), the cumulonimbus anvil's spread,
+   * in [0, 1] (default 0), and the shear: x and z displacement per unit of height (default 0).
+   */
+  void SetCloudNoiseScales(double shape, double detail);
+  void SetCloudErosion(double erosion);
+  void SetCloudCurl(double curl);
+  void SetCloudAnvil(double anvil);
+  void SetCloudShear(double x, double z);
   ///@}
 
   ///@{
@@ -289,6 +383,8 @@ private:
   // Assigns one value of Field, Modified() only when it changes.
   template<typename T>
   void SetFieldValue(T& member, const T& value);
+  // Field as it is generated: the coverage map placed over Bounds.
+  cloudvis::FieldDescription FieldToGenerate() const;
   // Appends a shape to Field and returns its index.
   int AddShape(const cloudvis::Shape& shape);
   // Shape i of Field, or null (after an error naming the index) when there is none.

@@ -9,10 +9,39 @@
 
 #include <vtkCallbackCommand.h>
 #include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkImageReader2Factory.h>
 #include <vtkNew.h>
 
 namespace cloudvis
 {
+
+namespace
+{
+// field.cloud.coverage_map's file: an image VTK's image readers know (PNG, JPEG, TIFF, BMP, PNM),
+// else a field file of any format cloudvis reads, 2-D.
+vtkSmartPointer<vtkImageData> ReadCoverageMap(const std::string& path)
+{
+  VtkMessageCapture messages;
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
+  if (!reader)
+  {
+    return ReadField(path, FieldReadOptions{});
+  }
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  if (!messages.Messages().empty() || !image || image->GetNumberOfPoints() == 0)
+  {
+    throw InputError(path + ": coverage map: the image cannot be read" +
+      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+  }
+  vtkSmartPointer<vtkImageData> copy = vtkSmartPointer<vtkImageData>::New();
+  copy->ShallowCopy(image);
+  return copy;
+}
+}
 
 vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field)
 {
@@ -25,6 +54,19 @@ vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field)
   source->SetBounds(field.Bounds.data());
   source->SetField(field.Description);
   source->SetTime(field.Time);
+  if (!field.CoverageMapFile.empty())
+  {
+    std::string problem;
+    std::shared_ptr<const CoverageMap> map =
+      CoverageMapOfImage(ReadCoverageMap(field.CoverageMapFile), problem);
+    if (!map)
+    {
+      throw InputError(field.CoverageMapFile + ": coverage map: " + problem);
+    }
+    FieldDescription description = field.Description;
+    description.Layer.Map = map;
+    source->SetField(description);
+  }
   return source;
 }
 

@@ -144,6 +144,7 @@ std::vector<Table> ReferenceTables()
   fieldFile.Header.back() = "meaning";
   tables.push_back(fieldFile);
   tables.push_back(KeyTable("field.raw", RawKeys(), RawLayout{}));
+  tables.push_back(KeyTable("field.cloud", CloudKeys(), scene.Field));
   tables.push_back(KeyTable("field", GeneratedFieldKeys(), scene.Field));
 
   tables.push_back(KeyTable("field.shape", ShapeKeys(), Shape{}, "", &ShapeTypes()));

@@ -774,7 +774,8 @@ const Keys<FieldSpec>& GeneratedFieldKeys()
     { "density_model",
       ChoiceOf(NamesOf<DensityModel>({ { "sdf_plus_fbm", DensityModel::SdfPlusFbm },
         { "fbm_falloff", DensityModel::FbmFalloff },
-        { "constant", DensityModel::Constant } })),
+        { "constant", DensityModel::Constant },
+        { "cloud", DensityModel::Cloud } })),
       Nested(&F::Description, &D::Model),
       "see [Density models](#density-models)" },
     { "density_scale",
@@ -804,7 +805,10 @@ const Keys<FieldSpec>& GeneratedFieldKeys()
       ChoiceOf(NamesOf<noise::NoiseType>({ { "none", noise::NoiseType::None },
         { "white", noise::NoiseType::White },
         { "value", noise::NoiseType::Value },
-        { "perlin", noise::NoiseType::Perlin } })),
+        { "perlin", noise::NoiseType::Perlin },
+        { "worley", noise::NoiseType::Worley },
+        { "inverted_worley", noise::NoiseType::InvertedWorley },
+        { "perlin_worley", noise::NoiseType::PerlinWorley } })),
       Nested(&F::Description, &D::Noise, &N::Type),
       "see [Noise and fBm](#noise-and-fbm)" },
     { "octaves",
@@ -829,11 +833,130 @@ const Keys<FieldSpec>& GeneratedFieldKeys()
       IntegerIn(0, std::numeric_limits<std::uint32_t>::max()),
       Nested(&F::Description, &D::Noise, &N::Seed),
       "" },
+    { "noise_period",
+      IntegerIn(0, noise::MaxPeriod),
+      Nested(&F::Description, &D::Noise, &N::Period),
+      "lattice cells of the first octave after which the noise repeats (0: never); needs a "
+      "whole-number `lacunarity` and `lacunarity_increment` 0; see [Noise and fBm](#noise-and-fbm)" },
     { "wind",
       NumbersIn(3, AnyNumber),
       Nested(&F::Description, &D::Wind),
       "world units per second" },
+    { "cloud",
+      CustomValue("object").DefaultIs("the defaults of [field.cloud](#fieldcloud)"),
+      [](const Context& c, const json& v, const std::string& k, F& f)
+      { ReadObject(c, v, k, CloudKeys(), f); },
+      [](const F& f)
+      { return f.Description.Model == DensityModel::Cloud ? WriteObject(CloudKeys(), f) : json(); },
+      "the layer, cloud type, coverage and noises of the `cloud` density model; see "
+      "[Cloud layers](#cloud-layers)",
+      Inside(CloudKeys) },
     { "time", NumberIn(AnyNumber), &F::Time, "seconds" },
+  };
+  return keys;
+}
+
+const Keys<FieldSpec>& CloudKeys()
+{
+  using F = FieldSpec;
+  using D = FieldDescription;
+  using L = CloudLayer;
+  static const Keys<F> keys = {
+    { "type",
+      ChoiceOf({ { "stratus", int(CloudType::Stratus), "a thin flat sheet" },
+        { "stratocumulus", int(CloudType::Stratocumulus), "a deck of rolls and lumps" },
+        { "cumulus", int(CloudType::Cumulus), "a flat base under a rounded, billowing top" },
+        { "cumulonimbus", int(CloudType::Cumulonimbus), "a tower to the top, with `anvil`" } }),
+      Nested(&F::Description, &D::Layer, &L::Type),
+      "the height profile" },
+    { "base",
+      NumberIn(AnyNumber).In("world units"),
+      Nested(&F::Description, &D::Layer, &L::Base),
+      "the altitude (y) of the cloud base; below `top`" },
+    { "top",
+      NumberIn(AnyNumber).In("world units"),
+      Nested(&F::Description, &D::Layer, &L::Top),
+      "the altitude (y) of the cloud tops" },
+    { "coverage",
+      NumberIn(UnitInterval),
+      Nested(&F::Description, &D::Layer, &L::Coverage),
+      "how much of the sky the weather map fills (a threshold on it), or the shapes' strength" },
+    { "coverage_map",
+      CustomValue("`\"shapes\"`, `\"noise\"` or the path of a 2-D image or field file")
+        .DefaultIs("`\"shapes\"`"),
+      [](const Context& c, const json& v, const std::string& k, F& f)
+      {
+        if (!v.is_string() || v.get<std::string>().empty())
+        {
+          c.Fail(k, "expected \"shapes\", \"noise\" or a file path, got " + Describe(v));
+        }
+        const std::string text = v.get<std::string>();
+        f.CoverageMapFile.clear();
+        if (text == "shapes" || text == "noise")
+        {
+          f.Description.Layer.Source =
+            text == "shapes" ? CoverageSource::Shapes : CoverageSource::Noise;
+          return;
+        }
+        f.Description.Layer.Source = CoverageSource::Map;
+        f.CoverageMapFile =
+          text[0] != '/' && !c.BaseDirectory.empty() ? c.BaseDirectory + "/" + text : text;
+      },
+      [](const F& f) -> json
+      {
+        switch (f.Description.Layer.Source)
+        {
+          case CoverageSource::Shapes:
+            return "shapes";
+          case CoverageSource::Noise:
+            return "noise";
+          case CoverageSource::Map:
+            break;
+        }
+        return f.CoverageMapFile;
+      },
+      "`shapes`: the field's shapes, softened over `falloff_width`, are one cloud; `noise`: a "
+      "procedural weather map of many clouds (`map_scale`, `map_octaves`, `map_gain`); a path "
+      "(relative to the scene file's folder): a 2-D image (PNG, its first channel) or a 2-D "
+      "field file stretched over the field's x and z bounds, 8-bit 255 or float 1 meaning full "
+      "coverage" },
+    { "map_scale",
+      NumberIn(Positive).In("world units"),
+      Nested(&F::Description, &D::Layer, &L::MapScale),
+      "the size of the weather map's largest features" },
+    { "map_octaves",
+      IntegerIn(1, noise::MaxOctaves),
+      Nested(&F::Description, &D::Layer, &L::MapOctaves),
+      "" },
+    { "map_gain",
+      NumberIn(UnitInterval),
+      Nested(&F::Description, &D::Layer, &L::MapGain),
+      "amplitude factor between the map's octaves: higher, rougher cloud edges seen from above "
+      "(fractal dimension about 2 + log2(gain))" },
+    { "shape_scale",
+      NumberIn(Positive).In("world units"),
+      Nested(&F::Description, &D::Layer, &L::ShapeScale),
+      "the length over which the shape noise (the cloud's masses) repeats" },
+    { "detail_scale",
+      NumberIn(Positive).In("world units"),
+      Nested(&F::Description, &D::Layer, &L::DetailScale),
+      "the length over which the detail noise (the billows) repeats" },
+    { "erosion",
+      NumberIn(UnitInterval),
+      Nested(&F::Description, &D::Layer, &L::Erosion),
+      "how deep the detail noise eats into the edges" },
+    { "curl",
+      NumberIn(UnitInterval),
+      Nested(&F::Description, &D::Layer, &L::Curl),
+      "curl-noise turbulence of the detail, strongest at the base" },
+    { "anvil",
+      NumberIn(UnitInterval),
+      Nested(&F::Description, &D::Layer, &L::Anvil),
+      "how far a cumulonimbus spreads at its top" },
+    { "shear",
+      NumbersIn(2, AnyNumber, "[x, z]"),
+      Nested(&F::Description, &D::Layer, &L::Shear),
+      "horizontal displacement per unit of height above the base: the cloud leans" },
   };
   return keys;
 }

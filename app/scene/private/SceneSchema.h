@@ -22,6 +22,7 @@ const Keys<FieldSpec>& FieldKeys();
 const Keys<FieldSpec>& FieldFileKeys();
 const Keys<FieldSpec>& GeneratedFieldKeys();
 const Keys<RawLayout>& RawKeys(); // field.raw
+const Keys<FieldSpec>& CloudKeys(); // field.cloud
 const Keys<Shape>& ShapeKeys();
 const Keys<TransferFunctionSpec>& TransferFunctionKeys();
 const Keys<CameraSpec>& CameraKeys();

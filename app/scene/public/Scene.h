@@ -38,6 +38,9 @@ struct FieldSpec
   std::array<int, 3> Dimensions{ { 128, 128, 128 } };
   std::array<double, 6> Bounds{ { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 } };
   FieldDescription Description;
+  // field.cloud.coverage_map when it names a file (resolved like File); read into
+  // Description.Layer.Map when the field is generated.
+  std::string CoverageMapFile;
   double Time = 0.0;
 
   bool FromFile() const { return !this->File.empty(); }

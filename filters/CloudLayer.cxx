@@ -1,0 +1,292 @@
+#include "CloudLayer.h"
+
+#include "CloudNoise.h"
+
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkSMPTools.h>
+#include <vtkType.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+namespace cloudvis
+{
+
+namespace
+{
+float Saturate(float v)
+{
+  return std::min(1.0f, std::max(0.0f, v));
+}
+float SmoothStep(float edge0, float edge1, float v)
+{
+  const float t = Saturate((v - edge0) / (edge1 - edge0));
+  return t * t * (3.0f - 2.0f * t);
+}
+}
+
+float HeightProfile(CloudType type, float h)
+{
+  if (!(h > 0.0f && h < 1.0f))
+  {
+    return 0.0f;
+  }
+  // (base ramp end, top ramp start) per type: a thin sheet, rolls, a flat base under a rounded
+  // top, and a tower that holds its width up to the anvil.
+  switch (type)
+  {
+    case CloudType::Stratus:
+      return SmoothStep(0.0f, 0.1f, h) * (1.0f - SmoothStep(0.6f, 1.0f, h));
+    case CloudType::Stratocumulus:
+      return SmoothStep(0.0f, 0.12f, h) * (1.0f - SmoothStep(0.45f, 1.0f, h));
+    case CloudType::Cumulus:
+      return SmoothStep(0.0f, 0.04f, h) * (1.0f - SmoothStep(0.5f, 1.0f, h));
+    case CloudType::Cumulonimbus:
+      return SmoothStep(0.0f, 0.03f, h) * (1.0f - SmoothStep(0.9f, 1.0f, h));
+  }
+  return 0.0f;
+}
+
+std::string ValidateCloudLayer(const CloudLayer& l)
+{
+  std::ostringstream error;
+  const auto finite = [](double v) { return std::isfinite(v); };
+  const auto unit = [](double v) { return v >= 0.0 && v <= 1.0; };
+  if (!finite(l.Base) || !finite(l.Top) || !(l.Base < l.Top))
+  {
+    error << "the cloud base (" << l.Base << ") must lie below the top (" << l.Top << ")";
+  }
+  else if (!unit(l.Coverage) || !unit(l.Erosion) || !unit(l.Curl) || !unit(l.Anvil))
+  {
+    error << "coverage, erosion, curl and anvil must each lie in [0, 1]";
+  }
+  else if (!(finite(l.MapScale) && l.MapScale > 0.0) ||
+    !(finite(l.ShapeScale) && l.ShapeScale > 0.0) ||
+    !(finite(l.DetailScale) && l.DetailScale > 0.0))
+  {
+    error << "the weather map, shape and detail scales must be positive numbers";
+  }
+  else if (l.MapOctaves < 1 || l.MapOctaves > noise::MaxOctaves || !finite(l.MapGain) ||
+    l.MapGain < 0.0 || l.MapGain > 1.0)
+  {
+    error << "the weather map needs 1 to " << noise::MaxOctaves
+          << " octaves and a gain in [0, 1]";
+  }
+  else if (!finite(l.Shear[0]) || !finite(l.Shear[1]))
+  {
+    error << "shear must be finite";
+  }
+  else if (l.Source == CoverageSource::Map &&
+    (!l.Map || l.Map->Width < 1 || l.Map->Height < 1 ||
+      l.Map->Values.size() != static_cast<size_t>(l.Map->Width) * l.Map->Height))
+  {
+    error << "a coverage map is needed (its values do not match its size)";
+  }
+  else if (l.Source == CoverageSource::Map &&
+    !std::all_of(l.Map->Values.begin(), l.Map->Values.end(),
+      [](float v) { return v >= 0.0f && v <= 1.0f; }))
+  {
+    error << "the coverage map's values must lie in [0, 1]";
+  }
+  return error.str();
+}
+
+float CoverageMap::Sample(double x, double z) const
+{
+  const auto place = [](double v, double lo, double hi, int n, int& i, float& t)
+  {
+    const double u = n > 1 ? std::min(std::max((v - lo) / (hi - lo), 0.0), 1.0) * (n - 1) : 0.0;
+    i = std::min(static_cast<int>(u), std::max(n - 2, 0));
+    t = static_cast<float>(u - i);
+  };
+  int i, j;
+  float tx, tz;
+  place(x, this->XMin, this->XMax, this->Width, i, tx);
+  place(z, this->ZMin, this->ZMax, this->Height, j, tz);
+  const int i1 = std::min(i + 1, this->Width - 1), j1 = std::min(j + 1, this->Height - 1);
+  const float* v = this->Values.data();
+  const float a = v[j * this->Width + i] + (v[j * this->Width + i1] - v[j * this->Width + i]) * tx;
+  const float b =
+    v[j1 * this->Width + i] + (v[j1 * this->Width + i1] - v[j1 * this->Width + i]) * tx;
+  return a + (b - a) * tz;
+}
+
+std::shared_ptr<const CoverageMap> CoverageMapOfImage(vtkImageData* image, std::string& problem)
+{
+  int dimensions[3];
+  image->GetDimensions(dimensions);
+  std::vector<int> axes;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dimensions[a] > 1)
+    {
+      axes.push_back(a);
+    }
+  }
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars && image->GetPointData()->GetNumberOfArrays() > 0)
+  {
+    scalars = image->GetPointData()->GetArray(0);
+  }
+  if (axes.size() > 2 || dimensions[0] < 1 || dimensions[1] < 1 || dimensions[2] < 1)
+  {
+    problem = "a coverage map must be a 2-D image, got " + std::to_string(dimensions[0]) + " x " +
+      std::to_string(dimensions[1]) + " x " + std::to_string(dimensions[2]) + " points";
+    return nullptr;
+  }
+  if (!scalars || scalars->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    problem = "the coverage map has no point values";
+    return nullptr;
+  }
+  auto map = std::make_shared<CoverageMap>();
+  map->Width = axes.empty() ? 1 : dimensions[axes[0]];
+  map->Height = axes.size() < 2 ? 1 : dimensions[axes[1]];
+  const int type = scalars->GetDataType();
+  const bool integer = type != VTK_FLOAT && type != VTK_DOUBLE;
+  const double divisor = integer ? scalars->GetDataTypeMax() : 1.0;
+  map->Values.resize(static_cast<size_t>(scalars->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+  {
+    const double v = scalars->GetComponent(i, 0) / divisor;
+    if (!(v >= 0.0 && v <= 1.0))
+    {
+      problem = "coverage map value " + std::to_string(scalars->GetComponent(i, 0)) +
+        " at point " + std::to_string(i) + " is outside [0, 1]";
+      return nullptr;
+    }
+    map->Values[static_cast<size_t>(i)] = static_cast<float>(v);
+  }
+  return map;
+}
+
+float TiledVolume::Sample(glm::dvec3 u) const
+{
+  const int n = this->Size;
+  int cell[3];
+  float t[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    // Texel centres at (i + 0.5) / n of the tile, wrapped.
+    const noise::LatticeCoordinate c = noise::Split(u[a] * n - 0.5);
+    cell[a] = noise::WrapCell(c.Cell, n);
+    t[a] = c.Fraction;
+  }
+  const int x0 = cell[0], x1 = x0 + 1 == n ? 0 : x0 + 1;
+  const int y0 = cell[1], y1 = y0 + 1 == n ? 0 : y0 + 1;
+  const int z0 = cell[2], z1 = z0 + 1 == n ? 0 : z0 + 1;
+  const float* v = this->Texels.data();
+  const auto at = [&](int x, int y, int z) { return v[(static_cast<size_t>(z) * n + y) * n + x]; };
+  const auto lerp = [](float a, float b, float s) { return a + (b - a) * s; };
+  const float c00 = lerp(at(x0, y0, z0), at(x1, y0, z0), t[0]);
+  const float c10 = lerp(at(x0, y1, z0), at(x1, y1, z0), t[0]);
+  const float c01 = lerp(at(x0, y0, z1), at(x1, y0, z1), t[0]);
+  const float c11 = lerp(at(x0, y1, z1), at(x1, y1, z1), t[0]);
+  return lerp(lerp(c00, c10, t[1]), lerp(c01, c11, t[1]), t[2]);
+}
+
+namespace
+{
+// Fills a size^3 volume with f(u) at the texel centres, u in tiles.
+template<typename F>
+TiledVolume Bake(int size, F f)
+{
+  TiledVolume volume;
+  volume.Size = size;
+  volume.Texels.resize(static_cast<size_t>(size) * size * size);
+  vtkSMPTools::For(0, size * size,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType row = begin; row < end; ++row)
+      {
+        const int y = static_cast<int>(row % size), z = static_cast<int>(row / size);
+        for (int x = 0; x < size; ++x)
+        {
+          const glm::dvec3 u((x + 0.5) / size, (y + 0.5) / size, (z + 0.5) / size);
+          volume.Texels[static_cast<size_t>(row) * size + x] = f(u);
+        }
+      }
+    });
+  return volume;
+}
+
+// Lattice cells per tile of the baked noises: the shape's Perlin-Worley has 4 (so a tile holds a
+// few cloud masses), the detail's Worley fBm 2, 4 and 8, the curl's Perlin potentials 4.
+constexpr int ShapeCells = 4, DetailCells = 2, CurlCells = 4;
+constexpr int ShapeTexels = 64, DetailTexels = 32, CurlTexels = 32;
+
+CloudNoiseVolumes BakeVolumes(std::uint32_t seed)
+{
+  using namespace noise;
+  CloudNoiseVolumes v;
+  v.Shape = Bake(ShapeTexels,
+    [seed](glm::dvec3 u)
+    {
+      const glm::dvec3 p = u * double(ShapeCells);
+      // Schneider's base shape: Perlin-Worley dilated by a lower-contrast Worley fBm.
+      const float perlinWorley = PerlinWorley(p.x, p.y, p.z, seed, ShapeCells);
+      const float worley = InvertedWorleyFbm(p.x, p.y, p.z, seed + 0x5BD1E995u, ShapeCells);
+      return Saturate(Remap(perlinWorley, worley - 1.0f, 1.0f, 0.0f, 1.0f));
+    });
+  v.Detail = Bake(DetailTexels,
+    [seed](glm::dvec3 u)
+    {
+      const glm::dvec3 p = u * double(DetailCells);
+      return InvertedWorleyFbm(p.x, p.y, p.z, seed + 0x1B873593u, DetailCells);
+    });
+  for (int c = 0; c < 3; ++c)
+  {
+    v.Curl[c] = Bake(CurlTexels,
+      [seed, c](glm::dvec3 u)
+      {
+        const glm::dvec3 p = u * double(CurlCells);
+        return CurlNoise(p.x, p.y, p.z, seed + 0xCC9E2D51u, CurlCells)[c];
+      });
+  }
+  return v;
+}
+}
+
+std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(std::uint32_t seed)
+{
+  // The last few seeds' volumes, so an animation or a field generated in pieces bakes once.
+  static std::mutex mutex;
+  static std::map<std::uint32_t, std::shared_ptr<const CloudNoiseVolumes>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto found = cache.find(seed);
+  if (found != cache.end())
+  {
+    return found->second;
+  }
+  if (cache.size() >= 4)
+  {
+    cache.erase(cache.begin());
+  }
+  auto volumes = std::make_shared<const CloudNoiseVolumes>(BakeVolumes(seed));
+  cache.emplace(seed, volumes);
+  return volumes;
+}
+
+float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z)
+{
+  double frequency = 1.0 / layer.MapScale, amplitude = 1.0, sum = 0.0, total = 0.0;
+  for (int o = 0; o < layer.MapOctaves; ++o)
+  {
+    // A slice of 3-D Perlin noise off the lattice's planes (where gradient noise is 0), its own
+    // seed per octave.
+    sum += amplitude *
+      noise::Perlin(x * frequency, 0.5, z * frequency, seed * 0x9E3779B1u + 0x7F4A7C15u * o);
+    total += amplitude;
+    frequency *= 2.0;
+    amplitude *= layer.MapGain;
+  }
+  // Perlin fBm spreads over about +-0.5 of its amplitude sum: stretched onto [0, 1].
+  return Saturate(0.5f + static_cast<float>(sum / total));
+}
+
+} // namespace cloudvis

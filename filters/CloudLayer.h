@@ -1,0 +1,135 @@
+// The cloud model of real-time cloudscapes: a layer of air between a base and a top altitude, a
+// coverage that says where clouds may be, a height profile per cloud type, a low-frequency shape
+// noise that makes the cloud's mass and a high-frequency detail noise that erodes its edges
+// (Schneider's Nubis, SIGGRAPH Advances 2015 and 2017; Hillaire, "Physically based sky,
+// atmosphere and cloud rendering in Frostbite", SIGGRAPH 2016; Häggström, "Real-time rendering of
+// volumetric clouds", 2018).
+//
+// With h the height fraction in the layer (altitude along y), c the coverage at the point, P the
+// cloud type's height profile, S the shape noise and D the detail noise (both in [0, 1]):
+//   base    = remap(S * P(h), 1 - c, 1, 0, 1) * c             coverage erodes the shape
+//   D'      = mix(D, 1 - D, saturate(10 h))                   wispy under the base, billowy above
+//   density = scale * saturate(remap(base, erosion * D', 1, 0, 1))
+// where remap(v, lo, hi, a, b) = a + (v - lo) / (hi - lo) * (b - a). Erosion only ever removes
+// density, at the edges where base is small, which keeps the silhouette crisp and the core solid;
+// the result never exceeds `scale`.
+//
+// Coverage comes from the field's shapes (one cloud: c = coverage * saturate(-sdf / falloff)),
+// from a procedural weather map (many clouds: a 2-D Perlin fBm thresholded at the coverage), or
+// from a 2-D map read from a file (thresholded the same way). The cumulonimbus widens its coverage
+// near the top into an anvil. Wind moves the noises and the weather map with time; shear leans
+// the clouds, displacing everything above the base by `shear` per unit of height.
+//
+// S and D are tileable noises baked once into small periodic volumes (64^3 and 32^3 texels) and
+// read with trilinear filtering, as the cited renderers do: one fetch per voxel instead of a
+// dozen cellular evaluations, which is what lets a 512^3 cloudscape generate in seconds. The bake
+// depends only on the seed, so every piece of a field reads the same volumes.
+#ifndef CloudLayer_h
+#define CloudLayer_h
+
+#include "cloudvisFiltersModule.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+
+namespace cloudvis
+{
+
+enum class CloudType
+{
+  Stratus,
+  Stratocumulus,
+  Cumulus,
+  Cumulonimbus,
+};
+
+enum class CoverageSource
+{
+  Shapes, // the field's shapes: one cloud (or a few) where they are
+  Noise,  // a procedural weather map: a 2-D Perlin fBm over x and z
+  Map,    // a 2-D map of values in [0, 1] over the field's x and z bounds
+};
+
+// A weather map: Width x Height values in [0, 1], row-major with x along a row; the first value
+// lies at (XMin, ZMin), the last at (XMax, ZMax), bilinear in between, the edge values beyond.
+// vtkCloudDensitySource stretches it over the field's x and z bounds.
+struct CoverageMap
+{
+  int Width = 0;
+  int Height = 0;
+  std::vector<float> Values;
+  double XMin = 0.0, XMax = 1.0, ZMin = 0.0, ZMax = 1.0;
+
+  float Sample(double x, double z) const;
+};
+
+// The map of a 2-D image (one of its dimensions 1): its first two axes of more than one point
+// become x and z, its first point-data component the values. Integer values are divided by their
+// type's maximum (an 8-bit image's 255 is coverage 1); floating-point values must lie in [0, 1].
+// Null, with the problem in `problem`, for an image that is not 2-D, has no scalars, or holds a
+// value outside [0, 1] or NaN.
+CLOUDVISFILTERS_EXPORT std::shared_ptr<const CoverageMap> CoverageMapOfImage(
+  vtkImageData* image, std::string& problem);
+
+struct CloudLayer
+{
+  CloudType Type = CloudType::Cumulus;
+  double Base = -1.0; // altitude (y, world units) of the cloud base
+  double Top = 1.0;   // and of the top; Base < Top
+  double Coverage = 0.6; // in [0, 1]
+  CoverageSource Source = CoverageSource::Shapes;
+  std::shared_ptr<const CoverageMap> Map; // Source == Map
+  // The procedural weather map: the size of its largest features (world units), its octaves and
+  // the gain between them. The gain sets how rough the cloud edges seen from above are: the
+  // level sets of a 2-D fBm with Hurst exponent H = -log2(gain) have a fractal dimension 2 - H.
+  double MapScale = 4.0;
+  int MapOctaves = 6;
+  double MapGain = 0.6;
+  double ShapeScale = 2.0;  // world length over which the shape noise repeats
+  double DetailScale = 0.5; // and the detail noise
+  double Erosion = 0.4;     // in [0, 1]: how deep the detail noise eats into the edges
+  double Curl = 0.0; // curl-noise distortion of the detail noise, in detail tiles (0 .. 1)
+  double Anvil = 0.0; // cumulonimbus: how far the top spreads, 0 .. 1
+  std::array<double, 2> Shear{ { 0.0, 0.0 } }; // x and z displacement per unit of height above base
+};
+
+// The height profile of a cloud type at height fraction h in [0, 1]: 0 below the base and above
+// the top, up to 1 in between.
+CLOUDVISFILTERS_EXPORT float HeightProfile(CloudType type, float h);
+
+// Empty when the layer can be evaluated, else what is wrong with it.
+CLOUDVISFILTERS_EXPORT std::string ValidateCloudLayer(const CloudLayer& layer);
+
+// A tileable noise baked into a periodic cube of Size^3 texels, read with trilinear filtering:
+// Sample(u) at u in tiles (1 tile = the cube; any real u, it wraps).
+struct CLOUDVISFILTERS_EXPORT TiledVolume
+{
+  int Size = 0;
+  std::vector<float> Texels; // x fastest
+  float Sample(glm::dvec3 u) const;
+};
+
+// The baked noises of a seed: the shape (Perlin-Worley remapped by an inverted Worley fBm), the
+// detail (inverted Worley fBm) and the curl field (three components). Computed once per seed and
+// shared (a small process-wide cache), since the bake costs a few tenths of a second.
+struct CloudNoiseVolumes
+{
+  TiledVolume Shape;
+  TiledVolume Detail;
+  TiledVolume Curl[3];
+};
+CLOUDVISFILTERS_EXPORT std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(std::uint32_t seed);
+
+// The 2-D Perlin fBm of the procedural weather map at (x, z) in world units, in [0, 1].
+CLOUDVISFILTERS_EXPORT float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z);
+
+} // namespace cloudvis
+
+#endif
