@@ -20,7 +20,7 @@
 // near the top into an anvil. Wind moves the noises and the weather map with time; shear leans
 // the clouds, displacing everything above the base by `shear` per unit of height.
 //
-// S and D are tileable noises baked once into small periodic volumes (64^3 and 32^3 texels) and
+// S and D are tileable noises baked once into small periodic volumes (64^3 texels each) and
 // read with trilinear filtering, as the cited renderers do: one fetch per voxel instead of a
 // dozen cellular evaluations, which is what lets a 512^3 cloudscape generate in seconds. The bake
 // depends only on the seed, so every piece of a field reads the same volumes.
