@@ -245,28 +245,27 @@ float Saturate(float v)
 float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
 {
   const CloudLayer& l = this->Field.Layer;
-  float coverage = 0.0f;
+  // The cumulonimbus's anvil: from 60% of the layer up, the cloud spreads sideways.
+  const float anvil = l.Type == CloudType::Cumulonimbus
+    ? static_cast<float>(l.Anvil) * glm::smoothstep(0.6f, 0.95f, h)
+    : 0.0f;
   if (l.Source == CoverageSource::Shapes)
   {
+    // Shapes spread by moving their surface out, by up to a third of the layer's depth.
+    const float spread = anvil * static_cast<float>(l.Top - l.Base) / 3.0f;
     const float width = static_cast<float>(this->Field.FalloffWidth);
-    coverage = static_cast<float>(l.Coverage) * Saturate(-this->SignedDistance(glm::vec3(leaned)) / width);
+    const float d = this->SignedDistance(glm::vec3(leaned)) - spread;
+    return static_cast<float>(l.Coverage) * Saturate(-d / width);
   }
-  else
-  {
-    // The weather map drifts with the wind, like the noises.
-    const glm::dvec3 q = leaned + this->NoiseOffset;
-    const float map = l.Source == CoverageSource::Noise
-      ? WeatherNoise(l, this->Field.Noise.Seed, q.x, q.z)
-      : l.Map->Sample(q.x, q.z);
-    coverage = Saturate(noise::Remap(map, 1.0f - static_cast<float>(l.Coverage), 1.0f, 0.0f, 1.0f));
-  }
-  if (l.Type == CloudType::Cumulonimbus && l.Anvil > 0.0 && coverage > 0.0f)
-  {
-    // The anvil: near the top, a power below 1 lifts every coverage towards 1, spreading it.
-    const float t = glm::smoothstep(0.6f, 0.95f, h);
-    coverage = std::pow(coverage, 1.0f - 0.8f * static_cast<float>(l.Anvil) * t);
-  }
-  return coverage;
+  // The weather map drifts with the wind, like the noises.
+  const glm::dvec3 q = leaned + this->NoiseOffset;
+  const float map = l.Source == CoverageSource::Noise
+    ? WeatherNoise(l, this->Field.Noise.Seed, q.x, q.z)
+    : l.Map->Sample(q.x, q.z);
+  const float coverage =
+    Saturate(noise::Remap(map, 1.0f - static_cast<float>(l.Coverage), 1.0f, 0.0f, 1.0f));
+  // A map spreads by lifting every coverage towards 1 (a power below 1).
+  return anvil > 0.0f && coverage > 0.0f ? std::pow(coverage, 1.0f - 0.8f * anvil) : coverage;
 }
 
 float DensityEvaluator::CloudDensity(glm::dvec3 p) const
