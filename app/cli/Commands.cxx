@@ -621,13 +621,13 @@ int Info(const Arguments& arguments, std::ostream& out)
 
 } // namespace
 
-// The demo's scene is the shipped seed scene of the thesis chapter's figure: the fbm sphere
-// under a white sun and a pink point light, light march.
+// The demo's scene is the shipped cumulus (data/scenes/cumulus.json): a cloud that looks like
+// one, lit by the light march.
 static std::string DemoScenePath()
 {
   const char* overridden = std::getenv("CLOUDVIS_SCENE_DIR");
   return std::string(overridden && *overridden ? overridden : CLOUDVIS_SCENE_DIRECTORY) +
-    "/two-lights.json";
+    "/cumulus.json";
 }
 
 int RunDefault(std::ostream& out)
