@@ -56,8 +56,17 @@ render() {
   "$cloudvis" render "$scenes/$scene" -o "$out/$name.png" --size "$size" "${common[@]}" "$@"
 }
 
-# The picture at the top of the guide (and the README): the lit cloud under the article's sky.
-render hero sky.json
+# The picture at the top of the guide (and the README): the cumulus make demo renders.
+render hero cumulus.json
+
+# Cloud types and cloudscapes (the cloud density model), and the old default beside the cumulus,
+# both under the light march.
+render clouds-cumulus cumulus.json
+render clouds-fbm-sphere sky.json --lighting march
+render clouds-stratocumulus stratocumulus.json
+render clouds-cumulonimbus cumulonimbus.json
+render clouds-cloudscape-above cloudscape-above.json
+render clouds-cloudscape-ground cloudscape-ground.json
 
 # The tour: the article's cloud as its scene says (the directional derivative), closer than the
 # default camera, then with the other two lighting models, then all three side by side.
