@@ -365,7 +365,7 @@ TEST(CloudStatistics, KochSnowflakesHaveTheirBoundarysDimension)
   const auto d = Dimension(mask);
   ASSERT_TRUE(d.Fitted) << d.Problem;
   EXPECT_EQ(d.Count, std::uint64_t(flakes));
-  EXPECT_NEAR(d.Value, std::log(4.0) / std::log(3.0), 0.06);
+  EXPECT_NEAR(d.Value, std::log(4.0) / std::log(3.0), 0.03); // measured 1.2555
 }
 
 TEST(CloudStatistics, FitsRefuseTooFewClouds)
