@@ -6,6 +6,7 @@
 #include "CloudStatistics.h"
 #include "Errors.h"
 #include "FieldIO.h"
+#include "FieldTestFiles.h" // RunTool
 #include "OffscreenRender.h" // MakeVolumeProperty
 #include "RendererTestSupport.h"
 #include "Scene.h"
@@ -22,6 +23,7 @@
 
 #include <cmath>
 #include <random>
+#include <vtkDataArray.h>
 
 namespace
 {
@@ -525,6 +527,63 @@ TEST(Droplets, RenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
   const cloudvis::test::Image image = cloudvis::test::Render(renderer);
   ASSERT_EQ(image.Pixels(), 1u);
   EXPECT_NEAR(image.At(0, 3), 1.0 - std::exp(-3.0), 2e-3);
+}
+
+// ---- units a NetCDF file declares ---------------------------------------------------------------
+
+// A 2 x 2 x 3 NetCDF file (z, y, x) made by ncgen: the variable `ql` with `units`, coordinates in
+// `axisUnits` with a CF Z axis `positive` as given.
+std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir, const std::string& units,
+  const std::string& axisUnits, const std::string& positive = "up")
+{
+  const std::string cdl = "netcdf lwc {\ndimensions: z = 2 ; y = 2 ; x = 3 ;\nvariables:\n"
+                          "  double z(z) ; z:axis = \"Z\" ; z:units = \"" + axisUnits +
+    "\" ; z:positive = \"" + positive + "\" ;\n  double y(y) ; y:units = \"" + axisUnits +
+    "\" ;\n  double x(x) ; x:units = \"" + axisUnits +
+    "\" ;\n  float ql(z, y, x) ; ql:units = \"" + units +
+    "\" ;\ndata:\n  z = 0, 1 ; y = 0, 1 ; x = 0, 1, 2 ;\n"
+    "  ql = 0, 0.0005, 0.001, 0, 0, 0, 0, 0, 0, 0, 0, 0.002 ;\n}\n";
+  cloudvis::support::WriteText(dir.File("lwc.cdl"), cdl);
+  cloudvis::test::RunTool(
+    "ncgen -k 1 -o '" + dir.File("lwc.nc") + "' '" + dir.File("lwc.cdl") + "'");
+  return dir.File("lwc.nc");
+}
+
+TEST(NetCdfUnits, KilogramsPerCubicMetreOnKilometresWithAZAxis)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  cloudvis::FieldReport report;
+  auto field = cloudvis::ReadField(NetCdfFile(dir, "kg m-3", "km"), {}, &report);
+  EXPECT_EQ(report.Units.Quantity, FieldQuantity::Lwc);
+  EXPECT_EQ(report.Units.Length, LengthUnit::Kilometre);
+  EXPECT_EQ(report.Units.Up, 2);
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range);
+  EXPECT_FLOAT_EQ(float(range[1]), 2.0f) << "0.002 kg/m^3 is 2 g/m^3";
+  // The scene's keys win, and the report says what the file said.
+  const json info = json::parse(cloudvis::support::RunCloudvis({ "info", dir.File("lwc.nc"),
+    "--set", "field.up=y", "--json" }).Out);
+  EXPECT_EQ(info["units"]["quantity"], "lwc");
+  EXPECT_EQ(info["units"]["from"]["quantity"], "file");
+  EXPECT_EQ(info["units"]["length_unit"], "km");
+  EXPECT_EQ(info["units"]["up"], "y");
+  EXPECT_EQ(info["units"]["from"]["up"], "scene");
+  EXPECT_EQ(info["units"]["overridden_file_values"]["up"], "z");
+}
+
+TEST(NetCdfUnits, MixingRatioIsNotALiquidWaterContent)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  cloudvis::FieldReport report;
+  auto field = cloudvis::ReadField(NetCdfFile(dir, "kg/kg", "m", "down"), {}, &report);
+  EXPECT_FALSE(report.Units.Quantity.has_value());
+  EXPECT_EQ(report.Units.Length, LengthUnit::Metre);
+  EXPECT_FALSE(report.Units.Up.has_value()) << "positive down is not a height";
+  EXPECT_NE(cloudvis::test::Detail(report, "quantity").find("is a mixing ratio"),
+    std::string::npos);
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range);
+  EXPECT_FLOAT_EQ(float(range[1]), 0.002f);
 }
 
 // ---- cloudvis info ----------------------------------------------------------------------------
