@@ -15,6 +15,9 @@
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkFloatArray.h>
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
 
@@ -584,6 +587,64 @@ TEST(NetCdfUnits, MixingRatioIsNotALiquidWaterContent)
   double range[2];
   field->GetPointData()->GetScalars()->GetRange(range);
   EXPECT_FLOAT_EQ(float(range[1]), 0.002f);
+}
+
+// ---- units an OpenVDB grid declares ---------------------------------------------------------
+
+// A 3 x 3 x 3 fog volume "ql" of 0.5 with `metadata` on the grid, written by OpenVDB.
+std::string VdbFile(const cloudvis::support::TemporaryDirectory& dir,
+  const std::function<void(openvdb::GridBase&)>& metadata)
+{
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("ql");
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(2)), 0.5f);
+  metadata(*grid);
+  openvdb::io::File file(dir.File("lwc.vdb"));
+  file.write({ grid });
+  file.close();
+  return dir.File("lwc.vdb");
+}
+
+TEST(VdbUnits, GridMetadataDeclaresTheUnits)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = VdbFile(dir,
+    [](openvdb::GridBase& grid)
+    {
+      grid.insertMeta("quantity", openvdb::StringMetadata("lwc"));
+      grid.insertMeta("length_unit", openvdb::StringMetadata("m"));
+      grid.insertMeta("up", openvdb::StringMetadata("z"));
+      grid.insertMeta("effective_radius", openvdb::FloatMetadata(12.5f));
+    });
+  cloudvis::FieldReport report;
+  cloudvis::ReadField(path, {}, &report);
+  EXPECT_EQ(report.Units.Quantity, FieldQuantity::Lwc);
+  EXPECT_EQ(report.Units.Length, LengthUnit::Metre);
+  EXPECT_EQ(report.Units.Up, 2);
+  EXPECT_EQ(report.Units.EffectiveRadius, 12.5);
+  const std::string text = cloudvis::support::RunCloudvis({ "info", path }).Out;
+  EXPECT_NE(text.find("droplets     effective radius 12.5 um (file)"), std::string::npos) << text;
+}
+
+TEST(VdbUnits, UnknownDeclarationsAreRefused)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = VdbFile(dir,
+    [](openvdb::GridBase& grid) { grid.insertMeta("length_unit", openvdb::StringMetadata("ft")); });
+  const auto result = cloudvis::support::RunCloudvis({ "info", path });
+  EXPECT_NE(result.Status, 0);
+  EXPECT_NE(result.Err.find(path + ": grid \"ql\": metadata \"length_unit\" must be one of the "
+                                   "strings \"none\", \"m\", \"km\", got \"ft\""),
+    std::string::npos)
+    << result.Err;
+  const std::string radius = VdbFile(dir,
+    [](openvdb::GridBase& grid)
+    { grid.insertMeta("effective_radius", openvdb::StringMetadata("ten")); });
+  EXPECT_NE(cloudvis::support::RunCloudvis({ "info", radius })
+              .Err.find("metadata \"effective_radius\" must be a number of micrometres"),
+    std::string::npos);
 }
 
 // ---- cloudvis info ----------------------------------------------------------------------------
