@@ -429,7 +429,8 @@ void PrintCloudStatistics(std::ostream& out, const CloudStatistics& s)
       out << "effective radius " << *o.EffectiveRadius << " um ";
     out << "(the scene's keys win)\n";
   }
-  out << "cloud mask   value > " << s.Threshold << " " << QuantityUnit(u.Quantity) << "\n";
+  const std::string unit = QuantityUnit(u.Quantity);
+  out << "cloud mask   value > " << s.Threshold << (unit.empty() ? "" : " " + unit) << "\n";
   out << "cloud cover  " << 100.0 * s.ProjectedCloudFraction << "% projected along "
       << AxisName(u.Up) << " (" << s.CloudyColumns << " of " << s.Columns << " columns)\n";
   if (!s.HasCloud)
