@@ -10,6 +10,7 @@
 #include "OffscreenRender.h" // MakeVolumeProperty
 #include "RendererTestSupport.h"
 #include "Scene.h"
+#include "SupportImages.h"
 #include "SupportRun.h"
 
 #include "vtkCloudReferenceRenderer.h"
@@ -530,6 +531,31 @@ TEST(Droplets, RenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
   const cloudvis::test::Image image = cloudvis::test::Render(renderer);
   ASSERT_EQ(image.Pixels(), 1u);
   EXPECT_NEAR(image.At(0, 3), 1.0 - std::exp(-3.0), 2e-3);
+}
+
+TEST(Droplets, GpuRenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
+{
+  // The same law through `cloudvis render` and the GPU mapper: a homogeneous cube of 50 m of
+  // 0.4 g/m^3 on a lattice in km, seen face on through a narrow view: tau = 0.06 / m x 50 m = 3.
+  cloudvis::support::TemporaryDirectory dir;
+  const json scene = {
+    { "field",
+      { { "dimensions", 9 }, { "bounds", { 0, 0.05, 0, 0.05, 0, 0.05 } },
+        { "density_model", "constant" }, { "density_scale", 0.4 },
+        { "shape", { { "type", "box" }, { "half_size", { 1, 1, 1 } } } }, { "noise", "none" },
+        { "quantity", "lwc" }, { "length_unit", "km" } } },
+    { "transfer_function", { { "extinction", "droplets" }, { "lwc_max", 1 } } },
+    { "camera",
+      { { "position", { 0.025, 0.025, 2 } }, { "focal_point", { 0.025, 0.025, 0.025 } },
+        { "view_angle", 1 } } },
+    { "render", { { "size", { 32, 32 } }, { "lighting", "none" } } },
+  };
+  const std::string path = dir.Write("slab.json", scene.dump());
+  const auto result =
+    cloudvis::support::RunCloudvis({ "render", path, "-o", dir.File("slab.exr"), "-q" });
+  ASSERT_EQ(result.Status, 0) << result.Err;
+  const cloudvis::support::Exr exr = cloudvis::support::ReadExr(dir.File("slab.exr"));
+  EXPECT_NEAR(exr.At("A", 16, 16), 1.0 - std::exp(-3.0), 5e-3);
 }
 
 // ---- units a NetCDF file declares ---------------------------------------------------------------
