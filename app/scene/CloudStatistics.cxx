@@ -17,6 +17,15 @@
 namespace cloudvis
 {
 
+namespace
+{
+// "1 cloud", "3 clouds".
+std::string Clouds(std::size_t n)
+{
+  return std::to_string(n) + (n == 1 ? " cloud" : " clouds");
+}
+} // namespace
+
 double DefaultCloudThreshold(FieldQuantity quantity)
 {
   return quantity == FieldQuantity::Lwc ? 0.01 : 0.0;
@@ -85,9 +94,9 @@ PowerLawFit FitAreaPerimeter(const std::vector<Cloud>& clouds)
   fit.Count = x.size();
   if (x.size() < MinimumFitClouds)
   {
-    fit.Problem = std::to_string(x.size()) + " clouds of at least " +
-      std::to_string(MinimumFitArea) + " pixels inside the border, fewer than the " +
-      std::to_string(MinimumFitClouds) + " a fit needs";
+    fit.Problem = Clouds(x.size()) + " of at least " + std::to_string(MinimumFitArea) +
+      " pixels inside the border, fewer than the " + std::to_string(MinimumFitClouds) +
+      " a fit needs";
     return fit;
   }
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
@@ -133,7 +142,7 @@ PowerLawFit FitPowerLaw(const std::vector<double>& unsorted)
   if (n < MinimumFitClouds)
   {
     fit.Count = n;
-    fit.Problem = std::to_string(n) + " clouds of at least " + std::to_string(MinimumFitArea) +
+    fit.Problem = Clouds(n) + " of at least " + std::to_string(MinimumFitArea) +
       " pixels, fewer than the " + std::to_string(MinimumFitClouds) + " a fit needs";
     return fit;
   }
