@@ -6,6 +6,7 @@
 #include "CommandLine.h"
 
 #include "AtomicFile.h"
+#include "CloudStatistics.h"
 #include "CommandSupport.h"
 #include "Compare.h"
 #include "CpuReference.h"
@@ -32,10 +33,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <regex>
@@ -89,6 +92,17 @@ const std::vector<OptionSpec> FieldFileOptions = {
     "N",
     "the time step to read from a NetCDF field file, from 0; overrides field.time_step" },
 };
+
+bool ParseNumber(const std::string& text, double& value)
+{
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
+  {
+    return false;
+  }
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return *end == '\0' && std::isfinite(value);
+}
 
 int ParseCount(const std::string& command,
   const std::string& option,
@@ -604,17 +618,32 @@ int Compare(const Arguments& arguments, std::ostream& out)
 int Info(const Arguments& arguments, std::ostream& out)
 {
   const std::string& input = arguments.Operands[0];
+  // Checked before the field is produced, which may take long.
+  double threshold = std::numeric_limits<double>::quiet_NaN();
+  if (arguments.Has("cloud-threshold") &&
+    !ParseNumber(arguments.Value("cloud-threshold"), threshold))
+  {
+    throw UsageError("info: --cloud-threshold expects a number (the cloud mask is value > it), "
+                     "got \"" +
+      arguments.Value("cloud-threshold") + "\"");
+  }
   const Scene scene = LoadOperandScene("info", input, arguments, {}, true);
   FieldReport source;
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &source);
   const FieldStatistics statistics = ComputeFieldStatistics(field);
+  const ResolvedFieldUnits units = ResolveFieldUnits(scene.Field.Units, source.Units);
+  const CloudStatistics clouds = ComputeCloudStatistics(field, units, threshold);
   if (arguments.Has("json"))
   {
-    out << FieldStatisticsToJson(statistics, input, &source).dump(2) << "\n";
+    nlohmann::json json = FieldStatisticsToJson(statistics, input, &source);
+    json["units"] = UnitsToJson(units);
+    json["clouds"] = CloudStatisticsToJson(clouds);
+    out << json.dump(2) << "\n";
   }
   else
   {
     PrintFieldStatistics(out, statistics, input, &source);
+    PrintCloudStatistics(out, clouds);
   }
   return ExitSuccess;
 }
@@ -703,9 +732,19 @@ const std::vector<CommandSpec>& Commands()
         "field is generated (or loaded). Prints how the file was read (format, grid or variable,\n"
         "units, time step, resampling), dimensions, spacing, origin, direction, bounds, value\n"
         "range, mean, the fraction of non-empty voxels (density > 0) and a 16-bin histogram over\n"
-        "[min, max]. With a field file, --set takes only the keys that say how it is read\n"
-        "(field.format, field.array, field.time_step, field.missing, field.max_voxels, field.raw).",
+        "[min, max]; then the field's units (field.quantity, field.length_unit, field.up, from\n"
+        "the scene, else the file) and its cloud statistics: the cloud mask (value > threshold),\n"
+        "cloud cover projected along up and per level, cloud base and top, the vertical\n"
+        "integral (liquid water path for lwc), the projected clouds' size law and\n"
+        "area-perimeter fractal dimension (docs/user-guide.md). With a field file, --set takes\n"
+        "only the keys that say how it is read (field.format, field.array, field.time_step,\n"
+        "field.missing, field.max_voxels, field.raw) and what it holds (field.quantity,\n"
+        "field.length_unit, field.up, field.effective_radius).",
       { JsonOption,
+        { "cloud-threshold",
+          0,
+          "V",
+          "the cloud mask is value > V (default 0 for density, 0.01 g/m^3 for lwc)" },
         SetOption,
         FieldFileOptions[0],
         FieldFileOptions[1],

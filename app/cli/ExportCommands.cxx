@@ -49,18 +49,6 @@ const OptionSpec FormatOption{ "format", 0, "png|exr", "frame format (default pn
 const OptionSpec AnimateSizeOption{ "size", 0, "WxH",
   "frame size in pixels, e.g. 800x600; overrides render.size" };
 
-// A decimal number that is all of `text`, or nothing.
-bool ParseNumber(const std::string& text, double& value)
-{
-  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
-  {
-    return false;
-  }
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return *end == '\0' && std::isfinite(value);
-}
-
 void ParseTimeRange(const std::string& text, AnimationRequest& request)
 {
   const auto colon = text.find(':');

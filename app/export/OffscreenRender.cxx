@@ -59,8 +59,9 @@ void CheckMapper(
   }
 }
 
-vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& transferFunction)
+vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec& spec)
 {
+  const TransferFunctionSpec transferFunction = TabulatedTransferFunction(spec);
   vtkNew<vtkPiecewiseFunction> opacity;
   for (const auto& point : transferFunction.Opacity)
   {

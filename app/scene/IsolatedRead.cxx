@@ -138,6 +138,16 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
     out.Text(detail.first);
     out.Text(detail.second);
   }
+  // The declared units: a presence byte and a value each.
+  const FieldUnits& units = contents.Report.Units;
+  out.Value(std::uint8_t(units.Quantity.has_value()));
+  out.Value(std::int32_t(units.Quantity.value_or(FieldQuantity::Density)));
+  out.Value(std::uint8_t(units.Length.has_value()));
+  out.Value(std::int32_t(units.Length.value_or(LengthUnit::None)));
+  out.Value(std::uint8_t(units.Up.has_value()));
+  out.Value(std::int32_t(units.Up.value_or(1)));
+  out.Value(std::uint8_t(units.EffectiveRadius.has_value()));
+  out.Value(units.EffectiveRadius.value_or(0.0));
   out.Value(FieldRecord); // complete
 }
 
@@ -329,6 +339,20 @@ bool ReadFieldRecord(RecordReader& in, FieldFileContents& contents)
     }
     contents.Report.Add(label, text);
   }
+  std::uint8_t has[4] = {};
+  std::int32_t quantity = 0, length = 0, up = 0;
+  double radius = 0.0;
+  if (!in.Value(has[0]) || !in.Value(quantity) || !in.Value(has[1]) || !in.Value(length) ||
+    !in.Value(has[2]) || !in.Value(up) || !in.Value(has[3]) || !in.Value(radius) || quantity < 0 ||
+    quantity > 1 || length < 0 || length > 2 || up < 0 || up > 2)
+  {
+    return false;
+  }
+  FieldUnits& units = contents.Report.Units;
+  units.Quantity = has[0] ? std::optional<FieldQuantity>(FieldQuantity(quantity)) : std::nullopt;
+  units.Length = has[1] ? std::optional<LengthUnit>(LengthUnit(length)) : std::nullopt;
+  units.Up = has[2] ? std::optional<int>(up) : std::nullopt;
+  units.EffectiveRadius = has[3] ? std::optional<double>(radius) : std::nullopt;
   std::uint64_t end = 0;
   contents.Image = image;
   return in.Value(end) && end == FieldRecord;

@@ -714,6 +714,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
             : type == "float" ? ""
                               : ", converted to float"));
     contents.Report.Add("units", units.empty() ? "not stated" : units);
+    netcdf::DeclareQuantity(units, *density, contents.Report);
     if (!step.empty())
     {
       contents.Report.Add("time step", step);
@@ -808,6 +809,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
       }
       contents.Report.Add("axis " + std::string(1, "xyz"[a]), text);
     }
+    netcdf::DeclareLengthAndUp(file, layout, contents.Report);
     if (resampling.empty())
     {
       resampling.push_back("no: the coordinates are evenly spaced");

@@ -8,11 +8,13 @@
 
 #include "FieldFormatReaders.h"
 
+#include <vtkFloatArray.h>
 #include <vtk_netcdf.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace cloudvis
@@ -726,6 +728,90 @@ Packing PackingOf(const File& file, const Variable& variable)
   packing.Offset = offset.empty() ? 0.0 : offset[0];
   packing.Packed = !scale.empty() || !offset.empty();
   return packing;
+}
+
+// The physical quantity a variable's `units` declare (FieldUnits.h): a liquid water content in
+// g/m^3 as it is, in kg/m^3 converted to g/m^3 (the values multiplied by 1000, and said so). A
+// mixing ratio (kg/kg, g/kg) is not a content: turning it into one needs the air's density,
+// which cloudvis does not guess, so the field stays a density and the report says why.
+void DeclareQuantity(const std::string& units, vtkFloatArray& values, FieldReport& report)
+{
+  if (const auto declared = QuantityFromUnits(units))
+  {
+    report.Units.Quantity = declared->Quantity;
+    if (declared->Scale != 1.0)
+    {
+      const float scale = float(declared->Scale);
+      float* v = values.GetPointer(0);
+      for (vtkIdType i = 0; i < values.GetNumberOfValues(); ++i)
+      {
+        v[i] *= scale;
+      }
+    }
+    report.Add("quantity",
+      "lwc (liquid water content)" +
+        (declared->Scale != 1.0 ? ", converted from " + units + " to g/m^3" : std::string()));
+    return;
+  }
+  std::string compact;
+  for (const char c : units)
+  {
+    compact += c == ' ' ? '/' : char(std::tolower(static_cast<unsigned char>(c)));
+  }
+  for (const char* ratio : { "kg/kg", "g/kg", "kg/kg-1", "g/kg-1", "1" })
+  {
+    if (compact == ratio)
+    {
+      report.Add("quantity",
+        "density: \"" + units +
+          "\" is a mixing ratio, not a liquid water content (it needs the air's density); "
+          "field.quantity \"lwc\" reads the values as g/m^3 if they are");
+      return;
+    }
+  }
+}
+
+// The length unit the spatial axes' coordinates share (m or km), and the vertical axis: z, where
+// the file identifies one (not by position) whose coordinate is not a pressure or positive down.
+void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& report)
+{
+  std::optional<LengthUnit> shared;
+  bool agree = true;
+  for (const Layout::Axis& axis : layout.Space)
+  {
+    if (axis.Position < 0)
+    {
+      continue;
+    }
+    const Variable* coordinate = file.CoordinateOf(axis.Dimension);
+    const auto unit = coordinate ? LengthUnitFromText(file.Text(*coordinate, "units"))
+                                 : std::optional<LengthUnit>();
+    agree = agree && unit && (!shared || *shared == *unit);
+    shared = unit;
+  }
+  if (agree && shared)
+  {
+    report.Units.Length = shared;
+    report.Add("length unit", LengthUnitName(*shared) + " (the axes' coordinates)");
+  }
+  const Layout::Axis& z = layout.Space[2];
+  if (z.Position < 0 || z.How.find("position") != std::string::npos)
+  {
+    return;
+  }
+  const Variable* coordinate = file.CoordinateOf(z.Dimension);
+  const std::string positive = coordinate ? file.Text(*coordinate, "positive") : "";
+  const bool height = !coordinate || LengthUnitFromText(file.Text(*coordinate, "units")) ||
+    file.Text(*coordinate, "units").empty();
+  if (positive == "down" || !height)
+  {
+    report.Add("up", "not declared: the vertical axis is not a height (units \"" +
+        (coordinate ? file.Text(*coordinate, "units") : std::string()) + "\", positive \"" +
+        positive + "\"); field.up says which axis is up");
+    return;
+  }
+  report.Units.Up = 2;
+  report.Add("up", "z (the file's vertical axis)");
 }
 
 } // namespace netcdf

@@ -37,6 +37,7 @@
 
 #include <oneapi/tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <optional>
@@ -169,6 +170,72 @@ std::string Translated(const std::exception& e)
   return text.empty() ? "OpenVDB could not read it" : text;
 }
 
+// The physical units a grid's metadata declares (FieldUnits.h; docs/data.md): strings
+// "quantity" ("density" or "lwc"), "length_unit" ("none", "m" or "km"), "up" ("x", "y" or "z"),
+// and the number "effective_radius" (micrometres). A name with a value of another type, or a
+// value not among those, is refused: a declaration is read as declared or not at all.
+void DeclareUnits(const std::string& path, const openvdb::GridBase& grid, FieldReport& report)
+{
+  const auto text = [&](const std::string& name, const std::vector<std::string>& allowed)
+  {
+    const openvdb::Metadata::ConstPtr meta = grid[name];
+    if (!meta)
+    {
+      return -1;
+    }
+    const auto* string = dynamic_cast<const openvdb::StringMetadata*>(meta.get());
+    const std::string value = string ? string->value() : "";
+    const auto found = std::find(allowed.begin(), allowed.end(), value);
+    if (!string || found == allowed.end())
+    {
+      std::string names;
+      for (const std::string& a : allowed)
+      {
+        names += (names.empty() ? "\"" : ", \"") + a + "\"";
+      }
+      Fail(path,
+        "grid \"" + grid.getName() + "\": metadata \"" + name + "\" must be one of the strings " +
+          names + ", got " + (string ? "\"" + value + "\"" : "a " + meta->typeName()));
+    }
+    report.Add(name, value + " (grid metadata)");
+    return int(found - allowed.begin());
+  };
+  if (const int q = text("quantity", { "density", "lwc" }); q >= 0)
+  {
+    report.Units.Quantity = FieldQuantity(q);
+  }
+  if (const int l = text("length_unit", { "none", "m", "km" }); l >= 0)
+  {
+    report.Units.Length = LengthUnit(l);
+  }
+  if (const int u = text("up", { "x", "y", "z" }); u >= 0)
+  {
+    report.Units.Up = u;
+  }
+  if (const openvdb::Metadata::ConstPtr meta = grid["effective_radius"])
+  {
+    double radius = std::nan("");
+    if (const auto* f = dynamic_cast<const openvdb::FloatMetadata*>(meta.get()))
+    {
+      radius = f->value();
+    }
+    else if (const auto* d = dynamic_cast<const openvdb::DoubleMetadata*>(meta.get()))
+    {
+      radius = d->value();
+    }
+    if (!(radius >= 1e-3 && radius <= 1e6))
+    {
+      Fail(path,
+        "grid \"" + grid.getName() +
+          "\": metadata \"effective_radius\" must be a number of micrometres in [0.001, "
+          "1000000], got " +
+          (std::isnan(radius) ? "a " + meta->typeName() : Number(radius)));
+    }
+    report.Units.EffectiveRadius = radius;
+    report.Add("effective radius", Number(radius) + " um (grid metadata)");
+  }
+}
+
 } // namespace
 
 FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOptions& options)
@@ -256,6 +323,7 @@ FieldFileContents ReadOpenVdbFile(const std::string& path, const FieldReadOption
             " world units deep, the grid's background; less where the stored interior is "
             "thinner), 1 inside");
       }
+      DeclareUnits(path, *grid, contents.Report);
       const std::string creator = grid->getCreator();
       if (!creator.empty())
       {

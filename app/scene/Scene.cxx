@@ -10,6 +10,9 @@
 #include "SceneSchema.h"
 #include "Utf8.h"
 
+#include "CloudTransferTable.h" // TransferTableSize
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -337,13 +340,22 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   scene.Source = source;
   schema::ReadObject(context, document, "", schema::SceneSections(), scene);
   schema::ResolveSkySun(document, scene);
+  schema::ResolveDroplets(context, scene);
   scene.Document = document;
   return scene;
 }
 
 const std::vector<std::string>& FieldFileKeyNames()
 {
-  static const std::vector<std::string> names = schema::KeyNames(schema::FieldFileKeys());
+  static const std::vector<std::string> names = []
+  {
+    std::vector<std::string> all = schema::KeyNames(schema::FieldFileKeys());
+    for (const std::string& name : schema::KeyNames(schema::FieldUnitKeys()))
+    {
+      all.push_back(name);
+    }
+    return all;
+  }();
   return names;
 }
 
@@ -391,6 +403,37 @@ Scene LoadFieldFileScene(const std::string& path,
   std::vector<SceneOverride> all = options;
   all.push_back({ "field.file", path, "the field file operand" });
   return SceneWithOverrides(json::object(), path, "", assignments, all);
+}
+
+TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& transferFunction)
+{
+  TransferFunctionSpec t = transferFunction;
+  if (t.Extinction != TransferFunctionSpec::ExtinctionRule::Droplets)
+  {
+    return t;
+  }
+  // The table spans the opacity points and the color points together (TransferFunctionRange):
+  // the opacity points span [0, LwcMax] widened to the color's span, so that the table's
+  // densities are exactly the points'.
+  double lo = 0.0, hi = t.LwcMax;
+  if (!t.Color.empty())
+  {
+    lo = std::min(lo, t.Color.front()[0]);
+    hi = std::max(hi, t.Color.back()[0]);
+  }
+  const double sigmaMax = t.DropletExtinctionPerLwc * hi;
+  // Opacity 1 - 1/e at the densest entry: far from the clamp at 1 - 1e-4, and every opacity
+  // keeps double's relative precision through -log1p(-a) / u.
+  t.UnitDistance = sigmaMax > 0.0 ? 1.0 / sigmaMax : 1.0;
+  t.Opacity.clear();
+  const int entries = TransferTableSize;
+  for (int i = 0; i < entries; ++i)
+  {
+    const double density = lo + (hi - lo) * (double(i) / (entries - 1));
+    const double sigma = t.DropletExtinctionPerLwc * std::max(density, 0.0);
+    t.Opacity.push_back({ { density, -std::expm1(-sigma * t.UnitDistance) } });
+  }
+  return t;
 }
 
 } // namespace cloudvis

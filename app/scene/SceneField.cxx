@@ -85,7 +85,7 @@ vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
   }
   if (report)
   {
-    *report = FieldReport{ "procedural (generated from the scene's field section)", {} };
+    *report = FieldReport{ "procedural (generated from the scene's field section)", {}, {} };
   }
   vtkSmartPointer<vtkCloudDensitySource> source = MakeDensitySource(scene.Field);
   VtkMessageCapture messages;

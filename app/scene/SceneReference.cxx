@@ -146,6 +146,7 @@ std::vector<Table> ReferenceTables()
   tables.push_back(KeyTable("field.raw", RawKeys(), RawLayout{}));
   tables.push_back(KeyTable("field.cloud", CloudKeys(), scene.Field));
   tables.push_back(KeyTable("field", GeneratedFieldKeys(), scene.Field));
+  tables.push_back(KeyTable("field.units", FieldUnitKeys(), scene.Field));
 
   tables.push_back(KeyTable("field.shape", ShapeKeys(), Shape{}, "", &ShapeTypes()));
   tables.push_back(KeyTable("transfer_function", TransferFunctionKeys(), scene.TransferFunction));

@@ -237,9 +237,12 @@ void ReadField(const Context& c, const json& v, const std::string& key, Scene& s
 
 json WriteField(const Scene& scene)
 {
+  const json units = WriteObject(FieldUnitKeys(), scene.Field);
   if (!scene.Field.FromFile())
   {
-    return WriteObject(GeneratedFieldKeys(), scene.Field);
+    json field = WriteObject(GeneratedFieldKeys(), scene.Field);
+    field.update(units);
+    return field;
   }
   // What reading the file again needs: the file, and the read options that differ from their
   // defaults.
@@ -252,6 +255,7 @@ json WriteField(const Scene& scene)
       field.erase(option.key());
     }
   }
+  field.update(units);
   return field;
 }
 
@@ -642,8 +646,46 @@ const Keys<FieldSpec>& FieldKeys()
   {
     Keys<FieldSpec> all = FieldFileKeys();
     all.insert(all.end(), GeneratedFieldKeys().begin(), GeneratedFieldKeys().end());
+    all.insert(all.end(), FieldUnitKeys().begin(), FieldUnitKeys().end());
     return all;
   }();
+  return keys;
+}
+
+// Keys of both kinds of field: what its values and world units mean (FieldUnits.h). Each is
+// optional: absent, the file's declaration applies, else the default.
+const Keys<FieldSpec>& FieldUnitKeys()
+{
+  using F = FieldSpec;
+  using U = FieldUnits;
+  static const Keys<F> keys = {
+    { "quantity",
+      ChoiceOf({ { "density",
+                   int(FieldQuantity::Density),
+                   "dimensionless; the transfer function says what it looks like" },
+                 { "lwc", int(FieldQuantity::Lwc), "liquid water content in g/m^3" } })
+        .DefaultIs("the file's, else `density`"),
+      Nested(&F::Units, &U::Quantity),
+      "what the values are: `info` reports the statistics in its units, and "
+      "`transfer_function.extinction` `\"droplets\"` derives the extinction from it" },
+    { "length_unit",
+      ChoiceOf({ { "none", int(LengthUnit::None), "world units only" },
+                 { "m", int(LengthUnit::Metre), "metres" },
+                 { "km", int(LengthUnit::Kilometre), "kilometres" } })
+        .DefaultIs("the file's, else `none`"),
+      Nested(&F::Units, &U::Length),
+      "how long one world unit (of `bounds`, a file's spacing and origin) is" },
+    { "up",
+      ChoiceOf({ { "x", 0, "" }, { "y", 1, "" }, { "z", 2, "" } })
+        .DefaultIs("the file's, else `y`"),
+      Nested(&F::Units, &U::Up),
+      "the vertical axis of the lattice, for `info`'s cloud fraction per height, base, top and "
+      "liquid water path; cloudvis's generated fields and cameras have y up" },
+    { "effective_radius",
+      NumberIn(Range{ 1e-3, 1e6 }).In("micrometres").DefaultIs("the file's, else `10`"),
+      Nested(&F::Units, &U::EffectiveRadius),
+      "the droplets' effective radius r_e of an lwc field: extinction = 3 lwc / (2 rho_w r_e)" },
+  };
   return keys;
 }
 
@@ -1027,6 +1069,22 @@ const Keys<TransferFunctionSpec>& TransferFunctionKeys()
       &T::UnitDistance,
       "the distance over which `opacity` applies; the bound keeps the extinction of opacity 1, "
       "-ln(1e-4) / `unit_distance`, within float range" },
+    { "extinction",
+      ChoiceOf(
+        { { "opacity", int(T::ExtinctionRule::Opacity), "from `opacity` per `unit_distance`" },
+          { "droplets",
+            int(T::ExtinctionRule::Droplets),
+            "the extinction of cloud droplets, 3 lwc / (2 rho_w r_e) per metre (rho_w = 10^6 "
+            "g/m^3, r_e = `field.effective_radius`), converted to world units; needs "
+            "`field.quantity` `\"lwc\"` and `field.length_unit` `\"m\"` or `\"km\"`; "
+            "`opacity` and `unit_distance` are then unused" } }),
+      &T::Extinction,
+      "where the extinction comes from; `color` gives the albedo either way" },
+    { "lwc_max",
+      NumberIn(Positive).In("g/m^3"),
+      &T::LwcMax,
+      "with `extinction` `\"droplets\"`: the largest liquid water content the table resolves; "
+      "denser voxels get its extinction" },
     PresetReference("preset",
       NonEmptyText("a preset name or the path of a .json file").DefaultIs("none"),
       "a shipped preset's name, or the path of a preset file (relative to the scene file's "
@@ -1367,6 +1425,31 @@ const Keys<Scene>& SceneSections()
       "isotropic, unshadowed light those models add ([below](#the-ambient-section))"),
   };
   return keys;
+}
+
+void ResolveDroplets(const Context& c, Scene& s)
+{
+  TransferFunctionSpec& t = s.TransferFunction;
+  if (t.Extinction != TransferFunctionSpec::ExtinctionRule::Droplets)
+  {
+    return;
+  }
+  const FieldUnits& units = s.Field.Units;
+  if (units.Quantity != FieldQuantity::Lwc)
+  {
+    c.Fail("transfer_function.extinction",
+      "\"droplets\" derives the extinction from liquid water content: it needs field.quantity "
+      "\"lwc\"");
+  }
+  if (!units.Length || *units.Length == LengthUnit::None)
+  {
+    c.Fail("transfer_function.extinction",
+      "\"droplets\" gives an extinction per metre: it needs field.length_unit \"m\" or "
+      "\"km\" to convert it to world units");
+  }
+  t.DropletExtinctionPerLwc =
+    DropletExtinctionPerMetre(1.0, units.EffectiveRadius.value_or(DefaultEffectiveRadius)) *
+    MetresPerUnit(*units.Length);
 }
 
 void ResolveSkySun(const json& document, Scene& s)

@@ -26,6 +26,9 @@ OptionSpec LightingOption();
 // naming `command` when the text is not of that form.
 nlohmann::json ParseSizeOption(const std::string& command, const std::string& text);
 
+// A decimal number that is all of `text` (finite), or false.
+bool ParseNumber(const std::string& text, double& value);
+
 // The value of a count option (--frames, --benchmark, --pieces): an integer in [1, 999999].
 // Throws UsageError "COMMAND: --OPTION expects a number of UNIT in [1, 999999], got ...".
 int ParseCount(const std::string& command,

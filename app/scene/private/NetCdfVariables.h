@@ -9,12 +9,16 @@
 #ifndef cloudvis_NetCdfVariables_h
 #define cloudvis_NetCdfVariables_h
 
+#include "FieldIO.h" // FieldReport
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
+
+class vtkFloatArray;
 
 namespace cloudvis
 {
@@ -165,6 +169,13 @@ struct Packing
   bool Packed = false;
 };
 Packing PackingOf(const File& file, const Variable& variable);
+
+// What the file declares of its physical units (FieldReport::Units), each with a line in the
+// report: the quantity from the variable's `units` (values in kg/m^3 scaled to g/m^3 in place;
+// a mixing ratio is said not to be a content), and the length unit the spatial axes' coordinates
+// share and the vertical axis (z, where the file identifies a height axis).
+void DeclareQuantity(const std::string& units, vtkFloatArray& values, FieldReport& report);
+void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& report);
 
 } // namespace netcdf
 } // namespace cloudvis

@@ -21,6 +21,8 @@ const Keys<Scene>& SceneSections();
 const Keys<FieldSpec>& FieldKeys();
 const Keys<FieldSpec>& FieldFileKeys();
 const Keys<FieldSpec>& GeneratedFieldKeys();
+// The keys both kinds take: quantity, length_unit, up, effective_radius.
+const Keys<FieldSpec>& FieldUnitKeys();
 const Keys<RawLayout>& RawKeys(); // field.raw
 const Keys<FieldSpec>& CloudKeys(); // field.cloud
 const Keys<Shape>& ShapeKeys();
@@ -42,6 +44,10 @@ const std::vector<Name>& LightingModels();
 // A sky without background.sun takes its sun from the lights section, which may come after the
 // background in the document: resolved once the whole scene is read.
 void ResolveSkySun(const json& document, Scene& scene);
+
+// transfer_function.extinction "droplets" takes its law from the field section's units:
+// checked and resolved (DropletExtinctionPerLwc) once the whole scene is read.
+void ResolveDroplets(const Context& context, Scene& scene);
 
 } // namespace schema
 } // namespace cloudvis

@@ -12,6 +12,8 @@
 #ifndef cloudvis_FieldIO_h
 #define cloudvis_FieldIO_h
 
+#include "FieldUnits.h"
+
 #include <vtkSmartPointer.h>
 
 #include <array>
@@ -70,6 +72,9 @@ struct FieldReport
 {
   std::string Format;
   std::vector<std::pair<std::string, std::string>> Details;
+  // The physical units the file declares (a NetCDF variable's `units`, OpenVDB grid metadata);
+  // the scene's field keys win over them (FieldUnits.h).
+  FieldUnits Units;
 
   void Add(const std::string& label, const std::string& text)
   {

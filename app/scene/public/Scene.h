@@ -42,6 +42,10 @@ struct FieldSpec
   // Description.Layer.Map when the field is generated.
   std::string CoverageMapFile;
   double Time = 0.0;
+  // field.quantity, field.length_unit, field.up, field.effective_radius: what the values and
+  // world units mean, for a generated field and a file alike (absent: the file's, else the
+  // defaults; FieldUnits.h).
+  FieldUnits Units;
 
   bool FromFile() const { return !this->File.empty(); }
 };
@@ -60,7 +64,27 @@ struct TransferFunctionSpec
   std::vector<std::array<double, 4>> Color{ { { 0.0, 0.55, 0.58, 0.65 } },
     { { 0.3, 0.9, 0.9, 0.92 } }, { { 1.0, 1.0, 1.0, 1.0 } } };
   double UnitDistance = 0.1;
+  // transfer_function.extinction: "opacity" (the points above) or "droplets", the extinction of
+  // cloud droplets, 3 LWC / (2 rho_w r_e), for an lwc field (FieldUnits.h) over densities
+  // [0, LwcMax] g/m^3 (beyond it the table holds its last entry, as for any transfer function).
+  enum class ExtinctionRule
+  {
+    Opacity,
+    Droplets,
+  };
+  ExtinctionRule Extinction = ExtinctionRule::Opacity;
+  double LwcMax = 5.0;
+  // Droplets: the extinction per world unit of 1 g/m^3, set when the scene is read from
+  // field.effective_radius and field.length_unit.
+  double DropletExtinctionPerLwc = 0.0;
 };
+
+// What the renderers tabulate (MakeVolumeProperty): the spec itself, or for "droplets" the spec
+// with Opacity and UnitDistance replaced by points at each of the TransferTableSize densities the
+// table samples (the union of [0, LwcMax] and the color points' span), opacity
+// 1 - exp(-sigma(d) u), with u chosen so the densest stays well below VTK's opacity 1: the table
+// then holds sigma(d) = DropletExtinctionPerLwc * d at every entry, to float precision.
+TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& transferFunction);
 
 // The "camera" section. Absent keys are filled when the field is known (see ApplyCamera in
 // export/OffscreenRender.h): the focal point is the field's centre, the position looks at it
@@ -240,7 +264,8 @@ Scene LoadFieldFileScene(const std::string& path,
   const std::vector<SceneOverride>& options = {});
 
 // The keys of the field section that say how a field file is read ("file", "format", "array",
-// "time_step", "max_voxels", "raw"): the only field keys a field file takes.
+// "time_step", "max_voxels", "raw") and what its values mean ("quantity", "length_unit", "up",
+// "effective_radius"): the only field keys a field file takes.
 const std::vector<std::string>& FieldFileKeyNames();
 
 } // namespace cloudvis
