@@ -730,3 +730,21 @@ TEST(Info, RefusesABadCloudThreshold)
 }
 
 } // namespace
+
+// The target for a generated cloudscape seen from above (data/scenes/cloudscape-above.json,
+// generated whole by `info`): its clouds' outlines have the area-perimeter dimension Lovejoy
+// measured for real clouds, 1.35 +/- 0.10, and their sizes follow a power law over at least a
+// decade. Both come from the weather map (its gain sets the roughness) and the erosion.
+TEST(CloudscapeTarget, GeneratedCumulusFieldHasLovejoysDimensionAndASizeLaw)
+{
+  const json info = json::parse(cloudvis::support::RunCloudvis(
+    { "info", CLOUDVIS_SCENES "/cloudscape-above.json", "--json" })
+                                  .Out);
+  const json& clouds = info["clouds"];
+  ASSERT_TRUE(clouds["fractal_dimension"]["fitted"].get<bool>()) << clouds.dump(1);
+  EXPECT_NEAR(clouds["fractal_dimension"]["dimension"].get<double>(), 1.35, 0.10);
+  const json& sizes = clouds["size_distribution"];
+  ASSERT_TRUE(sizes["fitted"].get<bool>()) << sizes.dump(1);
+  EXPECT_GE(sizes["range"][1].get<double>() / sizes["range"][0].get<double>(), 10.0)
+    << sizes.dump(1);
+}
