@@ -90,8 +90,7 @@ TEST(Worley, F1IsZeroAtEveryFeaturePoint)
 }
 
 // F1 equals the minimum over the explicit feature points of the 7x7x7 cells around the sample,
-// at random points, including points whose nearest feature point is more than 1 away (where
-// WorleyF1 must widen its 3x3x3 search to 5x5x5 to find it).
+// at random points, including points whose nearest feature point is more than 1 away.
 TEST(Worley, F1IsTheDistanceToTheNearestOfTheListedFeaturePoints)
 {
   std::mt19937 rng(99);
@@ -115,6 +114,38 @@ TEST(Worley, F1IsTheDistanceToTheNearestOfTheListedFeaturePoints)
     }
     EXPECT_GE(far, 20) << "too few points with a nearest feature point beyond 1 were found, period "
                        << period;
+  }
+}
+
+// About one point in 700,000 has its nearest feature point outside the 3x3x3 cells around it
+// (more than 1 away, two cells off), where WorleyF1 must widen its search to 5x5x5. These were
+// found by searching random points (seed 99, as above, up to 7 million points); the test checks
+// that each is such a point before it checks F1 there.
+TEST(Worley, F1FindsANearestFeaturePointTwoCellsAway)
+{
+  struct Point
+  {
+    double X, Y, Z;
+    std::uint32_t Seed;
+  };
+  const Point points[] = { { 3.9954588551775601, -10.705247344062219, 35.888893889766038, 1u },
+    { 11.241342730830119, -4.2959340493054725, 12.002569336103981, 7u },
+    { -28.996168919591856, 0.67214999817010579, 11.271212433402333, 1u },
+    { 11.715481530908107, -4.9735000930170443, 18.277634066514025, 4u },
+    { 36.019895390264224, -15.069102724188639, 26.969949105769601, 4u },
+    { 1.1483653773482132, 31.822150406634535, 11.053698037946837, 6u },
+    { 9.1270280899358056, 3.1656426595494196, 1.0174159535653473, 5u },
+    { 30.177730374920898, -18.074700784470814, -35.005259362797837, 1u },
+    { -34.979292031647503, -13.637488404360578, 16.102265510039516, 7u },
+    { -7.1125790535649926, -2.010058154601154, 1.5611674696795035, 4u } };
+  for (const Point& p : points)
+  {
+    const double nearest = BruteForceF1(p.X, p.Y, p.Z, p.Seed, 0, 3);
+    ASSERT_LT(nearest, BruteForceF1(p.X, p.Y, p.Z, p.Seed, 0, 1) - 1e-5)
+      << "the nearest feature point of (" << p.X << ", " << p.Y << ", " << p.Z
+      << ") must lie outside its 3x3x3 cells";
+    EXPECT_NEAR(WorleyF1(p.X, p.Y, p.Z, p.Seed, 0), nearest, 1e-6)
+      << "at (" << p.X << ", " << p.Y << ", " << p.Z << "), seed " << p.Seed;
   }
 }
 

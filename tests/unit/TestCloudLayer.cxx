@@ -234,7 +234,7 @@ TEST(CloudLayer, HeightProfilesVanishOutsideTheLayerAndPeakAtOne)
 
 // Density is exactly 0 below the base and above the top (voxels that lie on them to rounding
 // are left out), and never above density_scale, for
-// every cloud type at full coverage.
+// every cloud type at full coverage without erosion.
 TEST(CloudLayer, DensityIsZeroOutsideTheLayerAndNeverAboveTheScale)
 {
   for (CloudType type :
@@ -243,6 +243,7 @@ TEST(CloudLayer, DensityIsZeroOutsideTheLayerAndNeverAboveTheScale)
     FieldDescription field = Cloudscape();
     field.Layer.Type = type;
     field.Layer.Coverage = 1.0;
+    field.Layer.Erosion = 0.0; // nothing eaten away: the most cloud the layer can hold
     field.Layer.Anvil = 1.0;
     field.DensityScale = 2.5;
     vtkNew<vtkCloudDensitySource> source;
