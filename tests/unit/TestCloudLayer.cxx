@@ -447,6 +447,36 @@ TEST(CloudLayer, AnInvalidLayerIsRefusedWithWords)
   EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), 0);
 }
 
+// The layer's noises are read on 32-bit lattices too (the baked volumes' texels, the weather
+// map's octaves): a field whose coordinates, divided by the noise scales, leave them is refused
+// rather than generated from overflowed cells (a 10,000 km field with millimetre noise). The fBm
+// parameters, which the cloud model does not use, do not refuse a large cloudscape.
+TEST(CloudLayer, CoordinatesBeyondTheNoiseLatticesAreRefusedAndOnlyThem)
+{
+  vtkNew<vtkCloudDensitySource> source;
+  source->SetField(Cloudscape());
+  source->SetDimensions(8, 8, 8);
+  source->SetBounds(0.0, 1e7, -1.0, 1.0, 0.0, 1e7);
+  source->SetCloudNoiseScales(1e-3, 1e-3);
+  EXPECT_NE(source->Validate().find("2^30"), std::string::npos) << source->Validate();
+  source->SetCloudNoiseScales(1.5, 1e-3);
+  EXPECT_NE(source->Validate().find("2^30"), std::string::npos) << "the detail's lattice";
+  source->SetCloudNoiseScales(1e-3, 0.6);
+  EXPECT_NE(source->Validate().find("2^30"), std::string::npos) << "the shape's lattice";
+  source->SetCloudNoiseScales(1e4, 1e4);
+  source->SetWeatherMap(1e-3, 6, 0.6);
+  EXPECT_NE(source->Validate().find("2^30"), std::string::npos) << "the weather map's lattice";
+  source->SetWeatherMap(1e5, 6, 0.6);
+  EXPECT_EQ(source->Validate(), "");
+
+  // A cloudscape 400,000 km wide with kilometre noise fits its lattices; the default fBm (whose
+  // highest octave, 83 cycles per unit, would not) plays no part in the cloud model.
+  source->SetBounds(0.0, 4e8, -1.0, 1.0, 0.0, 4e8);
+  EXPECT_EQ(source->Validate(), "");
+  source->SetDensityModelToSdfPlusFbm();
+  EXPECT_NE(source->Validate().find("2^30"), std::string::npos);
+}
+
 // A cloudscape generated in pieces (sub-extents, as MPI ranks and streaming request them) is the
 // whole field, bit for bit: the baked noises and the weather map depend on nothing but the seed.
 TEST(CloudLayer, PiecesEqualTheWhole)
