@@ -106,8 +106,11 @@ std::string ValidateFieldDescription(const FieldDescription& f)
 
 std::string ValidateNoiseRange(const FieldDescription& field, const double bounds[6], double time)
 {
-  const std::vector<noise::Octave> octaves = noise::OctaveSchedule(field.Noise);
-  if (octaves.empty())
+  // The cloud model samples the layer's own noises (CloudLayer.h), never the fBm.
+  const bool cloud = field.Model == DensityModel::Cloud;
+  const std::vector<noise::Octave> octaves =
+    cloud ? std::vector<noise::Octave>() : noise::OctaveSchedule(field.Noise);
+  if (!cloud && octaves.empty())
   {
     return {};
   }
@@ -123,12 +126,28 @@ std::string ValidateNoiseRange(const FieldDescription& field, const double bound
   {
     highest = std::max(highest, o.Frequency);
   }
+  if (cloud)
+  {
+    // Shear moves what lies above the base sideways, by up to |shear| x the layer's depth.
+    const CloudLayer& l = field.Layer;
+    farthest += std::max(std::abs(l.Shear[0]), std::abs(l.Shear[1])) * std::abs(l.Top - l.Base);
+    highest = CloudLatticeDensity(l);
+  }
   const double limit = 1073741824.0; // 2^30
   if (!(highest * farthest < limit))
   {
     std::ostringstream error;
-    error << "the noise's highest octave frequency (" << highest << ") times the farthest noise "
-          << "coordinate (" << farthest << ", bounds plus wind x time) must stay below 2^30";
+    if (cloud)
+    {
+      error << "the cloud layer's finest noise lattice (" << highest
+            << " cells per world unit, from its shape, detail and weather map scales)";
+    }
+    else
+    {
+      error << "the noise's highest octave frequency (" << highest << ")";
+    }
+    error << " times the farthest noise coordinate (" << farthest << ", bounds plus wind x time"
+          << (cloud ? " and shear" : "") << ") must stay below 2^30";
     return error.str();
   }
   return {};

@@ -59,6 +59,8 @@ CLOUDVISFILTERS_EXPORT std::string ValidateFieldDescription(const FieldDescripti
 
 // Empty when the noise lattice coordinates of every point of the bounds at this time fit the
 // evaluator's 32-bit lattice cells, else the problem: frequency x distance must stay below 2^30.
+// The frequencies are the fBm's octaves, or for the Cloud model its layer's noises
+// (CloudLatticeDensity), which do not use the fBm.
 CLOUDVISFILTERS_EXPORT std::string ValidateNoiseRange(
   const FieldDescription& field, const double bounds[6], double time);
 

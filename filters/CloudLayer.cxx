@@ -252,6 +252,17 @@ CloudNoiseVolumes BakeVolumes(std::uint32_t seed)
 }
 }
 
+double CloudLatticeDensity(const CloudLayer& layer)
+{
+  double density = std::max(double(ShapeTexels) / layer.ShapeScale,
+    double(std::max(DetailTexels, CurlTexels)) / layer.DetailScale);
+  if (layer.Source == CoverageSource::Noise)
+  {
+    density = std::max(density, std::ldexp(1.0, layer.MapOctaves - 1) / layer.MapScale);
+  }
+  return density;
+}
+
 std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(std::uint32_t seed)
 {
   // The last few seeds' volumes, so an animation or a field generated in pieces bakes once.

@@ -129,6 +129,11 @@ struct CloudNoiseVolumes
 };
 CLOUDVISFILTERS_EXPORT std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(std::uint32_t seed);
 
+// The most lattice cells per world unit that the layer's noises sample: the baked volumes' texels
+// per tile over their scales, and the procedural weather map's highest octave. A coordinate
+// times this must stay within the 32-bit lattice cells (ValidateNoiseRange).
+CLOUDVISFILTERS_EXPORT double CloudLatticeDensity(const CloudLayer& layer);
+
 // The 2-D Perlin fBm of the procedural weather map at (x, z) in world units, in [0, 1].
 CLOUDVISFILTERS_EXPORT float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z);
 

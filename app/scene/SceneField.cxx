@@ -4,6 +4,7 @@
 
 #include "Errors.h"
 #include "FieldIO.h"
+#include "InputFiles.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudDensitySource.h"
 
@@ -18,16 +19,28 @@ namespace cloudvis
 
 namespace
 {
-// field.cloud.coverage_map's file: an image VTK's image readers know (PNG, JPEG, TIFF, BMP, PNM),
-// else a field file of any format cloudvis reads, 2-D.
+// field.cloud.coverage_map's file: a field file of any format cloudvis reads (by its extension,
+// as field.file is read), else an image VTK's image readers know (PNG, JPEG, TIFF, BMP, PNM).
+// The field readers go first because VTK's image factory picks a reader by probing contents, and
+// its HDR reader claims some .vti files (XML with a comment), then fails with "Read error". The
+// file is checked first, so a missing file, a directory or a FIFO is reported as such, not as
+// an unsupported format.
 vtkSmartPointer<vtkImageData> ReadCoverageMap(const std::string& path)
 {
+  CheckRegularInputFile(path, "coverage map");
+  if (IsFieldFile(path))
+  {
+    return ReadField(path, FieldReadOptions{});
+  }
   VtkMessageCapture messages;
   vtkSmartPointer<vtkImageReader2> reader;
   reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
   if (!reader)
   {
-    return ReadField(path, FieldReadOptions{});
+    throw InputError(path +
+      ": coverage map: not an image VTK can read (PNG, JPEG, TIFF, BMP, "
+      "PNM) nor a field file (" +
+      FieldFileExtensions() + ")");
   }
   reader->SetFileName(path.c_str());
   reader->Update();
