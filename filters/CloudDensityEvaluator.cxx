@@ -276,6 +276,10 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
     const float d = this->SignedDistance(glm::vec3(leaned)) - spread;
     return static_cast<float>(l.Coverage) * Saturate(-d / width);
   }
+  if (l.Coverage <= 0.0)
+  {
+    return 0.0f; // (the threshold below would divide 0 by 0 where the map is 1)
+  }
   // The weather map drifts with the wind, like the noises.
   const glm::dvec3 q = leaned + this->NoiseOffset;
   const float map = l.Source == CoverageSource::Noise

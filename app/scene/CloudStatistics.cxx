@@ -461,7 +461,7 @@ void PrintCloudStatistics(std::ostream& out, const CloudStatistics& s)
     }
     const std::size_t stride = (cloudy.size() + 11) / 12;
     out << "cloud fraction per level (" << cloudy.size() << " levels from base to top"
-        << (stride > 1 ? ", every " + std::to_string(stride) + "th shown" : std::string()) << ")\n";
+        << (stride > 1 ? ", one in " + std::to_string(stride) + " shown" : std::string()) << ")\n";
     for (std::size_t i = 0; i < cloudy.size(); i += stride)
     {
       const std::size_t k = cloudy[i];
