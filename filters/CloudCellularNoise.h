@@ -19,6 +19,7 @@
 
 #include "CloudLatticeNoise.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -161,6 +162,13 @@ inline float InvertedWorleyFbm(
 inline float Remap(float v, float lo, float hi, float a, float b)
 {
   return a + (v - lo) / (hi - lo) * (b - a);
+}
+
+// v clamped to [0, 1]; NaN becomes 0 (std::max returns its first argument when they do not
+// compare).
+inline float Saturate(float v)
+{
+  return std::min(1.0f, std::max(0.0f, v));
 }
 
 // Perlin-Worley in [0, 1]: Perlin noise (mapped onto [0, 1]) remapped from [W - 1, 1] to [0, 1],

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace cloudvis
@@ -178,8 +179,12 @@ DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
       break;
     case DensityModel::FbmFalloff:
     case DensityModel::Constant:
-    case DensityModel::Cloud:
       this->Bound = 0.0;
+      break;
+    case DensityModel::Cloud:
+      // A weather map's clouds lie anywhere in the layer whatever the shapes, and an anvil
+      // spreads beyond them: no signed distance bounds the cloud.
+      this->Bound = std::numeric_limits<double>::infinity();
       break;
   }
 }
@@ -255,10 +260,7 @@ float DensityEvaluator::Combine(float signedDistance, float fbm) const
 
 namespace
 {
-float Saturate(float v)
-{
-  return std::min(1.0f, std::max(0.0f, v));
-}
+using noise::Saturate;
 }
 
 float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const

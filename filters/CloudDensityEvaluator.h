@@ -8,7 +8,8 @@
 //   Cloud       a cloud layer: coverage, height profile, shape noise eroded by detail noise
 //               (CloudLayer.h, where its equations are)
 // where falloff(d) = smoothstep(0, -FalloffWidth, d). Density is exactly 0 outside the bound:
-// for SdfPlusFbm where sdf >= the fBm bound, for the others where sdf >= 0.
+// for SdfPlusFbm where sdf >= the fBm bound, for FbmFalloff and Constant where sdf >= 0; the
+// Cloud model is bounded by its layer, not by the shapes.
 //
 // EvaluateRow is the fast path used by vtkCloudDensitySource: it computes the shape once per
 // voxel, skips noise where the density must be 0, and per octave shares the lattice work of a
@@ -90,7 +91,8 @@ public:
   void EvaluateRow(int firstIndex, int count, double originX, double spacingX, double y, double z,
     float* out, RowScratch& scratch) const;
 
-  // Signed distances beyond which the density is exactly 0.
+  // Signed distances beyond which the density is exactly 0 (infinity for the Cloud model, which
+  // the shapes do not bound).
   double DensityBound() const { return this->Bound; }
 
 private:

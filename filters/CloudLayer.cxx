@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <future>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -19,10 +21,7 @@ namespace cloudvis
 
 namespace
 {
-float Saturate(float v)
-{
-  return std::min(1.0f, std::max(0.0f, v));
-}
+using noise::Saturate;
 float SmoothStep(float edge0, float edge1, float v)
 {
   const float t = Saturate((v - edge0) / (edge1 - edge0));
@@ -55,43 +54,63 @@ float HeightProfile(CloudType type, float h)
 std::string ValidateCloudLayer(const CloudLayer& l)
 {
   std::ostringstream error;
-  const auto finite = [](double v) { return std::isfinite(v); };
+  // Each check names its parameter (as the scene's field.cloud keys and the source's setters do)
+  // and the value it got.
+  const auto require = [&error](bool ok, const char* what, double value, const char* allowed)
+  {
+    if (!ok && error.str().empty())
+    {
+      error << "cloud " << what << " must be " << allowed << ", got " << value;
+    }
+  };
   const auto unit = [](double v) { return v >= 0.0 && v <= 1.0; };
-  if (!finite(l.Base) || !finite(l.Top) || !(l.Base < l.Top))
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  require(std::isfinite(l.Base), "base", l.Base, "a finite number");
+  require(std::isfinite(l.Top), "top", l.Top, "a finite number");
+  if (error.str().empty() && !(l.Base < l.Top && std::isfinite(l.Top - l.Base)))
   {
-    error << "the cloud base (" << l.Base << ") must lie below the top (" << l.Top << ")";
+    error << "the cloud base (" << l.Base << ") must lie below the top (" << l.Top
+          << "), by a finite depth";
   }
-  else if (!unit(l.Coverage) || !unit(l.Erosion) || !unit(l.Curl) || !unit(l.Anvil))
+  require(unit(l.Coverage), "coverage", l.Coverage, "in [0, 1]");
+  require(unit(l.Erosion), "erosion", l.Erosion, "in [0, 1]");
+  require(unit(l.Curl), "curl", l.Curl, "in [0, 1]");
+  require(unit(l.Anvil), "anvil", l.Anvil, "in [0, 1]");
+  require(positive(l.MapScale), "map scale", l.MapScale, "a positive number");
+  require(positive(l.ShapeScale), "shape scale", l.ShapeScale, "a positive number");
+  require(positive(l.DetailScale), "detail scale", l.DetailScale, "a positive number");
+  require(l.MapOctaves >= 1 && l.MapOctaves <= noise::MaxOctaves,
+    "map octaves",
+    l.MapOctaves,
+    "between 1 and 12");
+  require(unit(l.MapGain), "map gain", l.MapGain, "in [0, 1]");
+  require(std::isfinite(l.Shear[0]), "shear x", l.Shear[0], "a finite number");
+  require(std::isfinite(l.Shear[1]), "shear z", l.Shear[1], "a finite number");
+  if (!error.str().empty() || l.Source != CoverageSource::Map)
   {
-    error << "coverage, erosion, curl and anvil must each lie in [0, 1]";
+    return error.str();
   }
-  else if (!(finite(l.MapScale) && l.MapScale > 0.0) ||
-    !(finite(l.ShapeScale) && l.ShapeScale > 0.0) ||
-    !(finite(l.DetailScale) && l.DetailScale > 0.0))
+  if (!l.Map)
   {
-    error << "the weather map, shape and detail scales must be positive numbers";
+    error << "the coverage comes from a map, but no map is set (SetCoverageMap, or a file as "
+             "field.cloud.coverage_map)";
   }
-  else if (l.MapOctaves < 1 || l.MapOctaves > noise::MaxOctaves || !finite(l.MapGain) ||
-    l.MapGain < 0.0 || l.MapGain > 1.0)
+  else if (l.Map->Width < 1 || l.Map->Height < 1 ||
+    l.Map->Values.size() != static_cast<size_t>(l.Map->Width) * l.Map->Height)
   {
-    error << "the weather map needs 1 to " << noise::MaxOctaves
-          << " octaves and a gain in [0, 1]";
+    error << "the coverage map holds " << l.Map->Values.size() << " values for " << l.Map->Width
+          << " x " << l.Map->Height << " points";
   }
-  else if (!finite(l.Shear[0]) || !finite(l.Shear[1]))
+  else
   {
-    error << "shear must be finite";
-  }
-  else if (l.Source == CoverageSource::Map &&
-    (!l.Map || l.Map->Width < 1 || l.Map->Height < 1 ||
-      l.Map->Values.size() != static_cast<size_t>(l.Map->Width) * l.Map->Height))
-  {
-    error << "a coverage map is needed (its values do not match its size)";
-  }
-  else if (l.Source == CoverageSource::Map &&
-    !std::all_of(l.Map->Values.begin(), l.Map->Values.end(),
-      [](float v) { return v >= 0.0f && v <= 1.0f; }))
-  {
-    error << "the coverage map's values must lie in [0, 1]";
+    const auto outside = std::find_if(l.Map->Values.begin(),
+      l.Map->Values.end(),
+      [](float v) { return !(v >= 0.0f && v <= 1.0f); });
+    if (outside != l.Map->Values.end())
+    {
+      error << "coverage map value " << *outside << " at point "
+            << (outside - l.Map->Values.begin()) << " is outside [0, 1]";
+    }
   }
   return error.str();
 }
@@ -265,22 +284,56 @@ double CloudLatticeDensity(const CloudLayer& layer)
 
 std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(std::uint32_t seed)
 {
-  // The last few seeds' volumes, so an animation or a field generated in pieces bakes once.
+  // The last few seeds' volumes, so an animation or a field generated in pieces bakes once. The
+  // bake runs outside the lock (it is parallel itself): a second caller of the same seed waits on
+  // the first one's future, callers of other seeds go on.
+  using Volumes = std::shared_ptr<const CloudNoiseVolumes>;
   static std::mutex mutex;
-  static std::map<std::uint32_t, std::shared_ptr<const CloudNoiseVolumes>> cache;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto found = cache.find(seed);
-  if (found != cache.end())
+  static std::map<std::uint32_t, std::shared_future<Volumes>> cache;
+  static std::deque<std::uint32_t> order; // oldest first
+  std::promise<Volumes> promise;
+  std::shared_future<Volumes> baking;
+  bool bakesHere = false;
   {
-    return found->second;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto found = cache.find(seed);
+    if (found != cache.end())
+    {
+      baking = found->second;
+    }
+    else
+    {
+      if (order.size() >= 4)
+      {
+        cache.erase(order.front());
+        order.pop_front();
+      }
+      baking = promise.get_future().share();
+      cache.emplace(seed, baking);
+      order.push_back(seed);
+      bakesHere = true;
+    }
   }
-  if (cache.size() >= 4)
+  if (!bakesHere)
   {
-    cache.erase(cache.begin());
+    return baking.get();
   }
-  auto volumes = std::make_shared<const CloudNoiseVolumes>(BakeVolumes(seed));
-  cache.emplace(seed, volumes);
-  return volumes;
+  try
+  {
+    auto volumes = std::make_shared<const CloudNoiseVolumes>(BakeVolumes(seed));
+    promise.set_value(volumes);
+    return volumes;
+  }
+  catch (...)
+  {
+    // A failed bake (out of memory) is not cached: waiting callers get the error, later ones
+    // try again.
+    promise.set_exception(std::current_exception());
+    std::lock_guard<std::mutex> lock(mutex);
+    cache.erase(seed);
+    order.erase(std::remove(order.begin(), order.end(), seed), order.end());
+    throw;
+  }
 }
 
 float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z)

@@ -97,7 +97,9 @@ struct CloudLayer
   double ShapeScale = 2.0;  // world length over which the shape noise repeats
   double DetailScale = 0.5; // and the detail noise
   double Erosion = 0.4;     // in [0, 1]: how deep the detail noise eats into the edges
-  double Curl = 0.0; // curl-noise distortion of the detail noise, in detail tiles (0 .. 1)
+  // Curl-noise turbulence of the detail noise, 0 .. 1: the detail is read at points displaced by
+  // 0.25 * Curl * (1 - h) detail tiles times the curl noise (whose components are of order 1 to 3).
+  double Curl = 0.0;
   double Anvil = 0.0; // cumulonimbus: how far the top spreads, 0 .. 1
   std::array<double, 2> Shear{ { 0.0, 0.0 } }; // x and z displacement per unit of height above base
 };

@@ -592,6 +592,18 @@ void vtkCloudDensitySource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DensityScale: " << this->Field.DensityScale << "\n";
   os << indent << "NoiseType: " << this->GetNoiseType() << "\n";
   os << indent << "Octaves: " << this->Field.Noise.Octaves << "\n";
+  os << indent << "NoisePeriod: " << this->Field.Noise.Period << "\n";
+  const cloudvis::CloudLayer& layer = this->Field.Layer;
+  os << indent << "CloudType: " << this->GetCloudType() << "\n";
+  os << indent << "CloudAltitudes: " << layer.Base << ", " << layer.Top << "\n";
+  os << indent << "CloudCoverage: " << layer.Coverage << " (source " << this->GetCoverageSource()
+     << (layer.Map ? ", a map is set" : "") << ")\n";
+  os << indent << "WeatherMap: " << layer.MapScale << ", " << layer.MapOctaves << ", "
+     << layer.MapGain << "\n";
+  os << indent << "CloudNoiseScales: " << layer.ShapeScale << ", " << layer.DetailScale << "\n";
+  os << indent << "CloudErosion: " << layer.Erosion << ", Curl: " << layer.Curl
+     << ", Anvil: " << layer.Anvil << ", Shear: " << layer.Shear[0] << ", " << layer.Shear[1]
+     << "\n";
   os << indent << "Time: " << this->Time << "\n";
   os << indent << "TimeRange: " << this->TimeRange[0] << ", " << this->TimeRange[1] << "\n";
   os << indent << "NumberOfTimeSteps: " << this->NumberOfTimeSteps << "\n";

@@ -190,6 +190,8 @@ PowerLawFit FitPowerLaw(const std::vector<double>& unsorted)
       fit.RangeMin = sMin;
       fit.RangeMax = s.back();
       fit.Count = n - first;
+      fit.Distance = distance;
+      fit.Consistent = distance < 1.36 / std::sqrt(m);
     }
   }
   if (!fit.Fitted)
@@ -399,7 +401,13 @@ void PrintFit(std::ostream& out,
   }
   out << what << " " << std::setprecision(4) << fit.Value << " +/- " << fit.StandardError
       << " over " << fit.Count << " clouds, " << range << " [" << fit.RangeMin << ", "
-      << fit.RangeMax << "]\n";
+      << fit.RangeMax << "]";
+  if (fit.Distance > 0.0)
+  {
+    out << ", KS distance " << std::setprecision(3) << fit.Distance
+        << (fit.Consistent ? " (consistent with the law)" : " (NOT consistent with the law)");
+  }
+  out << "\n";
 }
 
 std::string From(const std::string& from)
@@ -515,11 +523,17 @@ nlohmann::json FitToJson(const PowerLawFit& fit, const char* value)
   {
     return { { "fitted", false }, { "problem", fit.Problem }, { "count", fit.Count } };
   }
-  return { { "fitted", true },
+  nlohmann::json json = { { "fitted", true },
     { value, fit.Value },
     { "standard_error", fit.StandardError },
     { "range", { fit.RangeMin, fit.RangeMax } },
     { "count", fit.Count } };
+  if (fit.Distance > 0.0)
+  {
+    json["ks_distance"] = fit.Distance;
+    json["consistent"] = fit.Consistent;
+  }
+  return json;
 }
 
 } // namespace

@@ -388,15 +388,22 @@ TEST(CloudLayer, AnInvalidLayerIsRefusedWithWords)
     std::string::npos);
   EXPECT_NE(problemOf([](CloudLayer& l) { l.Base = 2.0; }).find("must lie below the top (1)"),
     std::string::npos);
-  for (auto change : { +[](CloudLayer& l) { l.Coverage = 1.01; },
-         +[](CloudLayer& l) { l.Coverage = -0.1; },
-         +[](CloudLayer& l) { l.Erosion = 2.0; } })
-  {
-    EXPECT_NE(problemOf(change).find("coverage, erosion, curl and anvil must each lie in [0, 1]"),
-      std::string::npos);
-  }
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.Coverage = 1.01; })
+              .find("cloud coverage must be in [0, 1], got 1.01"),
+    std::string::npos);
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.Coverage = -0.1; })
+              .find("cloud coverage must be in [0, 1], got -0.1"),
+    std::string::npos);
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.Erosion = 2.0; })
+              .find("cloud erosion must be in [0, 1], got 2"),
+    std::string::npos);
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.Anvil = 1.5; }).find("cloud anvil must be in [0, 1]"),
+    std::string::npos);
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.DetailScale = 0.0; })
+              .find("cloud detail scale must be a positive number, got 0"),
+    std::string::npos);
   EXPECT_NE(problemOf([](CloudLayer& l) { l.Source = CoverageSource::Map; })
-              .find("a coverage map is needed"),
+              .find("the coverage comes from a map, but no map is set"),
     std::string::npos);
   EXPECT_NE(problemOf(
               [](CloudLayer& l)
@@ -407,7 +414,7 @@ TEST(CloudLayer, AnInvalidLayerIsRefusedWithWords)
                 l.Source = CoverageSource::Map;
                 l.Map = map;
               })
-              .find("the coverage map's values must lie in [0, 1]"),
+              .find("coverage map value 1.5 at point 2 is outside [0, 1]"),
     std::string::npos);
 
   // Images: a value outside [0, 1] (or NaN) and a 3-D image are refused, naming the problem.

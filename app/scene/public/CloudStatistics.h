@@ -52,6 +52,11 @@ struct PowerLawFit
   double StandardError = 0.0;
   double RangeMin = 0.0, RangeMax = 0.0; // sizes (areas) the fit covers
   std::uint64_t Count = 0;               // clouds in the fit
+  // FitPowerLaw only: the Kolmogorov-Smirnov distance between the fitted law and the sizes it
+  // covers, and whether it is below 1.36 / sqrt(Count), the 5% critical value of the KS test (an
+  // approximation: the exponent was fitted to the same sizes, so the true test is stricter).
+  double Distance = 0.0;
+  bool Consistent = false;
 };
 
 // Clouds smaller than this (pixels) are left out of both fits: their pixel-edge perimeters and
