@@ -40,8 +40,11 @@ inline std::int32_t WrapCell(std::int32_t cell, std::int32_t period)
   return m < 0 ? m + period : m;
 }
 
-inline std::uint32_t TiledHash(
-  std::int32_t ix, std::int32_t iy, std::int32_t iz, std::uint32_t seed, std::int32_t period)
+inline std::uint32_t TiledHash(std::int32_t ix,
+  std::int32_t iy,
+  std::int32_t iz,
+  std::uint32_t seed,
+  std::int32_t period)
 {
   return Hash(WrapCell(ix, period), WrapCell(iy, period), WrapCell(iz, period), seed);
 }
@@ -143,16 +146,19 @@ inline float TiledPerlin(double x, double y, double z, std::uint32_t seed, std::
 
 // Inverted Worley fBm in [0, 1]: 1 - F1 at lattice frequencies 1, 2 and 4 (periods P, 2P, 4P)
 // weighted 0.625, 0.25 and 0.125, as in Schneider's cloud noise. Each octave has its own seed.
-inline float InvertedWorleyFbm(
-  double x, double y, double z, std::uint32_t seed, std::int32_t period)
+inline float InvertedWorleyFbm(double x,
+  double y,
+  double z,
+  std::uint32_t seed,
+  std::int32_t period)
 {
   constexpr float weights[3] = { 0.625f, 0.25f, 0.125f };
   float sum = 0.0f;
   for (int o = 0; o < 3; ++o)
   {
     const double f = static_cast<double>(1 << o);
-    const float f1 = WorleyF1(x * f, y * f, z * f, seed + 0x68E31DA4u * static_cast<std::uint32_t>(o),
-      period * (1 << o));
+    const float f1 = WorleyF1(
+      x * f, y * f, z * f, seed + 0x68E31DA4u * static_cast<std::uint32_t>(o), period * (1 << o));
     sum += weights[o] * (1.0f - std::min(1.0f, f1));
   }
   return sum;
@@ -184,8 +190,11 @@ inline float PerlinWorley(double x, double y, double z, std::uint32_t seed, std:
 // Curl noise: the curl of the potential (Perlin_s, Perlin_s+1, Perlin_s+2) at (x, y, z), by central
 // differences of half-width Step lattice units. A divergence-free field (to the differences'
 // accuracy) whose components are of order 1..3.
-inline std::array<float, 3> CurlNoise(
-  double x, double y, double z, std::uint32_t seed, std::int32_t period)
+inline std::array<float, 3> CurlNoise(double x,
+  double y,
+  double z,
+  std::uint32_t seed,
+  std::int32_t period)
 {
   constexpr double step = 1.0 / 64.0;
   const auto psi = [&](int c, double px, double py, double pz)
@@ -194,8 +203,7 @@ inline std::array<float, 3> CurlNoise(
   {
     const double e[3] = { axis == 0 ? step : 0.0, axis == 1 ? step : 0.0, axis == 2 ? step : 0.0 };
     return static_cast<float>(
-      (psi(c, x + e[0], y + e[1], z + e[2]) - psi(c, x - e[0], y - e[1], z - e[2])) /
-      (2.0 * step));
+      (psi(c, x + e[0], y + e[1], z + e[2]) - psi(c, x - e[0], y - e[1], z - e[2])) / (2.0 * step));
   };
   return { d(2, 1) - d(1, 2), d(0, 2) - d(2, 0), d(1, 0) - d(0, 1) };
 }

@@ -215,8 +215,12 @@ float DensityEvaluator::Fbm(glm::dvec3 p) const
   for (const noise::Octave& o : this->Octaves)
   {
     sum += o.Amplitude *
-      noise::Evaluate(this->Field.Noise.Type, q.x * o.Frequency, q.y * o.Frequency,
-        q.z * o.Frequency, o.Seed, o.Period);
+      noise::Evaluate(this->Field.Noise.Type,
+        q.x * o.Frequency,
+        q.y * o.Frequency,
+        q.z * o.Frequency,
+        o.Seed,
+        o.Period);
   }
   return sum;
 }
@@ -323,8 +327,8 @@ float DensityEvaluator::CloudDensity(glm::dvec3 p) const
   if (l.Curl > 0.0)
   {
     // Turbulence under the cloud, fading with height: the detail is read at displaced points.
-    const glm::dvec3 curl(volumes.Curl[0].Sample(u), volumes.Curl[1].Sample(u),
-      volumes.Curl[2].Sample(u));
+    const glm::dvec3 curl(
+      volumes.Curl[0].Sample(u), volumes.Curl[1].Sample(u), volumes.Curl[2].Sample(u));
     u += curl * (0.25 * l.Curl * (1.0 - h));
   }
   const float detail = volumes.Detail.Sample(u);

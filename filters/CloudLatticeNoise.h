@@ -20,7 +20,6 @@ namespace cloudvis
 namespace noise
 {
 
-
 inline std::uint32_t RotateLeft(std::uint32_t x, int r)
 {
   return (x << r) | (x >> (32 - r));
@@ -84,9 +83,22 @@ struct Gradient
 inline const Gradient& GradientOf(std::uint32_t h)
 {
   constexpr float s = 0.70710678f;
-  static const Gradient table[16] = { { s, s, 0 }, { -s, s, 0 }, { s, -s, 0 }, { -s, -s, 0 },
-    { s, 0, s }, { -s, 0, s }, { s, 0, -s }, { -s, 0, -s }, { 0, s, s }, { 0, -s, s },
-    { 0, s, -s }, { 0, -s, -s }, { s, s, 0 }, { -s, s, 0 }, { 0, -s, s }, { 0, -s, -s } };
+  static const Gradient table[16] = { { s, s, 0 },
+    { -s, s, 0 },
+    { s, -s, 0 },
+    { -s, -s, 0 },
+    { s, 0, s },
+    { -s, 0, s },
+    { s, 0, -s },
+    { -s, 0, -s },
+    { 0, s, s },
+    { 0, -s, s },
+    { 0, s, -s },
+    { 0, -s, -s },
+    { s, s, 0 },
+    { -s, s, 0 },
+    { 0, -s, s },
+    { 0, -s, -s } };
   return table[h >> 28];
 }
 // With unit gradients 3D gradient noise stays within +-sqrt(3)/2; this maps it onto [-1, 1].
@@ -118,8 +130,13 @@ struct RowCorners
 inline RowCorners CornersOfRow(double y, double z, std::uint32_t seed, float (*fade)(float))
 {
   const LatticeCoordinate ly = Split(y), lz = Split(z);
-  return { ly, lz, fade(ly.Fraction), fade(lz.Fraction), HashYZ(ly.Cell, lz.Cell, seed),
-    HashYZ(ly.Cell + 1, lz.Cell, seed), HashYZ(ly.Cell, lz.Cell + 1, seed),
+  return { ly,
+    lz,
+    fade(ly.Fraction),
+    fade(lz.Fraction),
+    HashYZ(ly.Cell, lz.Cell, seed),
+    HashYZ(ly.Cell + 1, lz.Cell, seed),
+    HashYZ(ly.Cell, lz.Cell + 1, seed),
     HashYZ(ly.Cell + 1, lz.Cell + 1, seed) };
 }
 
@@ -167,7 +184,6 @@ inline float PerlinAlongX(const PerlinColumnTerms& c0, const PerlinColumnTerms& 
   const float n1 = c1.Offset + c1.Slope * (fx - 1.0f);
   const float n = Lerp(n0, n1, FadeQuintic(fx)) * PerlinScale;
   return std::min(1.0f, std::max(-1.0f, n)); // branch-free: minss / maxss
-
 }
 
 // Point evaluations in lattice coordinates; each returns a value in [-1, 1].

@@ -175,8 +175,8 @@ std::shared_ptr<const CoverageMap> CoverageMapOfImage(vtkImageData* image, std::
     const double v = scalars->GetComponent(i, 0) / divisor;
     if (!(v >= 0.0 && v <= 1.0))
     {
-      problem = "coverage map value " + std::to_string(scalars->GetComponent(i, 0)) +
-        " at point " + std::to_string(i) + " is outside [0, 1]";
+      problem = "coverage map value " + std::to_string(scalars->GetComponent(i, 0)) + " at point " +
+        std::to_string(i) + " is outside [0, 1]";
       return nullptr;
     }
     map->Values[static_cast<size_t>(i)] = static_cast<float>(v);
@@ -218,7 +218,8 @@ TiledVolume Bake(int size, F f)
   TiledVolume volume;
   volume.Size = size;
   volume.Texels.resize(static_cast<size_t>(size) * size * size);
-  vtkSMPTools::For(0, size * size,
+  vtkSMPTools::For(0,
+    size * size,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType row = begin; row < end; ++row)

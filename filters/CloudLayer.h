@@ -75,14 +75,14 @@ struct CoverageMap
 // type's maximum (an 8-bit image's 255 is coverage 1); floating-point values must lie in [0, 1].
 // Null, with the problem in `problem`, for an image that is not 2-D, has no scalars, or holds a
 // value outside [0, 1] or NaN.
-CLOUDVISFILTERS_EXPORT std::shared_ptr<const CoverageMap> CoverageMapOfImage(
-  vtkImageData* image, std::string& problem);
+CLOUDVISFILTERS_EXPORT std::shared_ptr<const CoverageMap> CoverageMapOfImage(vtkImageData* image,
+  std::string& problem);
 
 struct CloudLayer
 {
   CloudType Type = CloudType::Cumulus;
-  double Base = -1.0; // altitude (y, world units) of the cloud base
-  double Top = 1.0;   // and of the top; Base < Top
+  double Base = -1.0;    // altitude (y, world units) of the cloud base
+  double Top = 1.0;      // and of the top; Base < Top
   double Coverage = 0.6; // in [0, 1]
   CoverageSource Source = CoverageSource::Shapes;
   std::shared_ptr<const CoverageMap> Map; // Source == Map
@@ -100,7 +100,7 @@ struct CloudLayer
   // Curl-noise turbulence of the detail noise, 0 .. 1: the detail is read at points displaced by
   // 0.25 * Curl * (1 - h) detail tiles times the curl noise (whose components are of order 1 to 3).
   double Curl = 0.0;
-  double Anvil = 0.0; // cumulonimbus: how far the top spreads, 0 .. 1
+  double Anvil = 0.0;                          // cumulonimbus: how far the top spreads, 0 .. 1
   std::array<double, 2> Shear{ { 0.0, 0.0 } }; // x and z displacement per unit of height above base
 };
 
@@ -137,7 +137,10 @@ CLOUDVISFILTERS_EXPORT std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(s
 CLOUDVISFILTERS_EXPORT double CloudLatticeDensity(const CloudLayer& layer);
 
 // The 2-D Perlin fBm of the procedural weather map at (x, z) in world units, in [0, 1].
-CLOUDVISFILTERS_EXPORT float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z);
+CLOUDVISFILTERS_EXPORT float WeatherNoise(const CloudLayer& layer,
+  std::uint32_t seed,
+  double x,
+  double z);
 
 } // namespace cloudvis
 

@@ -17,11 +17,11 @@ namespace noise
 
 enum class NoiseType
 {
-  None,   // no noise: fBm is 0
-  White,  // an independent random value per lattice cell, no interpolation
-  Value,  // random values on the lattice, interpolated with the cubic f*f*(3-2f)
-  Perlin, // random gradients on the lattice, quintic interpolation (improved Perlin noise)
-  Worley, // F1 cellular noise: 2 F1 - 1, dark at the feature points
+  None,           // no noise: fBm is 0
+  White,          // an independent random value per lattice cell, no interpolation
+  Value,          // random values on the lattice, interpolated with the cubic f*f*(3-2f)
+  Perlin,         // random gradients on the lattice, quintic interpolation (improved Perlin noise)
+  Worley,         // F1 cellular noise: 2 F1 - 1, dark at the feature points
   InvertedWorley, // 1 - 2 F1: round puffs around the feature points
   PerlinWorley,   // Perlin remapped by an inverted Worley fBm (CloudCellularNoise.h)
 };
@@ -36,8 +36,12 @@ inline bool IsCellular(NoiseType type)
 
 // One noise at lattice coordinates (x, y, z), in [-1, 1]; it repeats every `period` lattice units
 // when period > 0 (CloudCellularNoise.h).
-inline float Evaluate(
-  NoiseType type, double x, double y, double z, std::uint32_t seed, std::int32_t period = 0)
+inline float Evaluate(NoiseType type,
+  double x,
+  double y,
+  double z,
+  std::uint32_t seed,
+  std::int32_t period = 0)
 {
   switch (type)
   {
@@ -108,7 +112,8 @@ inline std::vector<Octave> OctaveSchedule(const FbmParameters& p)
   for (int o = 0; o < p.Octaves; ++o)
   {
     // Each octave gets its own lattice so octaves never line up.
-    octaves.push_back({ frequency, static_cast<float>(amplitude),
+    octaves.push_back({ frequency,
+      static_cast<float>(amplitude),
       p.Seed * 0x9E3779B1u + static_cast<std::uint32_t>(o) * 0x85EBCA77u,
       static_cast<std::int32_t>(std::min(period, MaxPeriod)) });
     const double factor = p.Lacunarity + o * p.LacunarityIncrement;

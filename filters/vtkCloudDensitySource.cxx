@@ -34,8 +34,7 @@ static_assert(
 static_assert(
   static_cast<int>(cloudvis::ShapeBlend::SmoothUnion) == vtkCloudDensitySource::SmoothUnionBlend,
   "vtkCloudDensitySource::ShapeBlends follows cloudvis::ShapeBlend");
-static_assert(
-  static_cast<int>(cloudvis::noise::NoiseType::PerlinWorley) ==
+static_assert(static_cast<int>(cloudvis::noise::NoiseType::PerlinWorley) ==
     vtkCloudDensitySource::PerlinWorleyNoise,
   "vtkCloudDensitySource::NoiseTypes follows cloudvis::noise::NoiseType");
 static_assert(static_cast<int>(cloudvis::DensityModel::Cloud) == vtkCloudDensitySource::CloudModel,
@@ -43,8 +42,7 @@ static_assert(static_cast<int>(cloudvis::DensityModel::Cloud) == vtkCloudDensity
 static_assert(
   static_cast<int>(cloudvis::CloudType::Cumulonimbus) == vtkCloudDensitySource::Cumulonimbus,
   "vtkCloudDensitySource::CloudTypes follows cloudvis::CloudType");
-static_assert(
-  static_cast<int>(cloudvis::CoverageSource::Map) == vtkCloudDensitySource::MapCoverage,
+static_assert(static_cast<int>(cloudvis::CoverageSource::Map) == vtkCloudDensitySource::MapCoverage,
   "vtkCloudDensitySource::CoverageSources follows cloudvis::CoverageSource");
 
 template<typename T>

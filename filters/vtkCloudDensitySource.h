@@ -176,22 +176,23 @@ public:
 
   enum NoiseTypes
   {
-    NoNoise = 0,     // fBm is 0
-    WhiteNoise = 1,  // an independent random value per lattice cell
-    ValueNoise = 2,  // random lattice values, cubic interpolation
-    PerlinNoise = 3, // random lattice gradients, quintic interpolation
-    WorleyNoise = 4, // F1 cellular noise, 2 F1 - 1
+    NoNoise = 0,             // fBm is 0
+    WhiteNoise = 1,          // an independent random value per lattice cell
+    ValueNoise = 2,          // random lattice values, cubic interpolation
+    PerlinNoise = 3,         // random lattice gradients, quintic interpolation
+    WorleyNoise = 4,         // F1 cellular noise, 2 F1 - 1
     InvertedWorleyNoise = 5, // 1 - 2 F1: puffs around the feature points
     PerlinWorleyNoise = 6,   // Perlin remapped by an inverted Worley fBm
   };
 
   ///@{
   /**
-   * The fBm noise: its type (one of NoiseTypes), number of octaves (1 to 12), base frequency (cycles per world unit, > 0), lacunarity (the frequency factor
-   * between octaves) and its growth per octave, gain (the amplitude factor between octaves),
-   * first amplitude and seed. Octave o samples frequency f_o, f_0 = frequency,
-   * f_{o+1} = f_o * (lacunarity + o * increment), with amplitude amplitude * gain^o. Defaults:
-   * ValueNoise, 6 octaves, 1, 2.02, 0.21, 0.5, 0.5 and seed 0.
+   * The fBm noise: its type (one of NoiseTypes), number of octaves (1 to 12), base frequency
+   * (cycles per world unit, > 0), lacunarity (the frequency factor between octaves) and its growth
+   * per octave, gain (the amplitude factor between octaves), first amplitude and seed. Octave o
+   * samples frequency f_o, f_0 = frequency, f_{o+1} = f_o * (lacunarity + o * increment), with
+   * amplitude amplitude * gain^o. Defaults: ValueNoise, 6 octaves, 1, 2.02, 0.21, 0.5, 0.5 and seed
+   * 0.
    */
   void SetNoiseType(int type);
   int GetNoiseType() const;

@@ -805,7 +805,8 @@ void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& rep
     file.Text(*coordinate, "units").empty();
   if (positive == "down" || !height)
   {
-    report.Add("up", "not declared: the vertical axis is not a height (units \"" +
+    report.Add("up",
+      "not declared: the vertical axis is not a height (units \"" +
         (coordinate ? file.Text(*coordinate, "units") : std::string()) + "\", positive \"" +
         positive + "\"); field.up says which axis is up");
     return;

@@ -879,7 +879,8 @@ const Keys<FieldSpec>& GeneratedFieldKeys()
       IntegerIn(0, noise::MaxPeriod),
       Nested(&F::Description, &D::Noise, &N::Period),
       "lattice cells of the first octave after which the noise repeats (0: never); needs a "
-      "whole-number `lacunarity` and `lacunarity_increment` 0; see [Noise and fBm](#noise-and-fbm)" },
+      "whole-number `lacunarity` and `lacunarity_increment` 0; see [Noise and "
+      "fBm](#noise-and-fbm)" },
     { "wind",
       NumbersIn(3, AnyNumber),
       Nested(&F::Description, &D::Wind),

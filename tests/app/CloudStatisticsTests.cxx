@@ -6,7 +6,7 @@
 #include "CloudStatistics.h"
 #include "Errors.h"
 #include "FieldIO.h"
-#include "FieldTestFiles.h" // RunTool
+#include "FieldTestFiles.h"  // RunTool
 #include "OffscreenRender.h" // MakeVolumeProperty
 #include "RendererTestSupport.h"
 #include "Scene.h"
@@ -42,8 +42,12 @@ using json = nlohmann::json;
 // A field of dims (horizontal a, horizontal b, levels) laid out with `up` as the vertical index
 // axis: value(ia, ib, level) at each voxel, spacing h horizontally and dz vertically, the lowest
 // level at height z0.
-vtkSmartPointer<vtkImageData> LayeredField(int up, std::array<int, 3> dims, double h, double dz,
-  double z0, const std::function<float(int, int, int)>& value)
+vtkSmartPointer<vtkImageData> LayeredField(int up,
+  std::array<int, 3> dims,
+  double h,
+  double dz,
+  double z0,
+  const std::function<float(int, int, int)>& value)
 {
   const int a = up == 0 ? 1 : 0, b = up == 2 ? 1 : 2;
   int size[3];
@@ -200,8 +204,8 @@ void FillDisc(Mask& mask, double cx, double cy, double r)
 
 // Replaces each segment of a closed polygon by the generator's segments (each a step along the
 // segment d and its left normal n, in units of the segment's length).
-std::vector<glm::dvec2> Refine(
-  const std::vector<glm::dvec2>& polygon, const std::vector<glm::dvec2>& generator)
+std::vector<glm::dvec2> Refine(const std::vector<glm::dvec2>& polygon,
+  const std::vector<glm::dvec2>& generator)
 {
   std::vector<glm::dvec2> out;
   for (size_t i = 0; i < polygon.size(); ++i)
@@ -225,11 +229,13 @@ std::vector<glm::dvec2> Refine(
 std::vector<glm::dvec2> QuadraticKoch(int k, double x, double y)
 {
   const double side = std::pow(4.0, k);
-  std::vector<glm::dvec2> polygon{ { x, y }, { x + side, y }, { x + side, y + side },
-    { x, y + side } };
+  std::vector<glm::dvec2> polygon{
+    { x, y }, { x + side, y }, { x + side, y + side }, { x, y + side }
+  };
   const double q = 0.25;
-  const std::vector<glm::dvec2> generator{ { q, 0 }, { 0, q }, { q, 0 }, { 0, -q }, { 0, -q },
-    { q, 0 }, { 0, q }, { q, 0 } };
+  const std::vector<glm::dvec2> generator{
+    { q, 0 }, { 0, q }, { q, 0 }, { 0, -q }, { 0, -q }, { q, 0 }, { 0, q }, { q, 0 }
+  };
   for (int i = 0; i < k; ++i)
   {
     polygon = Refine(polygon, generator);
@@ -242,8 +248,9 @@ std::vector<glm::dvec2> QuadraticKoch(int k, double x, double y)
 std::vector<glm::dvec2> KochSnowflake(double side, double cx, double cy)
 {
   const double h = side * std::sqrt(3.0) / 2.0;
-  std::vector<glm::dvec2> polygon{ { cx - side / 2, cy - h / 3 }, { cx, cy + 2 * h / 3 },
-    { cx + side / 2, cy - h / 3 } }; // clockwise: the left normals point outward
+  std::vector<glm::dvec2> polygon{
+    { cx - side / 2, cy - h / 3 }, { cx, cy + 2 * h / 3 }, { cx + side / 2, cy - h / 3 }
+  }; // clockwise: the left normals point outward
   const double t = 1.0 / 3.0, s = std::sqrt(3.0) / 6.0;
   const std::vector<glm::dvec2> generator{ { t, 0 }, { t / 2, s }, { t / 2, -s }, { t, 0 } };
   for (double segment = side; segment > 0.25; segment /= 3.0)
@@ -459,8 +466,8 @@ cloudvis::Scene DropletScene(const json& field, const json& transfer = json::obj
 {
   json tf = { { "extinction", "droplets" }, { "lwc_max", 2.0 } };
   tf.update(transfer);
-  return cloudvis::SceneFromDocument({ { "field", field }, { "transfer_function", tf } },
-    "droplets.json", "");
+  return cloudvis::SceneFromDocument(
+    { { "field", field }, { "transfer_function", tf } }, "droplets.json", "");
 }
 
 cloudvis::TransferTable TableOf(const cloudvis::Scene& scene)
@@ -562,13 +569,18 @@ TEST(Droplets, GpuRenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
   cloudvis::support::TemporaryDirectory dir;
   const json scene = {
     { "field",
-      { { "dimensions", 9 }, { "bounds", { 0, 0.05, 0, 0.05, 0, 0.05 } },
-        { "density_model", "constant" }, { "density_scale", 0.4 },
-        { "shape", { { "type", "box" }, { "half_size", { 1, 1, 1 } } } }, { "noise", "none" },
-        { "quantity", "lwc" }, { "length_unit", "km" } } },
+      { { "dimensions", 9 },
+        { "bounds", { 0, 0.05, 0, 0.05, 0, 0.05 } },
+        { "density_model", "constant" },
+        { "density_scale", 0.4 },
+        { "shape", { { "type", "box" }, { "half_size", { 1, 1, 1 } } } },
+        { "noise", "none" },
+        { "quantity", "lwc" },
+        { "length_unit", "km" } } },
     { "transfer_function", { { "extinction", "droplets" }, { "lwc_max", 1 } } },
     { "camera",
-      { { "position", { 0.025, 0.025, 2 } }, { "focal_point", { 0.025, 0.025, 0.025 } },
+      { { "position", { 0.025, 0.025, 2 } },
+        { "focal_point", { 0.025, 0.025, 0.025 } },
         { "view_angle", 1 } } },
     { "render", { { "size", { 32, 32 } }, { "lighting", "none" } } },
   };
@@ -584,13 +596,15 @@ TEST(Droplets, GpuRenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
 
 // A 2 x 2 x 3 NetCDF file (z, y, x) made by ncgen: the variable `ql` with `units`, coordinates in
 // `axisUnits` with a CF Z axis `positive` as given.
-std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir, const std::string& units,
-  const std::string& axisUnits, const std::string& positive = "up")
+std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir,
+  const std::string& units,
+  const std::string& axisUnits,
+  const std::string& positive = "up")
 {
   const std::string cdl = "netcdf lwc {\ndimensions: z = 2 ; y = 2 ; x = 3 ;\nvariables:\n"
-                          "  double z(z) ; z:axis = \"Z\" ; z:units = \"" + axisUnits +
-    "\" ; z:positive = \"" + positive + "\" ;\n  double y(y) ; y:units = \"" + axisUnits +
-    "\" ;\n  double x(x) ; x:units = \"" + axisUnits +
+                          "  double z(z) ; z:axis = \"Z\" ; z:units = \"" +
+    axisUnits + "\" ; z:positive = \"" + positive + "\" ;\n  double y(y) ; y:units = \"" +
+    axisUnits + "\" ;\n  double x(x) ; x:units = \"" + axisUnits +
     "\" ;\n  float ql(z, y, x) ; ql:units = \"" + units +
     "\" ;\ndata:\n  z = 0, 1 ; y = 0, 1 ; x = 0, 1, 2 ;\n"
     "  ql = 0, 0.0005, 0.001, 0, 0, 0, 0, 0, 0, 0, 0, 0.002 ;\n}\n";
@@ -612,8 +626,9 @@ TEST(NetCdfUnits, KilogramsPerCubicMetreOnKilometresWithAZAxis)
   field->GetPointData()->GetScalars()->GetRange(range);
   EXPECT_FLOAT_EQ(float(range[1]), 2.0f) << "0.002 kg/m^3 is 2 g/m^3";
   // The scene's keys win, and the report says what the file said.
-  const json info = json::parse(cloudvis::support::RunCloudvis({ "info", dir.File("lwc.nc"),
-    "--set", "field.up=y", "--json" }).Out);
+  const json info = json::parse(
+    cloudvis::support::RunCloudvis({ "info", dir.File("lwc.nc"), "--set", "field.up=y", "--json" })
+      .Out);
   EXPECT_EQ(info["units"]["quantity"], "lwc");
   EXPECT_EQ(info["units"]["from"]["quantity"], "file");
   EXPECT_EQ(info["units"]["length_unit"], "km");
@@ -630,8 +645,8 @@ TEST(NetCdfUnits, MixingRatioIsNotALiquidWaterContent)
   EXPECT_FALSE(report.Units.Quantity.has_value());
   EXPECT_EQ(report.Units.Length, LengthUnit::Metre);
   EXPECT_FALSE(report.Units.Up.has_value()) << "positive down is not a height";
-  EXPECT_NE(cloudvis::test::Detail(report, "quantity").find("is a mixing ratio"),
-    std::string::npos);
+  EXPECT_NE(
+    cloudvis::test::Detail(report, "quantity").find("is a mixing ratio"), std::string::npos);
   double range[2];
   field->GetPointData()->GetScalars()->GetRange(range);
   EXPECT_FLOAT_EQ(float(range[1]), 0.002f);
@@ -683,8 +698,9 @@ TEST(VdbUnits, UnknownDeclarationsAreRefused)
     [](openvdb::GridBase& grid) { grid.insertMeta("length_unit", openvdb::StringMetadata("ft")); });
   const auto result = cloudvis::support::RunCloudvis({ "info", path });
   EXPECT_NE(result.Status, 0);
-  EXPECT_NE(result.Err.find(path + ": grid \"ql\": metadata \"length_unit\" must be one of the "
-                                   "strings \"none\", \"m\", \"km\", got \"ft\""),
+  EXPECT_NE(result.Err.find(path +
+              ": grid \"ql\": metadata \"length_unit\" must be one of the "
+              "strings \"none\", \"m\", \"km\", got \"ft\""),
     std::string::npos)
     << result.Err;
   const std::string radius = VdbFile(dir,
@@ -702,15 +718,20 @@ TEST(Info, ReportsUnitsAndCloudStatistics)
   cloudvis::support::TemporaryDirectory dir;
   const std::string path = dir.File("slab.vti");
   cloudvis::WriteField(LayeredField(2, { 10, 8, 6 }, 100.0, 50.0, 1000.0, Slab), path);
-  const std::vector<std::string> units = { "--set", "field.quantity=lwc", "--set",
-    "field.length_unit=m", "--set", "field.up=z" };
+  const std::vector<std::string> units = {
+    "--set", "field.quantity=lwc", "--set", "field.length_unit=m", "--set", "field.up=z"
+  };
   std::vector<std::string> arguments = { "info", path };
   arguments.insert(arguments.end(), units.begin(), units.end());
   const std::string text = cloudvis::support::RunCloudvis(arguments).Out;
   for (const char* line : { "quantity     lwc (liquid water content, g/m^3) (scene)",
-         "length unit  m (scene)", "up           z (scene)", "cloud mask   value > 0.01 g/m^3",
-         "cloud cover  50% projected along z (40 of 80 columns)", "cloud base   1100 (1100 m)",
-         "cloud top    1150 (1150 m)", "LWP          mean 26, over cloudy columns 50.8 g/m^2",
+         "length unit  m (scene)",
+         "up           z (scene)",
+         "cloud mask   value > 0.01 g/m^3",
+         "cloud cover  50% projected along z (40 of 80 columns)",
+         "cloud base   1100 (1100 m)",
+         "cloud top    1150 (1150 m)",
+         "LWP          mean 26, over cloudy columns 50.8 g/m^2",
          "clouds       1 in the projected mask (4-connected), 1 touching its border" })
   {
     EXPECT_NE(text.find(line), std::string::npos) << line << "\nin:\n" << text;
@@ -735,8 +756,13 @@ TEST(Info, ReportsUnitsAndCloudStatistics)
   EXPECT_EQ(clouds["clouds"], 1);
   EXPECT_EQ(clouds["size_distribution"]["fitted"], false);
   EXPECT_EQ(clouds["fractal_dimension"]["fitted"], false);
-  for (const char* key : { "connectivity", "columns", "cloudy_columns", "cloud_top",
-         "mean_cloudy_path", "clouds_touching_edge", "size_histogram" })
+  for (const char* key : { "connectivity",
+         "columns",
+         "cloudy_columns",
+         "cloud_top",
+         "mean_cloudy_path",
+         "clouds_touching_edge",
+         "size_histogram" })
   {
     EXPECT_TRUE(clouds.contains(key)) << key;
   }
@@ -744,8 +770,8 @@ TEST(Info, ReportsUnitsAndCloudStatistics)
 
 TEST(Info, RefusesABadCloudThreshold)
 {
-  const auto result = cloudvis::support::RunCloudvis(
-    { "info", "nothing.json", "--cloud-threshold", "thin" });
+  const auto result =
+    cloudvis::support::RunCloudvis({ "info", "nothing.json", "--cloud-threshold", "thin" });
   EXPECT_NE(result.Status, 0);
   EXPECT_NE(result.Err.find("info: --cloud-threshold expects a number"), std::string::npos)
     << result.Err;
@@ -759,9 +785,9 @@ TEST(Info, RefusesABadCloudThreshold)
 // decade. Both come from the weather map (its gain sets the roughness) and the erosion.
 TEST(CloudscapeTarget, GeneratedCumulusFieldHasLovejoysDimensionAndASizeLaw)
 {
-  const json info = json::parse(cloudvis::support::RunCloudvis(
-    { "info", CLOUDVIS_SCENES "/cloudscape-above.json", "--json" })
-                                  .Out);
+  const json info = json::parse(
+    cloudvis::support::RunCloudvis({ "info", CLOUDVIS_SCENES "/cloudscape-above.json", "--json" })
+      .Out);
   const json& clouds = info["clouds"];
   ASSERT_TRUE(clouds["fractal_dimension"]["fitted"].get<bool>()) << clouds.dump(1);
   EXPECT_NEAR(clouds["fractal_dimension"]["dimension"].get<double>(), 1.35, 0.10);
