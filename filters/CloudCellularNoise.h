@@ -29,17 +29,6 @@ namespace cloudvis
 namespace noise
 {
 
-// A cell index wrapped into [0, period); unchanged when period <= 0.
-inline std::int32_t WrapCell(std::int32_t cell, std::int32_t period)
-{
-  if (period <= 0)
-  {
-    return cell;
-  }
-  const std::int32_t m = cell % period;
-  return m < 0 ? m + period : m;
-}
-
 inline std::uint32_t TiledHash(std::int32_t ix,
   std::int32_t iy,
   std::int32_t iz,
@@ -104,44 +93,24 @@ inline float TiledWhite(double x, double y, double z, std::uint32_t seed, std::i
   return HashToSigned(TiledHash(Split(x).Cell, Split(y).Cell, Split(z).Cell, seed, period));
 }
 
+// The lattice's row pieces (CornersOfRow, ValueColumn, PerlinColumn) with wrapped cells: the
+// hash of a corner is TiledHash's, and with period 0 these are Value() and Perlin() exactly.
 inline float TiledValue(double x, double y, double z, std::uint32_t seed, std::int32_t period)
 {
-  if (period <= 0)
-  {
-    return Value(x, y, z, seed);
-  }
-  const LatticeCoordinate lx = Split(x), ly = Split(y), lz = Split(z);
-  const auto v = [&](int dx, int dy, int dz)
-  { return HashToSigned(TiledHash(lx.Cell + dx, ly.Cell + dy, lz.Cell + dz, seed, period)); };
-  const float uy = FadeCubic(ly.Fraction), uz = FadeCubic(lz.Fraction);
-  const auto column = [&](int dx)
-  { return Lerp(Lerp(v(dx, 0, 0), v(dx, 1, 0), uy), Lerp(v(dx, 0, 1), v(dx, 1, 1), uy), uz); };
-  return ValueAlongX(column(0), column(1), lx.Fraction);
+  const LatticeCoordinate lx = Split(x);
+  const RowCorners r = CornersOfRow(y, z, seed, FadeCubic, period);
+  return ValueAlongX(ValueColumn(WrapCell(lx.Cell, period), r),
+    ValueColumn(WrapCell(lx.Cell + 1, period), r),
+    lx.Fraction);
 }
 
 inline float TiledPerlin(double x, double y, double z, std::uint32_t seed, std::int32_t period)
 {
-  if (period <= 0)
-  {
-    return Perlin(x, y, z, seed);
-  }
-  const LatticeCoordinate lx = Split(x), ly = Split(y), lz = Split(z);
-  const float fy = ly.Fraction, fz = lz.Fraction;
-  const float uy = FadeQuintic(fy), uz = FadeQuintic(fz);
-  // The same split into a y/z offset and an x slope per lattice column as PerlinColumn.
-  const auto column = [&](int dx)
-  {
-    const auto g = [&](int dy, int dz)
-    { return GradientOf(TiledHash(lx.Cell + dx, ly.Cell + dy, lz.Cell + dz, seed, period)); };
-    const Gradient &g00 = g(0, 0), &g10 = g(1, 0), &g01 = g(0, 1), &g11 = g(1, 1);
-    const float o00 = g00.y * fy + g00.z * fz;
-    const float o10 = g10.y * (fy - 1.0f) + g10.z * fz;
-    const float o01 = g01.y * fy + g01.z * (fz - 1.0f);
-    const float o11 = g11.y * (fy - 1.0f) + g11.z * (fz - 1.0f);
-    return PerlinColumnTerms{ Lerp(Lerp(o00, o10, uy), Lerp(o01, o11, uy), uz),
-      Lerp(Lerp(g00.x, g10.x, uy), Lerp(g01.x, g11.x, uy), uz) };
-  };
-  return PerlinAlongX(column(0), column(1), lx.Fraction);
+  const LatticeCoordinate lx = Split(x);
+  const RowCorners r = CornersOfRow(y, z, seed, FadeQuintic, period);
+  return PerlinAlongX(PerlinColumn(WrapCell(lx.Cell, period), r),
+    PerlinColumn(WrapCell(lx.Cell + 1, period), r),
+    lx.Fraction);
 }
 
 // Inverted Worley fBm in [0, 1]: 1 - F1 at lattice frequencies 1, 2 and 4 (periods P, 2P, 4P)

@@ -119,25 +119,44 @@ inline LatticeCoordinate Split(double x)
   return { cell, static_cast<float>(x - static_cast<double>(cell)) };
 }
 
+// A cell index wrapped into [0, period), which makes a noise repeat every `period` cells
+// (CloudCellularNoise.h); unchanged when period <= 0.
+inline std::int32_t WrapCell(std::int32_t cell, std::int32_t period)
+{
+  if (period <= 0)
+  {
+    return cell;
+  }
+  const std::int32_t m = cell % period;
+  return m < 0 ? m + period : m;
+}
+
 // What a row of fixed y and z shares for one octave: the lattice cells and fractions in y and z,
-// their interpolation weights, and the hash states of the four (y, z) corners.
+// their interpolation weights, and the hash states of the four (y, z) corners, whose cells are
+// wrapped when the noise repeats every `period` cells.
 struct RowCorners
 {
   LatticeCoordinate Y, Z;
   float Uy, Uz;
   std::uint32_t State00, State10, State01, State11; // (dy, dz)
 };
-inline RowCorners CornersOfRow(double y, double z, std::uint32_t seed, float (*fade)(float))
+inline RowCorners CornersOfRow(double y,
+  double z,
+  std::uint32_t seed,
+  float (*fade)(float),
+  std::int32_t period = 0)
 {
   const LatticeCoordinate ly = Split(y), lz = Split(z);
+  const std::int32_t y0 = WrapCell(ly.Cell, period), y1 = WrapCell(ly.Cell + 1, period);
+  const std::int32_t z0 = WrapCell(lz.Cell, period), z1 = WrapCell(lz.Cell + 1, period);
   return { ly,
     lz,
     fade(ly.Fraction),
     fade(lz.Fraction),
-    HashYZ(ly.Cell, lz.Cell, seed),
-    HashYZ(ly.Cell + 1, lz.Cell, seed),
-    HashYZ(ly.Cell, lz.Cell + 1, seed),
-    HashYZ(ly.Cell + 1, lz.Cell + 1, seed) };
+    HashYZ(y0, z0, seed),
+    HashYZ(y1, z0, seed),
+    HashYZ(y0, z1, seed),
+    HashYZ(y1, z1, seed) };
 }
 
 // Value noise along y and z for one lattice column ix: the bilinear blend of its four corners.

@@ -4,6 +4,7 @@
 // and that rows and pieces give the bits that point evaluation and the whole field give.
 #include "CloudDensityEvaluator.h"
 #include "CloudLayer.h"
+#include "SourcePieces.h"
 #include "vtkCloudDensitySource.h"
 
 #include <vtkCallbackCommand.h>
@@ -41,10 +42,7 @@ std::vector<float> Densities(vtkCloudDensitySource* source)
     array->GetPointer(0), array->GetPointer(0) + array->GetNumberOfValues());
 }
 
-bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
-{
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
+using test::SameBits;
 
 size_t CloudyVoxels(const std::vector<float>& density)
 {
@@ -495,35 +493,9 @@ TEST(CloudLayer, PiecesEqualTheWhole)
     source->SetField(field);
     source->SetTime(0.7);
     source->SetBounds(-2.0, 2.0, -1.0, 2.0, -2.0, 2.0);
-    source->SetDimensions(40, 33, 27);
+    source->SetDimensions(test::PieceTestDimensions);
     const std::vector<float> whole = Densities(source);
     ASSERT_GT(CloudyVoxels(whole), 1000u);
-
-    std::vector<float> assembled(whole.size(), -1.0f);
-    const int cuts[3][3] = { { 0, 17, 39 }, { 0, 20, 32 }, { 0, 9, 26 } };
-    for (int octant = 0; octant < 8; ++octant)
-    {
-      int extent[6];
-      for (int a = 0; a < 3; ++a)
-      {
-        const int half = (octant >> a) & 1;
-        extent[2 * a] = half ? cuts[a][1] + 1 : cuts[a][0];
-        extent[2 * a + 1] = half ? cuts[a][2] : cuts[a][1];
-      }
-      source->Modified(); // compute the piece anew rather than cut it from the last output
-      source->UpdateExtent(extent);
-      vtkImageData* piece = source->GetOutput();
-      int produced[6];
-      piece->GetExtent(produced);
-      ASSERT_TRUE(std::equal(extent, extent + 6, produced));
-      const float* values =
-        vtkFloatArray::SafeDownCast(piece->GetPointData()->GetArray("density"))->GetPointer(0);
-      size_t n = 0;
-      for (int k = extent[4]; k <= extent[5]; ++k)
-        for (int j = extent[2]; j <= extent[3]; ++j)
-          for (int i = extent[0]; i <= extent[1]; ++i)
-            assembled[(size_t(k) * 33 + j) * 40 + i] = values[n++];
-    }
-    EXPECT_TRUE(SameBits(whole, assembled)) << "coverage source " << int(from);
+    EXPECT_TRUE(SameBits(whole, test::FieldFromOctants(source))) << "coverage source " << int(from);
   }
 }

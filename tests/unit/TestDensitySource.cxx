@@ -1,6 +1,7 @@
 // vtkCloudDensitySource and the density evaluator behind it: the density rules, pipeline
 // manners (pieces, time, progress, abort) and determinism across SMP backends.
 #include "CloudDensityEvaluator.h"
+#include "SourcePieces.h"
 #include "vtkCloudDensitySource.h"
 
 #include <vtkCallbackCommand.h>
@@ -43,10 +44,7 @@ vtkSmartPointer<vtkImageData> Generate(vtkCloudDensitySource* source)
   return copy;
 }
 
-bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
-{
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
+using test::SameBits;
 
 FieldDescription PerlinCloud()
 {
@@ -164,36 +162,10 @@ TEST(DensitySource, PublishesGeometryTimeAndSubExtentCapability)
 TEST(DensitySource, PiecesEqualTheWhole)
 {
   vtkNew<vtkCloudDensitySource> source;
-  source->SetDimensions(40, 33, 27);
+  source->SetDimensions(test::PieceTestDimensions);
   source->SetField(PerlinCloud());
   const std::vector<float> whole = Densities(Generate(source));
-
-  // Assemble the field from eight octants requested through the update extent.
-  std::vector<float> assembled(whole.size(), -1.0f);
-  const int cuts[3][3] = { { 0, 17, 39 }, { 0, 20, 32 }, { 0, 9, 26 } };
-  for (int octant = 0; octant < 8; ++octant)
-  {
-    int extent[6];
-    for (int a = 0; a < 3; ++a)
-    {
-      const int half = (octant >> a) & 1;
-      extent[2 * a] = half ? cuts[a][1] + 1 : cuts[a][0];
-      extent[2 * a + 1] = half ? cuts[a][2] : cuts[a][1];
-    }
-    source->Modified(); // compute the piece anew rather than cut it from the last output
-    source->UpdateExtent(extent);
-    vtkImageData* piece = source->GetOutput();
-    int produced[6];
-    piece->GetExtent(produced);
-    ASSERT_TRUE(std::equal(extent, extent + 6, produced)) << "the source must fill exactly the requested extent";
-    const std::vector<float> values = Densities(piece);
-    size_t n = 0;
-    for (int k = extent[4]; k <= extent[5]; ++k)
-      for (int j = extent[2]; j <= extent[3]; ++j)
-        for (int i = extent[0]; i <= extent[1]; ++i)
-          assembled[(size_t(k) * 33 + j) * 40 + i] = values[n++];
-  }
-  EXPECT_TRUE(SameBits(whole, assembled));
+  EXPECT_TRUE(SameBits(whole, test::FieldFromOctants(source)));
 }
 
 TEST(DensitySource, SequentialStdThreadAndTbbBackendsGiveTheSameBytes)
