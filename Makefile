@@ -16,7 +16,7 @@ CCACHE := $(shell command -v ccache 2> /dev/null)
 CCACHE_ARGS := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 CCACHE_ENV := CCACHE_BASEDIR=$(CURDIR) CCACHE_NOHASHDIR=1
 
-.PHONY: all deps configure build demo test bench docs clean python-path
+.PHONY: all deps configure build demo python test bench docs clean python-path
 
 all: build
 
@@ -31,8 +31,15 @@ configure: deps $(BUILD_DIR)/CMakeCache.txt
 build: configure
 	$(CCACHE_ENV) cmake --build $(BUILD_DIR) -j $(JOBS)
 
-demo: build
+# The demo builds the cloudvis binary alone: nothing it renders waits on the Python wrapping or
+# the tests (`make test` and `make python` build those).
+demo: configure
+	$(CCACHE_ENV) cmake --build $(BUILD_DIR) -j $(JOBS) --target cloudvis
 	$(HEADLESS) $(CLOUDVIS)
+
+# `import cloudvis` (docs/python.md): the wrapped modules, which `make test` also builds.
+python: configure
+	$(CCACHE_ENV) cmake --build $(BUILD_DIR) -j $(JOBS) --target cloudvis-python
 
 test: build
 	cd $(BUILD_DIR) && $(HEADLESS) ctest --output-on-failure -j $(JOBS)
@@ -47,12 +54,12 @@ docs: build
 clean:
 	rm -rf $(BUILD_DIR) out
 
-# Where `import cloudvis` finds the package after `make demo` (docs/python.md):
-#   PYTHONPATH=$(make -s python-path) python3 -c "import cloudvis"
+# Where `import cloudvis` finds the package after `make python` (or `make test`) (docs/python.md):
+#   make python && PYTHONPATH=$(make -s python-path) python3 -c "import cloudvis"
 python-path:
 	@path=$$(sed -n 's/^CLOUDVIS_PYTHONPATH:INTERNAL=//p' $(BUILD_DIR)/CMakeCache.txt 2> /dev/null); \
 	if [ -z "$$path" ]; then \
-	  echo "make python-path: no Python package in $(BUILD_DIR): run make demo first (CLOUDVIS_PYTHON on)" >&2; exit 1; \
+	  echo "make python-path: no Python package in $(BUILD_DIR): run make python first (CLOUDVIS_PYTHON on)" >&2; exit 1; \
 	fi; echo "$$path"
 
 # ---- reliability: sanitizers, fuzzing, soak (docs/reliability.md) ----------------------------

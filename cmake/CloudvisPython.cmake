@@ -18,3 +18,7 @@ set(CLOUDVIS_PYTHONPATH "${CMAKE_BINARY_DIR}/${cloudvis_python_destination}"
   CACHE INTERNAL "Where `import cloudvis` finds the package in the build tree")
 configure_file("${CMAKE_SOURCE_DIR}/app/python/__init__.py"
   "${CLOUDVIS_PYTHONPATH}/cloudvis/__init__.py" COPYONLY)
+# One name for the whole package (`make python`): the demo builds the cloudvis binary alone, so
+# the wrapping, a few minutes of the first build, never stands between a new user and a picture.
+add_custom_target(cloudvis-python)
+add_dependencies(cloudvis-python cloudvisFiltersPython cloudvisRenderingPython)

@@ -15,6 +15,9 @@
 
 vtkStandardNewMacro(vtkCloudPathTracer);
 
+// The header states the default brick size as a number, to stay light for the Python wrapper.
+static_assert(cloudvis::PathTraceBrickSize == 8, "vtkCloudPathTracer.h's default BrickSize");
+
 namespace
 {
 // The most scattering events MaxBounces may allow: far beyond what any field needs, and small

@@ -33,7 +33,8 @@
 #ifndef vtkCloudPathTracer_h
 #define vtkCloudPathTracer_h
 
-#include "CloudPathTrace.h" // PathTraceBrickSize
+// CloudPathTrace.h (glm and the per-path code) is not included here: VTK's Python wrapper parses
+// everything a wrapped header includes, and that header alone cost it minutes of CPU.
 #include "vtkCloudReferenceRenderer.h"
 
 class CLOUDVISFILTERS_EXPORT vtkCloudPathTracer : public vtkCloudReferenceRenderer
@@ -94,7 +95,7 @@ protected:
   int SamplesPerPixel = 64;
   unsigned int Seed = 0;
   int MaxBounces = 1024;
-  int BrickSize = cloudvis::PathTraceBrickSize;
+  int BrickSize = 8; // cloudvis::PathTraceBrickSize (the .cxx asserts that they agree)
 
 private:
   vtkCloudPathTracer(const vtkCloudPathTracer&) = delete;
