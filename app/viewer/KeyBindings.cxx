@@ -96,7 +96,7 @@ const std::vector<KeyBinding>& KeyBindings()
       false,
       A::ResetTransferFunction,
       Function,
-      "back to the scene's function",
+      "back to the function as opened",
       true },
     { { "z" }, {}, true, A::Undo, Function, "undo an edit", true },
     { { "y" }, { "Z" }, true, A::Redo, Function, "redo it", true },

@@ -233,19 +233,14 @@ std::array<double, 3> SliceViews::WorldPoint(const View& view, int x, int y) con
 
 void SliceViews::Probe(const View& view, int x, int y)
 {
-  const std::array<double, 3> point = this->WorldPoint(view, x, y);
-  if (!this->Planes.ProbeAt(point))
-  {
-    return; // outside the field
-  }
-  const int axis = SlicedAxis[view.Index];
-  for (int other = 0; other < 3; ++other)
-  {
-    if (other != axis)
-    {
-      this->Planes.SetSliceIndex(other, this->Planes.GetProbe().Index[size_t(other)]);
-    }
-  }
+  // Outside the field nothing changes.
+  this->Planes.ProbeAt(this->WorldPoint(view, x, y), SlicedAxis[view.Index]);
+}
+
+SliceProbe SliceViews::VoxelUnder(int x, int y)
+{
+  View* view = this->ViewAt(x, y);
+  return view ? this->Planes.VoxelAt(this->WorldPoint(*view, x, y)) : SliceProbe();
 }
 
 bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y)

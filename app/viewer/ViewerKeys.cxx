@@ -216,6 +216,7 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
     case A::ToggleLayout:
       this->FourViews = !this->FourViews;
       this->ApplyLayout();
+      this->UpdateReadout();
       this->Show(
         this->FourViews ? "four views: 3D, axial, coronal, sagittal" : "the 3D view alone", false);
       break;

@@ -80,6 +80,10 @@ json ViewerStateJson(const ViewerState& state)
       { { "valid", state.ProbeValid },
         { "index", state.ProbeIndex },
         { "value", state.ProbeValue } } },
+    { "hover",
+      { { "valid", state.HoverValid },
+        { "index", state.HoverIndex },
+        { "value", state.HoverValue } } },
     { "transfer_function",
       { { "opacity", state.TransferFunction.Opacity },
         { "color", state.TransferFunction.Color },
@@ -175,6 +179,9 @@ ViewerState Viewer::State() const
   state.ProbeValid = probe.Valid;
   state.ProbeIndex = probe.Index;
   state.ProbeValue = probe.Value;
+  state.HoverValid = in.Hovered.Valid;
+  state.HoverIndex = in.Hovered.Index;
+  state.HoverValue = in.Hovered.Value;
   using Function = TransferFunctionEditor::Function;
   state.OpacityPointPixels = in.Editing->GetPointPixels(Function::Opacity);
   state.ColorPointPixels = in.Editing->GetPointPixels(Function::Color);

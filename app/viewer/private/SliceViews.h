@@ -13,6 +13,7 @@
 #ifndef cloudvis_SliceViews_h
 #define cloudvis_SliceViews_h
 
+#include "SlicePlanes.h"
 #include "vtkCloudViewerInteractorStyle.h"
 
 #include <vtkNew.h>
@@ -35,7 +36,6 @@ namespace cloudvis
 {
 
 class SliceColors;
-class SlicePlanes;
 
 class SliceViews
 {
@@ -62,6 +62,9 @@ public:
   // The mouse in window pixels (vtkCloudViewerInteractorStyle::SliceViewMouse): returns whether
   // a view shown in the window takes the event.
   bool Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y);
+
+  // The voxel under window pixel x, y in a view shown (Valid false elsewhere), not probed.
+  SliceProbe VoxelUnder(int x, int y);
 
 private:
   struct View;
