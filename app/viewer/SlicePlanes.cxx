@@ -305,6 +305,27 @@ int SlicePlanes::GetNumberOfSlices(int axis) const
   return dimensions[axis];
 }
 
+std::vector<double> SlicePlanes::GetSliceValues(int axis) const
+{
+  int extent[6];
+  this->Field->GetExtent(extent);
+  extent[2 * axis] = extent[2 * axis + 1] = this->GetSliceIndex(axis);
+  std::vector<double> values;
+  values.reserve(size_t(extent[1] - extent[0] + 1) * size_t(extent[3] - extent[2] + 1) *
+    size_t(extent[5] - extent[4] + 1));
+  for (int k = extent[4]; k <= extent[5]; ++k)
+  {
+    for (int j = extent[2]; j <= extent[3]; ++j)
+    {
+      for (int i = extent[0]; i <= extent[1]; ++i)
+      {
+        values.push_back(this->Field->GetScalarComponentAsDouble(i, j, k, 0));
+      }
+    }
+  }
+  return values;
+}
+
 double SlicePlanes::GetSlicePosition(int axis) const
 {
   return this->Slices[size_t(axis)]->GetSlicePosition();
@@ -359,14 +380,14 @@ bool SlicePlanes::ProbeAt(const std::array<double, 3>& position, int axis)
   return true;
 }
 
-SliceProbe SlicePlanes::VoxelUnder(int x, int y)
+int SlicePlanes::AxisUnder(int x, int y)
 {
   if (!this->Renderer->IsInViewport(x, y))
   {
-    return SliceProbe();
+    return -1;
   }
   this->HoverPicker->InitializePickList();
-  int shown = 0;
+  bool shown = false;
   for (int axis = 0; axis < 3; ++axis)
   {
     if (this->GetSliceVisible(axis))
@@ -374,10 +395,27 @@ SliceProbe SlicePlanes::VoxelUnder(int x, int y)
       this->HoverPicker->AddPickList(
         static_cast<vtkCloudSlicePlaneWidget*>(this->Slices[size_t(axis)].Get())
           ->GetTexturePlane());
-      ++shown;
+      shown = true;
     }
   }
-  if (shown == 0 || !this->HoverPicker->Pick(double(x), double(y), 0.0, this->Renderer))
+  if (!shown || !this->HoverPicker->Pick(double(x), double(y), 0.0, this->Renderer))
+  {
+    return -1;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (this->HoverPicker->GetActor() ==
+      static_cast<vtkCloudSlicePlaneWidget*>(this->Slices[size_t(axis)].Get())->GetTexturePlane())
+    {
+      return axis;
+    }
+  }
+  return -1;
+}
+
+SliceProbe SlicePlanes::VoxelUnder(int x, int y)
+{
+  if (this->AxisUnder(x, y) < 0)
   {
     return SliceProbe();
   }

@@ -563,7 +563,10 @@ Viewer::Viewer(const Scene& scene,
   in.Views2D->Changed = [&in] { in.SlicesChanged(); };
   in.Style->SliceViewMouse =
     [&in](vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y)
-  { return in.Views2D->Mouse(action, button, x, y); };
+  {
+    return in.Views2D->Mouse(
+      action, button, x, y, in.Interactor->GetControlKey() != 0, in.Interactor->GetShiftKey() != 0);
+  };
   in.Style->HoverHandler = [&in](int x, int y) { in.Hover(x, y); };
   // The color bar names the field's quantity and its unit, as the readout does.
   const std::string unit = QuantityUnit(in.Options.Units.Quantity);

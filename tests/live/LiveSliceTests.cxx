@@ -86,6 +86,12 @@ std::array<double, 2> Span(const json& state)
       function["opacity"].back()[0].get<double>(), function["color"].back()[0].get<double>()) } };
 }
 
+// The last message shown, unwrapped (the state's "message" is wrapped to the view's width).
+std::string LastMessage(const json& state)
+{
+  return state["messages"].empty() ? "" : state["messages"].back().get<std::string>();
+}
+
 bool Logged(const json& state, const std::string& text)
 {
   for (const json& message : state["messages"])
@@ -263,6 +269,202 @@ TEST(LiveSlices, ReadoutFollowsThePointerAndGoesWithTheSlices)
     [](const json& s) { return !s["slices"]["visible"][2].get<bool>(); }, "the slice to hide");
   EXPECT_EQ(hidden["readout"], "") << "the readout stayed without the slices";
   EXPECT_FALSE(hidden["probe"]["valid"].get<bool>());
+}
+
+// The values of the bump field's slice across z at its centre, as the automatic window sees
+// them: the 1st and 99th percentiles, picked as the viewer picks them.
+std::array<double, 2> CentreSlicePercentiles()
+{
+  std::vector<double> values;
+  const int c = FieldSide / 2;
+  const double corner = std::exp(-3.0 * c * c / (2.0 * 25.0));
+  for (int j = 0; j < FieldSide; ++j)
+  {
+    for (int i = 0; i < FieldSide; ++i)
+    {
+      const double r2 = double((i - c) * (i - c) + (j - c) * (j - c));
+      const double bump = (std::exp(-r2 / (2.0 * 25.0)) - corner) / (1.0 - corner);
+      values.push_back(double(float(FieldLow + (FieldHigh - FieldLow) * bump)));
+    }
+  }
+  std::sort(values.begin(), values.end());
+  const auto at = [&](double f)
+  { return values[size_t(std::lround(f * double(values.size() - 1)))]; };
+  return { { at(0.01), at(0.99) } };
+}
+
+void Type(LiveSession& session, const std::string& text)
+{
+  std::vector<std::string> keys;
+  for (const char c : text)
+  {
+    keys.push_back(c == ' ' ? "space"
+        : c == '.'          ? "period"
+        : c == '-'          ? "minus"
+                            : std::string(1, c));
+  }
+  keys.push_back("Return");
+  session.Keys(keys);
+}
+
+// a takes the window/level from the shown slice's values (1st to 99th percentile), Shift+a goes
+// back to the field's range, Shift+l types them; bad typed values change nothing and say why.
+TEST(LiveSlices, WindowLevelAutoResetAndTyped)
+{
+  const support::TemporaryDirectory files("cloudvis-live-window");
+  LiveSession session(Cloudvis, Window({ WriteBumpField(files.File("bump.vti")) }));
+  session.WaitUntilConverged();
+  session.Key("a");
+  session.WaitFor([](const json& s)
+    { return LastMessage(s).find("no slice is shown") != std::string::npos; },
+    "a without a slice to say so");
+  session.Key("z");
+  session.WaitFor(
+    [](const json& s) { return s["slices"]["visible"][2].get<bool>(); }, "the z slice");
+  session.Key("a");
+  const auto [low, high] = CentreSlicePercentiles();
+  const json automatic = session.WaitFor([](const json& s)
+    { return LastMessage(s).find("from the shown slices") != std::string::npos; },
+    "the automatic window");
+  EXPECT_NEAR(automatic["slices"]["window_level"][0].get<double>(), high - low, 1e-5);
+  EXPECT_NEAR(automatic["slices"]["window_level"][1].get<double>(), 0.5 * (high + low), 1e-5);
+  ASSERT_GT(FieldHigh - FieldLow - (high - low), 0.1) << "the test cannot tell auto from reset";
+
+  session.Key("A");
+  const json reset = session.WaitFor([](const json& s)
+    { return LastMessage(s).find("reset to the field's range") != std::string::npos; },
+    "Shift+a to reset the window");
+  EXPECT_NEAR(reset["slices"]["window_level"][0].get<double>(), FieldHigh - FieldLow, 1e-5);
+  EXPECT_NEAR(reset["slices"]["window_level"][1].get<double>(), 0.5 * (FieldHigh + FieldLow), 1e-5);
+
+  session.Key("L");
+  Type(session, "0 2");
+  const json refused = session.WaitFor([](const json& s)
+    { return LastMessage(s).find("window must be greater than 0") != std::string::npos; },
+    "a window of 0 to be refused");
+  EXPECT_TRUE(refused["editor"]["typing"].get<bool>());
+  EXPECT_EQ(refused["slices"]["window_level"], reset["slices"]["window_level"]);
+  session.Keys(
+    { "BackSpace", "BackSpace", "BackSpace", "1", "period", "5", "space", "2", "Return" });
+  const json typed = session.WaitFor(
+    [](const json& s) { return !s["editor"]["typing"].get<bool>(); }, "the typed window");
+  EXPECT_EQ(typed["slices"]["window_level"], json::array({ 1.5, 2.0 }));
+  EXPECT_NE(LastMessage(typed).find("densities 1.25 to 2.75"), std::string::npos)
+    << typed["messages"];
+}
+
+// The transfer function's colors on a slice are the color strip's at every density, whatever the
+// window: with the cloud-dusk preset and a window over [0.3, 0.7], empty space (density 0) keeps
+// the function's purple at 0 (it showed the salmon of 0.3, the window's low end).
+TEST(LiveSlices, TransferFunctionColorsOnSlicesIgnoreTheWindow)
+{
+  LiveSession session(Cloudvis, Window({ "--set", "field.dimensions=48", "--layout", "four" }));
+  session.WaitUntilConverged();
+  session.Keys({ "p", "c", "c", "c" });
+  session.WaitFor([](const json& s)
+    { return s["preset"] == "cloud-dusk" && s["slices"]["colors"] == "transfer function"; },
+    "the cloud-dusk preset and its colors on the slices");
+  session.Key("L");
+  Type(session, "0.4 0.5");
+  const json windowed = session.WaitFor(
+    [](const json& s) {
+      return s["slices"]["window_level"] == json::array({ 0.4, 0.5 }) && s["converged"].get<bool>();
+    },
+    "the typed window");
+  EXPECT_NE(LastMessage(windowed).find("colors are not windowed"), std::string::npos)
+    << windowed["messages"];
+  // The axial slice's bottom right corner, empty space: the slice fills 1/1.15 of the view's
+  // height around its centre.
+  const json& axial = windowed["viewports"]["axial"];
+  const int side = int((axial[3].get<int>() - axial[1].get<int>()) / 1.15);
+  const auto center = session.Center("axial");
+  const int x = center[0] + int(0.42 * side), y = center[1] - int(0.42 * side);
+  const auto pixel = session.Pixels({ { x, y, x + 1, y + 1 } });
+  const double purple[3] = { 0.42, 0.36, 0.52 }; // cloud-dusk's color at density 0
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(pixel.Level(0, 0, c), 255.0 * purple[c], 3.0) << "channel " << c;
+  }
+}
+
+// In the four views, Control + wheel zooms the slice view under the pointer (about the pointer:
+// the voxel there stays under it), Shift + left drag pans it without probing, PageUp and
+// PageDown step the slice under the pointer, and r fits the views again.
+TEST(LiveSlices, SliceViewsZoomPanAndPageThroughSlices)
+{
+  LiveSession session(Cloudvis, Window({ "--set", "field.dimensions=48", "--layout", "four" }));
+  const json start = session.WaitUntilConverged();
+  const auto axial = session.Center("axial");
+  const json& view = start["viewports"]["axial"];
+  const int left = view[0].get<int>() + 2;
+  const auto edge = [&] { return session.Pixels({ { left, axial[1], left + 1, axial[1] + 1 } }); };
+  ASSERT_NEAR(edge().Level(0, 0, 2), 25.5, 2.0) << "the fitted slice reaches the view's edge";
+
+  const std::array<int, 2> at{ { axial[0] + 30, axial[1] + 20 } };
+  session.Move(at[0], at[1]);
+  const json before =
+    session.WaitFor([](const json& s) { return s["hover"]["valid"].get<bool>(); }, "the pointer");
+  session.Hold("Control_L", true);
+  for (int i = 0; i < 3; ++i)
+  {
+    session.Wheel(at[0], at[1], true);
+  }
+  session.Hold("Control_L", false);
+  const json zoomed = session.WaitFor([](const json& s)
+    { return s["slice_views"]["axial"]["zoom"].get<double>() > 1.9 && s["converged"].get<bool>(); },
+    "Control + wheel to zoom the axial view");
+  EXPECT_NEAR(zoomed["slice_views"]["axial"]["zoom"].get<double>(), 1.25 * 1.25 * 1.25, 1e-9);
+  EXPECT_EQ(zoomed["slices"]["index"], start["slices"]["index"]) << "the wheel stepped a slice";
+  EXPECT_EQ(zoomed["slice_views"]["coronal"]["zoom"], 1.0) << "another view zoomed";
+  EXPECT_GT(std::abs(edge().Level(0, 0, 2) - 25.5), 5.0) << "the slice did not grow to the edge";
+  session.Move(at[0] + 1, at[1]);
+  session.Move(at[0], at[1]);
+  const json still = session.WaitFor(
+    [&](const json& s) { return s["hover"]["valid"].get<bool>(); }, "the pointer after the zoom");
+  for (int c = 0; c < 2; ++c)
+  {
+    EXPECT_LE(
+      std::abs(still["hover"]["index"][c].get<int>() - before["hover"]["index"][c].get<int>()), 1)
+      << "the voxel under the pointer moved away (axis " << c << ")";
+  }
+
+  session.Hold("Shift_L", true);
+  session.Drag(1, at, { { at[0] + 40, at[1] } });
+  session.Hold("Shift_L", false);
+  // The slice follows the pointer: 40 pixels right moves the view's centre left by 40 pixels'
+  // worth of world units (the view's height in pixels spans 2 x the parallel scale, 2.3 for
+  // the default field's 4 x 4 slice and the 15 % margin).
+  const double height = double(view[3].get<int>() - view[1].get<int>());
+  const double worldPerPixel = 4.0 * 1.15 / height / (1.25 * 1.25 * 1.25);
+  const auto moved = [&](const json& s)
+  {
+    return s["slice_views"]["axial"]["pan"][0].get<double>() -
+      zoomed["slice_views"]["axial"]["pan"][0].get<double>();
+  };
+  const json panned = session.WaitFor([&](const json& s)
+    { return std::abs(moved(s) + 40.0 * worldPerPixel) < 2.0 * worldPerPixel; },
+    "Shift + left drag to pan the view by the drag");
+  EXPECT_NEAR(panned["slice_views"]["axial"]["pan"][1].get<double>(),
+    zoomed["slice_views"]["axial"]["pan"][1].get<double>(),
+    1e-9);
+  EXPECT_FALSE(panned["probe"]["valid"].get<bool>()) << "the pan probed";
+
+  const auto sagittal = session.Center("sagittal");
+  session.Move(sagittal[0], sagittal[1]);
+  const int x = panned["slices"]["index"][0].get<int>();
+  session.Key("Prior");
+  session.WaitFor([&](const json& s) { return s["slices"]["index"][0].get<int>() == x + 1; },
+    "PageUp over the sagittal view to step x up");
+  session.Keys({ "Next", "Next" });
+  const json paged =
+    session.WaitFor([&](const json& s) { return s["slices"]["index"][0].get<int>() == x - 1; },
+      "PageDown twice to step x down");
+  EXPECT_EQ(paged["slices"]["index"][2], panned["slices"]["index"][2]) << "PageUp moved z";
+
+  session.Key("r");
+  const json reset = session.WaitFor(
+    [](const json& s) { return s["slice_views"]["axial"]["zoom"] == 1.0; }, "r to fit the views");
+  EXPECT_EQ(reset["slice_views"]["axial"]["pan"], json::array({ 0.0, 0.0 }));
 }
 
 } // namespace

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <functional>
+#include <vector>
 
 class vtkActor;
 class vtkCellPicker;
@@ -66,6 +67,8 @@ public:
   void SetSliceIndex(int axis, int index);
   int GetSliceIndex(int axis) const;
   int GetNumberOfSlices(int axis) const;
+  // The field's values on the slice across `axis` (its voxel layer), for the automatic window.
+  std::vector<double> GetSliceValues(int axis) const;
   // World coordinate of the slice along its axis.
   double GetSlicePosition(int axis) const;
   // The density under the slice's cursor (the last left-button probe on that plane); NaN before.
@@ -82,6 +85,9 @@ public:
   // The voxel under window pixel x, y on the nearest shown slice of the 3D view (Valid false when
   // no slice is there).
   SliceProbe VoxelUnder(int x, int y);
+  // The axis of the nearest shown slice under window pixel x, y of the 3D view; -1 for none
+  // (VoxelUnder's pick).
+  int AxisUnder(int x, int y);
 
   void SetObliqueVisible(bool visible);
   bool GetObliqueVisible() const { return this->ObliqueVisible; }

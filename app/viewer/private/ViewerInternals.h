@@ -73,7 +73,8 @@ struct Viewer::Internals
   std::unique_ptr<LiveLoop> Loop;
 
   bool FourViews = false;
-  bool Typing = false; // the keys type a point's values
+  bool Typing = false;            // the keys type values (Typed)...
+  bool TypingWindowLevel = false; // ... of the slices' window and level, else of a point
   std::string Typed;
   int PresetIndex = -1;
   bool PreviewNext = false;         // the next frame answers a key that changed the cloud
@@ -149,7 +150,19 @@ struct Viewer::Internals
   void TypeKey(const std::string& keySym, char keyCode);
   // Enter: typing the selected point's values starts (a message when none is selected).
   void StartTyping();
+  // Shift+l: typing the window and level starts; Enter sets them from Typed (returns what is
+  // wrong with it, or ""), in the same entry line.
+  void StartTypingWindowLevel();
+  std::string SetTypedWindowLevel();
+  // a: the window/level from the values of the slices shown.
+  void AutoWindowLevel();
+  // "WHAT: window W, level L (densities A to B)", for messages.
+  std::string WindowLevelText(const std::string& what) const;
   void ToggleSlice(int axis);
+  // PageUp / PageDown: the slice under the pointer (a slice view, or a slice in the 3D view),
+  // else the last one shown, one voxel up (+1) or down (-1).
+  void StepSlice(int step);
+  int ActiveAxis = 2; // the slice across z until another is shown
   // What a key of the table does; `variant` is the index of the key pressed in its row.
   void Act(ViewerAction action, int variant, Viewer& viewer);
 };

@@ -108,6 +108,10 @@ struct ViewerState
   bool ProbeValid = false;
   std::array<int, 3> ProbeIndex{ { 0, 0, 0 } };
   double ProbeValue = 0.0;
+  // The slice views' zoom (1: fitted) and pan (world units along the view's right and up axes):
+  // axial, coronal, sagittal.
+  std::array<double, 3> SliceViewZoom{ { 1.0, 1.0, 1.0 } };
+  std::array<std::array<double, 2>, 3> SliceViewPan{};
   // The voxel under the pointer on a slice, as the readout shows it.
   bool HoverValid = false;
   std::array<int, 3> HoverIndex{ { 0, 0, 0 } };
