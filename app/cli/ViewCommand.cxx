@@ -112,7 +112,10 @@ int View(const Arguments& arguments, std::ostream& out)
     // Absolute, so that a saved scene finds the field wherever the scene is kept.
     scene.Field.File = Absolute(input);
   }
-  const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
+  FieldReport report;
+  const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &report);
+  options.FieldFile = fieldFile;
+  options.Units = ResolveFieldUnits(scene.Field.Units, report.Units);
   Viewer viewer(scene, field, options);
   if (!play.empty())
   {

@@ -119,6 +119,16 @@ void SliceColors::SetWindowLevel(double window, double level)
   this->Update();
 }
 
+void SliceColors::ResetWindowLevel()
+{
+  this->SetWindowLevel(this->Range[1] - this->Range[0], 0.5 * (this->Range[0] + this->Range[1]));
+}
+
+bool SliceColors::IsWindowed() const
+{
+  return this->GetColormap() != "transfer function" || !this->TransferColors;
+}
+
 void SliceColors::BeginWindowLevelDrag(int x, int y)
 {
   this->DragStart = { { x, y } };
@@ -136,8 +146,17 @@ void SliceColors::DragWindowLevel(int x, int y, int viewportWidth, int viewportH
 
 void SliceColors::Update()
 {
-  const double low = this->Level - 0.5 * this->Window;
-  const double high = this->Level + 0.5 * this->Window;
+  double low = this->Level - 0.5 * this->Window;
+  double high = this->Level + 0.5 * this->Window;
+  if (!this->IsWindowed())
+  {
+    // The function's own range: beyond it the function holds its end colors, as the table does.
+    double range[2];
+    this->TransferColors->GetRange(range);
+    WidenEmptyRange(range);
+    low = range[0];
+    high = range[1];
+  }
   this->Table->SetTableRange(low, high);
   const std::string& name = this->GetColormap();
   for (int i = 0; i < TableSize; ++i)
@@ -154,7 +173,7 @@ void SliceColors::Update()
     {
       color = Interpolate(ViridisAnchors(), t);
     }
-    else if (name == "transfer function" && this->TransferColors)
+    else if (!this->IsWindowed())
     {
       this->TransferColors->GetColor(low + t * (high - low), color.data());
     }

@@ -2,7 +2,10 @@
 // themselves they would attach to whichever renderer is under the pointer when enabled, which
 // may be the editor's. Their key activation is off: the viewer's keys toggle them.
 //
-// Two behaviours of vtkImagePlaneWidget are replaced:
+// Three behaviours of vtkImagePlaneWidget are replaced:
+// - its left button probes wherever it hits the plane, which took the left drag from the camera
+//   whenever it started on a slice (a slice facing the camera covers most of the view); here it
+//   probes only with Control held, and a plain left drag turns the camera;
 // - its middle-button push moves the plane by the mouse motion projected on the plane's normal,
 //   which is nothing when the plane faces the camera; here the motion is measured along the
 //   normal's image on screen, or vertically when that image is too short to follow;
@@ -15,6 +18,7 @@
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
+#include <vtkCellPicker.h>
 #include <vtkCutter.h>
 #include <vtkImageData.h>
 #include <vtkImagePlaneWidget.h>
@@ -46,9 +50,20 @@ public:
   static vtkCloudSlicePlaneWidget* New();
   vtkTypeMacro(vtkCloudSlicePlaneWidget, vtkImagePlaneWidget);
 
+  // The textured plane the slice is drawn on, for picking.
+  vtkActor* GetTexturePlane() const { return this->TexturePlaneActor; }
+
 protected:
   vtkCloudSlicePlaneWidget() = default;
   ~vtkCloudSlicePlaneWidget() override = default;
+
+  void OnLeftButtonDown() override
+  {
+    if (this->Interactor->GetControlKey())
+    {
+      this->Superclass::OnLeftButtonDown();
+    }
+  }
 
   void OnMiddleButtonDown() override
   {
@@ -174,6 +189,9 @@ SlicePlanes::SlicePlanes(vtkImageData* field,
     this->Slices[size_t(axis)] = slice;
   }
 
+  this->HoverPicker->PickFromListOn();
+  this->HoverPicker->SetTolerance(0.0);
+
   // Oblique: a plane through the centre, tilted off every axis.
   double bounds[6], center[3];
   field->GetBounds(bounds);
@@ -240,20 +258,16 @@ void SlicePlanes::OnPlaneEvent(int axis, unsigned long event)
   }
   else if (slice->GetCursorDataStatus())
   {
-    double xyzv[4];
+    double xyzv[4], origin[3], spacing[3];
     slice->GetCursorData(xyzv);
-    SliceProbe probe;
-    probe.Valid = true;
-    double origin[3], spacing[3];
     this->Field->GetOrigin(origin);
     this->Field->GetSpacing(spacing);
+    std::array<double, 3> cursor;
     for (int c = 0; c < 3; ++c)
     {
-      probe.Index[size_t(c)] = int(std::lround(xyzv[c]));
-      probe.Position[size_t(c)] = origin[c] + probe.Index[size_t(c)] * spacing[c];
+      cursor[size_t(c)] = origin[c] + xyzv[c] * spacing[c];
     }
-    probe.Value = xyzv[3];
-    this->Probe = probe;
+    this->ProbeAt(cursor, axis);
   }
   if (this->Changed)
   {
@@ -291,6 +305,27 @@ int SlicePlanes::GetNumberOfSlices(int axis) const
   return dimensions[axis];
 }
 
+std::vector<double> SlicePlanes::GetSliceValues(int axis) const
+{
+  int extent[6];
+  this->Field->GetExtent(extent);
+  extent[2 * axis] = extent[2 * axis + 1] = this->GetSliceIndex(axis);
+  std::vector<double> values;
+  values.reserve(size_t(extent[1] - extent[0] + 1) * size_t(extent[3] - extent[2] + 1) *
+    size_t(extent[5] - extent[4] + 1));
+  for (int k = extent[4]; k <= extent[5]; ++k)
+  {
+    for (int j = extent[2]; j <= extent[3]; ++j)
+    {
+      for (int i = extent[0]; i <= extent[1]; ++i)
+      {
+        values.push_back(this->Field->GetScalarComponentAsDouble(i, j, k, 0));
+      }
+    }
+  }
+  return values;
+}
+
 double SlicePlanes::GetSlicePosition(int axis) const
 {
   return this->Slices[size_t(axis)]->GetSlicePosition();
@@ -303,29 +338,90 @@ double SlicePlanes::GetProbedValue(int axis) const
   return value >= 1e299 ? std::numeric_limits<double>::quiet_NaN() : value;
 }
 
-bool SlicePlanes::ProbeAt(const std::array<double, 3>& position)
+SliceProbe SlicePlanes::VoxelAt(const std::array<double, 3>& position) const
 {
   double origin[3], spacing[3];
   int extent[6];
   this->Field->GetOrigin(origin);
   this->Field->GetSpacing(spacing);
   this->Field->GetExtent(extent);
-  SliceProbe probe;
-  probe.Valid = true;
+  SliceProbe voxel;
   for (int c = 0; c < 3; ++c)
   {
     const int index = int(std::lround((position[size_t(c)] - origin[c]) / spacing[c]));
     if (index < extent[2 * c] || index > extent[2 * c + 1])
     {
-      return false;
+      return SliceProbe();
     }
-    probe.Index[size_t(c)] = index;
-    probe.Position[size_t(c)] = origin[c] + index * spacing[c];
+    voxel.Index[size_t(c)] = index;
+    voxel.Position[size_t(c)] = origin[c] + index * spacing[c];
   }
-  probe.Value =
-    this->Field->GetScalarComponentAsDouble(probe.Index[0], probe.Index[1], probe.Index[2], 0);
-  this->Probe = probe;
+  voxel.Value =
+    this->Field->GetScalarComponentAsDouble(voxel.Index[0], voxel.Index[1], voxel.Index[2], 0);
+  voxel.Valid = true;
+  return voxel;
+}
+
+bool SlicePlanes::ProbeAt(const std::array<double, 3>& position, int axis)
+{
+  const SliceProbe voxel = this->VoxelAt(position);
+  if (!voxel.Valid)
+  {
+    return false;
+  }
+  this->Probe = voxel;
+  for (int other = 0; other < 3; ++other)
+  {
+    if (other != axis)
+    {
+      this->SetSliceIndex(other, voxel.Index[size_t(other)]);
+    }
+  }
   return true;
+}
+
+int SlicePlanes::AxisUnder(int x, int y)
+{
+  if (!this->Renderer->IsInViewport(x, y))
+  {
+    return -1;
+  }
+  this->HoverPicker->InitializePickList();
+  bool shown = false;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (this->GetSliceVisible(axis))
+    {
+      this->HoverPicker->AddPickList(
+        static_cast<vtkCloudSlicePlaneWidget*>(this->Slices[size_t(axis)].Get())
+          ->GetTexturePlane());
+      shown = true;
+    }
+  }
+  if (!shown || !this->HoverPicker->Pick(double(x), double(y), 0.0, this->Renderer))
+  {
+    return -1;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (this->HoverPicker->GetActor() ==
+      static_cast<vtkCloudSlicePlaneWidget*>(this->Slices[size_t(axis)].Get())->GetTexturePlane())
+    {
+      return axis;
+    }
+  }
+  return -1;
+}
+
+SliceProbe SlicePlanes::VoxelUnder(int x, int y)
+{
+  if (this->AxisUnder(x, y) < 0)
+  {
+    return SliceProbe();
+  }
+  std::array<double, 3> position;
+  this->HoverPicker->GetPickPosition(position.data());
+  return this->VoxelAt(position);
 }
 
 void SlicePlanes::SetObliqueVisible(bool visible)

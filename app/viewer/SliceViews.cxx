@@ -53,6 +53,8 @@ struct SliceViews::View
   std::array<vtkNew<vtkActor>, 2> Lines; // where the other two slices cut this one
   std::array<vtkNew<vtkPoints>, 2> LinePoints;
   vtkNew<vtkTextActor> Caption;
+  double Zoom = 1.0;
+  std::array<double, 2> Pan{ { 0.0, 0.0 } }; // world units along RightAxis and UpAxis
 };
 
 int SliceViews::Axis(int view)
@@ -177,6 +179,8 @@ void SliceViews::Update()
       center[c] = 0.5 * (bounds[2 * c] + bounds[2 * c + 1]);
     }
     center[axis] = position;
+    center[right] += view->Pan[0];
+    center[up] += view->Pan[1];
     double eye[3] = { center[0], center[1], center[2] };
     const double depth = bounds[2 * axis + 1] - bounds[2 * axis] + 1.0;
     eye[axis] += CameraSide[v] * depth;
@@ -194,7 +198,7 @@ void SliceViews::Update()
     const double width = bounds[2 * right + 1] - bounds[2 * right];
     const double height = bounds[2 * up + 1] - bounds[2 * up];
     // A margin for the caption at the top.
-    camera->SetParallelScale(0.5 * std::max(height, width / aspect) * 1.15);
+    camera->SetParallelScale(0.5 * std::max(height, width / aspect) * 1.15 / view->Zoom);
     camera->SetClippingRange(0.01, 3.0 * depth);
   }
 }
@@ -233,22 +237,62 @@ std::array<double, 3> SliceViews::WorldPoint(const View& view, int x, int y) con
 
 void SliceViews::Probe(const View& view, int x, int y)
 {
-  const std::array<double, 3> point = this->WorldPoint(view, x, y);
-  if (!this->Planes.ProbeAt(point))
-  {
-    return; // outside the field
-  }
-  const int axis = SlicedAxis[view.Index];
-  for (int other = 0; other < 3; ++other)
-  {
-    if (other != axis)
-    {
-      this->Planes.SetSliceIndex(other, this->Planes.GetProbe().Index[size_t(other)]);
-    }
-  }
+  // Outside the field nothing changes.
+  this->Planes.ProbeAt(this->WorldPoint(view, x, y), SlicedAxis[view.Index]);
 }
 
-bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y)
+SliceProbe SliceViews::VoxelUnder(int x, int y)
+{
+  View* view = this->ViewAt(x, y);
+  return view ? this->Planes.VoxelAt(this->WorldPoint(*view, x, y)) : SliceProbe();
+}
+
+int SliceViews::AxisAt(int x, int y)
+{
+  const View* view = this->ViewAt(x, y);
+  return view ? SlicedAxis[view->Index] : -1;
+}
+
+double SliceViews::GetZoom(int view) const
+{
+  return this->Views[size_t(view)]->Zoom;
+}
+
+std::array<double, 2> SliceViews::GetPan(int view) const
+{
+  return this->Views[size_t(view)]->Pan;
+}
+
+void SliceViews::ResetZoom()
+{
+  for (auto& view : this->Views)
+  {
+    view->Zoom = 1.0;
+    view->Pan = { { 0.0, 0.0 } };
+  }
+  this->Update();
+}
+
+void SliceViews::Zoom(View& view, double factor, int x, int y)
+{
+  // The point under the pointer stays: the view's centre moves toward it by 1 - 1/factor of the
+  // way, in the view's own right and up coordinates.
+  const std::array<double, 3> before = this->WorldPoint(view, x, y);
+  double focal[3];
+  view.Renderer->GetActiveCamera()->GetFocalPoint(focal);
+  const int right = RightAxis[view.Index], up = UpAxis[view.Index];
+  const double keep = 1.0 - 1.0 / factor;
+  view.Pan[0] += (before[size_t(right)] - focal[right]) * keep;
+  view.Pan[1] += (before[size_t(up)] - focal[up]) * keep;
+  view.Zoom = std::clamp(view.Zoom * factor, 0.25, 64.0);
+}
+
+bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action,
+  int button,
+  int x,
+  int y,
+  bool control,
+  bool shift)
 {
   using Action = vtkCloudViewerInteractorStyle::MouseAction;
   View* view =
@@ -262,6 +306,11 @@ bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int bu
   {
     case Action::WheelForward:
     case Action::WheelBackward:
+      if (control)
+      {
+        this->Zoom(*view, action == Action::WheelForward ? 1.25 : 1.0 / 1.25, x, y);
+        break;
+      }
       this->Planes.SetSliceIndex(
         axis, this->Planes.GetSliceIndex(axis) + (action == Action::WheelForward ? 1 : -1));
       break;
@@ -269,8 +318,10 @@ bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int bu
       this->Dragged = view;
       this->DragButton = button;
       this->DragStartY = y;
+      this->DragLast = { { x, y } };
       this->DragStartIndex = this->Planes.GetSliceIndex(axis);
-      if (button == 1)
+      this->Panning = button == 1 && shift;
+      if (button == 1 && !this->Panning)
       {
         this->Probe(*view, x, y);
       }
@@ -280,7 +331,17 @@ bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int bu
       }
       break;
     case Action::Move:
-      if (this->DragButton == 1)
+      if (this->Panning)
+      {
+        // The slice follows the pointer: the view's centre moves the other way.
+        const std::array<double, 3> now = this->WorldPoint(*view, x, y);
+        const std::array<double, 3> last =
+          this->WorldPoint(*view, this->DragLast[0], this->DragLast[1]);
+        view->Pan[0] -= now[size_t(RightAxis[view->Index])] - last[size_t(RightAxis[view->Index])];
+        view->Pan[1] -= now[size_t(UpAxis[view->Index])] - last[size_t(UpAxis[view->Index])];
+        this->DragLast = { { x, y } };
+      }
+      else if (this->DragButton == 1)
       {
         this->Probe(*view, x, y);
       }
@@ -297,6 +358,7 @@ bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int bu
     case Action::Release:
       this->Dragged = nullptr;
       this->DragButton = 0;
+      this->Panning = false;
       break;
   }
   this->Update();

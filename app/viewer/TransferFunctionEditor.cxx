@@ -113,7 +113,9 @@ void DisableChartActions(vtkChartXY* chart)
   chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
 }
 
-std::vector<double> ParseNumbers(const std::string& text)
+} // namespace
+
+std::vector<double> ParseTypedNumbers(const std::string& text)
 {
   std::string spaced = text;
   std::replace(spaced.begin(), spaced.end(), ',', ' ');
@@ -141,6 +143,8 @@ std::vector<double> ParseNumbers(const std::string& text)
   return numbers;
 }
 
+namespace
+{
 std::string Format(double value)
 {
   char text[32];
@@ -430,27 +434,37 @@ void TransferFunctionEditor::Apply(const TransferFunctionSpec& spec)
   this->Record(before);
 }
 
+std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec)
+{
+  return { { std::min(spec.Opacity.front()[0], spec.Color.front()[0]),
+    std::max(spec.Opacity.back()[0], spec.Color.back()[0]) } };
+}
+
+TransferFunctionSpec StretchTransferFunction(const TransferFunctionSpec& spec,
+  const std::array<double, 2>& target)
+{
+  TransferFunctionSpec stretched = spec;
+  const auto [lo, hi] = TransferFunctionSpan(spec);
+  if (!(hi > lo) || !(target[1] > target[0]))
+  {
+    return stretched;
+  }
+  const auto map = [&](double x)
+  { return target[0] + (x - lo) / (hi - lo) * (target[1] - target[0]); };
+  for (auto& p : stretched.Opacity)
+  {
+    p[0] = map(p[0]);
+  }
+  for (auto& p : stretched.Color)
+  {
+    p[0] = map(p[0]);
+  }
+  return stretched;
+}
+
 void TransferFunctionEditor::FitToData()
 {
-  TransferFunctionSpec spec = TransferFunctionOf(this->Property);
-  double lo = spec.Opacity.front()[0], hi = spec.Opacity.back()[0];
-  lo = std::min(lo, spec.Color.front()[0]);
-  hi = std::max(hi, spec.Color.back()[0]);
-  const double target[2] = { this->DataRange[0], this->DataRange[1] };
-  if (hi > lo && target[1] > target[0])
-  {
-    const auto map = [&](double x)
-    { return target[0] + (x - lo) / (hi - lo) * (target[1] - target[0]); };
-    for (auto& p : spec.Opacity)
-    {
-      p[0] = map(p[0]);
-    }
-    for (auto& p : spec.Color)
-    {
-      p[0] = map(p[0]);
-    }
-  }
-  this->Apply(spec);
+  this->Apply(StretchTransferFunction(TransferFunctionOf(this->Property), this->DataRange));
 }
 
 void TransferFunctionEditor::BeginDrag()
@@ -593,7 +607,7 @@ std::string TransferFunctionEditor::SetSelectedPointValues(const std::string& te
     return "no point is selected";
   }
   const bool opacity = this->Selected == Function::Opacity;
-  const std::vector<double> numbers = ParseNumbers(text);
+  const std::vector<double> numbers = ParseTypedNumbers(text);
   const size_t wanted = opacity ? 2 : 4;
   if (numbers.size() != wanted)
   {

@@ -51,6 +51,47 @@ void Viewer::Internals::ApplyLighting()
   ConfigureLighting(this->Current, this->View, this->Mapper);
 }
 
+// ParaView sets a new dataset's colour map to the data range when it is first shown, and later
+// only grows it to take in values beyond it (its default "Grow and update on 'Apply'"). The same
+// here: a field file opened directly has no transfer function of its own, so the default one is
+// fitted to the field's range; a scene's function (its own or the default) is kept when it covers
+// the field's values and grown to take them in when they lie beyond it (a scene meant for values
+// in [0, 1] would otherwise show a field reaching 4.58 as an opaque block). Its shape is kept:
+// the points are stretched, as `f` stretches them. The droplet extinction is physical (g/m^3 to
+// extinction per metre) and is never stretched. The slices' window starts at the field's range
+// (SliceColors), so both fit the data as the window opens.
+std::string Viewer::Internals::FitTransferFunctionOnOpening(const std::array<double, 2>& range)
+{
+  TransferFunctionSpec& function = this->Current.TransferFunction;
+  if (function.Extinction == TransferFunctionSpec::ExtinctionRule::Droplets ||
+    !(range[1] > range[0]))
+  {
+    return "";
+  }
+  const std::array<double, 2> span = TransferFunctionSpan(function);
+  const bool chosen = this->Current.Document.contains("transfer_function");
+  std::array<double, 2> target = range;
+  if (chosen || !this->Options.FieldFile)
+  {
+    const double slack = 1e-6 * std::max(span[1] - span[0], range[1] - range[0]);
+    if (range[0] >= span[0] - slack && range[1] <= span[1] + slack)
+    {
+      return "";
+    }
+    target = { { std::min(span[0], range[0]), std::max(span[1], range[1]) } };
+  }
+  function = StretchTransferFunction(function, target);
+  char text[256];
+  std::snprintf(text,
+    sizeof(text),
+    "transfer function fitted to the field's values [%.4g, %.4g], as the slices' window%s; "
+    "f fits again",
+    range[0],
+    range[1],
+    chosen || !this->Options.FieldFile ? " (they lie beyond the scene's function)" : "");
+  return text;
+}
+
 void Viewer::Internals::RenderFrame()
 {
   const double start = MonotonicSeconds();
@@ -205,26 +246,78 @@ void Viewer::Internals::ApplyLayout()
   this->Status->LayOut();
 }
 
-void Viewer::Internals::UpdateReadout()
+bool Viewer::Internals::SlicesShown() const
 {
-  const SliceProbe& probe = this->Slices->GetProbe();
-  if (!probe.Valid)
-  {
-    this->Status->SetReadout("");
-    return;
-  }
-  char text[192];
+  return this->FourViews || this->Slices->GetSliceVisible(0) || this->Slices->GetSliceVisible(1) ||
+    this->Slices->GetSliceVisible(2);
+}
+
+std::string Viewer::Internals::VoxelText(const char* label, const SliceProbe& voxel) const
+{
+  const ResolvedFieldUnits& units = this->Options.Units;
+  const std::string length =
+    units.Length == LengthUnit::None ? "" : " " + LengthUnitName(units.Length);
+  const std::string unit = QuantityUnit(units.Quantity);
+  const std::string unitSuffix = unit.empty() ? "" : " " + unit;
+  char text[256];
   std::snprintf(text,
     sizeof(text),
-    "probe (%.3g, %.3g, %.3g)  voxel [%d, %d, %d]  density %.4g",
-    probe.Position[0],
-    probe.Position[1],
-    probe.Position[2],
-    probe.Index[0],
-    probe.Index[1],
-    probe.Index[2],
-    probe.Value);
+    "%s (%.3g, %.3g, %.3g)%s  voxel [%d, %d, %d]  %s %.4g%s",
+    label,
+    voxel.Position[0],
+    voxel.Position[1],
+    voxel.Position[2],
+    length.c_str(),
+    voxel.Index[0],
+    voxel.Index[1],
+    voxel.Index[2],
+    QuantityName(units.Quantity).c_str(),
+    voxel.Value,
+    unitSuffix.c_str());
+  return text;
+}
+
+void Viewer::Internals::UpdateReadout()
+{
+  if (!this->SlicesShown())
+  {
+    // The probe belongs to the slices: it goes with them.
+    this->Slices->ClearProbe();
+    this->Hovered = SliceProbe();
+  }
+  std::string text;
+  if (this->Hovered.Valid)
+  {
+    text = this->VoxelText("pointer", this->Hovered);
+  }
+  const SliceProbe& probe = this->Slices->GetProbe();
+  if (probe.Valid)
+  {
+    text += (text.empty() ? "" : "\n") + this->VoxelText("probe", probe);
+  }
   this->Status->SetReadout(text);
+}
+
+void Viewer::Internals::Hover(int x, int y)
+{
+  SliceProbe voxel;
+  if (x >= 0 && this->SlicesShown())
+  {
+    voxel = this->FourViews ? this->Views2D->VoxelUnder(x, y) : SliceProbe();
+    if (!voxel.Valid)
+    {
+      voxel = this->Slices->VoxelUnder(x, y);
+    }
+  }
+  const bool same = voxel.Valid == this->Hovered.Valid &&
+    (!voxel.Valid || (voxel.Index == this->Hovered.Index && voxel.Value == this->Hovered.Value));
+  if (same)
+  {
+    return; // nothing to draw
+  }
+  this->Hovered = voxel;
+  this->UpdateReadout();
+  this->Request();
 }
 
 void Viewer::Internals::SlicesChanged()
@@ -289,7 +382,6 @@ Viewer::Viewer(const Scene& scene,
 {
   Internals& in = *this->Internal;
   in.Current = scene;
-  in.SceneTransferFunction = scene.TransferFunction;
   in.Field = field;
   in.Options = options;
   in.FourViews = options.FourViews;
@@ -314,6 +406,10 @@ Viewer::Viewer(const Scene& scene,
   // Only the viewer interacts: exports never hold the reprojection's full-resolution history.
   in.Mapper->SetTemporalReprojection(in.Current.Render.Reprojection);
   in.ApplyLighting();
+  double range[2];
+  field->GetScalarRange(range);
+  const std::string fitted = in.FitTransferFunctionOnOpening({ { range[0], range[1] } });
+  in.SceneTransferFunction = in.Current.TransferFunction; // what Shift+r goes back to
   in.Property = MakeVolumeProperty(in.Current.TransferFunction);
   in.Volume->SetMapper(in.Mapper);
   in.Volume->SetProperty(in.Property);
@@ -342,6 +438,10 @@ Viewer::Viewer(const Scene& scene,
   in.Overlay->InteractiveOff();
   window->AddRenderer(in.Overlay);
   in.Status = std::make_unique<StatusOverlay>(in.Overlay);
+  if (!fitted.empty())
+  {
+    in.Show(fitted, false);
+  }
 
   vtkRenderWindowInteractor* interactor = in.Interactor;
   interactor->SetRenderWindow(window);
@@ -454,8 +554,6 @@ Viewer::Viewer(const Scene& scene,
   in.Property->GetRGBTransferFunction()->AddObserver(vtkCommand::ModifiedEvent, changed);
 
   interactor->Initialize();
-  double range[2];
-  field->GetScalarRange(range);
   in.Colors = std::make_unique<SliceColors>(
     std::array<double, 2>{ { range[0], range[1] } }, in.Property->GetRGBTransferFunction());
   in.Overlay->AddActor2D(in.Colors->GetColorBar());
@@ -465,7 +563,15 @@ Viewer::Viewer(const Scene& scene,
   in.Views2D->Changed = [&in] { in.SlicesChanged(); };
   in.Style->SliceViewMouse =
     [&in](vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y)
-  { return in.Views2D->Mouse(action, button, x, y); };
+  {
+    return in.Views2D->Mouse(
+      action, button, x, y, in.Interactor->GetControlKey() != 0, in.Interactor->GetShiftKey() != 0);
+  };
+  in.Style->HoverHandler = [&in](int x, int y) { in.Hover(x, y); };
+  // The color bar names the field's quantity and its unit, as the readout does.
+  const std::string unit = QuantityUnit(in.Options.Units.Quantity);
+  in.Colors->GetColorBar()->SetTitle(
+    (QuantityName(in.Options.Units.Quantity) + (unit.empty() ? "" : " (" + unit + ")")).c_str());
 
   in.Orientation->SetOrientationMarker(in.Axes);
   in.Orientation->SetInteractor(interactor);
@@ -497,6 +603,7 @@ Viewer::~Viewer()
   }
   in.Orientation->SetEnabled(0);
   in.Style->SliceViewMouse = nullptr;
+  in.Style->HoverHandler = nullptr;
   in.Views2D.reset();
   in.Slices.reset();
   in.Style->KeyHandler = nullptr;

@@ -131,18 +131,25 @@ void Viewer::Internals::TypeKey(const std::string& keySym, char keyCode)
 {
   using Function = TransferFunctionEditor::Function;
   const Function function = this->Editing->GetSelectedFunction();
-  const std::string what = std::string(TransferFunctionEditor::FunctionName(function)) + " point " +
-    std::to_string(this->Editing->GetSelectedPoint());
+  // What is typed: the slices' window and level, or the selected point's values.
+  const bool windowLevel = this->TypingWindowLevel;
+  const std::string what = windowLevel
+    ? std::string("window/level")
+    : std::string(TransferFunctionEditor::FunctionName(function)) + " point " +
+      std::to_string(this->Editing->GetSelectedPoint());
   if (keySym == "Escape")
   {
     this->Typing = false;
     this->Editing->SetEntry("");
-    this->Show("typing cancelled; the point is unchanged", false);
+    this->Show("typing cancelled; the " + std::string(windowLevel ? "window/level" : "point") +
+        " is unchanged",
+      false);
     return;
   }
   if (keySym == "Return" || keySym == "KP_Enter")
   {
-    const std::string problem = this->Editing->SetSelectedPointValues(this->Typed);
+    const std::string problem = windowLevel ? this->SetTypedWindowLevel()
+                                            : this->Editing->SetSelectedPointValues(this->Typed);
     if (!problem.empty())
     {
       this->Show(problem + " (Esc cancels)", true);
@@ -150,7 +157,10 @@ void Viewer::Internals::TypeKey(const std::string& keySym, char keyCode)
     }
     this->Typing = false;
     this->Editing->SetEntry("");
-    this->Show(what + ": " + this->Editing->GetSelectedPointValues() + " (Ctrl+z undoes)", false);
+    this->Show(windowLevel
+        ? this->WindowLevelText("window/level typed")
+        : what + ": " + this->Editing->GetSelectedPointValues() + " (Ctrl+z undoes)",
+      false);
     return;
   }
   if (keySym == "BackSpace")
@@ -164,9 +174,92 @@ void Viewer::Internals::TypeKey(const std::string& keySym, char keyCode)
   {
     this->Typed += keyCode;
   }
-  this->Editing->SetEntry(what + " (now " + this->Editing->GetSelectedPointValues() + "), type " +
-    (function == Function::Opacity ? "density opacity" : "density r g b") + ": " + this->Typed +
+  const auto now = this->Colors->GetWindowLevel();
+  const std::string values = windowLevel ? Format("%.4g", now[0]) + " " + Format("%.4g", now[1])
+                                         : this->Editing->GetSelectedPointValues();
+  const char* fields = windowLevel  ? "window level"
+    : function == Function::Opacity ? "density opacity"
+                                    : "density r g b";
+  this->Editing->SetEntry(what + " (now " + values + "), type " + fields + ": " + this->Typed +
     "_   Enter applies, Esc cancels");
+}
+
+std::string Viewer::Internals::WindowLevelText(const std::string& what) const
+{
+  const auto [window, level] = this->Colors->GetWindowLevel();
+  return what + ": window " + Format("%.4g", window) + ", level " + Format("%.4g", level) +
+    " (densities " + Format("%.4g", level - 0.5 * window) + " to " +
+    Format("%.4g", level + 0.5 * window) + ")" +
+    (this->Colors->IsWindowed() ? "" : "; the transfer function's colors are not windowed (c)");
+}
+
+std::string Viewer::Internals::SetTypedWindowLevel()
+{
+  const std::vector<double> numbers = ParseTypedNumbers(this->Typed);
+  if (numbers.size() != 2)
+  {
+    return "type two numbers, the window and the level (for example 0.5 0.25)";
+  }
+  if (!(numbers[0] > 0.0))
+  {
+    return "the window must be greater than 0, got " + Format("%.4g", numbers[0]);
+  }
+  this->Colors->SetWindowLevel(numbers[0], numbers[1]);
+  this->SlicesChanged();
+  return "";
+}
+
+void Viewer::Internals::StartTypingWindowLevel()
+{
+  this->Typing = true;
+  this->TypingWindowLevel = true;
+  this->Typed.clear();
+  this->TypeKey("", 0);
+}
+
+// As ParaView's "rescale to visible range" and Slicer's automatic window/level: the values the
+// shown slices hold, without the extreme percent at either end (a few hot voxels would otherwise
+// take the whole window), else their whole range.
+void Viewer::Internals::AutoWindowLevel()
+{
+  std::vector<double> values;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (this->FourViews || this->Slices->GetSliceVisible(axis))
+    {
+      const std::vector<double> slice = this->Slices->GetSliceValues(axis);
+      values.insert(values.end(), slice.begin(), slice.end());
+    }
+  }
+  if (values.empty())
+  {
+    this->Show("no slice is shown (x, y, z or 4 show one): the window/level is unchanged", true);
+    return;
+  }
+  const auto at = [&](double fraction)
+  {
+    const auto nth =
+      values.begin() + std::ptrdiff_t(std::lround(fraction * double(values.size() - 1)));
+    std::nth_element(values.begin(), nth, values.end());
+    return *nth;
+  };
+  double low = at(0.01), high = at(0.99);
+  if (!(high > low))
+  {
+    low = at(0.0);
+    high = at(1.0);
+  }
+  if (!(high > low))
+  {
+    this->Show(
+      "the shown slices hold one value, " + Format("%.4g", low) + ": the window/level is unchanged",
+      true);
+    return;
+  }
+  this->Colors->SetWindowLevel(high - low, 0.5 * (low + high));
+  this->Show(
+    this->WindowLevelText("window/level from the shown slices (1st to 99th percentile)"), false);
+  this->SlicesChanged();
 }
 
 void Viewer::Internals::StartTyping()
@@ -177,14 +270,35 @@ void Viewer::Internals::StartTyping()
     return;
   }
   this->Typing = true;
+  this->TypingWindowLevel = false;
   this->Typed.clear();
   this->TypeKey("", 0);
+}
+
+void Viewer::Internals::StepSlice(int step)
+{
+  const int* pointer = this->Interactor->GetEventPosition();
+  int axis = this->FourViews ? this->Views2D->AxisAt(pointer[0], pointer[1]) : -1;
+  if (axis < 0)
+  {
+    axis = this->Slices->AxisUnder(pointer[0], pointer[1]);
+  }
+  axis = axis < 0 ? this->ActiveAxis : axis;
+  this->ActiveAxis = axis;
+  this->Slices->SetSliceIndex(axis, this->Slices->GetSliceIndex(axis) + step);
+  this->Show(std::string("slice across ") + AxisNames[axis] + ": " +
+      std::to_string(this->Slices->GetSliceIndex(axis)) + " of " +
+      std::to_string(this->Slices->GetNumberOfSlices(axis) - 1) + " (" + AxisNames[axis] + " = " +
+      Format("%.3g", this->Slices->GetSlicePosition(axis)) + ")",
+    false);
+  this->SlicesChanged();
 }
 
 void Viewer::Internals::ToggleSlice(int axis)
 {
   const bool visible = !this->Slices->GetSliceVisible(axis);
   this->Slices->SetSliceVisible(axis, visible);
+  this->ActiveAxis = visible ? axis : this->ActiveAxis;
   this->Show(std::string("slice across ") + AxisNames[axis] + ": " +
       (visible ? "shown at " + std::string(AxisNames[axis]) + " = " +
             Format("%.3g", this->Slices->GetSlicePosition(axis))
@@ -208,6 +322,20 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
         false);
       this->SlicesChanged();
       break;
+    case A::StepSlice:
+      this->StepSlice(variant == 0 ? 1 : -1);
+      break;
+    case A::AutoWindowLevel:
+      this->AutoWindowLevel();
+      break;
+    case A::ResetWindowLevel:
+      this->Colors->ResetWindowLevel();
+      this->Show(this->WindowLevelText("window/level reset to the field's range"), false);
+      this->SlicesChanged();
+      break;
+    case A::TypeWindowLevel:
+      this->StartTypingWindowLevel();
+      break;
     case A::CycleSliceColors:
       this->Colors->NextColormap();
       this->Show("slice colors: " + this->Colors->GetColormap(), false);
@@ -216,6 +344,7 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
     case A::ToggleLayout:
       this->FourViews = !this->FourViews;
       this->ApplyLayout();
+      this->UpdateReadout();
       this->Show(
         this->FourViews ? "four views: 3D, axial, coronal, sagittal" : "the 3D view alone", false);
       break;
@@ -310,6 +439,7 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       break;
     case A::ResetCamera:
       ApplyCamera(this->Current.Camera, this->Field->GetBounds(), this->View, this->Current.Source);
+      this->Views2D->ResetZoom();
       break;
     case A::Help:
       this->Status->SetHelpVisible(!this->Status->GetHelpVisible());

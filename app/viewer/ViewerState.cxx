@@ -39,6 +39,12 @@ json ViewerStateJson(const ViewerState& state)
   {
     viewports[name] = pixels;
   }
+  json sliceViews = json::object();
+  for (int v = 0; v < SliceViews::Count; ++v)
+  {
+    sliceViews[SliceViews::Name(v)] = { { "zoom", state.SliceViewZoom[size_t(v)] },
+      { "pan", state.SliceViewPan[size_t(v)] } };
+  }
   json probed = json::array();
   for (double value : state.ProbedValue)
   {
@@ -80,6 +86,11 @@ json ViewerStateJson(const ViewerState& state)
       { { "valid", state.ProbeValid },
         { "index", state.ProbeIndex },
         { "value", state.ProbeValue } } },
+    { "slice_views", sliceViews },
+    { "hover",
+      { { "valid", state.HoverValid },
+        { "index", state.HoverIndex },
+        { "value", state.HoverValue } } },
     { "transfer_function",
       { { "opacity", state.TransferFunction.Opacity },
         { "color", state.TransferFunction.Color },
@@ -175,6 +186,14 @@ ViewerState Viewer::State() const
   state.ProbeValid = probe.Valid;
   state.ProbeIndex = probe.Index;
   state.ProbeValue = probe.Value;
+  for (int v = 0; v < SliceViews::Count; ++v)
+  {
+    state.SliceViewZoom[size_t(v)] = in.Views2D->GetZoom(v);
+    state.SliceViewPan[size_t(v)] = in.Views2D->GetPan(v);
+  }
+  state.HoverValid = in.Hovered.Valid;
+  state.HoverIndex = in.Hovered.Index;
+  state.HoverValue = in.Hovered.Value;
   using Function = TransferFunctionEditor::Function;
   state.OpacityPointPixels = in.Editing->GetPointPixels(Function::Opacity);
   state.ColorPointPixels = in.Editing->GetPointPixels(Function::Color);

@@ -152,6 +152,10 @@ void vtkCloudViewerInteractorStyle::OnMouseMove()
       {
         this->Chart->OnMouseMove(); // hover highlights
       }
+      if (this->HoverHandler)
+      {
+        this->HoverHandler(position[0], position[1]);
+      }
       break;
   }
 }
@@ -277,6 +281,14 @@ void vtkCloudViewerInteractorStyle::OnMouseWheelBackward()
   if (!this->WheelTakenElsewhere(MouseAction::WheelBackward))
   {
     this->Superclass::OnMouseWheelBackward();
+  }
+}
+
+void vtkCloudViewerInteractorStyle::OnLeave()
+{
+  if (this->HoverHandler)
+  {
+    this->HoverHandler(-1, -1);
   }
 }
 

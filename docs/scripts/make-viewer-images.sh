@@ -73,6 +73,13 @@ click() {
   echo "LeftButtonReleaseEvent $1 $2 0 0 0 0"
 }
 
+# probe X Y: a Control+left click (modifier bit 2), which probes a slice in the 3D view.
+probe() {
+  echo "MouseMoveEvent $1 $2 0 0 0 0"
+  echo "LeftButtonPressEvent $1 $2 2 0 0 0"
+  echo "LeftButtonReleaseEvent $1 $2 2 0 0 0"
+}
+
 # state NAME KEY: the numbers of a JSON array of arrays in the state of session NAME, as
 # "x y" lines ("opacity_point_pixels") or of an object's array ("axial").
 state() {
@@ -83,7 +90,7 @@ state() {
 # The 3D view with the slice across z and a probed voxel, whose readout stays at the bottom.
 session viewer-3d <<< "$(key z)"
 read -r x0 y0 x1 y1 <<< "$(state viewer-3d 3d)"
-session viewer-3d <<< "$(key z; click $(((x0 + x1) / 2 + (x1 - x0) / 40)) $(((y0 + y1) / 2 + (y1 - y0) / 40)))"
+session viewer-3d <<< "$(key z; probe $(((x0 + x1) / 2 + (x1 - x0) / 40)) $(((y0 + y1) / 2 + (y1 - y0) / 40)))"
 grep -q '"valid":true' "$scratch/viewer-3d.json" || { echo "make-viewer-images.sh: the probe missed the slice" >&2; exit 1; }
 
 # Four views: a click in the axial view moves the crosshair (the other two slices) there.

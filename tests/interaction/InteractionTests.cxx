@@ -114,7 +114,7 @@ TEST(Interaction, SliceDragMovesThePlaneAndTheProbe)
   const std::string directory = FreshDirectory("slice-drag");
   Session session(directory);
   const double before = session.View->State().SlicePosition[2];
-  // The cursor shows the value under it while the left button is down: probe the slice's
+  // The cursor shows the value under it while Control + left button is down: probe the slice's
   // centre, move the slice with the middle button, probe the same pixel again.
   const std::string all = support::ReadText(Recordings + "/slice-drag.log");
   const size_t release = all.find("LeftButtonReleaseEvent");
@@ -128,13 +128,13 @@ TEST(Interaction, SliceDragMovesThePlaneAndTheProbe)
   ASSERT_FALSE(std::isnan(probed.ProbedValue[2])) << "the left click did not probe the z slice";
   session.View->PlayString("# StreamVersion 1.1\n" + all.substr(release));
   session.View->PlayString("# StreamVersion 1.1\nMouseMoveEvent 240 250 0 0 0 0\n"
-                           "LeftButtonPressEvent 240 250 0 0 0 0\n");
+                           "LeftButtonPressEvent 240 250 2 0 0 0\n");
   const ViewerState moved = session.View->State();
   EXPECT_GT(std::abs(moved.SlicePosition[2] - before), 0.05)
     << "the middle drag did not move the z slice from " << before;
   EXPECT_NE(moved.ProbedValue[2], probed.ProbedValue[2]);
   session.View->SaveWindowImage(directory + "/window.png");
-  session.View->PlayString("# StreamVersion 1.1\nLeftButtonReleaseEvent 240 250 0 0 0 0\n");
+  session.View->PlayString("# StreamVersion 1.1\nLeftButtonReleaseEvent 240 250 2 0 0 0\n");
 }
 
 TEST(Interaction, TransferFunctionPointChangesFunctionAndImage)

@@ -401,6 +401,18 @@ void LiveSession::Key(const std::string& keySym, bool control)
   this->Sync();
 }
 
+void LiveSession::Hold(const std::string& modifierKeySym, bool down)
+{
+  const KeyCode code = XKeysymToKeycode(this->Connection, XStringToKeysym(modifierKeySym.c_str()));
+  if (code == 0)
+  {
+    throw std::runtime_error("no key for the key symbol " + modifierKeySym);
+  }
+  this->Focus();
+  XTestFakeKeyEvent(this->Connection, code, down ? True : False, CurrentTime);
+  this->Sync();
+}
+
 void LiveSession::SendKey(const std::string& keySym, bool control)
 {
   const KeySym symbol = XStringToKeysym(keySym.c_str());

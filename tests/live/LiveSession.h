@@ -79,6 +79,9 @@ public:
   // A key by its X key symbol ("m", "Left", "Delete", "P"); `control` holds Control. Upper-case
   // letters are typed with Shift.
   void Key(const std::string& keySym, bool control = false);
+  // Holds a modifier key down ("Control_L", "Shift_L") or lets it go, for clicks and drags made
+  // with it.
+  void Hold(const std::string& modifierKeySym, bool down);
   // Several keys sent at once, the server synchronised only after the last.
   void Keys(const std::vector<std::string>& keySyms);
 

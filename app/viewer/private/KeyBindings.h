@@ -19,6 +19,10 @@ enum class ViewerAction
   ToggleSlice, // variant: axis
   ToggleOblique,
   CycleSliceColors,
+  StepSlice, // variant 0: up (PageUp), 1: down
+  AutoWindowLevel,
+  ResetWindowLevel,
+  TypeWindowLevel,
   ToggleLayout,
   ToggleVolume,
   CycleLighting,

@@ -1,9 +1,12 @@
 // How every slice shows density: one vtkLookupTable shared by the 3D slice planes, the oblique
-// cut and the 2D slice views. Its range is the window/level (density level - window/2 to
-// level + window/2; beyond it colors clamp), set by a right-button drag on any slice; its colors
-// come from a named colormap or from the transfer function's own colors (the albedo the cloud is
-// drawn with), sampled over the window so that a density has the same color on a slice as in
-// the transfer function. A vtkScalarBarActor (GetColorBar) shows the table with its densities.
+// cut and the 2D slice views. Its colors come from a named colormap spread over the window/level
+// (density level - window/2 to level + window/2; beyond it colors clamp), set by a right-button
+// drag on any slice or the window/level keys; or from the transfer function's own colors (the
+// albedo the cloud is drawn with) over the function's own range, so that a density has the same
+// color on a slice as in the editor's color strip whatever the window (a window would clamp the
+// densities below it to the color of its low end: with the cloud-dusk preset, empty space showed
+// salmon instead of the strip's purple). A vtkScalarBarActor (GetColorBar) shows the table with
+// its densities.
 #ifndef cloudvis_SliceColors_h
 #define cloudvis_SliceColors_h
 
@@ -43,6 +46,10 @@ public:
   // Window > 0 (clamped to a thousandth of the field's range at least).
   void SetWindowLevel(double window, double level);
   std::array<double, 2> GetWindowLevel() const { return { { this->Window, this->Level } }; }
+  // Back to the window the slices opened with: the field's range.
+  void ResetWindowLevel();
+  // The colors follow the window/level (a named colormap, not the transfer function's colors).
+  bool IsWindowed() const;
 
   // Window/level by dragging, as in ParaView and Slicer: from the window/level at Begin, moving
   // right widens the window and moving up raises the level, a full viewport width or height

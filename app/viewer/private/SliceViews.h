@@ -9,10 +9,13 @@
 // view's slice and the crosshairs, and the views move the planes. Mouse, in a view: the wheel
 // steps its slice by one voxel, a middle drag moves it (one voxel per 4 pixels), a left click or
 // drag probes the voxel under the pointer and moves the other two slices through it (the
-// crosshairs follow), a right drag sets the window/level of every slice.
+// crosshairs follow), a right drag sets the window/level of every slice; as in 3D Slicer,
+// Control + wheel zooms about the pointer and Shift + left drag pans. Each view keeps its zoom
+// and pan (ResetZoom fits the slices again).
 #ifndef cloudvis_SliceViews_h
 #define cloudvis_SliceViews_h
 
+#include "SlicePlanes.h"
 #include "vtkCloudViewerInteractorStyle.h"
 
 #include <vtkNew.h>
@@ -35,7 +38,6 @@ namespace cloudvis
 {
 
 class SliceColors;
-class SlicePlanes;
 
 class SliceViews
 {
@@ -59,14 +61,34 @@ public:
   // Called after the mouse moved a slice, probed or changed the window/level.
   std::function<void()> Changed;
 
-  // The mouse in window pixels (vtkCloudViewerInteractorStyle::SliceViewMouse): returns whether
-  // a view shown in the window takes the event.
-  bool Mouse(vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y);
+  // The mouse in window pixels (vtkCloudViewerInteractorStyle::SliceViewMouse), with the
+  // modifiers held: returns whether a view shown in the window takes the event.
+  bool Mouse(vtkCloudViewerInteractorStyle::MouseAction action,
+    int button,
+    int x,
+    int y,
+    bool control,
+    bool shift);
+
+  // The axis of the slice shown in the view at window pixel x, y; -1 when none is there.
+  int AxisAt(int x, int y);
+
+  // A view's magnification over the fitted slice (1: the slice fits the view) and its pan, in
+  // world units along the view's right and up axes.
+  double GetZoom(int view) const;
+  std::array<double, 2> GetPan(int view) const;
+  // Every view fits its slice again.
+  void ResetZoom();
+
+  // The voxel under window pixel x, y in a view shown (Valid false elsewhere), not probed.
+  SliceProbe VoxelUnder(int x, int y);
 
 private:
   struct View;
   View* ViewAt(int x, int y);
   std::array<double, 3> WorldPoint(const View& view, int x, int y) const;
+  // Zooms the view by `factor` keeping the point under x, y where it is.
+  void Zoom(View& view, double factor, int x, int y);
   void Probe(const View& view, int x, int y);
 
   vtkImageData* Field;
@@ -76,6 +98,8 @@ private:
   View* Dragged = nullptr;
   int DragButton = 0;
   int DragStartY = 0;
+  bool Panning = false; // the drag (Shift + left) pans the view
+  std::array<int, 2> DragLast{ { 0, 0 } };
   int DragStartIndex = 0;
 };
 

@@ -43,7 +43,9 @@ namespace cloudvis
 struct Viewer::Internals
 {
   Scene Current; // lighting, lights, step and resolution as they are now; see CurrentScene()
-  TransferFunctionSpec SceneTransferFunction; // what R goes back to
+  // What Shift+r goes back to: the scene's function as the window opened with it (fitted to the
+  // field's values where FitTransferFunctionOnOpening did).
+  TransferFunctionSpec SceneTransferFunction;
   vtkSmartPointer<vtkImageData> Field;
   ViewerOptions Options;
   std::ostream* Messages = &std::cerr;
@@ -71,7 +73,8 @@ struct Viewer::Internals
   std::unique_ptr<LiveLoop> Loop;
 
   bool FourViews = false;
-  bool Typing = false; // the keys type a point's values
+  bool Typing = false;            // the keys type values (Typed)...
+  bool TypingWindowLevel = false; // ... of the slices' window and level, else of a point
   std::string Typed;
   int PresetIndex = -1;
   bool PreviewNext = false;         // the next frame answers a key that changed the cloud
@@ -85,9 +88,13 @@ struct Viewer::Internals
   std::vector<HandledKey> Keys;
   long FramesRendered = 0;
   double LastFrameAt = -1.0;
+  SliceProbe Hovered; // the voxel under the pointer on a slice; Valid false when none
 
   // The scene's lights and lighting model on the 3D view and the mapper, as `render` sets them.
   void ApplyLighting();
+  // Before the window opens: fits Current's transfer function to the field's value range where
+  // ParaView would (Viewer.cxx says when). Returns the message that says so, or "".
+  std::string FitTransferFunctionOnOpening(const std::array<double, 2>& range);
 
   // Renders the window. A preview (asked for by a key that changes the cloud, in the live loop)
   // renders at the interactor's DesiredUpdateRate, so the mapper marches at a resolution that
@@ -115,8 +122,16 @@ struct Viewer::Internals
   // as 3D Slicer's "four-up" places them (axial top left, 3D top right, sagittal bottom left,
   // coronal bottom right).
   void ApplyLayout();
-  // The probe readout line from the last probe.
+  // An orthogonal slice is shown: in the 3D view, or the slice views.
+  bool SlicesShown() const;
+  // A voxel as the readout writes it, in the field's units (Options.Units): "probe (0.1, 0.2,
+  // 0.3) km  voxel [1, 2, 3]  lwc 0.42 g/m^3".
+  std::string VoxelText(const char* label, const SliceProbe& voxel) const;
+  // The readout: the voxel under the pointer, over the last probe; nothing (and the probe
+  // dropped) while no slice is shown.
   void UpdateReadout();
+  // The pointer moved to window pixel x, y with no button held (-1, -1: it left the window).
+  void Hover(int x, int y);
   // The slices moved, probed or changed their colors (from a plane, a slice view or a key).
   void SlicesChanged();
   // The 3D view alone, converged (render.accumulate frames), without the viewer's own
@@ -135,7 +150,19 @@ struct Viewer::Internals
   void TypeKey(const std::string& keySym, char keyCode);
   // Enter: typing the selected point's values starts (a message when none is selected).
   void StartTyping();
+  // Shift+l: typing the window and level starts; Enter sets them from Typed (returns what is
+  // wrong with it, or ""), in the same entry line.
+  void StartTypingWindowLevel();
+  std::string SetTypedWindowLevel();
+  // a: the window/level from the values of the slices shown.
+  void AutoWindowLevel();
+  // "WHAT: window W, level L (densities A to B)", for messages.
+  std::string WindowLevelText(const std::string& what) const;
   void ToggleSlice(int axis);
+  // PageUp / PageDown: the slice under the pointer (a slice view, or a slice in the 3D view),
+  // else the last one shown, one voxel up (+1) or down (-1).
+  void StepSlice(int step);
+  int ActiveAxis = 2; // the slice across z until another is shown
   // What a key of the table does; `variant` is the index of the key pressed in its row.
   void Act(ViewerAction action, int variant, Viewer& viewer);
 };

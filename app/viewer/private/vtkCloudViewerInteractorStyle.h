@@ -75,6 +75,13 @@ public:
   std::function<bool(MouseAction action, int button, int x, int y)> SliceViewMouse;
 
   /**
+   * Called for every mouse move while no button is held (x, y in window pixels), and with
+   * -1, -1 when the pointer leaves the window: the readout of the voxel under the pointer
+   * follows it. Default none.
+   */
+  std::function<void(int x, int y)> HoverHandler;
+
+  /**
    * Called when a drag in the editor or a slice view starts (true) and ends (false), so that
    * the window renders at interactive speed meanwhile. Default none.
    */
@@ -100,6 +107,7 @@ public:
   void OnRightButtonUp() override;
   void OnMouseWheelForward() override;
   void OnMouseWheelBackward() override;
+  void OnLeave() override;
   void OnKeyPress() override;
   void OnChar() override;
   void OnTimer() override;

@@ -40,6 +40,11 @@ struct ViewerOptions
   bool FourViews = false;  // start in the four-view layout (--layout four)
   std::string CommandLine; // embedded in screenshots' metadata
   std::ostream* Messages = nullptr; // messages besides the window (stderr by default)
+  // The field was opened as a file (`cloudvis view FIELD.vti`), not through a scene: its transfer
+  // function is fitted to its values on opening, as ParaView does (docs/viewer.md).
+  bool FieldFile = false;
+  // What the field's values and lengths mean, for the readouts (FieldUnits.h).
+  ResolvedFieldUnits Units;
 };
 
 // A key press the viewer handled, with when (MonotonicSeconds: CLOCK_MONOTONIC) it was handled
@@ -103,6 +108,14 @@ struct ViewerState
   bool ProbeValid = false;
   std::array<int, 3> ProbeIndex{ { 0, 0, 0 } };
   double ProbeValue = 0.0;
+  // The slice views' zoom (1: fitted) and pan (world units along the view's right and up axes):
+  // axial, coronal, sagittal.
+  std::array<double, 3> SliceViewZoom{ { 1.0, 1.0, 1.0 } };
+  std::array<std::array<double, 2>, 3> SliceViewPan{};
+  // The voxel under the pointer on a slice, as the readout shows it.
+  bool HoverValid = false;
+  std::array<int, 3> HoverIndex{ { 0, 0, 0 } };
+  double HoverValue = 0.0;
   // The editor: where its points are drawn (window pixels), the selected point, typed entry,
   // undo history.
   std::vector<std::array<double, 2>> OpacityPointPixels;
