@@ -25,16 +25,17 @@ namespace cloudvis
 namespace
 {
 
-std::array<int, 2> ParseWindowSize(const std::string& text)
+// --size and --screenshot-size: WIDTHxHEIGHT.
+std::array<int, 2> ParseWindowSize(const std::string& text, const std::string& option)
 {
   static const std::regex form("([0-9]{1,5})[xX]([0-9]{1,5})");
   std::smatch match;
   if (!std::regex_match(text, match, form) || std::stoi(match[1]) < 64 ||
     std::stoi(match[2]) < 64 || std::stoi(match[1]) > 16384 || std::stoi(match[2]) > 16384)
   {
-    throw UsageError("view: --size expects WIDTHxHEIGHT in pixels, each in [64, 16384] (for "
-                     "example 800x800), got \"" +
-      text + "\"");
+    throw UsageError("view: --" + option +
+      " expects WIDTHxHEIGHT in pixels, each in [64, 16384] (for example 800x800), got \"" + text +
+      "\"");
   }
   return { { std::stoi(match[1]), std::stoi(match[2]) } };
 }
@@ -94,12 +95,16 @@ int View(const Arguments& arguments, std::ostream& out)
     // Before the window opens; Viewer::PlayFile reads it through the same check.
     CheckRegularInputFile(play, "recording");
   }
+  if (arguments.Has("screenshot-size"))
+  {
+    options.ScreenshotSize = ParseWindowSize(arguments.Value("screenshot-size"), "screenshot-size");
+  }
   options.CommandLine = QuoteCommandLine(arguments.CommandLine);
 
   Scene scene = LoadOperandScene("view", input, arguments, {});
   if (arguments.Has("size"))
   {
-    options.WindowSize = ParseWindowSize(arguments.Value("size"));
+    options.WindowSize = ParseWindowSize(arguments.Value("size"), "size");
   }
   else
   {
@@ -112,7 +117,12 @@ int View(const Arguments& arguments, std::ostream& out)
     // Absolute, so that a saved scene finds the field wherever the scene is kept.
     scene.Field.File = Absolute(input);
   }
-  const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
+  FieldReport source;
+  const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &source);
+  // The legends' title: the field's quantity, with its unit when it has one.
+  const FieldQuantity quantity = ResolveFieldUnits(scene.Field.Units, source.Units).Quantity;
+  options.Quantity = QuantityName(quantity) +
+    (QuantityUnit(quantity).empty() ? "" : " (" + QuantityUnit(quantity) + ")");
   Viewer viewer(scene, field, options);
   if (!play.empty())
   {
@@ -148,7 +158,8 @@ CommandSpec ViewCommand()
     "orthogonal and oblique slices; key 4 switches to four views: 3D, axial, coronal and\n"
     "sagittal slices) and the transfer-function editor over the density histogram (bottom\n"
     "quarter). Press h in the window for the keys; --keys prints them and docs/viewer.md lists\n"
-    "them. s saves a screenshot (cloudvis-screenshot-NNN.png and .exr), w the scene as\n"
+    "them. s saves a screenshot of the views with their color legends\n"
+    "(cloudvis-screenshot-NNN.png, and .exr of the 3D view), w the scene as\n"
     "cloudvis-view-NNN.json, which `cloudvis render` turns into the same image. Without\n"
     "SCENE the default scene is shown. --record writes the session's events, --play replays\n"
     "such a file and exits at its end. Needs an X display (xvfb-run -a cloudvis view ...).",
@@ -172,6 +183,10 @@ CommandSpec ViewCommand()
         "DIR",
         "where screenshots, saved scenes and presets go (default: the current directory)" },
       { "layout", 0, "3d|four", "start with the 3D view alone (default) or the four views" },
+      { "screenshot-size",
+        0,
+        "WxH",
+        "the size of the screenshots s saves (default: the views as the window shows them)" },
       { "state-file",
         0,
         "FILE.json",

@@ -50,6 +50,7 @@ const std::vector<KeyBinding>& KeyBindings()
   static const std::vector<KeyBinding> table = {
     { { "4" }, {}, false, A::ToggleLayout, View, "four views / the 3D view alone" },
     { { "v" }, {}, false, A::ToggleVolume, View, "show / hide the cloud", true },
+    { { "b" }, {}, false, A::ToggleLegends, View, "show / hide the color legends" },
     { { "r" }, {}, false, A::ResetCamera, View, "reset the camera", true },
     { { "h" }, {}, false, A::Help, View, "show / hide this help" },
     { { "q" }, { "Escape" }, false, A::Quit, View, "quit" },
@@ -108,7 +109,7 @@ const std::vector<KeyBinding>& KeyBindings()
       "remove the selected point",
       true },
     { { "Return" }, { "KP_Enter" }, false, A::TypePointValues, Function, "type its values" },
-    { { "s" }, {}, false, A::Screenshot, Files, "screenshot (PNG and EXR)" },
+    { { "s" }, {}, false, A::Screenshot, Files, "screenshot of the views (PNG, EXR)" },
     { { "w" }, {}, false, A::SaveScene, Files, "save the scene (JSON)" },
   };
   // clang-format on

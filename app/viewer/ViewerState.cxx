@@ -66,6 +66,7 @@ json ViewerStateJson(const ViewerState& state)
     { "help_visible", state.HelpVisible },
     { "hint_visible", state.HintVisible },
     { "color_bar_visible", state.ColorBarVisible },
+    { "legend_visible", state.LegendVisible },
     { "message", state.Message },
     { "readout", state.Readout },
     { "slices",
@@ -149,6 +150,7 @@ ViewerState Viewer::State() const
   state.VolumeVisible = in.Volume->GetVisibility() != 0;
   state.HintVisible = in.Status->GetHintVisible();
   state.ColorBarVisible = in.Colors->GetColorBar()->GetVisibility() != 0;
+  state.LegendVisible = in.Legend->GetVisibility() != 0;
   state.Message = in.Status->GetMessage();
   state.Readout = in.Status->GetReadout();
   state.WindowId = static_cast<unsigned long>(reinterpret_cast<uintptr_t>(

@@ -39,6 +39,8 @@ public:
   static const std::vector<std::string>& ColormapNames();
   void NextColormap();
   const std::string& GetColormap() const;
+  // By name (a saved scene's); returns false, changing nothing, for a name not in the list.
+  bool SetColormap(const std::string& name);
 
   // Window > 0 (clamped to a thousandth of the field's range at least).
   void SetWindowLevel(double window, double level);
@@ -64,6 +66,12 @@ private:
   vtkNew<vtkLookupTable> Table;
   vtkNew<vtkScalarBarActor> ColorBar;
 };
+
+// The look every color bar of the viewer shares (the slices' and the cloud's legend): three
+// labels, a narrow bar, light 12-pixel text, the title clear of the top label.
+void StyleColorBar(vtkScalarBarActor* bar, const std::string& title);
+// The bar's texts at `scale` times their size (a screenshot larger than the window).
+void SetColorBarFontScale(vtkScalarBarActor* bar, double scale);
 
 } // namespace cloudvis
 

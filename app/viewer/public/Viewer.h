@@ -38,6 +38,11 @@ struct ViewerOptions
   std::string RecordFile;  // --record: the session's events, as VTK writes them
   std::string StateFile;   // --state-file: ViewerStateJson written after every frame or input
   bool FourViews = false;  // start in the four-view layout (--layout four)
+  // s saves the views at this size in pixels (--screenshot-size); 0 x 0: as the window shows
+  // them (the window's width, the height above the editor).
+  std::array<int, 2> ScreenshotSize{ { 0, 0 } };
+  // What the field's values are, as the legends title them: "density", "lwc (g/m^3)".
+  std::string Quantity = "density";
   std::string CommandLine; // embedded in screenshots' metadata
   std::ostream* Messages = nullptr; // messages besides the window (stderr by default)
 };
@@ -89,6 +94,7 @@ struct ViewerState
   bool VolumeVisible = true;
   bool HintVisible = true;
   bool ColorBarVisible = false;
+  bool LegendVisible = false; // the cloud's color legend
   std::string Message;        // the message on screen, as wrapped; empty once faded
   std::string Readout;        // the probe readout line
   unsigned long WindowId = 0; // the X window
@@ -155,8 +161,10 @@ public:
   // Writes CurrentSceneJson() to `path` atomically. Throws InputError.
   void SaveScene(const std::string& path) const;
 
-  // s: cloudvis-screenshot-NNN.png and .exr; w: cloudvis-view-NNN.json (the first NNN free in
-  // the output directory; ViewerFiles.h). Failures become messages; the session goes on.
+  // s: cloudvis-screenshot-NNN.png (the layout's views with their color legends, at
+  // ViewerOptions::ScreenshotSize) and .exr (the 3D view's float image); w: cloudvis-view-NNN.json
+  // (the first NNN free in the output directory; ViewerFiles.h). Failures become messages; the
+  // session goes on.
   void SaveScreenshot();
   void SaveSceneFile();
 
