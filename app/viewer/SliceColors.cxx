@@ -98,19 +98,6 @@ const std::string& SliceColors::GetColormap() const
   return ColormapNames()[this->Colormap];
 }
 
-bool SliceColors::SetColormap(const std::string& name)
-{
-  const auto& names = ColormapNames();
-  const auto found = std::find(names.begin(), names.end(), name);
-  if (found == names.end())
-  {
-    return false;
-  }
-  this->Colormap = size_t(found - names.begin());
-  this->Update();
-  return true;
-}
-
 void SliceColors::SetWindowLevel(double window, double level)
 {
   this->Window = std::max(window, 1e-3 * (this->Range[1] - this->Range[0]));

@@ -39,8 +39,6 @@ public:
   static const std::vector<std::string>& ColormapNames();
   void NextColormap();
   const std::string& GetColormap() const;
-  // By name (a saved scene's); returns false, changing nothing, for a name not in the list.
-  bool SetColormap(const std::string& name);
 
   // Window > 0 (clamped to a thousandth of the field's range at least).
   void SetWindowLevel(double window, double level);
