@@ -66,6 +66,8 @@ int View(const Arguments& arguments, std::ostream& out)
   options.RecordFile = arguments.Value("record");
   options.OutputDirectory = arguments.Has("output-dir") ? arguments.Value("output-dir") : ".";
   options.StateFile = arguments.Value("state-file");
+  // --layout stands for view.layout: it overrides a saved scene's layout.
+  std::vector<SceneOverride> overrides;
   if (arguments.Has("layout"))
   {
     const std::string layout = arguments.Value("layout");
@@ -73,7 +75,7 @@ int View(const Arguments& arguments, std::ostream& out)
     {
       throw UsageError("view: --layout expects 3d or four, got \"" + layout + "\"");
     }
-    options.FourViews = layout == "four";
+    overrides.push_back({ "view.layout", layout, "--layout" });
   }
   for (const std::string& target : { saveOnExit, options.RecordFile, options.StateFile })
   {
@@ -101,7 +103,7 @@ int View(const Arguments& arguments, std::ostream& out)
   }
   options.CommandLine = QuoteCommandLine(arguments.CommandLine);
 
-  Scene scene = LoadOperandScene("view", input, arguments, {});
+  Scene scene = LoadOperandScene("view", input, arguments, overrides);
   if (arguments.Has("size"))
   {
     options.WindowSize = ParseWindowSize(arguments.Value("size"), "size");
@@ -182,7 +184,11 @@ CommandSpec ViewCommand()
         0,
         "DIR",
         "where screenshots, saved scenes and presets go (default: the current directory)" },
-      { "layout", 0, "3d|four", "start with the 3D view alone (default) or the four views" },
+      { "layout",
+        0,
+        "3d|four",
+        "start with the 3D view alone (default) or the four views; overrides a scene's "
+        "view.layout" },
       { "screenshot-size",
         0,
         "WxH",

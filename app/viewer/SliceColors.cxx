@@ -3,6 +3,7 @@
 #include "SliceColors.h"
 
 #include "CloudTransferTable.h"
+#include "Scene.h" // SliceColormapNames
 
 #include <vtkColorTransferFunction.h>
 #include <vtkLookupTable.h>
@@ -81,10 +82,7 @@ vtkScalarBarActor* SliceColors::GetColorBar() const
 
 const std::vector<std::string>& SliceColors::ColormapNames()
 {
-  static const std::vector<std::string> names = {
-    "blue-yellow", "gray", "viridis", "transfer function"
-  };
-  return names;
+  return SliceColormapNames();
 }
 
 void SliceColors::NextColormap()
@@ -96,6 +94,12 @@ void SliceColors::NextColormap()
 const std::string& SliceColors::GetColormap() const
 {
   return ColormapNames()[this->Colormap];
+}
+
+void SliceColors::SetColormap(size_t index)
+{
+  this->Colormap = std::min(index, ColormapNames().size() - 1);
+  this->Update();
 }
 
 void SliceColors::SetWindowLevel(double window, double level)

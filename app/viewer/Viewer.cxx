@@ -270,7 +270,6 @@ Viewer::Viewer(const Scene& scene,
   in.SceneTransferFunction = scene.TransferFunction;
   in.Field = field;
   in.Options = options;
-  in.FourViews = options.FourViews;
   in.Messages = options.Messages ? options.Messages : &std::cerr;
   in.Display = std::make_unique<DisplayConnection>("cloudvis view ...");
 
@@ -451,7 +450,9 @@ Viewer::Viewer(const Scene& scene,
 
   in.Orientation->SetOrientationMarker(in.Axes);
   in.Orientation->SetInteractor(interactor);
-  in.ApplyLayout();
+  // The layout, slices and their colors as the scene's view section (--layout included) says;
+  // a scene without one gets the defaults (ViewSpec).
+  in.ApplyView(scene.View.value_or(ViewSpec{}));
 
   in.RenderFrame();
   if (!in.Mapper->GetLastError().empty())

@@ -1,5 +1,6 @@
 // What the viewer saves: the screenshot of its layout (s), the scene as the window shows it (w,
-// --save-scene-on-exit) and the window's pixels (--window-image).
+// --save-scene-on-exit; with its "view" section, which the viewer applies when it opens the scene
+// again) and the window's pixels (--window-image).
 //
 // A screenshot is what ParaView's "Save Screenshot" of a layout gives: every view of the layout
 // (the 3D view alone, or the four views) with what is drawn in them (slices, crosshairs,
@@ -115,6 +116,50 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
   return images;
 }
 
+ViewSpec Viewer::Internals::CurrentView() const
+{
+  ViewSpec view;
+  view.Layout = this->FourViews ? ViewLayout::Four : ViewLayout::ThreeD;
+  std::array<double, 3> position;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    view.Slices[size_t(axis)] = this->Slices->GetSliceVisible(axis);
+    position[size_t(axis)] = this->Slices->GetSlicePosition(axis);
+  }
+  view.SlicePosition = position;
+  view.Oblique.Visible = this->Slices->GetObliqueVisible();
+  view.Oblique.Origin = this->Slices->GetObliqueOrigin();
+  view.Oblique.Normal = this->Slices->GetObliqueNormal();
+  view.WindowLevel = this->Colors->GetWindowLevel();
+  view.SliceColors = int(this->Colors->GetColormapIndex());
+  view.Legends = this->LegendsVisible;
+  return view;
+}
+
+void Viewer::Internals::ApplyView(const ViewSpec& view)
+{
+  this->FourViews = view.Layout == ViewLayout::Four;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (view.SlicePosition)
+    {
+      this->Slices->SetSlicePosition(axis, (*view.SlicePosition)[size_t(axis)]);
+    }
+    this->Slices->SetSliceVisible(axis, view.Slices[size_t(axis)]);
+  }
+  this->Slices->SetObliquePlane(
+    view.Oblique.Origin.value_or(this->Slices->GetObliqueOrigin()), view.Oblique.Normal);
+  this->Slices->SetObliqueVisible(view.Oblique.Visible);
+  if (view.WindowLevel)
+  {
+    this->Colors->SetWindowLevel((*view.WindowLevel)[0], (*view.WindowLevel)[1]);
+  }
+  this->Colors->SetColormap(size_t(view.SliceColors));
+  this->LegendsVisible = view.Legends;
+  this->Views2D->Update();
+  this->ApplyLayout(); // places the legends too
+}
+
 Scene Viewer::CurrentScene() const
 {
   const Internals& in = *this->Internal;
@@ -131,6 +176,7 @@ Scene Viewer::CurrentScene() const
   scene.Camera.ViewUp = up;
   scene.Camera.Orbit.reset();
   scene.Camera.ViewAngle = camera->GetViewAngle();
+  scene.View = in.CurrentView();
   return scene;
 }
 

@@ -35,10 +35,13 @@ public:
   vtkScalarBarActor* GetColorBar() const;
 
   // The names the colors cycle through: "blue-yellow" (the default), "gray", "viridis",
-  // "transfer function".
+  // "transfer function" (SliceColormapNames(), the names of the scene's view.slice_colors).
   static const std::vector<std::string>& ColormapNames();
   void NextColormap();
   const std::string& GetColormap() const;
+  // By index of ColormapNames() (a saved scene's view.slice_colors).
+  void SetColormap(size_t index);
+  size_t GetColormapIndex() const { return this->Colormap; }
 
   // Window > 0 (clamped to a thousandth of the field's range at least).
   void SetWindowLevel(double window, double level);

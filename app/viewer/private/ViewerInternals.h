@@ -131,6 +131,10 @@ struct Viewer::Internals
   void ApplyLayout();
   // The legends at the 3D view's right edge, each shown when wanted.
   void PlaceLegends();
+  // The scene's "view" section as the window shows it now (layout, slices, window/level, slice
+  // colors, legends), and the reverse: the window set as a saved scene's view section says.
+  ViewSpec CurrentView() const;
+  void ApplyView(const ViewSpec& view);
   // The probe readout line from the last probe.
   void UpdateReadout();
   // The slices moved, probed or changed their colors (from a plane, a slice view or a key).

@@ -37,7 +37,6 @@ struct ViewerOptions
   std::string OutputDirectory = ".";             // where s, w and shift-p write
   std::string RecordFile;  // --record: the session's events, as VTK writes them
   std::string StateFile;   // --state-file: ViewerStateJson written after every frame or input
-  bool FourViews = false;  // start in the four-view layout (--layout four)
   // s saves the views at this size in pixels (--screenshot-size); 0 x 0: as the window shows
   // them (the window's width, the height above the editor).
   std::array<int, 2> ScreenshotSize{ { 0, 0 } };
@@ -154,7 +153,8 @@ public:
   ViewerState State() const;
 
   // The scene as the window shows it: the transfer function, lighting, light, step, resolution
-  // scale and camera as they are now, render.size the 3D view's size.
+  // scale and camera as they are now, render.size the 3D view's size, and the view section
+  // (layout, slices, window/level, slice colors, legends).
   Scene CurrentScene() const;
   nlohmann::json CurrentSceneJson() const;
 
