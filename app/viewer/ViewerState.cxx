@@ -93,6 +93,8 @@ json ViewerStateJson(const ViewerState& state)
         { "opacity_point_pixels", state.OpacityPointPixels },
         { "color_point_pixels", state.ColorPointPixels },
         { "color_strip_pixels", state.ColorStripPixels },
+        { "palette_visible", state.PaletteVisible },
+        { "palette_pixels", state.PalettePixels },
         { "selected_function", state.SelectedFunction },
         { "selected_point", state.SelectedPoint },
         { "info", state.EditorInfo },
@@ -183,6 +185,8 @@ ViewerState Viewer::State() const
   state.OpacityPointPixels = in.Editing->GetPointPixels(Function::Opacity);
   state.ColorPointPixels = in.Editing->GetPointPixels(Function::Color);
   state.ColorStripPixels = in.Editing->GetColorStripPixels();
+  state.PaletteVisible = in.Editing->GetPaletteVisible();
+  state.PalettePixels = in.Editing->GetPalettePixels();
   state.SelectedFunction = TransferFunctionEditor::FunctionName(in.Editing->GetSelectedFunction());
   state.SelectedPoint = in.Editing->GetSelectedPoint();
   state.EditorInfo = in.Editing->GetInfoText();

@@ -113,6 +113,8 @@ struct ViewerState
   std::vector<std::array<double, 2>> OpacityPointPixels;
   std::vector<std::array<double, 2>> ColorPointPixels;
   std::array<double, 4> ColorStripPixels{ { 0.0, 0.0, 0.0, 0.0 } };
+  bool PaletteVisible = false; // the color palette, while a color point is selected
+  std::array<double, 4> PalettePixels{ { 0.0, 0.0, 0.0, 0.0 } };
   std::string SelectedFunction; // "opacity", "color" or empty
   int SelectedPoint = -1;
   std::string EditorInfo;      // the editor's info line (selected point, typed entry)
