@@ -25,16 +25,17 @@ namespace cloudvis
 namespace
 {
 
-std::array<int, 2> ParseWindowSize(const std::string& text)
+// --size and --screenshot-size: WIDTHxHEIGHT.
+std::array<int, 2> ParseWindowSize(const std::string& text, const std::string& option)
 {
   static const std::regex form("([0-9]{1,5})[xX]([0-9]{1,5})");
   std::smatch match;
   if (!std::regex_match(text, match, form) || std::stoi(match[1]) < 64 ||
     std::stoi(match[2]) < 64 || std::stoi(match[1]) > 16384 || std::stoi(match[2]) > 16384)
   {
-    throw UsageError("view: --size expects WIDTHxHEIGHT in pixels, each in [64, 16384] (for "
-                     "example 800x800), got \"" +
-      text + "\"");
+    throw UsageError("view: --" + option +
+      " expects WIDTHxHEIGHT in pixels, each in [64, 16384] (for example 800x800), got \"" + text +
+      "\"");
   }
   return { { std::stoi(match[1]), std::stoi(match[2]) } };
 }
@@ -65,6 +66,8 @@ int View(const Arguments& arguments, std::ostream& out)
   options.RecordFile = arguments.Value("record");
   options.OutputDirectory = arguments.Has("output-dir") ? arguments.Value("output-dir") : ".";
   options.StateFile = arguments.Value("state-file");
+  // --layout stands for view.layout: it overrides a saved scene's layout.
+  std::vector<SceneOverride> overrides;
   if (arguments.Has("layout"))
   {
     const std::string layout = arguments.Value("layout");
@@ -72,7 +75,7 @@ int View(const Arguments& arguments, std::ostream& out)
     {
       throw UsageError("view: --layout expects 3d or four, got \"" + layout + "\"");
     }
-    options.FourViews = layout == "four";
+    overrides.push_back({ "view.layout", layout, "--layout" });
   }
   for (const std::string& target : { saveOnExit, options.RecordFile, options.StateFile })
   {
@@ -94,12 +97,16 @@ int View(const Arguments& arguments, std::ostream& out)
     // Before the window opens; Viewer::PlayFile reads it through the same check.
     CheckRegularInputFile(play, "recording");
   }
+  if (arguments.Has("screenshot-size"))
+  {
+    options.ScreenshotSize = ParseWindowSize(arguments.Value("screenshot-size"), "screenshot-size");
+  }
   options.CommandLine = QuoteCommandLine(arguments.CommandLine);
 
-  Scene scene = LoadOperandScene("view", input, arguments, {});
+  Scene scene = LoadOperandScene("view", input, arguments, overrides);
   if (arguments.Has("size"))
   {
-    options.WindowSize = ParseWindowSize(arguments.Value("size"));
+    options.WindowSize = ParseWindowSize(arguments.Value("size"), "size");
   }
   else
   {
@@ -151,7 +158,8 @@ CommandSpec ViewCommand()
     "orthogonal and oblique slices; key 4 switches to four views: 3D, axial, coronal and\n"
     "sagittal slices) and the transfer-function editor over the density histogram (bottom\n"
     "quarter). Press h in the window for the keys; --keys prints them and docs/viewer.md lists\n"
-    "them. s saves a screenshot (cloudvis-screenshot-NNN.png and .exr), w the scene as\n"
+    "them. s saves a screenshot of the views with their color legends\n"
+    "(cloudvis-screenshot-NNN.png, and .exr of the 3D view), w the scene as\n"
     "cloudvis-view-NNN.json, which `cloudvis render` turns into the same image. Without\n"
     "SCENE the default scene is shown. --record writes the session's events, --play replays\n"
     "such a file and exits at its end. Needs an X display (xvfb-run -a cloudvis view ...).",
@@ -174,7 +182,15 @@ CommandSpec ViewCommand()
         0,
         "DIR",
         "where screenshots, saved scenes and presets go (default: the current directory)" },
-      { "layout", 0, "3d|four", "start with the 3D view alone (default) or the four views" },
+      { "layout",
+        0,
+        "3d|four",
+        "start with the 3D view alone (default) or the four views; overrides a scene's "
+        "view.layout" },
+      { "screenshot-size",
+        0,
+        "WxH",
+        "the size of the screenshots s saves (default: the views as the window shows them)" },
       { "state-file",
         0,
         "FILE.json",

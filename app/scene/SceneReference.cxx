@@ -178,6 +178,8 @@ std::vector<Table> ReferenceTables()
 
   tables.push_back(KeyTable("lights", LightKeys(), Light{}, "", &LightTypes()));
   tables.push_back(KeyTable("ambient", AmbientKeys(), scene.Ambient));
+  tables.push_back(KeyTable("view", ViewKeys(), ViewSpec{}));
+  tables.push_back(KeyTable("view.oblique", ObliqueKeys(), ObliqueSpec{}));
   return tables;
 }
 

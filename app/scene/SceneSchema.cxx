@@ -40,13 +40,6 @@ std::string IndexKey(const std::string& key, size_t i)
   return key + "[" + std::to_string(i) + "]";
 }
 
-// The type of dotted keys inside the object `keys()` describes (Key::Inner).
-template<typename S>
-std::function<const ValueType*(const std::string&)> Inside(const Keys<S>& (*keys)())
-{
-  return [keys](const std::string& dotted) { return FindType(keys(), dotted); };
-}
-
 // A key checked but stored nowhere: a preset file's labels.
 template<typename S>
 Key<S> Label(const std::string& name)
@@ -1424,6 +1417,7 @@ const Keys<Scene>& SceneSections()
       &Scene::Ambient,
       AmbientKeys,
       "isotropic, unshadowed light those models add ([below](#the-ambient-section))"),
+    ViewSection(),
   };
   return keys;
 }

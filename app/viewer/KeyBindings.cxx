@@ -50,13 +50,8 @@ const std::vector<KeyBinding>& KeyBindings()
   static const std::vector<KeyBinding> table = {
     { { "4" }, {}, false, A::ToggleLayout, View, "four views / the 3D view alone" },
     { { "v" }, {}, false, A::ToggleVolume, View, "show / hide the cloud", true },
-    { { "r" },
-      {},
-      false,
-      A::ResetCamera,
-      View,
-      "reset the camera and the slice views' zoom",
-      true },
+    { { "b" }, {}, false, A::ToggleLegends, View, "show / hide the color legends" },
+    { { "r" }, {}, false, A::ResetCamera, View, "reset the camera and the slice views' zoom", true },
     { { "h" }, {}, false, A::Help, View, "show / hide this help" },
     { { "q" }, { "Escape" }, false, A::Quit, View, "quit" },
     { { "x", "y", "z" }, {}, false, A::ToggleSlice, Slices, "slice across x, y, z in 3D", true },
@@ -124,7 +119,7 @@ const std::vector<KeyBinding>& KeyBindings()
       "remove the selected point",
       true },
     { { "Return" }, { "KP_Enter" }, false, A::TypePointValues, Function, "type its values" },
-    { { "s" }, {}, false, A::Screenshot, Files, "screenshot (PNG and EXR)" },
+    { { "s" }, {}, false, A::Screenshot, Files, "screenshot of the views (PNG, EXR)" },
     { { "w" }, {}, false, A::SaveScene, Files, "save the scene (JSON)" },
   };
   // clang-format on

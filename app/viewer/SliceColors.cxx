@@ -3,6 +3,7 @@
 #include "SliceColors.h"
 
 #include "CloudTransferTable.h"
+#include "Scene.h" // SliceColormapNames
 
 #include <vtkColorTransferFunction.h>
 #include <vtkLookupTable.h>
@@ -64,21 +65,7 @@ SliceColors::SliceColors(const std::array<double, 2>& range,
   this->Update();
 
   this->ColorBar->SetLookupTable(this->Table);
-  this->ColorBar->SetTitle("density");
-  this->ColorBar->SetNumberOfLabels(3);
-  this->ColorBar->SetLabelFormat("%.3g");
-  this->ColorBar->SetBarRatio(0.3);
-  this->ColorBar->UnconstrainedFontSizeOn();
-  this->ColorBar->SetVerticalTitleSeparation(6); // the title clear of the top label
-  for (vtkTextProperty* text :
-    { this->ColorBar->GetTitleTextProperty(), this->ColorBar->GetLabelTextProperty() })
-  {
-    text->SetFontSize(12);
-    text->SetColor(0.95, 0.95, 0.95);
-    text->ShadowOff();
-    text->BoldOff();
-    text->ItalicOff();
-  }
+  StyleColorBar(this->ColorBar, "slices");
 }
 
 SliceColors::~SliceColors() = default;
@@ -95,10 +82,7 @@ vtkScalarBarActor* SliceColors::GetColorBar() const
 
 const std::vector<std::string>& SliceColors::ColormapNames()
 {
-  static const std::vector<std::string> names = {
-    "blue-yellow", "gray", "viridis", "transfer function"
-  };
-  return names;
+  return SliceColormapNames();
 }
 
 void SliceColors::NextColormap()
@@ -110,6 +94,12 @@ void SliceColors::NextColormap()
 const std::string& SliceColors::GetColormap() const
 {
   return ColormapNames()[this->Colormap];
+}
+
+void SliceColors::SetColormap(size_t index)
+{
+  this->Colormap = std::min(index, ColormapNames().size() - 1);
+  this->Update();
 }
 
 void SliceColors::SetWindowLevel(double window, double level)
@@ -180,6 +170,32 @@ void SliceColors::Update()
     this->Table->SetTableValue(i, color[0], color[1], color[2], 1.0);
   }
   this->Table->Modified();
+}
+
+void StyleColorBar(vtkScalarBarActor* bar, const std::string& title)
+{
+  bar->SetTitle(title.c_str());
+  bar->SetNumberOfLabels(3);
+  bar->SetLabelFormat("%.3g");
+  bar->SetBarRatio(0.3);
+  bar->UnconstrainedFontSizeOn();
+  SetColorBarFontScale(bar, 1.0);
+  for (vtkTextProperty* text : { bar->GetTitleTextProperty(), bar->GetLabelTextProperty() })
+  {
+    text->SetColor(0.95, 0.95, 0.95);
+    text->ShadowOff();
+    text->BoldOff();
+    text->ItalicOff();
+  }
+}
+
+void SetColorBarFontScale(vtkScalarBarActor* bar, double scale)
+{
+  const int pixels = std::max(1, int(std::lround(12.0 * scale)));
+  bar->GetTitleTextProperty()->SetFontSize(pixels);
+  bar->GetLabelTextProperty()->SetFontSize(pixels);
+  // The title clear of the top label.
+  bar->SetVerticalTitleSeparation(std::max(1, int(std::lround(6.0 * scale))));
 }
 
 } // namespace cloudvis

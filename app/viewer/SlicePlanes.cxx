@@ -13,6 +13,7 @@
 //   here the drag sets them on SliceColors, so every slice changes.
 #include "SlicePlanes.h"
 
+#include "Scene.h" // ObliqueSpec
 #include "SliceColors.h"
 
 #include <vtkActor.h>
@@ -199,7 +200,7 @@ SlicePlanes::SlicePlanes(vtkImageData* field,
   this->ObliqueRepresentation->SetPlaceFactor(1.0);
   this->ObliqueRepresentation->PlaceWidget(bounds);
   this->ObliqueRepresentation->SetOrigin(center);
-  this->ObliqueRepresentation->SetNormal(1.0, 1.0, 2.0);
+  this->ObliqueRepresentation->SetNormal(ObliqueSpec{}.Normal.data());
   this->ObliqueRepresentation->DrawPlaneOff();
   this->ObliqueRepresentation->OutlineTranslationOff();
   this->ObliqueRepresentation->ScaleEnabledOff();
@@ -291,6 +292,16 @@ void SlicePlanes::SetSliceIndex(int axis, int index)
   this->Field->GetExtent(extent);
   this->Slices[size_t(axis)]->SetSliceIndex(
     std::clamp(index, extent[2 * axis], extent[2 * axis + 1]));
+}
+
+void SlicePlanes::SetSlicePosition(int axis, double position)
+{
+  const double spacing = this->Field->GetSpacing()[axis];
+  const double origin = this->Field->GetOrigin()[axis];
+  const double index = std::round((position - origin) / spacing);
+  // Clamped here already: a position far outside must not overflow the int.
+  const double limit = 1e9;
+  this->SetSliceIndex(axis, int(std::clamp(index, -limit, limit)));
 }
 
 int SlicePlanes::GetSliceIndex(int axis) const
@@ -444,6 +455,14 @@ std::array<double, 3> SlicePlanes::GetObliqueNormal() const
   std::array<double, 3> normal;
   this->ObliqueRepresentation->GetNormal(normal.data());
   return normal;
+}
+
+void SlicePlanes::SetObliquePlane(const std::array<double, 3>& origin,
+  const std::array<double, 3>& normal)
+{
+  this->ObliqueRepresentation->SetNormal(normal[0], normal[1], normal[2]);
+  this->ObliqueRepresentation->SetOrigin(origin[0], origin[1], origin[2]);
+  this->UpdateObliqueCut();
 }
 
 long SlicePlanes::GetObliqueCutPoints() const

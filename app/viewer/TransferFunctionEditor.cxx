@@ -6,6 +6,7 @@
 #include "TransferFunctionEditor.h"
 
 #include "CloudTransferTable.h"
+#include "ColorPalette.h"
 
 #include <vtkAxis.h>
 #include <vtkBrush.h>
@@ -249,6 +250,8 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   this->ColorPoints->SetEndPointsRemovable(false);
   this->ColorPoints->SetShowLabels(false);
   this->ColorPoints->SetLabelFormat("%.3g");
+  // Each color point drawn in its own color, not VTK's default gray.
+  this->ColorPoints->SetColorFill(true);
   this->ColorChart->AddPlot(this->ColorPoints);
 
   for (vtkChartXY* chart : { this->OpacityChart.Get(), this->ColorChart.Get() })
@@ -263,6 +266,11 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
     }
     this->Scene->AddItem(chart);
   }
+  // After the charts: drawn over them, and offered the clicks on it first.
+  this->Palette->SetVisible(false);
+  this->Palette->Picked = [this](const std::array<double, 3>& rgb)
+  { this->SetSelectedPointColor(rgb); };
+  this->Scene->AddItem(this->Palette);
   vtkAxis* opacityAxis = this->OpacityChart->GetAxis(vtkAxis::LEFT);
   opacityAxis->SetRange(OpacityAxisLow, OpacityAxisHigh);
   vtkNew<vtkDoubleArray> ticks;
@@ -600,9 +608,7 @@ std::string TransferFunctionEditor::GetSelectedPointValues() const
 
 std::string TransferFunctionEditor::SetSelectedPointValues(const std::string& text)
 {
-  vtkControlPointsItem* item = this->SelectedItem();
-  const int point = this->GetSelectedPoint();
-  if (!item || point < 0)
+  if (this->GetSelectedPoint() < 0)
   {
     return "no point is selected";
   }
@@ -615,6 +621,26 @@ std::string TransferFunctionEditor::SetSelectedPointValues(const std::string& te
       (opacity ? "density and opacity" : "density, red, green and blue") + " (" +
       std::to_string(wanted) + " numbers), not \"" + text + "\"";
   }
+  return this->SetSelectedPointNumbers(numbers);
+}
+
+std::string TransferFunctionEditor::SetSelectedPointColor(const std::array<double, 3>& rgb)
+{
+  const int point = this->GetSelectedPoint();
+  if (this->Selected != Function::Color || point < 0)
+  {
+    return "no color point is selected";
+  }
+  double node[6];
+  this->Property->GetRGBTransferFunction()->GetNodeValue(point, node);
+  return this->SetSelectedPointNumbers({ node[0], rgb[0], rgb[1], rgb[2] });
+}
+
+std::string TransferFunctionEditor::SetSelectedPointNumbers(const std::vector<double>& numbers)
+{
+  vtkControlPointsItem* item = this->SelectedItem();
+  const int point = this->GetSelectedPoint();
+  const bool opacity = this->Selected == Function::Opacity;
   // The density stays between the neighbouring points and within the range shown.
   double low = this->Range[0], high = this->Range[1];
   const int count = int(item->GetNumberOfPoints());
@@ -662,7 +688,11 @@ std::string TransferFunctionEditor::SetSelectedPointValues(const std::string& te
     }
     this->Property->GetRGBTransferFunction()->SetNodeValue(point, node);
   }
-  this->Record(before);
+  // Within a mouse press (a swatch clicked) EndDrag makes the press one undo step.
+  if (!this->Dragging)
+  {
+    this->Record(before);
+  }
   this->Scene->SetDirty(true);
   return "";
 }
@@ -692,10 +722,12 @@ void TransferFunctionEditor::UpdateInfo()
     const bool opacity = this->Selected == Function::Opacity;
     text = std::string(opacity ? "opacity" : "color") + " point " + std::to_string(point) + ": " +
       (opacity ? "density, opacity " : "density, r g b ") + this->GetSelectedPointValues() +
-      "   Enter: type values, Delete: remove";
+      "   Enter: type values, Delete: remove" + (opacity ? "" : ", or click a swatch");
   }
   this->Info->SetInput(text.c_str());
   this->Info->SetVisibility(!text.empty());
+  this->Palette->SetVisible(this->Selected == Function::Color && point >= 0);
+  this->Scene->SetDirty(true);
 }
 
 void TransferFunctionEditor::LayOut()
@@ -725,6 +757,11 @@ void TransferFunctionEditor::LayOut()
   this->OpacityChart->GetAxis(vtkAxis::LEFT)->SetTitle(titles ? "opacity" : "");
   // Top left, where the opacity curve of a cloud is low and rarely has points.
   this->Info->SetPosition(LeftMargin + 4.0, h - top - 2.0);
+  // Under the info line, at the left of the opacity chart too: the right end holds the opacity
+  // curve's dense, opaque end, whose points must stay in sight and in reach.
+  const double paletteTop = h - top - 16.0;
+  this->Palette->SetCorner(
+    x0 + 4.0, std::max(this->OpacityRect[1], paletteTop - vtkCloudColorPalette::Size()[1]));
 }
 
 std::vector<std::array<double, 2>> TransferFunctionEditor::GetPointPixels(Function function) const
@@ -746,6 +783,17 @@ std::vector<std::array<double, 2>> TransferFunctionEditor::GetPointPixels(Functi
       rect[1] + (point[1] - yLow) / (yHigh - yLow) * rect[3] } });
   }
   return pixels;
+}
+
+std::array<double, 4> TransferFunctionEditor::GetPalettePixels() const
+{
+  const_cast<TransferFunctionEditor*>(this)->LayOut();
+  return this->Palette->GetRect();
+}
+
+bool TransferFunctionEditor::GetPaletteVisible() const
+{
+  return this->Palette->GetVisible();
 }
 
 std::array<double, 4> TransferFunctionEditor::GetColorStripPixels() const

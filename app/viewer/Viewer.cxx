@@ -183,13 +183,23 @@ std::array<int, 2> Viewer::Internals::ViewSize() const
 
 bool Viewer::Internals::ColorBarWanted() const
 {
-  return this->FourViews || this->Slices->GetObliqueVisible() || this->Slices->GetSliceVisible(0) ||
-    this->Slices->GetSliceVisible(1) || this->Slices->GetSliceVisible(2);
+  return this->LegendsVisible &&
+    (this->FourViews || this->Slices->GetObliqueVisible() || this->Slices->GetSliceVisible(0) ||
+      this->Slices->GetSliceVisible(1) || this->Slices->GetSliceVisible(2));
+}
+
+bool Viewer::Internals::LegendWanted() const
+{
+  return this->LegendsVisible && this->Volume->GetVisibility();
 }
 
 void Viewer::Internals::ApplyLayout()
 {
-  const double top = 1.0, bottom = EditorHeight, middle = 0.5 * (top + bottom);
+  // A screenshot leaves the editor out, as ParaView's leaves its panels: the views fill it.
+  const double top = 1.0, bottom = this->Exporting ? 0.0 : EditorHeight,
+               middle = 0.5 * (top + bottom);
+  this->Editor->SetDraw(!this->Exporting);
+  this->Overlay->SetViewport(0.0, bottom, 1.0, top);
   std::array<double, 4> view{ { 0.0, bottom, 1.0, top } };
   const std::array<std::array<double, 4>, 3> slices = { { { { 0.0, middle, 0.5, top } },
     { { 0.5, bottom, 1.0, middle } },
@@ -226,16 +236,13 @@ void Viewer::Internals::ApplyLayout()
   {
     this->Orientation->SetInteractive(0); // a marker, not a handle (only settable once enabled)
   }
-  // The color bar at the 3D view's right edge and the texts, in the overlay's normalized
-  // coordinates; the readout right of the marker, or under the slice views.
+  // The legends and the texts, in the overlay's normalized coordinates; the readout right of the
+  // marker, or under the slice views.
   const std::array<double, 4> overlayView = {
     { view[0], (view[1] - bottom) / (top - bottom), view[2], (view[3] - bottom) / (top - bottom) }
   };
-  const double ow = overlayView[2] - overlayView[0], oh = overlayView[3] - overlayView[1];
-  vtkScalarBarActor* bar = this->Colors->GetColorBar();
-  bar->SetPosition(overlayView[0] + ow * 0.84, overlayView[1] + oh * 0.2);
-  bar->SetPosition2(ow * 0.1, oh * 0.55);
-  bar->SetVisibility(this->ColorBarWanted());
+  this->LegendArea = overlayView;
+  this->PlaceLegends();
   // The readout above the orientation marker, or under the slice views.
   const double overlayHeight = std::max(1.0, (top - bottom) * size[1]);
   this->Status->Place(overlayView,
@@ -244,6 +251,24 @@ void Viewer::Internals::ApplyLayout()
                         { overlayView[0] + 0.01, overlayView[1] + (side + 6.0) / overlayHeight } });
   this->Views2D->Update();
   this->Status->LayOut();
+}
+
+void Viewer::Internals::PlaceLegends()
+{
+  // At the 3D view's right edge, as ParaView places a scalar bar; with both shown, the cloud's
+  // above the slices'.
+  const std::array<double, 4>& area = this->LegendArea;
+  const double width = area[2] - area[0], height = area[3] - area[1];
+  const bool legend = this->LegendWanted(), colorBar = this->ColorBarWanted();
+  const auto place = [&](vtkScalarBarActor* bar, double bottom, double top)
+  {
+    bar->SetPosition(area[0] + width * 0.8, area[1] + height * bottom);
+    bar->SetPosition2(width * 0.14, height * (top - bottom));
+  };
+  place(this->Legend, colorBar ? 0.52 : 0.2, colorBar ? 0.92 : 0.75);
+  place(this->Colors->GetColorBar(), legend ? 0.08 : 0.2, legend ? 0.48 : 0.75);
+  this->Legend->SetVisibility(legend);
+  this->Colors->GetColorBar()->SetVisibility(colorBar);
 }
 
 bool Viewer::Internals::SlicesShown() const
@@ -324,55 +349,8 @@ void Viewer::Internals::SlicesChanged()
 {
   this->Views2D->Update();
   this->UpdateReadout();
-  this->Colors->GetColorBar()->SetVisibility(this->ColorBarWanted());
+  this->PlaceLegends(); // the color bar shown or hidden
   this->Request();
-}
-
-RenderedImage Viewer::Internals::Capture(bool floatImage)
-{
-  this->Window->SetDesiredUpdateRate(this->Interactor->GetStillUpdateRate());
-  const auto texts = this->Status->HideAll();
-  this->Outline->VisibilityOff();
-  this->Axes->VisibilityOff();
-  const bool colorBar = this->Colors->GetColorBar()->GetVisibility() != 0;
-  this->Colors->GetColorBar()->VisibilityOff();
-  struct Decorations
-  {
-    Internals& In;
-    std::array<bool, 5> Texts;
-    bool ColorBar;
-    ~Decorations()
-    {
-      this->In.Status->Restore(this->Texts);
-      this->In.Outline->VisibilityOn();
-      this->In.Axes->VisibilityOn();
-      this->In.Colors->GetColorBar()->SetVisibility(this->ColorBar);
-    }
-  } restore{ *this, texts, colorBar };
-  const int frames = this->FramesToConverge();
-  this->RenderFrame();
-  for (int i = 0; i < frames + 1 && this->Mapper->GetNumberOfAccumulatedFrames(this->View) < frames;
-       ++i)
-  {
-    this->RenderFrame();
-  }
-  RenderedImage image;
-  try
-  {
-    double viewport[4];
-    this->View->GetViewport(viewport);
-    image = GrabWindow(this->Window, viewport);
-  }
-  catch (const InputError&)
-  {
-    throw InputError("screenshot: could not read the image back from the window");
-  }
-  if (floatImage)
-  {
-    this->Window->MakeCurrent();
-    ReadFloatImage(this->Mapper, this->View, image, "screenshot");
-  }
-  return image;
 }
 
 Viewer::Viewer(const Scene& scene,
@@ -384,7 +362,6 @@ Viewer::Viewer(const Scene& scene,
   in.Current = scene;
   in.Field = field;
   in.Options = options;
-  in.FourViews = options.FourViews;
   in.Messages = options.Messages ? options.Messages : &std::cerr;
   in.Display = std::make_unique<DisplayConnection>("cloudvis view ...");
 
@@ -557,6 +534,14 @@ Viewer::Viewer(const Scene& scene,
   in.Colors = std::make_unique<SliceColors>(
     std::array<double, 2>{ { range[0], range[1] } }, in.Property->GetRGBTransferFunction());
   in.Overlay->AddActor2D(in.Colors->GetColorBar());
+  // The legend reads the volume's own color function: every edit shows in it.
+  in.Legend->SetLookupTable(in.Property->GetRGBTransferFunction());
+  // Both legends name the field's quantity and its unit, as the readout does: "lwc (g/m^3)".
+  const std::string unit = QuantityUnit(in.Options.Units.Quantity);
+  const std::string quantity =
+    QuantityName(in.Options.Units.Quantity) + (unit.empty() ? "" : " (" + unit + ")");
+  StyleColorBar(in.Legend, quantity);
+  in.Overlay->AddActor2D(in.Legend);
   in.Slices = std::make_unique<SlicePlanes>(field, in.View, interactor, *in.Colors);
   in.Slices->Changed = [&in] { in.SlicesChanged(); };
   in.Views2D = std::make_unique<SliceViews>(field, *in.Slices, *in.Colors);
@@ -568,14 +553,13 @@ Viewer::Viewer(const Scene& scene,
       action, button, x, y, in.Interactor->GetControlKey() != 0, in.Interactor->GetShiftKey() != 0);
   };
   in.Style->HoverHandler = [&in](int x, int y) { in.Hover(x, y); };
-  // The color bar names the field's quantity and its unit, as the readout does.
-  const std::string unit = QuantityUnit(in.Options.Units.Quantity);
-  in.Colors->GetColorBar()->SetTitle(
-    (QuantityName(in.Options.Units.Quantity) + (unit.empty() ? "" : " (" + unit + ")")).c_str());
+  in.Colors->GetColorBar()->SetTitle(("slices: " + quantity).c_str());
 
   in.Orientation->SetOrientationMarker(in.Axes);
   in.Orientation->SetInteractor(interactor);
-  in.ApplyLayout();
+  // The layout, slices and their colors as the scene's view section (--layout included) says;
+  // a scene without one gets the defaults (ViewSpec).
+  in.ApplyView(scene.View.value_or(ViewSpec{}));
 
   in.RenderFrame();
   if (!in.Mapper->GetLastError().empty())
@@ -637,93 +621,6 @@ void Viewer::Start()
   Internals& in = *this->Internal;
   this->WriteStateFile();
   in.Loop->Run();
-}
-
-Scene Viewer::CurrentScene() const
-{
-  const Internals& in = *this->Internal;
-  Scene scene = in.Current;
-  scene.TransferFunction = TransferFunctionOf(in.Property);
-  scene.Render.Size = in.ViewSize();
-  vtkCamera* camera = const_cast<vtkRenderer*>(in.View.Get())->GetActiveCamera();
-  std::array<double, 3> position, focal, up;
-  camera->GetPosition(position.data());
-  camera->GetFocalPoint(focal.data());
-  camera->GetViewUp(up.data());
-  scene.Camera.Position = position;
-  scene.Camera.FocalPoint = focal;
-  scene.Camera.ViewUp = up;
-  scene.Camera.Orbit.reset();
-  scene.Camera.ViewAngle = camera->GetViewAngle();
-  return scene;
-}
-
-nlohmann::json Viewer::CurrentSceneJson() const
-{
-  const Scene scene = this->CurrentScene();
-  ResolvedCamera camera;
-  camera.Position = *scene.Camera.Position;
-  camera.FocalPoint = *scene.Camera.FocalPoint;
-  camera.ViewUp = scene.Camera.ViewUp;
-  return SceneToJson(scene, camera);
-}
-
-void Viewer::SaveScene(const std::string& path) const
-{
-  WriteTextFile(path, this->CurrentSceneJson().dump(2) + "\n", "the scene");
-}
-
-void Viewer::SaveScreenshot()
-{
-  Internals& in = *this->Internal;
-  try
-  {
-    const bool floatImage = in.Current.Render.ResolutionScale >= 1.0;
-    const std::vector<std::string> paths = WriteScreenshot(
-      in.Options.OutputDirectory,
-      floatImage,
-      [&] { return in.Capture(floatImage); },
-      this->CurrentSceneJson().dump(-1, ' ', true),
-      in.Options.CommandLine);
-    in.SavedFiles.insert(in.SavedFiles.end(), paths.begin(), paths.end());
-    if (!floatImage)
-    {
-      in.Show(
-        "saved " + paths[0] + "; no EXR: the float image needs resolution scale 1 (press ])", true);
-      return;
-    }
-    in.Show("saved " + paths[0] + " and " + paths[1], false);
-  }
-  catch (const std::exception& e)
-  {
-    in.Show(e.what(), true);
-  }
-}
-
-void Viewer::SaveWindowImage(const std::string& path)
-{
-  Internals& in = *this->Internal;
-  in.RenderFrame();
-  const RenderedImage image = GrabWindow(in.Window);
-  WriteImage(image, path);
-}
-
-void Viewer::SaveSceneFile()
-{
-  Internals& in = *this->Internal;
-  try
-  {
-    const std::string path =
-      NextFreeBase(in.Options.OutputDirectory, "cloudvis-view-", { ".json" }) + ".json";
-    CheckOutputTarget(path);
-    this->SaveScene(path);
-    in.SavedFiles.push_back(path);
-    in.Show("saved " + path + " (cloudvis render " + path + " -o IMAGE.png)", false);
-  }
-  catch (const std::exception& e)
-  {
-    in.Show(e.what(), true);
-  }
 }
 
 } // namespace cloudvis

@@ -108,7 +108,7 @@ void WriteTextFile(const std::string& path, const std::string& text, const std::
 
 std::vector<std::string> WriteScreenshot(const std::string& directory,
   bool floatImage,
-  const std::function<RenderedImage()>& capture,
+  const std::function<ScreenshotImages()>& capture,
   const std::string& sceneJson,
   const std::string& commandLine)
 {
@@ -122,13 +122,14 @@ std::vector<std::string> WriteScreenshot(const std::string& directory,
   {
     CheckImageOutput(path); // before the capture, which takes time
   }
-  const RenderedImage image = capture();
+  const ScreenshotImages images = capture();
   ImageExportOptions options;
   options.SceneJson = sceneJson;
   options.CommandLine = commandLine;
-  for (const std::string& path : paths)
+  WriteImage(images.Layout, paths[0], options);
+  if (floatImage)
   {
-    WriteImage(image, path, options);
+    WriteImage(images.Cloud, paths[1], options);
   }
   return paths;
 }

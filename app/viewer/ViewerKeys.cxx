@@ -352,6 +352,13 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Volume->SetVisibility(!this->Volume->GetVisibility());
       this->Show(
         this->Volume->GetVisibility() ? "cloud shown" : "cloud hidden (v shows it)", false);
+      this->PlaceLegends(); // the cloud's legend goes with the cloud
+      break;
+    case A::ToggleLegends:
+      this->LegendsVisible = !this->LegendsVisible;
+      this->PlaceLegends();
+      this->Show(
+        std::string("color legends: ") + (this->LegendsVisible ? "shown" : "hidden"), false);
       break;
     case A::CycleLighting:
     {

@@ -72,6 +72,7 @@ json ViewerStateJson(const ViewerState& state)
     { "help_visible", state.HelpVisible },
     { "hint_visible", state.HintVisible },
     { "color_bar_visible", state.ColorBarVisible },
+    { "legend_visible", state.LegendVisible },
     { "message", state.Message },
     { "readout", state.Readout },
     { "slices",
@@ -81,7 +82,9 @@ json ViewerStateJson(const ViewerState& state)
         { "probed_value", probed },
         { "window_level", state.SliceWindowLevel },
         { "colors", state.SliceColors },
-        { "oblique_visible", state.ObliqueVisible } } },
+        { "oblique_visible", state.ObliqueVisible },
+        { "oblique_origin", state.ObliqueOrigin },
+        { "oblique_normal", state.ObliqueNormal } } },
     { "probe",
       { { "valid", state.ProbeValid },
         { "index", state.ProbeIndex },
@@ -101,6 +104,8 @@ json ViewerStateJson(const ViewerState& state)
         { "opacity_point_pixels", state.OpacityPointPixels },
         { "color_point_pixels", state.ColorPointPixels },
         { "color_strip_pixels", state.ColorStripPixels },
+        { "palette_visible", state.PaletteVisible },
+        { "palette_pixels", state.PalettePixels },
         { "selected_function", state.SelectedFunction },
         { "selected_point", state.SelectedPoint },
         { "info", state.EditorInfo },
@@ -160,6 +165,7 @@ ViewerState Viewer::State() const
   state.VolumeVisible = in.Volume->GetVisibility() != 0;
   state.HintVisible = in.Status->GetHintVisible();
   state.ColorBarVisible = in.Colors->GetColorBar()->GetVisibility() != 0;
+  state.LegendVisible = in.Legend->GetVisibility() != 0;
   state.Message = in.Status->GetMessage();
   state.Readout = in.Status->GetReadout();
   state.WindowId = static_cast<unsigned long>(reinterpret_cast<uintptr_t>(
@@ -198,6 +204,8 @@ ViewerState Viewer::State() const
   state.OpacityPointPixels = in.Editing->GetPointPixels(Function::Opacity);
   state.ColorPointPixels = in.Editing->GetPointPixels(Function::Color);
   state.ColorStripPixels = in.Editing->GetColorStripPixels();
+  state.PaletteVisible = in.Editing->GetPaletteVisible();
+  state.PalettePixels = in.Editing->GetPalettePixels();
   state.SelectedFunction = TransferFunctionEditor::FunctionName(in.Editing->GetSelectedFunction());
   state.SelectedPoint = in.Editing->GetSelectedPoint();
   state.EditorInfo = in.Editing->GetInfoText();

@@ -107,10 +107,23 @@ py=${py%.*}
 session viewer-editor <<< "$(click "$px" "$py"; key Return; key 0; key period; key 4; key 5; key space; key 0; key period; key 6)"
 grep -q '"typing":true' "$scratch/viewer-editor.json" || { echo "make-viewer-images.sh: no point was selected at $px $py" >&2; exit 1; }
 
+# The color palette: the middle color point selected shows it, and a click on a swatch (the
+# eighth hue, an azure) gives the point that color.
+session viewer-palette < /dev/null
+read -r cx cy <<< "$(state viewer-palette color_point_pixels | sed -n 2p)"
+cx=${cx%.*}
+cy=${cy%.*}
+session viewer-palette <<< "$(click "$cx" "$cy")"
+grep -q '"palette_visible":true' "$scratch/viewer-palette.json" || { echo "make-viewer-images.sh: no color point was selected at $cx $cy" >&2; exit 1; }
+read -r x0 y0 x1 y1 <<< "$(state viewer-palette palette_pixels)"
+x0=${x0%.*}
+y1=${y1%.*}
+session viewer-palette <<< "$(click "$cx" "$cy"; click $((x0 + 91)) $((y1 - 8)))"
+
 # The help: the key list, two columns.
 session viewer-help <<< "$(key h)"
 
-for image in viewer-3d viewer-four viewer-editor viewer-help; do
+for image in viewer-3d viewer-four viewer-editor viewer-palette viewer-help; do
   bytes=$(stat -c %s "$out/$image.png")
   if ((bytes > 200 * 1024)); then
     echo "make-viewer-images.sh: warning: $out/$image.png is $((bytes / 1024)) KB (keep them under 200 KB)" >&2

@@ -16,6 +16,7 @@
 #include "OffscreenRender.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "SceneJson.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
 #include "Utf8.h"
@@ -431,6 +432,33 @@ TEST(Scene, RenderSectionsReachTheScene)
   EXPECT_EQ(scene.Render.Accumulate, 3);
   EXPECT_FALSE(scene.Render.SkipEmptySpace);
   EXPECT_EQ(scene.Render.Size, (std::array<int, 2>{ 120, 60 })) << "an option overrides --set";
+}
+
+// The view section (what `cloudvis view` restores) reaches the scene and is written back as it
+// was read, so that a scene the viewer saves opens as it was left; a scene without one has none.
+TEST(Scene, ViewSectionReachesTheSceneAndRoundTrips)
+{
+  const cloudvis::Scene scene = cloudvis::LoadScene("",
+    { R"(view={"layout": "four", "slices": [true, false, true], "slice_position": [0.5, 0, -1],
+      "oblique": {"visible": true, "origin": [0.1, 0.2, 0.3], "normal": [0, 0, 2]},
+      "window_level": [0.4, 0.3], "slice_colors": "viridis", "legends": false})" },
+    {});
+  ASSERT_TRUE(scene.View.has_value());
+  const cloudvis::ViewSpec& view = *scene.View;
+  EXPECT_EQ(view.Layout, cloudvis::ViewLayout::Four);
+  EXPECT_EQ(view.Slices, (std::array<bool, 3>{ true, false, true }));
+  EXPECT_EQ(view.SlicePosition, (std::array<double, 3>{ 0.5, 0, -1 }));
+  EXPECT_TRUE(view.Oblique.Visible);
+  EXPECT_EQ(view.Oblique.Origin, (std::array<double, 3>{ 0.1, 0.2, 0.3 }));
+  EXPECT_EQ(view.Oblique.Normal, (std::array<double, 3>{ 0, 0, 2 }));
+  EXPECT_EQ(view.WindowLevel, (std::array<double, 2>{ 0.4, 0.3 }));
+  EXPECT_EQ(cloudvis::SliceColormapNames()[size_t(view.SliceColors)], "viridis");
+  EXPECT_FALSE(view.Legends);
+  const json written = cloudvis::SceneToJson(scene, cloudvis::ResolvedCamera{});
+  EXPECT_EQ(written["view"], scene.Document["view"]);
+  EXPECT_FALSE(cloudvis::LoadScene("", {}).View.has_value());
+  EXPECT_FALSE(cloudvis::SceneToJson(cloudvis::LoadScene("", {}), cloudvis::ResolvedCamera{})
+                 .contains("view"));
 }
 
 TEST(Scene, ShippedDefaultSceneFileMatchesTheBuiltInDefaults)

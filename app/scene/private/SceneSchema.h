@@ -35,6 +35,10 @@ const Keys<LightingParameters>& DerivativeKeys();
 const Keys<LightingParameters>& MarchKeys();
 const Keys<Light>& LightKeys(); // used by the types of LightTypes()
 const Keys<AmbientSpec>& AmbientKeys();
+// The view section (ViewSchema.cxx): the section's key, its keys and view.oblique's.
+Key<Scene> ViewSection();
+const Keys<ViewSpec>& ViewKeys();
+const Keys<ObliqueSpec>& ObliqueKeys();
 
 const std::vector<Name>& ShapeTypes();
 const std::vector<Name>& BackgroundTypes();

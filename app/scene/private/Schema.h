@@ -425,6 +425,13 @@ const ValueType* FindType(const Keys<S>& keys, const std::string& dotted)
   return key->Inner ? key->Inner(dotted.substr(dot + 1)) : nullptr;
 }
 
+// The type of dotted keys inside the object `keys()` describes (Key::Inner).
+template<typename S>
+std::function<const ValueType*(const std::string&)> Inside(const Keys<S>& (*keys)())
+{
+  return [keys](const std::string& dotted) { return FindType(keys(), dotted); };
+}
+
 // Reads every member of an object through `keys`, refusing keys the table lacks.
 template<typename S>
 void ReadObject(const Context& c,

@@ -1,5 +1,6 @@
 // A scene file, parsed and validated: what cloudvis should show or export. A scene is a JSON
-// object of sections (field, transfer_function, camera, background, render, lights, ambient);
+// object of sections (field, transfer_function, camera, background, render, lights, ambient,
+// view);
 // every key of every section is one entry of the scene schema (SceneSchema.cxx), which the
 // reader, --set, the resolved scene of SceneJson.h and the reference tables of
 // docs/scene-format.md (SceneReferenceMarkdown) all walk. Defaults are the members' initial
@@ -154,6 +155,39 @@ struct AmbientSpec
   float Strength = 0.2f;
 };
 
+// The "view" section: how `cloudvis view` shows the scene besides the picture itself (the
+// layout, the slices and their colors, the legends), so that a scene the viewer saves opens as
+// it was left. `render` checks it and ignores it.
+enum class ViewLayout
+{
+  ThreeD, // the 3D view alone
+  Four,   // the 3D view and the axial, coronal and sagittal slice views
+};
+
+// The names view.slice_colors takes, in the order the viewer's c key cycles through them.
+const std::vector<std::string>& SliceColormapNames();
+
+struct ObliqueSpec
+{
+  bool Visible = false;
+  std::optional<std::array<double, 3>> Origin;       // world; absent: the field's centre
+  std::array<double, 3> Normal{ { 1.0, 1.0, 2.0 } }; // not zero; any length
+};
+
+struct ViewSpec
+{
+  ViewLayout Layout = ViewLayout::ThreeD;
+  std::array<bool, 3> Slices{ { false, false, false } }; // the slices across x, y and z shown
+  // World coordinates of the three slices, each moved to the voxel layer nearest to it; absent:
+  // the field's centre.
+  std::optional<std::array<double, 3>> SlicePosition;
+  ObliqueSpec Oblique;
+  // The slices' [window, level] in density (window > 0); absent: the field's range.
+  std::optional<std::array<double, 2>> WindowLevel;
+  int SliceColors = 0; // an index of SliceColormapNames()
+  bool Legends = true; // the color legends
+};
+
 // The lights of a scene without a "lights" key: one white directional sun from (6, 8, 4) toward
 // the origin (docs/scene-format.md gives its intensity and why).
 std::vector<Light> DefaultLights();
@@ -174,6 +208,8 @@ struct Scene
   // absent) and "ambient".
   std::vector<Light> Lights = DefaultLights();
   AmbientSpec Ambient;
+  // The "view" section, absent from scenes that have none (the viewer's defaults apply then).
+  std::optional<ViewSpec> View;
   // The validated JSON document as given, after overrides and before defaults (the fully
   // resolved one is SceneToJson's, written from the members above).
   nlohmann::json Document;

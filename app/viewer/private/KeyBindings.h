@@ -25,6 +25,7 @@ enum class ViewerAction
   TypeWindowLevel,
   ToggleLayout,
   ToggleVolume,
+  ToggleLegends,
   CycleLighting,
   MoveLightAzimuth,   // variant 0: left, 1: right
   MoveLightElevation, // variant 0: up, 1: down

@@ -38,10 +38,13 @@ public:
   vtkScalarBarActor* GetColorBar() const;
 
   // The names the colors cycle through: "blue-yellow" (the default), "gray", "viridis",
-  // "transfer function".
+  // "transfer function" (SliceColormapNames(), the names of the scene's view.slice_colors).
   static const std::vector<std::string>& ColormapNames();
   void NextColormap();
   const std::string& GetColormap() const;
+  // By index of ColormapNames() (a saved scene's view.slice_colors).
+  void SetColormap(size_t index);
+  size_t GetColormapIndex() const { return this->Colormap; }
 
   // Window > 0 (clamped to a thousandth of the field's range at least).
   void SetWindowLevel(double window, double level);
@@ -71,6 +74,12 @@ private:
   vtkNew<vtkLookupTable> Table;
   vtkNew<vtkScalarBarActor> ColorBar;
 };
+
+// The look every color bar of the viewer shares (the slices' and the cloud's legend): three
+// labels, a narrow bar, light 12-pixel text, the title clear of the top label.
+void StyleColorBar(vtkScalarBarActor* bar, const std::string& title);
+// The bar's texts at `scale` times their size (a screenshot larger than the window).
+void SetColorBarFontScale(vtkScalarBarActor* bar, double scale);
 
 } // namespace cloudvis
 

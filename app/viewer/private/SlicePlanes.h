@@ -66,6 +66,8 @@ public:
   // The voxel layer the slice shows, clamped to the field.
   void SetSliceIndex(int axis, int index);
   int GetSliceIndex(int axis) const;
+  // The voxel layer nearest to world coordinate `position` along the axis (a saved scene's).
+  void SetSlicePosition(int axis, double position);
   int GetNumberOfSlices(int axis) const;
   // The field's values on the slice across `axis` (its voxel layer), for the automatic window.
   std::vector<double> GetSliceValues(int axis) const;
@@ -93,6 +95,8 @@ public:
   bool GetObliqueVisible() const { return this->ObliqueVisible; }
   std::array<double, 3> GetObliqueOrigin() const;
   std::array<double, 3> GetObliqueNormal() const;
+  // Places the oblique plane (a saved scene's); the origin is kept within the field's bounds.
+  void SetObliquePlane(const std::array<double, 3>& origin, const std::array<double, 3>& normal);
   // Number of points in the oblique cut (0 when it misses the field).
   long GetObliqueCutPoints() const;
 

@@ -13,8 +13,11 @@
 // beyond the function's range on every side, because a chart only takes presses strictly inside
 // its axes: a point on the range's edge could not be grabbed otherwise.
 //
+// Color points are drawn in their own colors; while one is selected a palette of swatches
+// (ColorPalette.h) offers colors for it at a click.
+//
 // The editor keeps an undo history of whole functions: a drag, an added or removed point, typed
-// values, a preset, a fit or a reset is one step each.
+// values, a swatch picked, a preset, a fit or a reset is one step each.
 #ifndef cloudvis_TransferFunctionEditor_h
 #define cloudvis_TransferFunctionEditor_h
 
@@ -46,6 +49,8 @@ class vtkVolumeProperty;
 
 namespace cloudvis
 {
+
+class vtkCloudColorPalette;
 
 // The points of a property's functions as a scene's transfer_function section (unit distance
 // included), and back.
@@ -121,6 +126,9 @@ public:
   // Sets them from typed text (numbers separated by spaces or commas). Returns an empty string,
   // or what is wrong with the text (nothing changes then).
   std::string SetSelectedPointValues(const std::string& text);
+  // Gives the selected color point `rgb` (each in [0, 1]; the color palette's swatch clicked),
+  // as typed values would. Returns an empty string, or why not.
+  std::string SetSelectedPointColor(const std::array<double, 3>& rgb);
 
   // The line at the top of the editor: the selected point's values and what keys do with it,
   // or `entry` while values are being typed (empty: not typing).
@@ -132,12 +140,18 @@ public:
   std::vector<std::array<double, 2>> GetPointPixels(Function function) const;
   // The color strip's rectangle in window pixels: x0, y0, x1, y1.
   std::array<double, 4> GetColorStripPixels() const;
+  // The color palette (ColorPalette.h), shown while a color point is selected: its rectangle in
+  // window pixels, x0, y0, x1, y1.
+  std::array<double, 4> GetPalettePixels() const;
+  bool GetPaletteVisible() const;
 
 private:
   void FillHistogram();
   void LayOut();
   void UpdateRange();
   void UpdateInfo();
+  // The selected point's values, checked (density between its neighbours, values in [0, 1]).
+  std::string SetSelectedPointNumbers(const std::vector<double>& numbers);
   void Record(const TransferFunctionSpec& before);
   void Restore(const TransferFunctionSpec& spec);
   bool Step(std::vector<TransferFunctionSpec>& from, std::vector<TransferFunctionSpec>& to);
@@ -171,6 +185,7 @@ private:
   vtkSmartPointer<vtkPiecewiseControlPointsItem> OpacityPoints; // end points move in x and y
   vtkNew<vtkColorTransferFunctionItem> ColorBar;
   vtkNew<vtkColorTransferControlPointsItem> ColorPoints;
+  vtkNew<vtkCloudColorPalette> Palette;
   vtkNew<vtkTextActor> Info;
   unsigned long LayoutObserver = 0;
 };

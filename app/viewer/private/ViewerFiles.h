@@ -32,12 +32,21 @@ RenderedImage GrabWindow(vtkRenderWindow* window, const double* viewport = nullp
 // Writes `text` to `path` atomically; `what` names the content in errors ("the scene").
 void WriteTextFile(const std::string& path, const std::string& text, const std::string& what);
 
-// Writes DIR/cloudvis-screenshot-NNN.png and, with `floatImage`, .exr of the image `capture`
-// returns (called once the targets are known to be writable; it must hold the float image when
-// `floatImage`), with the scene and command line as metadata. Returns the files written.
+// A screenshot: the PNG's 8-bit picture (the layout's views) and the EXR's float image (the 3D
+// view's cloud; empty without one).
+struct ScreenshotImages
+{
+  RenderedImage Layout;
+  RenderedImage Cloud;
+};
+
+// Writes DIR/cloudvis-screenshot-NNN.png of the images' Layout and, with `floatImage`, .exr of
+// their Cloud (`capture` is called once the targets are known to be writable; its Cloud must hold
+// the float image when `floatImage`), with the scene and command line as metadata. Returns the
+// files written.
 std::vector<std::string> WriteScreenshot(const std::string& directory,
   bool floatImage,
-  const std::function<RenderedImage()>& capture,
+  const std::function<ScreenshotImages()>& capture,
   const std::string& sceneJson,
   const std::string& commandLine);
 

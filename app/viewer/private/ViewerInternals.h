@@ -1,6 +1,6 @@
 // The viewer's state and helpers, shared by the files that implement Viewer: Viewer.cxx (the
-// window, its layout and rendering, files), ViewerKeys.cxx (what the keys do) and
-// ViewerState.cxx (the state tests and tools read).
+// window, its layout and rendering), ViewerSaving.cxx (what s and w save), ViewerKeys.cxx (what
+// the keys do) and ViewerState.cxx (the state tests and tools read).
 #ifndef cloudvis_ViewerInternals_h
 #define cloudvis_ViewerInternals_h
 
@@ -14,6 +14,7 @@
 #include "StatusOverlay.h"
 #include "TransferFunctionEditor.h"
 #include "Viewer.h"
+#include "ViewerFiles.h"
 #include "vtkCloudViewerInteractorStyle.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -26,6 +27,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
 #include <vtkSmartPointer.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
@@ -65,6 +67,9 @@ struct Viewer::Internals
   vtkNew<vtkAxesActor> Axes;
   vtkNew<vtkOrientationMarkerWidget> Orientation;
   vtkNew<vtkInteractorEventRecorder> Recorder;
+  // The cloud's color legend: the transfer function's colors over density, at the 3D view's right
+  // edge (the slices' color bar is SliceColors').
+  vtkNew<vtkScalarBarActor> Legend;
   std::unique_ptr<StatusOverlay> Status;
   std::unique_ptr<TransferFunctionEditor> Editing;
   std::unique_ptr<SliceColors> Colors;
@@ -73,6 +78,12 @@ struct Viewer::Internals
   std::unique_ptr<LiveLoop> Loop;
 
   bool FourViews = false;
+  bool LegendsVisible = true; // b: the color legends (the cloud's, and the slices' when shown)
+  // A screenshot is being rendered: the views fill the window (ApplyLayout), which has the
+  // screenshot's size off screen (CaptureLayout).
+  bool Exporting = false;
+  // The 3D view in the overlay's normalized viewport coordinates, where the legends go.
+  std::array<double, 4> LegendArea{ { 0.0, 0.0, 1.0, 1.0 } };
   bool Typing = false;            // the keys type values (Typed)...
   bool TypingWindowLevel = false; // ... of the slices' window and level, else of a point
   std::string Typed;
@@ -116,12 +127,21 @@ struct Viewer::Internals
   std::array<int, 4> PixelViewport(vtkRenderer* renderer) const;
   // The 3D view's size in pixels.
   std::array<int, 2> ViewSize() const;
-  // A slice is shown somewhere, so the color bar explains its colors.
+  // A slice is shown somewhere (and legends are on), so the color bar explains its colors.
   bool ColorBarWanted() const;
+  // The legends are on and the cloud is shown.
+  bool LegendWanted() const;
   // Places the renderers for the layout: the 3D view alone above the editor, or the four views
   // as 3D Slicer's "four-up" places them (axial top left, 3D top right, sagittal bottom left,
-  // coronal bottom right).
+  // coronal bottom right). While Exporting the views fill the window and the editor is not
+  // drawn.
   void ApplyLayout();
+  // The legends at the 3D view's right edge, each shown when wanted.
+  void PlaceLegends();
+  // The scene's "view" section as the window shows it now (layout, slices, window/level, slice
+  // colors, legends), and the reverse: the window set as a saved scene's view section says.
+  ViewSpec CurrentView() const;
+  void ApplyView(const ViewSpec& view);
   // An orthogonal slice is shown: in the 3D view, or the slice views.
   bool SlicesShown() const;
   // A voxel as the readout writes it, in the field's units (Options.Units): "probe (0.1, 0.2,
@@ -134,9 +154,13 @@ struct Viewer::Internals
   void Hover(int x, int y);
   // The slices moved, probed or changed their colors (from a plane, a slice view or a key).
   void SlicesChanged();
-  // The 3D view alone, converged (render.accumulate frames), without the viewer's own
-  // decorations (texts, outline, orientation marker), so that `render` draws the same picture.
-  RenderedImage Capture(bool floatImage);
+  // The screenshot's size: ViewerOptions::ScreenshotSize, or the views as the window shows them.
+  std::array<int, 2> ScreenshotSize() const;
+  // What s saves, rendered at `size` off screen (the window on screen keeps its size and
+  // picture): the layout's views as the window shows them, converged, with the color legends,
+  // without the editor and the viewer's texts (message, hint, help, readout); and with
+  // `floatImage` the 3D view's float image (the cloud as `render` exports it).
+  ScreenshotImages CaptureLayout(const std::array<int, 2>& size, bool floatImage);
   // The first directional light, or -1.
   int FirstDirectionalLight() const;
   // Turns the first directional light about its focal point (elevation within +-89 degrees).

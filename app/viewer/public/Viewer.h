@@ -37,13 +37,16 @@ struct ViewerOptions
   std::string OutputDirectory = ".";             // where s, w and shift-p write
   std::string RecordFile;  // --record: the session's events, as VTK writes them
   std::string StateFile;   // --state-file: ViewerStateJson written after every frame or input
-  bool FourViews = false;  // start in the four-view layout (--layout four)
+  // s saves the views at this size in pixels (--screenshot-size); 0 x 0: as the window shows
+  // them (the window's width, the height above the editor).
+  std::array<int, 2> ScreenshotSize{ { 0, 0 } };
   std::string CommandLine; // embedded in screenshots' metadata
   std::ostream* Messages = nullptr; // messages besides the window (stderr by default)
   // The field was opened as a file (`cloudvis view FIELD.vti`), not through a scene: its transfer
   // function is fitted to its values on opening, as ParaView does (docs/viewer.md).
   bool FieldFile = false;
-  // What the field's values and lengths mean, for the readouts (FieldUnits.h).
+  // What the field's values and lengths mean, for the readouts and the legends' titles
+  // (FieldUnits.h).
   ResolvedFieldUnits Units;
 };
 
@@ -94,6 +97,7 @@ struct ViewerState
   bool VolumeVisible = true;
   bool HintVisible = true;
   bool ColorBarVisible = false;
+  bool LegendVisible = false; // the cloud's color legend
   std::string Message;        // the message on screen, as wrapped; empty once faded
   std::string Readout;        // the probe readout line
   unsigned long WindowId = 0; // the X window
@@ -121,6 +125,8 @@ struct ViewerState
   std::vector<std::array<double, 2>> OpacityPointPixels;
   std::vector<std::array<double, 2>> ColorPointPixels;
   std::array<double, 4> ColorStripPixels{ { 0.0, 0.0, 0.0, 0.0 } };
+  bool PaletteVisible = false; // the color palette, while a color point is selected
+  std::array<double, 4> PalettePixels{ { 0.0, 0.0, 0.0, 0.0 } };
   std::string SelectedFunction; // "opacity", "color" or empty
   int SelectedPoint = -1;
   std::string EditorInfo;      // the editor's info line (selected point, typed entry)
@@ -161,15 +167,18 @@ public:
   ViewerState State() const;
 
   // The scene as the window shows it: the transfer function, lighting, light, step, resolution
-  // scale and camera as they are now, render.size the 3D view's size.
+  // scale and camera as they are now, render.size the 3D view's size, and the view section
+  // (layout, slices, window/level, slice colors, legends).
   Scene CurrentScene() const;
   nlohmann::json CurrentSceneJson() const;
 
   // Writes CurrentSceneJson() to `path` atomically. Throws InputError.
   void SaveScene(const std::string& path) const;
 
-  // s: cloudvis-screenshot-NNN.png and .exr; w: cloudvis-view-NNN.json (the first NNN free in
-  // the output directory; ViewerFiles.h). Failures become messages; the session goes on.
+  // s: cloudvis-screenshot-NNN.png (the layout's views with their color legends, at
+  // ViewerOptions::ScreenshotSize) and .exr (the 3D view's float image); w: cloudvis-view-NNN.json
+  // (the first NNN free in the output directory; ViewerFiles.h). Failures become messages; the
+  // session goes on.
   void SaveScreenshot();
   void SaveSceneFile();
 
