@@ -60,6 +60,7 @@ int View(const Arguments& arguments, std::ostream& out)
   const bool fieldFile = !input.empty() && IsFieldOperand(input, arguments);
   ViewerOptions options;
   const std::string saveOnExit = arguments.Value("save-scene-on-exit");
+  options.SceneSavedOnExit = !saveOnExit.empty();
   const std::string windowImage = arguments.Value("window-image");
   const std::string play = arguments.Value("play");
   options.RecordFile = arguments.Value("record");

@@ -384,6 +384,18 @@ Viewer::Viewer(const Scene& scene,
       }
     });
   interactor->AddObserver(vtkCommand::ConfigureEvent, resized);
+  // The window manager's close button (WM_DELETE_WINDOW): VTK's X interactor invokes ExitEvent
+  // when someone observes it (else it terminates at once), so closing asks like q does.
+  vtkNew<vtkCallbackCommand> closed;
+  closed->SetClientData(this);
+  closed->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto& viewer = *static_cast<Viewer*>(data);
+      viewer.Internal->Quit(viewer, true);
+      viewer.Internal->Request();
+    });
+  interactor->AddObserver(vtkCommand::ExitEvent, closed);
   // Outside the loop (playback), an input event renders once it has been handled by everyone:
   // this observer comes after the style's and the widgets'.
   vtkNew<vtkCallbackCommand> handled;
@@ -476,6 +488,8 @@ Viewer::Viewer(const Scene& scene,
   {
     throw InputError(scene.Source + ": " + in.Mapper->GetLastError());
   }
+
+  in.SavedEdits = in.EditsOf(*this);
 
   if (!options.RecordFile.empty())
   {
@@ -610,6 +624,7 @@ void Viewer::SaveSceneFile()
       NextFreeBase(in.Options.OutputDirectory, "cloudvis-view-", { ".json" }) + ".json";
     CheckOutputTarget(path);
     this->SaveScene(path);
+    in.SavedEdits = in.EditsOf(*this);
     in.SavedFiles.push_back(path);
     in.Show("saved " + path + " (cloudvis render " + path + " -o IMAGE.png)", false);
   }

@@ -19,6 +19,9 @@ namespace
 {
 constexpr double ViewerPi = 3.14159265358979323846;
 constexpr size_t KeptKeys = 64;
+// How long a first q (or close) waits for the second one that quits without saving: as long as
+// its message (an error's) is shown in full.
+constexpr double QuitConfirmSeconds = 2.0 * StatusOverlay::MessageSeconds;
 const char* const AxisNames[3] = { "x", "y", "z" };
 
 std::string Format(const char* format, double value)
@@ -193,6 +196,44 @@ void Viewer::Internals::ToggleSlice(int axis)
   this->SlicesChanged();
 }
 
+std::string Viewer::Internals::EditsOf(const Viewer& viewer) const
+{
+  nlohmann::json edits = viewer.CurrentSceneJson();
+  edits["render"].erase("size");
+  nlohmann::json slices = nlohmann::json::array();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    slices.push_back({ this->Slices->GetSliceVisible(axis), this->Slices->GetSliceIndex(axis) });
+  }
+  edits["slices (viewer)"] = { slices,
+    this->Slices->GetObliqueVisible(),
+    this->Slices->GetObliqueOrigin(),
+    this->Slices->GetObliqueNormal(),
+    this->Colors->GetWindowLevel(),
+    this->Colors->GetColormap() };
+  return edits.dump();
+}
+
+bool Viewer::Internals::UnsavedChanges(const Viewer& viewer) const
+{
+  return !this->Options.SceneSavedOnExit && this->EditsOf(viewer) != this->SavedEdits;
+}
+
+void Viewer::Internals::Quit(const Viewer& viewer, bool fromWindowManager)
+{
+  const double now = MonotonicSeconds();
+  if (!this->UnsavedChanges(viewer) || now - this->QuitAskedAt <= QuitConfirmSeconds)
+  {
+    this->Interactor->TerminateApp();
+    return;
+  }
+  this->QuitAskedAt = now;
+  this->Show(fromWindowManager
+      ? "unsaved changes: w saves the scene, closing again (or q) quits without saving"
+      : "unsaved changes: w saves the scene, q again quits without saving",
+    true);
+}
+
 void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
 {
   using A = ViewerAction;
@@ -314,8 +355,18 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
     case A::Help:
       this->Status->SetHelpVisible(!this->Status->GetHelpVisible());
       break;
+    case A::Close:
+      if (this->Status->GetHelpVisible())
+      {
+        this->Status->SetHelpVisible(false);
+      }
+      else
+      {
+        this->Show("nothing to close (Esc closes the help and cancels typing; q quits)", false);
+      }
+      break;
     case A::Quit:
-      this->Interactor->TerminateApp();
+      this->Quit(viewer, false);
       break;
   }
 }
@@ -335,6 +386,10 @@ void Viewer::PressKey(const std::string& keySym, char keyCode, bool control)
     if (!match.Binding)
     {
       return; // not a viewer key
+    }
+    if (match.Binding->Action != ViewerAction::Quit)
+    {
+      in.QuitAskedAt = -1e300; // q, another key, q: the second q asks again
     }
     in.Act(match.Binding->Action, match.Variant, *this);
     // A preview only in the live loop: replayed sessions and tests see full-resolution frames.

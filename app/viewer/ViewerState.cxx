@@ -64,6 +64,7 @@ json ViewerStateJson(const ViewerState& state)
     { "first_light_position", state.FirstLightPosition },
     { "volume_visible", state.VolumeVisible },
     { "help_visible", state.HelpVisible },
+    { "unsaved_changes", state.UnsavedChanges },
     { "hint_visible", state.HintVisible },
     { "color_bar_visible", state.ColorBarVisible },
     { "message", state.Message },
@@ -123,6 +124,7 @@ ViewerState Viewer::State() const
   state.Step = in.Current.Render.Step;
   state.ResolutionScale = in.Current.Render.ResolutionScale;
   state.HelpVisible = in.Status->GetHelpVisible();
+  state.UnsavedChanges = in.UnsavedChanges(*this);
   state.LogHistogram = in.Editing->GetLogHistogram();
   state.EditorRange = in.Editing->GetRange();
   const int light = in.FirstDirectionalLight();

@@ -41,6 +41,7 @@ enum class ViewerAction
   SaveScene,
   ResetCamera,
   Help,
+  Close, // Esc: closes what is open (the help); typing takes its own Esc first
   Quit
 };
 

@@ -85,6 +85,12 @@ struct Viewer::Internals
   std::vector<HandledKey> Keys;
   long FramesRendered = 0;
   double LastFrameAt = -1.0;
+  // What quitting would lose is compared with this: the edits (EditsOf) when the window opened
+  // or the scene was last saved with w.
+  std::string SavedEdits;
+  // When q (or closing the window) last asked before quitting with unsaved changes; a second
+  // one within QuitConfirmSeconds quits.
+  double QuitAskedAt = -1e300;
 
   // The scene's lights and lighting model on the 3D view and the mapper, as `render` sets them.
   void ApplyLighting();
@@ -136,6 +142,14 @@ struct Viewer::Internals
   // Enter: typing the selected point's values starts (a message when none is selected).
   void StartTyping();
   void ToggleSlice(int axis);
+  // The edits a user would lose by quitting, as text to compare: the scene `w` saves (its size
+  // aside: resizing the window is no edit) and the slices.
+  std::string EditsOf(const Viewer& viewer) const;
+  // There are edits since the window opened or the last w, and quitting would lose them (no
+  // --save-scene-on-exit).
+  bool UnsavedChanges(const Viewer& viewer) const;
+  // q or the window manager's close: quits, or with unsaved changes asks for a second q first.
+  void Quit(const Viewer& viewer, bool fromWindowManager);
   // What a key of the table does; `variant` is the index of the key pressed in its row.
   void Act(ViewerAction action, int variant, Viewer& viewer);
 };

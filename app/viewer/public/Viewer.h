@@ -38,6 +38,9 @@ struct ViewerOptions
   std::string RecordFile;  // --record: the session's events, as VTK writes them
   std::string StateFile;   // --state-file: ViewerStateJson written after every frame or input
   bool FourViews = false;  // start in the four-view layout (--layout four)
+  // --save-scene-on-exit: the scene is written when the viewer ends, so quitting loses nothing
+  // and q quits without asking.
+  bool SceneSavedOnExit = false;
   std::string CommandLine; // embedded in screenshots' metadata
   std::ostream* Messages = nullptr; // messages besides the window (stderr by default)
 };
@@ -66,6 +69,7 @@ struct ViewerState
   double Step = 0.0;
   double ResolutionScale = 1.0;
   bool HelpVisible = false;
+  bool UnsavedChanges = false; // edits since the window opened or the last w (docs/viewer.md)
   bool LogHistogram = true;
   std::array<double, 2> EditorRange{ { 0.0, 1.0 } };
   std::array<double, 3> FirstLightPosition{ { 0.0, 0.0, 0.0 } };
@@ -139,7 +143,8 @@ public:
   void PlayFile(const std::string& path);
   void PlayString(const std::string& events);
 
-  // Runs the event loop (LiveLoop.h) until the window is closed (or q / Escape).
+  // Runs the event loop (LiveLoop.h) until q or the window is closed (a second time within a few
+  // seconds when there are unsaved changes).
   void Start();
 
   // The key bindings, as the keys do them (also for tests).

