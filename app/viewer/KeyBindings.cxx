@@ -1,4 +1,5 @@
-// The key table and the three things made from it: lookup, help overlay, docs table.
+// The key and mouse tables and what is made from them: key lookup, the help overlay's pages, the
+// docs' tables.
 #include "KeyBindings.h"
 
 #include "Viewer.h"
@@ -51,7 +52,7 @@ const std::vector<KeyBinding>& KeyBindings()
     { { "4" }, {}, false, A::ToggleLayout, View, "four views / the 3D view alone" },
     { { "v" }, {}, false, A::ToggleVolume, View, "show / hide the cloud", true },
     { { "r" }, {}, false, A::ResetCamera, View, "reset the camera", true },
-    { { "h" }, {}, false, A::Help, View, "show / hide this help" },
+    { { "h" }, {}, false, A::Help, View, "help: the keys, the mouse, off" },
     { { "Escape" }, {}, false, A::Close, View, "close the help, cancel typing" },
     { { "q" }, {}, false, A::Quit, View, "quit (asks first if unsaved)" },
     { { "x", "y", "z" }, {}, false, A::ToggleSlice, Slices, "slice across x, y, z in 3D", true },
@@ -178,6 +179,51 @@ std::string KeyLabel(const std::string& keySym, bool control)
   return control ? "Ctrl+" + label : label;
 }
 
+const std::vector<MouseBinding>& MouseBindings()
+{
+  // clang-format off: one row per binding.
+  // where, action, effect (help and docs), more (docs only)
+  static const std::vector<MouseBinding> table = {
+    { "3D view",
+      "left drag",
+      "rotate",
+      "trackball camera; the camera turns only while the mouse moves" },
+    { "3D view", "middle drag, Shift+left drag", "pan", "" },
+    { "3D view", "right drag, wheel", "zoom", "" },
+    { "a slice in 3D",
+      "left button",
+      "probe the voxel under the cursor",
+      "the readout stays after release" },
+    { "a slice in 3D",
+      "middle drag",
+      "move the slice along its normal",
+      "voxel by voxel; a slice facing the camera moves up (toward you) and down with the mouse" },
+    { "a slice in 3D",
+      "right drag",
+      "window/level of every slice",
+      "right: wider window, up: higher level" },
+    { "oblique slice", "drag arrow / plane / origin", "tilt / push / move it", "" },
+    { "slice view", "wheel", "step the slice one voxel", "" },
+    { "slice view",
+      "left click or drag",
+      "probe, move the crosshair",
+      "the other two slices move through the voxel" },
+    { "slice view", "middle drag", "move the slice", "one voxel per 4 pixels" },
+    { "slice view", "right drag", "window/level of every slice", "" },
+    { "editor", "click a point", "select it", "its values show at the top right of the editor" },
+    { "editor", "click empty opacity chart", "add a point (selected)", "" },
+    { "editor",
+      "drag an opacity point",
+      "move it",
+      "the end points move up and down (and inward), inner points anywhere between their "
+      "neighbours" },
+    { "editor", "drag a color point", "move it along density", "the end points inward too" },
+    { "editor", "wheel", "nothing", "the charts always show the transfer function's range" },
+  };
+  // clang-format on
+  return table;
+}
+
 namespace
 {
 std::string KeysLabel(const KeyBinding& binding, const char* separator)
@@ -189,43 +235,95 @@ std::string KeysLabel(const KeyBinding& binding, const char* separator)
   }
   return text;
 }
+
+// A help row: its group, what to press, what it does.
+struct HelpRow
+{
+  std::string Group, Input, Effect;
+};
+
+// A column of the help: `groups` in order, each a heading and its rows, the inputs padded to the
+// column's widest (the help is drawn in a fixed-width font).
+std::string HelpColumn(const std::vector<std::string>& groups, const std::vector<HelpRow>& rows)
+{
+  size_t width = 0;
+  for (const HelpRow& row : rows)
+  {
+    if (std::find(groups.begin(), groups.end(), row.Group) != groups.end())
+    {
+      width = std::max(width, row.Input.size());
+    }
+  }
+  std::ostringstream out;
+  for (const std::string& group : groups)
+  {
+    out << (group == groups.front() ? "" : "\n") << group << ":\n";
+    for (const HelpRow& row : rows)
+    {
+      if (row.Group == group)
+      {
+        std::string input = row.Input;
+        input.resize(width, ' ');
+        out << "  " << input << "  " << row.Effect << "\n";
+      }
+    }
+  }
+  return out.str();
+}
 } // namespace
 
-std::array<std::string, 2> KeyHelpColumns()
+std::vector<HelpPage> HelpPages()
 {
-  // The first three groups on the left; keys padded to the column's widest.
-  const auto& groups = Groups();
-  std::array<std::string, 2> columns;
-  for (size_t column = 0; column < 2; ++column)
+  std::vector<HelpRow> keys;
+  for (const KeyBinding& binding : KeyBindings())
   {
-    const size_t first = column == 0 ? 0 : 3, last = column == 0 ? 3 : groups.size();
-    size_t width = 0;
-    for (const KeyBinding& binding : KeyBindings())
-    {
-      for (size_t g = first; g < last; ++g)
-      {
-        width =
-          binding.Group == groups[g] ? std::max(width, KeysLabel(binding, " ").size()) : width;
-      }
-    }
-    std::ostringstream out;
-    for (size_t g = first; g < last; ++g)
-    {
-      out << (g == first ? "" : "\n") << groups[g] << ":\n";
-      for (const KeyBinding& binding : KeyBindings())
-      {
-        if (binding.Group == groups[g])
-        {
-          std::string keys = KeysLabel(binding, " ");
-          keys.resize(width, ' ');
-          out << "  " << keys << "  " << binding.Description << "\n";
-        }
-      }
-    }
-    columns[column] = out.str();
+    keys.push_back({ binding.Group, KeysLabel(binding, " "), binding.Description });
   }
-  columns[1] += "\nmouse: docs/viewer.md lists it";
-  return columns;
+  std::vector<HelpRow> mouse;
+  std::vector<std::string> places;
+  for (const MouseBinding& binding : MouseBindings())
+  {
+    mouse.push_back({ binding.Where, binding.Action, binding.Effect });
+    if (std::find(places.begin(), places.end(), binding.Where) == places.end())
+    {
+      places.push_back(binding.Where);
+    }
+  }
+  // The keys in two columns, their first three groups on the left; the mouse in one, whose rows
+  // are too wide for two.
+  const auto& groups = Groups();
+  const std::vector<std::string> left(groups.begin(), groups.begin() + 3),
+    right(groups.begin() + 3, groups.end());
+  return { { "keys",
+             { { "KEYS   (h: the mouse, Esc: close)\n\n" + HelpColumn(left, keys),
+               HelpColumn(right, keys) } } },
+    { "mouse", { { "MOUSE   (h or Esc: close)\n\n" + HelpColumn(places, mouse), "" } } } };
+}
+
+namespace
+{
+// A '|' would end a Markdown table cell.
+std::string TableCell(std::string text)
+{
+  for (size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2))
+  {
+    text.replace(at, 1, "\\|");
+  }
+  return text;
+}
+} // namespace
+
+std::string ViewerMouseMarkdown()
+{
+  std::ostringstream out;
+  out << "| where | action | effect |\n|---|---|---|\n";
+  for (const MouseBinding& binding : MouseBindings())
+  {
+    const std::string more = *binding.More ? std::string(": ") + binding.More : "";
+    out << "| " << TableCell(binding.Where) << " | " << TableCell(binding.Action) << " | "
+        << TableCell(binding.Effect + more) << " |\n";
+  }
+  return out.str();
 }
 
 std::string ViewerKeysMarkdown()
@@ -246,14 +344,7 @@ std::string ViewerKeysMarkdown()
             keys += (keys.empty() ? "" : ", ") + ("`" + KeyLabel(key, binding.Control) + "`");
           }
         }
-        std::string description = binding.Description;
-        // A '|' would end the table cell.
-        for (size_t at = description.find('|'); at != std::string::npos;
-             at = description.find('|', at + 2))
-        {
-          description.replace(at, 1, "\\|");
-        }
-        out << "| " << keys << " | " << group << " | " << description << " |\n";
+        out << "| " << keys << " | " << group << " | " << TableCell(binding.Description) << " |\n";
       }
     }
   }

@@ -353,12 +353,13 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       ApplyCamera(this->Current.Camera, this->Field->GetBounds(), this->View, this->Current.Source);
       break;
     case A::Help:
-      this->Status->SetHelpVisible(!this->Status->GetHelpVisible());
+      // The pages in turn (keys, mouse), then none.
+      this->Status->SetHelpPage(this->Status->GetHelpPage() + 1);
       break;
     case A::Close:
       if (this->Status->GetHelpVisible())
       {
-        this->Status->SetHelpVisible(false);
+        this->Status->SetHelpPage(-1);
       }
       else
       {

@@ -64,6 +64,9 @@ json ViewerStateJson(const ViewerState& state)
     { "first_light_position", state.FirstLightPosition },
     { "volume_visible", state.VolumeVisible },
     { "help_visible", state.HelpVisible },
+    { "help_page", state.HelpPage },
+    { "help_boxes", state.HelpBoxes },
+    { "help_font_size", state.HelpFontSize },
     { "unsaved_changes", state.UnsavedChanges },
     { "hint_visible", state.HintVisible },
     { "color_bar_visible", state.ColorBarVisible },
@@ -124,6 +127,9 @@ ViewerState Viewer::State() const
   state.Step = in.Current.Render.Step;
   state.ResolutionScale = in.Current.Render.ResolutionScale;
   state.HelpVisible = in.Status->GetHelpVisible();
+  state.HelpPage = in.Status->GetHelpPageName();
+  state.HelpBoxes = in.Status->GetHelpBoxes();
+  state.HelpFontSize = in.Status->GetHelpFontSize();
   state.UnsavedChanges = in.UnsavedChanges(*this);
   state.LogHistogram = in.Editing->GetLogHistogram();
   state.EditorRange = in.Editing->GetRange();

@@ -100,10 +100,11 @@ py=${py%.*}
 session viewer-editor <<< "$(click "$px" "$py"; key Return; key 0; key period; key 4; key 5; key space; key 0; key period; key 6)"
 grep -q '"typing":true' "$scratch/viewer-editor.json" || { echo "make-viewer-images.sh: no point was selected at $px $py" >&2; exit 1; }
 
-# The help: the key list, two columns.
+# The help: its first page, the key list in two columns, and its second, the mouse.
 session viewer-help <<< "$(key h)"
+session viewer-help-mouse <<< "$(key h; key h)"
 
-for image in viewer-3d viewer-four viewer-editor viewer-help; do
+for image in viewer-3d viewer-four viewer-editor viewer-help viewer-help-mouse; do
   bytes=$(stat -c %s "$out/$image.png")
   if ((bytes > 200 * 1024)); then
     echo "make-viewer-images.sh: warning: $out/$image.png is $((bytes / 1024)) KB (keep them under 200 KB)" >&2

@@ -117,6 +117,41 @@ TEST(LiveKeys, ClosingTheWindowAsksLikeQ)
   EXPECT_EQ(session.WaitForExit(), 0) << "the second close did not quit\n" << session.Stderr();
 }
 
+// h shows the keys, h again the mouse bindings, h again nothing; each page fits the views of a
+// 480 x 400 window in a font of at least 8 points, and the two pages draw different texts.
+TEST(LiveKeys, HelpPagesShowTheKeysThenTheMouseAndFitTheWindow)
+{
+  LiveSession session(Cloudvis, Arguments());
+  const json start = session.WaitUntilConverged();
+  const json view = start["viewports"]["3d"];
+  std::vector<support::Image> drawn;
+  for (const char* page : { "keys", "mouse" })
+  {
+    session.Key("h");
+    const json shown = session.WaitFor([&](const json& s)
+      { return s["help_page"] == page && s["frames_rendered"] > start["frames_rendered"]; },
+      std::string("the help's ") + page + " page");
+    ASSERT_FALSE(shown["help_boxes"].empty()) << page;
+    EXPECT_GE(shown["help_font_size"].get<int>(), 8) << page << " page: too small to read";
+    for (const json& box : shown["help_boxes"])
+    {
+      EXPECT_GE(box[0].get<int>(), view[0].get<int>()) << page << " " << box;
+      EXPECT_GE(box[1].get<int>(), view[1].get<int>()) << page << " " << box;
+      EXPECT_LE(box[2].get<int>(), view[2].get<int>()) << page << " " << box;
+      EXPECT_LE(box[3].get<int>(), view[3].get<int>()) << page << " " << box;
+    }
+    session.WaitFor([](const json& s) { return s["converged"].get<bool>(); }, "a still picture");
+    drawn.push_back(session.Pixels(
+      { { view[0].get<int>(), view[1].get<int>(), view[2].get<int>(), view[3].get<int>() } }));
+  }
+  EXPECT_GT(support::Compare(drawn[0], drawn[1]).MeanLevels(), 2.0)
+    << "the mouse page draws what the keys page drew";
+  session.Key("h");
+  session.WaitFor([](const json& s)
+    { return s["help_page"] == "" && !s["help_visible"].get<bool>(); },
+    "the third h to hide the help");
+}
+
 } // namespace
 } // namespace live
 } // namespace cloudvis

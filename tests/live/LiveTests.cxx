@@ -412,7 +412,9 @@ TEST(Live, MessagesFadeAndTheHintGoesAfterTheHelp)
     [](const json& s) { return s["message"] == "lighting: derivative"; }, "the message");
   session.WaitFor([](const json& s) { return s["message"] == ""; }, "the message to fade", 60.0);
   session.Key("h");
-  session.WaitFor([](const json& s) { return s["help_visible"].get<bool>(); }, "the help");
+  session.WaitFor([](const json& s) { return s["help_page"] == "keys"; }, "the help");
+  session.Key("h");
+  session.WaitFor([](const json& s) { return s["help_page"] == "mouse"; }, "its mouse page");
   session.Key("h");
   const json after = session.WaitFor(
     [](const json& s) { return !s["help_visible"].get<bool>(); }, "the help to hide");

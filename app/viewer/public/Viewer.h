@@ -69,6 +69,9 @@ struct ViewerState
   double Step = 0.0;
   double ResolutionScale = 1.0;
   bool HelpVisible = false;
+  std::string HelpPage;                      // the help page shown: "keys", "mouse", or empty
+  std::vector<std::array<int, 4>> HelpBoxes; // its columns, window pixels x0, y0, x1, y1
+  int HelpFontSize = 0;
   bool UnsavedChanges = false; // edits since the window opened or the last w (docs/viewer.md)
   bool LogHistogram = true;
   std::array<double, 2> EditorRange{ { 0.0, 1.0 } };
@@ -127,6 +130,8 @@ nlohmann::json ViewerStateJson(const ViewerState& state);
 
 // The key bindings as the Markdown table docs/viewer.md holds (`cloudvis view --keys`).
 std::string ViewerKeysMarkdown();
+// The mouse bindings, likewise (`cloudvis view --mouse`).
+std::string ViewerMouseMarkdown();
 
 class Viewer
 {
