@@ -3,6 +3,7 @@
 #include "StatusOverlay.h"
 
 #include "KeyBindings.h"
+#include "Viewer.h"
 
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -30,6 +32,7 @@ constexpr int HelpFontSize = 13;
 void StyleBoxedText(vtkTextActor* actor, int fontSize, double opacity)
 {
   vtkTextProperty* text = actor->GetTextProperty();
+  UseViewerFont(text);
   text->SetFontSize(fontSize);
   text->SetBackgroundColor(0.0, 0.0, 0.0);
   text->SetBackgroundOpacity(opacity);
@@ -100,6 +103,33 @@ std::string Wrap(vtkTextProperty* property, const std::string& text, int width, 
   return wrapped;
 }
 } // namespace
+
+std::string UseViewerFont(vtkTextProperty* text)
+{
+  static const std::string file = []
+  {
+    for (const char* path : { "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+           "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+           "/usr/share/fonts/truetype/liberation2/LiberationSans-Regular.ttf" })
+    {
+      if (std::ifstream(path).good())
+      {
+        return std::string(path);
+      }
+    }
+    return std::string();
+  }();
+  if (file.empty())
+  {
+    text->SetFontFamilyToCourier();
+  }
+  else
+  {
+    text->SetFontFamily(VTK_FONT_FILE);
+    text->SetFontFile(file.c_str());
+  }
+  return file;
+}
 
 double MonotonicSeconds()
 {

@@ -6,6 +6,7 @@
 #include "TransferFunctionEditor.h"
 
 #include "CloudTransferTable.h"
+#include "Viewer.h"
 
 #include <vtkAxis.h>
 #include <vtkBrush.h>
@@ -314,6 +315,7 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   property->GetRGBTransferFunction()->AddObserver(vtkCommand::ModifiedEvent, changed);
 
   vtkTextProperty* info = this->Info->GetTextProperty();
+  UseViewerFont(info);
   info->SetFontSize(11);
   info->SetColor(0.1, 0.1, 0.15);
   info->SetBackgroundColor(1.0, 1.0, 1.0);

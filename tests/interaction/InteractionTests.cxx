@@ -11,6 +11,10 @@
 #include "Viewer.h"
 
 #include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkStdString.h>
+#include <vtkTextProperty.h>
+#include <vtkTextRenderer.h>
 
 #include <gtest/gtest.h>
 
@@ -577,6 +581,61 @@ TEST(Interaction, SliceColorsCycleToTheTransferFunction)
     share([](double r, double g, double b) { return r >= 130.0 && g >= r && b >= g; }), 0.9);
   session.View->PressKey("c", 'c');
   EXPECT_EQ(session.View->State().SliceColors, "blue-yellow");
+}
+
+// The share of a glyph's height that its outer column covers: the leftmost inked column for
+// '[' and '(' (`left`), the rightmost for ']' and ')'. A square bracket's stem runs into its
+// corners, top to bottom (about 1); a round one's outermost ink is its middle only.
+double OuterColumnCover(vtkTextProperty* text, const std::string& glyph, bool left)
+{
+  vtkNew<vtkImageData> image;
+  int size[2] = { 0, 0 };
+  if (!vtkTextRenderer::GetInstance()->RenderString(text, vtkStdString(glyph), image, size, 72))
+  {
+    return -1.0;
+  }
+  const int* dims = image->GetDimensions();
+  const auto inked = [&](int x, int y)
+  { return static_cast<unsigned char*>(image->GetScalarPointer(x, y, 0))[3] > 128; };
+  int x0 = dims[0], x1 = -1, y0 = dims[1], y1 = -1;
+  for (int y = 0; y < dims[1]; ++y)
+  {
+    for (int x = 0; x < dims[0]; ++x)
+    {
+      if (inked(x, y))
+      {
+        x0 = std::min(x0, x);
+        x1 = std::max(x1, x);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+      }
+    }
+  }
+  if (x1 < 0)
+  {
+    return -1.0;
+  }
+  int covered = 0;
+  for (int y = y0; y <= y1; ++y)
+  {
+    // Within a pixel of the outer edge: antialiasing may leave the very edge half covered.
+    covered += inked(left ? x0 : x1, y) || inked(left ? x0 + 1 : x1 - 1, y) ? 1 : 0;
+  }
+  return double(covered) / double(y1 - y0 + 1);
+}
+
+// The viewer's texts draw square brackets as square (VTK's embedded Arial, the default font,
+// draws them round, so "[0, 4.58]" read as an open interval), rendered by the text renderer that
+// draws the viewer's text actors; round brackets stay round, so the measure tells them apart.
+TEST(Interaction, ViewerFontDrawsSquareBrackets)
+{
+  vtkNew<vtkTextProperty> text;
+  UseViewerFont(text);
+  text->SetFontSize(48);
+  EXPECT_GT(OuterColumnCover(text, "[", true), 0.9) << "'[' is not square";
+  EXPECT_GT(OuterColumnCover(text, "]", false), 0.9) << "']' is not square";
+  EXPECT_LT(OuterColumnCover(text, "(", true), 0.8) << "the measure cannot tell ( from [";
+  EXPECT_LT(OuterColumnCover(text, ")", false), 0.8) << "the measure cannot tell ) from ]";
 }
 
 } // namespace

@@ -27,6 +27,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkTextProperty;
 
 namespace cloudvis
 {
@@ -132,6 +133,14 @@ nlohmann::json ViewerStateJson(const ViewerState& state);
 std::string ViewerKeysMarkdown();
 // The mouse bindings, likewise (`cloudvis view --mouse`).
 std::string ViewerMouseMarkdown();
+
+// Sets the font of the viewer's texts (messages, readout, editor, slice captions; the help keeps
+// Courier, for its columns). VTK's embedded Arial, every vtkTextProperty's default, draws '[' and
+// ']' as round brackets (its glyphs have no square corners: "[0, 4.58]" reads as an open
+// interval), so the texts use DejaVu Sans (fonts-dejavu-core, cmake/debian-packages.txt) or
+// Liberation Sans from the system, and where neither is installed VTK's embedded Courier, whose
+// brackets are square. Returns the font file used ("" for Courier).
+std::string UseViewerFont(vtkTextProperty* text);
 
 class Viewer
 {
