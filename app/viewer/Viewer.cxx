@@ -109,7 +109,12 @@ bool Viewer::Internals::RefinementPending()
   {
     return false;
   }
-  this->RefinementCheck = { this->FramesRendered, accumulated };
+  // A preview frame (a key's quick answer at interactive resolution) accumulates apart: the
+  // full-resolution refinement after it starts over at one frame. Counting the preview's frame
+  // as the one to beat took that first refinement frame for an accumulation that restarts every
+  // frame, and refinement stalled until something else asked for a frame (the message's fading,
+  // 4 s later).
+  this->RefinementCheck = { this->FramesRendered, this->LastFrameWasPreview ? 0 : accumulated };
   return true;
 }
 

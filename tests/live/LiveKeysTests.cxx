@@ -152,6 +152,33 @@ TEST(LiveKeys, HelpPagesShowTheKeysThenTheMouseAndFitTheWindow)
     "the third h to hide the help");
 }
 
+// After a key that redraws the cloud the picture refines to convergence at once, while the key's
+// message is still on screen: the message and its fading never hold the refinement back (it
+// waited for the message to fade, about 4 s, after every m, arrow, +, - or p).
+TEST(LiveKeys, RefinementConvergesWhileTheMessageShows)
+{
+  LiveSession session(Cloudvis, Arguments());
+  session.WaitUntilConverged();
+  for (const char* key : { "m", "Right", "plus" })
+  {
+    const json before = session.State();
+    session.Key(key);
+    const json converged = session.WaitFor(
+      [&](const json& s)
+      {
+        return s["keys"].size() > before["keys"].size() && s["converged"].get<bool>() &&
+          !s["keys"].back()["shown_at"].is_null();
+      },
+      std::string("the picture after ") + key + " to converge");
+    const double handled = converged["keys"].back()["handled_at"].get<double>();
+    EXPECT_FALSE(converged["message"].get<std::string>().empty())
+      << key << ": converged only once the message had faded, "
+      << converged["last_frame_at"].get<double>() - handled << " s after the key";
+    EXPECT_LT(converged["last_frame_at"].get<double>() - handled, 0.5 * 4.0)
+      << key << ": took half the message's time to converge";
+  }
+}
+
 } // namespace
 } // namespace live
 } // namespace cloudvis
