@@ -248,6 +248,9 @@ RenderedImage Viewer::Internals::Capture(bool floatImage)
   this->Axes->VisibilityOff();
   const bool colorBar = this->Colors->GetColorBar()->GetVisibility() != 0;
   this->Colors->GetColorBar()->VisibilityOff();
+  // The frames of the capture stay in the back buffer: the window keeps showing what it showed
+  // (the "saving" notice) until the capture is done.
+  this->Window->SwapBuffersOff();
   struct Decorations
   {
     Internals& In;
@@ -255,6 +258,7 @@ RenderedImage Viewer::Internals::Capture(bool floatImage)
     bool ColorBar;
     ~Decorations()
     {
+      this->In.Window->SwapBuffersOn();
       this->In.Status->Restore(this->Texts);
       this->In.Outline->VisibilityOn();
       this->In.Axes->VisibilityOn();
@@ -588,6 +592,11 @@ void Viewer::SaveScene(const std::string& path) const
 void Viewer::SaveScreenshot()
 {
   Internals& in = *this->Internal;
+  // The capture renders render.accumulate frames without the decorations (seconds for a large
+  // view): say so on screen, and in the state, before the work starts.
+  in.Show("saving a screenshot ...", false);
+  in.RenderFrame();
+  this->WriteStateFile();
   try
   {
     const bool floatImage = in.Current.Render.ResolutionScale >= 1.0;

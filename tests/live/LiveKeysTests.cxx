@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 namespace cloudvis
 {
 namespace live
@@ -177,6 +179,45 @@ TEST(LiveKeys, RefinementConvergesWhileTheMessageShows)
     EXPECT_LT(converged["last_frame_at"].get<double>() - handled, 0.5 * 4.0)
       << key << ": took half the message's time to converge";
   }
+}
+
+// The screenshot files in the session's output folder.
+int Screenshots(const LiveSession& session)
+{
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(session.WorkDirectory()))
+  {
+    count += entry.path().filename().string().rfind("cloudvis-screenshot-", 0) == 0 ? 1 : 0;
+  }
+  return count;
+}
+
+// s says "saving" on screen before the capture's work (64 frames here, 2 to 3 s) has written
+// anything, and the notice stays on screen while it works; "saved FILE" follows once the files
+// exist.
+TEST(LiveKeys, ScreenshotSaysSavingBeforeTheWork)
+{
+  LiveSession session(Cloudvis, Arguments({ "--set", "render.accumulate=64" }));
+  const json start = session.WaitUntilConverged();
+  const json view = start["viewports"]["3d"];
+  // The message line's corner of the 3D view.
+  const std::array<int, 4> corner = {
+    { view[0].get<int>(), view[3].get<int>() - 24, view[0].get<int>() + 120, view[3].get<int>() }
+  };
+  const auto quiet = session.Pixels(corner);
+  session.Key("s");
+  session.WaitFor([](const json& s) { return Said(s, "saving"); }, "the saving notice");
+  EXPECT_EQ(Screenshots(session), 0) << "the notice came after the files";
+  // A moment into the work (the capture renders frames of its own, without the texts), the
+  // notice is still what the window shows.
+  Pause(0.5);
+  EXPECT_GT(support::Compare(quiet, session.Pixels(corner)).MeanLevels(), 5.0)
+    << "the notice is not on screen while the screenshot is taken";
+  EXPECT_EQ(Screenshots(session), 0) << "the capture was over before the pixels were read";
+  const json saved =
+    session.WaitFor([](const json& s) { return Said(s, "saved "); }, "the saved message");
+  EXPECT_EQ(Screenshots(session), 2); // PNG and EXR
+  EXPECT_EQ(saved["saved_files"].size(), 2u);
 }
 
 } // namespace
