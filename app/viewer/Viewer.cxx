@@ -437,6 +437,11 @@ Viewer::Viewer(const Scene& scene,
 
   in.Editing = std::make_unique<TransferFunctionEditor>(in.Property, field, in.Editor);
   in.Style->SetEditor(in.Editor, in.Editing->GetScene());
+  in.Style->EditorLeft = [&in]
+  {
+    in.Editing->PointerLeft();
+    in.Request();
+  };
   in.Style->KeyHandler = [this](const std::string& keySym, char keyCode, bool control)
   { this->PressKey(keySym, keyCode, control); };
   in.Style->DragHandler = [&in](bool dragging)
@@ -524,6 +529,7 @@ Viewer::~Viewer()
   in.Slices.reset();
   in.Style->KeyHandler = nullptr;
   in.Style->DragHandler = nullptr;
+  in.Style->EditorLeft = nullptr;
   in.Style->SetEditor(nullptr, nullptr);
   in.Editing.reset();
   in.Window->Finalize();

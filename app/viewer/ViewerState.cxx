@@ -98,6 +98,8 @@ json ViewerStateJson(const ViewerState& state)
         { "selected_point", state.SelectedPoint },
         { "info", state.EditorInfo },
         { "tooltips_visible", state.EditorTooltips },
+        { "hover_tooltip", state.HoverTooltip },
+        { "drag_tooltip", state.DragTooltip },
         { "typing", state.Typing },
         { "undo_depth", state.UndoDepth },
         { "redo_depth", state.RedoDepth } } },
@@ -191,6 +193,8 @@ ViewerState Viewer::State() const
   state.SelectedPoint = in.Editing->GetSelectedPoint();
   state.EditorInfo = in.Editing->GetInfoText();
   state.EditorTooltips = in.Editing->GetTooltipsVisible();
+  state.HoverTooltip = in.Editing->GetHoverTooltip();
+  state.DragTooltip = in.Editing->GetDragTooltip();
   state.Typing = in.Typing;
   state.UndoDepth = in.Editing->GetUndoDepth();
   state.RedoDepth = in.Editing->GetRedoDepth();

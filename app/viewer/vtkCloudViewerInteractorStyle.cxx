@@ -148,11 +148,19 @@ void vtkCloudViewerInteractorStyle::OnMouseMove()
       this->Superclass::OnMouseMove();
       break;
     case Grab::None:
-      if (this->IsOverEditor())
+    {
+      const bool over = this->IsOverEditor();
+      if (over)
       {
-        this->Chart->OnMouseMove(); // hover highlights
+        this->Chart->OnMouseMove(); // hover highlights and tooltip
       }
+      else if (this->WasOverEditor && this->EditorLeft)
+      {
+        this->EditorLeft();
+      }
+      this->WasOverEditor = over;
       break;
+    }
   }
 }
 
@@ -294,6 +302,15 @@ void vtkCloudViewerInteractorStyle::OnKeyPress()
 void vtkCloudViewerInteractorStyle::OnChar()
 {
   // Every key is handled on its key press (OnKeyPress); VTK's default bindings stay off.
+}
+
+void vtkCloudViewerInteractorStyle::OnLeave()
+{
+  if (this->Owner == Grab::None && this->WasOverEditor && this->EditorLeft)
+  {
+    this->EditorLeft();
+  }
+  this->WasOverEditor = false;
 }
 
 void vtkCloudViewerInteractorStyle::OnTimer()

@@ -220,6 +220,42 @@ TEST(LiveKeys, ScreenshotSaysSavingBeforeTheWork)
   EXPECT_EQ(saved["saved_files"].size(), 2u);
 }
 
+// Hovering a histogram bar shows the chart's tooltip, in the dragged point's format ("density D:
+// VALUE"), and it goes when the pointer leaves the editor (it stayed on screen).
+TEST(LiveKeys, EditorTooltipsShareAFormatAndLeaveWithThePointer)
+{
+  LiveSession session(Cloudvis, Arguments());
+  const json start = session.WaitUntilConverged();
+  const json points = start["editor"]["opacity_point_pixels"];
+  const auto first = Pixel(points[0]), last = Pixel(points[points.size() - 1]);
+  // Over the histogram's middle bins, just above opacity 0, away from the curve and its points.
+  const int x = (first[0] + last[0]) / 2 - 60, y = first[1] + 6;
+  session.Move(x, y);
+  session.Move(x + 2, y + 2);
+  const json hovered = session.WaitFor([](const json& s)
+    { return !s["editor"]["hover_tooltip"].get<std::string>().empty(); },
+    "the histogram's tooltip");
+  const std::string hover = hovered["editor"]["hover_tooltip"];
+  EXPECT_EQ(hover.rfind("density ", 0), 0u) << hover;
+  EXPECT_NE(hover.find(" voxels"), std::string::npos) << hover;
+  session.Move(session.Center("3d")[0], session.Center("3d")[1]);
+  session.WaitFor([](const json& s) { return s["editor"]["hover_tooltip"] == ""; },
+    "the tooltip to go when the pointer leaves the editor");
+
+  // The dragged point's tooltip, read while the button is held.
+  const auto point = Pixel(points[points.size() - 2]);
+  session.Move(point[0], point[1]);
+  session.Press(1);
+  session.Move(point[0] + 4, point[1] + 4);
+  const json dragging = session.WaitFor([](const json& s)
+    { return !s["editor"]["drag_tooltip"].get<std::string>().empty(); },
+    "the drag tooltip");
+  session.Release(1);
+  const std::string drag = dragging["editor"]["drag_tooltip"];
+  EXPECT_EQ(drag.rfind("density ", 0), 0u) << drag;
+  EXPECT_NE(drag.find(": opacity "), std::string::npos) << drag;
+}
+
 } // namespace
 } // namespace live
 } // namespace cloudvis

@@ -84,6 +84,12 @@ public:
   void BeginDrag();
   void EndDrag();
   bool GetTooltipsVisible() const;
+  // The pointer left the editor: the charts' hover tooltip (the histogram bar under the pointer)
+  // goes. The charts hide it only on their own leave event, which never came.
+  void PointerLeft();
+  // The tooltips' texts (empty when not shown), in one format: "density D: VALUE".
+  std::string GetHoverTooltip() const;
+  std::string GetDragTooltip() const;
 
   // Undo / redo whole edits; false when there is nothing to undo / redo.
   bool Undo();

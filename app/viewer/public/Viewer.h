@@ -120,6 +120,8 @@ struct ViewerState
   int SelectedPoint = -1;
   std::string EditorInfo;      // the editor's info line (selected point, typed entry)
   bool EditorTooltips = false; // the value tooltip by the point under the pointer
+  std::string HoverTooltip;    // the chart's tooltip (a histogram bar under the pointer), or empty
+  std::string DragTooltip;     // the dragged point's tooltip, or empty
   bool Typing = false;         // typing a point's values
   int UndoDepth = 0;
   int RedoDepth = 0;
