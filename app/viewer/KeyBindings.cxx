@@ -52,6 +52,8 @@ const std::vector<KeyBinding>& KeyBindings()
     { { "4" }, {}, false, A::ToggleLayout, View, "four views / the 3D view alone" },
     { { "v" }, {}, false, A::ToggleVolume, View, "show / hide the cloud", true },
     { { "r" }, {}, false, A::ResetCamera, View, "reset the camera", true },
+    { { "z" }, {}, true, A::Undo, View, "undo a change (any kind)", true },
+    { { "y" }, { "Z" }, true, A::Redo, View, "redo", true },
     { { "h" }, {}, false, A::Help, View, "help: the keys, the mouse, off" },
     { { "Escape" }, {}, false, A::Close, View, "close the help, cancel typing" },
     { { "q" }, {}, false, A::Quit, View, "quit (asks first if unsaved)" },
@@ -100,8 +102,7 @@ const std::vector<KeyBinding>& KeyBindings()
       Function,
       "back to the scene's function",
       true },
-    { { "z" }, {}, true, A::Undo, Function, "undo an edit", true },
-    { { "y" }, { "Z" }, true, A::Redo, Function, "redo it", true },
+
     { { "Delete" },
       { "BackSpace" },
       false,
@@ -289,11 +290,11 @@ std::vector<HelpPage> HelpPages()
       places.push_back(binding.Where);
     }
   }
-  // The keys in two columns, their first three groups on the left; the mouse in one, whose rows
+  // The keys in two columns, their first two groups on the left; the mouse in one, whose rows
   // are too wide for two.
   const auto& groups = Groups();
-  const std::vector<std::string> left(groups.begin(), groups.begin() + 3),
-    right(groups.begin() + 3, groups.end());
+  const std::vector<std::string> left(groups.begin(), groups.begin() + 2),
+    right(groups.begin() + 2, groups.end());
   return { { "keys",
              { { "KEYS   (h: the mouse, Esc: close)\n\n" + HelpColumn(left, keys),
                HelpColumn(right, keys) } } },

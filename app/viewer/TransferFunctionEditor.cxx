@@ -422,16 +422,6 @@ void TransferFunctionEditor::UpdateRange()
   this->Scene->SetDirty(true);
 }
 
-void TransferFunctionEditor::Record(const TransferFunctionSpec& before)
-{
-  if (SameTransferFunction(before, TransferFunctionOf(this->Property)))
-  {
-    return;
-  }
-  this->UndoStack.push_back(before);
-  this->RedoStack.clear();
-}
-
 void TransferFunctionEditor::Restore(const TransferFunctionSpec& spec)
 {
   this->OpacityPoints->SetCurrentPoint(-1);
@@ -442,9 +432,7 @@ void TransferFunctionEditor::Restore(const TransferFunctionSpec& spec)
 
 void TransferFunctionEditor::Apply(const TransferFunctionSpec& spec)
 {
-  const TransferFunctionSpec before = TransferFunctionOf(this->Property);
   this->Restore(spec);
-  this->Record(before);
 }
 
 void TransferFunctionEditor::FitToData()
@@ -472,7 +460,6 @@ void TransferFunctionEditor::FitToData()
 
 void TransferFunctionEditor::BeginDrag()
 {
-  this->DragStart = TransferFunctionOf(this->Property);
   this->Dragging = true;
   this->OpacityPoints->SetShowLabels(true);
   this->ColorPoints->SetShowLabels(true);
@@ -489,7 +476,6 @@ void TransferFunctionEditor::EndDrag()
   this->OpacityPoints->SetShowLabels(false);
   this->ColorPoints->SetShowLabels(false);
   this->Scene->SetDirty(true);
-  this->Record(this->DragStart);
   this->UpdateInfo();
 }
 
@@ -536,30 +522,6 @@ std::string TransferFunctionEditor::GetDragTooltip() const
 bool TransferFunctionEditor::GetTooltipsVisible() const
 {
   return this->OpacityPoints->GetShowLabels() || this->ColorPoints->GetShowLabels();
-}
-
-// Restores the last function of `from`, keeping the present one on `to`.
-bool TransferFunctionEditor::Step(std::vector<TransferFunctionSpec>& from,
-  std::vector<TransferFunctionSpec>& to)
-{
-  if (from.empty())
-  {
-    return false;
-  }
-  to.push_back(TransferFunctionOf(this->Property));
-  this->Restore(from.back());
-  from.pop_back();
-  return true;
-}
-
-bool TransferFunctionEditor::Undo()
-{
-  return this->Step(this->UndoStack, this->RedoStack);
-}
-
-bool TransferFunctionEditor::Redo()
-{
-  return this->Step(this->RedoStack, this->UndoStack);
 }
 
 vtkControlPointsItem* TransferFunctionEditor::SelectedItem() const
@@ -611,10 +573,8 @@ std::string TransferFunctionEditor::DeleteSelectedPoint()
   {
     return "the end points of a function cannot be removed (move them instead)";
   }
-  const TransferFunctionSpec before = TransferFunctionOf(this->Property);
   item->RemovePoint(vtkIdType(point));
   item->SetCurrentPoint(-1);
-  this->Record(before);
   return "";
 }
 
@@ -686,7 +646,6 @@ std::string TransferFunctionEditor::SetSelectedPointValues(const std::string& te
         Format(numbers[i]);
     }
   }
-  const TransferFunctionSpec before = TransferFunctionOf(this->Property);
   if (opacity)
   {
     double node[4];
@@ -705,7 +664,6 @@ std::string TransferFunctionEditor::SetSelectedPointValues(const std::string& te
     }
     this->Property->GetRGBTransferFunction()->SetNodeValue(point, node);
   }
-  this->Record(before);
   this->Scene->SetDirty(true);
   return "";
 }

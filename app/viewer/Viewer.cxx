@@ -372,7 +372,11 @@ Viewer::Viewer(const Scene& scene,
         }
         return next;
       },
-      [this] { this->WriteStateFile(); } });
+      [this]
+      {
+        this->Internal->SettleGesture();
+        this->WriteStateFile();
+      } });
   vtkNew<vtkCallbackCommand> requested;
   requested->SetClientData(&in);
   requested->SetCallback(
@@ -415,6 +419,7 @@ Viewer::Viewer(const Scene& scene,
       auto& viewer = *static_cast<Internals*>(data);
       if (!viewer.Loop->IsRunning())
       {
+        viewer.SettleGesture();
         viewer.Loop->Flush();
       }
     });
@@ -431,6 +436,45 @@ Viewer::Viewer(const Scene& scene,
          vtkCommand::KeyReleaseEvent })
   {
     interactor->AddObserver(event, handled, -100.0);
+  }
+  // Gestures for undo (ViewerHistory.h), seen before the widgets and the style act on them
+  // (priority 100): a press begins one, a release lets it settle once the input is handled, a
+  // wheel notch is one. A passive observer: the trackball grabs the interactor's focus during a
+  // drag, and then only the focus and passive observers see the release.
+  vtkNew<vtkCallbackCommand> gesture;
+  gesture->PassiveObserverOn();
+  gesture->SetClientData(&in);
+  gesture->SetCallback(
+    [](vtkObject*, unsigned long event, void* data, void*)
+    {
+      auto& viewer = *static_cast<Internals*>(data);
+      switch (event)
+      {
+        case vtkCommand::LeftButtonPressEvent:
+        case vtkCommand::MiddleButtonPressEvent:
+        case vtkCommand::RightButtonPressEvent:
+          viewer.BeginGesture(false);
+          ++viewer.ButtonsDown;
+          break;
+        case vtkCommand::MouseWheelForwardEvent:
+        case vtkCommand::MouseWheelBackwardEvent:
+          viewer.BeginGesture(true);
+          break;
+        default: // a release
+          viewer.ButtonsDown = std::max(0, viewer.ButtonsDown - 1);
+          break;
+      }
+    });
+  for (unsigned long event : { vtkCommand::LeftButtonPressEvent,
+         vtkCommand::LeftButtonReleaseEvent,
+         vtkCommand::MiddleButtonPressEvent,
+         vtkCommand::MiddleButtonReleaseEvent,
+         vtkCommand::RightButtonPressEvent,
+         vtkCommand::RightButtonReleaseEvent,
+         vtkCommand::MouseWheelForwardEvent,
+         vtkCommand::MouseWheelBackwardEvent })
+  {
+    interactor->AddObserver(event, gesture, 100.0);
   }
   in.Style->SetDefaultRenderer(in.View);
   interactor->SetInteractorStyle(in.Style);
@@ -550,6 +594,7 @@ void Viewer::PlayString(const std::string& events)
   player->SetInputString(events.c_str());
   player->Play();
   player->Stop();
+  in.SettleGesture();
   in.Loop->Flush();
   this->WriteStateFile();
 }

@@ -329,10 +329,8 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Show("transfer function reset to the scene's (Ctrl+z undoes)", false);
       break;
     case A::Undo:
-      this->Show(this->Editing->Undo() ? "undone" : "nothing to undo", false);
-      break;
     case A::Redo:
-      this->Show(this->Editing->Redo() ? "redone" : "nothing to redo", false);
+      this->UndoStep(action == A::Redo);
       break;
     case A::DeletePoint:
     {
@@ -377,17 +375,24 @@ void Viewer::PressKey(const std::string& keySym, char keyCode, bool control)
   Internals& in = *this->Internal;
   const double handled = MonotonicSeconds();
   const std::string sym = keySym.empty() ? KeySymOfCharacter(keyCode) : keySym;
+  // A key is a gesture of its own (undo and redo aside, which walk the history).
+  const KeyMatch match = in.Typing ? KeyMatch{} : FindKeyBinding(keySym, keyCode, control);
+  const bool walksHistory = match.Binding &&
+    (match.Binding->Action == ViewerAction::Undo || match.Binding->Action == ViewerAction::Redo);
+  if (!in.Typing && !match.Binding)
+  {
+    return; // not a viewer key
+  }
+  if (!walksHistory)
+  {
+    in.BeginGesture(false);
+  }
   if (in.Typing)
   {
     in.TypeKey(sym, keyCode);
   }
   else
   {
-    const KeyMatch match = FindKeyBinding(keySym, keyCode, control);
-    if (!match.Binding)
-    {
-      return; // not a viewer key
-    }
     if (match.Binding->Action != ViewerAction::Quit)
     {
       in.QuitAskedAt = -1e300; // q, another key, q: the second q asks again
@@ -396,6 +401,7 @@ void Viewer::PressKey(const std::string& keySym, char keyCode, bool control)
     // A preview only in the live loop: replayed sessions and tests see full-resolution frames.
     in.PreviewNext = in.PreviewNext || (match.Binding->RedrawsCloud && in.Loop->IsRunning());
   }
+  in.SettleGesture();
   in.Keys.push_back({ sym, handled, -1.0 });
   if (in.Keys.size() > KeptKeys)
   {

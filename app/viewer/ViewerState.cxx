@@ -196,8 +196,8 @@ ViewerState Viewer::State() const
   state.HoverTooltip = in.Editing->GetHoverTooltip();
   state.DragTooltip = in.Editing->GetDragTooltip();
   state.Typing = in.Typing;
-  state.UndoDepth = in.Editing->GetUndoDepth();
-  state.RedoDepth = in.Editing->GetRedoDepth();
+  state.UndoDepth = in.History.GetUndoDepth();
+  state.RedoDepth = in.History.GetRedoDepth();
   return state;
 }
 

@@ -256,6 +256,74 @@ TEST(LiveKeys, EditorTooltipsShareAFormatAndLeaveWithThePointer)
   EXPECT_NE(drag.find(": opacity "), std::string::npos) << drag;
 }
 
+void ExpectSameCamera(const json& a, const json& b, const std::string& what)
+{
+  for (const char* key : { "position", "focal_point", "view_up" })
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(a["camera"][key][c].get<double>(), b["camera"][key][c].get<double>(), 1e-9)
+        << what << ": camera " << key << "[" << c << "]";
+    }
+  }
+}
+
+// One history for everything, as ParaView's undo stack: a camera drag, a burst of wheel notches,
+// the lighting model, the light, a slice and the transfer function are a step each, Ctrl+z takes
+// them back in the reverse order (saying what it undid) and Ctrl+y redoes.
+TEST(LiveKeys, UndoCoversTheCameraLightingSlicesAndTheFunction)
+{
+  LiveSession session(Cloudvis, Arguments());
+  const json start = session.WaitUntilConverged();
+  const auto center = session.Center("3d");
+  const auto depth = [](const json& s) { return s["editor"]["undo_depth"].get<int>(); };
+  const auto stepped = [&](int steps, const std::string& what)
+  {
+    return session.WaitFor([&](const json& s)
+      { return depth(s) == steps && s["converged"].get<bool>(); },
+      what + " to be undo step " + std::to_string(steps));
+  };
+  session.Drag(1, { { center[0] - 30, center[1] } }, { { center[0] + 30, center[1] + 10 } });
+  const json turned = stepped(1, "the camera drag");
+  for (int i = 0; i < 3; ++i)
+  {
+    session.Wheel(center[0], center[1], true);
+  }
+  const json zoomed = stepped(2, "three wheel notches");
+  EXPECT_NE(zoomed["camera"]["position"], turned["camera"]["position"])
+    << "the wheel moved nothing";
+  session.Key("m");
+  stepped(3, "m");
+  session.Key("Right");
+  stepped(4, "the light's turn");
+  session.Key("z");
+  stepped(5, "the slice across z");
+  session.Key("f");
+  const json edited = stepped(6, "the fit of the transfer function");
+  ASSERT_NE(edited["transfer_function"], start["transfer_function"]);
+
+  const auto undo = [&](int left, const std::string& what)
+  {
+    session.Key("z", true);
+    const json s = session.WaitFor(
+      [&](const json& t) { return depth(t) == left; }, "Ctrl+z to undo the " + what);
+    EXPECT_TRUE(Said(s, "undone: " + what)) << s["messages"].back();
+    return s;
+  };
+  EXPECT_EQ(undo(5, "transfer function")["transfer_function"], start["transfer_function"]);
+  EXPECT_FALSE(undo(4, "slices")["slices"]["visible"][2].get<bool>());
+  EXPECT_EQ(undo(3, "lighting")["first_light_position"], start["first_light_position"]);
+  EXPECT_EQ(undo(2, "lighting")["lighting"], start["lighting"]);
+  ExpectSameCamera(undo(1, "camera"), turned, "the wheel burst undone");
+  const json back = undo(0, "camera");
+  ExpectSameCamera(back, start, "the drag undone");
+  EXPECT_EQ(back["editor"]["redo_depth"].get<int>(), 6);
+  session.Key("y", true);
+  const json redone =
+    session.WaitFor([&](const json& s) { return depth(s) == 1; }, "Ctrl+y to redo the drag");
+  ExpectSameCamera(redone, turned, "the drag redone");
+}
+
 } // namespace
 } // namespace live
 } // namespace cloudvis

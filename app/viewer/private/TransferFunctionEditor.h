@@ -13,8 +13,8 @@
 // beyond the function's range on every side, because a chart only takes presses strictly inside
 // its axes: a point on the range's edge could not be grabbed otherwise.
 //
-// The editor keeps an undo history of whole functions: a drag, an added or removed point, typed
-// values, a preset, a fit or a reset is one step each.
+// Undo is the viewer's (ViewerHistory.h): a drag, an added or removed point, typed values, a
+// preset, a fit or a reset is one step each there, with the camera and lighting changes.
 #ifndef cloudvis_TransferFunctionEditor_h
 #define cloudvis_TransferFunctionEditor_h
 
@@ -70,17 +70,18 @@ public:
   bool GetLogHistogram() const { return this->LogHistogram; }
 
   // Stretches the functions' points so that they span the field's value range (the first point
-  // at its minimum, the last at its maximum) and shows that range. One undo step.
+  // at its minimum, the last at its maximum) and shows that range.
   void FitToData();
 
-  // Replaces the functions (a preset, the scene's function) and shows their range. One undo step.
+  // Replaces the functions (a preset, the scene's function, an undone step) and shows their
+  // range.
   void Apply(const TransferFunctionSpec& spec);
 
   // The density range the charts show.
   std::array<double, 2> GetRange() const { return this->Range; }
 
-  // Around a mouse drag in the charts: the drag's changes become one undo step, and the value
-  // of the point under the pointer is shown only while the drag lasts.
+  // Around a mouse drag in the charts: the value of the point under the pointer is shown only
+  // while the drag lasts.
   void BeginDrag();
   void EndDrag();
   bool GetTooltipsVisible() const;
@@ -90,12 +91,6 @@ public:
   // The tooltips' texts (empty when not shown), in one format: "density D: VALUE".
   std::string GetHoverTooltip() const;
   std::string GetDragTooltip() const;
-
-  // Undo / redo whole edits; false when there is nothing to undo / redo.
-  bool Undo();
-  bool Redo();
-  int GetUndoDepth() const { return int(this->UndoStack.size()); }
-  int GetRedoDepth() const { return int(this->RedoStack.size()); }
 
   enum class Function
   {
@@ -133,9 +128,7 @@ private:
   void LayOut();
   void UpdateRange();
   void UpdateInfo();
-  void Record(const TransferFunctionSpec& before);
   void Restore(const TransferFunctionSpec& spec);
-  bool Step(std::vector<TransferFunctionSpec>& from, std::vector<TransferFunctionSpec>& to);
   vtkControlPointsItem* SelectedItem() const;
 
   vtkVolumeProperty* Property;
@@ -146,9 +139,6 @@ private:
   bool LogHistogram = true;
   Function Selected = Function::None;
   std::string Entry;
-  std::vector<TransferFunctionSpec> UndoStack;
-  std::vector<TransferFunctionSpec> RedoStack;
-  TransferFunctionSpec DragStart;
   bool Dragging = false;
   // The charts' axes rectangles (x, y, width, height in the editor's pixels) and the ranges their
   // axes show, padded beyond the function's range.

@@ -14,6 +14,7 @@
 #include "StatusOverlay.h"
 #include "TransferFunctionEditor.h"
 #include "Viewer.h"
+#include "ViewerHistory.h"
 #include "vtkCloudViewerInteractorStyle.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -88,6 +89,13 @@ struct Viewer::Internals
   // What quitting would lose is compared with this: the edits (EditsOf) when the window opened
   // or the scene was last saved with w.
   std::string SavedEdits;
+  // Undo (ViewerHistory.h): the state when the gesture in progress began, whether one is in
+  // progress, whether it is a wheel's, and the mouse buttons held.
+  UndoHistory History;
+  UndoableState GestureStart;
+  bool InGesture = false;
+  bool WheelGesture = false;
+  int ButtonsDown = 0;
   // When q (or closing the window) last asked before quitting with unsaved changes; a second
   // one within QuitConfirmSeconds quits.
   double QuitAskedAt = -1e300;
@@ -148,6 +156,17 @@ struct Viewer::Internals
   // There are edits since the window opened or the last w, and quitting would lose them (no
   // --save-scene-on-exit).
   bool UnsavedChanges(const Viewer& viewer) const;
+  // What undo can take back, as it is now, and putting a state back (only what differs).
+  UndoableState Undoable() const;
+  void RestoreUndoable(const UndoableState& state);
+  // A gesture begins (a button pressed, a wheel notch): the state before it is kept; a gesture
+  // that ended (no button held, or a wheel notch handled) becomes an undo step if it changed
+  // something. SettleGesture is called once input has been handled (the loop, playback, the
+  // next gesture, a key).
+  void BeginGesture(bool wheel);
+  void SettleGesture();
+  // Ctrl+z, Ctrl+y.
+  void UndoStep(bool redo);
   // q or the window manager's close: quits, or with unsaved changes asks for a second q first.
   void Quit(const Viewer& viewer, bool fromWindowManager);
   // What a key of the table does; `variant` is the index of the key pressed in its row.
