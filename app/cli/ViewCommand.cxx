@@ -156,9 +156,9 @@ CommandSpec ViewCommand()
     "quarter). Press h in the window for the keys and the mouse; --keys and --mouse print\n"
     "them and docs/viewer.md lists them. s saves a screenshot (cloudvis-screenshot-NNN.png\n"
     "and .exr), w the scene as cloudvis-view-NNN.json, which `cloudvis render` turns into\n"
-    "the same image. Without\n"
-    "SCENE the default scene is shown. --record writes the session's events, --play replays\n"
-    "such a file and exits at its end. Needs an X display (xvfb-run -a cloudvis view ...).",
+    "the same image. Without SCENE the default scene is shown. --record writes the\n"
+    "session's events, --play replays such a file and exits at its end. Needs an X display\n"
+    "(xvfb-run -a cloudvis view ...).",
     { { "size",
         0,
         "WxH",
