@@ -281,7 +281,8 @@ void ExpectSameCamera(const json& a, const json& b, const std::string& what)
 }
 
 // One history for everything, as ParaView's undo stack: a camera drag, a burst of wheel notches,
-// the lighting model, the light, a slice and the transfer function are a step each, Ctrl+z takes
+// the lighting model, the light, a slice shown and moved, and the transfer function are a step
+// each, Ctrl+z takes
 // them back in the reverse order (saying what it undid) and Ctrl+y redoes.
 TEST(LiveKeys, UndoCoversTheCameraLightingSlicesAndTheFunction)
 {
@@ -309,9 +310,13 @@ TEST(LiveKeys, UndoCoversTheCameraLightingSlicesAndTheFunction)
   session.Key("Right");
   stepped(4, "the light's turn");
   session.Key("z");
-  stepped(5, "the slice across z");
+  const json sliced = stepped(5, "the slice across z");
+  // A middle drag on the slice (it faces the camera) moves it: a step of its own.
+  session.Drag(2, { { center[0] + 60, center[1] + 40 } }, { { center[0] + 60, center[1] + 80 } });
+  const json moved = stepped(6, "the slice's move");
+  ASSERT_NE(moved["slices"]["index"][2], sliced["slices"]["index"][2]);
   session.Key("f");
-  const json edited = stepped(6, "the fit of the transfer function");
+  const json edited = stepped(7, "the fit of the transfer function");
   ASSERT_NE(edited["transfer_function"], start["transfer_function"]);
 
   const auto undo = [&](int left, const std::string& what)
@@ -322,14 +327,15 @@ TEST(LiveKeys, UndoCoversTheCameraLightingSlicesAndTheFunction)
     EXPECT_TRUE(Said(s, "undone: " + what)) << s["messages"].back();
     return s;
   };
-  EXPECT_EQ(undo(5, "transfer function")["transfer_function"], start["transfer_function"]);
+  EXPECT_EQ(undo(6, "transfer function")["transfer_function"], start["transfer_function"]);
+  EXPECT_EQ(undo(5, "slices")["slices"]["index"][2], sliced["slices"]["index"][2]);
   EXPECT_FALSE(undo(4, "slices")["slices"]["visible"][2].get<bool>());
   EXPECT_EQ(undo(3, "lighting")["first_light_position"], start["first_light_position"]);
   EXPECT_EQ(undo(2, "lighting")["lighting"], start["lighting"]);
   ExpectSameCamera(undo(1, "camera"), turned, "the wheel burst undone");
   const json back = undo(0, "camera");
   ExpectSameCamera(back, start, "the drag undone");
-  EXPECT_EQ(back["editor"]["redo_depth"].get<int>(), 6);
+  EXPECT_EQ(back["editor"]["redo_depth"].get<int>(), 7);
   session.Key("y", true);
   const json redone =
     session.WaitFor([&](const json& s) { return depth(s) == 1; }, "Ctrl+y to redo the drag");
