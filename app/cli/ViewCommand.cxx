@@ -57,10 +57,16 @@ int View(const Arguments& arguments, std::ostream& out)
     out << ViewerKeysMarkdown();
     return ExitSuccess;
   }
+  if (arguments.Has("mouse"))
+  {
+    out << ViewerMouseMarkdown();
+    return ExitSuccess;
+  }
   const std::string input = arguments.Operands.empty() ? "" : arguments.Operands[0];
   const bool fieldFile = !input.empty() && IsFieldOperand(input, arguments);
   ViewerOptions options;
   const std::string saveOnExit = arguments.Value("save-scene-on-exit");
+  options.SceneSavedOnExit = !saveOnExit.empty();
   const std::string windowImage = arguments.Value("window-image");
   const std::string play = arguments.Value("play");
   options.RecordFile = arguments.Value("record");
@@ -157,9 +163,9 @@ CommandSpec ViewCommand()
     "One window: the cloud drawn as `render` draws it (top three quarters; trackball camera,\n"
     "orthogonal and oblique slices; key 4 switches to four views: 3D, axial, coronal and\n"
     "sagittal slices) and the transfer-function editor over the density histogram (bottom\n"
-    "quarter). Press h in the window for the keys; --keys prints them and docs/viewer.md lists\n"
-    "them. s saves a screenshot of the views with their color legends\n"
-    "(cloudvis-screenshot-NNN.png, and .exr of the 3D view), w the scene as\n"
+    "quarter). Press h in the window for the keys and the mouse; --keys and --mouse print\n"
+    "them and docs/viewer.md lists them. s saves a screenshot of the views with their color\n"
+    "legends (cloudvis-screenshot-NNN.png, and .exr of the 3D view), w the scene as\n"
     "cloudvis-view-NNN.json, which `cloudvis render` turns into the same image. Without\n"
     "SCENE the default scene is shown. --record writes the session's events, --play replays\n"
     "such a file and exits at its end. Needs an X display (xvfb-run -a cloudvis view ...).",
@@ -197,6 +203,7 @@ CommandSpec ViewCommand()
         "write the viewer's state as JSON after every frame and every input (for tests and "
         "tools; docs/viewer.md)" },
       { "keys", 0, "", "print the key bindings (a Markdown table) and exit" },
+      { "mouse", 0, "", "print the mouse bindings (a Markdown table) and exit" },
       SetOption,
       FieldFileOptions[0],
       FieldFileOptions[1],

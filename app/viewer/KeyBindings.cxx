@@ -1,4 +1,5 @@
-// The key table and the three things made from it: lookup, help overlay, docs table.
+// The key and mouse tables and what is made from them: key lookup, the help overlay's pages, the
+// docs' tables.
 #include "KeyBindings.h"
 
 #include "Viewer.h"
@@ -48,26 +49,29 @@ const std::vector<KeyBinding>& KeyBindings()
   // clang-format off: one row per binding reads better than what the formatter makes of it.
   // keys (a variant each), aliases, Control, action, group, description, redraws the cloud
   static const std::vector<KeyBinding> table = {
-    { { "4" }, {}, false, A::ToggleLayout, View, "four views / the 3D view alone" },
+    { { "4" }, {}, false, A::ToggleLayout, View, "four views / 3D view alone" },
     { { "v" }, {}, false, A::ToggleVolume, View, "show / hide the cloud", true },
-    { { "b" }, {}, false, A::ToggleLegends, View, "show / hide the color legends" },
-    { { "r" }, {}, false, A::ResetCamera, View, "reset the camera and the slice views' zoom", true },
-    { { "h" }, {}, false, A::Help, View, "show / hide this help" },
-    { { "q" }, { "Escape" }, false, A::Quit, View, "quit" },
-    { { "x", "y", "z" }, {}, false, A::ToggleSlice, Slices, "slice across x, y, z in 3D", true },
+    { { "b" }, {}, false, A::ToggleLegends, View, "show / hide the legends" },
+    { { "r" }, {}, false, A::ResetCamera, View, "reset camera and slice zoom", true },
+    { { "z" }, {}, true, A::Undo, View, "undo a change (any kind)", true },
+    { { "y" }, { "Z" }, true, A::Redo, View, "redo", true },
+    { { "h" }, {}, false, A::Help, View, "help: keys, mouse, off" },
+    { { "Escape" }, {}, false, A::Close, View, "close help, cancel typing" },
+    { { "q" }, {}, false, A::Quit, View, "quit (asks if unsaved)" },
+    { { "x", "y", "z" }, {}, false, A::ToggleSlice, Slices, "slice across x, y, z (3D)", true },
     { { "o" }, {}, false, A::ToggleOblique, Slices, "oblique slice in 3D", true },
-    { { "c" }, {}, false, A::CycleSliceColors, Slices, "slice colors: next colormap", true },
+    { { "c" }, {}, false, A::CycleSliceColors, Slices, "next slice colormap", true },
     { { "Prior", "Next" },
       {},
       false,
       A::StepSlice,
       Slices,
-      "slice under the pointer: one voxel up / down",
+      "step the pointer's slice",
       true },
-    { { "a" }, {}, false, A::AutoWindowLevel, Slices, "window/level: auto (shown slices)", true },
-    { { "A" }, {}, false, A::ResetWindowLevel, Slices, "window/level: the field's range", true },
+    { { "a" }, {}, false, A::AutoWindowLevel, Slices, "auto window/level", true },
+    { { "A" }, {}, false, A::ResetWindowLevel, Slices, "reset window/level", true },
     { { "L" }, {}, false, A::TypeWindowLevel, Slices, "type the window and level" },
-    { { "m" }, {}, false, A::CycleLighting, Rendering, "lighting: none, derivative, march", true },
+    { { "m" }, {}, false, A::CycleLighting, Rendering, "next lighting model", true },
     { { "Left", "Right" },
       {},
       false,
@@ -107,10 +111,9 @@ const std::vector<KeyBinding>& KeyBindings()
       false,
       A::ResetTransferFunction,
       Function,
-      "back to the function as opened",
+      "back to the opened function",
       true },
-    { { "z" }, {}, true, A::Undo, Function, "undo an edit", true },
-    { { "y" }, { "Z" }, true, A::Redo, Function, "redo it", true },
+
     { { "Delete" },
       { "BackSpace" },
       false,
@@ -119,7 +122,7 @@ const std::vector<KeyBinding>& KeyBindings()
       "remove the selected point",
       true },
     { { "Return" }, { "KP_Enter" }, false, A::TypePointValues, Function, "type its values" },
-    { { "s" }, {}, false, A::Screenshot, Files, "screenshot of the views (PNG, EXR)" },
+    { { "s" }, {}, false, A::Screenshot, Files, "screenshot (PNG, EXR)" },
     { { "w" }, {}, false, A::SaveScene, Files, "save the scene (JSON)" },
   };
   // clang-format on
@@ -190,54 +193,178 @@ std::string KeyLabel(const std::string& keySym, bool control)
   return control ? "Ctrl+" + label : label;
 }
 
+const std::vector<MouseBinding>& MouseBindings()
+{
+  // clang-format off: one row per binding.
+  // where, action, effect (help and docs), more (docs only)
+  static const std::vector<MouseBinding> table = {
+    { "3D view",
+      "left drag",
+      "rotate",
+      "trackball camera; the camera turns only while the mouse moves, also when the drag starts "
+      "on a slice" },
+    { "3D view", "middle drag, Shift+left drag", "pan", "" },
+    { "3D view", "right drag, wheel", "zoom", "" },
+    { "3D view", "Ctrl+left drag, away from the slices", "spin about the view direction", "" },
+    { "a slice in 3D", "pointer over it", "readout of the voxel under the pointer", "" },
+    { "a slice in 3D",
+      "Ctrl+left click or drag",
+      "probe, move the crosshair",
+      "the other two slices move through the voxel; the readout stays after release" },
+    { "a slice in 3D",
+      "middle drag",
+      "move the slice along its normal",
+      "voxel by voxel; a slice facing the camera moves up (toward you) and down with the mouse" },
+    { "a slice in 3D",
+      "right drag",
+      "window/level of every slice",
+      "right: wider window, up: higher level" },
+    { "oblique slice", "drag arrow / plane / origin", "tilt / push / move it", "" },
+    { "slice view", "pointer over it", "readout of the voxel under the pointer", "" },
+    { "slice view", "wheel", "step the slice one voxel", "" },
+    { "slice view", "Ctrl+wheel", "zoom about the pointer", "r fits the slices again" },
+    { "slice view", "Shift+left drag", "pan", "the slice follows the pointer" },
+    { "slice view",
+      "left click or drag",
+      "probe, move the crosshair",
+      "the other two slices move through the voxel" },
+    { "slice view", "middle drag", "move the slice", "one voxel per 4 pixels" },
+    { "slice view", "right drag", "window/level of every slice", "" },
+    { "editor", "click a point", "select it", "its values show at the top right of the editor" },
+    { "editor", "click empty opacity chart", "add a point (selected)", "" },
+    { "editor",
+      "drag an opacity point",
+      "move it",
+      "the end points move up and down (and inward), inner points anywhere between their "
+      "neighbours" },
+    { "editor", "drag a color point", "move it along density", "the end points inward too" },
+    { "editor",
+      "click a palette swatch",
+      "color the selected color point",
+      "the palette shows while a color point is selected" },
+    { "editor", "wheel", "nothing", "the charts always show the transfer function's range" },
+  };
+  // clang-format on
+  return table;
+}
+
 namespace
 {
+// The help's label of a binding's keys: the keypad's twins of other keys are left to the docs, so
+// that the help fits a small window in a readable font.
 std::string KeysLabel(const KeyBinding& binding, const char* separator)
 {
   std::string text;
   for (const std::string& key : binding.Keys)
   {
-    text += (text.empty() ? "" : separator) + KeyLabel(key, binding.Control);
+    const std::string label = KeyLabel(key, binding.Control);
+    if (label.rfind("keypad ", 0) != 0 || binding.Keys.size() == 1)
+    {
+      text += (text.empty() ? "" : separator) + label;
+    }
+  }
+  return text;
+}
+
+// A help row: its group, what to press, what it does.
+struct HelpRow
+{
+  std::string Group, Input, Effect;
+};
+
+// A column of the help: `groups` in order, each a heading and its rows, the inputs padded to the
+// group's widest (the help is drawn in a fixed-width font).
+std::string HelpColumn(const std::vector<std::string>& groups, const std::vector<HelpRow>& rows)
+{
+  std::ostringstream out;
+  for (const std::string& group : groups)
+  {
+    size_t width = 0;
+    for (const HelpRow& row : rows)
+    {
+      if (row.Group == group)
+      {
+        width = std::max(width, row.Input.size());
+      }
+    }
+    out << (group == groups.front() ? "" : "\n") << group << ":\n";
+    for (const HelpRow& row : rows)
+    {
+      if (row.Group == group)
+      {
+        std::string input = row.Input;
+        input.resize(width, ' ');
+        out << "  " << input << "  " << row.Effect << "\n";
+      }
+    }
+  }
+  return out.str();
+}
+} // namespace
+
+std::vector<HelpPage> HelpPages()
+{
+  std::vector<HelpRow> keys;
+  for (const KeyBinding& binding : KeyBindings())
+  {
+    keys.push_back({ binding.Group, KeysLabel(binding, " "), binding.Description });
+  }
+  std::vector<HelpRow> mouse;
+  std::vector<std::string> places;
+  for (const MouseBinding& binding : MouseBindings())
+  {
+    mouse.push_back({ binding.Where, binding.Action, binding.Effect });
+    if (std::find(places.begin(), places.end(), binding.Where) == places.end())
+    {
+      places.push_back(binding.Where);
+    }
+  }
+  // The keys in two columns, their first two groups on the left; the mouse in one column, whose
+  // rows are too wide for two, on two pages: the 3D view's places, then the slice views' and the
+  // editor's (one page would not fit a small window in a readable font).
+  const auto& groups = Groups();
+  const std::vector<std::string> left(groups.begin(), groups.begin() + 2),
+    right(groups.begin() + 2, groups.end());
+  const auto firstOf2D = std::find(places.begin(), places.end(), std::string("slice view"));
+  const std::vector<std::string> mouse3D(places.begin(), firstOf2D),
+    mouse2D(firstOf2D, places.end());
+  return { { "keys",
+             { { "KEYS   (h: the mouse, Esc: close)\n\n" + HelpColumn(left, keys),
+               HelpColumn(right, keys) } } },
+    { "mouse-3d",
+      { { "MOUSE IN 3D   (h: the slice views and the editor, Esc: close)\n\n" +
+            HelpColumn(mouse3D, mouse),
+        "" } } },
+    { "mouse-2d",
+      { { "MOUSE IN THE SLICE VIEWS AND THE EDITOR   (h or Esc: close)\n\n" +
+            HelpColumn(mouse2D, mouse),
+        "" } } } };
+}
+
+namespace
+{
+// A '|' would end a Markdown table cell.
+std::string TableCell(std::string text)
+{
+  for (size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2))
+  {
+    text.replace(at, 1, "\\|");
   }
   return text;
 }
 } // namespace
 
-std::array<std::string, 2> KeyHelpColumns()
+std::string ViewerMouseMarkdown()
 {
-  // The first three groups on the left; keys padded to the column's widest.
-  const auto& groups = Groups();
-  std::array<std::string, 2> columns;
-  for (size_t column = 0; column < 2; ++column)
+  std::ostringstream out;
+  out << "| where | action | effect |\n|---|---|---|\n";
+  for (const MouseBinding& binding : MouseBindings())
   {
-    const size_t first = column == 0 ? 0 : 3, last = column == 0 ? 3 : groups.size();
-    size_t width = 0;
-    for (const KeyBinding& binding : KeyBindings())
-    {
-      for (size_t g = first; g < last; ++g)
-      {
-        width =
-          binding.Group == groups[g] ? std::max(width, KeysLabel(binding, " ").size()) : width;
-      }
-    }
-    std::ostringstream out;
-    for (size_t g = first; g < last; ++g)
-    {
-      out << (g == first ? "" : "\n") << groups[g] << ":\n";
-      for (const KeyBinding& binding : KeyBindings())
-      {
-        if (binding.Group == groups[g])
-        {
-          std::string keys = KeysLabel(binding, " ");
-          keys.resize(width, ' ');
-          out << "  " << keys << "  " << binding.Description << "\n";
-        }
-      }
-    }
-    columns[column] = out.str();
+    const std::string more = *binding.More ? std::string(": ") + binding.More : "";
+    out << "| " << TableCell(binding.Where) << " | " << TableCell(binding.Action) << " | "
+        << TableCell(binding.Effect + more) << " |\n";
   }
-  columns[1] += "\nmouse: docs/viewer.md lists it";
-  return columns;
+  return out.str();
 }
 
 std::string ViewerKeysMarkdown()
@@ -258,14 +385,7 @@ std::string ViewerKeysMarkdown()
             keys += (keys.empty() ? "" : ", ") + ("`" + KeyLabel(key, binding.Control) + "`");
           }
         }
-        std::string description = binding.Description;
-        // A '|' would end the table cell.
-        for (size_t at = description.find('|'); at != std::string::npos;
-             at = description.find('|', at + 2))
-        {
-          description.replace(at, 1, "\\|");
-        }
-        out << "| " << keys << " | " << group << " | " << description << " |\n";
+        out << "| " << keys << " | " << group << " | " << TableCell(binding.Description) << " |\n";
       }
     }
   }

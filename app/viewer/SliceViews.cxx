@@ -4,6 +4,7 @@
 
 #include "SliceColors.h"
 #include "SlicePlanes.h"
+#include "Viewer.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -112,6 +113,7 @@ SliceViews::SliceViews(vtkImageData* field, SlicePlanes& planes, SliceColors& co
     }
 
     vtkTextProperty* text = view->Caption->GetTextProperty();
+    UseViewerFont(text);
     text->SetFontSize(12);
     text->SetColor(
       AxisColors[SlicedAxis[v]][0], AxisColors[SlicedAxis[v]][1], AxisColors[SlicedAxis[v]][2]);

@@ -3,6 +3,7 @@
 #include "StatusOverlay.h"
 
 #include "KeyBindings.h"
+#include "Viewer.h"
 
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -25,11 +27,12 @@ constexpr int MessageFontSize = 14;
 constexpr int MaximumMessageLines = 3;
 constexpr int FadeSteps = 5;
 const char* const HintText = "h: keys   4: four views";
-constexpr int HelpFontSize = 11;
+constexpr int HelpFontSize = 13;
 
 void StyleBoxedText(vtkTextActor* actor, int fontSize, double opacity)
 {
   vtkTextProperty* text = actor->GetTextProperty();
+  UseViewerFont(text);
   text->SetFontSize(fontSize);
   text->SetBackgroundColor(0.0, 0.0, 0.0);
   text->SetBackgroundOpacity(opacity);
@@ -101,6 +104,33 @@ std::string Wrap(vtkTextProperty* property, const std::string& text, int width, 
 }
 } // namespace
 
+std::string UseViewerFont(vtkTextProperty* text)
+{
+  static const std::string file = []
+  {
+    for (const char* path : { "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+           "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+           "/usr/share/fonts/truetype/liberation2/LiberationSans-Regular.ttf" })
+    {
+      if (std::ifstream(path).good())
+      {
+        return std::string(path);
+      }
+    }
+    return std::string();
+  }();
+  if (file.empty())
+  {
+    text->SetFontFamilyToCourier();
+  }
+  else
+  {
+    text->SetFontFamily(VTK_FONT_FILE);
+    text->SetFontFile(file.c_str());
+  }
+  return file;
+}
+
 double MonotonicSeconds()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -115,15 +145,14 @@ StatusOverlay::StatusOverlay(vtkRenderer* overlay)
   this->Message->VisibilityOff();
   overlay->AddActor2D(this->Message);
 
-  const std::array<std::string, 2> columns = KeyHelpColumns();
+  this->Pages = HelpPages();
   for (size_t c = 0; c < 2; ++c)
   {
     vtkTextActor* help = this->Help[c];
-    StyleBoxedText(help, 11, 0.65);
+    StyleBoxedText(help, HelpFontSize, 0.65);
     help->GetTextProperty()->SetFontFamilyToCourier();
     help->GetTextProperty()->SetColor(1.0, 1.0, 0.85);
     help->GetTextProperty()->SetVerticalJustificationToTop();
-    help->SetInput(columns[c].c_str());
     help->VisibilityOff();
     overlay->AddActor2D(help);
   }
@@ -194,22 +223,26 @@ double StatusOverlay::Tick(bool& changed)
   return shown + double(step) * FadeSeconds / FadeSteps - age;
 }
 
-void StatusOverlay::SetHelpVisible(bool visible)
+void StatusOverlay::SetHelpPage(int page)
 {
-  for (auto& column : this->Help)
+  this->Page = page >= 0 && page < int(this->Pages.size()) ? page : -1;
+  for (size_t c = 0; c < 2; ++c)
   {
-    column->SetVisibility(visible);
+    const std::string text = this->Page >= 0 ? this->Pages[size_t(this->Page)].Columns[c] : "";
+    this->Help[c]->SetInput(text.c_str());
+    this->Help[c]->SetVisibility(!text.empty());
   }
-  if (visible)
+  if (this->Page >= 0)
   {
     this->HelpShown = true;
     this->Hint->VisibilityOff();
   }
+  this->LayOut();
 }
 
-bool StatusOverlay::GetHelpVisible() const
+std::string StatusOverlay::GetHelpPageName() const
 {
-  return this->Help[0]->GetVisibility() != 0;
+  return this->Page >= 0 ? this->Pages[size_t(this->Page)].Name : "";
 }
 
 bool StatusOverlay::GetHintVisible() const
@@ -278,7 +311,11 @@ void StatusOverlay::LayOut()
     : Wrap(this->Message->GetTextProperty(), this->MessageText, std::max(40, width - 24), dpi);
   this->Message->SetInput(wrapped.c_str());
 
-  // The help's two columns side by side over the whole overlay, in the largest font (at most
+  if (this->Page < 0)
+  {
+    return;
+  }
+  // The help page's columns side by side over the whole overlay, in the largest font (at most
   // HelpFontSize) at which they fit under the message line.
   const int margin = 8, gap = 16, top = 28;
   std::array<std::array<int, 2>, 2> columns{};
@@ -297,8 +334,34 @@ void StatusOverlay::LayOut()
     }
   }
   const double y = 1.0 - double(top) / std::max(1, size[1]);
-  this->Help[0]->SetPosition(double(margin) / std::max(1, size[0]), y);
-  this->Help[1]->SetPosition(double(margin + columns[0][0] + gap) / std::max(1, size[0]), y);
+  this->HelpFont = fontSize;
+  this->HelpBoxes.clear();
+  int x = margin;
+  for (size_t c = 0; c < 2; ++c)
+  {
+    this->Help[c]->SetPosition(double(x) / std::max(1, size[0]), y);
+    if (columns[c][0] > 0)
+    {
+      this->HelpBoxes.push_back(
+        { { x, size[1] - top - columns[c][1], x + columns[c][0], size[1] - top } });
+    }
+    x += columns[c][0] + gap;
+  }
+}
+
+std::vector<std::array<int, 4>> StatusOverlay::GetHelpBoxes() const
+{
+  if (this->Page < 0)
+  {
+    return {};
+  }
+  const int* origin = this->Renderer->GetOrigin();
+  std::vector<std::array<int, 4>> boxes = this->HelpBoxes;
+  for (auto& box : boxes)
+  {
+    box = { { box[0] + origin[0], box[1] + origin[1], box[2] + origin[0], box[3] + origin[1] } };
+  }
+  return boxes;
 }
 
 } // namespace cloudvis

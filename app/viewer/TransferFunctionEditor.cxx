@@ -7,6 +7,7 @@
 
 #include "CloudTransferTable.h"
 #include "ColorPalette.h"
+#include "Viewer.h"
 
 #include <vtkAxis.h>
 #include <vtkBrush.h>
@@ -30,9 +31,11 @@
 #include <vtkPlotBar.h>
 #include <vtkPointData.h>
 #include <vtkRenderer.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkTooltipItem.h>
 #include <vtkVector.h>
 #include <vtkVolumeProperty.h>
 
@@ -56,6 +59,12 @@ constexpr double LeftMargin = 44.0;
 constexpr double RightMargin = 14.0;
 constexpr double MinimumStrip = 14.0;
 constexpr double MaximumStrip = 30.0;
+// The tooltips' one format, "density D: VALUE": the dragged point's label (the control points'
+// label format, printf with the point's density and opacity) and the histogram bar under the
+// pointer (the chart's hover tooltip, made from the bar's bin).
+const char* const OpacityTooltipFormat = "density %.3g: opacity %.3g";
+const char* const ColorTooltipFormat = "density %.3g";
+const char* const BarTooltipFormat = "density %.3g: %.0f voxels";
 
 // Opacity points whose end points move in both directions. VTK's items move an end point along
 // one axis only (x when EndPointsXMovable, the default, else y), so the opacity at the ends of
@@ -232,6 +241,7 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   this->HistogramBars->SetColor(0.72, 0.74, 0.80);
   this->HistogramBars->GetPen()->SetLineType(vtkPen::NO_PEN);
   this->HistogramBars->SetSelectable(false);
+  this->HistogramBars->SetTooltipLabelFormat("%i"); // FillHistogram's labels
   this->OpacityChart->AddPlot(this->HistogramBars);
 
   this->OpacityCurve->SetPiecewiseFunction(property->GetScalarOpacity());
@@ -240,7 +250,7 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   this->OpacityPoints->SetPiecewiseFunction(property->GetScalarOpacity());
   this->OpacityPoints->SetEndPointsRemovable(false);
   this->OpacityPoints->SetShowLabels(false); // only while a drag lasts
-  this->OpacityPoints->SetLabelFormat("%.3g: %.3g");
+  this->OpacityPoints->SetLabelFormat(OpacityTooltipFormat);
   this->OpacityChart->AddPlot(this->OpacityPoints);
 
   this->ColorBar->SetColorTransferFunction(property->GetRGBTransferFunction());
@@ -249,7 +259,7 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   this->ColorPoints->SetColorTransferFunction(property->GetRGBTransferFunction());
   this->ColorPoints->SetEndPointsRemovable(false);
   this->ColorPoints->SetShowLabels(false);
-  this->ColorPoints->SetLabelFormat("%.3g");
+  this->ColorPoints->SetLabelFormat(ColorTooltipFormat);
   // Each color point drawn in its own color, not VTK's default gray.
   this->ColorPoints->SetColorFill(true);
   this->ColorChart->AddPlot(this->ColorPoints);
@@ -326,6 +336,7 @@ TransferFunctionEditor::TransferFunctionEditor(vtkVolumeProperty* property,
   property->GetRGBTransferFunction()->AddObserver(vtkCommand::ModifiedEvent, changed);
 
   vtkTextProperty* info = this->Info->GetTextProperty();
+  UseViewerFont(info);
   info->SetFontSize(11);
   info->SetColor(0.1, 0.1, 0.15);
   info->SetBackgroundColor(1.0, 1.0, 1.0);
@@ -370,15 +381,21 @@ void TransferFunctionEditor::FillHistogram()
     this->Counts.empty() ? 0.0 : *std::max_element(this->Counts.begin(), this->Counts.end());
   const double width = (this->DataRange[1] - this->DataRange[0]) / HistogramBins;
   this->Histogram->SetNumberOfRows(vtkIdType(this->Counts.size()));
+  vtkNew<vtkStringArray> labels;
   for (size_t i = 0; i < this->Counts.size(); ++i)
   {
     const double c = this->Counts[i];
     const double height = largest <= 0.0 ? 0.0
       : this->LogHistogram               ? std::log10(1.0 + c) / std::log10(1.0 + largest)
                                          : c / largest;
-    this->Histogram->SetValue(vtkIdType(i), 0, this->DataRange[0] + (double(i) + 0.5) * width);
+    const double center = this->DataRange[0] + (double(i) + 0.5) * width;
+    this->Histogram->SetValue(vtkIdType(i), 0, center);
     this->Histogram->SetValue(vtkIdType(i), 1, height);
+    char label[96];
+    std::snprintf(label, sizeof(label), BarTooltipFormat, center, c);
+    labels->InsertNextValue(label);
   }
+  this->HistogramBars->SetIndexedLabels(labels);
   this->Histogram->Modified();
   this->HistogramBars->SetWidth(float(width > 0.0 ? width : 1.0));
   this->Scene->SetDirty(true);
@@ -417,16 +434,6 @@ void TransferFunctionEditor::UpdateRange()
   this->Scene->SetDirty(true);
 }
 
-void TransferFunctionEditor::Record(const TransferFunctionSpec& before)
-{
-  if (SameTransferFunction(before, TransferFunctionOf(this->Property)))
-  {
-    return;
-  }
-  this->UndoStack.push_back(before);
-  this->RedoStack.clear();
-}
-
 void TransferFunctionEditor::Restore(const TransferFunctionSpec& spec)
 {
   this->OpacityPoints->SetCurrentPoint(-1);
@@ -437,9 +444,7 @@ void TransferFunctionEditor::Restore(const TransferFunctionSpec& spec)
 
 void TransferFunctionEditor::Apply(const TransferFunctionSpec& spec)
 {
-  const TransferFunctionSpec before = TransferFunctionOf(this->Property);
   this->Restore(spec);
-  this->Record(before);
 }
 
 std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec)
@@ -477,7 +482,6 @@ void TransferFunctionEditor::FitToData()
 
 void TransferFunctionEditor::BeginDrag()
 {
-  this->DragStart = TransferFunctionOf(this->Property);
   this->Dragging = true;
   this->OpacityPoints->SetShowLabels(true);
   this->ColorPoints->SetShowLabels(true);
@@ -494,37 +498,52 @@ void TransferFunctionEditor::EndDrag()
   this->OpacityPoints->SetShowLabels(false);
   this->ColorPoints->SetShowLabels(false);
   this->Scene->SetDirty(true);
-  this->Record(this->DragStart);
   this->UpdateInfo();
+}
+
+void TransferFunctionEditor::PointerLeft()
+{
+  for (vtkChartXY* chart : { this->OpacityChart.Get(), this->ColorChart.Get() })
+  {
+    if (chart->GetTooltip() && chart->GetTooltip()->GetVisible())
+    {
+      chart->GetTooltip()->SetVisible(false);
+      this->Scene->SetDirty(true);
+    }
+  }
+}
+
+std::string TransferFunctionEditor::GetHoverTooltip() const
+{
+  for (vtkChartXY* chart : { this->OpacityChart.Get(), this->ColorChart.Get() })
+  {
+    if (chart->GetTooltip() && chart->GetTooltip()->GetVisible())
+    {
+      return chart->GetTooltip()->GetText();
+    }
+  }
+  return "";
+}
+
+std::string TransferFunctionEditor::GetDragTooltip() const
+{
+  vtkControlPointsItem* item = this->SelectedItem();
+  if (!this->Dragging || !item || !item->GetShowLabels() || item->GetCurrentPoint() < 0)
+  {
+    return "";
+  }
+  // As the item writes its label (vtkControlPointsItem::GetControlPointLabel, protected): its
+  // format with the point's values.
+  double point[4];
+  item->GetControlPoint(item->GetCurrentPoint(), point);
+  char label[96];
+  std::snprintf(label, sizeof(label), item->GetLabelFormat(), point[0], point[1]);
+  return label;
 }
 
 bool TransferFunctionEditor::GetTooltipsVisible() const
 {
   return this->OpacityPoints->GetShowLabels() || this->ColorPoints->GetShowLabels();
-}
-
-// Restores the last function of `from`, keeping the present one on `to`.
-bool TransferFunctionEditor::Step(std::vector<TransferFunctionSpec>& from,
-  std::vector<TransferFunctionSpec>& to)
-{
-  if (from.empty())
-  {
-    return false;
-  }
-  to.push_back(TransferFunctionOf(this->Property));
-  this->Restore(from.back());
-  from.pop_back();
-  return true;
-}
-
-bool TransferFunctionEditor::Undo()
-{
-  return this->Step(this->UndoStack, this->RedoStack);
-}
-
-bool TransferFunctionEditor::Redo()
-{
-  return this->Step(this->RedoStack, this->UndoStack);
 }
 
 vtkControlPointsItem* TransferFunctionEditor::SelectedItem() const
@@ -576,10 +595,8 @@ std::string TransferFunctionEditor::DeleteSelectedPoint()
   {
     return "the end points of a function cannot be removed (move them instead)";
   }
-  const TransferFunctionSpec before = TransferFunctionOf(this->Property);
   item->RemovePoint(vtkIdType(point));
   item->SetCurrentPoint(-1);
-  this->Record(before);
   return "";
 }
 
@@ -669,7 +686,6 @@ std::string TransferFunctionEditor::SetSelectedPointNumbers(const std::vector<do
         Format(numbers[i]);
     }
   }
-  const TransferFunctionSpec before = TransferFunctionOf(this->Property);
   if (opacity)
   {
     double node[4];
@@ -687,11 +703,6 @@ std::string TransferFunctionEditor::SetSelectedPointNumbers(const std::vector<do
       node[i] = numbers[i];
     }
     this->Property->GetRGBTransferFunction()->SetNodeValue(point, node);
-  }
-  // Within a mouse press (a swatch clicked) EndDrag makes the press one undo step.
-  if (!this->Dragging)
-  {
-    this->Record(before);
   }
   this->Scene->SetDirty(true);
   return "";

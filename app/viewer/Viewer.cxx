@@ -150,7 +150,12 @@ bool Viewer::Internals::RefinementPending()
   {
     return false;
   }
-  this->RefinementCheck = { this->FramesRendered, accumulated };
+  // A preview frame (a key's quick answer at interactive resolution) accumulates apart: the
+  // full-resolution refinement after it starts over at one frame. Counting the preview's frame
+  // as the one to beat took that first refinement frame for an accumulation that restarts every
+  // frame, and refinement stalled until something else asked for a frame (the message's fading,
+  // 4 s later).
+  this->RefinementCheck = { this->FramesRendered, this->LastFrameWasPreview ? 0 : accumulated };
   return true;
 }
 
@@ -440,7 +445,11 @@ Viewer::Viewer(const Scene& scene,
         }
         return next;
       },
-      [this] { this->WriteStateFile(); } });
+      [this]
+      {
+        this->Internal->SettleGesture();
+        this->WriteStateFile();
+      } });
   vtkNew<vtkCallbackCommand> requested;
   requested->SetClientData(&in);
   requested->SetCallback(
@@ -461,6 +470,18 @@ Viewer::Viewer(const Scene& scene,
       }
     });
   interactor->AddObserver(vtkCommand::ConfigureEvent, resized);
+  // The window manager's close button (WM_DELETE_WINDOW): VTK's X interactor invokes ExitEvent
+  // when someone observes it (else it terminates at once), so closing asks like q does.
+  vtkNew<vtkCallbackCommand> closed;
+  closed->SetClientData(this);
+  closed->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto& viewer = *static_cast<Viewer*>(data);
+      viewer.Internal->Quit(viewer, true);
+      viewer.Internal->Request();
+    });
+  interactor->AddObserver(vtkCommand::ExitEvent, closed);
   // Outside the loop (playback), an input event renders once it has been handled by everyone:
   // this observer comes after the style's and the widgets'.
   vtkNew<vtkCallbackCommand> handled;
@@ -471,6 +492,7 @@ Viewer::Viewer(const Scene& scene,
       auto& viewer = *static_cast<Internals*>(data);
       if (!viewer.Loop->IsRunning())
       {
+        viewer.SettleGesture();
         viewer.Loop->Flush();
       }
     });
@@ -488,11 +510,55 @@ Viewer::Viewer(const Scene& scene,
   {
     interactor->AddObserver(event, handled, -100.0);
   }
+  // Gestures for undo (ViewerHistory.h), seen before the widgets and the style act on them
+  // (priority 100): a press begins one, a release lets it settle once the input is handled, a
+  // wheel notch is one. A passive observer: the trackball grabs the interactor's focus during a
+  // drag, and then only the focus and passive observers see the release.
+  vtkNew<vtkCallbackCommand> gesture;
+  gesture->PassiveObserverOn();
+  gesture->SetClientData(&in);
+  gesture->SetCallback(
+    [](vtkObject*, unsigned long event, void* data, void*)
+    {
+      auto& viewer = *static_cast<Internals*>(data);
+      switch (event)
+      {
+        case vtkCommand::LeftButtonPressEvent:
+        case vtkCommand::MiddleButtonPressEvent:
+        case vtkCommand::RightButtonPressEvent:
+          viewer.BeginGesture(false);
+          ++viewer.ButtonsDown;
+          break;
+        case vtkCommand::MouseWheelForwardEvent:
+        case vtkCommand::MouseWheelBackwardEvent:
+          viewer.BeginGesture(true);
+          break;
+        default: // a release
+          viewer.ButtonsDown = std::max(0, viewer.ButtonsDown - 1);
+          break;
+      }
+    });
+  for (unsigned long event : { vtkCommand::LeftButtonPressEvent,
+         vtkCommand::LeftButtonReleaseEvent,
+         vtkCommand::MiddleButtonPressEvent,
+         vtkCommand::MiddleButtonReleaseEvent,
+         vtkCommand::RightButtonPressEvent,
+         vtkCommand::RightButtonReleaseEvent,
+         vtkCommand::MouseWheelForwardEvent,
+         vtkCommand::MouseWheelBackwardEvent })
+  {
+    interactor->AddObserver(event, gesture, 100.0);
+  }
   in.Style->SetDefaultRenderer(in.View);
   interactor->SetInteractorStyle(in.Style);
 
   in.Editing = std::make_unique<TransferFunctionEditor>(in.Property, field, in.Editor);
   in.Style->SetEditor(in.Editor, in.Editing->GetScene());
+  in.Style->EditorLeft = [&in]
+  {
+    in.Editing->PointerLeft();
+    in.Request();
+  };
   in.Style->KeyHandler = [this](const std::string& keySym, char keyCode, bool control)
   { this->PressKey(keySym, keyCode, control); };
   in.Style->DragHandler = [&in](bool dragging)
@@ -567,6 +633,8 @@ Viewer::Viewer(const Scene& scene,
     throw InputError(scene.Source + ": " + in.Mapper->GetLastError());
   }
 
+  in.SavedEdits = in.EditsOf(*this);
+
   if (!options.RecordFile.empty())
   {
     in.Recorder->SetInteractor(interactor);
@@ -592,6 +660,7 @@ Viewer::~Viewer()
   in.Slices.reset();
   in.Style->KeyHandler = nullptr;
   in.Style->DragHandler = nullptr;
+  in.Style->EditorLeft = nullptr;
   in.Style->SetEditor(nullptr, nullptr);
   in.Editing.reset();
   in.Window->Finalize();
@@ -612,6 +681,7 @@ void Viewer::PlayString(const std::string& events)
   player->SetInputString(events.c_str());
   player->Play();
   player->Stop();
+  in.SettleGesture();
   in.Loop->Flush();
   this->WriteStateFile();
 }

@@ -19,6 +19,9 @@ namespace
 {
 constexpr double ViewerPi = 3.14159265358979323846;
 constexpr size_t KeptKeys = 64;
+// How long a first q (or close) waits for the second one that quits without saving: as long as
+// its message (an error's) is shown in full.
+constexpr double QuitConfirmSeconds = 2.0 * StatusOverlay::MessageSeconds;
 const char* const AxisNames[3] = { "x", "y", "z" };
 
 std::string Format(const char* format, double value)
@@ -307,6 +310,44 @@ void Viewer::Internals::ToggleSlice(int axis)
   this->SlicesChanged();
 }
 
+std::string Viewer::Internals::EditsOf(const Viewer& viewer) const
+{
+  nlohmann::json edits = viewer.CurrentSceneJson();
+  edits["render"].erase("size");
+  nlohmann::json slices = nlohmann::json::array();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    slices.push_back({ this->Slices->GetSliceVisible(axis), this->Slices->GetSliceIndex(axis) });
+  }
+  edits["slices (viewer)"] = { slices,
+    this->Slices->GetObliqueVisible(),
+    this->Slices->GetObliqueOrigin(),
+    this->Slices->GetObliqueNormal(),
+    this->Colors->GetWindowLevel(),
+    this->Colors->GetColormap() };
+  return edits.dump();
+}
+
+bool Viewer::Internals::UnsavedChanges(const Viewer& viewer) const
+{
+  return !this->Options.SceneSavedOnExit && this->EditsOf(viewer) != this->SavedEdits;
+}
+
+void Viewer::Internals::Quit(const Viewer& viewer, bool fromWindowManager)
+{
+  const double now = MonotonicSeconds();
+  if (!this->UnsavedChanges(viewer) || now - this->QuitAskedAt <= QuitConfirmSeconds)
+  {
+    this->Interactor->TerminateApp();
+    return;
+  }
+  this->QuitAskedAt = now;
+  this->Show(fromWindowManager
+      ? "unsaved changes: w saves the scene, closing again (or q) quits without saving"
+      : "unsaved changes: w saves the scene, q again quits without saving",
+    true);
+}
+
 void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
 {
   using A = ViewerAction;
@@ -424,10 +465,8 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Show("transfer function reset to the scene's (Ctrl+z undoes)", false);
       break;
     case A::Undo:
-      this->Show(this->Editing->Undo() ? "undone" : "nothing to undo", false);
-      break;
     case A::Redo:
-      this->Show(this->Editing->Redo() ? "redone" : "nothing to redo", false);
+      this->UndoStep(action == A::Redo);
       break;
     case A::DeletePoint:
     {
@@ -449,10 +488,21 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Views2D->ResetZoom();
       break;
     case A::Help:
-      this->Status->SetHelpVisible(!this->Status->GetHelpVisible());
+      // The pages in turn (keys, the mouse in 3D, in the slice views and the editor), then none.
+      this->Status->SetHelpPage(this->Status->GetHelpPage() + 1);
+      break;
+    case A::Close:
+      if (this->Status->GetHelpVisible())
+      {
+        this->Status->SetHelpPage(-1);
+      }
+      else
+      {
+        this->Show("nothing to close (Esc closes the help and cancels typing; q quits)", false);
+      }
       break;
     case A::Quit:
-      this->Interactor->TerminateApp();
+      this->Quit(viewer, false);
       break;
   }
 }
@@ -462,21 +512,33 @@ void Viewer::PressKey(const std::string& keySym, char keyCode, bool control)
   Internals& in = *this->Internal;
   const double handled = MonotonicSeconds();
   const std::string sym = keySym.empty() ? KeySymOfCharacter(keyCode) : keySym;
+  // A key is a gesture of its own (undo and redo aside, which walk the history).
+  const KeyMatch match = in.Typing ? KeyMatch{} : FindKeyBinding(keySym, keyCode, control);
+  const bool walksHistory = match.Binding &&
+    (match.Binding->Action == ViewerAction::Undo || match.Binding->Action == ViewerAction::Redo);
+  if (!in.Typing && !match.Binding)
+  {
+    return; // not a viewer key
+  }
+  if (!walksHistory)
+  {
+    in.BeginGesture(false);
+  }
   if (in.Typing)
   {
     in.TypeKey(sym, keyCode);
   }
   else
   {
-    const KeyMatch match = FindKeyBinding(keySym, keyCode, control);
-    if (!match.Binding)
+    if (match.Binding->Action != ViewerAction::Quit)
     {
-      return; // not a viewer key
+      in.QuitAskedAt = -1e300; // q, another key, q: the second q asks again
     }
     in.Act(match.Binding->Action, match.Variant, *this);
     // A preview only in the live loop: replayed sessions and tests see full-resolution frames.
     in.PreviewNext = in.PreviewNext || (match.Binding->RedrawsCloud && in.Loop->IsRunning());
   }
+  in.SettleGesture();
   in.Keys.push_back({ sym, handled, -1.0 });
   if (in.Keys.size() > KeptKeys)
   {

@@ -198,6 +198,11 @@ void Viewer::SaveScene(const std::string& path) const
 void Viewer::SaveScreenshot()
 {
   Internals& in = *this->Internal;
+  // The capture renders render.accumulate frames of every view (seconds for a large picture):
+  // say so on screen, and in the state, before the work starts.
+  in.Show("saving a screenshot ...", false);
+  in.RenderFrame();
+  this->WriteStateFile();
   try
   {
     const bool floatImage = in.Current.Render.ResolutionScale >= 1.0;
@@ -242,6 +247,7 @@ void Viewer::SaveSceneFile()
       NextFreeBase(in.Options.OutputDirectory, "cloudvis-view-", { ".json" }) + ".json";
     CheckOutputTarget(path);
     this->SaveScene(path);
+    in.SavedEdits = in.EditsOf(*this);
     in.SavedFiles.push_back(path);
     in.Show("saved " + path + " (cloudvis render " + path + " -o IMAGE.png)", false);
   }

@@ -70,6 +70,10 @@ json ViewerStateJson(const ViewerState& state)
     { "first_light_position", state.FirstLightPosition },
     { "volume_visible", state.VolumeVisible },
     { "help_visible", state.HelpVisible },
+    { "help_page", state.HelpPage },
+    { "help_boxes", state.HelpBoxes },
+    { "help_font_size", state.HelpFontSize },
+    { "unsaved_changes", state.UnsavedChanges },
     { "hint_visible", state.HintVisible },
     { "color_bar_visible", state.ColorBarVisible },
     { "legend_visible", state.LegendVisible },
@@ -110,6 +114,8 @@ json ViewerStateJson(const ViewerState& state)
         { "selected_point", state.SelectedPoint },
         { "info", state.EditorInfo },
         { "tooltips_visible", state.EditorTooltips },
+        { "hover_tooltip", state.HoverTooltip },
+        { "drag_tooltip", state.DragTooltip },
         { "typing", state.Typing },
         { "undo_depth", state.UndoDepth },
         { "redo_depth", state.RedoDepth } } },
@@ -139,6 +145,10 @@ ViewerState Viewer::State() const
   state.Step = in.Current.Render.Step;
   state.ResolutionScale = in.Current.Render.ResolutionScale;
   state.HelpVisible = in.Status->GetHelpVisible();
+  state.HelpPage = in.Status->GetHelpPageName();
+  state.HelpBoxes = in.Status->GetHelpBoxes();
+  state.HelpFontSize = in.Status->GetHelpFontSize();
+  state.UnsavedChanges = in.UnsavedChanges(*this);
   state.LogHistogram = in.Editing->GetLogHistogram();
   state.EditorRange = in.Editing->GetRange();
   const int light = in.FirstDirectionalLight();
@@ -210,9 +220,11 @@ ViewerState Viewer::State() const
   state.SelectedPoint = in.Editing->GetSelectedPoint();
   state.EditorInfo = in.Editing->GetInfoText();
   state.EditorTooltips = in.Editing->GetTooltipsVisible();
+  state.HoverTooltip = in.Editing->GetHoverTooltip();
+  state.DragTooltip = in.Editing->GetDragTooltip();
   state.Typing = in.Typing;
-  state.UndoDepth = in.Editing->GetUndoDepth();
-  state.RedoDepth = in.Editing->GetRedoDepth();
+  state.UndoDepth = in.History.GetUndoDepth();
+  state.RedoDepth = in.History.GetRedoDepth();
   return state;
 }
 

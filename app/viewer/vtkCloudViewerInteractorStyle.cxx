@@ -148,15 +148,23 @@ void vtkCloudViewerInteractorStyle::OnMouseMove()
       this->Superclass::OnMouseMove();
       break;
     case Grab::None:
-      if (this->IsOverEditor())
+    {
+      const bool over = this->IsOverEditor();
+      if (over)
       {
-        this->Chart->OnMouseMove(); // hover highlights
+        this->Chart->OnMouseMove(); // hover highlights and tooltip
       }
+      else if (this->WasOverEditor && this->EditorLeft)
+      {
+        this->EditorLeft();
+      }
+      this->WasOverEditor = over;
       if (this->HoverHandler)
       {
         this->HoverHandler(position[0], position[1]);
       }
       break;
+    }
   }
 }
 
@@ -284,14 +292,6 @@ void vtkCloudViewerInteractorStyle::OnMouseWheelBackward()
   }
 }
 
-void vtkCloudViewerInteractorStyle::OnLeave()
-{
-  if (this->HoverHandler)
-  {
-    this->HoverHandler(-1, -1);
-  }
-}
-
 void vtkCloudViewerInteractorStyle::OnKeyPress()
 {
   if (!this->Interactor || !this->KeyHandler)
@@ -306,6 +306,20 @@ void vtkCloudViewerInteractorStyle::OnKeyPress()
 void vtkCloudViewerInteractorStyle::OnChar()
 {
   // Every key is handled on its key press (OnKeyPress); VTK's default bindings stay off.
+}
+
+void vtkCloudViewerInteractorStyle::OnLeave()
+{
+  if (this->Owner == Grab::None && this->WasOverEditor && this->EditorLeft)
+  {
+    this->EditorLeft();
+  }
+  this->WasOverEditor = false;
+  // The pointer left the window: no voxel is under it.
+  if (this->HoverHandler)
+  {
+    this->HoverHandler(-1, -1);
+  }
 }
 
 void vtkCloudViewerInteractorStyle::OnTimer()

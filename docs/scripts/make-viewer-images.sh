@@ -120,10 +120,11 @@ x0=${x0%.*}
 y1=${y1%.*}
 session viewer-palette <<< "$(click "$cx" "$cy"; click $((x0 + 91)) $((y1 - 8)))"
 
-# The help: the key list, two columns.
+# The help: its first page, the key list in two columns, and its second, the mouse.
 session viewer-help <<< "$(key h)"
+session viewer-help-mouse <<< "$(key h; key h)"
 
-for image in viewer-3d viewer-four viewer-editor viewer-palette viewer-help; do
+for image in viewer-3d viewer-four viewer-editor viewer-palette viewer-help viewer-help-mouse; do
   bytes=$(stat -c %s "$out/$image.png")
   if ((bytes > 200 * 1024)); then
     echo "make-viewer-images.sh: warning: $out/$image.png is $((bytes / 1024)) KB (keep them under 200 KB)" >&2

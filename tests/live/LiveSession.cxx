@@ -377,6 +377,19 @@ void LiveSession::Resize(int width, int height)
   this->Sync();
 }
 
+void LiveSession::Close()
+{
+  XEvent event{};
+  event.xclient.type = ClientMessage;
+  event.xclient.window = this->WindowId();
+  event.xclient.message_type = XInternAtom(this->Connection, "WM_PROTOCOLS", False);
+  event.xclient.format = 32;
+  event.xclient.data.l[0] = long(XInternAtom(this->Connection, "WM_DELETE_WINDOW", False));
+  event.xclient.data.l[1] = CurrentTime;
+  XSendEvent(this->Connection, this->WindowId(), False, NoEventMask, &event);
+  this->Sync();
+}
+
 void LiveSession::Wheel(int x, int y, bool forward)
 {
   this->Move(x, y);

@@ -76,6 +76,9 @@ public:
   void Wheel(int x, int y, bool forward);
   // Resizes the viewer's window, as a window manager would.
   void Resize(int width, int height);
+  // Asks the viewer's window to close, as a window manager's close button does: a
+  // WM_PROTOCOLS client message carrying WM_DELETE_WINDOW.
+  void Close();
   // A key by its X key symbol ("m", "Left", "Delete", "P"); `control` holds Control. Upper-case
   // letters are typed with Shift.
   void Key(const std::string& keySym, bool control = false);

@@ -4,6 +4,7 @@
 // mouse on the editor's points and the slices as a person uses it. Every check reads the state
 // the viewer writes (--state-file) or the window's pixels, polling with generous timeouts.
 // Window 480 x 400: the 3D view is 480 x 300 above the editor's 480 x 100.
+#include "LiveHelpers.h"
 #include "LiveSession.h"
 
 #include <gtest/gtest.h>
@@ -22,21 +23,6 @@ namespace
 using json = nlohmann::json;
 
 const std::string Cloudvis = support::CloudvisBinary();
-
-// The default cloud on 48^3 voxels, converging in 4 frames.
-std::vector<std::string> Arguments(const std::vector<std::string>& extra = {})
-{
-  std::vector<std::string> arguments = {
-    "--set", "field.dimensions=48", "--set", "render.accumulate=4", "--size", "480x400"
-  };
-  arguments.insert(arguments.end(), extra.begin(), extra.end());
-  return arguments;
-}
-
-void Pause(double seconds)
-{
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-}
 
 std::array<double, 3> Vector(const json& value)
 {
@@ -61,11 +47,6 @@ double CameraTurn(const json& a, const json& b)
   const auto u = direction(a), v = direction(b);
   const double cosine = std::min(1.0, u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
   return std::acos(cosine) * 180.0 / 3.14159265358979323846;
-}
-
-std::array<int, 2> Pixel(const json& point)
-{
-  return { { int(std::lround(point[0].get<double>())), int(std::lround(point[1].get<double>())) } };
 }
 
 // A drag held still for three seconds turns the camera by the drag alone: VTK's trackball turns
@@ -436,7 +417,12 @@ TEST(Live, MessagesFadeAndTheHintGoesAfterTheHelp)
     [](const json& s) { return s["message"] == "lighting: derivative"; }, "the message");
   session.WaitFor([](const json& s) { return s["message"] == ""; }, "the message to fade", 60.0);
   session.Key("h");
-  session.WaitFor([](const json& s) { return s["help_visible"].get<bool>(); }, "the help");
+  session.WaitFor([](const json& s) { return s["help_page"] == "keys"; }, "the help");
+  session.Key("h");
+  session.WaitFor([](const json& s) { return s["help_page"] == "mouse-3d"; }, "its mouse page");
+  session.Key("h");
+  session.WaitFor(
+    [](const json& s) { return s["help_page"] == "mouse-2d"; }, "its second mouse page");
   session.Key("h");
   const json after = session.WaitFor(
     [](const json& s) { return !s["help_visible"].get<bool>(); }, "the help to hide");

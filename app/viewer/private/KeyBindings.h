@@ -1,9 +1,12 @@
-// The viewer's keys, written once: each binding is a row of (keys, action, group, description).
-// The same table drives the key handler (FindKeyBinding), the help overlay (KeyHelpColumns) and
-// the key list of docs/viewer.md (KeyBindingsMarkdown, printed by `cloudvis view --keys`; a test
-// fails when the document and the table disagree). A row may hold several keys for one action
-// with a variant (x, y, z toggle the slice across their axis): the handler receives the index of
-// the key that was pressed.
+// The viewer's keys and mouse, written once: each key binding is a row of (keys, action, group,
+// description). The same table drives the key handler (FindKeyBinding), the help overlay's first
+// page (HelpPages) and the key list of docs/viewer.md (ViewerKeysMarkdown, printed by `cloudvis
+// view --keys`; a test fails when the document and the table disagree). A row may hold several
+// keys for one action with a variant (x, y, z toggle the slice across their axis): the handler
+// receives the index of the key that was pressed. The mouse bindings are a second table, of
+// (where, action, effect): the interactor style and the widgets implement them, and the table
+// makes the help overlay's mouse page and docs/viewer.md's mouse list (`cloudvis view --mouse`,
+// checked by the same test).
 #ifndef cloudvis_KeyBindings_h
 #define cloudvis_KeyBindings_h
 
@@ -46,6 +49,7 @@ enum class ViewerAction
   SaveScene,
   ResetCamera,
   Help,
+  Close, // Esc: closes what is open (the help); typing takes its own Esc first
   Quit
 };
 
@@ -81,8 +85,25 @@ std::string KeySymOfCharacter(char character);
 // How help and docs write a key ("plus" -> "+", "Escape" -> "Esc", Control -> "Ctrl+").
 std::string KeyLabel(const std::string& keySym, bool control);
 
-// The help overlay's text in two columns of groups.
-std::array<std::string, 2> KeyHelpColumns();
+struct MouseBinding
+{
+  const char* Where;  // "3D view", "slice view", "opacity chart", ...
+  const char* Action; // "left drag", "wheel", ...
+  const char* Effect; // short: the help overlay shows it
+  const char* More;   // details docs/viewer.md adds after a colon ("" for none)
+};
+
+// Every mouse binding, grouped by where, in the order help and docs list them.
+const std::vector<MouseBinding>& MouseBindings();
+
+// The help overlay's pages, each two columns of text: "keys" by group, then "mouse" by where.
+// Each page's first line names it and says what h and Esc do next.
+struct HelpPage
+{
+  std::string Name;
+  std::array<std::string, 2> Columns;
+};
+std::vector<HelpPage> HelpPages();
 
 } // namespace cloudvis
 

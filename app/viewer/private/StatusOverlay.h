@@ -1,16 +1,20 @@
 // The texts over the views, in the viewer's overlay renderer (a layer of its own, so that a text
 // that changes never restarts the cloud's accumulation): the message line at the top left
 // (what a key did, saved files, errors), wrapped to the window's width and fading out after a few
-// seconds; the help (two columns made from the key table); a hint line at the bottom right
+// seconds; the help (pages of two columns made from the key and mouse tables); a hint line at the
+// bottom right
 // ("h: keys ...") until the help has been shown once; and the readout of the last probe at the
 // bottom left, which stays until the next probe.
 #ifndef cloudvis_StatusOverlay_h
 #define cloudvis_StatusOverlay_h
 
+#include "KeyBindings.h"
+
 #include <vtkNew.h>
 
 #include <array>
 #include <string>
+#include <vector>
 
 class vtkRenderer;
 class vtkTextActor;
@@ -38,8 +42,16 @@ public:
   // is fading; `changed` tells whether the picture changed.
   double Tick(bool& changed);
 
-  void SetHelpVisible(bool visible);
-  bool GetHelpVisible() const;
+  // The help's pages (HelpPages(): the keys, the mouse): the page shown, -1 for none.
+  void SetHelpPage(int page);
+  int GetHelpPage() const { return this->Page; }
+  int GetNumberOfHelpPages() const { return int(this->Pages.size()); }
+  std::string GetHelpPageName() const; // empty when hidden
+  bool GetHelpVisible() const { return this->Page >= 0; }
+  // The shown help's columns in window pixels (x0, y0, x1, y1 from the bottom left), and their
+  // font size: the largest at most 13 at which the page fits the views.
+  std::vector<std::array<int, 4>> GetHelpBoxes() const;
+  int GetHelpFontSize() const { return this->HelpFont; }
   bool GetHintVisible() const;
 
   void SetReadout(const std::string& text);
@@ -61,6 +73,10 @@ private:
   vtkRenderer* Renderer;
   vtkNew<vtkTextActor> Message;
   std::array<vtkNew<vtkTextActor>, 2> Help;
+  std::vector<HelpPage> Pages;
+  int Page = -1;
+  int HelpFont = 0;
+  std::vector<std::array<int, 4>> HelpBoxes; // in the overlay's pixels
   vtkNew<vtkTextActor> Hint;
   vtkNew<vtkTextActor> Readout;
   std::string MessageText; // unwrapped

@@ -16,8 +16,9 @@
 // Color points are drawn in their own colors; while one is selected a palette of swatches
 // (ColorPalette.h) offers colors for it at a click.
 //
-// The editor keeps an undo history of whole functions: a drag, an added or removed point, typed
-// values, a swatch picked, a preset, a fit or a reset is one step each.
+// Undo is the viewer's (ViewerHistory.h): a drag, an added or removed point, typed values, a
+// swatch picked, a preset, a fit or a reset is one step each there, with the camera and lighting
+// changes.
 #ifndef cloudvis_TransferFunctionEditor_h
 #define cloudvis_TransferFunctionEditor_h
 
@@ -86,26 +87,27 @@ public:
   bool GetLogHistogram() const { return this->LogHistogram; }
 
   // Stretches the functions' points so that they span the field's value range (the first point
-  // at its minimum, the last at its maximum) and shows that range. One undo step.
+  // at its minimum, the last at its maximum) and shows that range.
   void FitToData();
 
-  // Replaces the functions (a preset, the scene's function) and shows their range. One undo step.
+  // Replaces the functions (a preset, the scene's function, an undone step) and shows their
+  // range.
   void Apply(const TransferFunctionSpec& spec);
 
   // The density range the charts show.
   std::array<double, 2> GetRange() const { return this->Range; }
 
-  // Around a mouse drag in the charts: the drag's changes become one undo step, and the value
-  // of the point under the pointer is shown only while the drag lasts.
+  // Around a mouse drag in the charts: the value of the point under the pointer is shown only
+  // while the drag lasts.
   void BeginDrag();
   void EndDrag();
   bool GetTooltipsVisible() const;
-
-  // Undo / redo whole edits; false when there is nothing to undo / redo.
-  bool Undo();
-  bool Redo();
-  int GetUndoDepth() const { return int(this->UndoStack.size()); }
-  int GetRedoDepth() const { return int(this->RedoStack.size()); }
+  // The pointer left the editor: the charts' hover tooltip (the histogram bar under the pointer)
+  // goes. The charts hide it only on their own leave event, which never came.
+  void PointerLeft();
+  // The tooltips' texts (empty when not shown), in one format: "density D: VALUE".
+  std::string GetHoverTooltip() const;
+  std::string GetDragTooltip() const;
 
   enum class Function
   {
@@ -152,9 +154,7 @@ private:
   void UpdateInfo();
   // The selected point's values, checked (density between its neighbours, values in [0, 1]).
   std::string SetSelectedPointNumbers(const std::vector<double>& numbers);
-  void Record(const TransferFunctionSpec& before);
   void Restore(const TransferFunctionSpec& spec);
-  bool Step(std::vector<TransferFunctionSpec>& from, std::vector<TransferFunctionSpec>& to);
   vtkControlPointsItem* SelectedItem() const;
 
   vtkVolumeProperty* Property;
@@ -165,9 +165,6 @@ private:
   bool LogHistogram = true;
   Function Selected = Function::None;
   std::string Entry;
-  std::vector<TransferFunctionSpec> UndoStack;
-  std::vector<TransferFunctionSpec> RedoStack;
-  TransferFunctionSpec DragStart;
   bool Dragging = false;
   // The charts' axes rectangles (x, y, width, height in the editor's pixels) and the ranges their
   // axes show, padded beyond the function's range.

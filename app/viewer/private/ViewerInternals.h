@@ -15,6 +15,7 @@
 #include "TransferFunctionEditor.h"
 #include "Viewer.h"
 #include "ViewerFiles.h"
+#include "ViewerHistory.h"
 #include "vtkCloudViewerInteractorStyle.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -100,6 +101,19 @@ struct Viewer::Internals
   long FramesRendered = 0;
   double LastFrameAt = -1.0;
   SliceProbe Hovered; // the voxel under the pointer on a slice; Valid false when none
+  // What quitting would lose is compared with this: the edits (EditsOf) when the window opened
+  // or the scene was last saved with w.
+  std::string SavedEdits;
+  // Undo (ViewerHistory.h): the state when the gesture in progress began, whether one is in
+  // progress, whether it is a wheel's, and the mouse buttons held.
+  UndoHistory History;
+  UndoableState GestureStart;
+  bool InGesture = false;
+  bool WheelGesture = false;
+  int ButtonsDown = 0;
+  // When q (or closing the window) last asked before quitting with unsaved changes; a second
+  // one within QuitConfirmSeconds quits.
+  double QuitAskedAt = -1e300;
 
   // The scene's lights and lighting model on the 3D view and the mapper, as `render` sets them.
   void ApplyLighting();
@@ -187,6 +201,25 @@ struct Viewer::Internals
   // else the last one shown, one voxel up (+1) or down (-1).
   void StepSlice(int step);
   int ActiveAxis = 2; // the slice across z until another is shown
+  // The edits a user would lose by quitting, as text to compare: the scene `w` saves (its size
+  // aside: resizing the window is no edit) and the slices.
+  std::string EditsOf(const Viewer& viewer) const;
+  // There are edits since the window opened or the last w, and quitting would lose them (no
+  // --save-scene-on-exit).
+  bool UnsavedChanges(const Viewer& viewer) const;
+  // What undo can take back, as it is now, and putting a state back (only what differs).
+  UndoableState Undoable() const;
+  void RestoreUndoable(const UndoableState& state);
+  // A gesture begins (a button pressed, a wheel notch): the state before it is kept; a gesture
+  // that ended (no button held, or a wheel notch handled) becomes an undo step if it changed
+  // something. SettleGesture is called once input has been handled (the loop, playback, the
+  // next gesture, a key).
+  void BeginGesture(bool wheel);
+  void SettleGesture();
+  // Ctrl+z, Ctrl+y.
+  void UndoStep(bool redo);
+  // q or the window manager's close: quits, or with unsaved changes asks for a second q first.
+  void Quit(const Viewer& viewer, bool fromWindowManager);
   // What a key of the table does; `variant` is the index of the key pressed in its row.
   void Act(ViewerAction action, int variant, Viewer& viewer);
 };

@@ -88,6 +88,12 @@ public:
   std::function<void(bool dragging)> DragHandler;
 
   /**
+   * Called when the pointer, no button held, leaves the editor's viewport (or the window from
+   * over the editor), so that the editor hides its hover tooltip. Default none.
+   */
+  std::function<void()> EditorLeft;
+
+  /**
    * Whether the last event position lies over the editor's viewport.
    */
   bool IsOverEditor() const;
@@ -126,6 +132,8 @@ private:
   };
   // Which viewport owns the drag in progress.
   Grab Owner = Grab::None;
+  // The last move without a drag was over the editor.
+  bool WasOverEditor = false;
   vtkRenderer* EditorRenderer = nullptr;
   // Handles the chart events; it is handed the interactor without observing it itself.
   vtkSmartPointer<vtkContextInteractorStyle> Chart;

@@ -27,6 +27,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkTextProperty;
 
 namespace cloudvis
 {
@@ -40,6 +41,9 @@ struct ViewerOptions
   // s saves the views at this size in pixels (--screenshot-size); 0 x 0: as the window shows
   // them (the window's width, the height above the editor).
   std::array<int, 2> ScreenshotSize{ { 0, 0 } };
+  // --save-scene-on-exit: the scene is written when the viewer ends, so quitting loses nothing
+  // and q quits without asking.
+  bool SceneSavedOnExit = false;
   std::string CommandLine; // embedded in screenshots' metadata
   std::ostream* Messages = nullptr; // messages besides the window (stderr by default)
   // The field was opened as a file (`cloudvis view FIELD.vti`), not through a scene: its transfer
@@ -74,6 +78,10 @@ struct ViewerState
   double Step = 0.0;
   double ResolutionScale = 1.0;
   bool HelpVisible = false;
+  std::string HelpPage;                      // the help page shown: "keys", "mouse", or empty
+  std::vector<std::array<int, 4>> HelpBoxes; // its columns, window pixels x0, y0, x1, y1
+  int HelpFontSize = 0;
+  bool UnsavedChanges = false; // edits since the window opened or the last w (docs/viewer.md)
   bool LogHistogram = true;
   std::array<double, 2> EditorRange{ { 0.0, 1.0 } };
   std::array<double, 3> FirstLightPosition{ { 0.0, 0.0, 0.0 } };
@@ -131,6 +139,8 @@ struct ViewerState
   int SelectedPoint = -1;
   std::string EditorInfo;      // the editor's info line (selected point, typed entry)
   bool EditorTooltips = false; // the value tooltip by the point under the pointer
+  std::string HoverTooltip;    // the chart's tooltip (a histogram bar under the pointer), or empty
+  std::string DragTooltip;     // the dragged point's tooltip, or empty
   bool Typing = false;         // typing a point's values
   int UndoDepth = 0;
   int RedoDepth = 0;
@@ -142,6 +152,16 @@ nlohmann::json ViewerStateJson(const ViewerState& state);
 
 // The key bindings as the Markdown table docs/viewer.md holds (`cloudvis view --keys`).
 std::string ViewerKeysMarkdown();
+// The mouse bindings, likewise (`cloudvis view --mouse`).
+std::string ViewerMouseMarkdown();
+
+// Sets the font of the viewer's texts (messages, readout, editor, slice captions; the help keeps
+// Courier, for its columns). VTK's embedded Arial, every vtkTextProperty's default, draws '[' and
+// ']' as round brackets (its glyphs have no square corners: "[0, 4.58]" reads as an open
+// interval), so the texts use DejaVu Sans (fonts-dejavu-core, cmake/debian-packages.txt) or
+// Liberation Sans from the system, and where neither is installed VTK's embedded Courier, whose
+// brackets are square. Returns the font file used ("" for Courier).
+std::string UseViewerFont(vtkTextProperty* text);
 
 class Viewer
 {
@@ -158,7 +178,8 @@ public:
   void PlayFile(const std::string& path);
   void PlayString(const std::string& events);
 
-  // Runs the event loop (LiveLoop.h) until the window is closed (or q / Escape).
+  // Runs the event loop (LiveLoop.h) until q or the window is closed (a second time within a few
+  // seconds when there are unsaved changes).
   void Start();
 
   // The key bindings, as the keys do them (also for tests).
