@@ -272,8 +272,11 @@ void Viewer::Internals::PlaceLegends()
   };
   place(this->Legend, colorBar ? 0.52 : 0.2, colorBar ? 0.92 : 0.75);
   place(this->Colors->GetColorBar(), legend ? 0.08 : 0.2, legend ? 0.48 : 0.75);
-  this->Legend->SetVisibility(legend);
-  this->Colors->GetColorBar()->SetVisibility(colorBar);
+  // The help covers the view, and the legends would show through it (a screenshot hides the
+  // help and keeps them).
+  const bool covered = this->Status->GetHelpVisible() && !this->Exporting;
+  this->Legend->SetVisibility(legend && !covered);
+  this->Colors->GetColorBar()->SetVisibility(colorBar && !covered);
 }
 
 bool Viewer::Internals::SlicesShown() const

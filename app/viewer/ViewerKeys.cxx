@@ -490,11 +490,13 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
     case A::Help:
       // The pages in turn (keys, the mouse in 3D, in the slice views and the editor), then none.
       this->Status->SetHelpPage(this->Status->GetHelpPage() + 1);
+      this->PlaceLegends(); // hidden under the help
       break;
     case A::Close:
       if (this->Status->GetHelpVisible())
       {
         this->Status->SetHelpPage(-1);
+        this->PlaceLegends(); // back from under the help
       }
       else
       {

@@ -136,6 +136,8 @@ TEST(LiveKeys, HelpPagesShowTheKeysThenTheMouseAndFitTheWindow)
       std::string("the help's ") + page + " page");
     ASSERT_FALSE(shown["help_boxes"].empty()) << page;
     EXPECT_GE(shown["help_font_size"].get<int>(), 8) << page << " page: too small to read";
+    // The legends would show through the help's boxes.
+    EXPECT_FALSE(shown["legend_visible"].get<bool>()) << page << " page: the legend shows";
     for (const json& box : shown["help_boxes"])
     {
       EXPECT_GE(box[0].get<int>(), view[0].get<int>()) << page << " " << box;
@@ -153,8 +155,8 @@ TEST(LiveKeys, HelpPagesShowTheKeysThenTheMouseAndFitTheWindow)
     << "the second mouse page draws what the first drew";
   session.Key("h");
   session.WaitFor([](const json& s)
-    { return s["help_page"] == "" && !s["help_visible"].get<bool>(); },
-    "the fourth h to hide the help");
+    { return s["help_page"] == "" && !s["help_visible"].get<bool>() && s["legend_visible"]; },
+    "the fourth h to hide the help and bring the legend back");
 }
 
 // After a key that redraws the cloud the picture refines to convergence at once, while the key's
