@@ -4,6 +4,7 @@
 #include "SceneSchema.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cloudvis
 {
@@ -55,15 +56,16 @@ void ReadSlices(const Context& c, const json& v, const std::string& key, ViewSpe
 
 std::string NonZeroNormal(ObliqueSpec& oblique)
 {
+  // Its direction must be computable: scaled to its largest component, its length is finite and
+  // not zero (a normal of 1e200s would overflow to infinity if squared as it is).
   const auto& n = oblique.Normal;
-  return n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0 ? "the normal must not be zero" : "";
+  const double largest = std::max({ std::abs(n[0]), std::abs(n[1]), std::abs(n[2]) });
+  return largest > 0.0 && std::isfinite(largest) ? "" : "the normal must not be zero";
 }
 
 std::string PositiveWindow(ViewSpec& view)
 {
-  return view.WindowLevel && !((*view.WindowLevel)[0] > 0.0)
-    ? "the window (the first number) must be > 0"
-    : "";
+  return view.WindowLevel ? WindowLevelProblem((*view.WindowLevel)[0], (*view.WindowLevel)[1]) : "";
 }
 
 } // namespace
@@ -137,4 +139,18 @@ Key<Scene> ViewSection()
 }
 
 } // namespace schema
+
+std::string WindowLevelProblem(double window, double level)
+{
+  if (!(window > 0.0))
+  {
+    return "the window (the first number) must be greater than 0";
+  }
+  if (!std::isfinite(level - 0.5 * window) || !std::isfinite(level + 0.5 * window))
+  {
+    return "level -+ window / 2 must be finite numbers";
+  }
+  return "";
+}
+
 } // namespace cloudvis

@@ -460,7 +460,12 @@ std::array<double, 3> SlicePlanes::GetObliqueNormal() const
 void SlicePlanes::SetObliquePlane(const std::array<double, 3>& origin,
   const std::array<double, 3>& normal)
 {
-  this->ObliqueRepresentation->SetNormal(normal[0], normal[1], normal[2]);
+  // Scaled to its largest component first: VTK normalises by the squared length, which a normal
+  // of 1e200s (legal in a scene) would overflow.
+  const double largest =
+    std::max({ std::abs(normal[0]), std::abs(normal[1]), std::abs(normal[2]) });
+  this->ObliqueRepresentation->SetNormal(
+    normal[0] / largest, normal[1] / largest, normal[2] / largest);
   this->ObliqueRepresentation->SetOrigin(origin[0], origin[1], origin[2]);
   this->UpdateObliqueCut();
 }

@@ -278,7 +278,13 @@ void SliceViews::ResetZoom()
 void SliceViews::Zoom(View& view, double factor, int x, int y)
 {
   // The point under the pointer stays: the view's centre moves toward it by 1 - 1/factor of the
-  // way, in the view's own right and up coordinates.
+  // way, in the view's own right and up coordinates. At the zoom's limits nothing moves.
+  const double zoom = std::clamp(view.Zoom * factor, 0.25, 64.0);
+  factor = zoom / view.Zoom;
+  if (factor == 1.0)
+  {
+    return;
+  }
   const std::array<double, 3> before = this->WorldPoint(view, x, y);
   double focal[3];
   view.Renderer->GetActiveCamera()->GetFocalPoint(focal);
@@ -286,7 +292,7 @@ void SliceViews::Zoom(View& view, double factor, int x, int y)
   const double keep = 1.0 - 1.0 / factor;
   view.Pan[0] += (before[size_t(right)] - focal[right]) * keep;
   view.Pan[1] += (before[size_t(up)] - focal[up]) * keep;
-  view.Zoom = std::clamp(view.Zoom * factor, 0.25, 64.0);
+  view.Zoom = zoom;
 }
 
 bool SliceViews::Mouse(vtkCloudViewerInteractorStyle::MouseAction action,

@@ -1,5 +1,6 @@
-// The viewer's window: its renderers, layout, rendering and files (what the keys do is in
-// ViewerKeys.cxx, the state in ViewerState.cxx). Renderers sharing the window: the 3D view, in the
+// The viewer's window: its renderers, layout and rendering (what the keys do is in ViewerKeys.cxx,
+// what s and w save in ViewerSaving.cxx, undo in ViewerHistory.cxx, the state in
+// ViewerState.cxx). Renderers sharing the window: the 3D view, in the
 // four-view layout the three slice views, the editor (bottom 25%), the orientation marker's, and
 // in layer 1 over the views a non-interactive overlay with the texts. Texts live in their own
 // renderer because the mapper restarts its accumulation whenever another prop of its renderer
@@ -52,14 +53,16 @@ void Viewer::Internals::ApplyLighting()
 }
 
 // ParaView sets a new dataset's colour map to the data range when it is first shown, and later
-// only grows it to take in values beyond it (its default "Grow and update on 'Apply'"). The same
-// here: a field file opened directly has no transfer function of its own, so the default one is
-// fitted to the field's range; a scene's function (its own or the default) is kept when it covers
-// the field's values and grown to take them in when they lie beyond it (a scene meant for values
-// in [0, 1] would otherwise show a field reaching 4.58 as an opaque block). Its shape is kept:
-// the points are stretched, as `f` stretches them. The droplet extinction is physical (g/m^3 to
-// extinction per metre) and is never stretched. The slices' window starts at the field's range
-// (SliceColors), so both fit the data as the window opens.
+// only grows it to take in values beyond it (its default "Grow and update on 'Apply'"), but loads
+// a saved state's colour maps as they were saved. The same here: a field file opened directly has
+// no transfer function of its own, so the default one is fitted to the field's range; a scene
+// without a function of its own has the default one grown to take in values beyond it (it would
+// otherwise show a field reaching 4.58 as an opaque block); a scene's own function (one a user
+// wrote, or `w` saved) is kept as it is, and the message only says that `f` fits it when the
+// field's values lie beyond it. The shape is kept: the points are stretched, as `f` stretches
+// them. The droplet extinction is physical (g/m^3 to extinction per metre) and is never
+// stretched. The slices' window starts at the field's range (SliceColors) unless a saved scene's
+// view section says otherwise.
 std::string Viewer::Internals::FitTransferFunctionOnOpening(const std::array<double, 2>& range)
 {
   TransferFunctionSpec& function = this->Current.TransferFunction;
@@ -70,25 +73,40 @@ std::string Viewer::Internals::FitTransferFunctionOnOpening(const std::array<dou
   }
   const std::array<double, 2> span = TransferFunctionSpan(function);
   const bool chosen = this->Current.Document.contains("transfer_function");
-  std::array<double, 2> target = range;
-  if (chosen || !this->Options.FieldFile)
+  const double slack = 1e-6 * std::max(span[1] - span[0], range[1] - range[0]);
+  const bool covered = range[0] >= span[0] - slack && range[1] <= span[1] + slack;
+  char text[256];
+  if (chosen)
   {
-    const double slack = 1e-6 * std::max(span[1] - span[0], range[1] - range[0]);
-    if (range[0] >= span[0] - slack && range[1] <= span[1] + slack)
+    if (covered)
     {
       return "";
     }
-    target = { { std::min(span[0], range[0]), std::max(span[1], range[1]) } };
+    std::snprintf(text,
+      sizeof(text),
+      "the field's values [%.4g, %.4g] lie beyond the scene's transfer function [%.4g, %.4g]: "
+      "f fits it to them",
+      range[0],
+      range[1],
+      span[0],
+      span[1]);
+    return text;
   }
+  if (!this->Options.FieldFile && covered)
+  {
+    return "";
+  }
+  const std::array<double, 2> target = this->Options.FieldFile
+    ? range
+    : std::array<double, 2>{ { std::min(span[0], range[0]), std::max(span[1], range[1]) } };
   function = StretchTransferFunction(function, target);
-  char text[256];
   std::snprintf(text,
     sizeof(text),
     "transfer function fitted to the field's values [%.4g, %.4g], as the slices' window%s; "
     "f fits again",
     range[0],
     range[1],
-    chosen || !this->Options.FieldFile ? " (they lie beyond the scene's function)" : "");
+    this->Options.FieldFile ? "" : " (they lie beyond the default function)");
   return text;
 }
 
@@ -110,6 +128,7 @@ void Viewer::Internals::RenderFrame()
   this->LastFrameWasPreview = preview;
   ++this->FramesRendered;
   this->LastFrameAt = MonotonicSeconds();
+  this->History.FrameDrawn(this->LastFrameAt);
   for (HandledKey& key : this->Keys)
   {
     if (key.ShownAt < 0.0 && key.HandledAt <= start)
@@ -343,7 +362,7 @@ void Viewer::Internals::Hover(int x, int y)
     }
   }
   const bool same = voxel.Valid == this->Hovered.Valid &&
-    (!voxel.Valid || (voxel.Index == this->Hovered.Index && voxel.Value == this->Hovered.Value));
+    (!voxel.Valid || voxel.Index == this->Hovered.Index); // the value follows (NaN != NaN)
   if (same)
   {
     return; // nothing to draw

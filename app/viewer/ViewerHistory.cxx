@@ -95,6 +95,14 @@ void UndoHistory::Record(const UndoableState& before,
   this->LastWheelAt = wheel ? at : -1e300;
 }
 
+void UndoHistory::FrameDrawn(double at)
+{
+  if (this->LastWasWheel)
+  {
+    this->LastWheelAt = at;
+  }
+}
+
 bool UndoHistory::Undo(const UndoableState& now, UndoableState& restore)
 {
   if (this->Undone.empty())

@@ -203,9 +203,10 @@ std::string Viewer::Internals::SetTypedWindowLevel()
   {
     return "type two numbers, the window and the level (for example 0.5 0.25)";
   }
-  if (!(numbers[0] > 0.0))
+  const std::string problem = WindowLevelProblem(numbers[0], numbers[1]);
+  if (!problem.empty())
   {
-    return "the window must be greater than 0, got " + Format("%.4g", numbers[0]);
+    return problem + ", got " + Format("%.4g", numbers[0]) + " " + Format("%.4g", numbers[1]);
   }
   this->Colors->SetWindowLevel(numbers[0], numbers[1]);
   this->SlicesChanged();
@@ -287,6 +288,14 @@ void Viewer::Internals::StepSlice(int step)
     axis = this->Slices->AxisUnder(pointer[0], pointer[1]);
   }
   axis = axis < 0 ? this->ActiveAxis : axis;
+  if (!this->FourViews && !this->Slices->GetSliceVisible(axis))
+  {
+    // A slice nobody sees would move unseen.
+    this->Show(std::string("no slice to step: the slice across ") + AxisNames[axis] +
+        " is hidden (x, y or z shows one, 4 the slice views)",
+      false);
+    return;
+  }
   this->ActiveAxis = axis;
   this->Slices->SetSliceIndex(axis, this->Slices->GetSliceIndex(axis) + step);
   this->Show(std::string("slice across ") + AxisNames[axis] + ": " +
@@ -312,19 +321,9 @@ void Viewer::Internals::ToggleSlice(int axis)
 
 std::string Viewer::Internals::EditsOf(const Viewer& viewer) const
 {
+  // The scene `w` would save, view section (layout, slices, window/level, colors) included.
   nlohmann::json edits = viewer.CurrentSceneJson();
   edits["render"].erase("size");
-  nlohmann::json slices = nlohmann::json::array();
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    slices.push_back({ this->Slices->GetSliceVisible(axis), this->Slices->GetSliceIndex(axis) });
-  }
-  edits["slices (viewer)"] = { slices,
-    this->Slices->GetObliqueVisible(),
-    this->Slices->GetObliqueOrigin(),
-    this->Slices->GetObliqueNormal(),
-    this->Colors->GetWindowLevel(),
-    this->Colors->GetColormap() };
   return edits.dump();
 }
 

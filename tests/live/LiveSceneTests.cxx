@@ -94,6 +94,16 @@ TEST(LiveScene, SavedSceneRestoresLayoutSlicesWindowLevelAndColors)
   const json restored = second.WaitUntilConverged();
   ExpectSameView(saved, restored);
   EXPECT_EQ(restored["slices"]["index"][2].get<int>(), changed["slices"]["index"][2].get<int>());
+  // What the scene held before the view section comes back too, and a scene opened as it was
+  // saved has nothing unsaved.
+  EXPECT_EQ(restored["transfer_function"], saved["transfer_function"]);
+  for (size_t c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(restored["camera"]["position"][c].get<double>(),
+      saved["camera"]["position"][c].get<double>(),
+      1e-9);
+  }
+  EXPECT_FALSE(restored["unsaved_changes"].get<bool>());
 
   LiveSession third(Cloudvis, { scene, "--size", "480x400", "--layout", "3d" });
   const json overridden = third.WaitUntilConverged();

@@ -120,6 +120,7 @@ TEST(LiveSlices, FieldFileOpensFittedToItsValues)
   EXPECT_TRUE(Logged(state, "fitted to the field's values [1, 4.58], as the slices' window"))
     << state["messages"];
   EXPECT_EQ(state["editor"]["undo_depth"], 0) << "the fit on opening is no edit to undo";
+  EXPECT_FALSE(state["unsaved_changes"].get<bool>()) << "the fit on opening is no edit to save";
   // Near the front face's corner (the field fills the middle two thirds of the view's height)
   // the rays pass the bump by and the values stay near 1: the background shows, where the
   // unfitted function drew white.
@@ -138,9 +139,11 @@ TEST(LiveSlices, FieldFileOpensFittedToItsValues)
   EXPECT_LT(mean, 60.0) << "an opaque block where the field is near its minimum";
 }
 
-// A scene's own function is kept when it covers the field's values, and grown to take them in
-// when they lie beyond it (ParaView's "grow" rescale): [0, 1] becomes [0, 4.58], its shape kept.
-TEST(LiveSlices, SceneFunctionIsKeptWhenItCoversTheFieldAndGrownWhenNot)
+// A scene's own function is kept as it was written or saved, as ParaView loads a saved state's
+// colour maps; when the field's values lie beyond it the message says that f fits it. A scene
+// without a function of its own has the default one grown to take the values in (ParaView's
+// "grow" rescale): [0, 1] becomes [0, 4.58], its shape kept.
+TEST(LiveSlices, SceneFunctionIsKeptAndTheDefaultOneGrown)
 {
   const support::TemporaryDirectory files("cloudvis-live-grow");
   const std::string field = WriteBumpField(files.File("bump.vti"));
@@ -163,13 +166,23 @@ TEST(LiveSlices, SceneFunctionIsKeptWhenItCoversTheFieldAndGrownWhenNot)
   {
     LiveSession session(Cloudvis, Window({ scene("short.json", 1.0) }));
     const json state = session.WaitUntilConverged();
+    EXPECT_EQ(
+      state["transfer_function"]["opacity"], json({ { 0.0, 0.0 }, { 0.5, 0.2 }, { 1.0, 0.5 } }));
+    EXPECT_TRUE(Logged(state, "lie beyond the scene's transfer function")) << state["messages"];
+    EXPECT_FALSE(state["unsaved_changes"].get<bool>());
+  }
+  {
+    // No transfer_function: the default one, whose points end at 1, grows to the field's top.
+    const std::string plain =
+      files.Write("plain.json", json({ { "field", { { "file", field } } } }).dump());
+    LiveSession session(Cloudvis, Window({ plain }));
+    const json state = session.WaitUntilConverged();
     const json& opacity = state["transfer_function"]["opacity"];
-    ASSERT_EQ(opacity.size(), 3u);
-    EXPECT_DOUBLE_EQ(opacity[0][0].get<double>(), 0.0);
-    EXPECT_NEAR(opacity[1][0].get<double>(), 0.5 * FieldHigh, 1e-5);
-    EXPECT_NEAR(opacity[2][0].get<double>(), FieldHigh, 1e-5);
-    EXPECT_DOUBLE_EQ(opacity[1][1].get<double>(), 0.2);
-    EXPECT_TRUE(Logged(state, "beyond the scene's function")) << state["messages"];
+    ASSERT_GE(opacity.size(), 2u);
+    EXPECT_DOUBLE_EQ(opacity.front()[0].get<double>(), 0.0);
+    EXPECT_NEAR(opacity.back()[0].get<double>(), FieldHigh, 1e-5);
+    EXPECT_TRUE(Logged(state, "beyond the default function")) << state["messages"];
+    EXPECT_FALSE(state["unsaved_changes"].get<bool>()) << "the fit is where the session starts";
   }
 }
 
@@ -339,8 +352,12 @@ TEST(LiveSlices, WindowLevelAutoResetAndTyped)
 
   session.Key("L");
   Type(session, "0 2");
-  const json refused = session.WaitFor([](const json& s)
-    { return LastMessage(s).find("window must be greater than 0") != std::string::npos; },
+  const json refused = session.WaitFor(
+    [](const json& s)
+    {
+      return LastMessage(s).find("the window (the first number) must be greater than 0") !=
+        std::string::npos;
+    },
     "a window of 0 to be refused");
   EXPECT_TRUE(refused["editor"]["typing"].get<bool>());
   EXPECT_EQ(refused["slices"]["window_level"], reset["slices"]["window_level"]);

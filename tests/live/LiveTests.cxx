@@ -343,8 +343,12 @@ TEST(Live, SliceFacingTheCameraMovesAndItsProbeStays)
   const std::string probeLine = readout.substr(readout.find("probe ("));
   EXPECT_NE(probeLine.find("density"), std::string::npos) << readout;
   session.Move(center[0], center[1] - 60); // elsewhere, no button
-  Pause(0.5);
-  EXPECT_NE(session.State()["readout"].get<std::string>().find(probeLine), std::string::npos)
+  // Once the viewer has seen the pointer move (the voxel under it changed), the probe's line is
+  // still there.
+  const json away = session.WaitFor([&](const json& s)
+    { return !s["hover"]["valid"].get<bool>() || s["hover"]["index"] != probed["probe"]["index"]; },
+    "the pointer to move away from the probed voxel");
+  EXPECT_NE(away["readout"].get<std::string>().find(probeLine), std::string::npos)
     << "the probe's readout did not stay";
 }
 

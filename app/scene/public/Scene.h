@@ -188,6 +188,11 @@ struct ViewSpec
   bool Legends = true; // the color legends
 };
 
+// What is wrong with a slices' window and level ("" when nothing): the window must be greater than
+// 0 and both ends, level -+ window / 2, finite numbers. view.window_level and the viewer's typed
+// entry check with it.
+std::string WindowLevelProblem(double window, double level);
+
 // The lights of a scene without a "lights" key: one white directional sun from (6, 8, 4) toward
 // the origin (docs/scene-format.md gives its intensity and why).
 std::vector<Light> DefaultLights();

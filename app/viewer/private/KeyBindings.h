@@ -87,7 +87,7 @@ std::string KeyLabel(const std::string& keySym, bool control);
 
 struct MouseBinding
 {
-  const char* Where;  // "3D view", "slice view", "opacity chart", ...
+  const char* Where;  // "3D view", "slice view", "editor", ...
   const char* Action; // "left drag", "wheel", ...
   const char* Effect; // short: the help overlay shows it
   const char* More;   // details docs/viewer.md adds after a colon ("" for none)
@@ -96,7 +96,8 @@ struct MouseBinding
 // Every mouse binding, grouped by where, in the order help and docs list them.
 const std::vector<MouseBinding>& MouseBindings();
 
-// The help overlay's pages, each two columns of text: "keys" by group, then "mouse" by where.
+// The help overlay's pages, each two columns of text: "keys" by group, then "mouse-3d" and
+// "mouse-2d" by where (the 3D view's places; the slice views' and the editor's).
 // Each page's first line names it and says what h and Esc do next.
 struct HelpPage
 {

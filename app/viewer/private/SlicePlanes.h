@@ -95,7 +95,7 @@ public:
   bool GetObliqueVisible() const { return this->ObliqueVisible; }
   std::array<double, 3> GetObliqueOrigin() const;
   std::array<double, 3> GetObliqueNormal() const;
-  // Places the oblique plane (a saved scene's); the origin is kept within the field's bounds.
+  // Places the oblique plane (a saved scene's): an origin and a normal of any nonzero length.
   void SetObliquePlane(const std::array<double, 3>& origin, const std::array<double, 3>& normal);
   // Number of points in the oblique cut (0 when it misses the field).
   long GetObliqueCutPoints() const;

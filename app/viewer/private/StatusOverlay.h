@@ -3,8 +3,8 @@
 // (what a key did, saved files, errors), wrapped to the window's width and fading out after a few
 // seconds; the help (pages of two columns made from the key and mouse tables); a hint line at the
 // bottom right
-// ("h: keys ...") until the help has been shown once; and the readout of the last probe at the
-// bottom left, which stays until the next probe.
+// ("h: keys ...") until the help has been shown once; and the readout at the bottom left: the
+// voxel under the pointer over the last probe (the viewer clears it when no slice is shown).
 #ifndef cloudvis_StatusOverlay_h
 #define cloudvis_StatusOverlay_h
 

@@ -51,6 +51,9 @@ public:
   // A wheel gesture within WheelBurstSeconds of the last one, recorded as the last step, joins
   // that step (which keeps the state before the burst). `at`: seconds on any steady clock.
   void Record(const UndoableState& before, const UndoableState& now, bool wheel, double at);
+  // A frame was drawn, ending at `at`: the time the viewer spent drawing after a notch is no
+  // pause of the user's, so a burst's notches stay one step however slow the frames between them.
+  void FrameDrawn(double at);
 
   // The state to restore for undo (redo), given the present one; false when there is none.
   bool Undo(const UndoableState& now, UndoableState& restore);

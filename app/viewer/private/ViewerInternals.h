@@ -1,6 +1,6 @@
 // The viewer's state and helpers, shared by the files that implement Viewer: Viewer.cxx (the
 // window, its layout and rendering), ViewerSaving.cxx (what s and w save), ViewerKeys.cxx (what
-// the keys do) and ViewerState.cxx (the state tests and tools read).
+// the keys do), ViewerHistory.cxx (undo) and ViewerState.cxx (the state tests and tools read).
 #ifndef cloudvis_ViewerInternals_h
 #define cloudvis_ViewerInternals_h
 
@@ -201,8 +201,8 @@ struct Viewer::Internals
   // else the last one shown, one voxel up (+1) or down (-1).
   void StepSlice(int step);
   int ActiveAxis = 2; // the slice across z until another is shown
-  // The edits a user would lose by quitting, as text to compare: the scene `w` saves (its size
-  // aside: resizing the window is no edit) and the slices.
+  // The edits a user would lose by quitting, as text to compare: the scene `w` saves, its view
+  // section included (its size aside: resizing the window is no edit).
   std::string EditsOf(const Viewer& viewer) const;
   // There are edits since the window opened or the last w, and quitting would lose them (no
   // --save-scene-on-exit).

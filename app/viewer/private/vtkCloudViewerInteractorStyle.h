@@ -19,7 +19,8 @@
  * representation or camera behind the viewer's back), nor the charts' own (which act on key
  * release, and move points with the arrow keys): every key press goes to KeyHandler alone, which
  * the viewer drives from its key table. The 3D widgets (slice planes) observe the interactor
- * themselves, ahead of the style, and take the events that hit them.
+ * themselves, ahead of the style, and take the events that hit them, but for a plain left
+ * drag, which always turns the camera (Ctrl+left probes a slice).
  *
  * Nothing here renders: the style and the charts ask for a frame through the interactor's
  * Render(), which the viewer's live loop turns into a request (LiveLoop.h).

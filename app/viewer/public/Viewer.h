@@ -78,7 +78,7 @@ struct ViewerState
   double Step = 0.0;
   double ResolutionScale = 1.0;
   bool HelpVisible = false;
-  std::string HelpPage;                      // the help page shown: "keys", "mouse", or empty
+  std::string HelpPage; // the help page shown: "keys", "mouse-3d", "mouse-2d", or empty
   std::vector<std::array<int, 4>> HelpBoxes; // its columns, window pixels x0, y0, x1, y1
   int HelpFontSize = 0;
   bool UnsavedChanges = false; // edits since the window opened or the last w (docs/viewer.md)
