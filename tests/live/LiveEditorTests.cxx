@@ -1,6 +1,7 @@
 // Live tests of the transfer-function editor's colors, driven with real X input (LiveSession.h):
 // the color points drawn in their own colors, and the palette that gives the selected color
 // point a color at a click. Window 480 x 400: the editor is the bottom 480 x 100.
+#include "LiveHelpers.h"
 #include "LiveSession.h"
 
 #include <gtest/gtest.h>
@@ -18,11 +19,6 @@ using json = nlohmann::json;
 
 const std::string Cloudvis = support::CloudvisBinary();
 
-std::array<int, 2> Pixel(double x, double y)
-{
-  return { { int(std::lround(x)), int(std::lround(y)) } };
-}
-
 // The window's color at a pixel, in 8-bit levels.
 std::array<double, 3> ColorAt(LiveSession& session, const std::array<int, 2>& p)
 {
@@ -37,31 +33,14 @@ std::array<double, 3> PointColor(const json& state, size_t i)
   return { { 255.0 * p[1].get<double>(), 255.0 * p[2].get<double>(), 255.0 * p[3].get<double>() } };
 }
 
-double Distance(const std::array<double, 3>& a, const std::array<double, 3>& b)
-{
-  return std::max({ std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2]) });
-}
-
 // The mean color, in 8-bit levels, of the 3 x 3 pixels at a color point's centre: the marker's
 // fill (the strip under a marker has the point's color too, but VTK's gray fill hides it).
 std::array<double, 3> MarkerColor(LiveSession& session, const json& state, size_t i)
 {
-  const json& p = state["editor"]["color_point_pixels"][i];
-  const auto centre = Pixel(p[0].get<double>(), p[1].get<double>());
+  const auto centre = Pixel(state["editor"]["color_point_pixels"][i]);
   const support::Image image =
     session.Pixels({ { centre[0] - 1, centre[1] - 1, centre[0] + 2, centre[1] + 2 } });
-  std::array<double, 3> mean{ { 0.0, 0.0, 0.0 } };
-  for (int y = 0; y < 3; ++y)
-  {
-    for (int x = 0; x < 3; ++x)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        mean[size_t(c)] += image.Level(x, y, c) / 9.0;
-      }
-    }
-  }
-  return mean;
+  return MeanColorAround(image, 1, 1, 1);
 }
 
 // Three color points, red, green and blue. Each marker is drawn in its point's color. A click on
@@ -88,12 +67,12 @@ TEST(LiveEditor, ColorPointsShowTheirColorsAndThePaletteSetsOne)
   for (size_t i = 0; i < 3; ++i)
   {
     const std::array<double, 3> marker = MarkerColor(session, state, i);
-    EXPECT_LT(Distance(marker, PointColor(state, i)), 40.0)
+    EXPECT_LT(ColorDistance(marker, PointColor(state, i)), 40.0)
       << "color point " << i << " is drawn " << marker[0] << " " << marker[1] << " " << marker[2];
   }
 
   const json& green = state["editor"]["color_point_pixels"][1];
-  const auto point = Pixel(green[0].get<double>(), green[1].get<double>());
+  const auto point = Pixel(green);
   session.Move(point[0], point[1]);
   session.Press(1);
   session.Release(1);
@@ -111,7 +90,7 @@ TEST(LiveEditor, ColorPointsShowTheirColorsAndThePaletteSetsOne)
   const json& rect = selected["editor"]["palette_pixels"];
   const double x0 = rect[0].get<double>(), x1 = rect[2].get<double>();
   const double y1 = rect[3].get<double>();
-  const auto swatch = Pixel(x0 + 2.0 + 7.0 * 12.0 + 5.5, y1 - 2.0 - 5.5); // column 7, row 0
+  const auto swatch = Pixel(json::array({ x0 + 2.0 + 7.0 * 12.0 + 5.5, y1 - 2.0 - 5.5 })); // column 7, row 0
   ASSERT_LT(swatch[0], x1);
   const std::array<double, 3> shown = ColorAt(session, swatch);
   const int undo = selected["editor"]["undo_depth"].get<int>();
@@ -125,10 +104,10 @@ TEST(LiveEditor, ColorPointsShowTheirColorsAndThePaletteSetsOne)
         !s["editor"]["tooltips_visible"].get<bool>();
     },
     "the swatch to color the point");
-  EXPECT_LT(Distance(PointColor(picked, 1), shown), 1.5)
+  EXPECT_LT(ColorDistance(PointColor(picked, 1), shown), 1.5)
     << "the point did not get the swatch's color " << shown[0] << " " << shown[1] << " " << shown[2]
     << ": " << picked["transfer_function"]["color"][1].dump();
-  EXPECT_GT(Distance(shown, PointColor(state, 1)), 50.0) << "the swatch was the point's color";
+  EXPECT_GT(ColorDistance(shown, PointColor(state, 1)), 50.0) << "the swatch was the point's color";
   EXPECT_EQ(picked["transfer_function"]["color"][1][0], 0.5) << "the density moved";
   EXPECT_EQ(picked["transfer_function"]["opacity"], state["transfer_function"]["opacity"])
     << "the click reached the opacity chart under the palette";

@@ -1,6 +1,7 @@
 // Live tests of what `cloudvis view` saves, driven with real X input (LiveSession.h): the
 // screenshot of the layout (s) at a chosen size with its color legends. Window 480 x 400: the
 // views are 480 x 300 above the editor's 480 x 100.
+#include "LiveHelpers.h"
 #include "LiveSession.h"
 
 #include <gtest/gtest.h>
@@ -17,18 +18,12 @@ using json = nlohmann::json;
 
 const std::string Cloudvis = support::CloudvisBinary();
 
-// The default cloud on 48^3 voxels, converging in 4 frames, its colors red at density 0 to blue
-// at 1, so that the cloud's legend has colors nothing else in the window has.
-std::vector<std::string> Arguments(const std::vector<std::string>& extra = {})
+// The live tests' cloud (Arguments) with colors red at density 0 to blue at 1, so that the cloud's
+// legend has colors nothing else in the window has.
+std::vector<std::string> RedToBlueArguments(const std::vector<std::string>& extra)
 {
-  std::vector<std::string> arguments = { "--set",
-    "field.dimensions=48",
-    "--set",
-    "render.accumulate=4",
-    "--set",
-    "transfer_function.color=[[0,1,0,0],[1,0,0,1]]",
-    "--size",
-    "480x400" };
+  std::vector<std::string> arguments =
+    Arguments({ "--set", "transfer_function.color=[[0,1,0,0],[1,0,0,1]]" });
   arguments.insert(arguments.end(), extra.begin(), extra.end());
   return arguments;
 }
@@ -42,23 +37,7 @@ std::array<double, 3> MeanAround(const support::Image& image,
 {
   const int cx = int(std::lround(rectangle[0] + fx * (rectangle[2] - rectangle[0])));
   const int cy = int(std::lround(rectangle[1] + fy * (rectangle[3] - rectangle[1])));
-  std::array<double, 3> mean{ { 0.0, 0.0, 0.0 } };
-  for (int y = cy - 3; y <= cy + 3; ++y)
-  {
-    for (int x = cx - 3; x <= cx + 3; ++x)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        mean[size_t(c)] += image.Level(x, y, c) / 49.0;
-      }
-    }
-  }
-  return mean;
-}
-
-double Distance(const std::array<double, 3>& a, const std::array<double, 3>& b)
-{
-  return std::max({ std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2]) });
+  return MeanColorAround(image, cx, cy, 3);
 }
 
 // The pixels of `image` in the rectangle (fractions of its size) whose color is within `tolerance`
@@ -76,7 +55,7 @@ int CountColor(const support::Image& image,
       const std::array<double, 3> pixel{
         { image.Level(x, y, 0), image.Level(x, y, 1), image.Level(x, y, 2) }
       };
-      count += Distance(pixel, color) <= tolerance ? 1 : 0;
+      count += ColorDistance(pixel, color) <= tolerance ? 1 : 0;
     }
   }
   return count;
@@ -103,7 +82,8 @@ std::string LastSaved(const json& state, const std::string& extension)
 // With the legends hidden (b), the next screenshot has none.
 TEST(LiveExport, ScreenshotHoldsEveryViewAtTheChosenSizeWithLegends)
 {
-  LiveSession session(Cloudvis, Arguments({ "--layout", "four", "--screenshot-size", "960x600" }));
+  LiveSession session(
+    Cloudvis, RedToBlueArguments({ "--layout", "four", "--screenshot-size", "960x600" }));
   const json state = session.WaitUntilConverged();
   ASSERT_TRUE(state["legend_visible"].get<bool>());
   ASSERT_TRUE(state["color_bar_visible"].get<bool>());
@@ -134,7 +114,7 @@ TEST(LiveExport, ScreenshotHoldsEveryViewAtTheChosenSizeWithLegends)
     {
       const auto shown = MeanAround(window, inWindow, fx, fy);
       const auto exported = MeanAround(png, inPng, fx, fy);
-      EXPECT_LT(Distance(shown, exported), 16.0)
+      EXPECT_LT(ColorDistance(shown, exported), 16.0)
         << name << " at (" << fx << ", " << fy << "): window " << shown[0] << " " << shown[1] << " "
         << shown[2] << ", screenshot " << exported[0] << " " << exported[1] << " " << exported[2];
     }

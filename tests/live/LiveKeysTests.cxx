@@ -21,13 +21,6 @@ using json = nlohmann::json;
 
 const std::string Cloudvis = support::CloudvisBinary();
 
-// The last message shown holds `text` (the "messages" log: the message line wraps its text).
-bool Said(const json& state, const std::string& text)
-{
-  return !state["messages"].empty() &&
-    state["messages"].back().get<std::string>().find(text) != std::string::npos;
-}
-
 // The viewer still runs a second after the input: it did not quit.
 void ExpectRunning(LiveSession& session, const std::string& after)
 {

@@ -5,6 +5,7 @@
 // The real binary on its own Xvfb server, driven with real X input (LiveSession.h); every check
 // reads the state the viewer writes or the window's pixels. Window 480 x 400: the 3D view is
 // 480 x 300 above the editor's 480 x 100.
+#include "LiveHelpers.h"
 #include "LiveSession.h"
 
 #include <vtkFloatArray.h>
@@ -84,24 +85,6 @@ std::array<double, 2> Span(const json& state)
                function["opacity"][0][0].get<double>(), function["color"][0][0].get<double>()),
     std::max(
       function["opacity"].back()[0].get<double>(), function["color"].back()[0].get<double>()) } };
-}
-
-// The last message shown, unwrapped (the state's "message" is wrapped to the view's width).
-std::string LastMessage(const json& state)
-{
-  return state["messages"].empty() ? "" : state["messages"].back().get<std::string>();
-}
-
-bool Logged(const json& state, const std::string& text)
-{
-  for (const json& message : state["messages"])
-  {
-    if (message.get<std::string>().find(text) != std::string::npos)
-    {
-      return true;
-    }
-  }
-  return false;
 }
 
 // A .vti opened directly gets its transfer function and the slices' window fitted to its values,
@@ -329,7 +312,7 @@ TEST(LiveSlices, WindowLevelAutoResetAndTyped)
   session.WaitUntilConverged();
   session.Key("a");
   session.WaitFor([](const json& s)
-    { return LastMessage(s).find("no slice is shown") != std::string::npos; },
+    { return Said(s, "no slice is shown"); },
     "a without a slice to say so");
   session.Key("z");
   session.WaitFor(
@@ -337,7 +320,7 @@ TEST(LiveSlices, WindowLevelAutoResetAndTyped)
   session.Key("a");
   const auto [low, high] = CentreSlicePercentiles();
   const json automatic = session.WaitFor([](const json& s)
-    { return LastMessage(s).find("from the shown slices") != std::string::npos; },
+    { return Said(s, "from the shown slices"); },
     "the automatic window");
   EXPECT_NEAR(automatic["slices"]["window_level"][0].get<double>(), high - low, 1e-5);
   EXPECT_NEAR(automatic["slices"]["window_level"][1].get<double>(), 0.5 * (high + low), 1e-5);
@@ -345,7 +328,7 @@ TEST(LiveSlices, WindowLevelAutoResetAndTyped)
 
   session.Key("A");
   const json reset = session.WaitFor([](const json& s)
-    { return LastMessage(s).find("reset to the field's range") != std::string::npos; },
+    { return Said(s, "reset to the field's range"); },
     "Shift+a to reset the window");
   EXPECT_NEAR(reset["slices"]["window_level"][0].get<double>(), FieldHigh - FieldLow, 1e-5);
   EXPECT_NEAR(reset["slices"]["window_level"][1].get<double>(), 0.5 * (FieldHigh + FieldLow), 1e-5);
@@ -353,11 +336,7 @@ TEST(LiveSlices, WindowLevelAutoResetAndTyped)
   session.Key("L");
   Type(session, "0 2");
   const json refused = session.WaitFor(
-    [](const json& s)
-    {
-      return LastMessage(s).find("the window (the first number) must be greater than 0") !=
-        std::string::npos;
-    },
+    [](const json& s) { return Said(s, "the window (the first number) must be greater than 0"); },
     "a window of 0 to be refused");
   EXPECT_TRUE(refused["editor"]["typing"].get<bool>());
   EXPECT_EQ(refused["slices"]["window_level"], reset["slices"]["window_level"]);
@@ -366,7 +345,7 @@ TEST(LiveSlices, WindowLevelAutoResetAndTyped)
   const json typed = session.WaitFor(
     [](const json& s) { return !s["editor"]["typing"].get<bool>(); }, "the typed window");
   EXPECT_EQ(typed["slices"]["window_level"], json::array({ 1.5, 2.0 }));
-  EXPECT_NE(LastMessage(typed).find("densities 1.25 to 2.75"), std::string::npos)
+  EXPECT_TRUE(Said(typed, "densities 1.25 to 2.75"))
     << typed["messages"];
 }
 
@@ -388,7 +367,7 @@ TEST(LiveSlices, TransferFunctionColorsOnSlicesIgnoreTheWindow)
       return s["slices"]["window_level"] == json::array({ 0.4, 0.5 }) && s["converged"].get<bool>();
     },
     "the typed window");
-  EXPECT_NE(LastMessage(windowed).find("colors are not windowed"), std::string::npos)
+  EXPECT_TRUE(Said(windowed, "colors are not windowed"))
     << windowed["messages"];
   // The axial slice's bottom right corner, empty space: the slice fills 1/1.15 of the view's
   // height around its centre.
