@@ -45,6 +45,16 @@ namespace
 // The editor's share of the window, from the bottom; the views have the rest.
 constexpr double EditorHeight = 0.25;
 
+// The mouse's button and wheel events: every gesture undo counts begins or ends with one.
+constexpr unsigned long MouseButtonEvents[] = { vtkCommand::LeftButtonPressEvent,
+  vtkCommand::LeftButtonReleaseEvent,
+  vtkCommand::MiddleButtonPressEvent,
+  vtkCommand::MiddleButtonReleaseEvent,
+  vtkCommand::RightButtonPressEvent,
+  vtkCommand::RightButtonReleaseEvent,
+  vtkCommand::MouseWheelForwardEvent,
+  vtkCommand::MouseWheelBackwardEvent };
+
 } // namespace
 
 void Viewer::Internals::ApplyLighting()
@@ -518,17 +528,12 @@ Viewer::Viewer(const Scene& scene,
         viewer.Loop->Flush();
       }
     });
-  for (unsigned long event : { vtkCommand::MouseMoveEvent,
-         vtkCommand::LeftButtonPressEvent,
-         vtkCommand::LeftButtonReleaseEvent,
-         vtkCommand::MiddleButtonPressEvent,
-         vtkCommand::MiddleButtonReleaseEvent,
-         vtkCommand::RightButtonPressEvent,
-         vtkCommand::RightButtonReleaseEvent,
-         vtkCommand::MouseWheelForwardEvent,
-         vtkCommand::MouseWheelBackwardEvent,
-         vtkCommand::KeyPressEvent,
-         vtkCommand::KeyReleaseEvent })
+  for (unsigned long event : MouseButtonEvents)
+  {
+    interactor->AddObserver(event, handled, -100.0);
+  }
+  for (unsigned long event :
+    { vtkCommand::MouseMoveEvent, vtkCommand::KeyPressEvent, vtkCommand::KeyReleaseEvent })
   {
     interactor->AddObserver(event, handled, -100.0);
   }
@@ -560,14 +565,7 @@ Viewer::Viewer(const Scene& scene,
           break;
       }
     });
-  for (unsigned long event : { vtkCommand::LeftButtonPressEvent,
-         vtkCommand::LeftButtonReleaseEvent,
-         vtkCommand::MiddleButtonPressEvent,
-         vtkCommand::MiddleButtonReleaseEvent,
-         vtkCommand::RightButtonPressEvent,
-         vtkCommand::RightButtonReleaseEvent,
-         vtkCommand::MouseWheelForwardEvent,
-         vtkCommand::MouseWheelBackwardEvent })
+  for (unsigned long event : MouseButtonEvents)
   {
     interactor->AddObserver(event, gesture, 100.0);
   }

@@ -4,6 +4,7 @@
 #ifndef cloudvis_LiveHelpers_h
 #define cloudvis_LiveHelpers_h
 
+#include "LiveSession.h"
 #include "SupportImages.h"
 
 #include <nlohmann/json.hpp>
@@ -40,6 +41,20 @@ inline void Pause(double seconds)
 inline std::array<int, 2> Pixel(const nlohmann::json& point)
 {
   return { { int(std::lround(point[0].get<double>())), int(std::lround(point[1].get<double>())) } };
+}
+
+// Clicks the opacity point before the last (an inner one) in the editor and waits until it is
+// selected; returns its index. `start`: a state of the window as it opened.
+inline size_t SelectInnerOpacityPoint(LiveSession& session, const nlohmann::json& start)
+{
+  const size_t inner = start["transfer_function"]["opacity"].size() - 2;
+  const auto point = Pixel(start["editor"]["opacity_point_pixels"][inner]);
+  session.Move(point[0], point[1]);
+  session.Press(1);
+  session.Release(1);
+  session.WaitFor([&](const nlohmann::json& s) { return s["editor"]["selected_point"] == int(inner); },
+    "the point to be selected");
+  return inner;
 }
 
 // The last message shown holds `text` (the "messages" log: the message line wraps its text).

@@ -40,13 +40,7 @@ TEST(LiveKeys, EscClosesTheHelpAndCancelsTypingButNeverQuits)
     [](const json& s) { return !s["help_visible"].get<bool>(); }, "Esc to close the help");
   ExpectRunning(session, "Esc closed the help");
 
-  const size_t inner = start["transfer_function"]["opacity"].size() - 2;
-  const auto point = Pixel(start["editor"]["opacity_point_pixels"][inner]);
-  session.Move(point[0], point[1]);
-  session.Press(1);
-  session.Release(1);
-  session.WaitFor([&](const json& s) { return s["editor"]["selected_point"] == int(inner); },
-    "the point to be selected");
+  SelectInnerOpacityPoint(session, start);
   session.Keys({ "Return", "0", "period", "5" });
   session.WaitFor([](const json& s) { return s["editor"]["typing"].get<bool>(); }, "typing");
   session.Key("Escape");

@@ -252,13 +252,7 @@ TEST(Live, TypedValuesSetTheSelectedPoint)
 {
   LiveSession session(Cloudvis, Arguments());
   const json start = session.WaitUntilConverged();
-  const size_t inner = start["transfer_function"]["opacity"].size() - 2;
-  const auto point = Pixel(start["editor"]["opacity_point_pixels"][inner]);
-  session.Move(point[0], point[1]);
-  session.Press(1);
-  session.Release(1);
-  session.WaitFor([&](const json& s) { return s["editor"]["selected_point"] == int(inner); },
-    "the point to be selected");
+  const size_t inner = SelectInnerOpacityPoint(session, start);
   session.Keys({ "Return", "5", "space", "0", "Return" });
   session.WaitFor([&](const json& s)
     { return s["message"].get<std::string>().find("density must lie") != std::string::npos; },
