@@ -1,6 +1,6 @@
 #include "CloudLightVolumes.h"
 
-#include "CloudReferenceMarch.h"
+#include "CloudTransport.h"
 
 #include <vtkSMPTools.h>
 
@@ -26,26 +26,18 @@ MarchUniforms LightVolumeMarch(const MarchUniforms& u)
 
 namespace
 {
-// Index units of the field per texel of the grid and its inverse, per axis (0 on an axis of one
-// voxel, never a division by 0).
-glm::vec3 IndexPerTexel(glm::ivec3 dimensions, glm::ivec3 size)
+// The shared source's uniforms of the light-volume pass for blocks of `size` texels.
+glsl::Transport VolumePassOf(const MarchUniforms& volumeMarch, glm::ivec3 size)
 {
-  return glm::vec3(dimensions - 1) / glm::vec3(glm::max(size - 1, 1));
-}
-glm::vec3 TexelPerIndex(glm::ivec3 dimensions, glm::ivec3 size)
-{
-  return glm::vec3(size - 1) / glm::vec3(glm::max(dimensions - 1, 1));
+  glsl::Transport transport = TransportOf(volumeMarch);
+  transport.LightVolumeSize = glm::vec3(size);
+  return transport;
 }
 }
 
 float LightVolumeTexel(const MarchUniforms& u, int light, glm::ivec3 texel, glm::ivec3 size)
 {
-  const glm::vec3 p = glm::vec3(texel) * IndexPerTexel(u.Dimensions, size);
-  const LocalLight& source = u.Lights[std::size_t(light)];
-  const LightSample s = SampleLight(source, LocalOfIndex(u, p));
-  const glm::vec3 indexStep =
-    source.Positional ? LocalToIndex(u, s.Direction) : source.IndexDirection;
-  return LightOpticalDepth(u, p, ExtinctionAt(u, p), indexStep, s.Distance);
+  return VolumePassOf(u, size).LightVolumeTexel(light, glm::vec3(texel));
 }
 
 void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes)
@@ -59,6 +51,7 @@ void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes)
   const vtkIdType slices = vtkIdType(size.z) * volumes.Lights;
   const auto computeSlices = [&](vtkIdType begin, vtkIdType end)
   {
+    glsl::Transport transport = VolumePassOf(march, size);
     for (vtkIdType slice = begin; slice < end; ++slice)
     {
       const int light = int(slice / size.z);
@@ -66,7 +59,7 @@ void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes)
       for (int j = 0; j < size.y; ++j)
         for (int i = 0; i < size.x; ++i)
           depth[(std::size_t(slice) * size.y + j) * size.x + i] =
-            LightVolumeTexel(march, light, glm::ivec3(i, j, k), size);
+            transport.LightVolumeTexel(light, glm::vec3(i, j, k));
     }
   };
   vtkSMPTools::For(0, slices, computeSlices);
@@ -74,30 +67,11 @@ void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes)
 
 float LightVolumeDepth(const LightVolumes& volumes, const MarchUniforms& u, int light, glm::vec3 p)
 {
-  // The GLSL's texture coordinate, in texels of the block: p clamped to the volume and scaled;
-  // the corner alignment keeps it within [0, size - 1], so the interpolation never reads another
-  // light's block.
-  const glm::vec3 t = glm::clamp(p, glm::vec3(0.0f), glm::vec3(u.Dimensions - 1)) *
-    TexelPerIndex(u.Dimensions, volumes.Size);
-  const glm::ivec3 size = volumes.Size;
-  int i0[3], i1[3];
-  float f[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const float fl = std::floor(t[a]);
-    f[a] = t[a] - fl;
-    i0[a] = std::min(std::max(int(fl), 0), size[a] - 1);
-    i1[a] = std::min(i0[a] + 1, size[a] - 1);
-  }
-  const std::size_t block = std::size_t(light) * size.z;
-  const auto texel = [&](int x, int y, int z)
-  { return volumes.Depth[((block + std::size_t(z)) * size.y + y) * size.x + std::size_t(x)]; };
-  const auto lerp = [](float a, float b, float w) { return a + w * (b - a); };
-  const float c00 = lerp(texel(i0[0], i0[1], i0[2]), texel(i1[0], i0[1], i0[2]), f[0]);
-  const float c10 = lerp(texel(i0[0], i1[1], i0[2]), texel(i1[0], i1[1], i0[2]), f[0]);
-  const float c01 = lerp(texel(i0[0], i0[1], i1[2]), texel(i1[0], i0[1], i1[2]), f[0]);
-  const float c11 = lerp(texel(i0[0], i1[1], i1[2]), texel(i1[0], i1[1], i1[2]), f[0]);
-  return lerp(lerp(c00, c10, f[1]), lerp(c01, c11, f[1]), f[2]);
+  glsl::Transport transport = TransportOf(u);
+  transport.Volumes = &volumes;
+  transport.LightVolumeSize = glm::vec3(volumes.Size);
+  transport.LightVolumeCount = float(volumes.Lights);
+  return transport.LightVolumeDepth(light, p);
 }
 
 } // namespace cloudvis

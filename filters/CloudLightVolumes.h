@@ -1,11 +1,12 @@
 // Light without re-marching (issue 12): per light, the optical depth toward it at the texels of
 // a grid over the volume, computed once when the field, the transfer function, the extinction
 // scale, the step or the lights change, and read by the march (one trilinear lookup per sample
-// per light) instead of a nested march toward each light. The GPU computes the same grid in a
-// pass of its own (app/rendering/CloudLightVolumeTexture.cxx, shaders/CloudLightVolumeFS.glsl, whose
-// main() is LightVolumeTexel here) and samples it with LightVolumeDepth, the twin of the GLSL
-// function of that name in shaders/CloudLightingMarch.glsl. docs/lighting.md states the
-// equations; the quality setting LightingParameters::Transmittance chooses between the two.
+// per light) instead of a nested march toward each light. A texel's value (LightVolumeTexel) and
+// the march's lookup (LightVolumeDepth) are defined once in shaders/transport/Transport.glsl; the
+// GPU computes the grid in a pass of its own (app/rendering/CloudLightVolumeTexture.cxx,
+// shaders/CloudLightVolumeFS.glsl) and the CPU here, with the same functions. docs/lighting.md
+// states the equations; the quality setting LightingParameters::Transmittance chooses between
+// the light volumes and the nested march.
 //
 // The grid: half the field's resolution per axis (LightVolumeDivisor), corner-aligned (its first
 // and last texels sit on the field's first and last voxels, so no sample lies beyond its texels),
@@ -15,11 +16,10 @@
 #define CloudLightVolumes_h
 
 #include "CloudMarchUniforms.h"
+#include "CloudTransport.h" // LightVolumes
 #include "cloudvisFiltersModule.h"
 
 #include <glm/glm.hpp>
-
-#include <vector>
 
 namespace cloudvis
 {
@@ -36,20 +36,11 @@ CLOUDVISFILTERS_EXPORT MarchUniforms LightVolumeMarch(const MarchUniforms& u);
 
 // The optical depth toward light `light` from the centre of texel `texel` of a block of `size`
 // texels: LightOpticalDepth from the field's index point there, with `volumeMarch` (from
-// LightVolumeMarch). The GLSL pass's main() for one fragment.
+// LightVolumeMarch), as the GLSL pass's main() computes one fragment.
 CLOUDVISFILTERS_EXPORT float LightVolumeTexel(const MarchUniforms& volumeMarch,
   int light,
   glm::ivec3 texel,
   glm::ivec3 size);
-
-// Every light's block, as the GPU's texture holds them: Size.x * Size.y * (Size.z * lights)
-// floats, x fastest, light i's block from z = i * Size.z.
-struct LightVolumes
-{
-  glm::ivec3 Size{ 0 };
-  int Lights = 0;
-  std::vector<float> Depth;
-};
 
 // Computes them for u.Lights (with vtkSMPTools: a texel's value depends only on its index).
 CLOUDVISFILTERS_EXPORT void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes);

@@ -111,6 +111,7 @@ bool vtkCloudPathTracer::RenderImage(const cloudvis::MarchUniforms& uniforms,
   this->RenderRowBlocks(height,
     [&](vtkIdType begin, vtkIdType end)
     {
+      cloudvis::glsl::Transport transport = cloudvis::TransportOf(uniforms, pt); // this thread's
       for (vtkIdType j = begin; j < end; ++j)
       {
         for (int i = 0; i < width; ++i)
@@ -126,8 +127,8 @@ bool vtkCloudPathTracer::RenderImage(const cloudvis::MarchUniforms& uniforms,
             rng.Pixel = pixel;
             rng.Sample = std::uint32_t(s);
             rng.Seed = seed;
-            const glm::dvec4 x(cloudvis::TracePath(
-              uniforms, pt, glm::vec3(nearPoint), glm::vec3(farPoint), rng));
+            const glm::dvec4 x(
+              cloudvis::TracePath(transport, glm::vec3(nearPoint), glm::vec3(farPoint), rng));
             const glm::dvec4 delta = x - mean;
             mean += delta / double(s + 1);
             squares += delta * (x - mean);

@@ -366,23 +366,26 @@ bool vtkCloudReferenceRenderer::RenderImage(const cloudvis::MarchUniforms& unifo
   rgba->Fill(0.0);
   output->GetPointData()->SetScalars(rgba);
   float* pixels = rgba->GetPointer(0);
-  this->RenderRowBlocks(height, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType j = begin; j < end; ++j)
+  this->RenderRowBlocks(height,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      for (int i = 0; i < width; ++i)
+      cloudvis::glsl::Transport transport = cloudvis::TransportOf(uniforms); // this thread's
+      for (vtkIdType j = begin; j < end; ++j)
       {
-        glm::dvec3 nearPoint, farPoint;
-        PixelRay(deviceToLocal, i, int(j), width, height, nearPoint, farPoint);
-        const glm::vec4 color =
-          cloudvis::MarchRay(uniforms, glm::vec3(nearPoint), glm::vec3(farPoint));
-        float* out = pixels + (std::size_t(j) * width + i) * 4;
-        out[0] = color.r;
-        out[1] = color.g;
-        out[2] = color.b;
-        out[3] = color.a;
+        for (int i = 0; i < width; ++i)
+        {
+          glm::dvec3 nearPoint, farPoint;
+          PixelRay(deviceToLocal, i, int(j), width, height, nearPoint, farPoint);
+          const glm::vec4 color =
+            cloudvis::MarchRay(transport, glm::vec3(nearPoint), glm::vec3(farPoint));
+          float* out = pixels + (std::size_t(j) * width + i) * 4;
+          out[0] = color.r;
+          out[1] = color.g;
+          out[2] = color.b;
+          out[3] = color.a;
+        }
       }
-    }
-  });
+    });
   return true;
 }
 

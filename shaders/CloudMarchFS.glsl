@@ -6,7 +6,7 @@
 // k = 0, 1, 2, ... Bricks the occupancy map marks empty are leapt over, landing on the same
 // lattice of k; a sample costs no division (docs/performance.md, "The march's per-sample
 // cost"). Lighting models plug in by defining SourceTerm() at the lighting tag below, so all
-// share this march.
+// share this march; what it computes with is shared with the CPU (shaders/transport/).
 // Quantities: everything is computed in the local frame of filters/CloudMarchUniforms.h (world
 // translated to the volume's centre and scaled by a power of two near the voxel size), never in
 // world coordinates, so precision does not depend on where the volume is or how large it is.
@@ -15,25 +15,12 @@
 
 in vec2 texCoord;
 
-// Constants the C++ defines once (MAX_LIGHTS, Pi, DirectionalLightDistance, LightBoxMargin, NoDepth,
-// DepthTransmittance), substituted by the mapper (app/rendering/CloudMarchShader.cxx).
+// Constants the C++ defines once (MAX_LIGHTS, Pi, PhaseToRadiance, DirectionalLightDistance,
+// LightBoxMargin, the path tracer's, NoDepth, DepthTransmittance), substituted by the mapper
+// (app/rendering/CloudMarchShader.cxx).
 //CLOUD::Constants::Dec
 
 uniform mat4 DCLocalMatrix;  // normalized device -> local frame
-uniform mat4 IndexToLocal;
-uniform mat3 LocalToIndex;   // a local displacement in index units
-uniform vec3 Dimensions;     // voxels per axis
-uniform sampler3D DensityTexture; // the field's native texels (R8, R16, R32F or R16F)
-uniform float DensityScale;       // density = filtered texel * DensityScale + DensityBias
-uniform float DensityBias;
-uniform sampler1D TransferTexture; // rgb albedo, a = sigma_t
-uniform vec2 TableRange;           // density at the first and last table entries
-uniform float TableSize;
-uniform float ExtinctionUnit; // the table's sigma_t (per world unit) times this: per local unit
-uniform sampler3D EmptyDistanceTexture; // Chebyshev distance in bricks to occupied space, /255
-uniform vec3 BrickCount;
-uniform float BrickSize;
-uniform int SkipEmptySpace;
 uniform sampler2D DepthTexture; // opaque depth of the viewport, full resolution
 uniform sampler2D JitterTexture; // blue noise, tiled
 uniform float JitterTextureSize;
@@ -45,41 +32,12 @@ uniform int MaximumIterations;
 
 //VTK::Output::Dec
 
-// Entry and exit distances of the ray o + t d through the box [lo, hi].
-vec2 IntersectBox(vec3 o, vec3 d, vec3 lo, vec3 hi)
-{
-  // An axis-parallel ray gets a huge finite inverse rather than a division by zero.
-  vec3 safe = mix(d, vec3(1e-30), equal(d, vec3(0.0)));
-  vec3 inv = 1.0 / safe;
-  vec3 t0 = (lo - o) * inv;
-  vec3 t1 = (hi - o) * inv;
-  vec3 tNear = min(t0, t1);
-  vec3 tFar = max(t0, t1);
-  return vec2(max(max(tNear.x, tNear.y), tNear.z), min(min(tFar.x, tFar.y), tFar.z));
-}
-
-float TableCoordinate(float density)
-{
-  float u = clamp((density - TableRange.x) / (TableRange.y - TableRange.x), 0.0, 1.0);
-  return (u * (TableSize - 1.0) + 0.5) / TableSize; // texel centres, as TransferTable::Lookup
-}
-
-// Albedo in rgb and the extinction per local unit in a.
-vec4 Optical(float density)
-{
-  vec4 optical = texture(TransferTexture, TableCoordinate(density));
-  return vec4(optical.rgb, optical.a * ExtinctionUnit);
-}
-
-vec3 LocalOfIndex(vec3 p)
-{
-  return (IndexToLocal * vec4(p, 1.0)).xyz;
-}
-
-vec3 IndexOfLocal(vec3 x)
-{
-  return LocalToIndex * (x - IndexToLocal[3].xyz);
-}
+// The light transport shared with the CPU (shaders/transport/Transport.glsl, docs/transport.md),
+// spliced here with its prelude and the GPU's accessors (shaders/transport/Accessors.glsl): the
+// field's uniforms and textures (Dimensions, IndexToLocal, LocalToIndex, DensityTexture,
+// TransferTexture, TableRange, EmptyDistanceTexture, BrickSize...), IntersectBox, Optical,
+// LocalOfIndex, IndexOfLocal, EmptyBricksAround, the lights and every lighting model's terms.
+//CLOUD::Transport::Dec
 
 vec3 LocalPoint(vec2 ndc, float ndcDepth)
 {
@@ -87,23 +45,10 @@ vec3 LocalPoint(vec2 ndc, float ndcDepth)
   return p.xyz / p.w;
 }
 
-// The brick around index point p, and how many bricks around it are empty (0: occupied).
-vec3 BrickOf(vec3 p)
-{
-  return clamp(floor(p / BrickSize), vec3(0.0), BrickCount - 1.0);
-}
-float EmptyBricksAround(vec3 brick)
-{
-  return floor(texelFetch(EmptyDistanceTexture, ivec3(brick), 0).r * 255.0 + 0.5);
-}
-bool EmptyBrickAt(vec3 p)
-{
-  return EmptyBricksAround(BrickOf(p)) > 0.0;
-}
-
-// The lighting model: SourceTerm(p, density, albedo, d) and what it needs, or (the path tracer,
-// which defines CLOUD_OWN_MAIN) a main() of its own that uses the helpers above. The light-volume
-// pass defines CLOUD_OWN_MAIN too, after the march's lighting, and appends its own main().
+// The lighting model: SourceTerm(p, density, albedo, d), which calls the model's terms of the
+// shared source, or (the path tracer, which defines CLOUD_OWN_MAIN) a main() of its own that uses
+// the helpers above. The light-volume pass defines CLOUD_OWN_MAIN too, after the march's lighting,
+// and appends its own main().
 //CLOUD::Lighting::Dec
 
 #ifndef CLOUD_OWN_MAIN

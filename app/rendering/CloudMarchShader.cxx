@@ -2,12 +2,12 @@
 
 #include "CloudMarchUniforms.h"
 #include "CloudPathTracePass.h"
+#include "CloudTransport.h"
 
-#include "CloudLightingCommon.h"
-#include "CloudLightingDerivative.h"
-#include "CloudLightingMarch.h"
-#include "CloudLightingNone.h"
 #include "CloudMarchFS.h"
+#include "CloudTransportAccessors.h"
+#include "CloudTransportPrelude.h"
+#include "CloudTransportSource.h"
 
 #include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -43,33 +43,49 @@ std::string Constants()
   std::ostringstream glsl;
   glsl << "#define MAX_LIGHTS " << MaxLights << "\n"
        << "const float Pi = " << GlslFloat(Pi) << ";\n"
+       << "const float PhaseToRadiance = " << GlslFloat(PhaseToRadiance) << ";\n"
        << "const float DirectionalLightDistance = " << GlslFloat(DirectionalLightDistance) << ";\n"
        << "const float LightBoxMargin = " << GlslFloat(LightBoxMargin) << ";\n"
+       << "const float RatioTrackingRouletteThreshold = "
+       << GlslFloat(RatioTrackingRouletteThreshold) << ";\n"
+       << "const float NoCrossing = " << GlslFloat(NoCrossing) << ";\n"
+       << "const int MaxTentativeCollisions = " << MaxTentativeCollisions << ";\n"
+       << "const float GaveUp = " << GlslFloat(GaveUp) << ";\n"
+       << "const int MaxWalkSteps = " << MaxWalkSteps << ";\n"
        << "const float NoDepth = " << GlslFloat(NoDepth) << ";\n"
        << "const float DepthTransmittance = " << GlslFloat(DepthTransmittance) << ";\n";
   return glsl.str();
 }
 
-// The lighting model's GLSL: shared helpers, the model's light terms, and a SourceTerm that
-// calls one term per light with a constant index.
+// The shared light transport: the GLSL prelude, the source the CPU compiles too, and the GPU's
+// accessors (docs/transport.md).
+std::string TransportSource()
+{
+  return std::string(CloudTransportPrelude) + "\n" + CloudTransportSource + "\n" +
+    CloudTransportAccessors;
+}
+
+// The lighting model's SourceTerm, which calls the model's term of each light (the shared
+// source's <Model>PointTerm or <Model>DirectionalTerm) with a constant index, so no light loop
+// runs per sample; the path tracer's main() instead.
 std::string LightingSource(LightingModel model, const std::vector<LocalLight>& lights)
 {
-  if (model == LightingModel::None)
-  {
-    return std::string(CloudLightingCommon) + "\n" + CloudLightingNone;
-  }
   if (model == LightingModel::PathTrace)
   {
     return PathTraceLightingSource(); // with a main() of its own
   }
   std::ostringstream source;
-  source << CloudLightingCommon << "\n"
-         << (model == LightingModel::Derivative ? CloudLightingDerivative : CloudLightingMarch)
-         << "\nvec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)\n{\n"
-         << "  vec3 light = Ambient;\n";
+  source << "vec3 SourceTerm(vec3 p, float density, vec3 albedo, vec3 d)\n{\n";
+  if (model == LightingModel::None)
+  {
+    source << "  return SourceTermNone(p, density, albedo, d);\n}\n";
+    return source.str();
+  }
+  const char* prefix = model == LightingModel::Derivative ? "Derivative" : "March";
+  source << "  vec3 light = Ambient;\n";
   for (size_t i = 0; i < lights.size(); ++i)
   {
-    source << "  light += " << (lights[i].Positional ? "PointLightTerm" : "DirectionalLightTerm")
+    source << "  light += " << prefix << (lights[i].Positional ? "PointTerm" : "DirectionalTerm")
            << "(" << i << ", p, density, albedo, d);\n";
   }
   source << "  return albedo * light;\n}\n";
@@ -81,6 +97,7 @@ std::string MarchShaderSource(LightingModel model, const std::vector<LocalLight>
 {
   std::string source = CloudMarchFS;
   vtkShaderProgram::Substitute(source, "//CLOUD::Constants::Dec", Constants());
+  vtkShaderProgram::Substitute(source, "//CLOUD::Transport::Dec", TransportSource());
   vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", LightingSource(model, lights));
   return source;
 }

@@ -1,8 +1,9 @@
 // The march pass's GLSL and uniforms for vtkCloudVolumeMapper. The fragment shader is
 // shaders/CloudMarchFS.glsl with, spliced in, the constants the C++ defines (substituted, never
-// repeated as literals: the light limit, pi, a directional light's distance, the depth channel's
-// markers) and one lighting model (shaders/CloudLighting*.glsl) whose SourceTerm calls one term
-// per light with a constant index, so no light loop runs per sample. Its uniforms are what
+// repeated as literals: the light limit, pi, a directional light's distance, the path tracer's
+// bounds, the depth channel's markers), the light transport shared with the CPU
+// (shaders/transport/, docs/transport.md) and one lighting model's SourceTerm, which calls one
+// term per light with a constant index, so no light loop runs per sample. Its uniforms are what
 // cloudvis::SetUpMarch computed (the same MarchUniforms the CPU reference marches with), uploaded
 // as they are. Private to the module.
 #ifndef CloudMarchShader_h

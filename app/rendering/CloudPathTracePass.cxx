@@ -1,11 +1,8 @@
 #include "CloudPathTracePass.h"
 
 #include "CloudGpuMemory.h"
-#include "CloudMarchShader.h" // GlslFloat
 #include "CloudPathTrace.h"
 
-#include "CloudLightingCommon.h"
-#include "CloudLightingMarch.h"
 #include "CloudLightingPathTrace.h"
 
 #include <vtkFloatArray.h>
@@ -15,32 +12,13 @@
 #include <vtkShaderProgram.h>
 #include <vtk_glew.h>
 
-#include <sstream>
 #include <vector>
 
 namespace cloudvis
 {
-namespace
-{
-// A bound on the turns of one search for the next occupied brick, far above the bricks any ray
-// crosses (3 x 2^16 / 2 for the largest field the mapper takes): the C++ loop ends by itself;
-// this only keeps a GPU from hanging should rounding ever stall the walk.
-constexpr int MaxWalkSteps = 1 << 18;
-}
-
 std::string PathTraceLightingSource()
 {
-  std::ostringstream source;
-  source << "const float RatioTrackingRouletteThreshold = "
-         << GlslFloat(RatioTrackingRouletteThreshold) << ";\n"
-         << "const float NoCrossing = " << GlslFloat(NoCrossing) << ";\n"
-         << "const int MaxTentativeCollisions = " << MaxTentativeCollisions << ";\n"
-         << "const float GaveUp = " << GlslFloat(GaveUp) << ";\n"
-         << "const int MaxWalkSteps = " << MaxWalkSteps << ";\n"
-         << CloudLightingCommon << "\n"
-         << CloudLightingMarch << "\n" // Phase() and PhaseToRadiance
-         << CloudLightingPathTrace << "\n";
-  return source.str();
+  return CloudLightingPathTrace;
 }
 
 bool ExtinctionBoundsTexture::Update(vtkOpenGLRenderWindow* window,

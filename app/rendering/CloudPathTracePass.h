@@ -1,9 +1,9 @@
 // What vtkCloudVolumeMapper's "pathtrace" lighting model needs beyond the march's textures and
-// uniforms: the fragment shader's lighting source (shaders/CloudLightingPathTrace.glsl, which
-// brings its own main(), after the shared helpers and the phase function of the march model),
-// the constants it shares with filters/CloudPathTrace.h, the per-brick extinction bounds texture
-// (the majorants and minorants of the occupancy filter's bricks) and the path-trace uniforms.
-// The GPU twin of vtkCloudPathTracer's set-up. Private to the module.
+// uniforms: the fragment shader's lighting source (shaders/CloudLightingPathTrace.glsl, a main()
+// of its own that calls the shared source's TracePath, shaders/transport/Transport.glsl), the
+// per-brick extinction bounds texture (the majorants and minorants of the occupancy filter's
+// bricks) and the path-trace uniforms: the GPU's side of vtkCloudPathTracer's set-up. Private
+// to the module.
 #ifndef CloudPathTracePass_h
 #define CloudPathTracePass_h
 

@@ -42,12 +42,12 @@
  * While the user interacts (the render window's desired update rate is above 1), the scale is
  * lowered automatically to keep InteractiveFrameRate.
  *
- * The pathtrace lighting model is the GPU twin of vtkCloudPathTracer (filters/CloudPathTrace.h):
- * each frame traces PathTraceSamplesPerFrame paths through every pixel centre (no jitter, the
- * CPU's random numbers for pixel, sample and PathTraceSeed) and adds them to the accumulation, up
- * to MaximumAccumulatedFrames frames; a second float target accumulates the squares, so
- * ReadVariance gives each pixel's standard error. Opaque geometry ends the view ray; paths that
- * scatter ignore it.
+ * The pathtrace lighting model runs vtkCloudPathTracer's path tracer on the GPU (the same code:
+ * shaders/transport/Transport.glsl, docs/transport.md): each frame traces PathTraceSamplesPerFrame
+ * paths through every pixel centre (no jitter, the CPU's random numbers for pixel, sample and
+ * PathTraceSeed) and adds them to the accumulation, up to MaximumAccumulatedFrames frames; a second
+ * float target accumulates the squares, so ReadVariance gives each pixel's standard error. Opaque
+ * geometry ends the view ray; paths that scatter ignore it.
  *
  * The work is split as VTK's own volume mapper splits it, into helpers private to the module
  * (app/rendering/Cloud*.h): the density, transfer, occupancy and jitter textures, the per-view
