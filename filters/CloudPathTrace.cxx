@@ -35,16 +35,7 @@ glm::vec4 TracePath(const MarchUniforms& u,
   glm::vec3 farPoint,
   RandomStream& rng)
 {
-  glsl::Transport transport = TransportOf(u, pt);
-  return TracePath(transport, nearPoint, farPoint, rng);
-}
-
-glm::vec4 TracePath(glsl::Transport& transport,
-  glm::vec3 nearPoint,
-  glm::vec3 farPoint,
-  RandomStream& rng)
-{
-  return transport.TracePath(nearPoint, farPoint, rng);
+  return TransportOf(u, pt).TracePath(nearPoint, farPoint, rng);
 }
 
 } // namespace cloudvis

@@ -28,11 +28,11 @@
 namespace cloudvis
 {
 
-// ---- Random numbers ----
+// Each function below calls its one definition in shaders/transport/Transport.glsl, where it is
+// documented, with the uniforms TransportOf fills from `u` and `pt`.
 
 // Where a random number comes from: the pixel (j * width + i), the sample index within the
-// pixel, the seed, and the dimension: the count of random numbers this sample has drawn so far.
-// All four start at 0.
+// pixel, the seed, and the dimension (the count of random numbers drawn so far), all 0 at first.
 struct RandomStream : glsl::Transport::RandomStream
 {
   RandomStream()
@@ -41,49 +41,27 @@ struct RandomStream : glsl::Transport::RandomStream
   }
 };
 
-// The 4-D PCG hash of Jarzynski and Olano ("Hash Functions for GPU Rendering", JCGT 2020), in
-// uint arithmetic modulo 2^32.
+// The 4-D PCG hash of Jarzynski and Olano ("Hash Functions for GPU Rendering", JCGT 2020).
 CLOUDVISFILTERS_EXPORT glm::uvec4 Pcg4d(glm::uvec4 v);
-
-// The next uniform number in [0, 1) of a stream: the top 24 bits of
-// Pcg4d(pixel, sample, dimension, seed).x, exact in float; the dimension then advances.
+// The next uniform number in [0, 1) of a stream; the dimension then advances.
 CLOUDVISFILTERS_EXPORT float NextRandom(RandomStream& rng);
 
-// ---- Phase-function sampling ----
-
-// The cosine mu of a scattering angle drawn from HG(g, mu) by inverting its distribution with
-// xi in [0, 1).
+// The cosine of a scattering angle drawn from HG(g, mu) with xi in [0, 1).
 CLOUDVISFILTERS_EXPORT float SampleHenyeyGreensteinCosine(float g, float xi);
-
-// A new direction of travel after scattering light travelling along d, drawn with density
-// exactly Phase(lighting, dot(d, new), 1).
+// A new direction of travel after scattering along d, drawn from Phase(lighting, mu, 1).
 CLOUDVISFILTERS_EXPORT glm::vec3 SamplePhaseDirection(
   const LightingParameters& lighting, glm::vec3 d, RandomStream& rng);
 
-// ---- Paths ----
-
-// Next-event estimation at a scattering point p for light arriving along the unit (local)
-// direction d: sum over lights of E_i f_i 4 pi Phase(dot(d, l_i)) T_i, with T_i ratio-tracked
-// to the light (a point light) or out of the volume (a directional light). The 4 pi is the
-// march's PhaseToRadiance: a light's color x intensity is what an unshadowed isotropic sample of
-// albedo 1 sends toward the eye in every model.
+// Next-event estimation at scattering point p for light arriving along unit direction d.
 CLOUDVISFILTERS_EXPORT glm::vec3 DirectLight(
   const MarchUniforms& u, const PathTraceUniforms& pt, glm::vec3 p, glm::vec3 d, RandomStream& rng);
 
 // One sample of the pixel whose view ray runs from nearPoint to farPoint (in the local frame, as
-// MarchRay's; vtkCloudReferenceRenderer::PixelRay gives them): the radiance of one
-// path in rgb (premultiplied: the background is composited later, as for the other renderers,
-// so a ray that crosses the medium without scattering brings nothing) and one estimate of the
-// pixel's opacity 1 - T in a (T ratio-tracked along the view ray). A path that leaves the volume
-// after scattering brings the ambient radiance (u.Ambient: a uniform environment).
+// MarchRay's; vtkCloudReferenceRenderer::PixelRay gives them): one path's premultiplied radiance
+// in rgb and one estimate of the pixel's opacity in a. A caller that traces many paths fills a
+// TransportOf(u, pt) per thread and calls its TracePath.
 CLOUDVISFILTERS_EXPORT glm::vec4 TracePath(const MarchUniforms& u,
   const PathTraceUniforms& pt,
-  glm::vec3 nearPoint,
-  glm::vec3 farPoint,
-  RandomStream& rng);
-// The same with the shared source's uniforms filled once (TransportOf(u, pt)), for a caller that
-// traces many paths: one `transport` per thread.
-CLOUDVISFILTERS_EXPORT glm::vec4 TracePath(glsl::Transport& transport,
   glm::vec3 nearPoint,
   glm::vec3 farPoint,
   RandomStream& rng);

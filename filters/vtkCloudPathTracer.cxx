@@ -128,7 +128,7 @@ bool vtkCloudPathTracer::RenderImage(const cloudvis::MarchUniforms& uniforms,
             rng.Sample = std::uint32_t(s);
             rng.Seed = seed;
             const glm::dvec4 x(
-              cloudvis::TracePath(transport, glm::vec3(nearPoint), glm::vec3(farPoint), rng));
+              transport.TracePath(glm::vec3(nearPoint), glm::vec3(farPoint), rng));
             const glm::dvec4 delta = x - mean;
             mean += delta / double(s + 1);
             squares += delta * (x - mean);
