@@ -127,8 +127,7 @@ bool vtkCloudPathTracer::RenderImage(const cloudvis::MarchUniforms& uniforms,
             rng.Pixel = pixel;
             rng.Sample = std::uint32_t(s);
             rng.Seed = seed;
-            const glm::dvec4 x(
-              transport.TracePath(glm::vec3(nearPoint), glm::vec3(farPoint), rng));
+            const glm::dvec4 x(transport.TracePath(glm::vec3(nearPoint), glm::vec3(farPoint), rng));
             const glm::dvec4 delta = x - mean;
             mean += delta / double(s + 1);
             squares += delta * (x - mean);
