@@ -24,22 +24,6 @@ MarchUniforms LightVolumeMarch(const MarchUniforms& u)
   return march;
 }
 
-namespace
-{
-// The shared source's uniforms of the light-volume pass for blocks of `size` texels.
-glsl::Transport VolumePassOf(const MarchUniforms& volumeMarch, glm::ivec3 size)
-{
-  glsl::Transport transport = TransportOf(volumeMarch);
-  transport.LightVolumeSize = glm::vec3(size);
-  return transport;
-}
-}
-
-float LightVolumeTexel(const MarchUniforms& u, int light, glm::ivec3 texel, glm::ivec3 size)
-{
-  return VolumePassOf(u, size).LightVolumeTexel(light, glm::vec3(texel));
-}
-
 void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes)
 {
   const MarchUniforms march = LightVolumeMarch(u);
@@ -51,7 +35,9 @@ void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes)
   const vtkIdType slices = vtkIdType(size.z) * volumes.Lights;
   const auto computeSlices = [&](vtkIdType begin, vtkIdType end)
   {
-    glsl::Transport transport = VolumePassOf(march, size);
+    // This thread's uniforms of the light-volume pass (the GPU's are LightVolumeMarch's too).
+    glsl::Transport transport = TransportOf(march);
+    transport.LightVolumeSize = glm::vec3(size);
     for (vtkIdType slice = begin; slice < end; ++slice)
     {
       const int light = int(slice / size.z);

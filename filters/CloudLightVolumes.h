@@ -34,14 +34,6 @@ CLOUDVISFILTERS_EXPORT glm::ivec3 LightVolumeSize(glm::ivec3 fieldDimensions);
 // uniform at the view's step (u.Step), as many segments as the volume's longest ray needs.
 CLOUDVISFILTERS_EXPORT MarchUniforms LightVolumeMarch(const MarchUniforms& u);
 
-// The optical depth toward light `light` from the centre of texel `texel` of a block of `size`
-// texels: LightOpticalDepth from the field's index point there, with `volumeMarch` (from
-// LightVolumeMarch), as the GLSL pass's main() computes one fragment.
-CLOUDVISFILTERS_EXPORT float LightVolumeTexel(const MarchUniforms& volumeMarch,
-  int light,
-  glm::ivec3 texel,
-  glm::ivec3 size);
-
 // Computes them for u.Lights (with vtkSMPTools: a texel's value depends only on its index).
 CLOUDVISFILTERS_EXPORT void ComputeLightVolumes(const MarchUniforms& u, LightVolumes& volumes);
 

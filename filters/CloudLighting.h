@@ -179,13 +179,6 @@ CLOUDVISFILTERS_EXPORT float HenyeyGreenstein(float g, float mu);
 // The two-lobe phase with both eccentricities scaled by `eccentricityScale` (c^n for octave n).
 CLOUDVISFILTERS_EXPORT float Phase(const LightingParameters& p, float mu, float eccentricityScale);
 
-// The derivative model's diffuse term: positive where density falls toward the light. slopeScale
-// is 1 / (h * density unit), h in world units and the density unit the transfer function's span
-// (docs/lighting.md).
-CLOUDVISFILTERS_EXPORT float DerivativeDiffuse(float densityHere,
-  float densityTowardLight,
-  float slopeScale);
-
 // Light scattered toward the eye at a sample from one light whose optical depth to the sample
 // is tau: single scattering plus the multiple-scattering octaves (docs/lighting.md), per channel.
 CLOUDVISFILTERS_EXPORT glm::vec3 ScatteredFraction(const LightingParameters& p,

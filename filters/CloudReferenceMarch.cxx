@@ -13,11 +13,6 @@ glm::vec2 IntersectBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi)
   return glsl::Transport{}.IntersectBox(o, d, lo, hi);
 }
 
-glm::vec4 Optical(const MarchUniforms& u, float density)
-{
-  return TransportOf(u).Optical(density);
-}
-
 glm::vec3 LocalOfIndex(const MarchUniforms& u, glm::vec3 p)
 {
   return TransportOf(u).LocalOfIndex(p);

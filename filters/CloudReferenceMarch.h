@@ -27,9 +27,6 @@ namespace cloudvis
 // Entry and exit distances of the ray o + t d through the box [lo, hi].
 CLOUDVISFILTERS_EXPORT glm::vec2 IntersectBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi);
 
-// Albedo in rgb and the extinction per local unit in a, at a density.
-CLOUDVISFILTERS_EXPORT glm::vec4 Optical(const MarchUniforms& u, float density);
-
 CLOUDVISFILTERS_EXPORT glm::vec3 LocalOfIndex(const MarchUniforms& u, glm::vec3 p);
 CLOUDVISFILTERS_EXPORT glm::vec3 IndexOfLocal(const MarchUniforms& u, glm::vec3 x);
 // LocalToIndex * w: a local displacement in index units.

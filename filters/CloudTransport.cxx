@@ -99,11 +99,6 @@ float Phase(const LightingParameters& p, float mu, float eccentricityScale)
   return TransportOf(p).Phase(mu, eccentricityScale);
 }
 
-float DerivativeDiffuse(float densityHere, float densityTowardLight, float slopeScale)
-{
-  return glsl::Transport{}.DerivativeDiffuse(densityHere, densityTowardLight, slopeScale);
-}
-
 glm::vec3 ScatteredFraction(const LightingParameters& p, float mu, float tau, glm::vec3 albedo)
 {
   return TransportOf(p).ScatteredFraction(mu, tau, albedo);
