@@ -128,12 +128,14 @@ TEST(CloudVolumeMapper, MatchesVtkGpuRayCastOnAMovedScaledVolume)
 
 namespace
 {
-// The scene's float image without and with empty-space skipping, and the samples each took.
+// The scene's float image without and with empty-space skipping (with one sample per reading of
+// the occupancy map, and with two), and the samples each took.
 struct SkippingRenders
 {
-  Image Full, Skipped;
+  Image Full, Skipped, SkippedTwoPerRead;
   double AllSamples = 0.0;                        // without skipping
-  vtkCloudVolumeMapper::FrameStatistics Skipping; // with it
+  vtkCloudVolumeMapper::FrameStatistics Skipping; // with it, one sample per map read
+  vtkCloudVolumeMapper::FrameStatistics SkippingTwoPerRead;
 };
 SkippingRenders RenderWithAndWithoutSkipping(vtkCloudVolumeMapper* mapper,
   Scene& scene,
@@ -145,8 +147,13 @@ SkippingRenders RenderWithAndWithoutSkipping(vtkCloudVolumeMapper* mapper,
   r.Full = scene.RenderFloat();
   r.AllSamples = mapper->GetLastFrameStatistics().SamplesTaken;
   mapper->EmptySpaceSkippingOn();
+  mapper->SetSamplesPerMapRead(1);
   r.Skipped = scene.RenderFloat();
   r.Skipping = mapper->GetLastFrameStatistics();
+  mapper->SetSamplesPerMapRead(2);
+  r.SkippedTwoPerRead = scene.RenderFloat();
+  r.SkippingTwoPerRead = mapper->GetLastFrameStatistics();
+  mapper->SetSamplesPerMapRead(0);
   Dump(r.Skipped, dumpName);
   return r;
 }
@@ -156,7 +163,8 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
 {
   // Skipping lands on the same lattice of samples and only leaps over samples whose extinction
   // is exactly 0, so the float image must be bit for bit the same, under every lighting model
-  // (the light march skips too) and wherever the volume is.
+  // (the light march skips too) and wherever the volume is, with either loop variant (a second
+  // sample before the map is read again adds nothing where its brick is empty).
   for (LightingModel model :
     { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
@@ -175,7 +183,10 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping");
     ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.05) << "an empty window proves nothing";
     EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0) << "model " << int(model);
+    EXPECT_EQ(MaxDifference(r.Full, r.SkippedTwoPerRead), 0.0) << "model " << int(model);
+    EXPECT_EQ(r.SkippingTwoPerRead.SamplesPerMapRead, 2);
     EXPECT_LT(r.Skipping.SamplesTaken, 0.8 * r.AllSamples);
+    EXPECT_LT(r.SkippingTwoPerRead.SamplesTaken, 0.8 * r.AllSamples);
     EXPECT_GT(r.Skipping.UsefulSamples, 0.0);
   }
 }
@@ -227,7 +238,29 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBric
   ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.1) << "an empty window proves nothing";
   ASSERT_LT(MeanOver(r.Full, 3, 0, 96), 0.9) << "an opaque window hides what is missed";
   EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0);
+  EXPECT_EQ(MaxDifference(r.Full, r.SkippedTwoPerRead), 0.0) << "two samples per map read";
   EXPECT_LT(r.Skipping.SamplesTaken, 0.9 * r.AllSamples) << "the march must leap";
+  EXPECT_LT(r.SkippingTwoPerRead.SamplesTaken, 0.9 * r.AllSamples) << "two per read must leap";
+}
+
+TEST(CloudVolumeMapper, DenseFieldsTakeTwoSamplesPerMapReadSparseOnesOne)
+{
+  // The loop's variant follows the field's occupied-brick fraction (SamplesPerMapRead 0, the
+  // default): the sparse cloud leaps often and reads the map before every sample, the dense field
+  // rarely leaps and reads it every second sample.
+  for (bool dense : { false, true })
+  {
+    auto mapper = CloudMapper(0.03);
+    mapper->CollectStatisticsOn();
+    Scene scene(mapper, 64, 64);
+    scene.SetInput(dense ? DenseCloud(48) : SparseCloud(48));
+    SetRampMedium(scene.Property, 1.0, 0.6);
+    scene.RenderFloat();
+    const auto& statistics = mapper->GetLastFrameStatistics();
+    ASSERT_EQ(mapper->GetLastError(), "");
+    EXPECT_EQ(statistics.SamplesPerMapRead, dense ? 2 : 1)
+      << (dense ? "dense" : "sparse") << ", occupied " << statistics.OccupiedBrickFraction;
+  }
 }
 
 TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)
