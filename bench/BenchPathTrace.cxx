@@ -27,7 +27,8 @@
 // Scenes are read by the scene library as `cloudvis render` reads them (any scene it renders), and
 // rendered by the CPU renderers set up as `cloudvis render --cpu-reference` sets them up; each
 // command varies a scene only through its keys (PathTraceBench.h). One file per command:
-// PathTraceSpeed.cxx, PathTraceErrors.cxx (errors, bounces), PathTraceDefects.cxx, PathTraceFit.cxx.
+// PathTraceSpeed.cxx, PathTraceErrors.cxx (errors, bounces), PathTraceDefects.cxx,
+// PathTraceFit.cxx.
 #include "CloudLighting.h"
 #include "PathTraceBench.h"
 
@@ -103,8 +104,7 @@ int main(int argc, char* argv[])
   if (options.Samples < 2 || options.Bounces < 1 || options.FitDimensions == 1 ||
     options.FitDimensions < 0 || options.FitMaxOctaves < 1 ||
     options.FitMaxOctaves > cloudvis::LightingLimits::MaxMultipleScatteringOctaves ||
-    options.FitEvaluations < 1 ||
-    (options.FitSplit != "first" && options.FitSplit != "stratified"))
+    options.FitEvaluations < 1 || (options.FitSplit != "first" && options.FitSplit != "stratified"))
     return Usage(argv[0]);
   try
   {

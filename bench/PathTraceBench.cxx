@@ -63,7 +63,9 @@ namespace
 {
 // The scene at the benchmark's image size, set up on `renderer` as the app sets up its CPU
 // reference.
-void SetUp(const Scene& scene, vtkImageData* field, const Options& options,
+void SetUp(const Scene& scene,
+  vtkImageData* field,
+  const Options& options,
   vtkCloudReferenceRenderer* renderer)
 {
   Scene sized = scene;

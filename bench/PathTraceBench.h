@@ -45,7 +45,8 @@ struct BenchScene
   std::string Name; // the file's name, unless the command names the variant
   Scene Spec;
 };
-BenchScene ReadBenchScene(const std::string& path, const std::vector<std::string>& assignments = {});
+BenchScene ReadBenchScene(const std::string& path,
+  const std::vector<std::string>& assignments = {});
 
 // The scene lit by `lights` alone, with every transfer-function color replaced by the gray
 // `albedo` when that is >= 0.

@@ -56,8 +56,12 @@ MarchUniforms UniformsOf(vtkImageData* field, const TransferTable& table, LocalF
 
 // The optical depth from index point p along the direction l over [s0, s1] (local units), by
 // the midpoint rule with steps of 1/16 of the smallest voxel: the exact integral to 1e-4.
-double OpticalDepth(
-  const MarchUniforms& u, const LocalFrame& frame, glm::vec3 p, glm::vec3 l, double s0, double s1)
+double OpticalDepth(const MarchUniforms& u,
+  const LocalFrame& frame,
+  glm::vec3 p,
+  glm::vec3 l,
+  double s0,
+  double s1)
 {
   const double ds = frame.SmallestVoxelEdge / frame.Unit / 16.0;
   const glm::vec3 indexStep = LocalToIndex(u, l);
@@ -85,8 +89,15 @@ struct Percentiles
       mean += x;
     mean /= double(v.size());
     char text[160];
-    std::snprintf(text, sizeof(text), "mean %.4f%s, 5%% %.4f, median %.4f, 95%% %.4f, max %.4f",
-      mean, unit, v[v.size() / 20], v[v.size() / 2], v[v.size() * 19 / 20], v.back());
+    std::snprintf(text,
+      sizeof(text),
+      "mean %.4f%s, 5%% %.4f, median %.4f, 95%% %.4f, max %.4f",
+      mean,
+      unit,
+      v[v.size() / 20],
+      v[v.size() / 2],
+      v[v.size() * 19 / 20],
+      v.back());
     return text;
   }
 };
@@ -162,8 +173,11 @@ void OpacityBins(const char* label, const Rendered& image, const Rendered& refer
       }
     }
     if (pixels > 0)
-      std::printf(" opacity [%.2f, %.2f): %.2f (%d px);", edges[b], std::min(edges[b + 1], 1.0),
-        sum / referenceSum, pixels);
+      std::printf(" opacity [%.2f, %.2f): %.2f (%d px);",
+        edges[b],
+        std::min(edges[b + 1], 1.0),
+        sum / referenceSum,
+        pixels);
   }
   std::printf("\n");
 }
@@ -197,7 +211,9 @@ std::vector<int> Outliers(const Rendered& image, int width, int height, double f
 int Defects(const Options& options)
 {
   std::printf("The march's defects, measured (%d x %d images, path tracer %d paths per pixel).\n",
-    options.Width, options.Height, options.Samples);
+    options.Width,
+    options.Height,
+    options.Samples);
   for (const BenchScene& errorField : ErrorFields())
   {
     const Scene& scene = errorField.Spec;
@@ -213,12 +229,15 @@ int Defects(const Options& options)
       lighting.Model = LightingModel::March;
       auto march = NewMarch(gray, field, lighting, options);
       char label[120];
-      std::snprintf(label, sizeof(label), "side-lit, albedo %.1f, march (defaults) / path tracer",
+      std::snprintf(label,
+        sizeof(label),
+        "side-lit, albedo %.1f, march (defaults) / path tracer",
         double(albedo));
       OpacityBins(label, Run(march), reference);
       lighting.LightSteps = 12; // twice the segments, over the same way to the exit
       march->GetLightingProperty()->SetParameters(lighting);
-      std::snprintf(label, sizeof(label),
+      std::snprintf(label,
+        sizeof(label),
         "side-lit, albedo %.1f, march with 12 growing light "
         "steps / path tracer",
         double(albedo));
@@ -230,10 +249,11 @@ int Defects(const Options& options)
   // along the box's front face: view rays enter through that face, and their first sample lies
   // on it. Where rounding puts it a hair outside, the light march finds no midpoint inside and
   // the sample is lit unshadowed.
-  const Scene filling =
-    Relit(ReadBenchScene("data/scenes/fbm-sphere.json", { "field.shape.radius=2.5", "ambient.strength=0" })
-            .Spec,
-      { LightToward({ 1.0f, 0.0f, 0.0f }) }, 1.0f);
+  const Scene filling = Relit(ReadBenchScene("data/scenes/fbm-sphere.json",
+                                { "field.shape.radius=2.5", "ambient.strength=0" })
+                                .Spec,
+    { LightToward({ 1.0f, 0.0f, 0.0f }) },
+    1.0f);
   const vtkSmartPointer<vtkImageData> field = FieldOf(filling);
   const TransferTable table = TableOf(filling);
   LocalFrame frame;
@@ -258,8 +278,13 @@ int Defects(const Options& options)
     const auto firstSampleOutside = [&](int pixel)
     {
       glm::dvec3 nearPoint, farPoint;
-      vtkCloudReferenceRenderer::PixelRay(deviceToLocal, pixel % options.Width,
-        pixel / options.Width, options.Width, options.Height, nearPoint, farPoint);
+      vtkCloudReferenceRenderer::PixelRay(deviceToLocal,
+        pixel % options.Width,
+        pixel / options.Width,
+        options.Width,
+        options.Height,
+        nearPoint,
+        farPoint);
       const glm::vec3 toFar = glm::vec3(farPoint) - glm::vec3(nearPoint);
       const glm::vec3 origin = IndexOfLocal(u, glm::vec3(nearPoint));
       const glm::vec3 direction = LocalToIndex(u, toFar / glm::length(toFar));
@@ -286,8 +311,11 @@ int Defects(const Options& options)
     std::printf("  step %s: %d of %d pixels have their first sample outside by rounding, and are "
                 "on average %.1fx brighter than the others; %d pixels are > 3x the median of "
                 "their neighbours, %d of them with the first sample outside\n",
-      step > 0.0 ? "0.005" : "default (1 voxel)", outside, dense,
-      (radiance[1] / std::max(outside, 1)) / (radiance[0] / std::max(dense - outside, 1)), outliers,
+      step > 0.0 ? "0.005" : "default (1 voxel)",
+      outside,
+      dense,
+      (radiance[1] / std::max(outside, 1)) / (radiance[0] / std::max(dense - outside, 1)),
+      outliers,
       outlierOutside);
   }
   return 0;

@@ -36,18 +36,43 @@ struct ErrorModel
 int Errors(const Options& options)
 {
   const ErrorModel models[] = {
-    { "march (defaults: light volumes, 3 octaves)", LightingModel::March, 3, false, false, false,
+    { "march (defaults: light volumes, 3 octaves)",
+      LightingModel::March,
+      3,
+      false,
+      false,
+      false,
       false },
-    { "march, nested light march (6 growing steps), 3 octaves", LightingModel::March, 3, false,
-      false, false, true },
+    { "march, nested light march (6 growing steps), 3 octaves",
+      LightingModel::March,
+      3,
+      false,
+      false,
+      false,
+      true },
     { "march, no octaves", LightingModel::March, 0, false, false, false, false },
     { "derivative", LightingModel::Derivative, 0, false, false, false, false },
-    { "single scattering: march, no octaves (light volumes)", LightingModel::March, 0, false, true,
-      true, false },
-    { "single scattering: march, no octaves, nested light march", LightingModel::March, 0, false,
-      true, true, true },
-    { "single scattering: march, no octaves, 64 uniform light steps", LightingModel::March, 0, true,
-      true, true, true },
+    { "single scattering: march, no octaves (light volumes)",
+      LightingModel::March,
+      0,
+      false,
+      true,
+      true,
+      false },
+    { "single scattering: march, no octaves, nested light march",
+      LightingModel::March,
+      0,
+      false,
+      true,
+      true,
+      true },
+    { "single scattering: march, no octaves, 64 uniform light steps",
+      LightingModel::March,
+      0,
+      true,
+      true,
+      true,
+      true },
   };
   const struct
   {
@@ -55,8 +80,11 @@ int Errors(const Options& options)
     glm::vec3 TowardLight;
   } lightings[] = { { "side-lit", { 1.0f, 0.0f, 0.0f } },
     { "backlit", glm::normalize(glm::vec3(0.2f, 0.3f, -1.0f)) } };
-  std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d\n\n", options.Width,
-    options.Height, options.Samples, options.Bounces);
+  std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d\n\n",
+    options.Width,
+    options.Height,
+    options.Samples,
+    options.Bounces);
   std::printf("| field | light | albedo | model | relative RMSE | noise-corrected | bias (ratio "
               "of means) | max error / peak | reference's relative standard error |\n"
               "|---|---|---|---|---|---|---|---|---|\n");
@@ -78,10 +106,10 @@ int Errors(const Options& options)
       for (float albedo : { 1.0f, 0.9f })
       {
         const Scene gray = Relit(scene, { light }, albedo);
-        const std::string label = errorField.Name + "-" + lit.Name + "-albedo" +
-          (albedo == 1.0f ? "1" : "0.9");
+        const std::string label =
+          errorField.Name + "-" + lit.Name + "-albedo" + (albedo == 1.0f ? "1" : "0.9");
         std::vector<Rendered> references(2); // every order of scattering, single scattering
-        Rendered volumesImage;                // march with its defaults: the light volumes
+        Rendered volumesImage;               // march with its defaults: the light volumes
         for (const ErrorModel& model : models)
         {
           if (model.AlbedoOneOnly && albedo != 1.0f)
@@ -92,8 +120,10 @@ int Errors(const Options& options)
             reference =
               Run(NewTracer(gray, field, model.SingleScattering ? 1 : options.Bounces, options));
             WritePng(options.PngDirectory,
-              label + (model.SingleScattering ? "-pathtrace1" : "-pathtrace"), reference.RGBA,
-              options.Width, options.Height);
+              label + (model.SingleScattering ? "-pathtrace1" : "-pathtrace"),
+              reference.RGBA,
+              options.Width,
+              options.Height);
           }
           LightingParameters lighting = LightingOf(scene);
           lighting.Model = model.Model;
@@ -111,7 +141,9 @@ int Errors(const Options& options)
             label + "-" + (model.Model == LightingModel::Derivative ? "derivative" : "march") +
               std::to_string(model.Octaves) + (model.UniformLightSteps ? "u" : "") +
               (model.Nested ? "n" : ""),
-            image.RGBA, options.Width, options.Height);
+            image.RGBA,
+            options.Width,
+            options.Height);
           if (&model == &models[0])
           {
             marchMean[albedo == 1.0f ? 0 : 1] = MeanRadiance(image);
@@ -120,19 +152,35 @@ int Errors(const Options& options)
           if (&model == &models[1]) // the two settings against each other, noise-free
           {
             const std::vector<float> exact(image.RGBA.size(), 0.0f);
-            const ImageError d = CompareWithReference(volumesImage.RGBA.data(), image.RGBA.data(),
-              exact.data(), std::size_t(options.Width) * options.Height);
+            const ImageError d = CompareWithReference(volumesImage.RGBA.data(),
+              image.RGBA.data(),
+              exact.data(),
+              std::size_t(options.Width) * options.Height);
             char line[200];
-            std::snprintf(line, sizeof(line), "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
-              errorField.Name.c_str(), lit.Name, double(albedo), 100.0 * d.RelativeRMSE, d.BiasRatio,
+            std::snprintf(line,
+              sizeof(line),
+              "| %s | %s | %.1f | %.2f%% | %.4f | %.2f%% |",
+              errorField.Name.c_str(),
+              lit.Name,
+              double(albedo),
+              100.0 * d.RelativeRMSE,
+              d.BiasRatio,
               100.0 * d.MaxErrorOverPeak);
             settingDifferences.push_back(line);
           }
-          const ImageError e = CompareWithReference(image.RGBA.data(), reference.RGBA.data(),
-            reference.Variance.data(), std::size_t(options.Width) * options.Height);
+          const ImageError e = CompareWithReference(image.RGBA.data(),
+            reference.RGBA.data(),
+            reference.Variance.data(),
+            std::size_t(options.Width) * options.Height);
           std::printf("| %s | %s | %.1f | %s | %.1f%% | %.1f%% | %.3f | %.1f%% | %.2f%% |\n",
-            errorField.Name.c_str(), lit.Name, double(albedo), model.Name, 100.0 * e.RelativeRMSE,
-            100.0 * e.NoiseCorrectedRelativeRMSE, e.BiasRatio, 100.0 * e.MaxErrorOverPeak,
+            errorField.Name.c_str(),
+            lit.Name,
+            double(albedo),
+            model.Name,
+            100.0 * e.RelativeRMSE,
+            100.0 * e.NoiseCorrectedRelativeRMSE,
+            e.BiasRatio,
+            100.0 * e.MaxErrorOverPeak,
             100.0 * e.ReferenceRelativeStandardError);
           std::fflush(stdout);
         }
@@ -168,8 +216,10 @@ int Errors(const Options& options)
 // means (of the green channel, over all pixels) is that loss, nearly free of noise.
 int Bounces(const Options& options)
 {
-  std::printf("%d x %d, %d paths per pixel; loss = 1 - mean(cap) / mean(no cap)\n\n", options.Width,
-    options.Height, options.Samples);
+  std::printf("%d x %d, %d paths per pixel; loss = 1 - mean(cap) / mean(no cap)\n\n",
+    options.Width,
+    options.Height,
+    options.Samples);
   std::printf("| scene | cap | image mean | loss | relative standard error of the image mean | "
               "time |\n"
               "|---|---|---|---|---|---|\n");
@@ -198,8 +248,13 @@ int Bounces(const Options& options)
       }
       if (cap == (1 << 24))
         uncapped = mean;
-      std::printf("| %s | %d | %.5f | %.2e | %.2e | %.1f s |\n", errorField.Name.c_str(), cap, mean,
-        1.0 - mean / uncapped, std::sqrt(variance) / mean, image.Seconds);
+      std::printf("| %s | %d | %.5f | %.2e | %.2e | %.1f s |\n",
+        errorField.Name.c_str(),
+        cap,
+        mean,
+        1.0 - mean / uncapped,
+        std::sqrt(variance) / mean,
+        image.Seconds);
       std::fflush(stdout);
     }
   }

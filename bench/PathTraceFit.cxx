@@ -79,11 +79,13 @@ std::vector<FitField> FitFields(const std::string& split, int dimensions)
     // the `errors` table's dense field: a sphere that touches the box
     { "dense", fbm, { "field.shape.radius=1.8", "transfer_function.unit_distance=0.5" } },
     // fBm on a box filling most of the volume, extinction up to 6.4
-    { "fbm-box", fbm,
+    { "fbm-box",
+      fbm,
       { R"(field.shape={"type": "box", "half_size": [1.5, 1, 1.5]})",
         "transfer_function.unit_distance=0.25" } },
     // sphere.json 8 times denser: optical radius 4.1 (sphere.json's is 0.51)
-    { "thick-sphere", sphere,
+    { "thick-sphere",
+      sphere,
       { "field.density_scale=8", "transfer_function.opacity=[[0, 0], [8, 0.4]]" } },
     { "perlin-falloff", "data/scenes/perlin-falloff.json", {} },
     { "sphere", sphere, {} },

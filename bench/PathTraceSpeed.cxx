@@ -22,15 +22,21 @@ int Speed(const Options& options)
 {
   std::vector<std::string> files = options.Scenes;
   if (files.empty())
-    files = { "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json",
-      "data/scenes/sphere.json" };
+    files = {
+      "data/scenes/fbm-sphere.json", "data/scenes/two-lights.json", "data/scenes/sphere.json"
+    };
   std::vector<BenchScene> scenes;
   for (const std::string& file : files)
     scenes.push_back(ReadBenchScene(file)); // every scene checked before anything is printed
   std::printf("%d x %d, %d paths per pixel, bounce cap %d, bricks of %d voxels, vtkSMPTools %s "
               "with %d threads\n\n",
-    options.Width, options.Height, options.Samples, options.Bounces, options.BrickSize,
-    vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
+    options.Width,
+    options.Height,
+    options.Samples,
+    options.Bounces,
+    options.BrickSize,
+    vtkSMPTools::GetBackend(),
+    vtkSMPTools::GetEstimatedNumberOfThreads());
   std::printf("| scene | path tracer | paths/s (all pixels) | paths/s (cloud pixels) | relative "
               "standard error | time to 1%% at 800x600 | CPU march (%s) | one path per pixel "
               "costs |\n|---|---|---|---|---|---|---|---|\n",
@@ -58,9 +64,14 @@ int Speed(const Options& options)
       traced.Seconds / options.Samples * samplesNeeded * (800.0 * 600.0) / double(pixels);
     std::printf("| %s | %.2f s | %.0f | %.0f | %.2f%% | %.0f s (%.0f paths per pixel) | %.3f s | "
                 "%.1f march images |\n",
-      scene.Name.c_str(), traced.Seconds, paths / traced.Seconds,
-      double(noise.Pixels) * options.Samples / traced.Seconds, 100.0 * noise.RelativeStandardError,
-      seconds800x600, samplesNeeded, marched.Seconds,
+      scene.Name.c_str(),
+      traced.Seconds,
+      paths / traced.Seconds,
+      double(noise.Pixels) * options.Samples / traced.Seconds,
+      100.0 * noise.RelativeStandardError,
+      seconds800x600,
+      samplesNeeded,
+      marched.Seconds,
       traced.Seconds / options.Samples / marched.Seconds);
     std::fflush(stdout);
   }

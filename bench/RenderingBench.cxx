@@ -28,9 +28,7 @@ namespace bench
 
 double FullScale(int scalarType)
 {
-  return scalarType == VTK_UNSIGNED_CHAR ? 255.0
-    : scalarType == VTK_UNSIGNED_SHORT   ? 65535.0
-                                         : 1.0;
+  return scalarType == VTK_UNSIGNED_CHAR ? 255.0 : scalarType == VTK_UNSIGNED_SHORT ? 65535.0 : 1.0;
 }
 
 vtkSmartPointer<vtkImageData> Quantized(vtkImageData* field, int scalarType)
@@ -97,9 +95,14 @@ vtkSmartPointer<vtkImageData> Field(int size, bool dense, int scalarType)
 
 vtkSmartPointer<vtkCloudVolumeMapper> CloudMapper(double step)
 {
+  // The app's set-up (ConfigureMapper) for a render section without jitter or accumulation; the
+  // step is every renderer's (ConfigureLighting's in the app).
+  RenderSpec render;
+  render.Jitter = false;
+  render.Accumulate = 1;
   auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
+  ConfigureMapper(mapper, render);
   mapper->SetSampleDistance(step);
-  mapper->JitterOff();
   return mapper;
 }
 

@@ -64,7 +64,10 @@ struct View
 
   // densityMax: the density the transfer function's last point sits at (1 for the float field;
   // the full scale of an integer type holding it).
-  View(vtkVolumeMapper* mapper, vtkImageData* field, const Options& options, double densityMax = 1.0);
+  View(vtkVolumeMapper* mapper,
+    vtkImageData* field,
+    const Options& options,
+    double densityMax = 1.0);
 
   // Mean milliseconds per frame over `frames` renders after one warm-up render.
   double MillisecondsPerFrame(int frames, const std::function<void()>& beforeEachFrame);

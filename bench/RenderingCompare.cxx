@@ -47,8 +47,7 @@ void Compare(const char* name, vtkImageData* field, const Options& options)
   const auto& statistics = cloudMapper->GetLastFrameStatistics();
   const double useful = statistics.UsefulSamples / std::max(1.0, statistics.SamplesTaken);
   cloudMapper->CollectStatisticsOff();
-  const double rms =
-    RmsLevels(cloud.Pixels(), vtk.Pixels());
+  const double rms = RmsLevels(cloud.Pixels(), vtk.Pixels());
 
   // While interacting the mapper lowers its resolution to keep 20 frames per second.
   cloud.Window->SetDesiredUpdateRate(20.0);
@@ -102,9 +101,8 @@ void CompareStorage(vtkImageData* field, const Options& options)
   {
     auto mapper = CloudMapper(step);
     mapper->SetHalfFloatDensity(storage.HalfFloat);
-    const auto stored = storage.ScalarType == VTK_FLOAT
-      ? vtkSmartPointer<vtkImageData>(field)
-      : Quantized(field, storage.ScalarType);
+    const auto stored = storage.ScalarType == VTK_FLOAT ? vtkSmartPointer<vtkImageData>(field)
+                                                        : Quantized(field, storage.ScalarType);
     View view(mapper, stored, options, FullScale(storage.ScalarType));
     const double ms = view.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); });
     if (!mapper->GetLastError().empty())
@@ -278,8 +276,7 @@ int OneModel(const Options& options, const std::string& model, bool dense, int b
   mapper->GetLightingProperty()->SetParameters(*MeasuredLighting(model));
   View cloud(mapper, field, options);
   SetLights(cloud.Renderer, 1);
-  std::printf(
-    "%.1f ms\n", cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); }));
+  std::printf("%.1f ms\n", cloud.MillisecondsPerFrame(options.Frames, [&] { mapper->Modified(); }));
   mapper->CollectStatisticsOn();
   mapper->Modified();
   cloud.Window->Render();

@@ -550,8 +550,8 @@ int Matrix(int argc, char* argv[])
         row.Model = "all";
         row.Refused = "skipped: the " +
           std::string(vtkImageScalarTypeNameMacro(settings.ScalarType)) + " field needs about " +
-          FormatBytes(double(needed)) + " of host memory, " +
-          FormatBytes(double(available)) + " available";
+          FormatBytes(double(needed)) + " of host memory, " + FormatBytes(double(available)) +
+          " available";
         PrintRow(row);
         rows.push_back(row);
         continue;
