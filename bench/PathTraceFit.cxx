@@ -60,6 +60,8 @@ namespace
 //   "stratified" (the default): held-out fields fbm-box, perlin-falloff, sparse; the training
 //     set has a field of each kind the held-out set has (thin: sphere; fbm noise: fbm-sphere;
 //     dense: dense). Chosen after the "first" split's fit, before its own.
+// Each field is a shipped scene with --set assignments, read by the scene library; `dimensions`
+// above 0 sets field.dimensions (--voxels).
 struct FitField
 {
   BenchScene Scene;
