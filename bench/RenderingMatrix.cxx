@@ -47,6 +47,8 @@ struct Settings
   // MeasuredLighting's names, measured in this order after `none` (the lit rows' "x none").
   std::vector<std::string> Models = { "none", "derivative", "march", "nested" };
   std::vector<int> Lights = { 1, 2 };
+  // Samples per reading of the occupancy map: 0 lets the mapper choose by the field's occupancy.
+  std::vector<int> MapReads = { 0 };
   int Frames = 10;
   int InteractiveFrames = 10;
   int ScalarType = VTK_UNSIGNED_CHAR;
@@ -60,7 +62,8 @@ struct Row
   int Size = 0;
   ImageSize Image{};
   std::string Model;
-  int Lights = 0; // 0: the model uses none
+  int Lights = 0;   // 0: the model uses none
+  int MapReads = 0; // samples per map read forced on the mapper; 0: its own choice
   double CloudMs = -1.0;
   double VtkMs = -1.0;
   double NoneMs = -1.0; // cloudvis unlit on the same field and image
@@ -131,11 +134,14 @@ void PrintRow(const Row& row)
   const std::string image = row.Image.Width > 0
     ? std::to_string(row.Image.Width) + "x" + std::to_string(row.Image.Height)
     : "-";
+  const std::string model = row.MapReads > 0
+    ? row.Model + " (" + std::to_string(row.MapReads) + " per map read)"
+    : row.Model;
   std::printf("| %s | %d^3 | %s | %s | %s |",
     row.Field.c_str(),
     row.Size,
     image.c_str(),
-    row.Model.c_str(),
+    model.c_str(),
     row.Lights ? std::to_string(row.Lights).c_str() : "-");
   if (!row.Refused.empty())
   {
@@ -249,75 +255,87 @@ void MeasureCloud(const std::string& fieldName,
   auto mapper = CloudMapper(4.0 / (size - 1));
   View view(mapper, field, options, densityMax);
   vtkCamera* camera = view.Renderer->GetActiveCamera();
-  double noneMs = -1.0;
+  std::map<int, double> noneMs; // per samples-per-map-read setting
   bool first = true;
   for (const std::string& model : settings.Models)
   {
     const LightingParameters lighting = *MeasuredLighting(model);
     const bool lit = lighting.Model != LightingModel::None;
     for (int lights : lit ? settings.Lights : std::vector<int>{ 0 })
-    {
-      Row row;
-      row.Field = fieldName;
-      row.Size = size;
-      row.Image = { options.Width, options.Height };
-      row.Model = model;
-      row.Lights = lights;
-      mapper->GetLightingProperty()->SetParameters(lighting);
-      SetLights(view.Renderer, lights);
-      if (first)
+      for (int mapReads : settings.MapReads)
       {
-        view.Volume->VisibilityOff();
+        mapper->SetSamplesPerMapRead(mapReads);
+        Row row;
+        row.MapReads = mapReads;
+        row.Field = fieldName;
+        row.Size = size;
+        row.Image = { options.Width, options.Height };
+        row.Model = model;
+        row.Lights = lights;
+        mapper->GetLightingProperty()->SetParameters(lighting);
+        SetLights(view.Renderer, lights);
+        if (first)
+        {
+          view.Volume->VisibilityOff();
+          view.Window->Render();
+          view.Volume->VisibilityOn();
+          row.CloudDriverBytes = DriverBytesUsedBy(view.Window, [&] { view.Window->Render(); });
+          first = false;
+          mapper->CollectStatisticsOn();
+          view.Window->Render();
+          mapper->CollectStatisticsOff();
+          std::fprintf(stderr,
+            "(%s %d^3: %.1f%% of the occupancy bricks occupied)\n",
+            fieldName.c_str(),
+            size,
+            100.0 * mapper->GetLastFrameStatistics().OccupiedBrickFraction);
+        }
+        else
+        {
+          view.Window->Render();
+        }
+        if (!mapper->GetLastError().empty())
+        {
+          row.Refused = "refused by cloudvis: " + mapper->GetLastError();
+          PrintRow(row);
+          rows.push_back(row);
+          if (mapper->GetGPUMemoryBytes() == 0 || mapper->GetDensityTextureBytes() == 0)
+          {
+            return; // the field itself does not fit: no other model will
+          }
+          continue;
+        }
+        row.CloudMs = view.MillisecondsPerFrame(settings.Frames, [&] { mapper->Modified(); });
+        row.CloudBytes = mapper->GetGPUMemoryBytes();
+        row.VtkMs =
+          lit ? (vtk.ShadedMs.count(lights) ? vtk.ShadedMs.at(lights) : -1.0) : vtk.UnlitMs;
+        row.VtkBytes = vtk.Bytes;
+        row.VtkBytesMeasured = vtk.Measured;
+        if (!lit)
+        {
+          noneMs[mapReads] = row.CloudMs;
+        }
+        row.NoneMs = noneMs.count(mapReads) ? noneMs[mapReads] : -1.0;
+
+        // Interacting: the window's desired update rate above 1, the camera turning each frame; the
+        // mapper lowers its resolution scale to keep InteractiveFrameRate. A few frames to settle,
+        // then the measured ones, then one more that reads back the march's size.
+        double position[3];
+        camera->GetPosition(position);
+        view.Window->SetDesiredUpdateRate(20.0);
+        const auto turn = [&] { camera->Azimuth(1.0); };
+        view.MillisecondsPerFrame(5, turn);
+        row.InteractiveMs = view.MillisecondsPerFrame(settings.InteractiveFrames, turn);
+        mapper->CollectStatisticsOn();
+        turn();
         view.Window->Render();
-        view.Volume->VisibilityOn();
-        row.CloudDriverBytes = DriverBytesUsedBy(view.Window, [&] { view.Window->Render(); });
-        first = false;
-      }
-      else
-      {
-        view.Window->Render();
-      }
-      if (!mapper->GetLastError().empty())
-      {
-        row.Refused = "refused by cloudvis: " + mapper->GetLastError();
+        mapper->CollectStatisticsOff();
+        row.InteractiveScale = double(mapper->GetLastFrameStatistics().Width) / options.Width;
+        view.Window->SetDesiredUpdateRate(0.0001); // vtkRenderWindow's still rate
+        camera->SetPosition(position);
+        camera->SetViewUp(0.0, 1.0, 0.0);
         PrintRow(row);
         rows.push_back(row);
-        if (mapper->GetGPUMemoryBytes() == 0 || mapper->GetDensityTextureBytes() == 0)
-        {
-          return; // the field itself does not fit: no other model will
-        }
-        continue;
-      }
-      row.CloudMs = view.MillisecondsPerFrame(settings.Frames, [&] { mapper->Modified(); });
-      row.CloudBytes = mapper->GetGPUMemoryBytes();
-      row.VtkMs = lit ? (vtk.ShadedMs.count(lights) ? vtk.ShadedMs.at(lights) : -1.0) : vtk.UnlitMs;
-      row.VtkBytes = vtk.Bytes;
-      row.VtkBytesMeasured = vtk.Measured;
-      if (!lit)
-      {
-        noneMs = row.CloudMs;
-      }
-      row.NoneMs = noneMs;
-
-      // Interacting: the window's desired update rate above 1, the camera turning each frame; the
-      // mapper lowers its resolution scale to keep InteractiveFrameRate. A few frames to settle,
-      // then the measured ones, then one more that reads back the march's size.
-      double position[3];
-      camera->GetPosition(position);
-      view.Window->SetDesiredUpdateRate(20.0);
-      const auto turn = [&] { camera->Azimuth(1.0); };
-      view.MillisecondsPerFrame(5, turn);
-      row.InteractiveMs = view.MillisecondsPerFrame(settings.InteractiveFrames, turn);
-      mapper->CollectStatisticsOn();
-      turn();
-      view.Window->Render();
-      mapper->CollectStatisticsOff();
-      row.InteractiveScale = double(mapper->GetLastFrameStatistics().Width) / options.Width;
-      view.Window->SetDesiredUpdateRate(0.0001); // vtkRenderWindow's still rate
-      camera->SetPosition(position);
-      camera->SetViewUp(0.0, 1.0, 0.0);
-      PrintRow(row);
-      rows.push_back(row);
     }
   }
 }
@@ -397,10 +415,11 @@ int Matrix(int argc, char* argv[])
 {
   Settings settings;
   bool chosen = false; // any of the subset options given
-  const char* usage = "usage: cloudvis-bench-rendering matrix [--fields sparse,dense] [--sizes "
-                      "256,512,1024] [--images 800x600,1920x1080,3840x2160] [--models "
-                      "none,derivative,march,nested] [--lights 1,2] [--frames F] "
-                      "[--interactive-frames F] [--type uchar|ushort|float] [--no-vtk]\n";
+  const char* usage =
+    "usage: cloudvis-bench-rendering matrix [--fields sparse,dense] [--sizes "
+    "256,512,1024] [--images 800x600,1920x1080,3840x2160] [--models "
+    "none,derivative,march,nested] [--lights 1,2] [--map-reads auto,1,2] [--frames F] "
+    "[--interactive-frames F] [--type uchar|ushort|float] [--no-vtk]\n";
   for (int i = 2; i < argc; ++i)
   {
     const std::string option = argv[i];
@@ -440,6 +459,15 @@ int Matrix(int argc, char* argv[])
         list.push_back(n);
       }
       chosen = true;
+    }
+    else if (option == "--map-reads")
+    {
+      settings.MapReads.clear();
+      for (const std::string& item : items)
+      {
+        valid = valid && (item == "auto" || item == "1" || item == "2");
+        settings.MapReads.push_back(item == "auto" ? 0 : std::atoi(item.c_str()));
+      }
     }
     else if (option == "--images")
     {
