@@ -418,7 +418,7 @@ int Matrix(int argc, char* argv[])
   const char* usage =
     "usage: cloudvis-bench-rendering matrix [--fields sparse,dense] [--sizes "
     "256,512,1024] [--images 800x600,1920x1080,3840x2160] [--models "
-    "none,derivative,march,nested] [--lights 1,2] [--map-reads auto,1,2] [--frames F] "
+    "none,derivative,march,nested] [--lights 1,2] [--map-reads auto,1,2,4] [--frames F] "
     "[--interactive-frames F] [--type uchar|ushort|float] [--no-vtk]\n";
   for (int i = 2; i < argc; ++i)
   {
@@ -465,8 +465,9 @@ int Matrix(int argc, char* argv[])
       settings.MapReads.clear();
       for (const std::string& item : items)
       {
-        valid = valid && (item == "auto" || item == "1" || item == "2");
-        settings.MapReads.push_back(item == "auto" ? 0 : std::atoi(item.c_str()));
+        const int n = item == "auto" ? 0 : PositiveInteger(item);
+        valid = valid && n >= 0 && n <= 4;
+        settings.MapReads.push_back(n);
       }
     }
     else if (option == "--images")

@@ -239,25 +239,21 @@ void main()
           continue;
         }
       }
-      if (!MarchSample(m, ray, s, p))
+      // Dense fields: more samples before the map is read again (SAMPLES_PER_MAP_READ, the
+      // program's variant). One may lie in another brick, and if that one is empty it adds
+      // nothing (its extinction is 0 there), so the image is the same; the next iteration
+      // reads the map again and leaps from there.
+      bool marching = MarchSample(m, ray, s, p);
+      for (int j = 1; marching && j < SAMPLES_PER_MAP_READ; ++j)
+      {
+        k += 1.0;
+        s = (k + jitter) * Step;
+        marching = s < span && MarchSample(m, ray, s, entry + s * direction);
+      }
+      if (!marching)
       {
         break;
       }
-#if SAMPLES_PER_MAP_READ == 2
-      // Dense fields: a second sample before the map is read again. It may lie in the next
-      // brick, and if that one is empty it adds nothing (its extinction is 0 there), so the image
-      // is the same; the next iteration reads the map again and leaps from there.
-      k += 1.0;
-      s = (k + jitter) * Step;
-      if (s >= span)
-      {
-        break;
-      }
-      if (!MarchSample(m, ray, s, entry + s * direction))
-      {
-        break;
-      }
-#endif
       k += 1.0;
     }
   }

@@ -81,7 +81,7 @@ std::string LightingSource(LightingModel model, const std::vector<LocalLight>& l
 
 int SamplesPerMapRead(double occupiedBrickFraction)
 {
-  return occupiedBrickFraction >= DenseOccupiedBrickFraction ? 2 : 1;
+  return occupiedBrickFraction >= DenseOccupiedBrickFraction ? DenseSamplesPerMapRead : 1;
 }
 
 std::string MarchShaderSource(LightingModel model,

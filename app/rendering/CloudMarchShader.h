@@ -32,12 +32,14 @@ constexpr float DepthTransmittance = 0.98f;
 std::string GlslFloat(float value);
 
 // The march reads the occupancy map before every sample where leaps are common, and before every
-// second sample in fields whose bricks are mostly occupied (at least this fraction), where a leap
-// is rare and the map's read and the masked leap code dominate a sample's cost on SIMD
-// rasterizers (docs/performance.md, "The march's per-sample cost"). The image is the same either
-// way: a second sample in an empty brick adds nothing.
+// fourth sample (DenseSamplesPerMapRead) in fields whose bricks are mostly occupied (at least
+// DenseOccupiedBrickFraction), where a leap is rare and the map's read and the masked leap code
+// dominate a sample's cost on SIMD rasterizers (docs/performance.md, "The march's loop
+// variants"). The image is the same either way: a sample in an empty brick adds nothing.
 constexpr double DenseOccupiedBrickFraction = 0.5;
-// 1 or 2: the march loop's variant for a field with this fraction of occupied bricks.
+constexpr int DenseSamplesPerMapRead = 4;
+// The march loop's variant for a field with this fraction of occupied bricks: 1 or
+// DenseSamplesPerMapRead.
 int SamplesPerMapRead(double occupiedBrickFraction);
 
 // The fragment shader's source for a lighting model, the kinds of the lights (positional or

@@ -123,12 +123,12 @@ public:
 
   ///@{
   /**
-   * Samples the march takes per reading of the occupancy map: 1 or 2, or 0 (the default) to
-   * choose by the field's occupied-brick fraction (2 for dense fields, where leaps are rare;
-   * cloudvis::SamplesPerMapRead). The image is the same either way; only the speed differs
-   * (docs/performance.md).
+   * Samples the march takes per reading of the occupancy map, 1 to 4, or 0 (the default) to
+   * choose by the field's occupied-brick fraction (4 for dense fields, where leaps are rare, 1
+   * otherwise; cloudvis::SamplesPerMapRead). The image is the same either way; only the speed
+   * differs (docs/performance.md).
    */
-  vtkSetClampMacro(SamplesPerMapRead, int, 0, 2);
+  vtkSetClampMacro(SamplesPerMapRead, int, 0, 4);
   vtkGetMacro(SamplesPerMapRead, int);
   ///@}
 
