@@ -11,7 +11,7 @@
 //   fractional bits);
 // - SourceTerm, which sums one model's light terms over the lights in a loop where the GPU's
 //   program calls each light's term with a constant index (app/rendering/CloudMarchShader.cxx).
-// A Transport is filled from the uniforms SetUpMarch computes (TransportOf) and is cheap to copy;
+// A Transport (about a kilobyte) is filled from the uniforms SetUpMarch computes (TransportOf);
 // it is per thread, since the path tracer counts its density reads in it, as the GLSL does in
 // globals. The public entry points (MarchRay, TracePath, ComputeLightVolumes, HenyeyGreenstein...)
 // are thin wrappers in CloudReferenceMarch.h, CloudPathTrace.h, CloudLightVolumes.h and
