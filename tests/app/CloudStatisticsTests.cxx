@@ -8,7 +8,7 @@
 #include "FieldIO.h"
 #include "FieldTestFiles.h"  // RunTool
 #include "OffscreenRender.h" // MakeVolumeProperty
-#include "RendererTestSupport.h"
+#include "SupportFixtures.h"
 #include "Scene.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
@@ -544,7 +544,7 @@ TEST(Droplets, RenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
 {
   // 0.4 g/m^3 in a cube of 50 m (0.05 km): sigma = 0.06 / m, tau = 3.
   const double side = 0.05;
-  auto field = cloudvis::test::MakeBoxField(
+  auto field = cloudvis::support::MakeBoxField(
     glm::ivec3(17), glm::dvec3(0.0), glm::dvec3(side), [](double, double, double) { return 0.4; });
   const cloudvis::Scene scene = DropletScene({ { "quantity", "lwc" }, { "length_unit", "km" } });
   vtkNew<vtkCloudReferenceRenderer> renderer;
@@ -557,7 +557,7 @@ TEST(Droplets, RenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
   renderer->SetClippingRange(1.0, 10.0);
   renderer->SetSampleDistance(side / 512);
   renderer->SetVolumeProperty(cloudvis::MakeVolumeProperty(scene.TransferFunction));
-  const cloudvis::test::Image image = cloudvis::test::Render(renderer);
+  const cloudvis::support::Image image = cloudvis::support::Render(renderer);
   ASSERT_EQ(image.Pixels(), 1u);
   EXPECT_NEAR(image.At(0, 3), 1.0 - std::exp(-3.0), 2e-3);
 }

@@ -1,5 +1,5 @@
 // vtkCloudVolumeMapper against known answers and against VTK's vtkGPUVolumeRayCastMapper.
-#include "RenderFixture.h"
+#include "SupportScene.h"
 
 #include <vtkCamera.h>
 #include <vtkFloatArray.h>
@@ -13,7 +13,7 @@
 #include <iostream>
 
 using namespace cloudvis;
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 TEST(CloudVolumeMapper, HomogeneousSphereTransmitsBeerLambert)
 {
@@ -70,13 +70,14 @@ void ExpectMatchesVtk(
   Dump(a, std::string(name) + "-cloudvis");
   Dump(b, std::string(name) + "-vtk");
   ASSERT_EQ(ours->GetLastError(), "");
-  const CloudDifference d = CloudPixelDifference(a, b);
-  std::cout << name << ": " << d.CloudPixels << " cloud pixels, RMS " << d.RmsLevels
-            << " levels, max " << d.MaxLevels << "\n";
-  ASSERT_GT(d.CloudPixels, a.Width * a.Height / 10) << "an empty window proves nothing";
+  const Difference d = Compare(a, b, 3, ShowsCloud(a, b));
+  const size_t cloudPixels = d.Count / 3;
+  std::cout << name << ": " << cloudPixels << " cloud pixels, RMS " << d.RmsLevels()
+            << " levels, max " << d.MaxLevels() << "\n";
+  ASSERT_GT(cloudPixels, size_t(a.Width * a.Height / 10)) << "an empty window proves nothing";
   // Both integrate the same emission-absorption sum; they differ where the two place the first
   // sample inside a voxel at the volume's edge and in 8-bit rounding.
-  EXPECT_LT(d.RmsLevels, rmsLevels) << name;
+  EXPECT_LT(d.RmsLevels(), rmsLevels) << name;
 }
 }
 
@@ -173,7 +174,7 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0);
     AddPointLight(scene.Renderer, -2.0, 0.5, 1.5, 4.0);
     const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping");
-    ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.05) << "an empty window proves nothing";
+    ASSERT_GT(MeanOver(r.Full, 3, Columns(0, 96)), 0.05) << "an empty window proves nothing";
     EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0) << "model " << int(model);
     EXPECT_LT(r.Skipping.SamplesTaken, 0.8 * r.AllSamples);
     EXPECT_GT(r.Skipping.UsefulSamples, 0.0);
@@ -222,10 +223,10 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBric
   SetRampMedium(scene.Property, 1.0, 0.6);
   const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping-dots");
   ASSERT_EQ(mapper->GetLastError(), "");
-  std::cout << "mean opacity " << MeanOver(r.Full, 3, 0, 96) << ", samples " << r.AllSamples
+  std::cout << "mean opacity " << MeanOver(r.Full, 3, Columns(0, 96)) << ", samples " << r.AllSamples
             << " unskipped, " << r.Skipping.SamplesTaken << " skipped\n";
-  ASSERT_GT(MeanOver(r.Full, 3, 0, 96), 0.1) << "an empty window proves nothing";
-  ASSERT_LT(MeanOver(r.Full, 3, 0, 96), 0.9) << "an opaque window hides what is missed";
+  ASSERT_GT(MeanOver(r.Full, 3, Columns(0, 96)), 0.1) << "an empty window proves nothing";
+  ASSERT_LT(MeanOver(r.Full, 3, Columns(0, 96)), 0.9) << "an opaque window hides what is missed";
   EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0);
   EXPECT_LT(r.Skipping.SamplesTaken, 0.9 * r.AllSamples) << "the march must leap";
 }
@@ -358,13 +359,7 @@ TEST(CloudVolumeMapper, OneMapperDrawsTwoViewportsOfAWindow)
   const Image one = reference.Render();
   for (int half = 0; half < 2; ++half)
   {
-    Image part;
-    part.Width = 128;
-    part.Height = 128;
-    for (int y = 0; y < 128; ++y)
-      for (int x = 0; x < 128; ++x)
-        for (int c = 0; c < 4; ++c)
-          part.RGBA.push_back(both.At(half * 128 + x, y, c));
+    const Image part = Crop(both, Region{ half * 128, 0, 128, 128 });
     EXPECT_LT(RmsDifference(part, one), 0.5) << "viewport " << half;
   }
 }
@@ -459,12 +454,7 @@ std::string RefusalOf(vtkImageData* field, double step = 0.02, bool emptyOpacity
     scene.Property->SetScalarOpacity(none);
   }
   const Image image = scene.Render();
-  float brightest = 0.0f;
-  for (size_t i = 0; i < image.RGBA.size(); ++i)
-  {
-    brightest = i % 4 == 3 ? brightest : std::max(brightest, image.RGBA[i]);
-  }
-  EXPECT_EQ(brightest, 0.0f) << "nothing may be drawn from bad input";
+  EXPECT_EQ(Largest(image, 3), 0.0) << "nothing may be drawn from bad input";
   return mapper->GetLastError();
 }
 }

@@ -3,7 +3,7 @@
 // allocated it; a field beyond the mapper's memory limit refused with the size it needs and
 // nothing drawn; the light volumes computed only when their inputs change and counted; and the GL
 // state left as vtkOpenGLState believes it is, since every change goes through it.
-#include "RenderFixture.h"
+#include "SupportScene.h"
 
 #include <vtkCamera.h>
 #include <vtkDataArray.h>
@@ -22,7 +22,7 @@
 #include <vector>
 
 using namespace cloudvis;
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 namespace
 {
@@ -47,12 +47,7 @@ void SetField(Scene& scene, vtkCloudVolumeMapper* mapper, const Storage& storage
 
 double LargestAlpha(const Image& image)
 {
-  double largest = 0.0;
-  for (size_t i = 3; i < image.RGBA.size(); i += 4)
-  {
-    largest = std::max(largest, double(image.RGBA[i]));
-  }
-  return largest;
+  return Largest(image, 1, {}, 3);
 }
 
 const Storage Storages[] = { { "float", VTK_FLOAT, false, 4 },
@@ -97,11 +92,7 @@ TEST(MapperResources, AFieldBeyondTheMemoryLimitIsRefusedWithItsSizeAndNotDrawn)
   EXPECT_NE(error.find("64 x 64 x 64 voxels of R32F"), std::string::npos) << error;
   EXPECT_NE(error.find("needs 1 MiB"), std::string::npos) << error;
   EXPECT_NE(error.find("MaximumGPUMemory"), std::string::npos) << error;
-  for (size_t i = 0; i < refused.RGBA.size(); i += 4)
-  {
-    ASSERT_EQ(refused.RGBA[i] + refused.RGBA[i + 1] + refused.RGBA[i + 2], 0.0f)
-      << "nothing drawn: the background everywhere";
-  }
+  ASSERT_EQ(Largest(refused, 3), 0.0) << "nothing drawn: the background everywhere";
   EXPECT_LE(mapper->GetGPUMemoryBytes(), Limit);
 
   for (const Storage& storage : { Storages[3], Storages[2] })
@@ -241,20 +232,6 @@ TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)
   }
 }
 
-namespace
-{
-// The largest difference of any channel between two float images of one size.
-double LargestDifference(const Image& a, const Image& b)
-{
-  EXPECT_EQ(a.RGBA.size(), b.RGBA.size());
-  double largest = 0.0;
-  for (size_t i = 0; i < std::min(a.RGBA.size(), b.RGBA.size()); ++i)
-  {
-    largest = std::max(largest, std::abs(double(a.RGBA[i]) - double(b.RGBA[i])));
-  }
-  return largest;
-}
-}
 
 TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomputingTheVolumes)
 {
@@ -304,7 +281,7 @@ TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomput
     const Image reference = nested.View.RenderFloat();
     ASSERT_EQ(volumes.Mapper->GetLastError(), "");
     EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 1) << "frame " << frame;
-    EXPECT_LE(LargestDifference(interactive, reference), 1e-6) << "frame " << frame;
+    EXPECT_LE(MaxDifference(interactive, reference), 1e-6) << "frame " << frame;
     EXPECT_GT(volumes.Mapper->GetLightVolumeBytes(), 0) << "kept for the still render";
   }
 
@@ -315,7 +292,7 @@ TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomput
   const Image after = volumes.View.RenderFloat();
   const Image nestedAfter = nested.View.RenderFloat();
   EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 2);
-  EXPECT_GT(LargestDifference(after, nestedAfter), 1e-4);
+  EXPECT_GT(MaxDifference(after, nestedAfter), 1e-4);
   // A light that moves while the camera holds still (not interacting) recomputes them at once.
   volumes.View.Renderer->RemoveAllLights();
   AddDirectionalLight(volumes.View.Renderer, 1.0, 0.5, 0.3);
@@ -402,11 +379,7 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
     std::string::npos)
     << error;
   EXPECT_NE(error.find("render.march.transmittance \"nested\""), std::string::npos) << error;
-  for (size_t i = 0; i < refused.RGBA.size(); i += 4)
-  {
-    ASSERT_EQ(refused.RGBA[i] + refused.RGBA[i + 1] + refused.RGBA[i + 2], 0.0f)
-      << "nothing drawn: the background everywhere";
-  }
+  ASSERT_EQ(Largest(refused, 3), 0.0) << "nothing drawn: the background everywhere";
 
   mapper->GetLightingProperty()->SetTransmittanceToNestedMarch();
   EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);

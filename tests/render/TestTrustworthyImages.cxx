@@ -4,7 +4,7 @@
 // an error that names the problem, and nothing drawn. The GPU against the CPU reference and
 // against VTK's own mapper for the same classes are in TestGpuMatchesCpuReference.cxx and
 // TestCloudVolumeMapper.cxx.
-#include "RenderFixture.h"
+#include "SupportScene.h"
 
 #include "CloudMarchUniforms.h"
 
@@ -21,7 +21,7 @@
 #include <string>
 
 using namespace cloudvis;
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 namespace
 {
@@ -41,12 +41,7 @@ std::string ErrorOf(
   const Image image = scene.Render();
   if (!mapper->GetLastError().empty())
   {
-    float brightest = 0.0f;
-    for (size_t i = 0; i < image.RGBA.size(); ++i)
-    {
-      brightest = i % 4 == 3 ? brightest : std::max(brightest, image.RGBA[i]);
-    }
-    EXPECT_EQ(brightest, 0.0f) << "nothing may be drawn from refused input";
+    EXPECT_EQ(Largest(image, 3), 0.0) << "nothing may be drawn from refused input";
   }
   return mapper->GetLastError();
 }
@@ -147,7 +142,7 @@ TEST(TrustworthyImages, ADirectionalLightFarAlongItsDirectionLightsAlike)
     return image;
   };
   const Image near = render(10.0), far = render(1e300);
-  ASSERT_GT(MeanOver(near, 0, 0, 48), 0.01) << "an empty window proves nothing";
+  ASSERT_GT(MeanOver(near, 0, Columns(0, 48)), 0.01) << "an empty window proves nothing";
   EXPECT_EQ(MaxDifference(near, far), 0.0);
 }
 
@@ -193,7 +188,7 @@ TEST(TrustworthyImages, AFlatOrNonFiniteGeometryIsRefused)
     SetRampMedium(scene.Property, 1.0, 0.6);
     const Image image = scene.Render();
     EXPECT_EQ(
-      MeanOver(image, 0, 0, 32) + MeanOver(image, 1, 0, 32) + MeanOver(image, 2, 0, 32), 0.0)
+      MeanOver(image, 0, Columns(0, 32)) + MeanOver(image, 1, Columns(0, 32)) + MeanOver(image, 2, Columns(0, 32)), 0.0)
       << "nothing drawn";
   }
   EXPECT_TRUE(Mentions(
@@ -227,7 +222,7 @@ TEST(TrustworthyImages, AnOutlierVoxelDoesNotChangeTheRestOfTheCloud)
     return image;
   };
   const Image plain = render([](vtkFloatArray*) {});
-  ASSERT_GT(MeanOver(plain, 3, 0, 96), 0.02) << "an empty window proves nothing";
+  ASSERT_GT(MeanOver(plain, 3, Columns(0, 96)), 0.02) << "an empty window proves nothing";
   for (const auto& outliers : std::vector<std::function<void(vtkFloatArray*)>>{ [](vtkFloatArray* d)
          { d->SetValue(0, 1e4f); },
          [](vtkFloatArray* d)

@@ -8,7 +8,8 @@
 #include "CloudImageComparison.h"
 #include "CloudMarchUniforms.h"
 #include "CloudPathTrace.h"
-#include "RendererTestSupport.h"
+#include "SupportExpectations.h"
+#include "SupportFixtures.h"
 #include "vtkCloudDensitySource.h"
 #include "vtkCloudLightingProperty.h"
 #include "vtkCloudPathTracer.h"
@@ -31,7 +32,7 @@
 #include <vector>
 
 using namespace cloudvis;
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 namespace
 {
@@ -504,7 +505,7 @@ TEST(PathTracer, BrickSizeChangesOnlyTheNoise)
     tracer->SetSamplesPerPixel(128);
     images.push_back(Render(tracer));
   }
-  EXPECT_NE(images[0].RGBA, images[1].RGBA); // other random decisions, other noise
+  EXPECT_NE(images[0].Values, images[1].Values); // other random decisions, other noise
   for (int channel = 0; channel < 4; ++channel)
   {
     const auto difference = [&](std::size_t p)
@@ -620,17 +621,17 @@ TEST(PathTracer, SameSeedSameImageUnderEverySmpBackend)
     images.push_back(Render(tracer));
   }
   vtkSMPTools::SetBackend(original.c_str());
-  ASSERT_FALSE(images[0].RGBA.empty());
-  EXPECT_EQ(images[1].RGBA, images[0].RGBA);
-  EXPECT_EQ(images[2].RGBA, images[0].RGBA);
+  ASSERT_FALSE(images[0].Values.empty());
+  EXPECT_EQ(images[1].Values, images[0].Values);
+  EXPECT_EQ(images[2].Values, images[0].Values);
   EXPECT_EQ(images[1].Variance, images[0].Variance);
   EXPECT_EQ(images[2].Variance, images[0].Variance);
 
   // Another seed gives other paths; the same seed gives the same image again.
   tracer->SetSeed(8);
-  EXPECT_NE(Render(tracer).RGBA, images[0].RGBA);
+  EXPECT_NE(Render(tracer).Values, images[0].Values);
   tracer->SetSeed(7);
-  EXPECT_EQ(Render(tracer).RGBA, images[0].RGBA);
+  EXPECT_EQ(Render(tracer).Values, images[0].Values);
 }
 
 TEST(PathTracer, AnExtinctionTooLargeForFloatStillEndsEveryPath)
@@ -799,8 +800,7 @@ TEST(PathTracer, ShippedMarchDefaultsStayNearThePathTracerOnAHeldOutCase)
   march->SetLights(lights);
   const Image marched = Render(march);
 
-  const ImageError error = CompareWithReference(
-    marched.RGBA.data(), traced.RGBA.data(), traced.Variance.data(), traced.Pixels());
+  const ImageError error = CompareWithReference(marched, traced);
   // Measured: 94.3% from the ground truth, 1.71 times too bright (the octaves' limit on thin
   // clouds, docs/lighting.md); with the octaves before the fit (0.5, 0.5, 0.5) 134.2% and 1.99.
   // The reference's own noise: 7.0%.
