@@ -2,6 +2,7 @@
 #include "SupportScene.h"
 
 #include <vtkCamera.h>
+#include <vtkPiecewiseFunction.h>
 #include <vtkFloatArray.h>
 #include <vtkPointData.h>
 #include <vtkTransform.h>
@@ -20,7 +21,7 @@ TEST(CloudVolumeMapper, HomogeneousSphereTransmitsBeerLambert)
   // Constant density 1 in a sphere of radius 1; opacity 0.5 per unit length 0.5, so
   // sigma_t = ln 2 / 0.5. Through the centre the path is 2: alpha = 1 - exp(-sigma_t * 2).
   auto mapper = CloudMapper(0.01);
-  Scene scene(mapper);
+  GpuScene scene(mapper);
   scene.SetInput(ConstantSphere(1.0));
   SetUniformMedium(scene.Property, 0.5, 0.5);
   const Image image = scene.RenderFloat();
@@ -47,14 +48,14 @@ void ExpectMatchesVtk(
 {
   const double step = 0.02;
   auto ours = CloudMapper(step);
-  Scene cloud(ours);
+  GpuScene cloud(ours);
   cloud.SetInput(field);
   SetRampMedium(cloud.Property, 1.0, 0.6);
   auto theirs = VtkMapper(step);
-  Scene vtk(theirs);
+  GpuScene vtk(theirs);
   vtk.SetInput(field);
   SetRampMedium(vtk.Property, 1.0, 0.6);
-  for (Scene* scene : { &cloud, &vtk })
+  for (GpuScene* scene : { &cloud, &vtk })
   {
     place(scene->Volume);
     double bounds[6];
@@ -137,7 +138,7 @@ struct SkippingRenders
   vtkCloudVolumeMapper::FrameStatistics Skipping; // with it
 };
 SkippingRenders RenderWithAndWithoutSkipping(vtkCloudVolumeMapper* mapper,
-  Scene& scene,
+  GpuScene& scene,
   const std::string& dumpName)
 {
   SkippingRenders r;
@@ -165,7 +166,7 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     LightingParameters lighting;
     lighting.Model = model;
     mapper->GetLightingProperty()->SetParameters(lighting);
-    Scene scene(mapper, 96, 96);
+    GpuScene scene(mapper, 96, 96);
     auto field = SparseCloud(96);
     field->SetDirectionMatrix(0.8, -0.6, 0.0, 0.6, 0.8, 0.0, 0.0, 0.0, 1.0);
     scene.SetInput(field);
@@ -216,7 +217,7 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBric
   // leap one sample too far, or a sample skipped without its brick being read, drops density
   // that the unskipped march keeps.
   auto mapper = CloudMapper(0.03);
-  Scene scene(mapper, 96, 96);
+  GpuScene scene(mapper, 96, 96);
   scene.SetInput(DotsBetweenEmptyBricks(48));
   scene.Volume->RotateX(23.0);
   scene.Volume->RotateY(-37.0);
@@ -234,9 +235,8 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBric
 TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)
 {
   auto mapper = CloudMapper(0.02);
-  Scene scene(mapper);
-  scene.SetInput(SparseCloud(64));
-  SetRampMedium(scene.Property, 1.0, 0.6);
+  GpuScene scene(mapper);
+  scene.ShowSparseCloud(64);
   const Image coarse = scene.RenderFloat();
   mapper->SetSampleDistance(0.01);
   const Image fine = scene.RenderFloat();
@@ -252,7 +252,7 @@ TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)
 
 namespace
 {
-void AddOpaqueSphere(Scene& scene, double x, double y, double z, double radius)
+void AddOpaqueSphere(GpuScene& scene, double x, double y, double z, double radius)
 {
   vtkNew<vtkSphereSource> sphere;
   sphere->SetCenter(x, y, z);
@@ -281,7 +281,7 @@ TEST(CloudVolumeMapper, OpaqueGeometryOccludesAndIsOccludedThroughTheDepthBuffer
   // its front face, centred inside it, and poking out of its back face. With no light model the
   // green channel is the cloud's opacity in front of whatever the ray hits.
   auto mapper = CloudMapper(0.005);
-  Scene scene(mapper, 128, 128);
+  GpuScene scene(mapper, 128, 128);
   scene.SetInput(ConstantBox(1.0, 96));
   const double sigma = std::log(2.0) / 0.5;
   SetUniformMedium(scene.Property, 0.5, 0.5);
@@ -304,7 +304,7 @@ TEST(CloudVolumeMapper, OpaqueGeometryOccludesAndIsOccludedThroughTheDepthBuffer
 TEST(CloudVolumeMapper, CameraInsideTheVolumeSeesTheCloudAroundIt)
 {
   auto mapper = CloudMapper(0.005);
-  Scene scene(mapper, 64, 64);
+  GpuScene scene(mapper, 64, 64);
   scene.SetInput(ConstantBox(1.5, 96));
   SetUniformMedium(scene.Property, 0.5, 0.5);
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
@@ -321,9 +321,8 @@ TEST(CloudVolumeMapper, CameraInsideTheVolumeSeesTheCloudAroundIt)
 TEST(CloudVolumeMapper, ResizingTheWindowRendersAtTheNewSize)
 {
   auto mapper = CloudMapper(0.02);
-  Scene scene(mapper, 96, 64);
-  scene.SetInput(SparseCloud(64));
-  SetRampMedium(scene.Property, 1.0, 0.6);
+  GpuScene scene(mapper, 96, 64);
+  scene.ShowSparseCloud(64);
   scene.Render();
   scene.Window->SetSize(128, 96);
   const Image resized = scene.Render();
@@ -331,18 +330,16 @@ TEST(CloudVolumeMapper, ResizingTheWindowRendersAtTheNewSize)
   ASSERT_EQ(resized.Height, 96);
 
   auto fresh = CloudMapper(0.02);
-  Scene reference(fresh, 128, 96);
-  reference.SetInput(SparseCloud(64));
-  SetRampMedium(reference.Property, 1.0, 0.6);
+  GpuScene reference(fresh, 128, 96);
+  reference.ShowSparseCloud(64);
   EXPECT_LT(RmsDifference(resized, reference.Render()), 0.5);
 }
 
 TEST(CloudVolumeMapper, OneMapperDrawsTwoViewportsOfAWindow)
 {
   auto mapper = CloudMapper(0.02);
-  Scene scene(mapper, 256, 128);
-  scene.SetInput(SparseCloud(64));
-  SetRampMedium(scene.Property, 1.0, 0.6);
+  GpuScene scene(mapper, 256, 128);
+  scene.ShowSparseCloud(64);
   scene.Renderer->SetViewport(0.0, 0.0, 0.5, 1.0);
   vtkNew<vtkRenderer> right;
   right->SetViewport(0.5, 0.0, 1.0, 1.0);
@@ -353,9 +350,8 @@ TEST(CloudVolumeMapper, OneMapperDrawsTwoViewportsOfAWindow)
   Dump(both, "viewports");
 
   auto single = CloudMapper(0.02);
-  Scene reference(single, 128, 128);
-  reference.SetInput(SparseCloud(64));
-  SetRampMedium(reference.Property, 1.0, 0.6);
+  GpuScene reference(single, 128, 128);
+  reference.ShowSparseCloud(64);
   const Image one = reference.Render();
   for (int half = 0; half < 2; ++half)
   {
@@ -367,18 +363,16 @@ TEST(CloudVolumeMapper, OneMapperDrawsTwoViewportsOfAWindow)
 TEST(CloudVolumeMapper, AccumulationAveragesJitteredFramesUntilTheViewChanges)
 {
   auto reference = CloudMapper(0.002);
-  Scene fine(reference, 96, 96);
-  fine.SetInput(SparseCloud(64));
-  SetRampMedium(fine.Property, 1.0, 0.6);
+  GpuScene fine(reference, 96, 96);
+  fine.ShowSparseCloud(64);
   const Image truth = fine.RenderFloat();
 
   auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
   mapper->SetSampleDistance(0.05);
   mapper->JitterOn();
   mapper->SetMaximumAccumulatedFrames(16);
-  Scene scene(mapper, 96, 96);
-  scene.SetInput(SparseCloud(64));
-  SetRampMedium(scene.Property, 1.0, 0.6);
+  GpuScene scene(mapper, 96, 96);
+  scene.ShowSparseCloud(64);
   const Image first = scene.RenderFloat();
   Image accumulated;
   for (int i = 1; i < 16; ++i)
@@ -406,9 +400,8 @@ TEST(CloudVolumeMapper, AccumulationAveragesJitteredFramesUntilTheViewChanges)
 TEST(CloudVolumeMapper, InteractionLowersTheResolutionAndStillnessRestoresIt)
 {
   auto mapper = CloudMapper(0.02);
-  Scene scene(mapper, 200, 160);
-  scene.SetInput(SparseCloud(64));
-  SetRampMedium(scene.Property, 1.0, 0.6);
+  GpuScene scene(mapper, 200, 160);
+  scene.ShowSparseCloud(64);
   scene.Window->SetDesiredUpdateRate(1000.0); // what an interactor asks while dragging
   const Image moving = scene.RenderFloat();
   EXPECT_LT(moving.Width, 200);
@@ -422,9 +415,8 @@ TEST(CloudVolumeMapper, InteractionLowersTheResolutionAndStillnessRestoresIt)
 TEST(CloudVolumeMapper, SampleCountViewShowsTheCostOfEachRay)
 {
   auto mapper = CloudMapper(0.02);
-  Scene scene(mapper, 96, 96);
-  scene.SetInput(SparseCloud(64));
-  SetRampMedium(scene.Property, 1.0, 0.6);
+  GpuScene scene(mapper, 96, 96);
+  scene.ShowSparseCloud(64);
   mapper->SetDisplayMode(vtkCloudVolumeMapper::SampleCount);
   const Image counts = scene.Render();
   Dump(counts, "sample-count");
@@ -445,7 +437,7 @@ namespace
 std::string RefusalOf(vtkImageData* field, double step = 0.02, bool emptyOpacity = false)
 {
   auto mapper = CloudMapper(step);
-  Scene scene(mapper, 32, 32);
+  GpuScene scene(mapper, 32, 32);
   scene.SetInput(field);
   SetRampMedium(scene.Property, 1.0, 0.6);
   if (emptyOpacity)
@@ -490,7 +482,7 @@ TEST(CloudVolumeMapper, AuxiliaryChannelsGiveTheCloudsDepthAndSampleCounts)
   // A slab from z = 1 down to z = -1, camera at z = 6 with the near plane at 0.1: the cloud's
   // opacity passes 2% just behind its front face, 4.9 from the near plane.
   auto mapper = CloudMapper(0.005);
-  Scene scene(mapper, 32, 32);
+  GpuScene scene(mapper, 32, 32);
   scene.SetInput(ConstantBox(1.0, 64));
   SetUniformMedium(scene.Property, 0.5, 0.5);
   scene.RenderFloat();

@@ -126,7 +126,7 @@ Rendered RenderBoth(const Case& c)
   mapper->GetLightingProperty()->SetParameters(lighting);
   mapper->SetExtinctionScale(c.ExtinctionScale);
   mapper->SetHalfFloatDensity(c.HalfFloat);
-  Scene scene(mapper, Size, Size);
+  GpuScene scene(mapper, Size, Size);
   const vtkSmartPointer<vtkImageData> field =
     support::QuantizedField(c.Cloud ? SparseCloud(40) : ConstantSphere(1.2, 40), c.ScalarType);
   const double* origin = field->GetOrigin();

@@ -43,7 +43,7 @@ using namespace cloudvis::support;
 struct GpuTrace
 {
   vtkNew<vtkCloudVolumeMapper> Mapper;
-  Scene View{ this->Mapper, Size, Size };
+  GpuScene View{ this->Mapper, Size, Size };
 
   GpuTrace(vtkImageData* field,
     vtkVolumeProperty* medium,

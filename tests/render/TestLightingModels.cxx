@@ -4,6 +4,7 @@
 #include "SupportScene.h"
 
 #include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
 #include <vtkLightCollection.h>
 
 #include <gtest/gtest.h>
@@ -33,9 +34,8 @@ vtkSmartPointer<vtkCloudVolumeMapper> LitMapper(LightingModel model, double step
 double RightMinusLeft(LightingModel model, double lightX)
 {
   auto mapper = LitMapper(model);
-  Scene scene(mapper, 64, 64);
-  scene.SetInput(SparseCloud(48));
-  SetRampMedium(scene.Property, 1.0, 0.6);
+  GpuScene scene(mapper, 64, 64);
+  scene.ShowSparseCloud(48);
   AddDirectionalLight(scene.Renderer, lightX, 0.0, 0.0, 1.0);
   const Image image = scene.RenderFloat();
   Dump(image, std::string("lit-from-") + (lightX > 0 ? "right-" : "left-") +
@@ -60,9 +60,8 @@ TEST_P(EveryLightModel, LightsAddUp)
   // depend on them: the image of A and B together is the sum of the images of each.
   const auto render = [&](bool a, bool b) {
     auto mapper = LitMapper(GetParam());
-    Scene scene(mapper, 48, 48);
-    scene.SetInput(SparseCloud(48));
-    SetRampMedium(scene.Property, 1.0, 0.6);
+    GpuScene scene(mapper, 48, 48);
+    scene.ShowSparseCloud(48);
     if (a)
       AddDirectionalLight(scene.Renderer, 10.0, 5.0, 3.0, 0.7);
     if (b)
@@ -87,9 +86,8 @@ TEST_P(EveryLightModel, APointLightDimsWithDistance)
 {
   const auto brightness = [&](double distance) {
     auto mapper = LitMapper(GetParam());
-    Scene scene(mapper, 48, 48);
-    scene.SetInput(SparseCloud(48));
-    SetRampMedium(scene.Property, 1.0, 0.6);
+    GpuScene scene(mapper, 48, 48);
+    scene.ShowSparseCloud(48);
     AddPointLight(scene.Renderer, 0.0, 0.0, distance, 9.0);
     return MeanOver(scene.RenderFloat(), 1, Columns(0, 48));
   };
@@ -111,9 +109,8 @@ TEST(LightMarch, HalvingBothStepsChangesTheMeanRadianceByUnderTwoPercent)
     lighting.LightSteps = lightSteps;
     lighting.LightStepGrowth = 1.0f;
     mapper->GetLightingProperty()->SetParameters(lighting);
-    Scene scene(mapper, 64, 64);
-    scene.SetInput(SparseCloud(64));
-    SetRampMedium(scene.Property, 1.0, 0.6);
+    GpuScene scene(mapper, 64, 64);
+    scene.ShowSparseCloud(64);
     AddDirectionalLight(scene.Renderer, 5.0, 5.0, 2.0, 3.0);
     const Image image = scene.RenderFloat();
     return MeanOver(image, 0, Columns(0, 64)) + MeanOver(image, 1, Columns(0, 64)) + MeanOver(image, 2, Columns(0, 64));
@@ -123,7 +120,7 @@ TEST(LightMarch, HalvingBothStepsChangesTheMeanRadianceByUnderTwoPercent)
   EXPECT_LT(std::abs(coarse - fine) / fine, 0.02);
 }
 
-TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLightIsTheReferencesPicture)
+TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
 {
   // The picture a user sees of the seeds' scene (a sky-blue background, a white cloud under a
   // sun and a pink point light, each model with its own light colours and ambient) is the
@@ -139,7 +136,7 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLightIsTheReferencesPi
     lighting.AmbientColor = glm::vec3(0.60f, 0.60f, 0.75f);
     lighting.AmbientStrength = model == LightingModel::Derivative ? 1.1f : 0.3f;
     mapper->GetLightingProperty()->SetParameters(lighting);
-    Scene scene(mapper, 160, 160);
+    GpuScene scene(mapper, 160, 160);
     scene.SetInput(SparseCloud(96));
     scene.Renderer->SetBackground(0.35, 0.45, 0.65);
     SetRampMedium(scene.Property, 1.0, 0.6);

@@ -38,7 +38,7 @@ struct Storage
 };
 
 // The sparse cloud stored as `storage` says, with the ramp medium over its units.
-void SetField(Scene& scene, vtkCloudVolumeMapper* mapper, const Storage& storage)
+void SetField(GpuScene& scene, vtkCloudVolumeMapper* mapper, const Storage& storage)
 {
   mapper->SetHalfFloatDensity(storage.HalfFloat);
   scene.SetInput(support::QuantizedField(SparseCloud(FieldSize), storage.ScalarType));
@@ -67,7 +67,7 @@ TEST(MapperResources, EachFieldIsUploadedInItsNativeTexelsAndItsMemoryReported)
   for (const Storage& storage : Storages)
   {
     auto mapper = CloudMapper(0.05);
-    Scene scene(mapper, ImageSize, ImageSize);
+    GpuScene scene(mapper, ImageSize, ImageSize);
     SetField(scene, mapper, storage);
     const Image image = scene.RenderFloat();
     ASSERT_EQ(mapper->GetLastError(), "") << storage.Name;
@@ -85,7 +85,7 @@ TEST(MapperResources, AFieldBeyondTheMemoryLimitIsRefusedWithItsSizeAndNotDrawn)
   constexpr long long Limit = 800000;
   auto mapper = CloudMapper(0.05);
   mapper->SetMaximumGPUMemory(Limit);
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   const Image refused = scene.Render();
   const std::string error = mapper->GetLastError();
@@ -116,7 +116,7 @@ TEST(MapperResources, LightVolumesAreComputedWhenTheirInputsChangeAndCountInTheB
   // texel of half the field's resolution per light (33^3 for 64^3 voxels), in GetGPUMemoryBytes.
   auto mapper = CloudMapper(0.05);
   mapper->GetLightingProperty()->SetModelToMarch();
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   vtkNew<vtkLight> sun;
   sun->SetLightTypeToSceneLight();
@@ -163,7 +163,7 @@ TEST(MapperResources, ThePathTracersTexturesAreReleasedWhenAnotherModelRenders)
   // The path tracer adds a moment target and a texture of extinction bounds per brick; back on
   // another model the mapper holds what that model holds, and no more.
   auto mapper = CloudMapper(0.05);
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   scene.RenderFloat();
   ASSERT_EQ(mapper->GetLastError(), "");
@@ -184,7 +184,7 @@ TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)
   mapper->CollectStatisticsOn(); // a read-back after each frame
   mapper->SetMaximumAccumulatedFrames(4);
   mapper->JitterOn();
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   scene.RenderFloat();
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(scene.Window);
@@ -244,7 +244,7 @@ TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomput
   struct HeadlitScene
   {
     vtkSmartPointer<vtkCloudVolumeMapper> Mapper = CloudMapper(0.05);
-    Scene View{ Mapper, ImageSize, ImageSize };
+    GpuScene View{ Mapper, ImageSize, ImageSize };
     explicit HeadlitScene(LightTransmittance transmittance)
     {
       this->Mapper->GetLightingProperty()->SetModelToMarch();
@@ -316,14 +316,14 @@ TEST(MapperResources, AResizeNearTheMemoryLimitCountsThePathTracersOldMomentTarg
   long long needed = 0;
   {
     auto mapper = pathTraced(0);
-    Scene scene(mapper, Larger, Larger);
+    GpuScene scene(mapper, Larger, Larger);
     SetField(scene, mapper, Storages[0]);
     scene.RenderFloat();
     ASSERT_EQ(mapper->GetLastError(), "");
     needed = mapper->GetGPUMemoryBytes();
   }
   auto mapper = pathTraced(needed);
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   scene.RenderFloat();
   ASSERT_EQ(mapper->GetLastError(), "");
@@ -351,7 +351,7 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
   // or one light, renders it.
   auto mapper = CloudMapper(0.05);
   mapper->GetLightingProperty()->SetModelToMarch();
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   scene.Volume->VisibilityOff(); // a context, to ask its limit
   scene.Render();
   scene.Volume->VisibilityOn();

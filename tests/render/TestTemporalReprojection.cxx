@@ -51,7 +51,7 @@ struct CloudScene
   vtkCamera* Camera() { return this->View.Renderer->GetActiveCamera(); }
 
   vtkSmartPointer<vtkCloudVolumeMapper> Mapper;
-  Scene View;
+  GpuScene View;
 };
 
 // The still render of the view `steps` times `move` lead to, and the last of the interactive

@@ -30,11 +30,11 @@ namespace
 std::string ErrorOf(
   vtkImageData* field,
   double step,
-  const std::function<void(Scene&, vtkCloudVolumeMapper*)>& setup = [](Scene&,
+  const std::function<void(GpuScene&, vtkCloudVolumeMapper*)>& setup = [](GpuScene&,
                                                                       vtkCloudVolumeMapper*) {})
 {
   auto mapper = CloudMapper(step);
-  Scene scene(mapper, 32, 32);
+  GpuScene scene(mapper, 32, 32);
   scene.SetInput(field);
   SetRampMedium(scene.Property, 1.0, 0.6);
   setup(scene, mapper);
@@ -77,7 +77,7 @@ TEST(TrustworthyImages, MoreThanEightLightsAreRefusedNotDropped)
   auto field = SparseCloud(16);
   const auto lights = [](int count)
   {
-    return [count](Scene& scene, vtkCloudVolumeMapper* mapper)
+    return [count](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
       for (int i = 0; i < count; ++i)
@@ -95,7 +95,7 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
   auto field = SparseCloud(16);
   const std::string bright = ErrorOf(field,
     0.05,
-    [](Scene& scene, vtkCloudVolumeMapper* mapper)
+    [](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
       AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, 1e38);
@@ -105,7 +105,7 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
 
   const std::string far = ErrorOf(field,
     0.05,
-    [](Scene& scene, vtkCloudVolumeMapper* mapper)
+    [](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
       AddPointLight(scene.Renderer, 1e30, 0.0, 0.0);
@@ -114,14 +114,14 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
 
   const std::string thin = ErrorOf(field,
     0.05,
-    [](Scene& scene, vtkCloudVolumeMapper*)
+    [](GpuScene& scene, vtkCloudVolumeMapper*)
     { scene.Property->SetScalarOpacityUnitDistance(1e-45); });
   EXPECT_TRUE(Mentions(thin, "raise the unit distance")) << thin;
 
   // The same light is harmless under "none", which does not use lights.
   EXPECT_EQ(ErrorOf(field,
               0.05,
-              [](Scene& scene, vtkCloudVolumeMapper*)
+              [](GpuScene& scene, vtkCloudVolumeMapper*)
               { AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, 1e38); }),
     "");
 }
@@ -133,9 +133,8 @@ TEST(TrustworthyImages, ADirectionalLightFarAlongItsDirectionLightsAlike)
   {
     auto mapper = CloudMapper(0.05);
     mapper->GetLightingProperty()->SetParameters(March());
-    Scene scene(mapper, 48, 48);
-    scene.SetInput(SparseCloud(32));
-    SetRampMedium(scene.Property, 1.0, 0.6);
+    GpuScene scene(mapper, 48, 48);
+    scene.ShowSparseCloud(32);
     AddDirectionalLight(scene.Renderer, 0.6 * distance, 0.8 * distance, 0.4 * distance);
     const Image image = scene.RenderFloat();
     EXPECT_EQ(mapper->GetLastError(), "");
@@ -164,7 +163,7 @@ TEST(TrustworthyImages, AFlatOrNonFiniteGeometryIsRefused)
   {
     auto field = SparseCloud(16);
     return ErrorOf(
-      field, 0.05, [&](Scene& scene, vtkCloudVolumeMapper*) { change(field, scene.Volume); });
+      field, 0.05, [&](GpuScene& scene, vtkCloudVolumeMapper*) { change(field, scene.Volume); });
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(Mentions(refused([](vtkImageData* f, vtkVolume*) { f->SetSpacing(0.1, 0.0, 0.1); }),
@@ -183,7 +182,7 @@ TEST(TrustworthyImages, AFlatOrNonFiniteGeometryIsRefused)
     const std::string problem = ValidateVolumeGeometry(field, nullptr);
     EXPECT_TRUE(Mentions(problem, "must be three") && Mentions(problem, "nan")) << problem;
     auto mapper = CloudMapper(0.05);
-    Scene scene(mapper, 32, 32);
+    GpuScene scene(mapper, 32, 32);
     scene.SetInput(field);
     SetRampMedium(scene.Property, 1.0, 0.6);
     const Image image = scene.Render();
@@ -211,7 +210,7 @@ TEST(TrustworthyImages, AnOutlierVoxelDoesNotChangeTheRestOfTheCloud)
   {
     auto mapper = CloudMapper(0.03);
     mapper->GetLightingProperty()->SetParameters(March());
-    Scene scene(mapper, 96, 96);
+    GpuScene scene(mapper, 96, 96);
     auto field = SparseCloud(48);
     change(vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars()));
     scene.SetInput(field);

@@ -196,6 +196,30 @@ LightingParameters ModelOnly(LightingModel model)
   return lighting;
 }
 
+LightingParameters EveryLightingParameterChanged()
+{
+  // Each default moved by a step that keeps it within LightingLimits.
+  const LightingParameters d;
+  LightingParameters p;
+  p.Model = LightingModel::March;
+  p.Transmittance = LightTransmittance::Nested;
+  p.AmbientColor = d.AmbientColor - glm::vec3(0.9f, 0.8f, 0.7f);
+  p.AmbientStrength = d.AmbientStrength + 0.4f;
+  p.DerivativeDistance = d.DerivativeDistance + 0.5f;
+  p.LightSteps = d.LightSteps + 3;
+  p.LightStep = d.LightStep + 0.06f;
+  p.LightStepGrowth = d.LightStepGrowth - 0.3f;
+  p.PhaseG1 = d.PhaseG1 + 0.1f;
+  p.PhaseG2 = d.PhaseG2 + 0.1f;
+  p.PhaseLobeWeight = d.PhaseLobeWeight - 0.2f;
+  p.MultipleScatteringOctaves = d.MultipleScatteringOctaves + 2;
+  p.ScatteringFalloff = d.ScatteringFalloff + 0.04f;
+  p.ExtinctionFalloff = d.ExtinctionFalloff + 0.09f;
+  p.EccentricityFalloff = d.EccentricityFalloff - 0.21f;
+  p.PowderStrength = d.PowderStrength + 0.15f;
+  return p;
+}
+
 Light DirectionalLight(glm::vec3 towardLight, float intensity, glm::vec3 color)
 {
   Light light;
@@ -257,7 +281,7 @@ Image ImageOf(vtkImageData* output)
 {
   int dims[3];
   output->GetDimensions(dims);
-  const auto values = [output](const char* name)
+  const auto floats = [output](const char* name)
   {
     std::vector<float> values;
     if (auto* array = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray(name)))
@@ -266,7 +290,7 @@ Image ImageOf(vtkImageData* output)
     }
     return values;
   };
-  return FromRgba(values("rgba"), dims[0], dims[1], values("rgba_variance"));
+  return FromRgba(floats("rgba"), dims[0], dims[1], floats("rgba_variance"));
 }
 
 Image Render(vtkCloudReferenceRenderer* renderer)

@@ -72,6 +72,9 @@ void SetRampMedium(vtkVolumeProperty* property, double max, double opacity);
 LightingParameters Ambient(glm::vec3 radiance);
 // Lighting parameters of one model, the rest at their defaults.
 LightingParameters ModelOnly(LightingModel model);
+// Every lighting parameter away from its default (and within its limits): the march model with
+// nested transmittance, for checking that each one reaches where it should.
+LightingParameters EveryLightingParameterChanged();
 // A directional light arriving from `towardLight` at the origin, and a point light with
 // inverse-square falloff, as the lighting docs define them.
 Light DirectionalLight(

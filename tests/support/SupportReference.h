@@ -1,4 +1,4 @@
-// The CPU side of a rendered support::Scene: vtkCloudReferenceRenderer (or vtkCloudPathTracer)
+// The CPU side of a rendered support::GpuScene: vtkCloudReferenceRenderer (or vtkCloudPathTracer)
 // given the very objects the window rendered with, as a user of both would give them: the field,
 // the viewport's size, the camera (after the render, which may have moved its clipping range),
 // the volume's matrix and property, the renderer's lights, and for cloudvis's mapper its
@@ -20,7 +20,7 @@ namespace cloudvis
 namespace support
 {
 
-inline void ConfigureReference(vtkCloudReferenceRenderer* reference, Scene& scene)
+inline void ConfigureReference(vtkCloudReferenceRenderer* reference, GpuScene& scene)
 {
   const int* size = scene.Window->GetSize();
   reference->SetInputData(vtkImageData::SafeDownCast(scene.Mapper->GetInput()));

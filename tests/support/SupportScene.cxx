@@ -14,7 +14,7 @@ namespace cloudvis
 namespace support
 {
 
-Scene::Scene(vtkVolumeMapper* mapper, int width, int height)
+GpuScene::GpuScene(vtkVolumeMapper* mapper, int width, int height)
   : Mapper(mapper)
 {
   this->Window->SetOffScreenRendering(1);
@@ -28,12 +28,18 @@ Scene::Scene(vtkVolumeMapper* mapper, int width, int height)
   this->LookAlongMinusZ();
 }
 
-void Scene::SetInput(vtkImageData* field)
+void GpuScene::SetInput(vtkImageData* field)
 {
   this->Mapper->SetInputDataObject(field);
 }
 
-void Scene::LookAlongMinusZ(double distance, bool parallel, double parallelScale)
+void GpuScene::ShowSparseCloud(int size)
+{
+  this->SetInput(SparseCloud(size));
+  SetRampMedium(this->Property, 1.0, 0.6);
+}
+
+void GpuScene::LookAlongMinusZ(double distance, bool parallel, double parallelScale)
 {
   vtkCamera* camera = this->Renderer->GetActiveCamera();
   camera->SetPosition(0.0, 0.0, distance);
@@ -45,19 +51,19 @@ void Scene::LookAlongMinusZ(double distance, bool parallel, double parallelScale
   camera->SetClippingRange(0.1, 2.0 * distance + 10.0);
 }
 
-Image Scene::Render()
+Image GpuScene::Render()
 {
   this->Window->Render();
   return GrabWindow(this->Window, true);
 }
 
-Image Scene::RenderOnce()
+Image GpuScene::RenderOnce()
 {
   this->Window->Render();
   return GrabWindow(this->Window, true, false);
 }
 
-Image Scene::RenderFloat()
+Image GpuScene::RenderFloat()
 {
   this->Window->Render();
   auto* cloud = vtkCloudVolumeMapper::SafeDownCast(this->Mapper);
@@ -70,7 +76,7 @@ Image Scene::RenderFloat()
   return FromRgba(rgba, width, height);
 }
 
-Image Scene::RenderPathTraced(int frames)
+Image GpuScene::RenderPathTraced(int frames)
 {
   for (int f = 0; f < frames; ++f)
   {

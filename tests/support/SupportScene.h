@@ -29,12 +29,15 @@ namespace support
 inline const auto CloudMapper = MatchedCloudMapper;
 inline const auto VtkMapper = MatchedVtkMapper;
 
-class Scene
+class GpuScene
 {
 public:
-  explicit Scene(vtkVolumeMapper* mapper, int width = 128, int height = 128);
+  explicit GpuScene(vtkVolumeMapper* mapper, int width = 128, int height = 128);
 
   void SetInput(vtkImageData* field);
+  // The render tests' usual subject: the article's cloud (SparseCloud(size)) under the ramp
+  // medium of opacity 0.6 per 0.1 at density 1 (SetRampMedium(Property, 1.0, 0.6)).
+  void ShowSparseCloud(int size = 64);
   // Camera on +z looking at the origin; parallel projection when `parallel`.
   void LookAlongMinusZ(double distance = 6.0, bool parallel = true, double parallelScale = 2.2);
   Image Render();      // the window's 8-bit RGBA pixels, as [0, 1] values

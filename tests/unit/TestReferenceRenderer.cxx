@@ -5,6 +5,7 @@
 #include "CloudLighting.h"
 #include "CloudMarchUniforms.h"
 #include "CloudTransferTable.h"
+#include "SupportExpectations.h"
 #include "SupportFixtures.h"
 #include "vtkCloudLightingProperty.h"
 #include "vtkCloudReferenceRenderer.h"
@@ -584,23 +585,7 @@ TEST(ReferenceRenderer, TakesItsParametersAsVtkObjectsAndFollowsTheirChanges)
 TEST(LightingProperty, DefaultsAreThoseOfLightingParameters)
 {
   vtkNew<vtkCloudLightingProperty> property;
-  const LightingParameters p = property->GetParameters();
-  const LightingParameters defaults;
-  EXPECT_EQ(p.Model, defaults.Model);
-  EXPECT_EQ(p.AmbientColor, defaults.AmbientColor);
-  EXPECT_EQ(p.AmbientStrength, defaults.AmbientStrength);
-  EXPECT_EQ(p.DerivativeDistance, defaults.DerivativeDistance);
-  EXPECT_EQ(p.LightSteps, defaults.LightSteps);
-  EXPECT_EQ(p.LightStep, defaults.LightStep);
-  EXPECT_EQ(p.LightStepGrowth, defaults.LightStepGrowth);
-  EXPECT_EQ(p.PhaseG1, defaults.PhaseG1);
-  EXPECT_EQ(p.PhaseG2, defaults.PhaseG2);
-  EXPECT_EQ(p.PhaseLobeWeight, defaults.PhaseLobeWeight);
-  EXPECT_EQ(p.MultipleScatteringOctaves, defaults.MultipleScatteringOctaves);
-  EXPECT_EQ(p.ScatteringFalloff, defaults.ScatteringFalloff);
-  EXPECT_EQ(p.ExtinctionFalloff, defaults.ExtinctionFalloff);
-  EXPECT_EQ(p.EccentricityFalloff, defaults.EccentricityFalloff);
-  EXPECT_EQ(p.PowderStrength, defaults.PowderStrength);
+  ExpectSameLighting(property->GetParameters(), LightingParameters(), "defaults");
   // The values the class documentation states.
   EXPECT_EQ(property->GetModel(), vtkCloudLightingProperty::NoLighting);
   EXPECT_EQ(property->GetLightSteps(), 6);
@@ -615,45 +600,32 @@ TEST(LightingProperty, DefaultsAreThoseOfLightingParameters)
 
 TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
 {
+  const LightingParameters v = EveryLightingParameterChanged();
+  ASSERT_EQ(v.Model, LightingModel::March);
+  ASSERT_EQ(v.Transmittance, LightTransmittance::Nested);
   vtkNew<vtkCloudLightingProperty> property;
   property->SetModelToMarch();
-  property->SetAmbientColor(0.1f, 0.2f, 0.3f);
-  property->SetAmbientStrength(0.4f);
-  property->SetDerivativeDistance(0.5f);
-  property->SetLightSteps(9);
-  property->SetLightStep(0.06f);
-  property->SetLightStepGrowth(1.3f);
-  property->SetPhaseG1(0.7f);
-  property->SetPhaseG2(-0.2f);
-  property->SetPhaseLobeWeight(0.6f);
-  property->SetMultipleScatteringOctaves(5);
-  property->SetScatteringFalloff(0.45f);
-  property->SetExtinctionFalloff(0.35f);
-  property->SetEccentricityFalloff(0.25f);
-  property->SetPowderStrength(0.15f);
+  property->SetAmbientColor(v.AmbientColor.r, v.AmbientColor.g, v.AmbientColor.b);
+  property->SetAmbientStrength(v.AmbientStrength);
+  property->SetDerivativeDistance(v.DerivativeDistance);
+  property->SetLightSteps(v.LightSteps);
+  property->SetLightStep(v.LightStep);
+  property->SetLightStepGrowth(v.LightStepGrowth);
+  property->SetPhaseG1(v.PhaseG1);
+  property->SetPhaseG2(v.PhaseG2);
+  property->SetPhaseLobeWeight(v.PhaseLobeWeight);
+  property->SetMultipleScatteringOctaves(v.MultipleScatteringOctaves);
+  property->SetScatteringFalloff(v.ScatteringFalloff);
+  property->SetExtinctionFalloff(v.ExtinctionFalloff);
+  property->SetEccentricityFalloff(v.EccentricityFalloff);
+  property->SetPowderStrength(v.PowderStrength);
   property->SetTransmittanceToNestedMarch();
   const LightingParameters p = property->GetParameters();
-  EXPECT_EQ(p.Model, LightingModel::March);
-  EXPECT_EQ(p.AmbientColor, glm::vec3(0.1f, 0.2f, 0.3f));
-  EXPECT_EQ(p.AmbientStrength, 0.4f);
-  EXPECT_EQ(p.DerivativeDistance, 0.5f);
-  EXPECT_EQ(p.LightSteps, 9);
-  EXPECT_EQ(p.LightStep, 0.06f);
-  EXPECT_EQ(p.LightStepGrowth, 1.3f);
-  EXPECT_EQ(p.PhaseG1, 0.7f);
-  EXPECT_EQ(p.PhaseG2, -0.2f);
-  EXPECT_EQ(p.PhaseLobeWeight, 0.6f);
-  EXPECT_EQ(p.MultipleScatteringOctaves, 5);
-  EXPECT_EQ(p.ScatteringFalloff, 0.45f);
-  EXPECT_EQ(p.ExtinctionFalloff, 0.35f);
-  EXPECT_EQ(p.EccentricityFalloff, 0.25f);
-  EXPECT_EQ(p.PowderStrength, 0.15f);
-  EXPECT_EQ(p.Transmittance, LightTransmittance::Nested);
+  ExpectSameLighting(p, v, "setters");
 
   vtkNew<vtkCloudLightingProperty> copy;
   copy->DeepCopy(property);
-  EXPECT_EQ(copy->GetParameters().PhaseG2, -0.2f);
-  EXPECT_EQ(copy->GetParameters().Transmittance, LightTransmittance::Nested);
+  ExpectSameLighting(copy->GetParameters(), v, "deep copy");
   const vtkMTimeType time = copy->GetMTime();
   copy->SetParameters(p); // the same values
   EXPECT_EQ(copy->GetMTime(), time);
