@@ -124,9 +124,10 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
 {
   // The picture a user sees of the seeds' scene (a sky-blue background, a white cloud under a
   // sun and a pink point light, each model with its own light colours and ambient) is the
-  // equations' picture: the CPU reference of the same scene, composited over the background and
-  // rounded to 8 bits as the window does. Over the whole window, so a wrong light, colour,
-  // ambient or background shows; the cloud must cover much of it, so an empty window fails.
+  // equations' picture: the CPU reference of the same scene (SupportReference.h), composited
+  // over the background and rounded to 8 bits as the window does. A wrong light, colour, ambient
+  // or background shows; the reference's cloud must cover much of the window, so an empty
+  // window fails. (This test asked only for a mean red above the background's before.)
   for (LightingModel model : { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
     const std::string name =
@@ -137,9 +138,8 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
     lighting.AmbientStrength = model == LightingModel::Derivative ? 1.1f : 0.3f;
     mapper->GetLightingProperty()->SetParameters(lighting);
     GpuScene scene(mapper, 160, 160);
-    scene.SetInput(SparseCloud(96));
+    scene.ShowSparseCloud(96);
     scene.Renderer->SetBackground(0.35, 0.45, 0.65);
-    SetRampMedium(scene.Property, 1.0, 0.6);
     vtkNew<vtkColorTransferFunction> white;
     white->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
     scene.Property->SetColor(white);
@@ -156,12 +156,20 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
     Dump(image, "seed-" + name);
     Dump(expected, "seed-" + name + "-reference");
 
-    const size_t cloudPixels = CountPixels(cloud, OpacityAbove(cloud, cloud, 0.05));
-    const Difference d = Compare(image, expected, 3);
+    // The cloud's pixels, where the reference's opacity is above 0.05; the rest is the
+    // background, which must be exact anyway and would dilute a mean.
+    const Mask inCloud = OpacityAbove(cloud, cloud, 0.05);
+    const size_t cloudPixels = CountPixels(cloud, inCloud);
+    const Difference overCloud = Compare(image, expected, 3, inCloud);
+    const Difference whole = Compare(image, expected, 3);
     std::cout << name << ": " << cloudPixels << " cloud pixels; window vs reference RMS "
-              << d.RmsLevels() << " levels, max " << d.MaxLevels() << "\n";
+              << overCloud.RmsLevels() << " levels over them, max " << whole.MaxLevels()
+              << " over the window\n";
     ASSERT_GT(cloudPixels, size_t(160 * 160 / 8)) << name << ": the cloud covers much of the window";
-    EXPECT_LT(d.RmsLevels(), 1.0) << name;
-    EXPECT_LT(d.MaxLevels(), 4.0) << name;
+    // Measured on llvmpipe: 0.36 to 0.47 levels RMS over the cloud (the window's 8-bit blend
+    // against the reference's rounding of its composite), at most 1 level anywhere. A point
+    // light 10% too dim in the march shader gives 1.44 RMS and 8 at most.
+    EXPECT_LT(overCloud.RmsLevels(), 1.0) << name;
+    EXPECT_LE(whole.MaxLevels(), 3.0) << name;
   }
 }
