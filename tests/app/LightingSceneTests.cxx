@@ -419,6 +419,18 @@ TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
   EXPECT_GT(RmsLevels(image, 0, image, 40, 40, belowLabels), 3.0);
   EXPECT_GT(RmsLevels(image, 0, image, 80, 40, belowLabels), 3.0);
   EXPECT_GT(RmsLevels(image, 40, image, 80, 40, belowLabels), 3.0);
+  // And each panel is what `render` draws of the scene with that model, at the panel's size:
+  // compare shows the pictures a user would get one by one.
+  const char* models[3] = { "none", "derivative", "march" };
+  for (int i = 0; i < 3; ++i)
+  {
+    const Output single(std::string(models[i]) + ".png");
+    RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32",
+      "--lighting", models[i], "-o", single.Path }));
+    const double rms = RmsLevels(image, 40 * i, ReadPng(single.Path), 0, 40, belowLabels);
+    std::cout << models[i] << ": panel vs render " << rms << " levels RMS\n";
+    EXPECT_LT(rms, 0.25) << models[i]; // measured on llvmpipe: 0, the same pixels
+  }
 }
 
 TEST(Compare, DifferenceAddsAPanel)
