@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace cloudvis;
@@ -30,8 +31,8 @@ vtkSmartPointer<vtkCloudVolumeMapper> LitMapper(LightingModel model, double step
   return mapper;
 }
 
-// Mean red radiance of the right half minus the left half of a render lit from +x or -x.
-double RightMinusLeft(LightingModel model, double lightX)
+// Mean red radiance of the right half and of the left half of a render lit from +x or -x.
+std::pair<double, double> RightAndLeft(LightingModel model, double lightX)
 {
   auto mapper = LitMapper(model);
   GpuScene scene(mapper, 64, 64);
@@ -40,7 +41,7 @@ double RightMinusLeft(LightingModel model, double lightX)
   const Image image = scene.RenderFloat();
   Dump(image, std::string("lit-from-") + (lightX > 0 ? "right-" : "left-") +
       (model == LightingModel::March ? "march" : "derivative"));
-  return MeanOver(image, 0, Columns(32, 64)) - MeanOver(image, 0, Columns(0, 32));
+  return { MeanOver(image, 0, Columns(32, 64)), MeanOver(image, 0, Columns(0, 32)) };
 }
 
 class EveryLightModel : public ::testing::TestWithParam<LightingModel>
@@ -50,8 +51,13 @@ class EveryLightModel : public ::testing::TestWithParam<LightingModel>
 
 TEST_P(EveryLightModel, TheSideFacingTheLightIsBrighterAndMovingTheLightFlipsIt)
 {
-  EXPECT_GT(RightMinusLeft(GetParam(), 10.0), 0.002);
-  EXPECT_LT(RightMinusLeft(GetParam(), -10.0), -0.002);
+  const auto [rightLit, leftDark] = RightAndLeft(GetParam(), 10.0);
+  const auto [rightDark, leftLit] = RightAndLeft(GetParam(), -10.0);
+  std::cout << "lit from the right: right " << rightLit << ", left " << leftDark
+            << "; from the left: right " << rightDark << ", left " << leftLit << "\n";
+  // Measured on llvmpipe: differences of 0.014 to 0.024.
+  EXPECT_GT(rightLit - leftDark, 0.002);
+  EXPECT_GT(leftLit - rightDark, 0.002);
 }
 
 TEST_P(EveryLightModel, LightsAddUp)
@@ -78,8 +84,11 @@ TEST_P(EveryLightModel, LightsAddUp)
       brightest = std::max(brightest, double(both.Values[i]));
     }
   }
+  std::cout << "largest departure from the sum " << largest << ", brightest " << brightest << "\n";
+  // Measured on llvmpipe: 1.8e-7, float rounding (the gate was 1e-3, which a second light
+  // weighted 1.001 passed).
   EXPECT_GT(brightest, 0.05);
-  EXPECT_LT(largest, 1e-3 * std::max(1.0, brightest));
+  EXPECT_LT(largest, 2e-6 * std::max(1.0, brightest));
 }
 
 TEST_P(EveryLightModel, APointLightDimsWithDistance)
@@ -91,7 +100,14 @@ TEST_P(EveryLightModel, APointLightDimsWithDistance)
     AddPointLight(scene.Renderer, 0.0, 0.0, distance, 9.0);
     return MeanOver(scene.RenderFloat(), 1, Columns(0, 48));
   };
-  EXPECT_GT(brightness(2.5), 1.5 * brightness(5.0));
+  const double nearer = brightness(2.5), farther = brightness(5.0);
+  std::cout << "point light at 2.5: " << nearer << ", at 5: " << farther << "\n";
+  // Twice as far, a quarter of the light where it enters the cloud; deeper, where the light
+  // has crossed more of the cloud, the distances differ less. Measured on llvmpipe: 4.1 to 4.3
+  // times as bright (it was only required to be 1.5 times, which a falloff with the distance
+  // instead of its square passes).
+  EXPECT_GT(nearer, 3.0 * farther);
+  EXPECT_LT(nearer, 6.0 * farther);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, EveryLightModel,
@@ -116,6 +132,7 @@ TEST(LightMarch, HalvingBothStepsChangesTheMeanRadianceByUnderTwoPercent)
     return MeanOver(image, 0, Columns(0, 64)) + MeanOver(image, 1, Columns(0, 64)) + MeanOver(image, 2, Columns(0, 64));
   };
   const double coarse = mean(0.04, 0.08, 12), fine = mean(0.02, 0.04, 24);
+  std::cout << "coarse " << coarse << ", fine " << fine << "\n";
   EXPECT_GT(coarse, 0.01);
   EXPECT_LT(std::abs(coarse - fine) / fine, 0.02);
 }
