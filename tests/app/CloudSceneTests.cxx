@@ -20,8 +20,8 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <utility>
 #include <string>
+#include <utility>
 
 namespace
 {
@@ -73,10 +73,17 @@ TEST(CloudScene, EveryCloudKeyReachesTheLayerAndRoundTrips)
   EXPECT_EQ(l.Source, cloudvis::CoverageSource::Noise);
   // Each number as EveryCloudKey gives it.
   const json keys = EveryCloudKey();
-  const std::pair<const char*, double> numbers[] = { { "base", l.Base }, { "top", l.Top },
-    { "coverage", l.Coverage }, { "map_scale", l.MapScale }, { "map_octaves", l.MapOctaves },
-    { "map_gain", l.MapGain }, { "shape_scale", l.ShapeScale }, { "detail_scale", l.DetailScale },
-    { "erosion", l.Erosion }, { "curl", l.Curl }, { "anvil", l.Anvil } };
+  const std::pair<const char*, double> numbers[] = { { "base", l.Base },
+    { "top", l.Top },
+    { "coverage", l.Coverage },
+    { "map_scale", l.MapScale },
+    { "map_octaves", l.MapOctaves },
+    { "map_gain", l.MapGain },
+    { "shape_scale", l.ShapeScale },
+    { "detail_scale", l.DetailScale },
+    { "erosion", l.Erosion },
+    { "curl", l.Curl },
+    { "anvil", l.Anvil } };
   for (const auto& [key, value] : numbers)
   {
     EXPECT_EQ(value, keys[key].get<double>()) << key;

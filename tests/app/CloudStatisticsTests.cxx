@@ -8,8 +8,8 @@
 #include "FieldIO.h"
 #include "FieldTestFiles.h"  // RunTool
 #include "OffscreenRender.h" // MakeVolumeProperty
-#include "SupportFixtures.h"
 #include "Scene.h"
+#include "SupportFixtures.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
 
@@ -550,11 +550,8 @@ TEST(Droplets, RenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
   vtkNew<vtkCloudReferenceRenderer> renderer;
   renderer->SetInputData(field);
   renderer->SetImageSize(1, 1);
-  renderer->SetCameraPosition(side / 2, side / 2, 5.0);
-  renderer->SetCameraFocalPoint(side / 2, side / 2, side / 2);
-  renderer->ParallelProjectionOn();
-  renderer->SetParallelScale(side / 4);
-  renderer->SetClippingRange(1.0, 10.0);
+  cloudvis::support::SetParallelView(
+    renderer, glm::dvec3(side / 2), glm::dvec3(0.0, 0.0, -1.0), side / 4);
   renderer->SetSampleDistance(side / 512);
   renderer->SetVolumeProperty(cloudvis::MakeVolumeProperty(scene.TransferFunction));
   const cloudvis::support::Image image = cloudvis::support::Render(renderer);

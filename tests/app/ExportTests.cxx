@@ -150,7 +150,8 @@ TEST(Exr, PathTracedRenderAddsTheVarianceOfEachChannel)
   // render --lighting pathtrace: the variance layer holds the mapper's variance of each pixel's
   // means (the same paths: same seed and split), non-negative and non-zero where the cloud is.
   TemporaryDirectory dir;
-  ASSERT_NO_FATAL_FAILURE(RenderSmall(dir.File("p.exr"), { "--lighting", "pathtrace", "--spp", "4" }));
+  ASSERT_NO_FATAL_FAILURE(
+    RenderSmall(dir.File("p.exr"), { "--lighting", "pathtrace", "--spp", "4" }));
   const Exr exr = ReadExr(dir.File("p.exr"));
   std::vector<std::string> names;
   for (const auto& channel : exr.Types)

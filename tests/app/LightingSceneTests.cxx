@@ -293,22 +293,28 @@ std::vector<std::string> With(std::vector<std::string> arguments)
   return arguments;
 }
 
+// The two-light scene rendered small with one lighting model into a PNG, read back.
+Image RenderTwoLights(const std::string& model, const std::string& size)
+{
+  const Output png(model + ".png");
+  RunCloudvis(With({ "render",
+    CLOUDVIS_SCENES "/two-lights.json",
+    "--size",
+    size,
+    "--lighting",
+    model,
+    "-o",
+    png.Path }));
+  return ReadPng(png.Path);
+}
+
 TEST(LightingRender, DerivativeAndMarchDifferFromNone)
 {
   Image images[3];
   const char* models[3] = { "none", "derivative", "march" };
   for (int i = 0; i < 3; ++i)
   {
-    const Output png(std::string(models[i]) + ".png");
-    RunCloudvis(With({ "render",
-      CLOUDVIS_SCENES "/two-lights.json",
-      "--size",
-      "48x40",
-      "--lighting",
-      models[i],
-      "-o",
-      png.Path }));
-    images[i] = ReadPng(png.Path);
+    images[i] = RenderTwoLights(models[i], "48x40");
     ASSERT_EQ(images[i].Width, 48);
   }
   EXPECT_GT(RmsLevels(images[0], 0, images[1], 0, 48), 5.0);
@@ -391,17 +397,8 @@ TEST(Baseline, TwoLightsUnderEachLightingModel)
 {
   for (const char* model : { "none", "derivative", "march" })
   {
-    const Output png(std::string(model) + ".png");
-    RunCloudvis(With({ "render",
-      CLOUDVIS_SCENES "/two-lights.json",
-      "--size",
-      "128x96",
-      "--lighting",
-      model,
-      "-o",
-      png.Path }));
-    const cloudvis::support::BaselineCheck check =
-      cloudvis::support::CompareWithBaseline(ReadPng(png.Path), std::string("two-lights-") + model);
+    const cloudvis::support::BaselineCheck check = cloudvis::support::CompareWithBaseline(
+      RenderTwoLights(model, "128x96"), std::string("two-lights-") + model);
     EXPECT_TRUE(check) << check.Message;
   }
 }
@@ -424,10 +421,8 @@ TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
   const char* models[3] = { "none", "derivative", "march" };
   for (int i = 0; i < 3; ++i)
   {
-    const Output single(std::string(models[i]) + ".png");
-    RunCloudvis(With({ "render", CLOUDVIS_SCENES "/two-lights.json", "--size", "40x32",
-      "--lighting", models[i], "-o", single.Path }));
-    const double rms = RmsLevels(image, 40 * i, ReadPng(single.Path), 0, 40, belowLabels);
+    const double rms =
+      RmsLevels(image, 40 * i, RenderTwoLights(models[i], "40x32"), 0, 40, belowLabels);
     std::cout << models[i] << ": panel vs render " << rms << " levels RMS\n";
     EXPECT_LT(rms, 0.25) << models[i]; // measured on llvmpipe: 0, the same pixels
   }

@@ -2,8 +2,8 @@
 #include "SupportScene.h"
 
 #include <vtkCamera.h>
-#include <vtkPiecewiseFunction.h>
 #include <vtkFloatArray.h>
+#include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkTransform.h>
 
@@ -172,8 +172,8 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     scene.SetInput(field);
     scene.Volume->RotateX(20.0);
     SetRampMedium(scene.Property, 1.0, 0.6);
-    AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0);
-    AddPointLight(scene.Renderer, -2.0, 0.5, 1.5, 4.0);
+    AddLight(scene.Renderer, DirectionalLight(glm::dvec3(6.0, 8.0, 4.0)));
+    AddLight(scene.Renderer, PointLight(glm::dvec3(-2.0, 0.5, 1.5), 4.0));
     const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping");
     ASSERT_GT(MeanOver(r.Full, 3, Columns(0, 96)), 0.05) << "an empty window proves nothing";
     EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0) << "model " << int(model);
@@ -224,8 +224,8 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBric
   SetRampMedium(scene.Property, 1.0, 0.6);
   const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping-dots");
   ASSERT_EQ(mapper->GetLastError(), "");
-  std::cout << "mean opacity " << MeanOver(r.Full, 3, Columns(0, 96)) << ", samples " << r.AllSamples
-            << " unskipped, " << r.Skipping.SamplesTaken << " skipped\n";
+  std::cout << "mean opacity " << MeanOver(r.Full, 3, Columns(0, 96)) << ", samples "
+            << r.AllSamples << " unskipped, " << r.Skipping.SamplesTaken << " skipped\n";
   ASSERT_GT(MeanOver(r.Full, 3, Columns(0, 96)), 0.1) << "an empty window proves nothing";
   ASSERT_LT(MeanOver(r.Full, 3, Columns(0, 96)), 0.9) << "an opaque window hides what is missed";
   EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0);

@@ -99,10 +99,8 @@ void ExpectAgreement(const Image& image,
             << " (scale " << scale << "), largest tile z "
             << LargestBlockZ(image, 4, difference, variance, use, tiles) << " over " << tiles
             << " tiles\n";
-  ExpectNoDifference(
-    image, 4, difference, variance, use, scale, minTiles, what, 0.02, Sigmas);
+  ExpectNoDifference(image, 4, difference, variance, use, scale, minTiles, what, 0.02, Sigmas);
 }
-
 }
 
 TEST(GpuPathTracer, AgreesWithTheCpuPathTracerWithinTheirStandardErrors)
@@ -117,8 +115,8 @@ TEST(GpuPathTracer, AgreesWithTheCpuPathTracerWithinTheirStandardErrors)
   LightingParameters lighting = Ambient(glm::vec3(0.1f, 0.15f, 0.2f));
   GpuTrace gpu(field, medium, lighting, 8, 7);
   gpu.LookAt(glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.9);
-  gpu.View.Renderer->AddLight(MakeLight(DirectionalLight(glm::vec3(1.0f, 0.5f, 0.2f), 1.5f)));
-  gpu.View.Renderer->AddLight(MakeLight(PointLight(glm::vec3(-0.5f, 1.5f, 1.0f), 2.0f)));
+  AddLight(gpu.View.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.2), 1.5f));
+  AddLight(gpu.View.Renderer, PointLight(glm::dvec3(-0.5, 1.5, 1.0), 2.0f));
   const Image traced = gpu.Render(16); // 128 paths per pixel
   ASSERT_EQ(traced.Width, Size);
 

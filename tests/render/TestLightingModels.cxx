@@ -37,7 +37,7 @@ std::pair<double, double> RightAndLeft(LightingModel model, double lightX)
   auto mapper = LitMapper(model);
   GpuScene scene(mapper, 64, 64);
   scene.ShowSparseCloud(48);
-  AddDirectionalLight(scene.Renderer, lightX, 0.0, 0.0, 1.0);
+  AddLight(scene.Renderer, DirectionalLight(glm::dvec3(lightX, 0.0, 0.0), 1.0));
   const Image image = scene.RenderFloat();
   Dump(image, std::string("lit-from-") + (lightX > 0 ? "right-" : "left-") +
       (model == LightingModel::March ? "march" : "derivative"));
@@ -69,9 +69,10 @@ TEST_P(EveryLightModel, LightsAddUp)
     GpuScene scene(mapper, 48, 48);
     scene.ShowSparseCloud(48);
     if (a)
-      AddDirectionalLight(scene.Renderer, 10.0, 5.0, 3.0, 0.7);
+      AddLight(scene.Renderer, DirectionalLight(glm::dvec3(10.0, 5.0, 3.0), 0.7));
     if (b)
-      AddPointLight(scene.Renderer, -2.5, 1.0, 2.0, 4.0, 1.0, 0.5, 0.8);
+      AddLight(
+        scene.Renderer, PointLight(glm::dvec3(-2.5, 1.0, 2.0), 4.0, glm::vec3(1.0, 0.5, 0.8)));
     return scene.RenderFloat();
   };
   const Image both = render(true, true), onlyA = render(true, false), onlyB = render(false, true);
@@ -80,7 +81,8 @@ TEST_P(EveryLightModel, LightsAddUp)
   {
     if (i % 4 != 3)
     {
-      largest = std::max(largest, double(std::abs(both.Values[i] - onlyA.Values[i] - onlyB.Values[i])));
+      largest =
+        std::max(largest, double(std::abs(both.Values[i] - onlyA.Values[i] - onlyB.Values[i])));
       brightest = std::max(brightest, double(both.Values[i]));
     }
   }
@@ -97,7 +99,7 @@ TEST_P(EveryLightModel, APointLightDimsWithDistance)
     auto mapper = LitMapper(GetParam());
     GpuScene scene(mapper, 48, 48);
     scene.ShowSparseCloud(48);
-    AddPointLight(scene.Renderer, 0.0, 0.0, distance, 9.0);
+    AddLight(scene.Renderer, PointLight(glm::dvec3(0.0, 0.0, distance), 9.0));
     return MeanOver(scene.RenderFloat(), 1, Columns(0, 48));
   };
   const double nearer = brightness(2.5), farther = brightness(5.0);
@@ -127,9 +129,10 @@ TEST(LightMarch, HalvingBothStepsChangesTheMeanRadianceByUnderTwoPercent)
     mapper->GetLightingProperty()->SetParameters(lighting);
     GpuScene scene(mapper, 64, 64);
     scene.ShowSparseCloud(64);
-    AddDirectionalLight(scene.Renderer, 5.0, 5.0, 2.0, 3.0);
+    AddLight(scene.Renderer, DirectionalLight(glm::dvec3(5.0, 5.0, 2.0), 3.0));
     const Image image = scene.RenderFloat();
-    return MeanOver(image, 0, Columns(0, 64)) + MeanOver(image, 1, Columns(0, 64)) + MeanOver(image, 2, Columns(0, 64));
+    return MeanOver(image, 0, Columns(0, 64)) + MeanOver(image, 1, Columns(0, 64)) +
+      MeanOver(image, 2, Columns(0, 64));
   };
   const double coarse = mean(0.04, 0.08, 12), fine = mean(0.02, 0.04, 24);
   std::cout << "coarse " << coarse << ", fine " << fine << "\n";
@@ -147,8 +150,9 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
   // window fails. (This test asked only for a mean red above the background's before.)
   for (LightingModel model : { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
-    const std::string name =
-      model == LightingModel::None ? "none" : model == LightingModel::March ? "march" : "derivative";
+    const std::string name = model == LightingModel::None ? "none"
+      : model == LightingModel::March                     ? "march"
+                                                          : "derivative";
     auto mapper = LitMapper(model, 0.02);
     LightingParameters lighting = mapper->GetLightingProperty()->GetParameters();
     lighting.AmbientColor = glm::vec3(0.60f, 0.60f, 0.75f);
@@ -160,9 +164,14 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
     vtkNew<vtkColorTransferFunction> white;
     white->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
     scene.Property->SetColor(white);
-    AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, model == LightingModel::March ? 1.6 : 0.8,
-      1.0, model == LightingModel::Derivative ? 0.6 : 1.0, model == LightingModel::Derivative ? 0.3 : 1.0);
-    AddPointLight(scene.Renderer, -2.2, -0.5, 1.5, 2.0, 1.0, 0.4, 0.7);
+    AddLight(scene.Renderer,
+      DirectionalLight(glm::dvec3(6.0, 8.0, 4.0),
+        model == LightingModel::March ? 1.6 : 0.8,
+        glm::vec3(1.0,
+          model == LightingModel::Derivative ? 0.6 : 1.0,
+          model == LightingModel::Derivative ? 0.3 : 1.0)));
+    AddLight(
+      scene.Renderer, PointLight(glm::dvec3(-2.2, -0.5, 1.5), 2.0, glm::vec3(1.0, 0.4, 0.7)));
     const Image image = scene.Render();
     ASSERT_EQ(mapper->GetLastError(), "");
 
@@ -182,7 +191,8 @@ TEST(LightingPictures, TheSeedsCloudUnderASunAndAPinkPointLight)
     std::cout << name << ": " << cloudPixels << " cloud pixels; window vs reference RMS "
               << overCloud.RmsLevels() << " levels over them, max " << whole.MaxLevels()
               << " over the window\n";
-    ASSERT_GT(cloudPixels, size_t(160 * 160 / 8)) << name << ": the cloud covers much of the window";
+    ASSERT_GT(cloudPixels, size_t(160 * 160 / 8))
+      << name << ": the cloud covers much of the window";
     // Measured on llvmpipe: 0.36 to 0.47 levels RMS over the cloud (the window's 8-bit blend
     // against the reference's rounding of its composite), at most 1 level anywhere. A point
     // light 10% too dim in the march shader gives 1.44 RMS and 8 at most.

@@ -232,7 +232,6 @@ TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)
   }
 }
 
-
 TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomputingTheVolumes)
 {
   // A light that follows the camera (VTK's headlight) changes with every frame of an
@@ -295,7 +294,7 @@ TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomput
   EXPECT_GT(MaxDifference(after, nestedAfter), 1e-4);
   // A light that moves while the camera holds still (not interacting) recomputes them at once.
   volumes.View.Renderer->RemoveAllLights();
-  AddDirectionalLight(volumes.View.Renderer, 1.0, 0.5, 0.3);
+  AddLight(volumes.View.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.3)));
   volumes.View.RenderFloat();
   EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 3);
 }
@@ -369,8 +368,8 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
   field->GetPointData()->GetScalars()->Fill(1.0);
   scene.SetInput(field);
   SetUniformMedium(scene.Property, 0.5, 1.0);
-  AddDirectionalLight(scene.Renderer, 1.0, 0.5, 0.3);
-  AddPointLight(scene.Renderer, 0.0, 3.0, 1.0);
+  AddLight(scene.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.3)));
+  AddLight(scene.Renderer, PointLight(glm::dvec3(0.0, 3.0, 1.0)));
 
   const Image refused = scene.Render();
   const std::string error = mapper->GetLastError();
@@ -386,7 +385,7 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
   EXPECT_EQ(mapper->GetLastError(), "");
   mapper->GetLightingProperty()->SetTransmittanceToLightVolumes();
   scene.Renderer->RemoveAllLights();
-  AddDirectionalLight(scene.Renderer, 1.0, 0.5, 0.3);
+  AddLight(scene.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.3)));
   EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
   EXPECT_EQ(mapper->GetLastError(), "");
 }

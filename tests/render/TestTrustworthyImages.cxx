@@ -31,7 +31,7 @@ std::string ErrorOf(
   vtkImageData* field,
   double step,
   const std::function<void(GpuScene&, vtkCloudVolumeMapper*)>& setup = [](GpuScene&,
-                                                                      vtkCloudVolumeMapper*) {})
+                                                                         vtkCloudVolumeMapper*) {})
 {
   auto mapper = CloudMapper(step);
   GpuScene scene(mapper, 32, 32);
@@ -82,7 +82,7 @@ TEST(TrustworthyImages, MoreThanEightLightsAreRefusedNotDropped)
       mapper->GetLightingProperty()->SetParameters(March());
       for (int i = 0; i < count; ++i)
       {
-        AddPointLight(scene.Renderer, i, 1.0, 3.0);
+        AddLight(scene.Renderer, PointLight(glm::dvec3(i, 1.0, 3.0)));
       }
     };
   };
@@ -98,7 +98,7 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
     [](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
-      AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, 1e38);
+      AddLight(scene.Renderer, DirectionalLight(glm::dvec3(6.0, 8.0, 4.0), 1e38));
     });
   EXPECT_TRUE(Mentions(bright, "light 0 (color x intensity 1e+38)")) << bright;
   EXPECT_TRUE(Mentions(bright, "lower its intensity")) << bright;
@@ -108,7 +108,7 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
     [](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
-      AddPointLight(scene.Renderer, 1e30, 0.0, 0.0);
+      AddLight(scene.Renderer, PointLight(glm::dvec3(1e30, 0.0, 0.0)));
     });
   EXPECT_TRUE(Mentions(far, "too far for float arithmetic")) << far;
 
@@ -122,7 +122,7 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
   EXPECT_EQ(ErrorOf(field,
               0.05,
               [](GpuScene& scene, vtkCloudVolumeMapper*)
-              { AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, 1e38); }),
+              { AddLight(scene.Renderer, DirectionalLight(glm::dvec3(6.0, 8.0, 4.0), 1e38)); }),
     "");
 }
 
@@ -135,7 +135,8 @@ TEST(TrustworthyImages, ADirectionalLightFarAlongItsDirectionLightsAlike)
     mapper->GetLightingProperty()->SetParameters(March());
     GpuScene scene(mapper, 48, 48);
     scene.ShowSparseCloud(32);
-    AddDirectionalLight(scene.Renderer, 0.6 * distance, 0.8 * distance, 0.4 * distance);
+    AddLight(
+      scene.Renderer, DirectionalLight(glm::dvec3(0.6 * distance, 0.8 * distance, 0.4 * distance)));
     const Image image = scene.RenderFloat();
     EXPECT_EQ(mapper->GetLastError(), "");
     return image;
@@ -186,8 +187,9 @@ TEST(TrustworthyImages, AFlatOrNonFiniteGeometryIsRefused)
     scene.SetInput(field);
     SetRampMedium(scene.Property, 1.0, 0.6);
     const Image image = scene.Render();
-    EXPECT_EQ(
-      MeanOver(image, 0, Columns(0, 32)) + MeanOver(image, 1, Columns(0, 32)) + MeanOver(image, 2, Columns(0, 32)), 0.0)
+    EXPECT_EQ(MeanOver(image, 0, Columns(0, 32)) + MeanOver(image, 1, Columns(0, 32)) +
+        MeanOver(image, 2, Columns(0, 32)),
+      0.0)
       << "nothing drawn";
   }
   EXPECT_TRUE(Mentions(
@@ -215,7 +217,7 @@ TEST(TrustworthyImages, AnOutlierVoxelDoesNotChangeTheRestOfTheCloud)
     change(vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars()));
     scene.SetInput(field);
     SetRampMedium(scene.Property, 1.0, 0.6);
-    AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0);
+    AddLight(scene.Renderer, DirectionalLight(glm::dvec3(6.0, 8.0, 4.0)));
     const Image image = scene.RenderFloat();
     EXPECT_EQ(mapper->GetLastError(), "");
     return image;

@@ -1,6 +1,8 @@
 // The renderer tests' fields, media, lights, view and CPU images (SupportFixtures.h).
 #include "SupportFixtures.h"
 
+#include "CloudMarchUniforms.h"
+
 #include "vtkCloudDensitySource.h"
 #include "vtkCloudReferenceRenderer.h"
 
@@ -9,7 +11,6 @@
 #include <vtkColorTransferFunction.h>
 #include <vtkCommand.h>
 #include <vtkFloatArray.h>
-#include <vtkLight.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
@@ -36,26 +37,11 @@ vtkSmartPointer<vtkImageData> Generate(const FieldDescription& field, int size, 
   return image;
 }
 
-void AddLight(vtkRenderer* renderer, bool positional, double x, double y, double z,
-  double intensity, double r, double g, double b)
-{
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(positional);
-  light->SetPosition(x, y, z);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  light->SetDiffuseColor(r, g, b);
-  light->SetIntensity(intensity);
-  if (positional)
-  {
-    light->SetConeAngle(180.0); // a point light, not a spot
-    light->SetAttenuationValues(0.0, 0.0, 1.0);
-  }
-  renderer->AddLight(light);
-}
 }
 
-vtkSmartPointer<vtkImageData> MakeBoxField(glm::ivec3 dims, glm::dvec3 lo, glm::dvec3 hi,
+vtkSmartPointer<vtkImageData> MakeBoxField(glm::ivec3 dims,
+  glm::dvec3 lo,
+  glm::dvec3 hi,
   const std::function<double(double, double, double)>& density)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
@@ -148,8 +134,12 @@ vtkSmartPointer<vtkVolumeProperty> LinearMedium(float sigma_t, glm::vec3 albedo,
   return property;
 }
 
-void SetUniformMedium(
-  vtkVolumeProperty* property, double opacity, double unitDistance, double r, double g, double b)
+void SetUniformMedium(vtkVolumeProperty* property,
+  double opacity,
+  double unitDistance,
+  double r,
+  double g,
+  double b)
 {
   vtkNew<vtkPiecewiseFunction> o;
   o->AddPoint(0.0, 0.0);
@@ -220,37 +210,30 @@ LightingParameters EveryLightingParameterChanged()
   return p;
 }
 
-Light DirectionalLight(glm::vec3 towardLight, float intensity, glm::vec3 color)
+Light DirectionalLight(glm::dvec3 towardLight, float intensity, glm::vec3 color)
 {
   Light light;
-  light.Position = glm::dvec3(10.0f * towardLight);
+  light.Position = towardLight;
   light.FocalPoint = glm::dvec3(0.0);
   light.Color = color;
   light.Intensity = intensity;
   return light;
 }
 
-Light PointLight(glm::vec3 position, float intensity, glm::vec3 color)
+Light PointLight(glm::dvec3 position, float intensity, glm::vec3 color)
 {
   Light light;
   light.Positional = true;
-  light.Position = glm::dvec3(position);
+  light.Position = position;
   light.Color = color;
   light.Intensity = intensity;
   light.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f); // inverse square
   return light;
 }
 
-void AddDirectionalLight(vtkRenderer* renderer, double fromX, double fromY, double fromZ,
-  double intensity, double r, double g, double b)
+void AddLight(vtkRenderer* renderer, const Light& light)
 {
-  AddLight(renderer, false, fromX, fromY, fromZ, intensity, r, g, b);
-}
-
-void AddPointLight(vtkRenderer* renderer, double x, double y, double z, double intensity,
-  double r, double g, double b)
-{
-  AddLight(renderer, true, x, y, z, intensity, r, g, b);
+  renderer->AddLight(MakeLight(light));
 }
 
 void SetParallelView(vtkCamera* camera, glm::dvec3 focal, glm::dvec3 view, double scale)
@@ -264,8 +247,10 @@ void SetParallelView(vtkCamera* camera, glm::dvec3 focal, glm::dvec3 view, doubl
   camera->SetClippingRange(1.0, 10.0);
 }
 
-void SetParallelView(
-  vtkCloudReferenceRenderer* renderer, glm::dvec3 focal, glm::dvec3 view, double scale)
+void SetParallelView(vtkCloudReferenceRenderer* renderer,
+  glm::dvec3 focal,
+  glm::dvec3 view,
+  double scale)
 {
   vtkNew<vtkCamera> camera;
   SetParallelView(camera, focal, view, scale);

@@ -36,7 +36,9 @@ namespace support
 
 // A float field "density" of dims voxels spanning the world box [lo, hi], density(x, y, z) at
 // each voxel.
-vtkSmartPointer<vtkImageData> MakeBoxField(glm::ivec3 dims, glm::dvec3 lo, glm::dvec3 hi,
+vtkSmartPointer<vtkImageData> MakeBoxField(glm::ivec3 dims,
+  glm::dvec3 lo,
+  glm::dvec3 hi,
   const std::function<double(double, double, double)>& density);
 // A sphere of radius 0.6 with a soft edge 0.3 wide in [-1, 1]^3: optically thick at its core.
 vtkSmartPointer<vtkImageData> SoftSphere(int n = 32);
@@ -57,12 +59,17 @@ TransferTable LinearTable(float sigma_t, glm::vec3 albedo = glm::vec3(1.0f));
 // [0, densityMax]) is LinearTable's: sigma_t * density / densityMax at every entry, one albedo.
 // The opacity per unit distance u is 1 - exp(-sigma_t u d / densityMax), given at each entry's
 // density, with u = 1 / sigma_t so that it stays below VTK's opacity of 1.
-vtkSmartPointer<vtkVolumeProperty> LinearMedium(
-  float sigma_t, glm::vec3 albedo = glm::vec3(1.0f), double densityMax = 1.0);
+vtkSmartPointer<vtkVolumeProperty> LinearMedium(float sigma_t,
+  glm::vec3 albedo = glm::vec3(1.0f),
+  double densityMax = 1.0);
 // Opacity per unit length `opacity` for densities >= 0.5 (0 below), with the given unit
 // distance and a uniform color.
-void SetUniformMedium(vtkVolumeProperty* property, double opacity, double unitDistance,
-  double r = 1, double g = 1, double b = 1);
+void SetUniformMedium(vtkVolumeProperty* property,
+  double opacity,
+  double unitDistance,
+  double r = 1,
+  double g = 1,
+  double b = 1);
 // Opacity rising linearly with density over [0, max] up to `opacity`, with a color ramp.
 void SetRampMedium(vtkVolumeProperty* property, double max, double opacity);
 
@@ -75,24 +82,26 @@ LightingParameters ModelOnly(LightingModel model);
 // Every lighting parameter away from its default (and within its limits): the march model with
 // nested transmittance, for checking that each one reaches where it should.
 LightingParameters EveryLightingParameterChanged();
-// A directional light arriving from `towardLight` at the origin, and a point light with
-// inverse-square falloff, as the lighting docs define them.
-Light DirectionalLight(
-  glm::vec3 towardLight, float intensity = 1.0f, glm::vec3 color = glm::vec3(1.0f));
-Light PointLight(glm::vec3 position, float intensity = 1.0f, glm::vec3 color = glm::vec3(1.0f));
-// The same lights added to a renderer's scene lights.
-void AddDirectionalLight(vtkRenderer* renderer, double fromX, double fromY, double fromZ,
-  double intensity = 1.0, double r = 1, double g = 1, double b = 1);
-void AddPointLight(vtkRenderer* renderer, double x, double y, double z, double intensity = 1.0,
-  double r = 1, double g = 1, double b = 1);
+// A directional light arriving at the origin from `towardLight` (its position, in double: a sun
+// may stand beyond float range), and a point light with inverse-square falloff, as the lighting
+// docs define them.
+Light DirectionalLight(glm::dvec3 towardLight,
+  float intensity = 1.0f,
+  glm::vec3 color = glm::vec3(1.0f));
+Light PointLight(glm::dvec3 position, float intensity = 1.0f, glm::vec3 color = glm::vec3(1.0f));
+// A light added to a renderer's scene lights (MakeLight), for the GPU mapper or a CPU renderer
+// given the renderer's lights.
+void AddLight(vtkRenderer* renderer, const Light& light);
 
 // ---- the view and the CPU renderers ------------------------------------------------------------
 
 // A parallel view of the region [-scale, scale]^2 around `focal` (world), looking along `view`
 // from 5 units away, clipping range [1, 10]: for a vtkCamera (the GPU) or a CPU renderer.
 void SetParallelView(vtkCamera* camera, glm::dvec3 focal, glm::dvec3 view, double scale);
-void SetParallelView(
-  vtkCloudReferenceRenderer* renderer, glm::dvec3 focal, glm::dvec3 view, double scale);
+void SetParallelView(vtkCloudReferenceRenderer* renderer,
+  glm::dvec3 focal,
+  glm::dvec3 view,
+  double scale);
 
 // The image a CPU renderer (vtkCloudReferenceRenderer or vtkCloudPathTracer) makes now: updated
 // after Modified(), its "rgba" and, for the path tracer, "rgba_variance".

@@ -52,8 +52,10 @@ Image FromVtk(vtkImageData* pixels)
 }
 }
 
-Image FromRgba(
-  const std::vector<float>& rgba, int width, int height, const std::vector<float>& variance)
+Image FromRgba(const std::vector<float>& rgba,
+  int width,
+  int height,
+  const std::vector<float>& variance)
 {
   Image image;
   image.Width = width;
@@ -220,8 +222,8 @@ Difference Compare(const Image& a, const Image& b, int channels, const Mask& mas
         sum += d;
         squares += d * d;
         // std::max would drop a NaN; a NaN value is no match for anything.
-        difference.Max = std::isnan(d) || std::isnan(difference.Max) ? std::nan("")
-                                                                      : std::max(difference.Max, d);
+        difference.Max =
+          std::isnan(d) || std::isnan(difference.Max) ? std::nan("") : std::max(difference.Max, d);
         ++difference.Count;
       }
     }
@@ -315,8 +317,10 @@ double MeanRadiance(const Image& image, const Region& region)
   return MeanOver(image, 0, region) + MeanOver(image, 1, region) + MeanOver(image, 2, region);
 }
 
-Estimate MeanOverPixels(
-  const Image& image, const PixelFunction& f, const PixelFunction& v, const PixelSelection& use)
+Estimate MeanOverPixels(const Image& image,
+  const PixelFunction& f,
+  const PixelFunction& v,
+  const PixelSelection& use)
 {
   double sum = 0.0, variance = 0.0;
   int n = 0;
@@ -339,8 +343,20 @@ double MeanOf(const Image& image, int channel, const PixelSelection& use)
     .Mean;
 }
 
-double LargestBlockZ(const Image& image, int blockSize, const PixelFunction& difference,
-  const PixelFunction& variance, const PixelSelection& use, int& blocks)
+Estimate MeanWithError(const Image& image, int channel, const PixelSelection& use)
+{
+  return MeanOverPixels(image,
+    [&](size_t p) { return image.At(p, channel); },
+    [&](size_t p) { return image.VarianceAt(p, channel); },
+    use);
+}
+
+double LargestBlockZ(const Image& image,
+  int blockSize,
+  const PixelFunction& difference,
+  const PixelFunction& variance,
+  const PixelSelection& use,
+  int& blocks)
 {
   double largest = 0.0;
   blocks = 0;

@@ -43,7 +43,10 @@ struct Image
     return this->At(size_t(y) * size_t(this->Width) + size_t(x), c);
   }
   // Pixel p counts rows from the bottom: p = y * Width + x.
-  double At(size_t p, int c) const { return this->Values[p * size_t(this->Components) + size_t(c)]; }
+  double At(size_t p, int c) const
+  {
+    return this->Values[p * size_t(this->Components) + size_t(c)];
+  }
   double VarianceAt(size_t p, int c) const
   {
     return this->Variance[p * size_t(this->Components) + size_t(c)];
@@ -51,13 +54,18 @@ struct Image
   // The value in 8-bit levels (0 .. 255).
   double Level(int x, int y, int c) const { return 255.0 * this->At(x, y, c); }
   // r + g + b at a pixel.
-  double Radiance(int x, int y) const { return this->At(x, y, 0) + this->At(x, y, 1) + this->At(x, y, 2); }
+  double Radiance(int x, int y) const
+  {
+    return this->At(x, y, 0) + this->At(x, y, 1) + this->At(x, y, 2);
+  }
 };
 
 // A renderer's float RGBA image (4 values a pixel, rows bottom to top) and, when given, the
 // variances of its means: what vtkCloudVolumeMapper::ReadImage and ReadVariance, and the "rgba"
 // and "rgba_variance" arrays of the CPU renderers, hold.
-Image FromRgba(const std::vector<float>& rgba, int width, int height,
+Image FromRgba(const std::vector<float>& rgba,
+  int width,
+  int height,
   const std::vector<float>& variance = {});
 
 // A PNG file, 8 or 16 bits per channel, with its text chunks. An unreadable file gives an empty
@@ -117,8 +125,11 @@ struct Difference
   double MeanLevels() const { return 255.0 * this->Mean; }
 };
 // `first` skips channels: Compare(a, b, 1, mask, 3) compares the opacities alone.
-Difference Compare(
-  const Image& a, const Image& b, int channels = 0, const Mask& mask = {}, int first = 0);
+Difference Compare(const Image& a,
+  const Image& b,
+  int channels = 0,
+  const Mask& mask = {},
+  int first = 0);
 // The largest of `channels` values (0: all) from channel `first` over the pixels `mask` accepts:
 // Largest(image, 3) the brightest color, Largest(image, 1, {}, 3) the largest opacity.
 double Largest(const Image& image, int channels = 0, const Mask& mask = {}, int first = 0);
@@ -141,7 +152,10 @@ double MaxDifference(const Image& a, const Image& b);
 double MeanOver(const Image& image, int channel, const Region& region = {});
 double MeanRadiance(const Image& image, const Region& region = {});
 // The columns [x0, x1) of every row.
-inline Region Columns(int x0, int x1) { return Region{ x0, 0, x1 - x0, 0 }; }
+inline Region Columns(int x0, int x1)
+{
+  return Region{ x0, 0, x1 - x0, 0 };
+}
 
 // ---- Monte Carlo images (the path tracers': values with the variance of each mean) ----------
 
@@ -157,19 +171,27 @@ using PixelSelection = std::function<bool(size_t)>;
 
 // The mean over the pixels `use` accepts (all when empty) of f(p), each pixel's f having the
 // variance v(p), the pixels independent.
-Estimate MeanOverPixels(const Image& image, const PixelFunction& f, const PixelFunction& v,
+Estimate MeanOverPixels(const Image& image,
+  const PixelFunction& f,
+  const PixelFunction& v,
   const PixelSelection& use = {});
 
-// The mean of one channel over the pixels `use` accepts (all when empty).
+// The mean of one channel over the pixels `use` accepts (all when empty), and the same with its
+// standard error from the image's variances.
 double MeanOf(const Image& image, int channel, const PixelSelection& use = {});
+Estimate MeanWithError(const Image& image, int channel, const PixelSelection& use = {});
 
 // The largest |z| over blocks of blockSize x blockSize pixels (where `use` picks at least half
 // of a block's pixels) of the block's summed difference over its standard error; `blocks` is
 // how many blocks counted. A block pools thousands of paths, so its mean is close to normal and
 // its variance estimate reliable even where single pixels depend on rare events (a path that
 // hits a thin edge, or fails to).
-double LargestBlockZ(const Image& image, int blockSize, const PixelFunction& difference,
-  const PixelFunction& variance, const PixelSelection& use, int& blocks);
+double LargestBlockZ(const Image& image,
+  int blockSize,
+  const PixelFunction& difference,
+  const PixelFunction& variance,
+  const PixelSelection& use,
+  int& blocks);
 
 // |a - b| per value, scaled by `gain` and clamped to [0, 1], as an RGB image: where two
 // pictures differ, for looking (gain 10: a 25-level difference is white).

@@ -21,8 +21,8 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
-#include <vector>
 #include <tuple>
+#include <vector>
 
 using namespace cloudvis;
 

@@ -28,8 +28,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
 #include <functional>
+#include <iostream>
 #include <random>
 #include <vector>
 
@@ -55,8 +55,9 @@ vtkSmartPointer<vtkImageData> MakeField(const Index& dims, double value = 0.0)
 
 // A float field of `dims` whose voxel v holds value(v, u), u drawn uniformly from [0, 1) in
 // voxel order by `rng`.
-vtkSmartPointer<vtkImageData> RandomField(
-  const Index& dims, std::mt19937& rng, const std::function<float(vtkIdType, float)>& value)
+vtkSmartPointer<vtkImageData> RandomField(const Index& dims,
+  std::mt19937& rng,
+  const std::function<float(vtkIdType, float)>& value)
 {
   auto field = MakeField<vtkFloatArray>(dims);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -224,7 +225,8 @@ TEST(OccupancyFilter, ExtinctionBoundsHoldForEveryTrilinearSampleInTheBrick)
   ASSERT_NE(minima, nullptr);
   ASSERT_EQ(minima->GetNumberOfValues(), maxima->GetNumberOfValues());
   MarchUniforms u;
-  u.Density.Values = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars())->GetPointer(0);
+  u.Density.Values =
+    vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars())->GetPointer(0);
   u.Dimensions = glm::ivec3(dims[0], dims[1], dims[2]);
   u.Table = &table;
   const int* bricks = output->GetDimensions();

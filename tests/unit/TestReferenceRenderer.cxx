@@ -83,7 +83,6 @@ vtkSmartPointer<vtkImageData> Lopsided(int n = 24)
       return std::min(1.0, std::max(0.0, 2.0 * (1.0 - u * u - v * v - w * w)));
     });
 }
-
 }
 
 TEST(ReferenceRenderer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
@@ -220,11 +219,7 @@ TEST(ReferenceRenderer, HomogeneousSphereHasTheOpacityOfItsDiameter)
   vtkNew<vtkCloudReferenceRenderer> renderer;
   renderer->SetInputData(field);
   renderer->SetImageSize(15, 15); // odd: the centre pixel's ray goes through the centre
-  renderer->SetCameraPosition(0.5, 0.5, 5.0);
-  renderer->SetCameraFocalPoint(0.5, 0.5, 0.5);
-  renderer->ParallelProjectionOn();
-  renderer->SetParallelScale(0.5);
-  renderer->SetClippingRange(1.0, 10.0);
+  SetParallelView(renderer, glm::dvec3(0.5), glm::dvec3(0.0, 0.0, -1.0), 0.5);
   renderer->SetVolumeProperty(LinearMedium(sigma_t, albedo));
   const Image image = Render(renderer);
 
@@ -255,11 +250,7 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   vtkNew<vtkCloudReferenceRenderer> renderer;
   renderer->SetInputData(field);
   renderer->SetImageSize(1, 1);
-  renderer->SetCameraPosition(0.5, 0.5, 5.0);
-  renderer->SetCameraFocalPoint(0.5, 0.5, 0.5);
-  renderer->ParallelProjectionOn();
-  renderer->SetParallelScale(0.5);
-  renderer->SetClippingRange(1.0, 10.0);
+  SetParallelView(renderer, glm::dvec3(0.5), glm::dvec3(0.0, 0.0, -1.0), 0.5);
   renderer->SetVolumeProperty(LinearMedium(sigma_t));
   renderer->SetSampleDistance(1.0 / 256.0);
   LightingParameters p = ModelOnly(LightingModel::March);
@@ -285,11 +276,15 @@ TEST(ReferenceRenderer, LitSideIsBrighterForDerivativeAndMarch)
   auto renderer = FrontView(SoftSphere(40));
   for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
   {
-    const Image fromRight = RenderWith(renderer, ModelOnly(model), { DirectionalLight({ 1, 0, 0 }) });
-    EXPECT_GT(MeanRadiance(fromRight, Columns(16, 32)), 1.5 * MeanRadiance(fromRight, Columns(0, 16)))
+    const Image fromRight =
+      RenderWith(renderer, ModelOnly(model), { DirectionalLight({ 1, 0, 0 }) });
+    EXPECT_GT(
+      MeanRadiance(fromRight, Columns(16, 32)), 1.5 * MeanRadiance(fromRight, Columns(0, 16)))
       << int(model);
-    const Image fromLeft = RenderWith(renderer, ModelOnly(model), { DirectionalLight({ -1, 0, 0 }) });
-    EXPECT_GT(MeanRadiance(fromLeft, Columns(0, 16)), 1.5 * MeanRadiance(fromLeft, Columns(16, 32))) << int(model);
+    const Image fromLeft =
+      RenderWith(renderer, ModelOnly(model), { DirectionalLight({ -1, 0, 0 }) });
+    EXPECT_GT(MeanRadiance(fromLeft, Columns(0, 16)), 1.5 * MeanRadiance(fromLeft, Columns(16, 32)))
+      << int(model);
     EXPECT_GT(MeanRadiance(fromLeft), 0.0);
   }
 }
@@ -315,7 +310,8 @@ TEST(ReferenceRenderer, LightsAddUp)
         EXPECT_EQ(both.Values[v], onlyA.Values[v]); // opacity does not depend on the lights
         continue;
       }
-      EXPECT_NEAR(both.Values[v], onlyA.Values[v] + onlyB.Values[v], 1e-5f * (1.0f + both.Values[v]))
+      EXPECT_NEAR(
+        both.Values[v], onlyA.Values[v] + onlyB.Values[v], 1e-5f * (1.0f + both.Values[v]))
         << int(model) << " value " << v;
     }
     EXPECT_GT(largest, 0.05f);
@@ -328,7 +324,8 @@ TEST(ReferenceRenderer, PointLightFallsOffWithDistance)
   auto renderer = FrontView(SoftSphere(40), 24);
   for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
   {
-    const double nearer = MeanRadiance(RenderWith(renderer, ModelOnly(model), { PointLight({ 0, 0, 2 }) }));
+    const double nearer =
+      MeanRadiance(RenderWith(renderer, ModelOnly(model), { PointLight({ 0, 0, 2 }) }));
     const double farther =
       MeanRadiance(RenderWith(renderer, ModelOnly(model), { PointLight({ 0, 0, 4 }) }));
     EXPECT_GT(nearer, 0.0);
