@@ -19,14 +19,12 @@
 #include "OffscreenRender.h"
 #include "Scene.h"
 #include "SceneField.h"
-#include "SceneLighting.h"
 #include "vtkCloudPathTracer.h"
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkRenderer.h>
 #include <vtkSMPTools.h>
 #include <vtkTimerLog.h>
 
@@ -118,16 +116,10 @@ Run RunGpu(const Scene& scene, vtkImageData* field)
 
 Run RunCpu(const Scene& scene, vtkImageData* field)
 {
-  // The camera as the GPU's: ApplyCamera on a renderer of the image's aspect (RenderCpuReference).
+  // The camera and settings as the GPU's (SetUpReference, as RenderCpuReference).
   const int width = scene.Render.Size[0], height = scene.Render.Size[1];
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetAspect(double(width) / double(height), 1.0);
-  ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
   vtkNew<vtkCloudPathTracer> tracer;
-  tracer->SetInputData(field);
-  tracer->SetImageSize(width, height);
-  SetReferenceCamera(tracer, renderer->GetActiveCamera());
-  ConfigureReference(scene, tracer);
+  SetUpReference(scene, field, tracer);
   tracer->SetSamplesPerPixel(scene.Render.SamplesPerPixel);
   const double start = vtkTimerLog::GetUniversalTime();
   tracer->Update();

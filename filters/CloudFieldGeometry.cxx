@@ -3,6 +3,7 @@
 #include <vtkDataArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationIntegerVectorKey.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
 #include <cmath>
@@ -169,6 +170,18 @@ std::string PipelineExtent(vtkInformation* info, vtkInformationIntegerVectorKey*
   }
   info->Get(key, extent);
   return {};
+}
+
+std::string RequestWholeExtent(vtkInformation* inputInfo)
+{
+  int wholeExtent[6];
+  std::string problem =
+    PipelineExtent(inputInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  if (problem.empty())
+  {
+    inputInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), wholeExtent, 6);
+  }
+  return problem;
 }
 
 std::string ValidateSubExtent(const int extent[6], const int whole[6])

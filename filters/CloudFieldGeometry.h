@@ -43,6 +43,10 @@ CLOUDVISFILTERS_EXPORT std::string PipelineExtent(vtkInformation* info,
   vtkInformationIntegerVectorKey* key,
   int extent[6]);
 
+// For a filter that needs its whole input (every voxel may matter to every output value): sets
+// the input's UPDATE_EXTENT to its WHOLE_EXTENT in `inputInfo`; empty, else the problem.
+CLOUDVISFILTERS_EXPORT std::string RequestWholeExtent(vtkInformation* inputInfo);
+
 // Empty when `extent` lies inside `whole` or holds no voxel (nothing to fill), else the problem.
 CLOUDVISFILTERS_EXPORT std::string ValidateSubExtent(const int extent[6], const int whole[6]);
 

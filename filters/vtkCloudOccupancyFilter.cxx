@@ -245,16 +245,12 @@ int vtkCloudOccupancyFilter::RequestUpdateExtent(
 {
   // Every brick's range depends on voxels beyond any sub-extent's bricks (the apron), and the
   // distances on all bricks: always ask for the whole input.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int wholeExtent[6];
-  const std::string extentError =
-    cloudvis::PipelineExtent(inInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
-  if (!extentError.empty())
+  const std::string problem = cloudvis::RequestWholeExtent(inputVector[0]->GetInformationObject(0));
+  if (!problem.empty())
   {
-    vtkErrorMacro(<< extentError);
+    vtkErrorMacro(<< problem);
     return 0;
   }
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), wholeExtent, 6);
   return 1;
 }
 

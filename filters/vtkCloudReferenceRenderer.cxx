@@ -233,16 +233,12 @@ int vtkCloudReferenceRenderer::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // Any pixel's ray may cross any voxel: always ask for the whole field.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int wholeExtent[6];
-  const std::string extentError =
-    cloudvis::PipelineExtent(inInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
-  if (!extentError.empty())
+  const std::string problem = cloudvis::RequestWholeExtent(inputVector[0]->GetInformationObject(0));
+  if (!problem.empty())
   {
-    vtkErrorMacro(<< extentError);
+    vtkErrorMacro(<< problem);
     return 0;
   }
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), wholeExtent, 6);
   return 1;
 }
 

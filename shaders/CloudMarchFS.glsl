@@ -107,6 +107,64 @@ bool EmptyBrickAt(vec3 p)
 //CLOUD::Lighting::Dec
 
 #ifndef CLOUD_OWN_MAIN
+// The march's state along one ray: premultiplied radiance, transmittance T, and the count
+// target's tallies (FirstSignificant: the local distance from the near plane where T first falls
+// below DepthTransmittance, NoDepth where it never does; DepthSum: the distances weighted by the
+// opacity each step adds, which divided by the opacity is the cloud's mean depth, followed by
+// temporal reprojection).
+struct MarchState
+{
+  vec3 Radiance;
+  float T;
+  float SamplesTaken;
+  float UsefulSamples;
+  float FirstSignificant;
+  float DepthSum;
+};
+
+// What a sample needs that is the same all along the ray, computed once per ray by main() so that
+// a sample only multiplies and adds (issue 12, the per-sample cost; docs/performance.md): the
+// density texture's coordinate of sample s is EntryTexture + s * DirectionTexture ((p + 0.5) /
+// Dimensions, as DensityAt has it); the transfer table's coordinate is one multiply-add of the
+// density texel (TableCoordinate(texel * DensityScale + DensityBias), its clamp to [0, 1] moved to
+// the first and last entries' centres); a step's transmittance is exp2 of the table's extinction
+// times StepLog2Transmittance (-ExtinctionUnit * Step / ln 2).
+struct RayConstants
+{
+  vec3 EntryTexture;
+  vec3 DirectionTexture;
+  float TexelToTable;
+  float TableOffset;
+  vec2 TableEnds;
+  float StepLog2Transmittance;
+  float Enter; // tEnter: the local distance from the near plane to s = 0
+  vec3 View;   // d, the unit view direction
+};
+
+// The sample at distance s past the entry (index point p): its in-scattering and transmittance
+// added to m. False when T has fallen below TerminationTransmittance: the ray is done.
+bool MarchSample(inout MarchState m, RayConstants ray, float s, vec3 p)
+{
+  float texel = texture(DensityTexture, ray.EntryTexture + s * ray.DirectionTexture).r;
+  vec4 optical = texture(TransferTexture,
+    clamp(texel * ray.TexelToTable + ray.TableOffset, ray.TableEnds.x, ray.TableEnds.y));
+  m.SamplesTaken += 1.0;
+  if (optical.a > 0.0)
+  {
+    m.UsefulSamples += 1.0;
+    float stepT = exp2(optical.a * ray.StepLog2Transmittance);
+    float density = texel * DensityScale + DensityBias; // DensityAt(p)
+    // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
+    // constant over the step, so the sum does not depend on the step size.
+    m.Radiance += m.T * SourceTerm(p, density, optical.rgb, ray.View) * (1.0 - stepT);
+    m.DepthSum += (ray.Enter + s) * m.T * (1.0 - stepT);
+    m.T *= stepT;
+    // T only falls, so the first sample below DepthTransmittance keeps the smallest distance.
+    m.FirstSignificant = min(m.FirstSignificant, m.T < DepthTransmittance ? ray.Enter + s : NoDepth);
+  }
+  return m.T >= TerminationTransmittance;
+}
+
 void main()
 {
   vec2 ndc = texCoord * 2.0 - 1.0;
@@ -123,14 +181,7 @@ void main()
   float tEnter = max(tBox.x, 0.0);
   float tExit = min(min(tBox.y, tOpaque), rayLength);
 
-  vec3 radiance = vec3(0.0);
-  float T = 1.0;
-  float samplesTaken = 0.0;
-  float usefulSamples = 0.0;
-  float firstSignificant = NoDepth; // local distance from the near plane where T first falls
-                                    // below DepthTransmittance (NoDepth: it never does)
-  float depthSum = 0.0; // the distances weighted by the opacity each step adds: / alpha, the
-                        // cloud's mean depth (temporal reprojection follows it)
+  MarchState m = MarchState(vec3(0.0), 1.0, 0.0, 0.0, NoDepth, 0.0);
   if (tEnter < tExit)
   {
     // Samples are placed from the entry point, so their spacing keeps its precision however far
@@ -143,29 +194,24 @@ void main()
       jitter = fract(texture(JitterTexture, gl_FragCoord.xy / JitterTextureSize).r + JitterOffset);
     }
 
-    // What every sample would otherwise divide or recompute, once per ray (issue 12, the
-    // per-sample cost; docs/performance.md): the loop body below only multiplies and adds, with
-    // one division left, in a leap. The density texture's coordinate of sample s is entryTexture +
-    // s * directionTexture, (p + 0.5) / Dimensions as DensityAt has it. The transfer table's
-    // coordinate is one multiply-add of the density texel, TableCoordinate(texel * DensityScale
-    // + DensityBias) with its clamp to [0, 1] moved to the first and last entries' centres. A
-    // step's transmittance is exp2 of the table's extinction times -ExtinctionUnit * Step /
-    // ln 2. A leap leaves the cube of empty bricks through its far face on each axis:
-    // exitSide picks it (the positive face for an axis the ray does not move along, as
-    // IntersectBox's 1e-30 does), inverseDirection is IntersectBox's, so sLeave is IntersectBox
-    // (entry, direction, lo, hi).y to the bit.
-    vec3 entryTexture = (entry + 0.5) / Dimensions;
-    vec3 directionTexture = direction / Dimensions;
-    float brickScale = 1.0 / BrickSize;
-    vec3 inverseDirection = 1.0 / mix(direction, vec3(1e-30), equal(direction, vec3(0.0)));
-    vec3 exitSide = mix(vec3(0.5), vec3(-0.5), lessThan(direction, vec3(0.0)));
     // (A table over a single density holds one value: its first entry serves every density.)
     float tableWidth = TableRange.y - TableRange.x;
     float tableScale = tableWidth > 0.0 ? (TableSize - 1.0) / (TableSize * tableWidth) : 0.0;
-    float texelToTable = DensityScale * tableScale;
-    float tableOffset = (DensityBias - TableRange.x) * tableScale + 0.5 / TableSize;
-    vec2 tableEnds = vec2(0.5, TableSize - 0.5) / TableSize;
-    float stepLog2Transmittance = -ExtinctionUnit * Step / log(2.0);
+    RayConstants ray = RayConstants((entry + 0.5) / Dimensions,
+      direction / Dimensions,
+      DensityScale * tableScale,
+      (DensityBias - TableRange.x) * tableScale + 0.5 / TableSize,
+      vec2(0.5, TableSize - 0.5) / TableSize,
+      -ExtinctionUnit * Step / log(2.0),
+      tEnter,
+      d);
+    // A leap leaves the cube of empty bricks through its far face on each axis: exitSide picks
+    // it (the positive face for an axis the ray does not move along, as IntersectBox's 1e-30
+    // does) and inverseDirection is IntersectBox's, so sLeave is IntersectBox(entry, direction,
+    // lo, hi).y to the bit.
+    float brickScale = 1.0 / BrickSize;
+    vec3 inverseDirection = 1.0 / mix(direction, vec3(1e-30), equal(direction, vec3(0.0)));
+    vec3 exitSide = mix(vec3(0.5), vec3(-0.5), lessThan(direction, vec3(0.0)));
 
     float k = 0.0;
     for (int i = 0; i < MaximumIterations; ++i)
@@ -193,31 +239,25 @@ void main()
           continue;
         }
       }
-      float texel = texture(DensityTexture, entryTexture + s * directionTexture).r;
-      vec4 optical =
-        texture(TransferTexture, clamp(texel * texelToTable + tableOffset, tableEnds.x, tableEnds.y));
-      samplesTaken += 1.0;
-      if (optical.a > 0.0)
+      // Dense fields: more samples before the map is read again (SAMPLES_PER_MAP_READ, the
+      // program's variant). One may lie in another brick, and if that one is empty it adds
+      // nothing (its extinction is 0 there), so the image is the same; the next iteration
+      // reads the map again and leaps from there.
+      bool marching = MarchSample(m, ray, s, p);
+      for (int j = 1; marching && j < SAMPLES_PER_MAP_READ; ++j)
       {
-        usefulSamples += 1.0;
-        float stepT = exp2(optical.a * stepLog2Transmittance);
-        float density = texel * DensityScale + DensityBias; // DensityAt(p)
-        // In-scattering integrated over the step: S * (1 - exp(-sigma_t dt)), exact for S
-        // constant over the step, so the sum does not depend on the step size.
-        radiance += T * SourceTerm(p, density, optical.rgb, d) * (1.0 - stepT);
-        depthSum += (tEnter + s) * T * (1.0 - stepT);
-        T *= stepT;
-        // T only falls, so the first sample below DepthTransmittance keeps the smallest s.
-        firstSignificant = min(firstSignificant, T < DepthTransmittance ? tEnter + s : NoDepth);
-        if (T < TerminationTransmittance)
-        {
-          break;
-        }
+        k += 1.0;
+        s = (k + jitter) * Step;
+        marching = s < span && MarchSample(m, ray, s, entry + s * direction);
+      }
+      if (!marching)
+      {
+        break;
       }
       k += 1.0;
     }
   }
-  gl_FragData[0] = vec4(radiance, 1.0 - T); // premultiplied: alpha is the opacity
-  gl_FragData[1] = vec4(samplesTaken, usefulSamples, firstSignificant, depthSum);
+  gl_FragData[0] = vec4(m.Radiance, 1.0 - m.T); // premultiplied: alpha is the opacity
+  gl_FragData[1] = vec4(m.SamplesTaken, m.UsefulSamples, m.FirstSignificant, m.DepthSum);
 }
 #endif

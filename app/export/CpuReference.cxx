@@ -38,6 +38,21 @@ void SetReferenceCamera(vtkCloudReferenceRenderer* reference, vtkCamera* camera)
   reference->SetClippingRange(camera->GetClippingRange());
 }
 
+void SetUpReference(const Scene& scene, vtkImageData* field, vtkCloudReferenceRenderer* reference)
+{
+  const int width = scene.Render.Size[0];
+  const int height = scene.Render.Size[1];
+  // The camera exactly as RenderOffscreen's: ApplyCamera on a renderer of the image's aspect.
+  // The renderer is never drawn and has no window, so it keeps the aspect it is given.
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetAspect(double(width) / double(height), 1.0);
+  ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
+  reference->SetInputData(field);
+  reference->SetImageSize(width, height);
+  SetReferenceCamera(reference, renderer->GetActiveCamera());
+  ConfigureReference(scene, reference);
+}
+
 void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::string& input)
 {
   const std::string geometryProblem = ValidateVolumeGeometry(field, nullptr);
@@ -96,11 +111,6 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   CheckSceneRenderable(scene, field, input);
   const int width = scene.Render.Size[0];
   const int height = scene.Render.Size[1];
-  // The camera exactly as RenderOffscreen's: ApplyCamera on a renderer of the image's aspect.
-  // The renderer is never drawn and has no window, so it keeps the aspect it is given.
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetAspect(double(width) / double(height), 1.0);
-  ApplyCamera(scene.Camera, field->GetBounds(), renderer, scene.Source);
 
   VtkMessageCapture messages;
   // pathtrace: the CPU path tracer, render.spp paths per pixel; else the march's reference.
@@ -115,10 +125,7 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   {
     reference = vtkSmartPointer<vtkCloudReferenceRenderer>::New();
   }
-  reference->SetInputData(field);
-  reference->SetImageSize(width, height);
-  SetReferenceCamera(reference, renderer->GetActiveCamera());
-  ConfigureReference(scene, reference);
+  SetUpReference(scene, field, reference);
   reference->Update();
 
   vtkImageData* output = reference->GetOutput();

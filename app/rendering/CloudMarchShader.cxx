@@ -37,11 +37,13 @@ namespace
 {
 constexpr int MaxLights = LightingLimits::MaxLights;
 
-// The constants the GLSL shares with the C++, from their one definition.
-std::string Constants()
+// The constants the GLSL shares with the C++, from their one definition, and the program's
+// variant of the march loop.
+std::string Constants(int samplesPerMapRead)
 {
   std::ostringstream glsl;
   glsl << "#define MAX_LIGHTS " << MaxLights << "\n"
+       << "#define SAMPLES_PER_MAP_READ " << samplesPerMapRead << "\n"
        << "const float Pi = " << GlslFloat(Pi) << ";\n"
        << "const float DirectionalLightDistance = " << GlslFloat(DirectionalLightDistance) << ";\n"
        << "const float LightBoxMargin = " << GlslFloat(LightBoxMargin) << ";\n"
@@ -77,10 +79,17 @@ std::string LightingSource(LightingModel model, const std::vector<LocalLight>& l
 }
 }
 
-std::string MarchShaderSource(LightingModel model, const std::vector<LocalLight>& lights)
+int SamplesPerMapRead(double occupiedBrickFraction)
+{
+  return occupiedBrickFraction >= DenseOccupiedBrickFraction ? DenseSamplesPerMapRead : 1;
+}
+
+std::string MarchShaderSource(LightingModel model,
+  const std::vector<LocalLight>& lights,
+  int samplesPerMapRead)
 {
   std::string source = CloudMarchFS;
-  vtkShaderProgram::Substitute(source, "//CLOUD::Constants::Dec", Constants());
+  vtkShaderProgram::Substitute(source, "//CLOUD::Constants::Dec", Constants(samplesPerMapRead));
   vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", LightingSource(model, lights));
   return source;
 }
@@ -148,9 +157,10 @@ MarchPrograms::~MarchPrograms() = default;
 
 vtkShaderProgram* MarchPrograms::Ready(vtkOpenGLRenderWindow* window,
   LightingModel model,
-  const std::vector<LocalLight>& lights)
+  const std::vector<LocalLight>& lights,
+  int samplesPerMapRead)
 {
-  std::string key = std::to_string(int(model)) + ":";
+  std::string key = std::to_string(int(model)) + ":" + std::to_string(samplesPerMapRead) + ":";
   if (model != LightingModel::None)
   {
     for (const LocalLight& light : lights)
@@ -162,13 +172,14 @@ vtkShaderProgram* MarchPrograms::Ready(vtkOpenGLRenderWindow* window,
   if (!quad)
   {
     quad = std::make_unique<vtkOpenGLQuadHelper>(
-      window, nullptr, MarchShaderSource(model, lights).c_str(), "");
+      window, nullptr, MarchShaderSource(model, lights, samplesPerMapRead).c_str(), "");
   }
   else
   {
     window->GetShaderCache()->ReadyShaderProgram(quad->Program);
   }
   this->Current = quad.get();
+  this->CurrentSamplesPerMapRead = samplesPerMapRead;
   vtkShaderProgram* program = quad->Program;
   return program && program->GetCompiled() ? program : nullptr;
 }

@@ -31,17 +31,30 @@ constexpr float DepthTransmittance = 0.98f;
 // A float as a GLSL literal that reads back as the same float.
 std::string GlslFloat(float value);
 
-// The fragment shader's source for a lighting model and the kinds of the lights (positional or
-// directional, in order).
-std::string MarchShaderSource(LightingModel model, const std::vector<LocalLight>& lights);
+// The march reads the occupancy map before every sample where leaps are common, and before every
+// fourth sample (DenseSamplesPerMapRead) in fields whose bricks are mostly occupied (at least
+// DenseOccupiedBrickFraction), where a leap is rare and the map's read and the masked leap code
+// dominate a sample's cost on SIMD rasterizers (docs/performance.md, "The march's loop
+// variants"). The image is the same either way: a sample in an empty brick adds nothing.
+constexpr double DenseOccupiedBrickFraction = 0.5;
+constexpr int DenseSamplesPerMapRead = 4;
+// The march loop's variant for a field with this fraction of occupied bricks: 1 or
+// DenseSamplesPerMapRead.
+int SamplesPerMapRead(double occupiedBrickFraction);
+
+// The fragment shader's source for a lighting model, the kinds of the lights (positional or
+// directional, in order) and the samples the march takes per reading of the occupancy map.
+std::string MarchShaderSource(LightingModel model,
+  const std::vector<LocalLight>& lights,
+  int samplesPerMapRead = 1);
 
 // Uploads every uniform SetUpMarch computed: the geometry, the density texels' scale and bias,
 // the table's range, the step, the lighting parameters and the lights (arrays of
 // LightingLimits::MaxLights, unused entries zero).
 void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& uniforms);
 
-// One compiled march program per lighting model and kind of lights ("2:DP": march with a
-// directional and a point light), built on first use.
+// One compiled march program per lighting model, samples per map read and kind of lights
+// ("2:1:DP": march, one sample per read, a directional and a point light), built on first use.
 class MarchPrograms
 {
 public:
@@ -50,14 +63,18 @@ public:
   // The program made current, or null when it fails to compile or link.
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* window,
     LightingModel model,
-    const std::vector<LocalLight>& lights);
+    const std::vector<LocalLight>& lights,
+    int samplesPerMapRead);
   // The quad the last Ready() made current draws with.
   void Render();
+  // The samples per map read of the program the last Ready() made current.
+  int GetSamplesPerMapRead() const { return this->CurrentSamplesPerMapRead; }
   void Release();
 
 private:
   std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> Programs;
   vtkOpenGLQuadHelper* Current = nullptr;
+  int CurrentSamplesPerMapRead = 1;
 };
 
 } // namespace cloudvis

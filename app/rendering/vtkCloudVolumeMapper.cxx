@@ -506,8 +506,19 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     in.LightVolumes.Release(window); // another model or the nested march: not held for nothing
   }
 
-  // The march is one shader; a lighting model only supplies its source term.
-  vtkShaderProgram* program = in.March.Ready(window, uniforms.Lighting.Model, uniforms.Lights);
+  // The march is one shader; a lighting model only supplies its source term, and the field's
+  // occupancy picks the loop's variant.
+  int samplesPerMapRead = this->SamplesPerMapRead;
+  if (!this->EmptySpaceSkipping)
+  {
+    samplesPerMapRead = 1; // no map is read
+  }
+  else if (samplesPerMapRead == 0)
+  {
+    samplesPerMapRead = cloudvis::SamplesPerMapRead(in.Occupancy.GetOccupiedFraction());
+  }
+  vtkShaderProgram* program =
+    in.March.Ready(window, uniforms.Lighting.Model, uniforms.Lights, samplesPerMapRead);
   if (!program)
   {
     return this->Fail("the march shader failed to compile or link (the driver's log is in VTK's "
@@ -661,6 +672,7 @@ void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
     }
   }
   statistics.OccupiedBrickFraction = this->Internal->Occupancy.GetOccupiedFraction();
+  statistics.SamplesPerMapRead = this->Internal->March.GetSamplesPerMapRead();
   this->LastStatistics = statistics;
 }
 

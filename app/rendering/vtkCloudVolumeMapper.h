@@ -123,6 +123,17 @@ public:
 
   ///@{
   /**
+   * Samples the march takes per reading of the occupancy map, 1 to 4, or 0 (the default) to
+   * choose by the field's occupied-brick fraction (4 for dense fields, where leaps are rare, 1
+   * otherwise; cloudvis::SamplesPerMapRead). The image is the same either way; only the speed
+   * differs (docs/performance.md).
+   */
+  vtkSetClampMacro(SamplesPerMapRead, int, 0, 4);
+  vtkGetMacro(SamplesPerMapRead, int);
+  ///@}
+
+  ///@{
+  /**
    * Offset each ray's first sample by a fraction of a step read from a blue-noise mask, turning
    * banding into fine noise. Default on.
    */
@@ -338,6 +349,7 @@ public:
     int Width = 0;            // size of the march target
     int Height = 0;
     double OccupiedBrickFraction = 0;
+    int SamplesPerMapRead = 1; // the march loop's variant (SetSamplesPerMapRead)
   };
   /**
    * Statistics of the last frame (with CollectStatistics on).
@@ -421,6 +433,7 @@ protected:
   double SampleDistance = 0.0;
   bool EmptySpaceSkipping = true;
   int BrickSize = 3;
+  int SamplesPerMapRead = 0;
   bool Jitter = true;
   double TerminationTransmittance = 1.0 / 255.0;
   double ExtinctionScale = 1.0;

@@ -130,12 +130,15 @@ TEST(CloudVolumeMapper, MatchesVtkGpuRayCastOnAMovedScaledVolume)
 
 namespace
 {
-// The scene's float image without and with empty-space skipping, and the samples each took.
+// The scene's float image without and with empty-space skipping, with each of the march loop's
+// variants (1 to 4 samples per reading of the occupancy map), and the samples each took.
 struct SkippingRenders
 {
-  Image Full, Skipped;
-  double AllSamples = 0.0;                        // without skipping
-  vtkCloudVolumeMapper::FrameStatistics Skipping; // with it
+  Image Full;
+  double AllSamples = 0.0; // without skipping
+  // With skipping, per samples per map read; [0] unused.
+  Image Skipped[5];
+  vtkCloudVolumeMapper::FrameStatistics Skipping[5];
 };
 SkippingRenders RenderWithAndWithoutSkipping(vtkCloudVolumeMapper* mapper,
   GpuScene& scene,
@@ -147,9 +150,14 @@ SkippingRenders RenderWithAndWithoutSkipping(vtkCloudVolumeMapper* mapper,
   r.Full = scene.RenderFloat();
   r.AllSamples = mapper->GetLastFrameStatistics().SamplesTaken;
   mapper->EmptySpaceSkippingOn();
-  r.Skipped = scene.RenderFloat();
-  r.Skipping = mapper->GetLastFrameStatistics();
-  Dump(r.Skipped, dumpName);
+  for (int perRead = 1; perRead <= 4; ++perRead)
+  {
+    mapper->SetSamplesPerMapRead(perRead);
+    r.Skipped[perRead] = scene.RenderFloat();
+    r.Skipping[perRead] = mapper->GetLastFrameStatistics();
+  }
+  mapper->SetSamplesPerMapRead(0);
+  Dump(r.Skipped[1], dumpName);
   return r;
 }
 }
@@ -158,7 +166,8 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
 {
   // Skipping lands on the same lattice of samples and only leaps over samples whose extinction
   // is exactly 0, so the float image must be bit for bit the same, under every lighting model
-  // (the light march skips too) and wherever the volume is.
+  // (the light march skips too) and wherever the volume is, with either loop variant (a second
+  // sample before the map is read again adds nothing where its brick is empty).
   for (LightingModel model :
     { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
@@ -176,9 +185,14 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingChangesTheSampleCountNotTheImage)
     AddLight(scene.Renderer, PointLight(glm::dvec3(-2.0, 0.5, 1.5), 4.0));
     const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping");
     ASSERT_GT(MeanOver(r.Full, 3, Columns(0, 96)), 0.05) << "an empty window proves nothing";
-    EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0) << "model " << int(model);
-    EXPECT_LT(r.Skipping.SamplesTaken, 0.8 * r.AllSamples);
-    EXPECT_GT(r.Skipping.UsefulSamples, 0.0);
+    for (int perRead = 1; perRead <= 4; ++perRead)
+    {
+      EXPECT_EQ(MaxDifference(r.Full, r.Skipped[perRead]), 0.0)
+        << "model " << int(model) << ", " << perRead << " samples per map read";
+      EXPECT_EQ(r.Skipping[perRead].SamplesPerMapRead, perRead);
+      EXPECT_LT(r.Skipping[perRead].SamplesTaken, 0.8 * r.AllSamples);
+      EXPECT_GT(r.Skipping[perRead].UsefulSamples, 0.0);
+    }
   }
 }
 
@@ -225,11 +239,35 @@ TEST(CloudVolumeMapper, EmptySpaceSkippingMissesNothingWhereEmptyAndOccupiedBric
   const SkippingRenders r = RenderWithAndWithoutSkipping(mapper, scene, "skipping-dots");
   ASSERT_EQ(mapper->GetLastError(), "");
   std::cout << "mean opacity " << MeanOver(r.Full, 3, Columns(0, 96)) << ", samples "
-            << r.AllSamples << " unskipped, " << r.Skipping.SamplesTaken << " skipped\n";
+            << r.AllSamples << " unskipped, " << r.Skipping[1].SamplesTaken << " skipped\n";
   ASSERT_GT(MeanOver(r.Full, 3, Columns(0, 96)), 0.1) << "an empty window proves nothing";
   ASSERT_LT(MeanOver(r.Full, 3, Columns(0, 96)), 0.9) << "an opaque window hides what is missed";
-  EXPECT_EQ(MaxDifference(r.Full, r.Skipped), 0.0);
-  EXPECT_LT(r.Skipping.SamplesTaken, 0.9 * r.AllSamples) << "the march must leap";
+  for (int perRead = 1; perRead <= 4; ++perRead)
+  {
+    EXPECT_EQ(MaxDifference(r.Full, r.Skipped[perRead]), 0.0) << perRead << " per map read";
+    EXPECT_LT(r.Skipping[perRead].SamplesTaken, 0.9 * r.AllSamples)
+      << "the march must leap, " << perRead << " per map read";
+  }
+}
+
+TEST(CloudVolumeMapper, DenseFieldsTakeFourSamplesPerMapReadSparseOnesOne)
+{
+  // The loop's variant follows the field's occupied-brick fraction (SamplesPerMapRead 0, the
+  // default): the sparse cloud leaps often and reads the map before every sample, the dense field
+  // rarely leaps and reads it every fourth sample.
+  for (bool dense : { false, true })
+  {
+    auto mapper = CloudMapper(0.03);
+    mapper->CollectStatisticsOn();
+    GpuScene scene(mapper, 64, 64);
+    scene.SetInput(dense ? DenseCloud(48) : SparseCloud(48));
+    SetRampMedium(scene.Property, 1.0, 0.6);
+    scene.RenderFloat();
+    const auto& statistics = mapper->GetLastFrameStatistics();
+    ASSERT_EQ(mapper->GetLastError(), "");
+    EXPECT_EQ(statistics.SamplesPerMapRead, dense ? 4 : 1)
+      << (dense ? "dense" : "sparse") << ", occupied " << statistics.OccupiedBrickFraction;
+  }
 }
 
 TEST(CloudVolumeMapper, HalvingTheStepBarelyChangesTheImage)

@@ -27,6 +27,12 @@ namespace cloudvis
 // two show the same view.
 void SetReferenceCamera(vtkCloudReferenceRenderer* reference, vtkCamera* camera);
 
+// Sets up `reference` (the march's reference or the path tracer) to draw `field` as
+// RenderCpuReference draws the scene: render.size pixels, the camera ApplyCamera sets up on a
+// renderer of that aspect, and ConfigureReference's settings (transfer function, lighting, lights,
+// step). Does not render. bench/ measures the CPU renderers through it.
+void SetUpReference(const Scene& scene, vtkImageData* field, vtkCloudReferenceRenderer* reference);
+
 // Throws InputError unless both renderers can draw `field` as the scene says: what
 // cloudvis::ValidateVolumeGeometry and cloudvis::SetUpMarch refuse (a geometry float arithmetic
 // cannot hold, a step needing more samples per ray than the renderers take, an extinction or a
