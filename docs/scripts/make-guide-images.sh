@@ -11,33 +11,16 @@
 # scenes' own, 128). The tests run it at a tiny size into a scratch folder. Without $DISPLAY it
 # runs itself again under xvfb-run.
 set -euo pipefail
+. "$(dirname "$0")/ImageScripts.sh"
 
 size=480x360
 accumulate=8
 dimensions=""
-usage() { sed -n '6,13p' "$0" | sed 's/^# \{0,1\}//'; }
-while getopts "s:a:d:h" option; do
-  case "$option" in
-    s) size=$OPTARG ;;
-    a) accumulate=$OPTARG ;;
-    d) dimensions=$OPTARG ;;
-    h) usage; exit 0 ;;
-    *) usage >&2; exit 2 ;;
-  esac
-done
-shift $((OPTIND - 1))
-cloudvis=${1:-./build/bin/cloudvis}
-out=${2:-docs/images}
-
-if [[ -z "${DISPLAY:-}" ]]; then
-  # Options before the operands: getopts stops at the first operand.
-  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" -s "$size" -a "$accumulate" \
-    ${dimensions:+-d "$dimensions"} "$@"
-fi
-if [[ ! -x "$cloudvis" ]]; then
-  echo "make-guide-images.sh: no cloudvis at $cloudvis (build it first: make build)" >&2
-  exit 1
-fi
+read_options "s=size a=accumulate d=dimensions" 6,13 "$@"
+cloudvis=${operands[0]:-./build/bin/cloudvis}
+out=${operands[1]:-docs/images}
+on_a_display "$@"
+require_cloudvis "$cloudvis"
 
 scenes=$(cd "$(dirname "$0")/../../data/scenes" && pwd)
 mkdir -p "$out"

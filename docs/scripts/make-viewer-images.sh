@@ -13,29 +13,15 @@
 # 96). The tests run it small into a scratch folder. Without $DISPLAY it runs itself again under
 # xvfb-run.
 set -euo pipefail
+. "$(dirname "$0")/ImageScripts.sh"
 
 size=560x480
 dimensions=96
-usage() { sed -n '9,14p' "$0" | sed 's/^# \{0,1\}//'; }
-while getopts "s:d:h" option; do
-  case "$option" in
-    s) size=$OPTARG ;;
-    d) dimensions=$OPTARG ;;
-    h) usage; exit 0 ;;
-    *) usage >&2; exit 2 ;;
-  esac
-done
-shift $((OPTIND - 1))
-cloudvis=${1:-./build/bin/cloudvis}
-out=${2:-docs/images}
-
-if [[ -z "${DISPLAY:-}" ]]; then
-  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" -s "$size" -d "$dimensions" "$@"
-fi
-if [[ ! -x "$cloudvis" ]]; then
-  echo "make-viewer-images.sh: no cloudvis at $cloudvis (build it first: make build)" >&2
-  exit 1
-fi
+read_options "s=size d=dimensions" 9,14 "$@"
+cloudvis=${operands[0]:-./build/bin/cloudvis}
+out=${operands[1]:-docs/images}
+on_a_display "$@"
+require_cloudvis "$cloudvis"
 mkdir -p "$out"
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
@@ -80,6 +66,13 @@ probe() {
   echo "LeftButtonReleaseEvent $1 $2 2 0 0 0"
 }
 
+# pixel NAME KEY LINE: the LINE-th "x y" of state NAME KEY, in whole pixels.
+pixel() {
+  local x y
+  read -r x y <<< "$(state "$1" "$2" | sed -n "$3p")"
+  echo "${x%.*} ${y%.*}"
+}
+
 # state NAME KEY: the numbers of a JSON array of arrays in the state of session NAME, as
 # "x y" lines ("opacity_point_pixels") or of an object's array ("axial").
 state() {
@@ -101,18 +94,14 @@ session viewer-four <<< "$(key 4; key x; key y; key z; click $(((x0 + x1) / 2 + 
 # The editor: the middle opacity point selected (its values in the editor's info line), then
 # Enter and new values typed, not yet applied.
 session viewer-editor < /dev/null
-read -r px py <<< "$(state viewer-editor opacity_point_pixels | sed -n 3p)"
-px=${px%.*}
-py=${py%.*}
+read -r px py <<< "$(pixel viewer-editor opacity_point_pixels 3)"
 session viewer-editor <<< "$(click "$px" "$py"; key Return; key 0; key period; key 4; key 5; key space; key 0; key period; key 6)"
 grep -q '"typing":true' "$scratch/viewer-editor.json" || { echo "make-viewer-images.sh: no point was selected at $px $py" >&2; exit 1; }
 
 # The color palette: the middle color point selected shows it, and a click on a swatch (the
 # eighth hue, an azure) gives the point that color.
 session viewer-palette < /dev/null
-read -r cx cy <<< "$(state viewer-palette color_point_pixels | sed -n 2p)"
-cx=${cx%.*}
-cy=${cy%.*}
+read -r cx cy <<< "$(pixel viewer-palette color_point_pixels 2)"
 session viewer-palette <<< "$(click "$cx" "$cy")"
 grep -q '"palette_visible":true' "$scratch/viewer-palette.json" || { echo "make-viewer-images.sh: no color point was selected at $cx $cy" >&2; exit 1; }
 read -r x0 y0 x1 y1 <<< "$(state viewer-palette palette_pixels)"

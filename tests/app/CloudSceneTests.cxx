@@ -21,6 +21,7 @@
 
 #include <cstring>
 #include <string>
+#include <utility>
 
 namespace
 {
@@ -69,20 +70,26 @@ TEST(CloudScene, EveryCloudKeyReachesTheLayerAndRoundTrips)
   EXPECT_EQ(f.Noise.Type, cloudvis::noise::NoiseType::PerlinWorley);
   EXPECT_EQ(f.Noise.Period, 4);
   EXPECT_EQ(l.Type, cloudvis::CloudType::Cumulonimbus);
-  EXPECT_EQ(l.Base, 0.5);
-  EXPECT_EQ(l.Top, 3.0);
-  EXPECT_EQ(l.Coverage, 0.45);
   EXPECT_EQ(l.Source, cloudvis::CoverageSource::Noise);
-  EXPECT_EQ(l.MapScale, 3.0);
-  EXPECT_EQ(l.MapOctaves, 5);
-  EXPECT_EQ(l.MapGain, 0.55);
-  EXPECT_EQ(l.ShapeScale, 1.75);
-  EXPECT_EQ(l.DetailScale, 0.25);
-  EXPECT_EQ(l.Erosion, 0.3);
-  EXPECT_EQ(l.Curl, 0.6);
-  EXPECT_EQ(l.Anvil, 0.7);
-  EXPECT_EQ(l.Shear[0], 0.125);
-  EXPECT_EQ(l.Shear[1], -0.25);
+  // Each number as EveryCloudKey gives it.
+  const json keys = EveryCloudKey();
+  const std::pair<const char*, double> numbers[] = { { "base", l.Base },
+    { "top", l.Top },
+    { "coverage", l.Coverage },
+    { "map_scale", l.MapScale },
+    { "map_octaves", l.MapOctaves },
+    { "map_gain", l.MapGain },
+    { "shape_scale", l.ShapeScale },
+    { "detail_scale", l.DetailScale },
+    { "erosion", l.Erosion },
+    { "curl", l.Curl },
+    { "anvil", l.Anvil } };
+  for (const auto& [key, value] : numbers)
+  {
+    EXPECT_EQ(value, keys[key].get<double>()) << key;
+  }
+  EXPECT_EQ(l.Shear[0], keys["shear"][0].get<double>());
+  EXPECT_EQ(l.Shear[1], keys["shear"][1].get<double>());
 
   // The resolved scene writes the same keys back, and reads back to the same scene.
   const double bounds[6] = { -2, 2, -2, 2, -2, 2 };

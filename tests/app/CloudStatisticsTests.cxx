@@ -8,8 +8,8 @@
 #include "FieldIO.h"
 #include "FieldTestFiles.h"  // RunTool
 #include "OffscreenRender.h" // MakeVolumeProperty
-#include "RendererTestSupport.h"
 #include "Scene.h"
+#include "SupportFixtures.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
 
@@ -544,20 +544,17 @@ TEST(Droplets, RenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
 {
   // 0.4 g/m^3 in a cube of 50 m (0.05 km): sigma = 0.06 / m, tau = 3.
   const double side = 0.05;
-  auto field = cloudvis::test::MakeBoxField(
+  auto field = cloudvis::support::MakeBoxField(
     glm::ivec3(17), glm::dvec3(0.0), glm::dvec3(side), [](double, double, double) { return 0.4; });
   const cloudvis::Scene scene = DropletScene({ { "quantity", "lwc" }, { "length_unit", "km" } });
   vtkNew<vtkCloudReferenceRenderer> renderer;
   renderer->SetInputData(field);
   renderer->SetImageSize(1, 1);
-  renderer->SetCameraPosition(side / 2, side / 2, 5.0);
-  renderer->SetCameraFocalPoint(side / 2, side / 2, side / 2);
-  renderer->ParallelProjectionOn();
-  renderer->SetParallelScale(side / 4);
-  renderer->SetClippingRange(1.0, 10.0);
+  cloudvis::support::SetParallelView(
+    renderer, glm::dvec3(side / 2), glm::dvec3(0.0, 0.0, -1.0), side / 4);
   renderer->SetSampleDistance(side / 512);
   renderer->SetVolumeProperty(cloudvis::MakeVolumeProperty(scene.TransferFunction));
-  const cloudvis::test::Image image = cloudvis::test::Render(renderer);
+  const cloudvis::support::Image image = cloudvis::support::Render(renderer);
   ASSERT_EQ(image.Pixels(), 1u);
   EXPECT_NEAR(image.At(0, 3), 1.0 - std::exp(-3.0), 2e-3);
 }

@@ -54,6 +54,15 @@ CliRun Cloudvis(const std::vector<std::string>& arguments)
 // The small test scene: the fbm sphere at 32^3, 64 x 48 pixels, 2 accumulated frames.
 const std::vector<std::string> Small = { "--set", "field.dimensions=32", "--set",
   "render.accumulate=2", "--size", "64x48" };
+// `cloudvis render` of the small scene into `output`, with more options; fails the test when
+// cloudvis does (call it inside ASSERT_NO_FATAL_FAILURE).
+void RenderSmall(const std::string& output, const std::vector<std::string>& options = {})
+{
+  const CliRun run = Cloudvis(
+    With(With(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json" }, options), { "-o", output }),
+      Small));
+  ASSERT_EQ(run.Status, 0) << run.Err;
+}
 cloudvis::Scene SmallScene()
 {
   return cloudvis::LoadScene(CLOUDVIS_SCENES "/fbm-sphere.json",
@@ -141,9 +150,8 @@ TEST(Exr, PathTracedRenderAddsTheVarianceOfEachChannel)
   // render --lighting pathtrace: the variance layer holds the mapper's variance of each pixel's
   // means (the same paths: same seed and split), non-negative and non-zero where the cloud is.
   TemporaryDirectory dir;
-  const CliRun run = Cloudvis(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "-o",
-    dir.File("p.exr"), "--lighting", "pathtrace", "--spp", "4" }, Small));
-  ASSERT_EQ(run.Status, 0) << run.Err;
+  ASSERT_NO_FATAL_FAILURE(
+    RenderSmall(dir.File("p.exr"), { "--lighting", "pathtrace", "--spp", "4" }));
   const Exr exr = ReadExr(dir.File("p.exr"));
   std::vector<std::string> names;
   for (const auto& channel : exr.Types)
@@ -180,9 +188,7 @@ TEST(Exr, PathTracedRenderAddsTheVarianceOfEachChannel)
 TEST(Exr, HalfChannelsRoundTheFloatRender)
 {
   TemporaryDirectory dir;
-  const CliRun run = Cloudvis(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "--exr-half",
-    "-o", dir.File("h.exr") }, Small));
-  ASSERT_EQ(run.Status, 0) << run.Err;
+  ASSERT_NO_FATAL_FAILURE(RenderSmall(dir.File("h.exr"), { "--exr-half" }));
   const Exr exr = ReadExr(dir.File("h.exr"));
   for (const auto& channel : exr.Types)
   {
@@ -207,9 +213,7 @@ TEST(Exr, HalfChannelsRoundTheFloatRender)
 TEST(Exr, HeaderCarriesTheSceneThatRendersTheSameImage)
 {
   TemporaryDirectory dir;
-  const CliRun run = Cloudvis(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "-o",
-    dir.File("r.exr"), "--set", "field.octaves=3" }, Small));
-  ASSERT_EQ(run.Status, 0) << run.Err;
+  ASSERT_NO_FATAL_FAILURE(RenderSmall(dir.File("r.exr"), { "--set", "field.octaves=3" }));
   const Exr exr = ReadExr(dir.File("r.exr"));
   EXPECT_EQ(exr.Strings.at("cloudvis.version"), cloudvis::CloudvisVersion());
   EXPECT_NE(exr.Strings.at("cloudvis.command").find("cloudvis render "), std::string::npos);
@@ -288,9 +292,7 @@ TEST(Png, SixteenBitIsTheSamePictureAsEightBit)
   TemporaryDirectory dir;
   ASSERT_EQ(Cloudvis(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "-o",
     dir.File("8.png") }, Small)).Status, 0);
-  const CliRun run = Cloudvis(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "--png-bits",
-    "16", "-o", dir.File("16.png") }, Small));
-  ASSERT_EQ(run.Status, 0) << run.Err;
+  ASSERT_NO_FATAL_FAILURE(RenderSmall(dir.File("16.png"), { "--png-bits", "16" }));
   const Png eight = ReadPng(dir.File("8.png"));
   const Png sixteen = ReadPng(dir.File("16.png"));
   EXPECT_EQ(eight.Bits, 8);
@@ -313,9 +315,7 @@ TEST(Png, SixteenBitIsTheSamePictureAsEightBit)
 TEST(Png, TransparentAlphaIsTheCloudsOpacity)
 {
   TemporaryDirectory dir;
-  const CliRun run = Cloudvis(With({ "render", CLOUDVIS_SCENES "/fbm-sphere.json", "--transparent",
-    "-o", dir.File("t.png") }, Small));
-  ASSERT_EQ(run.Status, 0) << run.Err;
+  ASSERT_NO_FATAL_FAILURE(RenderSmall(dir.File("t.png"), { "--transparent" }));
   const Png png = ReadPng(dir.File("t.png"));
   ASSERT_EQ(png.Components, 4);
   EXPECT_EQ(png.Bits, 8);

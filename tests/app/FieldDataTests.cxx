@@ -23,18 +23,8 @@
 namespace
 {
 
-using cloudvis::support::ReadText;
-using cloudvis::support::TemporaryDirectory;
-using cloudvis::support::WriteText;
-using cloudvis::test::Density;
-using cloudvis::test::Detail;
-using cloudvis::test::ErrorOf;
-using cloudvis::test::ExpectKnownValues;
-using cloudvis::test::RunTool;
-using cloudvis::test::Truncate;
-using cloudvis::test::Unu;
-using cloudvis::test::WriteKnownRaw;
-using cloudvis::test::WriteMetaImage;
+using namespace cloudvis::support;
+using namespace cloudvis::test;
 
 // The error reading `path` gives; the test fails unless it contains every one of `parts`.
 void ExpectRefused(const std::string& path, const std::vector<std::string>& parts)

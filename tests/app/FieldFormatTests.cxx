@@ -39,23 +39,8 @@ namespace
 
 using cloudvis::FieldReadOptions;
 using cloudvis::FieldReport;
-using cloudvis::support::ReadText;
-using cloudvis::support::TemporaryDirectory;
-using cloudvis::support::WriteText;
-using cloudvis::test::Density;
-using cloudvis::test::Detail;
-using cloudvis::test::ErrorOf;
-using cloudvis::test::ExpectKnownValues;
-using cloudvis::test::ExpectSameField;
-using cloudvis::test::Known;
-using cloudvis::test::KnownImage;
-using cloudvis::test::RecordedRun;
-using cloudvis::test::RotatedField;
-using cloudvis::test::RunTool;
-using cloudvis::test::Truncate;
-using cloudvis::test::Unu;
-using cloudvis::test::WriteKnownRaw;
-using cloudvis::test::WriteMetaImage;
+using namespace cloudvis::support;
+using namespace cloudvis::test;
 
 void ExpectVector(const double* actual, std::array<double, 3> expected, double tolerance = 1e-12)
 {

@@ -23,13 +23,8 @@
 namespace
 {
 
-using cloudvis::support::ReadText;
-using cloudvis::support::TemporaryDirectory;
-using cloudvis::support::WriteText;
-using cloudvis::test::ErrorOf;
-using cloudvis::test::ExpectSameField;
-using cloudvis::test::RecordedRun;
-using cloudvis::test::RotatedField;
+using namespace cloudvis::support;
+using namespace cloudvis::test;
 
 // Every write is a run of its own, recorded in the .pvti and in each of its pieces.
 TEST(ParallelFiles, TheParallelFileAndEachPieceRecordTheirRun)

@@ -22,13 +22,8 @@ namespace
 using cloudvis::FieldReadOptions;
 using cloudvis::FieldReport;
 using cloudvis::MissingValueRule;
-using cloudvis::support::ReadText;
-using cloudvis::support::TemporaryDirectory;
-using cloudvis::support::WriteText;
-using cloudvis::test::Density;
-using cloudvis::test::Detail;
-using cloudvis::test::ErrorOf;
-using cloudvis::test::RunTool;
+using namespace cloudvis::support;
+using namespace cloudvis::test;
 
 // Writes `cdl` as the NetCDF file `name` in `dir` with ncgen, of ncgen's kind `kind` (1 classic,
 // 2 64-bit offset, 3 netCDF-4, 4 netCDF-4 classic model, 5 CDF-5); returns its path.

@@ -27,12 +27,8 @@ namespace
 
 using cloudvis::FieldReadOptions;
 using cloudvis::FieldReport;
-using cloudvis::support::ReadText;
-using cloudvis::support::TemporaryDirectory;
-using cloudvis::support::WriteText;
-using cloudvis::test::Density;
-using cloudvis::test::Detail;
-using cloudvis::test::ErrorOf;
+using namespace cloudvis::support;
+using namespace cloudvis::test;
 
 // The value of active voxel (i, j, k) in the test grids.
 float Known(int i, int j, int k)

@@ -37,23 +37,9 @@ fi
 parent=$!
 
 if [ "$mode" = kill ]; then
-  for _ in $(seq 1 12000); do # up to 10 minutes, for slow sanitized builds
-    if [ -n "$(temporaries)" ]; then
-      break
-    fi
-    if [ -e ending.txt ]; then
-      echo "FAIL: cloudvis ended ($(cat ending.txt)) before its temporary file appeared" >&2
-      cat stderr.txt >&2
-      exit 1
-    fi
-    sleep 0.05
-  done
-  if [ -z "$(temporaries)" ]; then
-    echo "FAIL: no temporary file appeared" >&2
-    kill -KILL "$(cat launched.pid)"
-    exit 1
-  fi
-  kill -s "$signal" "$(cat launched.pid)"
+  has_temporary() { [ -n "$(temporaries)" ]; }
+  # Up to 10 minutes, for slow sanitized builds.
+  signal_when_ready has_temporary 12000 "its temporary file" "$signal"
 fi
 wait "$parent"
 

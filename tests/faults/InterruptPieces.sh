@@ -74,23 +74,8 @@ ready() {
     paused*) [ "$(grep -c "paused after piece" stderr.txt || true)" -ge "${moment#paused}" ] ;;
   esac
 }
-for _ in $(seq 1 6000); do # up to 5 minutes, for slow sanitized builds
-  if ready; then
-    break
-  fi
-  if [ -e ending.txt ]; then
-    echo "FAIL: the generation ended ($(cat ending.txt)) before the moment ($moment)" >&2
-    cat stderr.txt >&2
-    exit 1
-  fi
-  sleep 0.05
-done
-if ! ready; then
-  echo "FAIL: the moment ($moment) never came" >&2
-  kill -KILL "$(cat launched.pid)"
-  exit 1
-fi
-kill -s "$signal" "$(cat launched.pid)"
+# Up to 5 minutes, for slow sanitized builds.
+signal_when_ready ready 6000 "the moment ($moment)" "$signal"
 wait "$parent"
 # Under mpirun, wait until no process of this run is left: a rank that went on after mpirun
 # returned would still be writing.

@@ -15,3 +15,27 @@ run_and_record() {
     close $e;
   ' -- "$@"
 }
+
+# signal_when_ready READY TRIES WHAT SIGNAL: polls the function READY every 0.05 s, up to TRIES
+# times, then sends SIGNAL to the process run_and_record launched. Fails the test (exit 1) when
+# that process ended before READY held, or READY never held, saying WHAT it waited for.
+signal_when_ready() {
+  local ready=$1 tries=$2 what=$3 signal=$4
+  for _ in $(seq 1 "$tries"); do
+    if "$ready"; then
+      break
+    fi
+    if [ -e ending.txt ]; then
+      echo "FAIL: cloudvis ended ($(cat ending.txt)) before $what" >&2
+      cat stderr.txt >&2
+      exit 1
+    fi
+    sleep 0.05
+  done
+  if ! "$ready"; then
+    echo "FAIL: $what never came" >&2
+    kill -KILL "$(cat launched.pid)"
+    exit 1
+  fi
+  kill -s "$signal" "$(cat launched.pid)"
+}

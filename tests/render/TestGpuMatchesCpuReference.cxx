@@ -18,8 +18,8 @@
 // round differently, which moves a sample by a few ulps; where the density is sharp (the
 // constant sphere's surface) that can add or drop a whole sample at the edge. Gates per platform,
 // 3 to 5 times what was measured on llvmpipe (docs/reliability.md lists the figures).
-#include "CpuReference.h"
-#include "RenderFixture.h"
+#include "SupportReference.h"
+#include "SupportScene.h"
 
 #include "SupportMappers.h"
 #include "vtkCloudReferenceRenderer.h"
@@ -43,7 +43,7 @@
 #include <string>
 
 using namespace cloudvis;
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 namespace
 {
@@ -52,33 +52,22 @@ constexpr int Size = 64;
 struct Comparison
 {
   double Brightest = 0.0; // largest reference radiance over r, g, b
-  int CloudPixels = 0;    // pixels where either image has opacity above 1e-4
+  size_t CloudPixels = 0; // pixels where either image has opacity above 1e-4
   double RmsColor = 0.0;  // over r, g, b of the cloud pixels
   double MaxColor = 0.0;
   double MaxAlpha = 0.0;
 };
 
-Comparison Compare(const Image& gpu, const std::vector<float>& cpu)
+Comparison CompareOverTheCloud(const Image& gpu, const Image& cpu)
 {
+  const Mask cloud = OpacityAbove(gpu, cpu, 1e-4f);
+  const Difference color = Compare(gpu, cpu, 3, cloud);
   Comparison c;
-  double sumColor = 0.0;
-  for (size_t i = 0; i < cpu.size(); i += 4)
-  {
-    if (!(gpu.RGBA[i + 3] > 1e-4f || cpu[i + 3] > 1e-4f))
-    {
-      continue;
-    }
-    ++c.CloudPixels;
-    for (size_t k = 0; k < 3; ++k)
-    {
-      const double d = std::abs(double(gpu.RGBA[i + k]) - double(cpu[i + k]));
-      sumColor += d * d;
-      c.MaxColor = std::max(c.MaxColor, d);
-      c.Brightest = std::max(c.Brightest, double(cpu[i + k]));
-    }
-    c.MaxAlpha = std::max(c.MaxAlpha, std::abs(double(gpu.RGBA[i + 3]) - double(cpu[i + 3])));
-  }
-  c.RmsColor = c.CloudPixels ? std::sqrt(sumColor / (3.0 * c.CloudPixels)) : 0.0;
+  c.CloudPixels = color.Count / 3;
+  c.RmsColor = color.Rms;
+  c.MaxColor = color.Max;
+  c.MaxAlpha = Compare(gpu, cpu, 1, cloud, 3).Max;
+  c.Brightest = Largest(cpu, 3, cloud);
   return c;
 }
 
@@ -118,7 +107,7 @@ struct Case
 struct Rendered
 {
   Image Gpu;
-  std::vector<float> Cpu;
+  Image Cpu;
   std::string Renderer; // the GL renderer's name
 };
 
@@ -137,7 +126,7 @@ Rendered RenderBoth(const Case& c)
   mapper->GetLightingProperty()->SetParameters(lighting);
   mapper->SetExtinctionScale(c.ExtinctionScale);
   mapper->SetHalfFloatDensity(c.HalfFloat);
-  test::Scene scene(mapper, Size, Size);
+  GpuScene scene(mapper, Size, Size);
   const vtkSmartPointer<vtkImageData> field =
     support::QuantizedField(c.Cloud ? SparseCloud(40) : ConstantSphere(1.2, 40), c.ScalarType);
   const double* origin = field->GetOrigin();
@@ -204,26 +193,11 @@ Rendered RenderBoth(const Case& c)
   // render, the volume property and extinction scale (it builds the mapper's table), the
   // lighting property, the renderer's lights, the volume's matrix, the step.
   vtkNew<vtkCloudReferenceRenderer> reference;
-  reference->SetInputData(field);
-  reference->SetImageSize(Size, Size);
-  reference->SetVolumeMatrix(scene.Volume->GetMatrix());
-  SetReferenceCamera(reference, camera);
-  reference->SetVolumeProperty(scene.Property);
-  reference->SetExtinctionScale(c.ExtinctionScale);
-  reference->SetLightingProperty(mapper->GetLightingProperty());
-  reference->SetLights(scene.Renderer->GetLights());
-  reference->SetSampleDistance(step);
+  ConfigureReference(reference, scene);
   reference->Update();
-  auto* rgba = vtkFloatArray::SafeDownCast(reference->GetOutput()->GetPointData()->GetScalars());
-  if (rgba && rgba->GetNumberOfTuples() == Size * Size)
-  {
-    r.Cpu.assign(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * Size * Size);
-  }
-  Image cpuImage;
-  cpuImage.Width = cpuImage.Height = Size;
-  cpuImage.RGBA = r.Cpu;
+  r.Cpu = ImageOf(reference->GetOutput());
   Dump(r.Gpu, "gpu-vs-cpu-" + c.Name + "-gpu");
-  Dump(cpuImage, "gpu-vs-cpu-" + c.Name + "-cpu");
+  Dump(r.Cpu, "gpu-vs-cpu-" + c.Name + "-cpu");
   return r;
 }
 
@@ -261,9 +235,9 @@ TEST_P(GpuMatchesCpuReference, WithinTolerance)
   const Rendered r = RenderBoth(c);
   ASSERT_EQ(r.Gpu.Width, Size);
   ASSERT_EQ(r.Gpu.Height, Size);
-  ASSERT_EQ(r.Cpu.size(), size_t(4 * Size * Size)) << "the reference rendered nothing";
+  ASSERT_EQ(r.Cpu.Values.size(), size_t(4 * Size * Size)) << "the reference rendered nothing";
 
-  const Comparison d = Compare(r.Gpu, r.Cpu);
+  const Comparison d = CompareOverTheCloud(r.Gpu, r.Cpu);
   std::cout << c.Name << ": " << d.CloudPixels << " cloud pixels, brightest " << d.Brightest
             << ", color RMS " << d.RmsColor / d.Brightest << " of it, max "
             << d.MaxColor / d.Brightest << "; alpha max " << d.MaxAlpha << "\n";
@@ -456,11 +430,8 @@ TEST(GpuMatchesCpuReference, FarAwayAndHugeFieldsRenderLikeTheSameFieldAtTheOrig
     moved.World = world;
     moved.Name = "Scale" + std::to_string(world.Scale) + "Offset" + std::to_string(world.Offset);
     const Rendered r = RenderBoth(moved);
-    const Comparison gpu = Compare(r.Gpu, atOrigin.Gpu.RGBA);
-    Image cpu;
-    cpu.Width = cpu.Height = Size;
-    cpu.RGBA = r.Cpu;
-    const Comparison reference = Compare(cpu, atOrigin.Cpu);
+    const Comparison gpu = CompareOverTheCloud(r.Gpu, atOrigin.Gpu);
+    const Comparison reference = CompareOverTheCloud(r.Cpu, atOrigin.Cpu);
     std::cout << "scale " << world.Scale << ", offset " << world.Offset
               << ": GPU vs GPU at the origin, max " << gpu.MaxColor / gpu.Brightest << " RMS "
               << gpu.RmsColor / gpu.Brightest << " of the peak; CPU vs CPU max "

@@ -8,8 +8,9 @@
 // a loose estimate cannot pass by being noisy. The closed forms are the CPU tests' own
 // (tests/unit/TestPathTracer.cxx): the opacity of a homogeneous slab seen obliquely, and the
 // white furnace. Small images and sample counts: llvmpipe runs the shader on the CPU.
-#include "CpuReference.h"
-#include "RendererTestSupport.h" // tests/unit: fields, media, lights, images with variances
+#include "SupportExpectations.h"
+#include "SupportReference.h"
+#include "SupportScene.h"
 
 #include "CloudMarchUniforms.h"
 #include "vtkCloudPathTracer.h"
@@ -35,68 +36,46 @@ namespace
 constexpr double Sigmas = 4.5;
 constexpr int Size = 24;
 
-using test::Image;
+using namespace cloudvis::support;
 
-// An off-screen window path-tracing `field` on the GPU, Size x Size pixels.
+// A path-traced off-screen scene of `field`, Size x Size pixels, lit by the test's lights only
+// (no headlight).
 struct GpuTrace
 {
   vtkNew<vtkCloudVolumeMapper> Mapper;
-  vtkNew<vtkRenderWindow> Window;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkSmartPointer<vtkVolumeProperty> Property;
+  GpuScene View{ this->Mapper, Size, Size };
 
   GpuTrace(vtkImageData* field,
     vtkVolumeProperty* medium,
     const LightingParameters& lighting,
     int samplesPerFrame,
     int seed)
-    : Property(medium)
   {
     LightingParameters p = lighting;
     p.Model = LightingModel::PathTrace;
     this->Mapper->GetLightingProperty()->SetParameters(p);
     this->Mapper->SetPathTraceSamplesPerFrame(samplesPerFrame);
     this->Mapper->SetPathTraceSeed(seed);
-    this->Mapper->SetInputData(field);
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetSize(Size, Size);
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->AutomaticLightCreationOff(); // no headlight: the lights are the test's
-    this->Volume->SetMapper(this->Mapper);
-    this->Volume->SetProperty(medium);
-    this->Renderer->AddVolume(this->Volume);
+    this->View.SetInput(field);
+    this->View.Volume->SetProperty(medium);
+    this->View.Renderer->AutomaticLightCreationOff();
   }
 
-  // A parallel view as test::SetParallelView gives the CPU renderers.
+  // The parallel view SetParallelView gives the CPU renderers.
   void LookAt(glm::dvec3 focal, glm::dvec3 view, double scale)
   {
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    const glm::dvec3 position = focal - 5.0 * glm::normalize(view);
-    camera->SetPosition(position.x, position.y, position.z);
-    camera->SetFocalPoint(focal.x, focal.y, focal.z);
-    camera->SetViewUp(0.0, 1.0, 0.0);
-    camera->ParallelProjectionOn();
-    camera->SetParallelScale(scale);
-    camera->SetClippingRange(1.0, 10.0);
+    SetParallelView(this->View.Renderer->GetActiveCamera(), focal, view, scale);
   }
 
   // Accumulates `frames` frames and reads the mean and its variance.
   Image Render(int frames)
   {
     this->Mapper->SetMaximumAccumulatedFrames(frames);
-    for (int f = 0; f < frames; ++f)
-    {
-      this->Window->Render();
-    }
+    const Image image = this->View.RenderPathTraced(frames);
     EXPECT_EQ(this->Mapper->GetLastError(), "");
-    EXPECT_EQ(this->Mapper->GetNumberOfAccumulatedSamples(this->Renderer),
+    EXPECT_EQ(this->Mapper->GetNumberOfAccumulatedSamples(this->View.Renderer),
       frames * this->Mapper->GetPathTraceSamplesPerFrame());
-    Image image;
-    int width = 0, height = 0;
-    if (!this->Mapper->ReadImage(this->Renderer, image.RGBA, image.Width, image.Height) ||
-      !this->Mapper->ReadVariance(this->Renderer, image.Variance, width, height))
+    if (image.Values.empty())
     {
       ADD_FAILURE() << "the mapper kept no path-traced image";
     }
@@ -104,7 +83,7 @@ struct GpuTrace
   }
 };
 
-// test::ExpectNoDifference over 4 x 4 tiles at Sigmas, the standard error below 2% of `scale`,
+// ExpectNoDifference over 4 x 4 tiles at Sigmas, the standard error below 2% of `scale`,
 // with the observed figures printed (the tolerances' margins, for docs and reports).
 void ExpectAgreement(const Image& image,
   const std::function<double(std::size_t)>& difference,
@@ -114,24 +93,13 @@ void ExpectAgreement(const Image& image,
   int minTiles,
   const std::string& what)
 {
-  const test::Estimate mean = test::MeanOverPixels(image, difference, variance, use);
+  const Estimate mean = MeanOverPixels(image, difference, variance, use);
   int tiles = 0;
   std::cout << what << ": mean difference " << mean.Mean << " +- " << mean.StandardError
             << " (scale " << scale << "), largest tile z "
-            << test::LargestBlockZ(image, 4, difference, variance, use, tiles) << " over " << tiles
+            << LargestBlockZ(image, 4, difference, variance, use, tiles) << " over " << tiles
             << " tiles\n";
-  test::ExpectNoDifference(
-    image, 4, difference, variance, use, scale, minTiles, what, 0.02, Sigmas);
-}
-
-double MeanOf(const Image& image, int channel, const std::function<bool(std::size_t)>& use)
-{
-  return test::MeanOverPixels(
-    image,
-    [&](std::size_t p) { return image.At(p, channel); },
-    [](std::size_t) { return 0.0; },
-    use)
-    .Mean;
+  ExpectNoDifference(image, 4, difference, variance, use, scale, minTiles, what, 0.02, Sigmas);
 }
 }
 
@@ -142,26 +110,21 @@ TEST(GpuPathTracer, AgreesWithTheCpuPathTracerWithinTheirStandardErrors)
   // order of scattering: every estimator of the tracer takes part (free flight, ratio tracking
   // with empty bricks leapt and homogeneous bricks integrated, both lobes, roulette, NEE to each
   // kind of light, the environment).
-  auto field = test::SoftSphere(24);
-  auto medium = test::LinearMedium(8.0f, glm::vec3(0.9f, 0.8f, 0.7f));
-  LightingParameters lighting = test::Ambient(glm::vec3(0.1f, 0.15f, 0.2f));
+  auto field = SoftSphere(24);
+  auto medium = LinearMedium(8.0f, glm::vec3(0.9f, 0.8f, 0.7f));
+  LightingParameters lighting = Ambient(glm::vec3(0.1f, 0.15f, 0.2f));
   GpuTrace gpu(field, medium, lighting, 8, 7);
   gpu.LookAt(glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.9);
-  gpu.Renderer->AddLight(MakeLight(test::DirectionalLight(glm::vec3(1.0f, 0.5f, 0.2f), 1.5f)));
-  gpu.Renderer->AddLight(MakeLight(test::PointLight(glm::vec3(-0.5f, 1.5f, 1.0f), 2.0f)));
+  AddLight(gpu.View.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.2), 1.5f));
+  AddLight(gpu.View.Renderer, PointLight(glm::dvec3(-0.5, 1.5, 1.0), 2.0f));
   const Image traced = gpu.Render(16); // 128 paths per pixel
   ASSERT_EQ(traced.Width, Size);
 
   vtkNew<vtkCloudPathTracer> cpu;
-  cpu->SetInputData(field);
-  cpu->SetImageSize(Size, Size);
-  SetReferenceCamera(cpu, gpu.Renderer->GetActiveCamera());
-  cpu->SetVolumeProperty(gpu.Property);
-  cpu->SetLightingProperty(gpu.Mapper->GetLightingProperty());
-  cpu->SetLights(gpu.Renderer->GetLights());
+  ConfigureReference(cpu, gpu.View);
   cpu->SetSamplesPerPixel(128);
   cpu->SetSeed(0);
-  const Image reference = test::Render(cpu);
+  const Image reference = Render(cpu);
   ASSERT_EQ(reference.Pixels(), traced.Pixels());
 
   const auto inCloud = [&](std::size_t p) { return reference.At(p, 3) > 0.0f; };
@@ -186,11 +149,11 @@ TEST(GpuPathTracer, SlabOpacityIsOneMinusExpOfMinusSigmaTimesPath)
   // nothing is scattered toward the eye.
   const double thickness = 9.0 / 16.0;
   const float sigma_t = 2.5f;
-  auto slab = test::MakeBoxField({ 17, 17, 33 },
+  auto slab = MakeBoxField({ 17, 17, 33 },
     { -2.0, -2.0, -1.0 },
     { 2.0, 2.0, 1.0 },
     [](double, double, double z) { return std::abs(z) <= 0.25 + 1e-9 ? 1.0 : 0.0; });
-  GpuTrace gpu(slab, test::LinearMedium(sigma_t), LightingParameters(), 4, 3);
+  GpuTrace gpu(slab, LinearMedium(sigma_t), LightingParameters(), 4, 3);
   gpu.LookAt(glm::dvec3(0.0), glm::dvec3(-0.6, 0.0, -0.8), 0.5);
   const Image image = gpu.Render(4);
   const double alpha = 1.0 - std::exp(-sigma_t * thickness / 0.8);
@@ -224,7 +187,7 @@ TEST(GpuPathTracer, WhiteFurnaceMediumVanishesIntoTheEnvironment)
   // Albedo 1, no light, a uniform environment A: every path that enters leaves with A, so
   // rgb = A alpha at every pixel, through every order of scattering of a thick sphere.
   const glm::vec3 environment(0.5f, 1.0f, 2.0f);
-  GpuTrace gpu(test::SoftSphere(24), test::LinearMedium(8.0f), test::Ambient(environment), 8, 5);
+  GpuTrace gpu(SoftSphere(24), LinearMedium(8.0f), Ambient(environment), 8, 5);
   gpu.LookAt(glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.8);
   const Image image = gpu.Render(8);
   const auto inCloud = [&](std::size_t p) { return image.At(p, 3) > 0.0f; };

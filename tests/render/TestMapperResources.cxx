@@ -3,7 +3,7 @@
 // allocated it; a field beyond the mapper's memory limit refused with the size it needs and
 // nothing drawn; the light volumes computed only when their inputs change and counted; and the GL
 // state left as vtkOpenGLState believes it is, since every change goes through it.
-#include "RenderFixture.h"
+#include "SupportScene.h"
 
 #include <vtkCamera.h>
 #include <vtkDataArray.h>
@@ -22,7 +22,7 @@
 #include <vector>
 
 using namespace cloudvis;
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 namespace
 {
@@ -38,7 +38,7 @@ struct Storage
 };
 
 // The sparse cloud stored as `storage` says, with the ramp medium over its units.
-void SetField(Scene& scene, vtkCloudVolumeMapper* mapper, const Storage& storage)
+void SetField(GpuScene& scene, vtkCloudVolumeMapper* mapper, const Storage& storage)
 {
   mapper->SetHalfFloatDensity(storage.HalfFloat);
   scene.SetInput(support::QuantizedField(SparseCloud(FieldSize), storage.ScalarType));
@@ -47,12 +47,7 @@ void SetField(Scene& scene, vtkCloudVolumeMapper* mapper, const Storage& storage
 
 double LargestAlpha(const Image& image)
 {
-  double largest = 0.0;
-  for (size_t i = 3; i < image.RGBA.size(); i += 4)
-  {
-    largest = std::max(largest, double(image.RGBA[i]));
-  }
-  return largest;
+  return Largest(image, 1, {}, 3);
 }
 
 const Storage Storages[] = { { "float", VTK_FLOAT, false, 4 },
@@ -72,7 +67,7 @@ TEST(MapperResources, EachFieldIsUploadedInItsNativeTexelsAndItsMemoryReported)
   for (const Storage& storage : Storages)
   {
     auto mapper = CloudMapper(0.05);
-    Scene scene(mapper, ImageSize, ImageSize);
+    GpuScene scene(mapper, ImageSize, ImageSize);
     SetField(scene, mapper, storage);
     const Image image = scene.RenderFloat();
     ASSERT_EQ(mapper->GetLastError(), "") << storage.Name;
@@ -90,18 +85,14 @@ TEST(MapperResources, AFieldBeyondTheMemoryLimitIsRefusedWithItsSizeAndNotDrawn)
   constexpr long long Limit = 800000;
   auto mapper = CloudMapper(0.05);
   mapper->SetMaximumGPUMemory(Limit);
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   const Image refused = scene.Render();
   const std::string error = mapper->GetLastError();
   EXPECT_NE(error.find("64 x 64 x 64 voxels of R32F"), std::string::npos) << error;
   EXPECT_NE(error.find("needs 1 MiB"), std::string::npos) << error;
   EXPECT_NE(error.find("MaximumGPUMemory"), std::string::npos) << error;
-  for (size_t i = 0; i < refused.RGBA.size(); i += 4)
-  {
-    ASSERT_EQ(refused.RGBA[i] + refused.RGBA[i + 1] + refused.RGBA[i + 2], 0.0f)
-      << "nothing drawn: the background everywhere";
-  }
+  ASSERT_EQ(Largest(refused, 3), 0.0) << "nothing drawn: the background everywhere";
   EXPECT_LE(mapper->GetGPUMemoryBytes(), Limit);
 
   for (const Storage& storage : { Storages[3], Storages[2] })
@@ -125,7 +116,7 @@ TEST(MapperResources, LightVolumesAreComputedWhenTheirInputsChangeAndCountInTheB
   // texel of half the field's resolution per light (33^3 for 64^3 voxels), in GetGPUMemoryBytes.
   auto mapper = CloudMapper(0.05);
   mapper->GetLightingProperty()->SetModelToMarch();
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   vtkNew<vtkLight> sun;
   sun->SetLightTypeToSceneLight();
@@ -172,7 +163,7 @@ TEST(MapperResources, ThePathTracersTexturesAreReleasedWhenAnotherModelRenders)
   // The path tracer adds a moment target and a texture of extinction bounds per brick; back on
   // another model the mapper holds what that model holds, and no more.
   auto mapper = CloudMapper(0.05);
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   scene.RenderFloat();
   ASSERT_EQ(mapper->GetLastError(), "");
@@ -193,7 +184,7 @@ TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)
   mapper->CollectStatisticsOn(); // a read-back after each frame
   mapper->SetMaximumAccumulatedFrames(4);
   mapper->JitterOn();
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   scene.RenderFloat();
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(scene.Window);
@@ -241,21 +232,6 @@ TEST(MapperResources, GlStateIsLeftAsVtkOpenGLStateHasIt)
   }
 }
 
-namespace
-{
-// The largest difference of any channel between two float images of one size.
-double LargestDifference(const Image& a, const Image& b)
-{
-  EXPECT_EQ(a.RGBA.size(), b.RGBA.size());
-  double largest = 0.0;
-  for (size_t i = 0; i < std::min(a.RGBA.size(), b.RGBA.size()); ++i)
-  {
-    largest = std::max(largest, std::abs(double(a.RGBA[i]) - double(b.RGBA[i])));
-  }
-  return largest;
-}
-}
-
 TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomputingTheVolumes)
 {
   // A light that follows the camera (VTK's headlight) changes with every frame of an
@@ -267,7 +243,7 @@ TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomput
   struct HeadlitScene
   {
     vtkSmartPointer<vtkCloudVolumeMapper> Mapper = CloudMapper(0.05);
-    Scene View{ Mapper, ImageSize, ImageSize };
+    GpuScene View{ Mapper, ImageSize, ImageSize };
     explicit HeadlitScene(LightTransmittance transmittance)
     {
       this->Mapper->GetLightingProperty()->SetModelToMarch();
@@ -304,7 +280,7 @@ TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomput
     const Image reference = nested.View.RenderFloat();
     ASSERT_EQ(volumes.Mapper->GetLastError(), "");
     EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 1) << "frame " << frame;
-    EXPECT_LE(LargestDifference(interactive, reference), 1e-6) << "frame " << frame;
+    EXPECT_LE(MaxDifference(interactive, reference), 1e-6) << "frame " << frame;
     EXPECT_GT(volumes.Mapper->GetLightVolumeBytes(), 0) << "kept for the still render";
   }
 
@@ -315,10 +291,10 @@ TEST(MapperResources, AHeadlightWhileInteractingMarchesTowardItInsteadOfRecomput
   const Image after = volumes.View.RenderFloat();
   const Image nestedAfter = nested.View.RenderFloat();
   EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 2);
-  EXPECT_GT(LargestDifference(after, nestedAfter), 1e-4);
+  EXPECT_GT(MaxDifference(after, nestedAfter), 1e-4);
   // A light that moves while the camera holds still (not interacting) recomputes them at once.
   volumes.View.Renderer->RemoveAllLights();
-  AddDirectionalLight(volumes.View.Renderer, 1.0, 0.5, 0.3);
+  AddLight(volumes.View.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.3)));
   volumes.View.RenderFloat();
   EXPECT_EQ(volumes.Mapper->GetLightVolumeComputeCount(), 3);
 }
@@ -339,14 +315,14 @@ TEST(MapperResources, AResizeNearTheMemoryLimitCountsThePathTracersOldMomentTarg
   long long needed = 0;
   {
     auto mapper = pathTraced(0);
-    Scene scene(mapper, Larger, Larger);
+    GpuScene scene(mapper, Larger, Larger);
     SetField(scene, mapper, Storages[0]);
     scene.RenderFloat();
     ASSERT_EQ(mapper->GetLastError(), "");
     needed = mapper->GetGPUMemoryBytes();
   }
   auto mapper = pathTraced(needed);
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   SetField(scene, mapper, Storages[0]);
   scene.RenderFloat();
   ASSERT_EQ(mapper->GetLastError(), "");
@@ -374,7 +350,7 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
   // or one light, renders it.
   auto mapper = CloudMapper(0.05);
   mapper->GetLightingProperty()->SetModelToMarch();
-  Scene scene(mapper, ImageSize, ImageSize);
+  GpuScene scene(mapper, ImageSize, ImageSize);
   scene.Volume->VisibilityOff(); // a context, to ask its limit
   scene.Render();
   scene.Volume->VisibilityOn();
@@ -392,8 +368,8 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
   field->GetPointData()->GetScalars()->Fill(1.0);
   scene.SetInput(field);
   SetUniformMedium(scene.Property, 0.5, 1.0);
-  AddDirectionalLight(scene.Renderer, 1.0, 0.5, 0.3);
-  AddPointLight(scene.Renderer, 0.0, 3.0, 1.0);
+  AddLight(scene.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.3)));
+  AddLight(scene.Renderer, PointLight(glm::dvec3(0.0, 3.0, 1.0)));
 
   const Image refused = scene.Render();
   const std::string error = mapper->GetLastError();
@@ -402,18 +378,14 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
     std::string::npos)
     << error;
   EXPECT_NE(error.find("render.march.transmittance \"nested\""), std::string::npos) << error;
-  for (size_t i = 0; i < refused.RGBA.size(); i += 4)
-  {
-    ASSERT_EQ(refused.RGBA[i] + refused.RGBA[i + 1] + refused.RGBA[i + 2], 0.0f)
-      << "nothing drawn: the background everywhere";
-  }
+  ASSERT_EQ(Largest(refused, 3), 0.0) << "nothing drawn: the background everywhere";
 
   mapper->GetLightingProperty()->SetTransmittanceToNestedMarch();
   EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
   EXPECT_EQ(mapper->GetLastError(), "");
   mapper->GetLightingProperty()->SetTransmittanceToLightVolumes();
   scene.Renderer->RemoveAllLights();
-  AddDirectionalLight(scene.Renderer, 1.0, 0.5, 0.3);
+  AddLight(scene.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.3)));
   EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
   EXPECT_EQ(mapper->GetLastError(), "");
 }

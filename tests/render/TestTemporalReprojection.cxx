@@ -4,7 +4,7 @@
 // where the cloud was; a change other than the camera (here the transfer function) must drop the
 // history. The interactive frames march at the lowest scale, 0.25: each scene first renders one
 // interactive frame at an unreachable frame rate, so the mapper's measured cost asks for it.
-#include "RenderFixture.h"
+#include "SupportScene.h"
 
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
@@ -15,7 +15,7 @@
 #include <functional>
 #include <iostream>
 
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 namespace
 {
@@ -51,7 +51,7 @@ struct CloudScene
   vtkCamera* Camera() { return this->View.Renderer->GetActiveCamera(); }
 
   vtkSmartPointer<vtkCloudVolumeMapper> Mapper;
-  Scene View;
+  GpuScene View;
 };
 
 // The still render of the view `steps` times `move` lead to, and the last of the interactive

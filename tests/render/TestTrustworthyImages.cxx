@@ -4,7 +4,7 @@
 // an error that names the problem, and nothing drawn. The GPU against the CPU reference and
 // against VTK's own mapper for the same classes are in TestGpuMatchesCpuReference.cxx and
 // TestCloudVolumeMapper.cxx.
-#include "RenderFixture.h"
+#include "SupportScene.h"
 
 #include "CloudMarchUniforms.h"
 
@@ -21,7 +21,7 @@
 #include <string>
 
 using namespace cloudvis;
-using namespace cloudvis::test;
+using namespace cloudvis::support;
 
 namespace
 {
@@ -30,23 +30,18 @@ namespace
 std::string ErrorOf(
   vtkImageData* field,
   double step,
-  const std::function<void(Scene&, vtkCloudVolumeMapper*)>& setup = [](Scene&,
-                                                                      vtkCloudVolumeMapper*) {})
+  const std::function<void(GpuScene&, vtkCloudVolumeMapper*)>& setup = [](GpuScene&,
+                                                                         vtkCloudVolumeMapper*) {})
 {
   auto mapper = CloudMapper(step);
-  Scene scene(mapper, 32, 32);
+  GpuScene scene(mapper, 32, 32);
   scene.SetInput(field);
   SetRampMedium(scene.Property, 1.0, 0.6);
   setup(scene, mapper);
   const Image image = scene.Render();
   if (!mapper->GetLastError().empty())
   {
-    float brightest = 0.0f;
-    for (size_t i = 0; i < image.RGBA.size(); ++i)
-    {
-      brightest = i % 4 == 3 ? brightest : std::max(brightest, image.RGBA[i]);
-    }
-    EXPECT_EQ(brightest, 0.0f) << "nothing may be drawn from refused input";
+    EXPECT_EQ(Largest(image, 3), 0.0) << "nothing may be drawn from refused input";
   }
   return mapper->GetLastError();
 }
@@ -82,12 +77,12 @@ TEST(TrustworthyImages, MoreThanEightLightsAreRefusedNotDropped)
   auto field = SparseCloud(16);
   const auto lights = [](int count)
   {
-    return [count](Scene& scene, vtkCloudVolumeMapper* mapper)
+    return [count](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
       for (int i = 0; i < count; ++i)
       {
-        AddPointLight(scene.Renderer, i, 1.0, 3.0);
+        AddLight(scene.Renderer, PointLight(glm::dvec3(i, 1.0, 3.0)));
       }
     };
   };
@@ -100,34 +95,34 @@ TEST(TrustworthyImages, LightsAndExtinctionsBeyondFloatRangeAreRefused)
   auto field = SparseCloud(16);
   const std::string bright = ErrorOf(field,
     0.05,
-    [](Scene& scene, vtkCloudVolumeMapper* mapper)
+    [](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
-      AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, 1e38);
+      AddLight(scene.Renderer, DirectionalLight(glm::dvec3(6.0, 8.0, 4.0), 1e38));
     });
   EXPECT_TRUE(Mentions(bright, "light 0 (color x intensity 1e+38)")) << bright;
   EXPECT_TRUE(Mentions(bright, "lower its intensity")) << bright;
 
   const std::string far = ErrorOf(field,
     0.05,
-    [](Scene& scene, vtkCloudVolumeMapper* mapper)
+    [](GpuScene& scene, vtkCloudVolumeMapper* mapper)
     {
       mapper->GetLightingProperty()->SetParameters(March());
-      AddPointLight(scene.Renderer, 1e30, 0.0, 0.0);
+      AddLight(scene.Renderer, PointLight(glm::dvec3(1e30, 0.0, 0.0)));
     });
   EXPECT_TRUE(Mentions(far, "too far for float arithmetic")) << far;
 
   const std::string thin = ErrorOf(field,
     0.05,
-    [](Scene& scene, vtkCloudVolumeMapper*)
+    [](GpuScene& scene, vtkCloudVolumeMapper*)
     { scene.Property->SetScalarOpacityUnitDistance(1e-45); });
   EXPECT_TRUE(Mentions(thin, "raise the unit distance")) << thin;
 
   // The same light is harmless under "none", which does not use lights.
   EXPECT_EQ(ErrorOf(field,
               0.05,
-              [](Scene& scene, vtkCloudVolumeMapper*)
-              { AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0, 1e38); }),
+              [](GpuScene& scene, vtkCloudVolumeMapper*)
+              { AddLight(scene.Renderer, DirectionalLight(glm::dvec3(6.0, 8.0, 4.0), 1e38)); }),
     "");
 }
 
@@ -138,16 +133,16 @@ TEST(TrustworthyImages, ADirectionalLightFarAlongItsDirectionLightsAlike)
   {
     auto mapper = CloudMapper(0.05);
     mapper->GetLightingProperty()->SetParameters(March());
-    Scene scene(mapper, 48, 48);
-    scene.SetInput(SparseCloud(32));
-    SetRampMedium(scene.Property, 1.0, 0.6);
-    AddDirectionalLight(scene.Renderer, 0.6 * distance, 0.8 * distance, 0.4 * distance);
+    GpuScene scene(mapper, 48, 48);
+    scene.ShowSparseCloud(32);
+    AddLight(
+      scene.Renderer, DirectionalLight(glm::dvec3(0.6 * distance, 0.8 * distance, 0.4 * distance)));
     const Image image = scene.RenderFloat();
     EXPECT_EQ(mapper->GetLastError(), "");
     return image;
   };
   const Image near = render(10.0), far = render(1e300);
-  ASSERT_GT(MeanOver(near, 0, 0, 48), 0.01) << "an empty window proves nothing";
+  ASSERT_GT(MeanOver(near, 0, Columns(0, 48)), 0.01) << "an empty window proves nothing";
   EXPECT_EQ(MaxDifference(near, far), 0.0);
 }
 
@@ -169,7 +164,7 @@ TEST(TrustworthyImages, AFlatOrNonFiniteGeometryIsRefused)
   {
     auto field = SparseCloud(16);
     return ErrorOf(
-      field, 0.05, [&](Scene& scene, vtkCloudVolumeMapper*) { change(field, scene.Volume); });
+      field, 0.05, [&](GpuScene& scene, vtkCloudVolumeMapper*) { change(field, scene.Volume); });
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(Mentions(refused([](vtkImageData* f, vtkVolume*) { f->SetSpacing(0.1, 0.0, 0.1); }),
@@ -188,12 +183,13 @@ TEST(TrustworthyImages, AFlatOrNonFiniteGeometryIsRefused)
     const std::string problem = ValidateVolumeGeometry(field, nullptr);
     EXPECT_TRUE(Mentions(problem, "must be three") && Mentions(problem, "nan")) << problem;
     auto mapper = CloudMapper(0.05);
-    Scene scene(mapper, 32, 32);
+    GpuScene scene(mapper, 32, 32);
     scene.SetInput(field);
     SetRampMedium(scene.Property, 1.0, 0.6);
     const Image image = scene.Render();
-    EXPECT_EQ(
-      MeanOver(image, 0, 0, 32) + MeanOver(image, 1, 0, 32) + MeanOver(image, 2, 0, 32), 0.0)
+    EXPECT_EQ(MeanOver(image, 0, Columns(0, 32)) + MeanOver(image, 1, Columns(0, 32)) +
+        MeanOver(image, 2, Columns(0, 32)),
+      0.0)
       << "nothing drawn";
   }
   EXPECT_TRUE(Mentions(
@@ -216,18 +212,18 @@ TEST(TrustworthyImages, AnOutlierVoxelDoesNotChangeTheRestOfTheCloud)
   {
     auto mapper = CloudMapper(0.03);
     mapper->GetLightingProperty()->SetParameters(March());
-    Scene scene(mapper, 96, 96);
+    GpuScene scene(mapper, 96, 96);
     auto field = SparseCloud(48);
     change(vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars()));
     scene.SetInput(field);
     SetRampMedium(scene.Property, 1.0, 0.6);
-    AddDirectionalLight(scene.Renderer, 6.0, 8.0, 4.0);
+    AddLight(scene.Renderer, DirectionalLight(glm::dvec3(6.0, 8.0, 4.0)));
     const Image image = scene.RenderFloat();
     EXPECT_EQ(mapper->GetLastError(), "");
     return image;
   };
   const Image plain = render([](vtkFloatArray*) {});
-  ASSERT_GT(MeanOver(plain, 3, 0, 96), 0.02) << "an empty window proves nothing";
+  ASSERT_GT(MeanOver(plain, 3, Columns(0, 96)), 0.02) << "an empty window proves nothing";
   for (const auto& outliers : std::vector<std::function<void(vtkFloatArray*)>>{ [](vtkFloatArray* d)
          { d->SetValue(0, 1e4f); },
          [](vtkFloatArray* d)

@@ -7,19 +7,19 @@
 // render without a mapper error. Under the address sanitizer build LeakSanitizer checks at exit
 // that everything allocated was released. The figures go to stdout (and docs/reliability.md).
 #include "CloudLighting.h"
+#include "SupportScene.h"
 #include "vtkCloudDensitySource.h"
 #include "vtkCloudLightingProperty.h"
 #include "vtkCloudVolumeMapper.h"
 
+#include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkImageData.h>
-#include <vtkCamera.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
-#include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <cstdlib>
@@ -104,20 +104,15 @@ int main()
   const char* growthText = std::getenv("CLOUDVIS_SOAK_MAX_GROWTH");
   const double maxGrowthPercent = growthText ? std::atof(growthText) : 5.0;
 
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(true);
-  window->SetMultiSamples(0);
-  window->SetSize(64, 64);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
+  // The render tests' off-screen scene (tests/support), under a headlight for the lighting
+  // models to use.
   vtkNew<vtkCloudVolumeMapper> mapper;
-  vtkNew<vtkVolume> volume;
-  vtkNew<vtkVolumeProperty> property;
+  cloudvis::support::GpuScene scene(mapper, 64, 64);
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkVolumeProperty* property = scene.Property;
   property->SetInterpolationTypeToLinear();
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  renderer->AddVolume(volume);
-  renderer->CreateLight(); // a headlight for the lighting models to use
+  renderer->CreateLight();
 
   long residentAt100 = 0;
   for (int frame = 1; frame <= Frames; ++frame)

@@ -52,6 +52,21 @@ Image FromVtk(vtkImageData* pixels)
 }
 }
 
+Image FromRgba(const std::vector<float>& rgba,
+  int width,
+  int height,
+  const std::vector<float>& variance)
+{
+  Image image;
+  image.Width = width;
+  image.Height = height;
+  image.Components = 4;
+  image.Bits = 32;
+  image.Values.assign(rgba.begin(), rgba.end());
+  image.Variance.assign(variance.begin(), variance.end());
+  return image;
+}
+
 Image ReadPng(const std::string& path)
 {
   vtkNew<vtkPNGReader> reader;
@@ -98,10 +113,11 @@ bool WritePng(const Image& image, const std::string& path)
   return writer->GetErrorCode() == 0;
 }
 
-Image GrabWindow(vtkRenderWindow* window, bool alpha)
+Image GrabWindow(vtkRenderWindow* window, bool alpha, bool rerender)
 {
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
+  grab->SetShouldRerender(rerender);
   if (alpha)
   {
     grab->SetInputBufferTypeToRGBA();
@@ -142,6 +158,25 @@ Exr ReadExr(const std::string& path)
   return exr;
 }
 
+Image OverBackground(const Image& premultiplied, double r, double g, double b)
+{
+  Image image = premultiplied;
+  image.Bits = 8;
+  image.Variance.clear();
+  const double background[3] = { r, g, b };
+  for (size_t p = 0; p < image.Pixels(); ++p)
+  {
+    const double alpha = premultiplied.At(p, 3);
+    for (int c = 0; c < 3; ++c)
+    {
+      const double v = premultiplied.At(p, c) + (1.0 - alpha) * background[c];
+      image.Values[4 * p + size_t(c)] = std::round(255.0 * std::min(1.0, std::max(0.0, v))) / 255.0;
+    }
+    image.Values[4 * p + 3] = 1.0;
+  }
+  return image;
+}
+
 Image Crop(const Image& image, const Region& region)
 {
   Image crop;
@@ -162,7 +197,7 @@ Image Crop(const Image& image, const Region& region)
   return crop;
 }
 
-Difference Compare(const Image& a, const Image& b, int channels, const Mask& mask)
+Difference Compare(const Image& a, const Image& b, int channels, const Mask& mask, int first)
 {
   Difference difference;
   if (a.Width != b.Width || a.Height != b.Height || a.Components != b.Components ||
@@ -171,7 +206,7 @@ Difference Compare(const Image& a, const Image& b, int channels, const Mask& mas
     difference.Rms = difference.Max = difference.Mean = std::numeric_limits<double>::infinity();
     return difference;
   }
-  const int compared = channels > 0 ? std::min(channels, a.Components) : a.Components;
+  const int end = channels > 0 ? std::min(first + channels, a.Components) : a.Components;
   double sum = 0.0, squares = 0.0;
   for (int y = 0; y < a.Height; ++y)
   {
@@ -181,12 +216,14 @@ Difference Compare(const Image& a, const Image& b, int channels, const Mask& mas
       {
         continue;
       }
-      for (int c = 0; c < compared; ++c)
+      for (int c = first; c < end; ++c)
       {
         const double d = std::fabs(a.At(x, y, c) - b.At(x, y, c));
         sum += d;
         squares += d * d;
-        difference.Max = std::max(difference.Max, d);
+        // std::max would drop a NaN; a NaN value is no match for anything.
+        difference.Max =
+          std::isnan(d) || std::isnan(difference.Max) ? std::nan("") : std::max(difference.Max, d);
         ++difference.Count;
       }
     }
@@ -197,6 +234,159 @@ Difference Compare(const Image& a, const Image& b, int channels, const Mask& mas
     difference.Rms = std::sqrt(squares / double(difference.Count));
   }
   return difference;
+}
+
+double Largest(const Image& image, int channels, const Mask& mask, int first)
+{
+  const int end = channels > 0 ? std::min(first + channels, image.Components) : image.Components;
+  double largest = 0.0;
+  for (int y = 0; y < image.Height; ++y)
+  {
+    for (int x = 0; x < image.Width; ++x)
+    {
+      for (int c = first; c < end && (!mask || mask(x, y)); ++c)
+      {
+        largest = std::max(largest, image.At(x, y, c));
+      }
+    }
+  }
+  return largest;
+}
+
+Mask ShowsCloud(const Image& a, const Image& b)
+{
+  return [&a, &b](int x, int y)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (a.At(x, y, c) > 0.0 || b.At(x, y, c) > 0.0)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+}
+
+Mask OpacityAbove(const Image& a, const Image& b, double opacity)
+{
+  return [&a, &b, opacity](int x, int y)
+  { return a.At(x, y, 3) > opacity || b.At(x, y, 3) > opacity; };
+}
+
+size_t CountPixels(const Image& image, const Mask& mask)
+{
+  size_t count = 0;
+  for (int y = 0; y < image.Height; ++y)
+  {
+    for (int x = 0; x < image.Width; ++x)
+    {
+      count += mask(x, y) ? 1 : 0;
+    }
+  }
+  return count;
+}
+
+double RmsDifference(const Image& a, const Image& b)
+{
+  return Compare(a, b, 3).RmsLevels();
+}
+
+double MaxDifference(const Image& a, const Image& b)
+{
+  return Compare(a, b).Max;
+}
+
+double MeanOver(const Image& image, int channel, const Region& region)
+{
+  const int width = region.Width > 0 ? region.Width : image.Width - region.X;
+  const int height = region.Height > 0 ? region.Height : image.Height - region.Y;
+  double sum = 0.0;
+  for (int y = region.Y; y < region.Y + height; ++y)
+  {
+    for (int x = region.X; x < region.X + width; ++x)
+    {
+      sum += image.At(x, y, channel);
+    }
+  }
+  return sum / (double(width) * double(height));
+}
+
+double MeanRadiance(const Image& image, const Region& region)
+{
+  return MeanOver(image, 0, region) + MeanOver(image, 1, region) + MeanOver(image, 2, region);
+}
+
+Estimate MeanOverPixels(const Image& image,
+  const PixelFunction& f,
+  const PixelFunction& v,
+  const PixelSelection& use)
+{
+  double sum = 0.0, variance = 0.0;
+  int n = 0;
+  for (size_t p = 0; p < image.Pixels(); ++p)
+  {
+    if (!use || use(p))
+    {
+      sum += f(p);
+      variance += v(p);
+      ++n;
+    }
+  }
+  return { sum / n, std::sqrt(variance) / n };
+}
+
+double MeanOf(const Image& image, int channel, const PixelSelection& use)
+{
+  return MeanOverPixels(
+    image, [&](size_t p) { return image.At(p, channel); }, [](size_t) { return 0.0; }, use)
+    .Mean;
+}
+
+Estimate MeanWithError(const Image& image, int channel, const PixelSelection& use)
+{
+  return MeanOverPixels(image,
+    [&](size_t p) { return image.At(p, channel); },
+    [&](size_t p) { return image.VarianceAt(p, channel); },
+    use);
+}
+
+double LargestBlockZ(const Image& image,
+  int blockSize,
+  const PixelFunction& difference,
+  const PixelFunction& variance,
+  const PixelSelection& use,
+  int& blocks)
+{
+  double largest = 0.0;
+  blocks = 0;
+  for (int bj = 0; bj + blockSize <= image.Height; bj += blockSize)
+  {
+    for (int bi = 0; bi + blockSize <= image.Width; bi += blockSize)
+    {
+      double sum = 0.0, v = 0.0;
+      int used = 0;
+      for (int j = bj; j < bj + blockSize; ++j)
+      {
+        for (int i = bi; i < bi + blockSize; ++i)
+        {
+          const size_t p = size_t(j) * size_t(image.Width) + size_t(i);
+          if (!use || use(p))
+          {
+            sum += difference(p);
+            v += variance(p);
+            ++used;
+          }
+        }
+      }
+      if (2 * used >= blockSize * blockSize && v > 0.0)
+      {
+        largest = std::max(largest, std::abs(sum) / std::sqrt(v));
+        ++blocks;
+      }
+    }
+  }
+  return largest;
 }
 
 Image DifferenceImage(const Image& a, const Image& b, double gain)

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace cloudvis;
@@ -50,6 +51,15 @@ size_t CloudyVoxels(const std::vector<float>& density)
     std::count_if(density.begin(), density.end(), [](float v) { return v > 0.0f; }));
 }
 
+// A cloud layer between `base` and `top`, with its coverage and the scales of its two noises.
+CloudLayer Layer(double base, double top, double coverage, double shapeScale, double detailScale)
+{
+  CloudLayer layer;
+  std::tie(layer.Base, layer.Top, layer.Coverage) = std::make_tuple(base, top, coverage);
+  std::tie(layer.ShapeScale, layer.DetailScale) = std::make_tuple(shapeScale, detailScale);
+  return layer;
+}
+
 // cumulus.json's cloud: four smoothly united spheres give the coverage of one cumulus.
 FieldDescription Cumulus()
 {
@@ -70,12 +80,8 @@ FieldDescription Cumulus()
   field.BlendRadius = 0.4;
   field.FalloffWidth = 0.5;
   field.Noise.Seed = 3;
+  field.Layer = Layer(-0.8, 1.6, 1.0, 1.5, 1.0);
   field.Layer.Type = CloudType::Cumulus;
-  field.Layer.Base = -0.8;
-  field.Layer.Top = 1.6;
-  field.Layer.Coverage = 1.0;
-  field.Layer.ShapeScale = 1.5;
-  field.Layer.DetailScale = 1.0;
   field.Layer.Erosion = 0.7;
   return field;
 }
@@ -86,13 +92,9 @@ FieldDescription Cloudscape()
   FieldDescription field;
   field.Model = DensityModel::Cloud;
   field.Noise.Seed = 7;
+  field.Layer = Layer(-0.5, 1.0, 0.5, 1.5, 0.6);
   field.Layer.Source = CoverageSource::Noise;
-  field.Layer.Base = -0.5;
-  field.Layer.Top = 1.0;
-  field.Layer.Coverage = 0.5;
   field.Layer.MapScale = 2.0;
-  field.Layer.ShapeScale = 1.5;
-  field.Layer.DetailScale = 0.6;
   field.Layer.Curl = 0.5;
   field.Layer.Shear = { { 0.3, -0.2 } };
   return field;

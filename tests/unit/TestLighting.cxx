@@ -7,7 +7,7 @@
 #include "CloudLighting.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
-#include "RendererTestSupport.h"
+#include "SupportFixtures.h"
 
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ double IntegrateOverSphere(const std::function<double(float)>& f)
   return 2.0 * 3.14159265358979323846 * sum * h / 3.0;
 }
 
-using test::LinearTable;
+using support::LinearTable;
 
 // A volume of n voxels per axis filled by density(i, j, k), with uniforms for the light march.
 struct Volume

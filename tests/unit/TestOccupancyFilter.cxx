@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <random>
 #include <vector>
@@ -50,6 +51,22 @@ vtkSmartPointer<vtkImageData> MakeField(const Index& dims, double value = 0.0)
   scalars->Fill(value);
   image->GetPointData()->SetScalars(scalars);
   return image;
+}
+
+// A float field of `dims` whose voxel v holds value(v, u), u drawn uniformly from [0, 1) in
+// voxel order by `rng`.
+vtkSmartPointer<vtkImageData> RandomField(const Index& dims,
+  std::mt19937& rng,
+  const std::function<float(vtkIdType, float)>& value)
+{
+  auto field = MakeField<vtkFloatArray>(dims);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  auto* scalars = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
+  for (vtkIdType v = 0; v < scalars->GetNumberOfValues(); ++v)
+  {
+    scalars->SetValue(v, value(v, unit(rng)));
+  }
+  return field;
 }
 
 void SetVoxel(vtkImageData* image, const Index& v, double value)
@@ -189,12 +206,11 @@ TEST(OccupancyFilter, ExtinctionBoundsHoldForEveryTrilinearSampleInTheBrick)
   // sample (the renderers' DensityAt) lies between the brick's min_extinction and
   // max_extinction, the path tracer's minorant and majorant.
   const Index dims = { 19, 14, 11 };
-  auto field = MakeField<vtkFloatArray>(dims);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  auto* scalars = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
-  for (vtkIdType v = 0; v < scalars->GetNumberOfValues(); ++v)
-    scalars->SetValue(v, v % dims[0] < 3 ? 0.0f : 0.1f + 0.9f * unit(rng)); // empty at low x
+  auto field = RandomField(dims, rng, [&](vtkIdType v, float u) { // empty at low x
+    return v % dims[0] < 3 ? 0.0f : 0.1f + 0.9f * u;
+  });
   TransferTable table = RampTable();
   for (int e = 0; e < table.Size; ++e)
     table.RGBA[4 * e + 3] *= 0.5f + unit(rng); // not monotonic
@@ -209,7 +225,8 @@ TEST(OccupancyFilter, ExtinctionBoundsHoldForEveryTrilinearSampleInTheBrick)
   ASSERT_NE(minima, nullptr);
   ASSERT_EQ(minima->GetNumberOfValues(), maxima->GetNumberOfValues());
   MarchUniforms u;
-  u.Density.Values = scalars->GetPointer(0);
+  u.Density.Values =
+    vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars())->GetPointer(0);
   u.Dimensions = glm::ivec3(dims[0], dims[1], dims[2]);
   u.Table = &table;
   const int* bricks = output->GetDimensions();
@@ -472,15 +489,8 @@ TEST(OccupancyFilter, RefusesWhatItCannotRead)
 TEST(OccupancyFilter, SequentialStdThreadAndTbbBackendsGiveTheSameBricks)
 {
   const Index dims = { 70, 50, 45 };
-  auto field = MakeField<vtkFloatArray>(dims);
   std::mt19937 rng(8);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  auto* density = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
-  for (vtkIdType i = 0; i < density->GetNumberOfValues(); ++i)
-  {
-    const float r = u(rng);
-    density->SetValue(i, r > 0.999f ? r : 0.0f);
-  }
+  auto field = RandomField(dims, rng, [](vtkIdType, float u) { return u > 0.999f ? u : 0.0f; });
   const std::string original = vtkSMPTools::GetBackend();
   std::vector<Bricks> results;
   for (const char* backend : { "Sequential", "STDThread", "TBB" })

@@ -5,7 +5,8 @@
 #include "CloudLighting.h"
 #include "CloudMarchUniforms.h"
 #include "CloudTransferTable.h"
-#include "RendererTestSupport.h"
+#include "SupportExpectations.h"
+#include "SupportFixtures.h"
 #include "vtkCloudLightingProperty.h"
 #include "vtkCloudReferenceRenderer.h"
 
@@ -37,91 +38,16 @@
 
 using namespace cloudvis;
 
+using namespace cloudvis::support;
+
 namespace
 {
 // A float field of n^3 voxels over the world box [lo, hi]^3, density(x, y, z) at each voxel.
 vtkSmartPointer<vtkImageData> MakeField(
   int n, double lo, double hi, const std::function<double(double, double, double)>& density)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, n);
-  const double spacing = (hi - lo) / (n - 1);
-  image->SetOrigin(lo, lo, lo);
-  image->SetSpacing(spacing, spacing, spacing);
-  vtkNew<vtkFloatArray> scalars;
-  scalars->SetName("density");
-  scalars->SetNumberOfTuples(vtkIdType(n) * n * n);
-  vtkIdType v = 0;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        scalars->SetValue(
-          v++, float(density(lo + i * spacing, lo + j * spacing, lo + k * spacing)));
-  image->GetPointData()->SetScalars(scalars);
-  return image;
+  return MakeBoxField({ n, n, n }, glm::dvec3(lo), glm::dvec3(hi), density);
 }
-
-// A sphere of radius 0.6 around the origin with a soft edge 0.3 wide, in [-1, 1]^3.
-vtkSmartPointer<vtkImageData> SoftSphere(int n = 40)
-{
-  return MakeField(n, -1.0, 1.0, [](double x, double y, double z) {
-    const double r = std::sqrt(x * x + y * y + z * z);
-    return std::min(1.0, std::max(0.0, (0.75 - r) / 0.3));
-  });
-}
-
-Light Directional(glm::vec3 towardLight, glm::vec3 color = glm::vec3(1.0f), float intensity = 1.0f)
-{
-  Light light;
-  light.Position = 10.0f * towardLight;
-  light.FocalPoint = glm::vec3(0.0f);
-  light.Color = color;
-  light.Intensity = intensity;
-  return light;
-}
-
-Light Point(glm::vec3 position, float intensity = 1.0f)
-{
-  Light light;
-  light.Positional = true;
-  light.Position = position;
-  light.Intensity = intensity;
-  light.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f); // inverse square
-  return light;
-}
-
-LightingParameters Model(LightingModel model)
-{
-  LightingParameters p;
-  p.Model = model;
-  return p;
-}
-
-struct Image
-{
-  int Width = 0, Height = 0;
-  std::vector<float> RGBA;
-
-  const float* At(int i, int j) const
-  {
-    return &this->RGBA[(std::size_t(j) * this->Width + i) * 4];
-  }
-  float Luminance(int i, int j) const
-  {
-    const float* p = this->At(i, j);
-    return p[0] + p[1] + p[2];
-  }
-  // Mean of r + g + b over columns [i0, i1).
-  double MeanRadiance(int i0, int i1) const
-  {
-    double sum = 0.0;
-    for (int j = 0; j < this->Height; ++j)
-      for (int i = i0; i < i1; ++i)
-        sum += this->Luminance(i, j);
-    return sum / (double(i1 - i0) * this->Height);
-  }
-  double MeanRadiance() const { return this->MeanRadiance(0, this->Width); }
-};
 
 // A renderer looking down -z at the origin, parallel projection framing [-1, 1]^2.
 vtkSmartPointer<vtkCloudReferenceRenderer> FrontView(vtkImageData* field, int size = 32)
@@ -129,32 +55,9 @@ vtkSmartPointer<vtkCloudReferenceRenderer> FrontView(vtkImageData* field, int si
   auto renderer = vtkSmartPointer<vtkCloudReferenceRenderer>::New();
   renderer->SetInputData(field);
   renderer->SetImageSize(size, size);
-  renderer->SetCameraPosition(0.0, 0.0, 5.0);
-  renderer->SetCameraFocalPoint(0.0, 0.0, 0.0);
-  renderer->SetCameraViewUp(0.0, 1.0, 0.0);
-  renderer->ParallelProjectionOn();
-  renderer->SetParallelScale(1.0);
-  renderer->SetClippingRange(1.0, 10.0);
-  renderer->SetVolumeProperty(test::LinearMedium(6.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
+  SetParallelView(renderer, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), 1.0);
+  renderer->SetVolumeProperty(LinearMedium(6.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
   return renderer;
-}
-
-Image Render(vtkCloudReferenceRenderer* renderer)
-{
-  renderer->Modified();
-  renderer->Update();
-  vtkImageData* output = renderer->GetOutput();
-  Image image;
-  int dims[3];
-  output->GetDimensions(dims);
-  image.Width = dims[0];
-  image.Height = dims[1];
-  auto* rgba = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("rgba"));
-  if (rgba)
-  {
-    image.RGBA.assign(rgba->GetPointer(0), rgba->GetPointer(0) + rgba->GetNumberOfValues());
-  }
-  return image;
 }
 
 Image RenderWith(vtkCloudReferenceRenderer* renderer, const LightingParameters& lighting,
@@ -164,8 +67,6 @@ Image RenderWith(vtkCloudReferenceRenderer* renderer, const LightingParameters& 
   renderer->SetLights(MakeLights(lights));
   return Render(renderer);
 }
-
-using cloudvis::test::CountErrors;
 }
 
 namespace
@@ -182,19 +83,6 @@ vtkSmartPointer<vtkImageData> Lopsided(int n = 24)
       return std::min(1.0, std::max(0.0, 2.0 * (1.0 - u * u - v * v - w * w)));
     });
 }
-
-double MaxDifference(const Image& a, const Image& b)
-{
-  double largest = a.RGBA.size() == b.RGBA.size() ? 0.0 : 1e9;
-  for (std::size_t i = 0; i < a.RGBA.size() && i < b.RGBA.size(); ++i)
-  {
-    const double d = std::abs(double(a.RGBA[i]) - double(b.RGBA[i]));
-    largest = std::isnan(d) ? d : std::max(largest, d); // NaN: no match (EXPECT_LT fails)
-    if (std::isnan(d))
-      break;
-  }
-  return largest;
-}
 }
 
 TEST(ReferenceRenderer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
@@ -203,7 +91,7 @@ TEST(ReferenceRenderer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
   // the reference refused a direction matrix and had no volume matrix.)
   auto field = Lopsided();
   const Image base = Render(FrontView(field, 32));
-  ASSERT_GT(base.MeanRadiance(), 0.01) << "an empty image proves nothing";
+  ASSERT_GT(MeanRadiance(base), 0.01) << "an empty image proves nothing";
 
   // The same voxels indexed from -7, the origin moved back by 7 voxels.
   auto shifted = vtkSmartPointer<vtkImageData>::New();
@@ -235,7 +123,7 @@ TEST(ReferenceRenderer, HonoursTheExtentTheDirectionMatrixAndTheVolumeMatrix)
   matrix->SetElement(2, 3, 1.0);
   auto placed = FrontView(field, 32);
   placed->SetVolumeMatrix(matrix);
-  placed->SetVolumeProperty(test::LinearMedium(3.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
+  placed->SetVolumeProperty(LinearMedium(3.0f, glm::vec3(0.9f, 0.8f, 0.7f)));
   placed->SetCameraPosition(5.0, -2.0, 11.0);
   placed->SetCameraFocalPoint(5.0, -2.0, 1.0);
   placed->SetParallelScale(2.0);
@@ -292,7 +180,7 @@ TEST(ReferenceRenderer, RowZeroIsTheBottomAndColumnZeroTheLeft)
   double quadrant[2][2] = { { 0, 0 }, { 0, 0 } };
   for (int j = 0; j < 16; ++j)
     for (int i = 0; i < 16; ++i)
-      quadrant[i / 8][j / 8] += image.At(i, j)[3];
+      quadrant[i / 8][j / 8] += image.At(i, j, 3);
   EXPECT_GT(quadrant[1][1], 0.5);
   EXPECT_EQ(quadrant[0][0], 0.0);
   EXPECT_EQ(quadrant[0][1], 0.0);
@@ -309,7 +197,7 @@ TEST(ReferenceRenderer, OutputHasTheImageSize)
   int dims[3];
   renderer->GetOutput()->GetDimensions(dims);
   EXPECT_EQ(dims[2], 1);
-  EXPECT_EQ(image.RGBA.size(), std::size_t(7 * 5 * 4));
+  EXPECT_EQ(image.Values.size(), std::size_t(7 * 5 * 4));
   EXPECT_EQ(renderer->GetOutput()->GetPointData()->GetScalars()->GetNumberOfComponents(), 4);
 }
 
@@ -331,27 +219,23 @@ TEST(ReferenceRenderer, HomogeneousSphereHasTheOpacityOfItsDiameter)
   vtkNew<vtkCloudReferenceRenderer> renderer;
   renderer->SetInputData(field);
   renderer->SetImageSize(15, 15); // odd: the centre pixel's ray goes through the centre
-  renderer->SetCameraPosition(0.5, 0.5, 5.0);
-  renderer->SetCameraFocalPoint(0.5, 0.5, 0.5);
-  renderer->ParallelProjectionOn();
-  renderer->SetParallelScale(0.5);
-  renderer->SetClippingRange(1.0, 10.0);
-  renderer->SetVolumeProperty(test::LinearMedium(sigma_t, albedo));
+  SetParallelView(renderer, glm::dvec3(0.5), glm::dvec3(0.0, 0.0, -1.0), 0.5);
+  renderer->SetVolumeProperty(LinearMedium(sigma_t, albedo));
   const Image image = Render(renderer);
 
   const float alpha = 1.0f - std::exp(-1.2f);
-  const float* centre = image.At(7, 7);
-  EXPECT_NEAR(centre[3], alpha, 0.01f * alpha);
+  const auto centre = [&](int c) { return float(image.At(7, 7, c)); };
+  EXPECT_NEAR(centre(3), alpha, 0.01f * alpha);
   for (int c = 0; c < 3; ++c)
   {
-    EXPECT_NEAR(centre[c], albedo[c] * centre[3], 1e-5f); // S = c: radiance = c (1 - T)
+    EXPECT_NEAR(centre(c), albedo[c] * centre(3), 1e-5f); // S = c: radiance = c (1 - T)
   }
   for (int corner : { 0, 14 })
   {
     for (int c = 0; c < 4; ++c)
     {
-      EXPECT_EQ(image.At(corner, corner)[c], 0.0f);
-      EXPECT_EQ(image.At(corner, 14 - corner)[c], 0.0f);
+      EXPECT_EQ(image.At(corner, corner, c), 0.0f);
+      EXPECT_EQ(image.At(corner, 14 - corner, c), 0.0f);
     }
   }
 }
@@ -366,14 +250,10 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   vtkNew<vtkCloudReferenceRenderer> renderer;
   renderer->SetInputData(field);
   renderer->SetImageSize(1, 1);
-  renderer->SetCameraPosition(0.5, 0.5, 5.0);
-  renderer->SetCameraFocalPoint(0.5, 0.5, 0.5);
-  renderer->ParallelProjectionOn();
-  renderer->SetParallelScale(0.5);
-  renderer->SetClippingRange(1.0, 10.0);
-  renderer->SetVolumeProperty(test::LinearMedium(sigma_t));
+  SetParallelView(renderer, glm::dvec3(0.5), glm::dvec3(0.0, 0.0, -1.0), 0.5);
+  renderer->SetVolumeProperty(LinearMedium(sigma_t));
   renderer->SetSampleDistance(1.0 / 256.0);
-  LightingParameters p = Model(LightingModel::March);
+  LightingParameters p = ModelOnly(LightingModel::March);
   p.MultipleScatteringOctaves = 0;
   p.PhaseLobeWeight = 1.0f;
   p.PhaseG1 = 0.5f;
@@ -387,61 +267,67 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   const Image image = RenderWith(renderer, p, { behind });
   const float expected =
     PhaseToRadiance * HenyeyGreenstein(0.5f, 1.0f) * sigma_t * L * std::exp(-sigma_t * L);
-  EXPECT_NEAR(image.At(0, 0)[0], expected, 0.01f * expected);
-  EXPECT_NEAR(image.At(0, 0)[3], 1.0f - std::exp(-sigma_t * L), 0.01f);
+  EXPECT_NEAR(image.At(0, 0, 0), expected, 0.01f * expected);
+  EXPECT_NEAR(image.At(0, 0, 3), 1.0f - std::exp(-sigma_t * L), 0.01f);
 }
 
 TEST(ReferenceRenderer, LitSideIsBrighterForDerivativeAndMarch)
 {
-  auto renderer = FrontView(SoftSphere());
+  auto renderer = FrontView(SoftSphere(40));
   for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
   {
-    const Image fromRight = RenderWith(renderer, Model(model), { Directional({ 1, 0, 0 }) });
-    EXPECT_GT(fromRight.MeanRadiance(16, 32), 1.5 * fromRight.MeanRadiance(0, 16))
+    const Image fromRight =
+      RenderWith(renderer, ModelOnly(model), { DirectionalLight({ 1, 0, 0 }) });
+    EXPECT_GT(
+      MeanRadiance(fromRight, Columns(16, 32)), 1.5 * MeanRadiance(fromRight, Columns(0, 16)))
       << int(model);
-    const Image fromLeft = RenderWith(renderer, Model(model), { Directional({ -1, 0, 0 }) });
-    EXPECT_GT(fromLeft.MeanRadiance(0, 16), 1.5 * fromLeft.MeanRadiance(16, 32)) << int(model);
-    EXPECT_GT(fromLeft.MeanRadiance(), 0.0);
+    const Image fromLeft =
+      RenderWith(renderer, ModelOnly(model), { DirectionalLight({ -1, 0, 0 }) });
+    EXPECT_GT(MeanRadiance(fromLeft, Columns(0, 16)), 1.5 * MeanRadiance(fromLeft, Columns(16, 32)))
+      << int(model);
+    EXPECT_GT(MeanRadiance(fromLeft), 0.0);
   }
 }
 
 TEST(ReferenceRenderer, LightsAddUp)
 {
-  auto renderer = FrontView(SoftSphere(), 24);
-  const Light a = Directional({ 1, 0.5f, 0.2f }, { 1.0f, 0.6f, 0.3f }, 0.8f);
-  const Light b = Point({ -0.5f, 1.5f, 1.0f }, 3.0f);
+  auto renderer = FrontView(SoftSphere(40), 24);
+  const Light a = DirectionalLight({ 1, 0.5f, 0.2f }, 0.8f, { 1.0f, 0.6f, 0.3f });
+  const Light b = PointLight({ -0.5f, 1.5f, 1.0f }, 3.0f);
   for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
   {
-    const LightingParameters p = Model(model); // ambient strength 0
+    const LightingParameters p = ModelOnly(model); // ambient strength 0
     const Image both = RenderWith(renderer, p, { a, b });
     const Image onlyA = RenderWith(renderer, p, { a });
     const Image onlyB = RenderWith(renderer, p, { b });
-    ASSERT_EQ(both.RGBA.size(), onlyA.RGBA.size());
-    float largest = 0.0f;
-    for (std::size_t v = 0; v < both.RGBA.size(); ++v)
+    ASSERT_EQ(both.Values.size(), onlyA.Values.size());
+    double largest = 0.0;
+    for (std::size_t v = 0; v < both.Values.size(); ++v)
     {
-      largest = std::max(largest, both.RGBA[v]);
+      largest = std::max(largest, both.Values[v]);
       if (v % 4 == 3)
       {
-        EXPECT_EQ(both.RGBA[v], onlyA.RGBA[v]); // opacity does not depend on the lights
+        EXPECT_EQ(both.Values[v], onlyA.Values[v]); // opacity does not depend on the lights
         continue;
       }
-      EXPECT_NEAR(both.RGBA[v], onlyA.RGBA[v] + onlyB.RGBA[v], 1e-5f * (1.0f + both.RGBA[v]))
+      EXPECT_NEAR(
+        both.Values[v], onlyA.Values[v] + onlyB.Values[v], 1e-5f * (1.0f + both.Values[v]))
         << int(model) << " value " << v;
     }
     EXPECT_GT(largest, 0.05f);
-    EXPECT_GT(onlyB.MeanRadiance(), 0.0);
+    EXPECT_GT(MeanRadiance(onlyB), 0.0);
   }
 }
 
 TEST(ReferenceRenderer, PointLightFallsOffWithDistance)
 {
-  auto renderer = FrontView(SoftSphere(), 24);
+  auto renderer = FrontView(SoftSphere(40), 24);
   for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
   {
-    const double nearer = RenderWith(renderer, Model(model), { Point({ 0, 0, 2 }) }).MeanRadiance();
+    const double nearer =
+      MeanRadiance(RenderWith(renderer, ModelOnly(model), { PointLight({ 0, 0, 2 }) }));
     const double farther =
-      RenderWith(renderer, Model(model), { Point({ 0, 0, 4 }) }).MeanRadiance();
+      MeanRadiance(RenderWith(renderer, ModelOnly(model), { PointLight({ 0, 0, 4 }) }));
     EXPECT_GT(nearer, 0.0);
     EXPECT_LT(farther, 0.5 * nearer) << int(model);
   }
@@ -449,17 +335,17 @@ TEST(ReferenceRenderer, PointLightFallsOffWithDistance)
 
 TEST(ReferenceRenderer, AmbientLightsEveryVisibleSample)
 {
-  auto renderer = FrontView(SoftSphere(), 24);
+  auto renderer = FrontView(SoftSphere(40), 24);
   for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
   {
-    LightingParameters p = Model(model);
+    LightingParameters p = ModelOnly(model);
     p.AmbientColor = glm::vec3(0.5f, 1.0f, 1.0f);
     p.AmbientStrength = 2.0f;
     // No lights: S = c A, radiance = c A (1 - T), as emission-absorption with color c A.
     const Image image = RenderWith(renderer, p, {});
-    const float* centre = image.At(12, 12);
-    EXPECT_NEAR(centre[0], 0.9f * 1.0f * centre[3], 1e-5f) << int(model);
-    EXPECT_NEAR(centre[1], 0.8f * 2.0f * centre[3], 1e-5f) << int(model);
+    const auto centre = [&](int c) { return float(image.At(12, 12, c)); };
+    EXPECT_NEAR(centre(0), 0.9f * 1.0f * centre(3), 1e-5f) << int(model);
+    EXPECT_NEAR(centre(1), 0.8f * 2.0f * centre(3), 1e-5f) << int(model);
   }
 }
 
@@ -467,23 +353,23 @@ TEST(ReferenceRenderer, MarchConvergesAsStepsShrink)
 {
   // Halving the view step and the light step while doubling the light steps (uniform segments,
   // so the light march covers the same distance) hardly changes the image.
-  auto field = SoftSphere();
+  auto field = SoftSphere(40);
   const double spacing = field->GetSpacing()[0];
   auto renderer = FrontView(field, 32);
-  renderer->SetVolumeProperty(test::LinearMedium(3.0f));
-  LightingParameters p = Model(LightingModel::March);
+  renderer->SetVolumeProperty(LinearMedium(3.0f));
+  LightingParameters p = ModelOnly(LightingModel::March);
   p.LightStepGrowth = 1.0f;
   p.Transmittance = LightTransmittance::Nested;
-  const std::vector<Light> lights = { Directional({ 1, 1, 0.5f }) };
+  const std::vector<Light> lights = { DirectionalLight({ 1, 1, 0.5f }) };
 
   renderer->SetSampleDistance(spacing);
   p.LightStep = float(2.0 * spacing);
   p.LightSteps = 12;
-  const double coarse = RenderWith(renderer, p, lights).MeanRadiance();
+  const double coarse = MeanRadiance(RenderWith(renderer, p, lights));
   renderer->SetSampleDistance(0.5 * spacing);
   p.LightStep = float(spacing);
   p.LightSteps = 24;
-  const double fine = RenderWith(renderer, p, lights).MeanRadiance();
+  const double fine = MeanRadiance(RenderWith(renderer, p, lights));
   EXPECT_GT(coarse, 0.0);
   EXPECT_NEAR(fine, coarse, 0.02 * coarse);
 }
@@ -495,23 +381,23 @@ TEST(ReferenceRenderer, ZeroDistancesMeanFourAndTwoVoxels)
   field->SetSpacing(2.0 / 23.0, 1.5 / 23.0, 2.0 / 23.0);
   const float smallest = float(1.5 / 23.0);
   auto renderer = FrontView(field, 16);
-  const std::vector<Light> lights = { Directional({ 1, 0.3f, 0 }) };
-  LightingParameters automatic = Model(LightingModel::Derivative);
+  const std::vector<Light> lights = { DirectionalLight({ 1, 0.3f, 0 }) };
+  LightingParameters automatic = ModelOnly(LightingModel::Derivative);
   LightingParameters explicitly = automatic;
   explicitly.DerivativeDistance = 4.0f * smallest;
   const Image a = RenderWith(renderer, automatic, lights);
-  EXPECT_EQ(a.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+  EXPECT_EQ(a.Values, RenderWith(renderer, explicitly, lights).Values);
   explicitly.DerivativeDistance = 8.0f * smallest;
-  EXPECT_NE(a.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+  EXPECT_NE(a.Values, RenderWith(renderer, explicitly, lights).Values);
 
   automatic.Model = explicitly.Model = LightingModel::March;
   // The light step shapes the nested march (the light volumes march at the view's step).
   automatic.Transmittance = explicitly.Transmittance = LightTransmittance::Nested;
   explicitly.LightStep = 2.0f * smallest;
   const Image m = RenderWith(renderer, automatic, lights);
-  EXPECT_EQ(m.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+  EXPECT_EQ(m.Values, RenderWith(renderer, explicitly, lights).Values);
   explicitly.LightStep = 3.0f * smallest;
-  EXPECT_NE(m.RGBA, RenderWith(renderer, explicitly, lights).RGBA);
+  EXPECT_NE(m.Values, RenderWith(renderer, explicitly, lights).Values);
 }
 
 TEST(ReferenceRenderer, UnsignedCharFieldRendersLikeTheFloatField)
@@ -531,14 +417,14 @@ TEST(ReferenceRenderer, UnsignedCharFieldRendersLikeTheFloatField)
   bytes->GetPointData()->SetScalars(scalars);
   auto floatRenderer = FrontView(field, 16);
   auto byteRenderer = FrontView(bytes, 16);
-  byteRenderer->SetVolumeProperty(test::LinearMedium(6.0f, glm::vec3(0.9f, 0.8f, 0.7f), 255.0));
-  const std::vector<Light> lights = { Directional({ 1, 0, 0 }) };
-  const Image a = RenderWith(floatRenderer, Model(LightingModel::March), lights);
-  const Image b = RenderWith(byteRenderer, Model(LightingModel::March), lights);
-  ASSERT_EQ(a.RGBA.size(), b.RGBA.size());
-  for (std::size_t v = 0; v < a.RGBA.size(); ++v)
+  byteRenderer->SetVolumeProperty(LinearMedium(6.0f, glm::vec3(0.9f, 0.8f, 0.7f), 255.0));
+  const std::vector<Light> lights = { DirectionalLight({ 1, 0, 0 }) };
+  const Image a = RenderWith(floatRenderer, ModelOnly(LightingModel::March), lights);
+  const Image b = RenderWith(byteRenderer, ModelOnly(LightingModel::March), lights);
+  ASSERT_EQ(a.Values.size(), b.Values.size());
+  for (std::size_t v = 0; v < a.Values.size(); ++v)
   {
-    EXPECT_NEAR(a.RGBA[v], b.RGBA[v], 1e-4f) << v;
+    EXPECT_NEAR(a.Values[v], b.Values[v], 1e-4f) << v;
   }
 }
 
@@ -589,13 +475,13 @@ TEST(ReferenceRenderer, RefusesBadInput)
   EXPECT_EQ(CountErrors(FrontView(notANumber, 8)), 1);
 
   auto badLighting = FrontView(sphere, 8);
-  LightingParameters p = Model(LightingModel::March);
+  LightingParameters p = ModelOnly(LightingModel::March);
   p.PhaseG1 = 1.5f;
   badLighting->GetLightingProperty()->SetParameters(p);
   EXPECT_EQ(CountErrors(badLighting), 1);
 
   auto tooManyLights = FrontView(sphere, 8);
-  tooManyLights->SetLights(MakeLights(std::vector<Light>(9, Directional({ 1, 0, 0 }))));
+  tooManyLights->SetLights(MakeLights(std::vector<Light>(9, DirectionalLight({ 1, 0, 0 }))));
   EXPECT_EQ(CountErrors(tooManyLights), 1);
 
   auto blindCamera = FrontView(sphere, 8);
@@ -627,17 +513,17 @@ TEST(ReferenceRenderer, ReportsProgressAndStopsWhenAborted)
   EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
   EXPECT_LT(progress.back(), 0.5);
   // The rows below the abort are rendered, the top ones (where the sphere also is) are not.
-  EXPECT_GT(full.Luminance(16, 6), 0.0f);
-  EXPECT_EQ(aborted.Luminance(16, 6), full.Luminance(16, 6));
-  EXPECT_GT(full.Luminance(16, 24), 0.0f);
-  EXPECT_EQ(aborted.Luminance(16, 24), 0.0f);
+  EXPECT_GT(full.Radiance(16, 6), 0.0f);
+  EXPECT_EQ(aborted.Radiance(16, 6), full.Radiance(16, 6));
+  EXPECT_GT(full.Radiance(16, 24), 0.0f);
+  EXPECT_EQ(aborted.Radiance(16, 24), 0.0f);
 }
 
 TEST(ReferenceRenderer, SequentialStdThreadAndTbbBackendsGiveTheSameImage)
 {
   auto renderer = FrontView(SoftSphere(24), 24);
-  renderer->GetLightingProperty()->SetParameters(Model(LightingModel::March));
-  renderer->SetLights(MakeLights({ Directional({ 1, 1, 0 }), Point({ 0, -1.5f, 1 }) }));
+  renderer->GetLightingProperty()->SetParameters(ModelOnly(LightingModel::March));
+  renderer->SetLights(MakeLights({ DirectionalLight({ 1, 1, 0 }), PointLight({ 0, -1.5f, 1 }) }));
   const std::string original = vtkSMPTools::GetBackend();
   std::vector<Image> images;
   for (const char* backend : { "Sequential", "STDThread", "TBB" })
@@ -646,8 +532,8 @@ TEST(ReferenceRenderer, SequentialStdThreadAndTbbBackendsGiveTheSameImage)
     images.push_back(Render(renderer));
   }
   vtkSMPTools::SetBackend(original.c_str());
-  EXPECT_EQ(images[1].RGBA, images[0].RGBA);
-  EXPECT_EQ(images[2].RGBA, images[0].RGBA);
+  EXPECT_EQ(images[1].Values, images[0].Values);
+  EXPECT_EQ(images[2].Values, images[0].Values);
 }
 
 // Every parameter reaches the renderer through VTK objects (what Python can pass): the lights as
@@ -655,7 +541,7 @@ TEST(ReferenceRenderer, SequentialStdThreadAndTbbBackendsGiveTheSameImage)
 // property and the volume property, whose changes re-render too, as VTK's pipeline promises.
 TEST(ReferenceRenderer, TakesItsParametersAsVtkObjectsAndFollowsTheirChanges)
 {
-  auto renderer = FrontView(SoftSphere(), 16);
+  auto renderer = FrontView(SoftSphere(40), 16);
   vtkNew<vtkCloudLightingProperty> lighting;
   lighting->SetModelToDerivative();
   renderer->SetLightingProperty(lighting);
@@ -663,32 +549,28 @@ TEST(ReferenceRenderer, TakesItsParametersAsVtkObjectsAndFollowsTheirChanges)
   const auto update = [&]()
   {
     renderer->Update(); // no Modified(): the renderer must see the objects' changes itself
-    Image image;
-    auto* rgba = vtkFloatArray::SafeDownCast(renderer->GetOutput()->GetPointData()->GetScalars());
-    image.Width = image.Height = 16;
-    image.RGBA.assign(rgba->GetPointer(0), rgba->GetPointer(0) + rgba->GetNumberOfValues());
-    return image;
+    return ImageOf(renderer->GetOutput());
   };
-  const double unlit = update().MeanRadiance();
+  const double unlit = MeanRadiance(update());
   EXPECT_EQ(unlit, 0.0); // no lights, no ambient
 
-  const vtkSmartPointer<vtkLight> sun = MakeLight(Directional({ 1, 0, 0 }));
+  const vtkSmartPointer<vtkLight> sun = MakeLight(DirectionalLight({ 1, 0, 0 }));
   renderer->GetLights()->AddItem(sun);
-  const double lit = update().MeanRadiance();
+  const double lit = MeanRadiance(update());
   EXPECT_GT(lit, 0.01);
   sun->SetIntensity(2.0);
-  EXPECT_NEAR(update().MeanRadiance(), 2.0 * lit, 1e-5 * lit);
+  EXPECT_NEAR(MeanRadiance(update()), 2.0 * lit, 1e-5 * lit);
   sun->SwitchOff();
-  EXPECT_EQ(update().MeanRadiance(), 0.0);
+  EXPECT_EQ(MeanRadiance(update()), 0.0);
   sun->SwitchOn();
 
   lighting->SetAmbientStrength(1.0f);
-  const double withAmbient = update().MeanRadiance();
+  const double withAmbient = MeanRadiance(update());
   EXPECT_GT(withAmbient, 2.0 * lit + 0.01);
   renderer->GetVolumeProperty()->GetScalarOpacity()->RemoveAllPoints();
   renderer->GetVolumeProperty()->GetScalarOpacity()->AddPoint(0.0, 0.0);
   renderer->GetVolumeProperty()->GetScalarOpacity()->AddPoint(1.0, 0.0);
-  EXPECT_EQ(update().MeanRadiance(), 0.0) << "a transparent medium shows nothing";
+  EXPECT_EQ(MeanRadiance(update()), 0.0) << "a transparent medium shows nothing";
 
   renderer->SetLightingProperty(nullptr); // back to a default property: model none
   EXPECT_NE(renderer->GetLightingProperty(), nullptr);
@@ -700,23 +582,7 @@ TEST(ReferenceRenderer, TakesItsParametersAsVtkObjectsAndFollowsTheirChanges)
 TEST(LightingProperty, DefaultsAreThoseOfLightingParameters)
 {
   vtkNew<vtkCloudLightingProperty> property;
-  const LightingParameters p = property->GetParameters();
-  const LightingParameters defaults;
-  EXPECT_EQ(p.Model, defaults.Model);
-  EXPECT_EQ(p.AmbientColor, defaults.AmbientColor);
-  EXPECT_EQ(p.AmbientStrength, defaults.AmbientStrength);
-  EXPECT_EQ(p.DerivativeDistance, defaults.DerivativeDistance);
-  EXPECT_EQ(p.LightSteps, defaults.LightSteps);
-  EXPECT_EQ(p.LightStep, defaults.LightStep);
-  EXPECT_EQ(p.LightStepGrowth, defaults.LightStepGrowth);
-  EXPECT_EQ(p.PhaseG1, defaults.PhaseG1);
-  EXPECT_EQ(p.PhaseG2, defaults.PhaseG2);
-  EXPECT_EQ(p.PhaseLobeWeight, defaults.PhaseLobeWeight);
-  EXPECT_EQ(p.MultipleScatteringOctaves, defaults.MultipleScatteringOctaves);
-  EXPECT_EQ(p.ScatteringFalloff, defaults.ScatteringFalloff);
-  EXPECT_EQ(p.ExtinctionFalloff, defaults.ExtinctionFalloff);
-  EXPECT_EQ(p.EccentricityFalloff, defaults.EccentricityFalloff);
-  EXPECT_EQ(p.PowderStrength, defaults.PowderStrength);
+  ExpectSameLighting(property->GetParameters(), LightingParameters(), "defaults");
   // The values the class documentation states.
   EXPECT_EQ(property->GetModel(), vtkCloudLightingProperty::NoLighting);
   EXPECT_EQ(property->GetLightSteps(), 6);
@@ -731,45 +597,32 @@ TEST(LightingProperty, DefaultsAreThoseOfLightingParameters)
 
 TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
 {
+  const LightingParameters v = EveryLightingParameterChanged();
+  ASSERT_EQ(v.Model, LightingModel::March);
+  ASSERT_EQ(v.Transmittance, LightTransmittance::Nested);
   vtkNew<vtkCloudLightingProperty> property;
   property->SetModelToMarch();
-  property->SetAmbientColor(0.1f, 0.2f, 0.3f);
-  property->SetAmbientStrength(0.4f);
-  property->SetDerivativeDistance(0.5f);
-  property->SetLightSteps(9);
-  property->SetLightStep(0.06f);
-  property->SetLightStepGrowth(1.3f);
-  property->SetPhaseG1(0.7f);
-  property->SetPhaseG2(-0.2f);
-  property->SetPhaseLobeWeight(0.6f);
-  property->SetMultipleScatteringOctaves(5);
-  property->SetScatteringFalloff(0.45f);
-  property->SetExtinctionFalloff(0.35f);
-  property->SetEccentricityFalloff(0.25f);
-  property->SetPowderStrength(0.15f);
+  property->SetAmbientColor(v.AmbientColor.r, v.AmbientColor.g, v.AmbientColor.b);
+  property->SetAmbientStrength(v.AmbientStrength);
+  property->SetDerivativeDistance(v.DerivativeDistance);
+  property->SetLightSteps(v.LightSteps);
+  property->SetLightStep(v.LightStep);
+  property->SetLightStepGrowth(v.LightStepGrowth);
+  property->SetPhaseG1(v.PhaseG1);
+  property->SetPhaseG2(v.PhaseG2);
+  property->SetPhaseLobeWeight(v.PhaseLobeWeight);
+  property->SetMultipleScatteringOctaves(v.MultipleScatteringOctaves);
+  property->SetScatteringFalloff(v.ScatteringFalloff);
+  property->SetExtinctionFalloff(v.ExtinctionFalloff);
+  property->SetEccentricityFalloff(v.EccentricityFalloff);
+  property->SetPowderStrength(v.PowderStrength);
   property->SetTransmittanceToNestedMarch();
   const LightingParameters p = property->GetParameters();
-  EXPECT_EQ(p.Model, LightingModel::March);
-  EXPECT_EQ(p.AmbientColor, glm::vec3(0.1f, 0.2f, 0.3f));
-  EXPECT_EQ(p.AmbientStrength, 0.4f);
-  EXPECT_EQ(p.DerivativeDistance, 0.5f);
-  EXPECT_EQ(p.LightSteps, 9);
-  EXPECT_EQ(p.LightStep, 0.06f);
-  EXPECT_EQ(p.LightStepGrowth, 1.3f);
-  EXPECT_EQ(p.PhaseG1, 0.7f);
-  EXPECT_EQ(p.PhaseG2, -0.2f);
-  EXPECT_EQ(p.PhaseLobeWeight, 0.6f);
-  EXPECT_EQ(p.MultipleScatteringOctaves, 5);
-  EXPECT_EQ(p.ScatteringFalloff, 0.45f);
-  EXPECT_EQ(p.ExtinctionFalloff, 0.35f);
-  EXPECT_EQ(p.EccentricityFalloff, 0.25f);
-  EXPECT_EQ(p.PowderStrength, 0.15f);
-  EXPECT_EQ(p.Transmittance, LightTransmittance::Nested);
+  ExpectSameLighting(p, v, "setters");
 
   vtkNew<vtkCloudLightingProperty> copy;
   copy->DeepCopy(property);
-  EXPECT_EQ(copy->GetParameters().PhaseG2, -0.2f);
-  EXPECT_EQ(copy->GetParameters().Transmittance, LightTransmittance::Nested);
+  ExpectSameLighting(copy->GetParameters(), v, "deep copy");
   const vtkMTimeType time = copy->GetMTime();
   copy->SetParameters(p); // the same values
   EXPECT_EQ(copy->GetMTime(), time);
@@ -788,10 +641,10 @@ TEST(ReferenceRenderer, DISABLED_Timing128x128Of64Cubed)
   for (LightingModel model :
     { LightingModel::None, LightingModel::Derivative, LightingModel::March })
   {
-    LightingParameters p = Model(model);
+    LightingParameters p = ModelOnly(model);
     p.AmbientStrength = 0.2f;
     renderer->GetLightingProperty()->SetParameters(p);
-    renderer->SetLights(MakeLights({ Directional({ 1, 1, 0.5f }) }));
+    renderer->SetLights(MakeLights({ DirectionalLight({ 1, 1, 0.5f }) }));
     const auto start = std::chrono::steady_clock::now();
     renderer->Modified();
     renderer->Update();
