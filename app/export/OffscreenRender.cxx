@@ -104,7 +104,7 @@ void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
   mapper->SetResolutionScale(render.ResolutionScale);
   mapper->SetMaximumAccumulatedFrames(render.Accumulate);
   mapper->SetEmptySpaceSkipping(render.SkipEmptySpace);
-  if (render.Lighting == LightingModel::PathTrace)
+  if (render.Lighting.Model == LightingModel::PathTrace)
   {
     const PathTraceFrames frames = PathTraceFramesOf(render.SamplesPerPixel);
     mapper->SetPathTraceSamplesPerFrame(frames.SamplesPerFrame);
@@ -229,7 +229,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   vtkNew<vtkCloudVolumeMapper> mapper;
   mapper->SetInputData(field);
   ConfigureMapper(mapper, scene.Render);
-  ConfigureLighting(scene, renderer, mapper);
+  ConfigureLighting(scene, mapper);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(MakeVolumeProperty(scene.TransferFunction));
@@ -241,7 +241,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
 
   // Without jitter every frame marches the same samples: one is the converged still. The path
   // tracer's frames are all different.
-  const int frames = scene.Render.Lighting == LightingModel::PathTrace
+  const int frames = scene.Render.Lighting.Model == LightingModel::PathTrace
     ? mapper->GetMaximumAccumulatedFrames()
     : (scene.Render.Jitter ? scene.Render.Accumulate : 1);
   for (int frame = 0; frame < frames; ++frame)

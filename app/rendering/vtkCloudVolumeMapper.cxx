@@ -91,8 +91,15 @@ vtkOpenGLRenderWindow* WindowOf(vtkRenderer* renderer)
 
 // The latest change of the renderer's lights; without `cameraLights`, of its scene lights only:
 // the renderer moves headlights and camera lights with the camera, so a camera move changes them.
-vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer, bool cameraLights = true)
+// 0 when the mapper has lights of its own (its MTime tells their changes).
+vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer,
+  const std::optional<std::vector<cloudvis::Light>>& ownLights,
+  bool cameraLights = true)
 {
+  if (ownLights)
+  {
+    return 0;
+  }
   vtkMTimeType latest = renderer->GetLights()->GetMTime();
   vtkCollectionSimpleIterator it;
   renderer->GetLights()->InitTraversal(it);
@@ -181,6 +188,29 @@ void vtkCloudVolumeMapper::SetLightingProperty(vtkCloudLightingProperty* propert
                                       : vtkSmartPointer<vtkCloudLightingProperty>::New();
     this->Modified();
   }
+}
+
+void vtkCloudVolumeMapper::SetLights(const std::vector<cloudvis::Light>& lights)
+{
+  if (!this->CloudLights || *this->CloudLights != lights)
+  {
+    this->CloudLights = lights;
+    this->Modified();
+  }
+}
+
+void vtkCloudVolumeMapper::UseRendererLights()
+{
+  if (this->CloudLights)
+  {
+    this->CloudLights.reset();
+    this->Modified();
+  }
+}
+
+const std::vector<cloudvis::Light>* vtkCloudVolumeMapper::GetCloudLights() const
+{
+  return this->CloudLights ? &*this->CloudLights : nullptr;
 }
 
 vtkMTimeType vtkCloudVolumeMapper::GetMTime()
@@ -372,8 +402,8 @@ bool vtkCloudVolumeMapper::ComputeUniforms(vtkRenderer* renderer,
     &in.Transfer.GetTable(),
     this->SampleDistance,
     this->TerminationTransmittance,
-    this->LightingProperty,
-    renderer->GetLights());
+    this->LightingProperty->GetParameters(),
+    this->CloudLights ? *this->CloudLights : cloudvis::LightsOf(renderer->GetLights()));
   const cloudvis::MarchProblem problem = cloudvis::SetUpMarch(setup, uniforms, &frame);
   return !problem || this->Fail(problem.Message);
 }
@@ -459,14 +489,14 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
          double(this->GetMTime()),
          double(volume->GetMTime()),
          double(LatestChangeOfOtherProps(renderer, volume)),
-         double(LatestChangeOfLights(renderer, false)) })
+         double(LatestChangeOfLights(renderer, this->CloudLights, false)) })
   {
     content.push_back(v);
   }
   std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
   signature.insert(signature.end(), content.begin(), content.end());
   signature.push_back(scale);
-  signature.push_back(double(LatestChangeOfLights(renderer)));
+  signature.push_back(double(LatestChangeOfLights(renderer, this->CloudLights)));
   // Frames marched toward the lights (while interacting) and through the volumes never average
   // together; the history may blend them, as their difference is small against the motion's.
   signature.push_back(double(lightVolumes));

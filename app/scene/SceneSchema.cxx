@@ -487,14 +487,14 @@ Key<RenderSpec> LightingObject(const std::string& name,
     CustomValue("object").DefaultIs("below"),
     [keys](const Context& c, const json& v, const std::string& k, RenderSpec& r)
     {
-      ReadObject(c, v, k, keys(), r.Parameters);
-      const std::string problem = ValidateLightingParameters(r.Parameters);
+      ReadObject(c, v, k, keys(), r.Lighting);
+      const std::string problem = ValidateLightingParameters(r.Lighting);
       if (!problem.empty())
       {
         c.Fail(k, problem);
       }
     },
-    [keys](const RenderSpec& r) { return WriteObject(keys(), r.Parameters); },
+    [keys](const RenderSpec& r) { return WriteObject(keys(), r.Lighting); },
     std::move(help),
     Inside(keys));
 }
@@ -556,10 +556,11 @@ json WriteLights(const Scene& s)
   return lights;
 }
 
-// A section that is an object of keys and nothing more.
-template<typename T>
+// A section that is an object of keys and nothing more. `member` is a member of Scene or a
+// function that returns a reference to one (Nested: the ambient section is the lighting's).
+template<typename T, typename Member>
 Key<Scene> Section(const std::string& name,
-  T Scene::*member,
+  Member member,
   const Keys<T>& (*keys)(),
   std::string help)
 {
@@ -567,8 +568,9 @@ Key<Scene> Section(const std::string& name,
     name,
     CustomValue("object").DefaultIs("below"),
     [member, keys](const Context& c, const json& v, const std::string& k, Scene& s)
-    { ReadObject(c, v, k, keys(), s.*member); },
-    [member, keys](const Scene& s) { return WriteObject(keys(), s.*member); },
+    { ReadObject(c, v, k, keys(), std::invoke(member, s)); },
+    [member, keys](const Scene& s)
+    { return WriteObject(keys(), std::invoke(member, const_cast<Scene&>(s))); },
     std::move(help),
     Inside(keys));
 }
@@ -612,24 +614,18 @@ const std::vector<Name>& LightTypes()
   return names;
 }
 
-// One line per lighting model; the renderer maps each onto the mapper.
+// The lighting models by the one table of their names (CloudLightingParameters.h).
 const std::vector<Name>& LightingModels()
 {
-  static const std::vector<Name> names = {
-    { "none",
-      int(LightingModel::None),
-      "emission-absorption: the cloud shows its color, attenuated; no light sources" },
-    { "derivative",
-      int(LightingModel::Derivative),
-      "the directional derivative toward each light" },
-    { "march",
-      int(LightingModel::March),
-      "a nested march toward each light: shadows, phase function, multiple scattering" },
-    { "pathtrace",
-      int(LightingModel::PathTrace),
-      "Monte Carlo path tracing of the same medium, every order of scattering, `render.spp` "
-      "paths per pixel: the ground truth" },
-  };
+  static const std::vector<Name> names = []
+  {
+    std::vector<Name> all;
+    for (const LightingModelEntry& entry : LightingModelTable())
+    {
+      all.push_back({ entry.Name, int(entry.Model), entry.Description });
+    }
+    return all;
+  }();
   return names;
 }
 
@@ -1185,7 +1181,7 @@ const Keys<RenderSpec>& RenderKeys()
   static const Keys<R> keys = {
     { "lighting",
       ChoiceOf(LightingModels()),
-      &R::Lighting,
+      Nested(&R::Lighting, &LightingParameters::Model),
       "see [lighting.md](lighting.md). `--lighting` overrides it." },
     { "step",
       NumberIn(NonNegative).In("world units"),
@@ -1364,11 +1360,12 @@ const Keys<Light>& LightKeys()
   return keys;
 }
 
-const Keys<AmbientSpec>& AmbientKeys()
+const Keys<LightingParameters>& AmbientKeys()
 {
-  static const Keys<AmbientSpec> keys = {
-    { "color", NumbersIn(3, UnitInterval), &AmbientSpec::Color, "" },
-    { "strength", NumberIn(NonNegative), &AmbientSpec::Strength, "multiplies `color`" },
+  using P = LightingParameters;
+  static const Keys<P> keys = {
+    { "color", NumbersIn(3, UnitInterval), &P::AmbientColor, "" },
+    { "strength", NumberIn(NonNegative), &P::AmbientStrength, "multiplies `color`" },
   };
   return keys;
 }
@@ -1414,7 +1411,7 @@ const Keys<Scene>& SceneSections()
       "the light sources of the `derivative` and `march` models "
       "([below](#the-lights-section))" },
     Section("ambient",
-      &Scene::Ambient,
+      Nested(&Scene::Render, &RenderSpec::Lighting),
       AmbientKeys,
       "isotropic, unshadowed light those models add ([below](#the-ambient-section))"),
     ViewSection(),
