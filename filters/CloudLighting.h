@@ -21,22 +21,6 @@
 namespace cloudvis
 {
 
-// A light as the march computes with it: in the march's local frame (CloudMarchUniforms.h),
-// whose lengths are world lengths divided by the frame's unit. The uniforms of the GLSL's lights.
-struct LocalLight
-{
-  bool Positional = false;
-  glm::vec3 Position{ 0.0f };    // local coordinates; positional lights
-  glm::vec3 Direction{ 0.0f };   // unit, toward the light; directional lights
-  glm::vec3 Radiance{ 0.0f };    // color * intensity
-  glm::vec3 Attenuation{ 0.0f }; // (a0, a1 unit, a2 unit^2): the falloff of a local distance
-  // Directional lights, the same at every sample (SetUpMarch computes them once, in float, for
-  // both renderers): Direction in index units per local unit, and the derivative model's offset
-  // h Direction in index units.
-  glm::vec3 IndexDirection{ 0.0f };
-  glm::vec3 IndexOffset{ 0.0f };
-};
-
 constexpr float Pi = 3.14159265358979f;
 
 // The march weighs a light with a phase function, a density per steradian (1 / 4 pi when

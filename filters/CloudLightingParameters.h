@@ -128,6 +128,22 @@ inline glm::dvec3 DirectionTowardLight(const Light& light)
   return largest > 0.0 && std::isfinite(largest) ? glm::normalize(d / largest) : glm::dvec3(0.0);
 }
 
+// A light as the march computes with it: in the march's local frame (CloudMarchUniforms.h),
+// whose lengths are world lengths divided by the frame's unit. The uniforms of the GLSL's lights.
+struct LocalLight
+{
+  bool Positional = false;
+  glm::vec3 Position{ 0.0f };    // local coordinates; positional lights
+  glm::vec3 Direction{ 0.0f };   // unit, toward the light; directional lights
+  glm::vec3 Radiance{ 0.0f };    // color * intensity
+  glm::vec3 Attenuation{ 0.0f }; // (a0, a1 unit, a2 unit^2): the falloff of a local distance
+  // Directional lights, the same at every sample (SetUpMarch computes them once, in float, for
+  // both renderers): Direction in index units per local unit, and the derivative model's offset
+  // h Direction in index units.
+  glm::vec3 IndexDirection{ 0.0f };
+  glm::vec3 IndexOffset{ 0.0f };
+};
+
 // How the march finds the optical depth toward a light at a sample (docs/lighting.md).
 enum class LightTransmittance
 {

@@ -1,5 +1,7 @@
 #include "CloudMarchUniforms.h"
 
+#include "CloudLighting.h" // PeakRadiancePerLightRadiance
+
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkLightCollection.h>

@@ -19,7 +19,7 @@
 #define CloudMarchUniforms_h
 
 #include "CloudDensityTexels.h"
-#include "CloudLighting.h"
+#include "CloudLightingParameters.h"
 #include "CloudTransferTable.h"
 #include "cloudvisFiltersModule.h"
 

@@ -4,8 +4,6 @@
 // from the mapper's GetLastError().
 #include "OffscreenRender.h"
 
-#include "CloudPathTrace.h" // PathTraceBrickSize
-
 #include "AtomicFile.h"
 #include "Background.h"
 #include "CpuReference.h"
@@ -15,6 +13,7 @@
 #include "ImageWriters.h"
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"
+#include "vtkCloudPathTracer.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkCallbackCommand.h>
@@ -111,7 +110,7 @@ void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
     mapper->SetMaximumAccumulatedFrames(frames.Frames);
     // The majorant bricks of the CPU tracer's default: larger than the march's, they cut the
     // bricks a path walks through, 1.2-1.5x faster on llvmpipe (docs/performance.md).
-    mapper->SetBrickSize(PathTraceBrickSize);
+    mapper->SetBrickSize(vtkNew<vtkCloudPathTracer>()->GetBrickSize());
   }
 }
 
