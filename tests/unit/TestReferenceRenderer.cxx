@@ -664,23 +664,23 @@ TEST(LightingProperty, ModelNamesAndValuesAreTheOneTables)
 TEST(ReferenceRenderer, CloudLightsLightAsTheirVtkLightsAndGiveWayToACollection)
 {
   auto renderer = FrontView(SoftSphere(24), 24);
-  renderer->GetLightingProperty()->SetParameters(Model(LightingModel::Derivative));
-  const std::vector<Light> lights = { Directional({ 1, 1, 0 }), Point({ 0, -1.5f, 1 }) };
+  renderer->GetLightingProperty()->SetParameters(ModelOnly(LightingModel::Derivative));
+  const std::vector<Light> lights = { DirectionalLight({ 1, 1, 0 }), PointLight({ 0, -1.5f, 1 }) };
   renderer->SetLights(lights);
   ASSERT_NE(renderer->GetCloudLights(), nullptr);
   EXPECT_TRUE(renderer->GetLightList() == lights);
   const Image asLights = Render(renderer);
-  EXPECT_GT(asLights.MeanRadiance(), 0.01);
+  EXPECT_GT(MeanRadiance(asLights), 0.01);
 
   renderer->SetLights(MakeLights(lights));
   EXPECT_EQ(renderer->GetCloudLights(), nullptr);
-  EXPECT_EQ(Render(renderer).RGBA, asLights.RGBA);
+  EXPECT_EQ(Render(renderer).Values, asLights.Values);
 
   renderer->SetLights(lights);
-  EXPECT_EQ(Render(renderer).RGBA, asLights.RGBA);
+  EXPECT_EQ(Render(renderer).Values, asLights.Values);
   renderer->SetLights(vtkSmartPointer<vtkLightCollection>::New()); // no vtkLights, no ambient
   EXPECT_EQ(renderer->GetCloudLights(), nullptr);
-  EXPECT_EQ(Render(renderer).MeanRadiance(), 0.0);
+  EXPECT_EQ(MeanRadiance(Render(renderer)), 0.0);
 }
 
 // Not a test: how long a 128 x 128 render of a 64^3 field takes per model, for the report.
