@@ -71,7 +71,7 @@ struct Run
 Scene SceneAt(const std::string& path, int width, int height, int samples)
 {
   Scene scene = LoadScene(path, {});
-  scene.Render.Lighting = LightingModel::PathTrace;
+  scene.Render.Lighting.Model = LightingModel::PathTrace;
   scene.Render.Size = { { width, height } };
   scene.Render.SamplesPerPixel = samples;
   scene.Render.ResolutionScale = 1.0;

@@ -225,7 +225,7 @@ int Defects(const Options& options)
     {
       const Scene gray = Relit(scene, { LightToward({ 1.0f, 0.0f, 0.0f }) }, albedo);
       const Rendered reference = Run(NewTracer(gray, field, options.Bounces, options));
-      LightingParameters lighting = LightingOf(gray);
+      LightingParameters lighting = gray.Render.Lighting;
       lighting.Model = LightingModel::March;
       auto march = NewMarch(gray, field, lighting, options);
       char label[120];
@@ -262,7 +262,7 @@ int Defects(const Options& options)
               "march (defaults), pixels of opacity > 0.5:\n");
   for (double step : { 0.0, 0.005 })
   {
-    LightingParameters lighting = LightingOf(filling);
+    LightingParameters lighting = filling.Render.Lighting;
     lighting.Model = LightingModel::March;
     auto march = NewMarch(filling, field, lighting, options);
     march->SetSampleDistance(step);

@@ -125,7 +125,7 @@ int Errors(const Options& options)
               options.Width,
               options.Height);
           }
-          LightingParameters lighting = LightingOf(scene);
+          LightingParameters lighting = scene.Render.Lighting;
           lighting.Model = model.Model;
           lighting.MultipleScatteringOctaves = model.Octaves;
           lighting.Transmittance =

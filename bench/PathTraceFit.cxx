@@ -176,8 +176,8 @@ struct PreparedMarch
       &this->Table,
       renderer->GetSampleDistance(),
       renderer->GetTerminationTransmittance(),
-      renderer->GetLightingProperty(),
-      renderer->GetLights());
+      renderer->GetLightingProperty()->GetParameters(),
+      renderer->GetLightList());
     LocalFrame frame;
     const MarchProblem problem = SetUpMarch(setup, this->Uniforms, &frame);
     if (problem)
@@ -503,7 +503,7 @@ int Fit(const Options& options)
         c.ReferenceSeconds = c.Reference.Seconds;
         const double* spacing = field->GetSpacing();
         c.VoxelEdge = std::min({ spacing[0], spacing[1], spacing[2] });
-        LightingParameters lighting = LightingOf(gray);
+        LightingParameters lighting = gray.Render.Lighting;
         lighting.Model = LightingModel::March;
         c.March = NewMarch(gray, field, lighting, options);
         c.Octaves = std::make_unique<PreparedMarch>(c.March, field);

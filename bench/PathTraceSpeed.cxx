@@ -44,7 +44,7 @@ int Speed(const Options& options)
   for (const BenchScene& scene : scenes)
   {
     const vtkSmartPointer<vtkImageData> field = FieldOf(scene.Spec);
-    LightingParameters lighting = LightingOf(scene.Spec);
+    LightingParameters lighting = scene.Spec.Render.Lighting;
     if (lighting.Model == LightingModel::PathTrace)
       lighting.Model = LightingModel::March;
 

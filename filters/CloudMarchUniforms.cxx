@@ -1,6 +1,6 @@
 #include "CloudMarchUniforms.h"
 
-#include "vtkCloudLightingProperty.h"
+#include "CloudLighting.h" // PeakRadiancePerLightRadiance
 
 #include <vtkImageData.h>
 #include <vtkLight.h>
@@ -12,6 +12,7 @@
 #include <cfloat>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace cloudvis
 {
@@ -171,6 +172,17 @@ std::string ValidateVolumeGeometry(vtkImageData* image, vtkMatrix4x4* volumeMatr
   return {};
 }
 
+double SmallestVoxelEdge(const VolumeGeometry& geometry)
+{
+  const glm::dmat3 m(geometry.IndexToWorld); // world displacement per index step, by column
+  return std::min({ glm::length(m[0]), glm::length(m[1]), glm::length(m[2]) });
+}
+
+double EffectiveSampleDistance(const VolumeGeometry& geometry, double sampleDistance)
+{
+  return sampleDistance > 0.0 ? sampleDistance : SmallestVoxelEdge(geometry);
+}
+
 LocalFrame MakeLocalFrame(const VolumeGeometry& geometry)
 {
   LocalFrame frame;
@@ -178,7 +190,7 @@ LocalFrame MakeLocalFrame(const VolumeGeometry& geometry)
   const glm::dvec3 last = glm::dvec3(geometry.Dimensions) - 1.0;
   const glm::dvec3 centre = 0.5 * last;
   frame.Anchor = glm::dvec3(geometry.IndexToWorld * glm::dvec4(centre, 1.0));
-  frame.SmallestVoxelEdge = std::min({ glm::length(m[0]), glm::length(m[1]), glm::length(m[2]) });
+  frame.SmallestVoxelEdge = SmallestVoxelEdge(geometry);
   frame.Unit = std::ldexp(1.0, int(std::lround(std::log2(frame.SmallestVoxelEdge))));
   // (world(p) - Anchor) / Unit = m (p - centre) / Unit: no large coordinates cancel.
   const glm::dmat3 toLocal = m / frame.Unit;
@@ -300,7 +312,7 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
       "the step (sample distance) " + Number(setup.SampleDistance) +
         " must be a finite number >= 0 (0: one voxel)");
   }
-  const double step = setup.SampleDistance > 0.0 ? setup.SampleDistance : frame.SmallestVoxelEdge;
+  const double step = EffectiveSampleDistance(geometry, setup.SampleDistance);
   const double samples = frame.LongestChord * frame.Unit / step;
   if (!(samples <= MaxSamplesPerRay))
   {
@@ -528,8 +540,8 @@ MarchSetup MakeMarchSetup(vtkImageData* image,
   const TransferTable* table,
   double sampleDistance,
   double terminationTransmittance,
-  vtkCloudLightingProperty* lighting,
-  vtkLightCollection* lights)
+  const LightingParameters& lighting,
+  std::vector<Light> lights)
 {
   MarchSetup setup;
   setup.Geometry = GeometryOf(image, volumeMatrix);
@@ -537,11 +549,8 @@ MarchSetup MakeMarchSetup(vtkImageData* image,
   setup.Table = table;
   setup.SampleDistance = sampleDistance;
   setup.TerminationTransmittance = terminationTransmittance;
-  if (lighting)
-  {
-    setup.Lighting = lighting->GetParameters();
-  }
-  setup.Lights = LightsOf(lights);
+  setup.Lighting = lighting;
+  setup.Lights = std::move(lights);
   return setup;
 }
 

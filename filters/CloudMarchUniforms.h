@@ -19,7 +19,7 @@
 #define CloudMarchUniforms_h
 
 #include "CloudDensityTexels.h"
-#include "CloudLighting.h"
+#include "CloudLightingParameters.h"
 #include "CloudTransferTable.h"
 #include "cloudvisFiltersModule.h"
 
@@ -32,7 +32,6 @@
 #include <string>
 #include <vector>
 
-class vtkCloudLightingProperty;
 class vtkImageData;
 class vtkMatrix4x4;
 
@@ -90,6 +89,17 @@ struct CLOUDVISFILTERS_EXPORT LocalFrame
 };
 
 CLOUDVISFILTERS_EXPORT LocalFrame MakeLocalFrame(const VolumeGeometry& geometry);
+
+// The shortest edge of a voxel in world units, after the volume's placement: the image's spacing
+// through its direction matrix and the volume's matrix (a volume scaled by 2 has voxels twice as
+// long as its image's spacing says).
+CLOUDVISFILTERS_EXPORT double SmallestVoxelEdge(const VolumeGeometry& geometry);
+
+// The world distance between samples that a renderer's sample distance means for a volume: the
+// distance itself when it is > 0, else one voxel, SmallestVoxelEdge. SetUpMarch marches with it
+// and the viewer's step keys scale it, so "0 means one voxel" has one meaning everywhere.
+CLOUDVISFILTERS_EXPORT double EffectiveSampleDistance(const VolumeGeometry& geometry,
+  double sampleDistance);
 
 // Normalized device coordinates to the local frame, for a camera given camera-relative: its
 // projection (view coordinates to normalized device coordinates), the rotation from world axes to
@@ -182,11 +192,13 @@ CLOUDVISFILTERS_EXPORT MarchProblem SetUpMarch(const MarchSetup& setup,
 // positional, at their transformed position and focal point (vtkLight::GetTransformedPosition),
 // with their diffuse color, intensity and attenuation values. All of them: SetUpMarch refuses
 // more than LightingLimits::MaxLights rather than dropping some. None for a null collection.
+// Where VTK lights a cloud (a renderer's lights, a collection given from Python).
 CLOUDVISFILTERS_EXPORT std::vector<Light> LightsOf(vtkLightCollection* lights);
 
 // A light as a vtkLight, the inverse of LightsOf: a scene light (fixed in world coordinates),
 // positional for point lights (cone angle 180: no spot), with the light's position, focal
-// point, color as the diffuse color, intensity and attenuation values.
+// point, color as the diffuse color, intensity and attenuation values. For VTK's own mappers
+// and for renderers lit the VTK way.
 CLOUDVISFILTERS_EXPORT vtkSmartPointer<vtkLight> MakeLight(const Light& light);
 // MakeLight of each light, in order.
 CLOUDVISFILTERS_EXPORT vtkSmartPointer<vtkLightCollection> MakeLights(
@@ -194,15 +206,15 @@ CLOUDVISFILTERS_EXPORT vtkSmartPointer<vtkLightCollection> MakeLights(
 
 // The MarchSetup of what a renderer holds, in the one way the GPU mapper and the CPU renderers
 // read it: `image`'s geometry placed by `volumeMatrix` (null: identity), its texels, the table,
-// the step, the termination transmittance, the lighting property's values and LightsOf(lights).
+// the step, the termination transmittance, the lighting and the lights.
 CLOUDVISFILTERS_EXPORT MarchSetup MakeMarchSetup(vtkImageData* image,
   vtkMatrix4x4* volumeMatrix,
   const DensityTexels& texels,
   const TransferTable* table,
   double sampleDistance,
   double terminationTransmittance,
-  vtkCloudLightingProperty* lighting,
-  vtkLightCollection* lights);
+  const LightingParameters& lighting,
+  std::vector<Light> lights);
 
 } // namespace cloudvis
 

@@ -2,88 +2,32 @@
 
 #include <vtkObjectFactory.h>
 
-vtkStandardNewMacro(vtkCloudLightingProperty);
+#include <algorithm>
 
-static_assert(int(cloudvis::LightingModel::None) == vtkCloudLightingProperty::NoLighting &&
-    int(cloudvis::LightingModel::Derivative) == vtkCloudLightingProperty::DerivativeLighting &&
-    int(cloudvis::LightingModel::March) == vtkCloudLightingProperty::MarchLighting &&
-    int(cloudvis::LightingModel::PathTrace) == vtkCloudLightingProperty::PathTraceLighting,
-  "the property's models are cloudvis::LightingModel's");
+vtkStandardNewMacro(vtkCloudLightingProperty);
 
 namespace
 {
-// member = value, noting whether that changed it.
-template<typename T, typename V>
-void Assign(T& member, V value, bool& changed)
-{
-  if (member != static_cast<T>(value))
-  {
-    member = static_cast<T>(value);
-    changed = true;
-  }
-}
+using P = cloudvis::LightingParameters;
 }
 
-vtkCloudLightingProperty::vtkCloudLightingProperty()
+template<typename T>
+void vtkCloudLightingProperty::Assign(T P::*member, T value)
 {
-  this->AssignParameters(cloudvis::LightingParameters());
-}
-
-// Every member from `p`: the one list of the members, for the constructor, SetParameters and
-// DeepCopy alike. True when one changed.
-bool vtkCloudLightingProperty::AssignParameters(const cloudvis::LightingParameters& p)
-{
-  bool changed = false;
-  Assign(this->Model, int(p.Model), changed);
-  for (int c = 0; c < 3; ++c)
+  if (!(this->Parameters.*member == value))
   {
-    Assign(this->AmbientColor[c], p.AmbientColor[c], changed);
-  }
-  Assign(this->AmbientStrength, p.AmbientStrength, changed);
-  Assign(this->DerivativeDistance, p.DerivativeDistance, changed);
-  Assign(this->LightSteps, p.LightSteps, changed);
-  Assign(this->LightStep, p.LightStep, changed);
-  Assign(this->LightStepGrowth, p.LightStepGrowth, changed);
-  Assign(this->PhaseG1, p.PhaseG1, changed);
-  Assign(this->PhaseG2, p.PhaseG2, changed);
-  Assign(this->PhaseLobeWeight, p.PhaseLobeWeight, changed);
-  Assign(this->MultipleScatteringOctaves, p.MultipleScatteringOctaves, changed);
-  Assign(this->ScatteringFalloff, p.ScatteringFalloff, changed);
-  Assign(this->ExtinctionFalloff, p.ExtinctionFalloff, changed);
-  Assign(this->EccentricityFalloff, p.EccentricityFalloff, changed);
-  Assign(this->PowderStrength, p.PowderStrength, changed);
-  Assign(this->Transmittance, int(p.Transmittance), changed);
-  return changed;
-}
-
-void vtkCloudLightingProperty::SetParameters(const cloudvis::LightingParameters& parameters)
-{
-  if (this->AssignParameters(parameters))
-  {
+    this->Parameters.*member = value;
     this->Modified();
   }
 }
 
-cloudvis::LightingParameters vtkCloudLightingProperty::GetParameters() const
+void vtkCloudLightingProperty::SetParameters(const cloudvis::LightingParameters& parameters)
 {
-  cloudvis::LightingParameters p;
-  p.Model = static_cast<cloudvis::LightingModel>(this->Model);
-  p.AmbientColor = glm::vec3(this->AmbientColor[0], this->AmbientColor[1], this->AmbientColor[2]);
-  p.AmbientStrength = this->AmbientStrength;
-  p.DerivativeDistance = this->DerivativeDistance;
-  p.LightSteps = this->LightSteps;
-  p.LightStep = this->LightStep;
-  p.LightStepGrowth = this->LightStepGrowth;
-  p.PhaseG1 = this->PhaseG1;
-  p.PhaseG2 = this->PhaseG2;
-  p.PhaseLobeWeight = this->PhaseLobeWeight;
-  p.MultipleScatteringOctaves = this->MultipleScatteringOctaves;
-  p.ScatteringFalloff = this->ScatteringFalloff;
-  p.ExtinctionFalloff = this->ExtinctionFalloff;
-  p.EccentricityFalloff = this->EccentricityFalloff;
-  p.PowderStrength = this->PowderStrength;
-  p.Transmittance = static_cast<cloudvis::LightTransmittance>(this->Transmittance);
-  return p;
+  if (this->Parameters != parameters)
+  {
+    this->Parameters = parameters;
+    this->Modified();
+  }
 }
 
 void vtkCloudLightingProperty::DeepCopy(vtkCloudLightingProperty* other)
@@ -94,42 +38,108 @@ void vtkCloudLightingProperty::DeepCopy(vtkCloudLightingProperty* other)
   }
 }
 
+// The VTK-facing accessors of the members that are plain numbers, each Set and Get a view of one
+// member of Parameters.
+#define CLOUDVIS_LIGHTING_ACCESSORS(type, name)                                                    \
+  void vtkCloudLightingProperty::Set##name(type value)                                             \
+  {                                                                                                \
+    this->Assign(&P::name, value);                                                                 \
+  }                                                                                                \
+  type vtkCloudLightingProperty::Get##name()                                                       \
+  {                                                                                                \
+    return this->Parameters.name;                                                                  \
+  }
+CLOUDVIS_LIGHTING_ACCESSORS(float, AmbientStrength)
+CLOUDVIS_LIGHTING_ACCESSORS(float, DerivativeDistance)
+CLOUDVIS_LIGHTING_ACCESSORS(int, LightSteps)
+CLOUDVIS_LIGHTING_ACCESSORS(float, LightStep)
+CLOUDVIS_LIGHTING_ACCESSORS(float, LightStepGrowth)
+CLOUDVIS_LIGHTING_ACCESSORS(float, PhaseG1)
+CLOUDVIS_LIGHTING_ACCESSORS(float, PhaseG2)
+CLOUDVIS_LIGHTING_ACCESSORS(float, PhaseLobeWeight)
+CLOUDVIS_LIGHTING_ACCESSORS(int, MultipleScatteringOctaves)
+CLOUDVIS_LIGHTING_ACCESSORS(float, ScatteringFalloff)
+CLOUDVIS_LIGHTING_ACCESSORS(float, ExtinctionFalloff)
+CLOUDVIS_LIGHTING_ACCESSORS(float, EccentricityFalloff)
+CLOUDVIS_LIGHTING_ACCESSORS(float, PowderStrength)
+#undef CLOUDVIS_LIGHTING_ACCESSORS
+
+// The enumerations are clamped into their range, as vtkSetClampMacro would.
+void vtkCloudLightingProperty::SetModel(int model)
+{
+  this->Assign(
+    &P::Model, cloudvis::LightingModel(std::clamp(model, int(NoLighting), int(PathTraceLighting))));
+}
+
+int vtkCloudLightingProperty::GetModel()
+{
+  return int(this->Parameters.Model);
+}
+
+void vtkCloudLightingProperty::SetTransmittance(int transmittance)
+{
+  this->Assign(&P::Transmittance,
+    cloudvis::LightTransmittance(std::clamp(transmittance, int(LightVolumes), int(NestedMarch))));
+}
+
+int vtkCloudLightingProperty::GetTransmittance()
+{
+  return int(this->Parameters.Transmittance);
+}
+
+void vtkCloudLightingProperty::SetAmbientColor(float r, float g, float b)
+{
+  this->Assign(&P::AmbientColor, glm::vec3(r, g, b));
+}
+
+void vtkCloudLightingProperty::SetAmbientColor(const float color[3])
+{
+  this->SetAmbientColor(color[0], color[1], color[2]);
+}
+
+float* vtkCloudLightingProperty::GetAmbientColor()
+{
+  return &this->Parameters.AmbientColor[0];
+}
+
+void vtkCloudLightingProperty::GetAmbientColor(float& r, float& g, float& b)
+{
+  r = this->Parameters.AmbientColor.r;
+  g = this->Parameters.AmbientColor.g;
+  b = this->Parameters.AmbientColor.b;
+}
+
+void vtkCloudLightingProperty::GetAmbientColor(float color[3])
+{
+  this->GetAmbientColor(color[0], color[1], color[2]);
+}
+
 const char* vtkCloudLightingProperty::GetModelAsString() const
 {
-  switch (this->Model)
-  {
-    case DerivativeLighting:
-      return "derivative";
-    case MarchLighting:
-      return "march";
-    case PathTraceLighting:
-      return "pathtrace";
-    case NoLighting:
-    default:
-      return "none";
-  }
+  return cloudvis::LightingModelName(this->Parameters.Model);
 }
 
 void vtkCloudLightingProperty::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  const P& p = this->Parameters;
   os << indent << "Model: " << this->GetModelAsString() << "\n";
-  os << indent << "AmbientColor: (" << this->AmbientColor[0] << ", " << this->AmbientColor[1]
-     << ", " << this->AmbientColor[2] << ")\n";
-  os << indent << "AmbientStrength: " << this->AmbientStrength << "\n";
-  os << indent << "DerivativeDistance: " << this->DerivativeDistance << "\n";
-  os << indent << "LightSteps: " << this->LightSteps << "\n";
-  os << indent << "LightStep: " << this->LightStep << "\n";
-  os << indent << "LightStepGrowth: " << this->LightStepGrowth << "\n";
-  os << indent << "PhaseG1: " << this->PhaseG1 << "\n";
-  os << indent << "PhaseG2: " << this->PhaseG2 << "\n";
-  os << indent << "PhaseLobeWeight: " << this->PhaseLobeWeight << "\n";
-  os << indent << "MultipleScatteringOctaves: " << this->MultipleScatteringOctaves << "\n";
-  os << indent << "ScatteringFalloff: " << this->ScatteringFalloff << "\n";
-  os << indent << "ExtinctionFalloff: " << this->ExtinctionFalloff << "\n";
-  os << indent << "EccentricityFalloff: " << this->EccentricityFalloff << "\n";
-  os << indent << "PowderStrength: " << this->PowderStrength << "\n";
-  os << indent
-     << "Transmittance: " << (this->Transmittance == NestedMarch ? "nested march" : "light volumes")
+  os << indent << "AmbientColor: (" << p.AmbientColor.r << ", " << p.AmbientColor.g << ", "
+     << p.AmbientColor.b << ")\n";
+  os << indent << "AmbientStrength: " << p.AmbientStrength << "\n";
+  os << indent << "DerivativeDistance: " << p.DerivativeDistance << "\n";
+  os << indent << "LightSteps: " << p.LightSteps << "\n";
+  os << indent << "LightStep: " << p.LightStep << "\n";
+  os << indent << "LightStepGrowth: " << p.LightStepGrowth << "\n";
+  os << indent << "PhaseG1: " << p.PhaseG1 << "\n";
+  os << indent << "PhaseG2: " << p.PhaseG2 << "\n";
+  os << indent << "PhaseLobeWeight: " << p.PhaseLobeWeight << "\n";
+  os << indent << "MultipleScatteringOctaves: " << p.MultipleScatteringOctaves << "\n";
+  os << indent << "ScatteringFalloff: " << p.ScatteringFalloff << "\n";
+  os << indent << "ExtinctionFalloff: " << p.ExtinctionFalloff << "\n";
+  os << indent << "EccentricityFalloff: " << p.EccentricityFalloff << "\n";
+  os << indent << "PowderStrength: " << p.PowderStrength << "\n";
+  os << indent << "Transmittance: "
+     << (p.Transmittance == cloudvis::LightTransmittance::Nested ? "nested march" : "light volumes")
      << "\n";
 }

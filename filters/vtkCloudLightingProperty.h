@@ -10,9 +10,10 @@
  *
  * The equations are in docs/lighting.md. Lengths are world units. Values are checked when a
  * renderer uses them (cloudvis::ValidateLightingParameters): a value outside the range stated
- * below is refused with an error naming it, not clamped. The defaults are those of
- * cloudvis::LightingParameters (CloudLighting.h), the C++ value type the renderers compute with;
- * GetParameters and SetParameters convert between the two in C++.
+ * below is refused with an error naming it, not clamped. The property holds one
+ * cloudvis::LightingParameters (CloudLightingParameters.h), the value a scene gives the renderers
+ * and the renderers compute with: its defaults are the ones stated below, and in C++
+ * GetParameters and SetParameters read and set it whole.
  */
 #ifndef vtkCloudLightingProperty_h
 #define vtkCloudLightingProperty_h
@@ -22,7 +23,7 @@
 #include <vtkObject.h>
 
 #ifndef __VTK_WRAP__
-#include "CloudLighting.h"
+#include "CloudLightingParameters.h"
 #endif
 
 class CLOUDVISFILTERS_EXPORT vtkCloudLightingProperty : public vtkObject
@@ -32,12 +33,13 @@ public:
   vtkTypeMacro(vtkCloudLightingProperty, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  // cloudvis::LightingModel's values, by VTK's names (the wrapper reads the names only).
   enum Models
   {
-    NoLighting = 0,         // emission-absorption: a sample emits its transfer-function color
-    DerivativeLighting = 1, // the directional derivative toward each light
-    MarchLighting = 2,      // a nested march toward each light, phase, multiple scattering
-    PathTraceLighting = 3,  // Monte Carlo path tracing of the same medium: the ground truth
+    NoLighting = int(cloudvis::LightingModel::None), // a sample emits its transfer-function color
+    DerivativeLighting = int(cloudvis::LightingModel::Derivative), // the derivative toward lights
+    MarchLighting = int(cloudvis::LightingModel::March),         // a nested march toward each light
+    PathTraceLighting = int(cloudvis::LightingModel::PathTrace), // Monte Carlo: the ground truth
   };
 
   ///@{
@@ -45,13 +47,13 @@ public:
    * The lighting model: NoLighting, DerivativeLighting, MarchLighting or PathTraceLighting (the
    * GPU mapper's progressive path tracer; the CPU's is vtkCloudPathTracer). Default NoLighting.
    */
-  vtkSetClampMacro(Model, int, NoLighting, PathTraceLighting);
-  vtkGetMacro(Model, int);
+  virtual void SetModel(int model); // clamped to the range above
+  virtual int GetModel();
   void SetModelToNone() { this->SetModel(NoLighting); }
   void SetModelToDerivative() { this->SetModel(DerivativeLighting); }
   void SetModelToMarch() { this->SetModel(MarchLighting); }
   void SetModelToPathTrace() { this->SetModel(PathTraceLighting); }
-  const char* GetModelAsString() const;
+  const char* GetModelAsString() const; // the name of cloudvis::LightingModelTable
   ///@}
 
   ///@{
@@ -59,10 +61,13 @@ public:
    * Ambient light reaching every sample of the lit models: color times strength (strength >= 0).
    * Defaults (1, 1, 1) and 0.
    */
-  vtkSetVector3Macro(AmbientColor, float);
-  vtkGetVector3Macro(AmbientColor, float);
-  vtkSetMacro(AmbientStrength, float);
-  vtkGetMacro(AmbientStrength, float);
+  virtual void SetAmbientColor(float r, float g, float b);
+  virtual void SetAmbientColor(const float color[3]);
+  virtual float* GetAmbientColor() VTK_SIZEHINT(3);
+  virtual void GetAmbientColor(float& r, float& g, float& b);
+  virtual void GetAmbientColor(float color[3]);
+  virtual void SetAmbientStrength(float strength);
+  virtual float GetAmbientStrength();
   ///@}
 
   ///@{
@@ -70,8 +75,8 @@ public:
    * Derivative model: the distance h toward each light of the extra density sample, >= 0; 0
    * means 4 times the smallest voxel edge. Default 0.
    */
-  vtkSetMacro(DerivativeDistance, float);
-  vtkGetMacro(DerivativeDistance, float);
+  virtual void SetDerivativeDistance(float value);
+  virtual float GetDerivativeDistance();
   ///@}
 
   ///@{
@@ -80,12 +85,12 @@ public:
    * long (>= 0; 0 means 2 times the smallest voxel edge), each next one LightStepGrowth (1 to 4)
    * times longer. Defaults 6, 0 and 1.6.
    */
-  vtkSetMacro(LightSteps, int);
-  vtkGetMacro(LightSteps, int);
-  vtkSetMacro(LightStep, float);
-  vtkGetMacro(LightStep, float);
-  vtkSetMacro(LightStepGrowth, float);
-  vtkGetMacro(LightStepGrowth, float);
+  virtual void SetLightSteps(int value);
+  virtual int GetLightSteps();
+  virtual void SetLightStep(float value);
+  virtual float GetLightStep();
+  virtual void SetLightStepGrowth(float value);
+  virtual float GetLightStepGrowth();
   ///@}
 
   ///@{
@@ -93,12 +98,12 @@ public:
    * March model: the two-lobe Henyey-Greenstein phase w HG(g1) + (1 - w) HG(g2), g1 and g2 in
    * (-1, 1) (positive scatters forward), w in [0, 1] (1: one lobe). Defaults 0.6, -0.3 and 0.8.
    */
-  vtkSetMacro(PhaseG1, float);
-  vtkGetMacro(PhaseG1, float);
-  vtkSetMacro(PhaseG2, float);
-  vtkGetMacro(PhaseG2, float);
-  vtkSetMacro(PhaseLobeWeight, float);
-  vtkGetMacro(PhaseLobeWeight, float);
+  virtual void SetPhaseG1(float value);
+  virtual float GetPhaseG1();
+  virtual void SetPhaseG2(float value);
+  virtual float GetPhaseG2();
+  virtual void SetPhaseLobeWeight(float value);
+  virtual float GetPhaseLobeWeight();
   ///@}
 
   ///@{
@@ -109,14 +114,14 @@ public:
    * eccentricity by EccentricityFalloff^n (each in [0, 1]). Defaults 3, 0.41, 0.26 and 0.46
    * (fitted to the path tracer: docs/lighting.md).
    */
-  vtkSetMacro(MultipleScatteringOctaves, int);
-  vtkGetMacro(MultipleScatteringOctaves, int);
-  vtkSetMacro(ScatteringFalloff, float);
-  vtkGetMacro(ScatteringFalloff, float);
-  vtkSetMacro(ExtinctionFalloff, float);
-  vtkGetMacro(ExtinctionFalloff, float);
-  vtkSetMacro(EccentricityFalloff, float);
-  vtkGetMacro(EccentricityFalloff, float);
+  virtual void SetMultipleScatteringOctaves(int value);
+  virtual int GetMultipleScatteringOctaves();
+  virtual void SetScatteringFalloff(float value);
+  virtual float GetScatteringFalloff();
+  virtual void SetExtinctionFalloff(float value);
+  virtual float GetExtinctionFalloff();
+  virtual void SetEccentricityFalloff(float value);
+  virtual float GetEccentricityFalloff();
   ///@}
 
   ///@{
@@ -129,11 +134,11 @@ public:
    */
   enum Transmittances
   {
-    LightVolumes = 0,
-    NestedMarch = 1,
+    LightVolumes = int(cloudvis::LightTransmittance::Volumes),
+    NestedMarch = int(cloudvis::LightTransmittance::Nested),
   };
-  vtkSetClampMacro(Transmittance, int, LightVolumes, NestedMarch);
-  vtkGetMacro(Transmittance, int);
+  virtual void SetTransmittance(int transmittance); // clamped to the range above
+  virtual int GetTransmittance();
   void SetTransmittanceToLightVolumes() { this->SetTransmittance(LightVolumes); }
   void SetTransmittanceToNestedMarch() { this->SetTransmittance(NestedMarch); }
   ///@}
@@ -143,8 +148,8 @@ public:
    * March model: the non-physical "powder" darkening of thin regions (an artistic term), in
    * [0, 1]; 0 disables it. Default 0.
    */
-  vtkSetMacro(PowderStrength, float);
-  vtkGetMacro(PowderStrength, float);
+  virtual void SetPowderStrength(float value);
+  virtual float GetPowderStrength();
   ///@}
 
   /**
@@ -155,39 +160,32 @@ public:
 #ifndef __VTK_WRAP__
   ///@{
   /**
-   * The values as the C++ struct the renderers compute with, and all of them set from one.
+   * The values as the C++ value the renderers compute with (the one the property holds), and all
+   * of them set from one (Modified only when one changes).
    */
-  cloudvis::LightingParameters GetParameters() const;
+  const cloudvis::LightingParameters& GetParameters() const
+  {
+    return this->Parameters;
+  }
   void SetParameters(const cloudvis::LightingParameters& parameters);
   ///@}
 #endif
 
 protected:
-  vtkCloudLightingProperty();
+  vtkCloudLightingProperty() = default;
   ~vtkCloudLightingProperty() override = default;
 
-  // Set by the constructor from a default cloudvis::LightingParameters: the defaults are written
-  // once, there (zero until then).
-  int Model{};
-  float AmbientColor[3]{};
-  float AmbientStrength{};
-  float DerivativeDistance{};
-  int LightSteps{};
-  float LightStep{};
-  float LightStepGrowth{};
-  float PhaseG1{};
-  float PhaseG2{};
-  float PhaseLobeWeight{};
-  int MultipleScatteringOctaves{};
-  float ScatteringFalloff{};
-  float ExtinctionFalloff{};
-  float EccentricityFalloff{};
-  float PowderStrength{};
-  int Transmittance{};
+#ifndef __VTK_WRAP__
+  // Every value the Set/Get methods above reach: one value, the renderers' own, not a member per
+  // parameter.
+  cloudvis::LightingParameters Parameters;
+#endif
 
 private:
 #ifndef __VTK_WRAP__
-  bool AssignParameters(const cloudvis::LightingParameters& parameters);
+  // Parameters.*member = value, Modified when that changes it.
+  template<typename T>
+  void Assign(T cloudvis::LightingParameters::*member, T value);
 #endif
   vtkCloudLightingProperty(const vtkCloudLightingProperty&) = delete;
   void operator=(const vtkCloudLightingProperty&) = delete;

@@ -90,12 +90,32 @@ void vtkCloudReferenceRenderer::SetLightingProperty(vtkCloudLightingProperty* pr
 
 void vtkCloudReferenceRenderer::SetLights(vtkLightCollection* lights)
 {
-  if (!lights || lights != this->Lights)
+  if (!lights || lights != this->Lights || this->CloudLights)
   {
     this->Lights = lights ? vtkSmartPointer<vtkLightCollection>(lights)
                           : vtkSmartPointer<vtkLightCollection>::New();
+    this->CloudLights.reset();
     this->Modified();
   }
+}
+
+void vtkCloudReferenceRenderer::SetLights(const std::vector<cloudvis::Light>& lights)
+{
+  if (!this->CloudLights || *this->CloudLights != lights)
+  {
+    this->CloudLights = lights;
+    this->Modified();
+  }
+}
+
+const std::vector<cloudvis::Light>* vtkCloudReferenceRenderer::GetCloudLights() const
+{
+  return this->CloudLights ? &*this->CloudLights : nullptr;
+}
+
+std::vector<cloudvis::Light> vtkCloudReferenceRenderer::GetLightList() const
+{
+  return this->CloudLights ? *this->CloudLights : cloudvis::LightsOf(this->Lights);
 }
 
 vtkMTimeType vtkCloudReferenceRenderer::GetMTime()
@@ -106,6 +126,10 @@ vtkMTimeType vtkCloudReferenceRenderer::GetMTime()
     latest = std::max(latest, this->VolumeProperty->GetMTime());
   }
   latest = std::max(latest, this->LightingProperty->GetMTime());
+  if (this->CloudLights)
+  {
+    return latest; // the vtkLights light nothing
+  }
   latest = std::max(latest, this->Lights->GetMTime());
   vtkCollectionSimpleIterator it;
   this->Lights->InitTraversal(it);
@@ -312,8 +336,8 @@ int vtkCloudReferenceRenderer::RequestData(
     &table,
     this->SampleDistance,
     this->TerminationTransmittance,
-    this->LightingProperty,
-    this->Lights);
+    this->LightingProperty->GetParameters(),
+    this->GetLightList());
   cloudvis::MarchUniforms uniforms;
   cloudvis::LocalFrame frame;
   const cloudvis::MarchProblem problem = cloudvis::SetUpMarch(setup, uniforms, &frame);

@@ -19,7 +19,8 @@
  *
  * Every parameter is a VTK property (wrappable): the transfer function as a vtkVolumeProperty,
  * the lighting as a vtkCloudLightingProperty, the lights as vtkLights, the camera and the volume
- * matrix as numbers and a vtkMatrix4x4.
+ * matrix as numbers and a vtkMatrix4x4. From C++ the lights may also be cloudvis::Lights, as a
+ * scene holds them (cloudvis gives a scene's lights so, never as vtkLights).
  *
  * Output: vtkImageData of ImageSize[0] x ImageSize[1] x 1 points (origin 0, spacing 1) with a
  * float, 4-component point array "rgba" (the active scalars): premultiplied radiance in r, g, b
@@ -50,6 +51,8 @@
 #include <vtkSmartPointer.h>
 
 #include <functional>
+#include <optional>
+#include <vector>
 
 #ifndef __VTK_WRAP__
 #include <glm/glm.hpp>
@@ -173,6 +176,21 @@ public:
   vtkGetObjectMacro(Lights, vtkLightCollection);
   ///@}
 
+#ifndef __VTK_WRAP__
+  ///@{
+  /**
+   * The lights as cloudvis::Lights, as a scene holds them (C++): they light the cloud in place of
+   * the collection above (Modified when they differ from the last ones set), until
+   * SetLights(vtkLightCollection*) gives it vtkLights again. GetCloudLights() is null while the
+   * vtkLights are used. GetLightList() is what the renderer lights with: these, else
+   * cloudvis::LightsOf(GetLights()).
+   */
+  void SetLights(const std::vector<cloudvis::Light>& lights);
+  const std::vector<cloudvis::Light>* GetCloudLights() const;
+  std::vector<cloudvis::Light> GetLightList() const;
+  ///@}
+#endif
+
   ///@{
   /**
    * The volume's model-to-world matrix, as vtkProp3D::GetMatrix() gives it for a vtkVolume (its
@@ -273,6 +291,9 @@ protected:
   double ExtinctionScale = 1.0;
   vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
   vtkSmartPointer<vtkLightCollection> Lights;
+#ifndef __VTK_WRAP__
+  std::optional<std::vector<cloudvis::Light>> CloudLights; // in place of Lights when set
+#endif
   vtkNew<vtkMatrix4x4> VolumeMatrix;
   double SampleDistance = 0.0;
   double TerminationTransmittance = 1.0 / 255.0;

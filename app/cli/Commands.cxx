@@ -431,7 +431,7 @@ int Render(const Arguments& arguments, std::ostream& out)
   WriteImage(result.Image, output, exportOptions);
   out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
       << " pixels, ";
-  if (scene.Render.Lighting == LightingModel::PathTrace)
+  if (scene.Render.Lighting.Model == LightingModel::PathTrace)
   {
     out << result.AccumulatedSamples << " paths per pixel averaged)\n";
   }
@@ -678,7 +678,7 @@ int RunDefault(std::ostream& out)
   const OffscreenRenderResult result = RenderOffscreen(scene, field, scene.Source);
   WriteImage(result.Image, image);
   out << "wrote " << image << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, lighting " << LightingModelName(scene.Render.Lighting) << ")\n";
+      << " pixels, lighting " << LightingModelName(scene.Render.Lighting.Model) << ")\n";
   // The three lighting models side by side, each panel half the render's size.
   Scene halfSize = scene;
   halfSize.Render.Size[0] = std::max(16, scene.Render.Size[0] / 2);

@@ -135,7 +135,7 @@ void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
   std::snprintf(text,
     sizeof(text),
     "%s  %s\nreference: %d paths/pixel, noise %.2g%%",
-    LightingModelName(LightingModel::PathTrace).c_str(),
+    LightingModelName(LightingModel::PathTrace),
     FormatMilliseconds(result.Milliseconds[referencePanel]).c_str(),
     result.ReferenceSamples,
     100.0 * result.ReferenceNoise.RelativeStandardError);
@@ -155,7 +155,7 @@ void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
     std::snprintf(text,
       sizeof(text),
       "%s  %s\nrRMSE %.1f%%  bias %.2f  max %.0f%%",
-      LightingModelName(models[i]).c_str(),
+      LightingModelName(models[i]),
       FormatMilliseconds(result.Milliseconds[i]).c_str(),
       100.0 * error.RelativeRMSE,
       error.BiasRatio,
@@ -214,7 +214,7 @@ ComparisonResult RenderComparison(const Scene& scene,
   Scene checked = scene;
   for (LightingModel model : models)
   {
-    checked.Render.Lighting = model;
+    checked.Render.Lighting.Model = model;
     CheckSceneRenderable(checked, field, input);
   }
   const DisplayConnection display("cloudvis compare ...");
@@ -239,8 +239,8 @@ ComparisonResult RenderComparison(const Scene& scene,
     panel.Renderer->SetActiveCamera(camera);
     window->AddRenderer(panel.Renderer);
     Scene lit = scene;
-    lit.Render.Lighting = models[i];
-    ConfigureLighting(lit, panel.Renderer, panel.Mapper);
+    lit.Render.Lighting.Model = models[i];
+    ConfigureLighting(lit, panel.Mapper);
     ApplyBackground(lit, panel.Renderer);
     panel.Mapper->SetInputData(field);
     if (referenceSamples && i == referencePanel)
@@ -257,7 +257,7 @@ ComparisonResult RenderComparison(const Scene& scene,
     panel.Volume->SetProperty(property);
     panel.Renderer->AddVolume(panel.Volume);
     PlaceLabel(panel.Label, panel.Renderer, height);
-    panel.Label->SetInput(LightingModelName(models[i]).c_str());
+    panel.Label->SetInput(LightingModelName(models[i]));
   }
   // Every panel has the viewport of a `render` of render.size, so this is render's camera.
   ApplyCamera(scene.Camera, field->GetBounds(), panels[0]->Renderer, scene.Source);
@@ -298,8 +298,9 @@ ComparisonResult RenderComparison(const Scene& scene,
       CheckMapper(panels[i]->Mapper, input, messages);
     }
     result.Milliseconds.push_back(timingFrames > 0 ? total / timingFrames : 0.0);
-    panels[i]->Label->SetInput(
-      (LightingModelName(models[i]) + "  " + FormatMilliseconds(result.Milliseconds.back())).c_str());
+    panels[i]->Label->SetInput((std::string(LightingModelName(models[i])) + "  " +
+      FormatMilliseconds(result.Milliseconds.back()))
+                                 .c_str());
   }
 
   // The picture: every panel, accumulated from the same first jitter frame.
@@ -368,9 +369,12 @@ ComparisonResult RenderComparison(const Scene& scene,
     flat->SetClippingRange(0.5, 1.5);
     PlaceLabel(differenceLabel, differencePanel, height);
     char text[96];
-    std::snprintf(text, sizeof(text), "|%s - %s|  max %.4g",
-      LightingModelName(models[difference->first]).c_str(),
-      LightingModelName(models[difference->second]).c_str(), result.MaxDifference);
+    std::snprintf(text,
+      sizeof(text),
+      "|%s - %s|  max %.4g",
+      LightingModelName(models[difference->first]),
+      LightingModelName(models[difference->second]),
+      result.MaxDifference);
     differenceLabel->SetInput(text);
   }
   if (difference || referenceSamples)

@@ -76,7 +76,7 @@ void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::st
     &table,
     settings.SampleDistance,
     MarchSetup().TerminationTransmittance,
-    settings.Lighting,
+    settings.Lighting->GetParameters(),
     settings.Lights);
   MarchUniforms uniforms;
   const MarchProblem problem = SetUpMarch(setup, uniforms);
@@ -93,12 +93,11 @@ void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::st
     case MarchInput::Lighting:
       // The path tracer's parameters are the march's phase (render.march).
       throw InputError(scene.Source + ": " +
-        (scene.Render.Lighting == LightingModel::None
-            ? std::string("render")
-            : "render." +
-              LightingModelName(scene.Render.Lighting == LightingModel::PathTrace
+        (scene.Render.Lighting.Model == LightingModel::None ? std::string("render")
+                                                            : std::string("render.") +
+              LightingModelName(scene.Render.Lighting.Model == LightingModel::PathTrace
                   ? LightingModel::March
-                  : scene.Render.Lighting)) +
+                  : scene.Render.Lighting.Model)) +
         ": " + problem.Message);
     case MarchInput::Light:
       throw InputError(
@@ -115,7 +114,7 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   VtkMessageCapture messages;
   // pathtrace: the CPU path tracer, render.spp paths per pixel; else the march's reference.
   vtkSmartPointer<vtkCloudReferenceRenderer> reference;
-  if (scene.Render.Lighting == LightingModel::PathTrace)
+  if (scene.Render.Lighting.Model == LightingModel::PathTrace)
   {
     vtkNew<vtkCloudPathTracer> tracer;
     tracer->SetSamplesPerPixel(scene.Render.SamplesPerPixel);

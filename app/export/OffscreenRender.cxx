@@ -4,8 +4,6 @@
 // from the mapper's GetLastError().
 #include "OffscreenRender.h"
 
-#include "CloudPathTrace.h" // PathTraceBrickSize
-
 #include "AtomicFile.h"
 #include "Background.h"
 #include "CpuReference.h"
@@ -15,6 +13,7 @@
 #include "ImageWriters.h"
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"
+#include "vtkCloudPathTracer.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkCallbackCommand.h>
@@ -104,14 +103,14 @@ void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
   mapper->SetResolutionScale(render.ResolutionScale);
   mapper->SetMaximumAccumulatedFrames(render.Accumulate);
   mapper->SetEmptySpaceSkipping(render.SkipEmptySpace);
-  if (render.Lighting == LightingModel::PathTrace)
+  if (render.Lighting.Model == LightingModel::PathTrace)
   {
     const PathTraceFrames frames = PathTraceFramesOf(render.SamplesPerPixel);
     mapper->SetPathTraceSamplesPerFrame(frames.SamplesPerFrame);
     mapper->SetMaximumAccumulatedFrames(frames.Frames);
     // The majorant bricks of the CPU tracer's default: larger than the march's, they cut the
     // bricks a path walks through, 1.2-1.5x faster on llvmpipe (docs/performance.md).
-    mapper->SetBrickSize(PathTraceBrickSize);
+    mapper->SetBrickSize(vtkNew<vtkCloudPathTracer>()->GetBrickSize());
   }
 }
 
@@ -229,7 +228,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   vtkNew<vtkCloudVolumeMapper> mapper;
   mapper->SetInputData(field);
   ConfigureMapper(mapper, scene.Render);
-  ConfigureLighting(scene, renderer, mapper);
+  ConfigureLighting(scene, mapper);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(MakeVolumeProperty(scene.TransferFunction));
@@ -241,7 +240,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
 
   // Without jitter every frame marches the same samples: one is the converged still. The path
   // tracer's frames are all different.
-  const int frames = scene.Render.Lighting == LightingModel::PathTrace
+  const int frames = scene.Render.Lighting.Model == LightingModel::PathTrace
     ? mapper->GetMaximumAccumulatedFrames()
     : (scene.Render.Jitter ? scene.Render.Accumulate : 1);
   for (int frame = 0; frame < frames; ++frame)

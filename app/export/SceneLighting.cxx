@@ -1,14 +1,10 @@
 #include "SceneLighting.h"
 
-#include "CloudMarchUniforms.h"
 #include "OffscreenRender.h"
 #include "vtkCloudLightingProperty.h"
 #include "vtkCloudReferenceRenderer.h"
 #include "vtkCloudVolumeMapper.h"
 
-#include <vtkLight.h>
-#include <vtkLightCollection.h>
-#include <vtkRenderer.h>
 #include <vtkVolumeProperty.h>
 
 namespace cloudvis
@@ -19,24 +15,17 @@ RendererSettings RendererSettingsOf(const Scene& scene)
   RendererSettings settings;
   settings.TransferFunction = MakeVolumeProperty(scene.TransferFunction);
   settings.Lighting = vtkSmartPointer<vtkCloudLightingProperty>::New();
-  settings.Lighting->SetParameters(LightingOf(scene));
-  settings.Lights = MakeLights(scene.Lights);
+  settings.Lighting->SetParameters(scene.Render.Lighting);
+  settings.Lights = scene.Lights;
   settings.SampleDistance = scene.Render.Step;
   return settings;
 }
 
-void ConfigureLighting(const Scene& scene, vtkRenderer* renderer, vtkCloudVolumeMapper* mapper)
+void ConfigureLighting(const Scene& scene, vtkCloudVolumeMapper* mapper)
 {
   const RendererSettings settings = RendererSettingsOf(scene);
-  renderer->AutomaticLightCreationOff();
-  renderer->RemoveAllLights();
-  vtkCollectionSimpleIterator it;
-  settings.Lights->InitTraversal(it);
-  while (vtkLight* light = settings.Lights->GetNextLight(it))
-  {
-    renderer->AddLight(light);
-  }
   mapper->SetLightingProperty(settings.Lighting);
+  mapper->SetLights(settings.Lights);
   mapper->SetSampleDistance(settings.SampleDistance);
 }
 

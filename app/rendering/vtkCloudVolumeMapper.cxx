@@ -1,21 +1,16 @@
+// vtkCloudVolumeMapper: its settings, the textures it keeps up to date, the march's uniforms (the
+// same MarchUniforms the CPU reference computes with, from the mapper's LightingParameters and
+// lights) and the march pass. The composite pass and the read-backs are
+// vtkCloudVolumeMapperComposite.cxx's and vtkCloudVolumeMapperReadBack.cxx's; what the three
+// share is CloudVolumeMapperInternals.h.
 #include "vtkCloudVolumeMapper.h"
 
-#include "CloudDensityTexture.h"
 #include "CloudFieldGeometry.h"
 #include "CloudGpuMemory.h"
-#include "CloudJitterTexture.h"
-#include "CloudLightVolumeTexture.h"
-#include "CloudMarchShader.h"
 #include "CloudMarchUniforms.h"
-#include "CloudOccupancyTexture.h"
-#include "CloudPathTracePass.h"
-#include "CloudTransferTexture.h"
-#include "CloudViewTargets.h"
-
-#include "CloudCompositeFS.h"
+#include "CloudVolumeMapperInternals.h"
 
 #include <vtkDataArray.h>
-#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkLight.h>
 #include <vtkLightCollection.h>
@@ -25,44 +20,29 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLCamera.h>
-#include <vtkOpenGLQuadHelper.h>
-#include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLState.h>
 #include <vtkPointData.h>
 #include <vtkPropCollection.h>
-#include <vtkRenderer.h>
-#include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
 #include <vtkTimerLog.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 #include <vtk_glew.h>
 
-#include <glm/glm.hpp>
-#include <glm/gtc/type_ptr.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
+
+using cloudvis::mapper::HistoryDepthSteps;
+using cloudvis::mapper::SetMatrix;
+using cloudvis::mapper::WindowOf;
 
 vtkStandardNewMacro(vtkCloudVolumeMapper);
 
 namespace
 {
 constexpr double GoldenRatioFraction = 0.61803398874989484;
-
-// Temporal reprojection: the share of the reprojected history in each interactive frame; how
-// many march steps its depth may differ by from the current frame's (beyond the depths the low
-// resolution blurs together) before it is rejected; the turn of a pixel's ray since the last
-// image at which its share has faded to nothing (a cloud is seen through: what lies behind the
-// point changes with the angle). Measured on the sparse cloud (tests/render, docs/viewer.md): a
-// weight of 0.7 or 0.9 hardly differs after one frame; a fade at 12 degrees keeps most of the
-// gain at 1 to 3 degrees a frame and stays below the low-resolution frame's error at 6.
-constexpr float HistoryWeight = 0.9f;
-constexpr double HistoryDepthSteps = 4.0;
-constexpr double HistoryFadeDegrees = 12.0;
 
 // The matrix a vtkMatrix4x4 holds, as GLM (column-major) sees it.
 glm::dmat4 ToGlm(const vtkMatrix4x4* m)
@@ -78,21 +58,17 @@ glm::dmat4 ToGlm(const vtkMatrix4x4* m)
   return g;
 }
 
-void SetMatrix(vtkShaderProgram* program, const char* name, const glm::dmat4& m)
-{
-  glm::mat4 f(m);
-  program->SetUniformMatrix4x4(name, glm::value_ptr(f));
-}
-
-vtkOpenGLRenderWindow* WindowOf(vtkRenderer* renderer)
-{
-  return vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-}
-
 // The latest change of the renderer's lights; without `cameraLights`, of its scene lights only:
 // the renderer moves headlights and camera lights with the camera, so a camera move changes them.
-vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer, bool cameraLights = true)
+// 0 when the mapper has lights of its own (its MTime tells their changes).
+vtkMTimeType LatestChangeOfLights(vtkRenderer* renderer,
+  const std::optional<std::vector<cloudvis::Light>>& ownLights,
+  bool cameraLights = true)
 {
+  if (ownLights)
+  {
+    return 0;
+  }
   vtkMTimeType latest = renderer->GetLights()->GetMTime();
   vtkCollectionSimpleIterator it;
   renderer->GetLights()->InitTraversal(it);
@@ -125,46 +101,6 @@ vtkMTimeType LatestChangeOfOtherProps(vtkRenderer* renderer, vtkVolume* volume)
 }
 }
 
-struct vtkCloudVolumeMapper::Internals
-{
-  cloudvis::DensityTexture Density;
-  cloudvis::TransferTexture Transfer;
-  cloudvis::OccupancyTexture Occupancy;
-  cloudvis::JitterTexture Jitter;
-  cloudvis::ExtinctionBoundsTexture ExtinctionBounds; // the path tracer's, made on first use
-  cloudvis::LightVolumeTexture LightVolumes;
-  cloudvis::MarchPrograms March;
-  std::unique_ptr<vtkOpenGLQuadHelper> Composite;
-  std::map<vtkRenderer*, std::unique_ptr<cloudvis::ViewTargets>> Views; // keys: identities only
-  std::string ReportedError; // reported once, until a render succeeds again
-
-  cloudvis::ViewTargets& ViewOf(vtkRenderer* renderer)
-  {
-    auto& view = this->Views[renderer];
-    if (!view)
-    {
-      view = std::make_unique<cloudvis::ViewTargets>();
-    }
-    return *view;
-  }
-
-  long long TextureBytes() const
-  {
-    return this->Density.GetBytes() + this->Transfer.GetBytes() + this->Occupancy.GetBytes() +
-      this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes() + this->LightVolumes.GetBytes();
-  }
-
-  long long Bytes() const
-  {
-    long long bytes = this->TextureBytes();
-    for (const auto& view : this->Views)
-    {
-      bytes += view.second->GetBytes();
-    }
-    return bytes;
-  }
-};
-
 vtkCloudVolumeMapper::vtkCloudVolumeMapper()
   : LightingProperty(vtkSmartPointer<vtkCloudLightingProperty>::New())
   , Internal(new Internals)
@@ -181,6 +117,29 @@ void vtkCloudVolumeMapper::SetLightingProperty(vtkCloudLightingProperty* propert
                                       : vtkSmartPointer<vtkCloudLightingProperty>::New();
     this->Modified();
   }
+}
+
+void vtkCloudVolumeMapper::SetLights(const std::vector<cloudvis::Light>& lights)
+{
+  if (!this->CloudLights || *this->CloudLights != lights)
+  {
+    this->CloudLights = lights;
+    this->Modified();
+  }
+}
+
+void vtkCloudVolumeMapper::UseRendererLights()
+{
+  if (this->CloudLights)
+  {
+    this->CloudLights.reset();
+    this->Modified();
+  }
+}
+
+const std::vector<cloudvis::Light>* vtkCloudVolumeMapper::GetCloudLights() const
+{
+  return this->CloudLights ? &*this->CloudLights : nullptr;
 }
 
 vtkMTimeType vtkCloudVolumeMapper::GetMTime()
@@ -372,8 +331,8 @@ bool vtkCloudVolumeMapper::ComputeUniforms(vtkRenderer* renderer,
     &in.Transfer.GetTable(),
     this->SampleDistance,
     this->TerminationTransmittance,
-    this->LightingProperty,
-    renderer->GetLights());
+    this->LightingProperty->GetParameters(),
+    this->CloudLights ? *this->CloudLights : cloudvis::LightsOf(renderer->GetLights()));
   const cloudvis::MarchProblem problem = cloudvis::SetUpMarch(setup, uniforms, &frame);
   return !problem || this->Fail(problem.Message);
 }
@@ -459,14 +418,14 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
          double(this->GetMTime()),
          double(volume->GetMTime()),
          double(LatestChangeOfOtherProps(renderer, volume)),
-         double(LatestChangeOfLights(renderer, false)) })
+         double(LatestChangeOfLights(renderer, this->CloudLights, false)) })
   {
     content.push_back(v);
   }
   std::vector<double> signature(glm::value_ptr(worldToDevice), glm::value_ptr(worldToDevice) + 16);
   signature.insert(signature.end(), content.begin(), content.end());
   signature.push_back(scale);
-  signature.push_back(double(LatestChangeOfLights(renderer)));
+  signature.push_back(double(LatestChangeOfLights(renderer, this->CloudLights)));
   // Frames marched toward the lights (while interacting) and through the volumes never average
   // together; the history may blend them, as their difference is small against the motion's.
   signature.push_back(double(lightVolumes));
@@ -651,248 +610,6 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     view.SecondsPerPixel =
       view.SecondsPerPixel > 0.0 ? 0.5 * (view.SecondsPerPixel + perPixel) : perPixel;
   }
-  return true;
-}
-
-void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
-{
-  cloudvis::ViewTargets& view = this->Internal->ViewOf(renderer);
-  std::vector<float> counts;
-  FrameStatistics statistics;
-  if (view.Read(WindowOf(renderer),
-        cloudvis::ViewTargets::Counts,
-        counts,
-        statistics.Width,
-        statistics.Height))
-  {
-    for (size_t i = 0; i < counts.size(); i += 4)
-    {
-      statistics.SamplesTaken += counts[i];
-      statistics.UsefulSamples += counts[i + 1];
-    }
-  }
-  statistics.OccupiedBrickFraction = this->Internal->Occupancy.GetOccupiedFraction();
-  statistics.SamplesPerMapRead = this->Internal->March.GetSamplesPerMapRead();
-  this->LastStatistics = statistics;
-}
-
-bool vtkCloudVolumeMapper::ReadImage(
-  vtkRenderer* renderer, std::vector<float>& rgba, int& width, int& height)
-{
-  auto found = this->Internal->Views.find(renderer);
-  return found != this->Internal->Views.end() &&
-    found->second->Read(WindowOf(renderer), cloudvis::ViewTargets::Color, rgba, width, height);
-}
-
-bool vtkCloudVolumeMapper::ReadVariance(vtkRenderer* renderer,
-  std::vector<float>& variance,
-  int& width,
-  int& height)
-{
-  auto found = this->Internal->Views.find(renderer);
-  if (found == this->Internal->Views.end() || !found->second->PathTraced)
-  {
-    return false;
-  }
-  cloudvis::ViewTargets& view = *found->second;
-  const double samples = double(view.AccumulatedFrames) * view.SamplesPerFrame;
-  std::vector<float> mean;
-  if (samples < 2.0 ||
-    !view.Read(WindowOf(renderer), cloudvis::ViewTargets::Color, mean, width, height) ||
-    !view.Read(WindowOf(renderer), cloudvis::ViewTargets::Moments, variance, width, height))
-  {
-    return false;
-  }
-  // The sample variance from the first two moments, over the samples: the variance of the mean.
-  for (size_t i = 0; i < variance.size(); ++i)
-  {
-    const double m = mean[i];
-    const double sampleVariance =
-      std::max(0.0, double(variance[i]) - m * m) * samples / (samples - 1.0);
-    variance[i] = float(sampleVariance / samples);
-  }
-  return true;
-}
-
-bool vtkCloudVolumeMapper::ReadAuxiliary(
-  vtkRenderer* renderer, std::vector<float>& channels, int& width, int& height)
-{
-  auto found = this->Internal->Views.find(renderer);
-  if (found == this->Internal->Views.end() ||
-    !found->second->Read(
-      WindowOf(renderer), cloudvis::ViewTargets::Counts, channels, width, height))
-  {
-    return false;
-  }
-  // The march writes local distances, and NoDepth where the cloud never passes 2%: a mean over
-  // frames that holds it in any one of them is still above NoDepth / 65536 (65536 being the most
-  // frames accumulated), so half of that tells them apart from any real distance. The fourth
-  // channel (the opacity-weighted depths temporal reprojection reads) is not part of this.
-  const double unit = found->second->LocalUnit;
-  const float noDepthInSomeFrame = cloudvis::NoDepth / (2.0f * 65536.0f);
-  for (size_t i = 2; i < channels.size(); i += 4)
-  {
-    channels[i] = channels[i] >= noDepthInSomeFrame ? std::numeric_limits<float>::infinity()
-                                                    : float(double(channels[i]) * unit);
-    channels[i + 1] = 1.0f;
-  }
-  return true;
-}
-
-namespace
-{
-// One of the mapper's read-backs into std::vector (ReadImage, ReadAuxiliary).
-using ReadBack = bool (vtkCloudVolumeMapper::*)(vtkRenderer*, std::vector<float>&, int&, int&);
-
-// Runs a read-back and puts its width x height x 4 floats into image as its one 4-component
-// point array `name`; leaves the image alone when the read-back fails.
-bool ReadIntoImage(vtkCloudVolumeMapper* mapper,
-  ReadBack read,
-  vtkRenderer* renderer,
-  const char* name,
-  vtkImageData* image)
-{
-  std::vector<float> values;
-  int width = 0;
-  int height = 0;
-  if (!image || !(mapper->*read)(renderer, values, width, height))
-  {
-    return false;
-  }
-  vtkNew<vtkFloatArray> pixels;
-  pixels->SetName(name);
-  pixels->SetNumberOfComponents(4);
-  pixels->SetNumberOfTuples(vtkIdType(width) * height);
-  std::copy(values.begin(), values.end(), pixels->GetPointer(0));
-  image->Initialize();
-  image->SetDimensions(width, height, 1);
-  image->GetPointData()->SetScalars(pixels);
-  return true;
-}
-}
-
-bool vtkCloudVolumeMapper::ReadImage(vtkRenderer* renderer, vtkImageData* image)
-{
-  return ReadIntoImage(this, &vtkCloudVolumeMapper::ReadImage, renderer, "rgba", image);
-}
-
-bool vtkCloudVolumeMapper::ReadAuxiliary(vtkRenderer* renderer, vtkImageData* image)
-{
-  return ReadIntoImage(this, &vtkCloudVolumeMapper::ReadAuxiliary, renderer, "auxiliary", image);
-}
-
-bool vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
-{
-  Internals& in = *this->Internal;
-  vtkOpenGLRenderWindow* window = WindowOf(renderer);
-  vtkOpenGLState* state = window->GetState();
-  cloudvis::ViewTargets& view = in.ViewOf(renderer);
-  if (!in.Composite)
-  {
-    in.Composite = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, CloudCompositeFS, "");
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(in.Composite->Program);
-  }
-  vtkShaderProgram* program = in.Composite->Program;
-  if (!program || !program->GetCompiled())
-  {
-    return this->Fail("the composite shader failed to compile or link (the driver's log is in "
-                      "VTK's error output)");
-  }
-
-  int viewport[4];
-  renderer->GetTiledSizeAndOrigin(&viewport[2], &viewport[3], &viewport[0], &viewport[1]);
-  vtkOpenGLState::ScopedglViewport savedViewport(state);
-  vtkOpenGLState::ScopedglEnableDisable savedBlend(state, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglBlendFuncSeparate savedBlendFunction(state);
-  vtkOpenGLState::ScopedglDepthMask savedDepthMask(state);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_FALSE);
-
-  vtkTextureObject* color = view.GetTarget(cloudvis::ViewTargets::Color);
-  vtkTextureObject* counts = view.GetTarget(cloudvis::ViewTargets::Counts);
-  cloudvis::TemporalHistory& history = view.History;
-  color->Activate();
-  counts->Activate();
-  program->SetUniformi("CountTexture", counts->GetTextureUnit());
-  program->SetUniformi("ShowSampleCount", this->DisplayMode == SampleCount ? 1 : 0);
-  program->SetUniformf("SampleCountScale", float(1.0 / view.MostSamplesPerRay));
-  // The samplers the pass does not read must still name units of their type.
-  program->SetUniformi("HistoryColorTexture", color->GetTextureUnit());
-  program->SetUniformi("HistoryDepthTexture", counts->GetTextureUnit());
-  // Draws `image` (its texels times `weight`) over the viewport, or into the history with
-  // `resolve`.
-  const auto draw = [&](vtkTextureObject* image, const int* size, float weight, bool resolve)
-  {
-    program->SetUniformi("MarchTexture", image->GetTextureUnit());
-    const float imageSize[2] = { float(size[0]), float(size[1]) };
-    program->SetUniform2f("MarchSize", imageSize);
-    program->SetUniformi("Upsample", size[0] != viewport[2] || size[1] != viewport[3] ? 1 : 0);
-    program->SetUniformf("FrameWeight", weight);
-    program->SetUniformi("ResolveHistory", resolve ? 1 : 0);
-    in.Composite->Render();
-  };
-  const float frameWeight = 1.0f / float(std::max(1, view.AccumulatedFrames));
-
-  if (history.IsAllocated() && (view.Marched || !history.HasImage))
-  {
-    // A new frame: resolved at full resolution into the history, blended with the last image
-    // reprojected on an interactive frame.
-    vtkTextureObject* lastColor = history.GetColor();
-    vtkTextureObject* lastDepth = history.GetDepth();
-    if (history.Reproject)
-    {
-      lastColor->Activate();
-      lastDepth->Activate();
-      program->SetUniformi("HistoryColorTexture", lastColor->GetTextureUnit());
-      program->SetUniformi("HistoryDepthTexture", lastDepth->GetTextureUnit());
-      const float historySize[2] = { float(history.GetSize()[0]), float(history.GetSize()[1]) };
-      program->SetUniform2f("HistorySize", historySize);
-      SetMatrix(program, "DCLocalMatrix", history.DeviceToLocal);
-      SetMatrix(program, "LastDCLocalMatrix", history.LastDeviceToLocal);
-      SetMatrix(program, "LastLocalDCMatrix", glm::inverse(history.LastDeviceToLocal));
-      program->SetUniformf("HistoryWeight", HistoryWeight);
-      program->SetUniformf("DepthTolerance", float(history.DepthTolerance));
-      program->SetUniformf("FadeAngle", float(HistoryFadeDegrees * vtkMath::Pi() / 180.0));
-    }
-    program->SetUniformi("Reproject", history.Reproject ? 1 : 0);
-    if (!history.BindNext(window))
-    {
-      color->Deactivate();
-      counts->Deactivate();
-      return this->Fail("the temporal history framebuffer is incomplete on this GPU");
-    }
-    state->vtkglViewport(0, 0, viewport[2], viewport[3]);
-    state->vtkglDisable(GL_BLEND);
-    draw(color, view.GetMarchSize(), frameWeight, true);
-    history.FinishNext(window);
-    if (history.Reproject)
-    {
-      lastColor->Deactivate();
-      lastDepth->Deactivate();
-    }
-  }
-
-  state->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-  state->vtkglEnable(GL_BLEND);
-  // Premultiplied "over": the cloud in front of what the renderer has drawn.
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  if (history.IsAllocated())
-  {
-    vtkTextureObject* shown = history.GetColor();
-    shown->Activate();
-    draw(shown, history.GetSize(), 1.0f, false);
-    shown->Deactivate();
-  }
-  else
-  {
-    draw(color, view.GetMarchSize(), frameWeight, false);
-  }
-  color->Deactivate();
-  counts->Deactivate();
   return true;
 }
 

@@ -25,9 +25,11 @@
  * = emission-absorption, derivative = the directional derivative toward each light, or march = a
  * nested march toward each light with Beer-Lambert transmittance, a two-lobe Henyey-Greenstein
  * phase and approximate multiple scattering), which the CPU renderers (vtkCloudReferenceRenderer,
- * vtkCloudPathTracer) take too. The lights are the renderer's switched-on vtkLights (at most
- * cloudvis::LightingLimits::MaxLights, 8; more are refused, not dropped): directional or
- * positional, with their diffuse color, intensity and attenuation values.
+ * vtkCloudPathTracer) take too. The lights are the renderer's switched-on vtkLights, or from C++
+ * a list of cloudvis::Lights given to the mapper (SetLights: a scene's lights, which cloudvis
+ * gives so, never as vtkLights): at most cloudvis::LightingLimits::MaxLights, 8 (more are
+ * refused, not dropped), directional or positional, with their color, intensity and
+ * attenuation.
  *
  * The field is uploaded in its native type (unsigned char as R8, unsigned short as R16, float as
  * R32F, or as R16F half floats with HalfFloatDensity), which the shader reads back in the data's
@@ -72,6 +74,7 @@
 #include <vtkVolumeMapper.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -254,6 +257,20 @@ public:
   virtual void SetLightingProperty(vtkCloudLightingProperty* property);
   vtkGetObjectMacro(LightingProperty, vtkCloudLightingProperty);
   ///@}
+
+#ifndef __VTK_WRAP__
+  ///@{
+  /**
+   * The mapper's own lights, as cloudvis::Lights (a scene's): they light the cloud in place of
+   * the renderer's vtkLights (Modified when they differ from the last ones set) until
+   * UseRendererLights(). GetCloudLights() is null while the renderer's lights are used (the
+   * default).
+   */
+  void SetLights(const std::vector<cloudvis::Light>& lights);
+  void UseRendererLights();
+  const std::vector<cloudvis::Light>* GetCloudLights() const;
+  ///@}
+#endif
 
   ///@{
   /**
@@ -449,6 +466,9 @@ protected:
   int PathTraceSeed = 0;
   int PathTraceMaxBounces = 1024;
   vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
+#ifndef __VTK_WRAP__
+  std::optional<std::vector<cloudvis::Light>> CloudLights; // in place of the renderer's when set
+#endif
 
 private:
   vtkCloudVolumeMapper(const vtkCloudVolumeMapper&) = delete;

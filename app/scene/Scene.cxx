@@ -89,29 +89,6 @@ json ParseJsonText(const std::string& text, const std::string& where)
 
 } // namespace
 
-std::vector<std::string> LightingModelNames()
-{
-  return schema::TextsOf(schema::LightingModels());
-}
-
-std::optional<LightingModel> FindLightingModel(const std::string& name)
-{
-  for (const schema::Name& entry : schema::LightingModels())
-  {
-    if (name == entry.Text)
-    {
-      return static_cast<LightingModel>(entry.Value);
-    }
-  }
-  return std::nullopt;
-}
-
-std::string LightingModelName(LightingModel model)
-{
-  const std::string name = schema::NameOf(schema::LightingModels(), static_cast<int>(model));
-  return name.empty() ? "unknown" : name;
-}
-
 std::vector<Light> DefaultLights()
 {
   Light sun;
@@ -123,15 +100,6 @@ std::vector<Light> DefaultLights()
   sun.Intensity = 1.0f;
   sun.Attenuation = glm::vec3(0.0f, 0.0f, 1.0f);
   return { sun };
-}
-
-LightingParameters LightingOf(const Scene& scene)
-{
-  LightingParameters lighting = scene.Render.Parameters;
-  lighting.Model = scene.Render.Lighting;
-  lighting.AmbientColor = scene.Ambient.Color;
-  lighting.AmbientStrength = scene.Ambient.Strength;
-  return lighting;
 }
 
 Scene DefaultScene()

@@ -171,13 +171,13 @@ std::vector<Table> ReferenceTables()
 
   tables.push_back(KeyTable("render", RenderKeys(), scene.Render));
   Table lighting =
-    KeyTable("render.lighting", DerivativeKeys(), scene.Render.Parameters, "derivative.");
-  const Table march = KeyTable("render.lighting", MarchKeys(), scene.Render.Parameters, "march.");
+    KeyTable("render.lighting", DerivativeKeys(), scene.Render.Lighting, "derivative.");
+  const Table march = KeyTable("render.lighting", MarchKeys(), scene.Render.Lighting, "march.");
   lighting.Rows.insert(lighting.Rows.end(), march.Rows.begin(), march.Rows.end());
   tables.push_back(lighting);
 
   tables.push_back(KeyTable("lights", LightKeys(), Light{}, "", &LightTypes()));
-  tables.push_back(KeyTable("ambient", AmbientKeys(), scene.Ambient));
+  tables.push_back(KeyTable("ambient", AmbientKeys(), scene.Render.Lighting));
   tables.push_back(KeyTable("view", ViewKeys(), ViewSpec{}));
   tables.push_back(KeyTable("view.oblique", ObliqueKeys(), ObliqueSpec{}));
   return tables;

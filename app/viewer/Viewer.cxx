@@ -59,7 +59,7 @@ constexpr unsigned long MouseButtonEvents[] = { vtkCommand::LeftButtonPressEvent
 
 void Viewer::Internals::ApplyLighting()
 {
-  ConfigureLighting(this->Current, this->View, this->Mapper);
+  ConfigureLighting(this->Current, this->Mapper);
 }
 
 // ParaView sets a new dataset's colour map to the data range when it is first shown, and later

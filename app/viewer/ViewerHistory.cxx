@@ -13,23 +13,6 @@ namespace cloudvis
 {
 namespace
 {
-bool SameLights(const std::vector<Light>& a, const std::vector<Light>& b)
-{
-  if (a.size() != b.size())
-  {
-    return false;
-  }
-  for (size_t i = 0; i < a.size(); ++i)
-  {
-    if (a[i].Positional != b[i].Positional || a[i].Position != b[i].Position ||
-      a[i].FocalPoint != b[i].FocalPoint || a[i].Color != b[i].Color ||
-      a[i].Intensity != b[i].Intensity || a[i].Attenuation != b[i].Attenuation)
-    {
-      return false;
-    }
-  }
-  return true;
-}
 // Equal but for rounding: VTK renormalizes the view up now and then (a difference of 1e-16 is no
 // camera move to undo).
 bool Near(const std::array<double, 3>& a, const std::array<double, 3>& b)
@@ -53,7 +36,7 @@ std::string UndoableDifference(const UndoableState& a, const UndoableState& b)
   {
     parts.push_back("camera");
   }
-  if (a.Lighting != b.Lighting || !SameLights(a.Lights, b.Lights) || a.Step != b.Step ||
+  if (a.Lighting != b.Lighting || a.Lights != b.Lights || a.Step != b.Step ||
     a.ResolutionScale != b.ResolutionScale)
   {
     parts.push_back("lighting");
@@ -138,7 +121,7 @@ UndoableState Viewer::Internals::Undoable() const
   camera->GetFocalPoint(state.FocalPoint.data());
   camera->GetViewUp(state.ViewUp.data());
   state.ViewAngle = camera->GetViewAngle();
-  state.Lighting = this->Current.Render.Lighting;
+  state.Lighting = this->Current.Render.Lighting.Model;
   state.Lights = this->Current.Lights;
   state.Step = this->Current.Render.Step;
   state.ResolutionScale = this->Current.Render.ResolutionScale;
@@ -165,7 +148,7 @@ void Viewer::Internals::RestoreUndoable(const UndoableState& state)
   camera->SetViewUp(state.ViewUp.data());
   camera->SetViewAngle(state.ViewAngle);
   this->View->ResetCameraClippingRange();
-  this->Current.Render.Lighting = state.Lighting;
+  this->Current.Render.Lighting.Model = state.Lighting;
   this->Current.Lights = state.Lights;
   this->Current.Render.Step = state.Step;
   this->Current.Render.ResolutionScale = state.ResolutionScale;

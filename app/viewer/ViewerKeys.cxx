@@ -7,6 +7,8 @@
 #include "Scene.h"
 #include "ViewerFiles.h"
 
+#include "CloudMarchUniforms.h" // EffectiveSampleDistance
+
 #include <vtkCamera.h>
 
 #include <algorithm>
@@ -76,12 +78,9 @@ void Viewer::Internals::MoveLight(double azimuthDegrees, double elevationDegrees
 
 double Viewer::Internals::EffectiveStep() const
 {
-  if (this->Current.Render.Step > 0.0)
-  {
-    return this->Current.Render.Step;
-  }
-  const double* spacing = this->Field->GetSpacing();
-  return std::min({ spacing[0], spacing[1], spacing[2] });
+  // The mapper's own meaning of step 0, the voxel edge after the volume's placement.
+  return EffectiveSampleDistance(
+    GeometryOf(this->Field, this->Volume->GetMatrix()), this->Current.Render.Step);
 }
 
 void Viewer::Internals::LoadNextPreset()
@@ -408,11 +407,11 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       names.erase(
         std::remove(names.begin(), names.end(), LightingModelName(LightingModel::PathTrace)),
         names.end());
-      const std::string current = LightingModelName(this->Current.Render.Lighting);
+      const std::string current = LightingModelName(this->Current.Render.Lighting.Model);
       const auto found = std::find(names.begin(), names.end(), current);
       const size_t next =
         found == names.end() ? 0 : size_t(found - names.begin() + 1) % names.size();
-      this->Current.Render.Lighting = *FindLightingModel(names[next]);
+      this->Current.Render.Lighting.Model = *FindLightingModel(names[next]);
       this->ApplyLighting();
       this->Show("lighting: " + names[next], false);
       break;

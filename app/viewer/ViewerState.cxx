@@ -129,7 +129,7 @@ ViewerState Viewer::State() const
 {
   const Internals& in = *this->Internal;
   ViewerState state;
-  state.Lighting = in.Current.Render.Lighting;
+  state.Lighting = in.Current.Render.Lighting.Model;
   for (int axis = 0; axis < 3; ++axis)
   {
     state.SliceVisible[size_t(axis)] = in.Slices->GetSliceVisible(axis);

@@ -425,7 +425,7 @@ TEST(Scene, RenderSectionsReachTheScene)
   EXPECT_EQ(scene.Camera.ViewUp, (std::array<double, 3>{ 1, 0, 0 }));
   EXPECT_EQ(scene.Camera.ViewAngle, 45.0);
   EXPECT_EQ(scene.Background, (std::array<double, 3>{ 0, 0.5, 1 }));
-  EXPECT_EQ(scene.Render.Lighting, cloudvis::LightingModel::None);
+  EXPECT_EQ(scene.Render.Lighting.Model, cloudvis::LightingModel::None);
   EXPECT_EQ(scene.Render.Step, 0.02);
   EXPECT_FALSE(scene.Render.Jitter);
   EXPECT_EQ(scene.Render.ResolutionScale, 0.5);

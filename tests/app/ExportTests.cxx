@@ -163,7 +163,7 @@ TEST(Exr, PathTracedRenderAddsTheVarianceOfEachChannel)
       "variance.B", "variance.G", "variance.R" }));
 
   cloudvis::Scene scene = SmallScene();
-  scene.Render.Lighting = cloudvis::LightingModel::PathTrace;
+  scene.Render.Lighting.Model = cloudvis::LightingModel::PathTrace;
   scene.Render.SamplesPerPixel = 4;
   const cloudvis::RenderedImage image = RenderFloat(scene).Image;
   ASSERT_EQ(image.Variance.size(), image.Radiance.size());

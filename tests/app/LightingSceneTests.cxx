@@ -1,5 +1,6 @@
 // The lighting side of the application: the lights, ambient, render.derivative and render.march
-// sections reach LightingParameters and vtkLights with their documented defaults; the models
+// sections reach the scene's LightingParameters and Lights with their documented defaults, and
+// the renderers as they are; the models
 // change the rendered pixels; --cpu-reference agrees with the GPU render of the same scene; and
 // compare lays its panels side by side. The render and compare tests need an X display (Xvfb).
 #include "CloudMarchUniforms.h"
@@ -92,8 +93,8 @@ TEST(SceneLights, WithoutTheKeyASunFromSixEightFour)
   EXPECT_EQ(scene.Lights[0].FocalPoint, glm::dvec3(0.0));
   EXPECT_EQ(scene.Lights[0].Color, glm::vec3(1.0f));
   EXPECT_EQ(scene.Lights[0].Intensity, 1.0f); // the same light in every model
-  EXPECT_EQ(scene.Ambient.Color, glm::vec3(0.6f, 0.6f, 0.75f));
-  EXPECT_EQ(scene.Ambient.Strength, 0.2f);
+  EXPECT_EQ(scene.Render.Lighting.AmbientColor, glm::vec3(0.6f, 0.6f, 0.75f));
+  EXPECT_EQ(scene.Render.Lighting.AmbientStrength, 0.2f);
 }
 
 TEST(SceneLights, Errors)
@@ -158,10 +159,10 @@ TEST(SceneLighting, RenderSectionsAndAmbientReachLightingParameters)
     "ambient.color=" + Number(v.AmbientColor.r) + "," + Number(v.AmbientColor.g) + "," +
       Number(v.AmbientColor.b),
     "ambient.strength=" + Number(v.AmbientStrength) });
-  cloudvis::support::ExpectSameLighting(cloudvis::LightingOf(scene), v, "every key");
+  cloudvis::support::ExpectSameLighting(scene.Render.Lighting, v, "every key");
 
   // Absent keys keep LightingParameters' defaults.
-  const cloudvis::LightingParameters defaults = cloudvis::LightingOf(cloudvis::DefaultScene());
+  const cloudvis::LightingParameters defaults = cloudvis::DefaultScene().Render.Lighting;
   const cloudvis::LightingParameters documented;
   EXPECT_EQ(defaults.LightSteps, documented.LightSteps);
   EXPECT_EQ(defaults.PhaseG1, documented.PhaseG1);
@@ -169,31 +170,29 @@ TEST(SceneLighting, RenderSectionsAndAmbientReachLightingParameters)
   EXPECT_EQ(defaults.PowderStrength, 0.0f);
 }
 
-TEST(SceneLighting, ConfigureLightingAddsSceneLightsAndNoHeadlight)
+// The scene's lights reach the mapper as they are, cloudvis::Lights, in place of the renderer's
+// vtkLights: "lights": [] lights nothing even beside a renderer's headlight.
+TEST(SceneLighting, ConfigureLightingGivesTheMapperTheSceneLightsAsTheyAre)
 {
   const cloudvis::Scene scene = SceneWith({ R"(lights=[
       {"type": "directional", "position": [1, 2, 3], "color": [1, 0.5, 0], "intensity": 2},
       {"type": "point", "position": [-1, 0, 2], "attenuation": [1, 0.5, 0]}])",
     "render.lighting=derivative" });
-  vtkNew<vtkRenderer> renderer;
   vtkNew<vtkCloudVolumeMapper> mapper;
-  cloudvis::ConfigureLighting(scene, renderer, mapper);
-  EXPECT_FALSE(renderer->GetAutomaticLightCreation());
-  ASSERT_EQ(renderer->GetLights()->GetNumberOfItems(), 2);
-  auto* sun = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
-  auto* lamp = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(1));
-  EXPECT_TRUE(sun->LightTypeIsSceneLight());
-  EXPECT_FALSE(sun->GetPositional());
-  EXPECT_EQ(sun->GetPosition()[2], 3.0);
-  EXPECT_EQ(sun->GetDiffuseColor()[1], 0.5);
-  EXPECT_EQ(sun->GetIntensity(), 2.0);
-  EXPECT_TRUE(lamp->GetPositional());
-  EXPECT_EQ(lamp->GetConeAngle(), 180.0);
-  EXPECT_EQ(lamp->GetAttenuationValues()[1], 0.5);
+  EXPECT_EQ(mapper->GetCloudLights(), nullptr) << "a mapper alone lights with its renderer's";
+  cloudvis::ConfigureLighting(scene, mapper);
+  ASSERT_NE(mapper->GetCloudLights(), nullptr);
+  EXPECT_TRUE(*mapper->GetCloudLights() == scene.Lights);
+  EXPECT_TRUE(mapper->GetLightingProperty()->GetParameters() == scene.Render.Lighting);
   EXPECT_EQ(mapper->GetLightingProperty()->GetParameters().Model, LightingModel::Derivative);
 
-  cloudvis::ConfigureLighting(SceneWith({ "lights=[]" }), renderer, mapper);
-  EXPECT_EQ(renderer->GetLights()->GetNumberOfItems(), 0) << "replaced, not added to";
+  const vtkMTimeType before = mapper->GetMTime();
+  cloudvis::ConfigureLighting(SceneWith({ "lights=[]" }), mapper);
+  ASSERT_NE(mapper->GetCloudLights(), nullptr) << "no lights, not the renderer's";
+  EXPECT_TRUE(mapper->GetCloudLights()->empty()) << "replaced, not added to";
+  EXPECT_GT(mapper->GetMTime(), before) << "a change of the lights re-renders";
+  mapper->UseRendererLights();
+  EXPECT_EQ(mapper->GetCloudLights(), nullptr);
 }
 
 // The GPU mapper and the CPU reference are configured from one RendererSettingsOf(scene): the
@@ -207,9 +206,8 @@ TEST(SceneLighting, TheGpuAndTheCpuReachTheSceneAlike)
     "render.march.g1=0.7",
     "render.step=0.05",
     "ambient.strength=0.3" });
-  vtkNew<vtkRenderer> renderer;
   vtkNew<vtkCloudVolumeMapper> mapper;
-  cloudvis::ConfigureLighting(scene, renderer, mapper);
+  cloudvis::ConfigureLighting(scene, mapper);
   vtkNew<vtkCloudReferenceRenderer> reference;
   cloudvis::ConfigureReference(scene, reference);
 
@@ -222,18 +220,11 @@ TEST(SceneLighting, TheGpuAndTheCpuReachTheSceneAlike)
   EXPECT_EQ(cpu.PhaseG1, gpu.PhaseG1);
   EXPECT_EQ(cpu.AmbientStrength, 0.3f);
   EXPECT_EQ(cpu.AmbientStrength, gpu.AmbientStrength);
-  const std::vector<cloudvis::Light> gpuLights = cloudvis::LightsOf(renderer->GetLights());
-  const std::vector<cloudvis::Light> cpuLights = cloudvis::LightsOf(reference->GetLights());
-  ASSERT_EQ(gpuLights.size(), 2u);
-  ASSERT_EQ(cpuLights.size(), 2u);
-  for (std::size_t i = 0; i < 2; ++i)
-  {
-    EXPECT_EQ(cpuLights[i].Positional, gpuLights[i].Positional);
-    EXPECT_EQ(cpuLights[i].Position, gpuLights[i].Position);
-    EXPECT_EQ(cpuLights[i].Color, gpuLights[i].Color);
-    EXPECT_EQ(cpuLights[i].Intensity, gpuLights[i].Intensity);
-    EXPECT_EQ(cpuLights[i].Attenuation, gpuLights[i].Attenuation);
-  }
+  ASSERT_NE(mapper->GetCloudLights(), nullptr);
+  ASSERT_NE(reference->GetCloudLights(), nullptr);
+  EXPECT_EQ(mapper->GetCloudLights()->size(), 2u);
+  EXPECT_TRUE(*reference->GetCloudLights() == *mapper->GetCloudLights());
+  EXPECT_TRUE(reference->GetLightList() == scene.Lights) << "the reference lights with them";
   // The reference builds the table the mapper builds from the volume property `render` gives it.
   std::string problem;
   const cloudvis::TransferTable cpuTable =

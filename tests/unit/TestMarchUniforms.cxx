@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -112,6 +113,40 @@ TEST(MarchUniforms, GeometryReadsTheExtentStartTheDirectionAndTheVolumeMatrix)
   image->GetBounds(bounds); // VTK's own bounds agree (before the volume matrix)
   EXPECT_DOUBLE_EQ(bounds[2], -3.0);
   EXPECT_DOUBLE_EQ(bounds[4], 9.0);
+}
+
+// "Step 0 means one voxel": one voxel after the volume's placement, for the march and for the
+// viewer's step keys alike (EffectiveSampleDistance). A volume scaled by 0.3 along x, with a
+// direction matrix that turns its axes, has voxels 0.15 long where its image's spacing says 0.4:
+// the viewer once took the spacing's 0.4 while the march took 0.15.
+TEST(MarchUniforms, StepZeroIsOneVoxelAfterTheVolumesScaleAndDirection)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(8, 8, 8);
+  image->SetSpacing(0.5, 0.4, 0.6);
+  const double quarterTurn[9] = { 0, -1, 0, 1, 0, 0, 0, 0, 1 }; // x and y swapped, turned
+  image->SetDirectionMatrix(quarterTurn);
+  vtkNew<vtkMatrix4x4> volumeMatrix; // scale 0.3 along world x, which the image's y axis becomes
+  volumeMatrix->SetElement(0, 0, 0.3);
+  volumeMatrix->SetElement(2, 2, 2.0);
+  const VolumeGeometry geometry = GeometryOf(image, volumeMatrix);
+  EXPECT_DOUBLE_EQ(SmallestVoxelEdge(geometry), 0.12); // 0.4 * 0.3: the image's y turned to x
+  const double* spacing = image->GetSpacing();
+  ASSERT_GT(std::min({ spacing[0], spacing[1], spacing[2] }), 3.0 * SmallestVoxelEdge(geometry))
+    << "a case where the image's spacing and the placed voxel disagree";
+
+  const TransferTable table = LinearTable(1.0f);
+  MarchSetup setup;
+  setup.Geometry = geometry;
+  setup.Table = &table;
+  setup.SampleDistance = 0.0;
+  MarchUniforms u;
+  LocalFrame frame;
+  ASSERT_FALSE(SetUpMarch(setup, u, &frame));
+  EXPECT_NEAR(double(u.Step) * frame.Unit, EffectiveSampleDistance(geometry, 0.0), 1e-7)
+    << "the march's step 0 is the one the viewer's step keys scale";
+  EXPECT_DOUBLE_EQ(EffectiveSampleDistance(geometry, 0.0), 0.12);
+  EXPECT_DOUBLE_EQ(EffectiveSampleDistance(geometry, 0.07), 0.07) << "a given step is itself";
 }
 
 TEST(MarchUniforms, AStepBeyondTheSampleCapIsRefusedWithTheSmallestAllowed)

@@ -630,6 +630,59 @@ TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
   EXPECT_GT(copy->GetMTime(), time);
 }
 
+// One table names the models: the property's names and values are the table's, in its order,
+// and a name finds its model back.
+TEST(LightingProperty, ModelNamesAndValuesAreTheOneTables)
+{
+  vtkNew<vtkCloudLightingProperty> property;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < LightingModelTable().size(); ++i)
+  {
+    const LightingModelEntry& entry = LightingModelTable()[i];
+    EXPECT_EQ(int(entry.Model), int(i)) << "in the enumeration's order";
+    property->SetModel(int(entry.Model));
+    EXPECT_STREQ(property->GetModelAsString(), entry.Name);
+    EXPECT_EQ(property->GetParameters().Model, entry.Model);
+    EXPECT_EQ(FindLightingModel(entry.Name), entry.Model);
+    EXPECT_STREQ(LightingModelName(entry.Model), entry.Name);
+    names.emplace_back(entry.Name);
+  }
+  EXPECT_EQ(names, LightingModelNames());
+  EXPECT_EQ(names, (std::vector<std::string>{ "none", "derivative", "march", "pathtrace" }))
+    << "the names scene files and --lighting take";
+  EXPECT_FALSE(FindLightingModel("lit"));
+  property->SetModel(99);
+  EXPECT_EQ(property->GetModel(), vtkCloudLightingProperty::PathTraceLighting) << "clamped";
+  property->SetModel(-3);
+  EXPECT_EQ(property->GetModel(), vtkCloudLightingProperty::NoLighting);
+  property->SetTransmittance(7);
+  EXPECT_EQ(property->GetParameters().Transmittance, LightTransmittance::Nested);
+}
+
+// A scene's lights reach a CPU renderer as cloudvis::Lights and light the cloud exactly as the
+// same lights made vtkLights do; a light collection set afterwards takes their place.
+TEST(ReferenceRenderer, CloudLightsLightAsTheirVtkLightsAndGiveWayToACollection)
+{
+  auto renderer = FrontView(SoftSphere(24), 24);
+  renderer->GetLightingProperty()->SetParameters(ModelOnly(LightingModel::Derivative));
+  const std::vector<Light> lights = { DirectionalLight({ 1, 1, 0 }), PointLight({ 0, -1.5f, 1 }) };
+  renderer->SetLights(lights);
+  ASSERT_NE(renderer->GetCloudLights(), nullptr);
+  EXPECT_TRUE(renderer->GetLightList() == lights);
+  const Image asLights = Render(renderer);
+  EXPECT_GT(MeanRadiance(asLights), 0.01);
+
+  renderer->SetLights(MakeLights(lights));
+  EXPECT_EQ(renderer->GetCloudLights(), nullptr);
+  EXPECT_EQ(Render(renderer).Values, asLights.Values);
+
+  renderer->SetLights(lights);
+  EXPECT_EQ(Render(renderer).Values, asLights.Values);
+  renderer->SetLights(vtkSmartPointer<vtkLightCollection>::New()); // no vtkLights, no ambient
+  EXPECT_EQ(renderer->GetCloudLights(), nullptr);
+  EXPECT_EQ(MeanRadiance(Render(renderer)), 0.0);
+}
+
 // Not a test: how long a 128 x 128 render of a 64^3 field takes per model, for the report.
 // Run with --gtest_also_run_disabled_tests --gtest_filter='*Timing*'.
 TEST(ReferenceRenderer, DISABLED_Timing128x128Of64Cubed)

@@ -1,9 +1,11 @@
-// A Scene as cloudvis's renderers take it: one function, RendererSettingsOf, turns the scene's
-// transfer function, lighting model and parameters (render and ambient sections), lights and
-// step into the VTK objects every renderer is configured with (a vtkVolumeProperty, a
-// vtkCloudLightingProperty, vtkLights), and both the GPU mapper (ConfigureLighting, for
-// render, compare and the viewer) and the CPU reference (ConfigureReference) are configured from
-// what it returns, so a scene cannot reach one renderer differently from the other.
+// A Scene as cloudvis's renderers take it: one function, RendererSettingsOf, gathers what every
+// renderer is configured with (the transfer function as a vtkVolumeProperty, the scene's
+// LightingParameters in a vtkCloudLightingProperty, the scene's lights as they are, the step),
+// and both the GPU mapper (ConfigureLighting, for render, compare and the viewer) and the CPU
+// reference (ConfigureReference) are configured from what it returns, so a scene cannot reach
+// one renderer differently from the other. The lighting value and the lights are the scene's own
+// (CloudLightingParameters.h) from the scene file to the march's uniforms: nothing re-expresses
+// them on the way (no vtkLights; the renderer's vtkLights light nothing of the cloud).
 // CheckSceneRenderable (CpuReference.h) checks the same settings.
 #ifndef cloudvis_SceneLighting_h
 #define cloudvis_SceneLighting_h
@@ -12,11 +14,11 @@
 
 #include <vtkSmartPointer.h>
 
+#include <vector>
+
 class vtkCloudLightingProperty;
 class vtkCloudReferenceRenderer;
 class vtkCloudVolumeMapper;
-class vtkLightCollection;
-class vtkRenderer;
 class vtkVolumeProperty;
 
 namespace cloudvis
@@ -26,19 +28,18 @@ namespace cloudvis
 struct RendererSettings
 {
   vtkSmartPointer<vtkVolumeProperty> TransferFunction; // MakeVolumeProperty(transfer_function)
-  vtkSmartPointer<vtkCloudLightingProperty> Lighting;  // LightingOf(scene)
-  vtkSmartPointer<vtkLightCollection> Lights;          // MakeLights(scene lights)
+  vtkSmartPointer<vtkCloudLightingProperty> Lighting;  // holding scene.Render.Lighting
+  std::vector<Light> Lights;                           // scene.Lights
   double SampleDistance = 0.0;                         // render.step (0: one voxel)
 };
 
 RendererSettings RendererSettingsOf(const Scene& scene);
 
-// The GPU path: replaces the renderer's lights with the scene's and turns off VTK's automatic
-// headlight, which a renderer without lights would otherwise create (so "lights": [] means no
-// lights), then gives the mapper the scene's lighting property and step. The volume property is
-// the caller's (MakeVolumeProperty, OffscreenRender.h), as the transfer function of
-// RendererSettingsOf is.
-void ConfigureLighting(const Scene& scene, vtkRenderer* renderer, vtkCloudVolumeMapper* mapper);
+// The GPU path: gives the mapper the scene's lighting property, its lights (in place of the
+// renderer's vtkLights, so "lights": [] means no lights whatever the renderer holds) and its
+// step. The volume property is the caller's (MakeVolumeProperty, OffscreenRender.h), as the
+// transfer function of RendererSettingsOf is.
+void ConfigureLighting(const Scene& scene, vtkCloudVolumeMapper* mapper);
 
 // The CPU path: the same settings given to the reference renderer (or the path tracer): its
 // transfer function, lighting property, lights and step.

@@ -34,7 +34,7 @@ const Keys<RenderSpec>& RenderKeys();
 const Keys<LightingParameters>& DerivativeKeys();
 const Keys<LightingParameters>& MarchKeys();
 const Keys<Light>& LightKeys(); // used by the types of LightTypes()
-const Keys<AmbientSpec>& AmbientKeys();
+const Keys<LightingParameters>& AmbientKeys(); // the ambient section: Render.Lighting's
 // The view section (ViewSchema.cxx): the section's key, its keys and view.oblique's.
 Key<Scene> ViewSection();
 const Keys<ViewSpec>& ViewKeys();

@@ -1,6 +1,6 @@
 // A scene file, parsed and validated: what cloudvis should show or export. A scene is a JSON
 // object of sections (field, transfer_function, camera, background, render, lights, ambient,
-// view);
+// view); the names render.lighting takes are LightingModelTable's (CloudLightingParameters.h);
 // every key of every section is one entry of the scene schema (SceneSchema.cxx), which the
 // reader, --set, the resolved scene of SceneJson.h and the reference tables of
 // docs/scene-format.md (SceneReferenceMarkdown) all walk. Defaults are the members' initial
@@ -13,7 +13,7 @@
 #define cloudvis_Scene_h
 
 #include "CloudDensityEvaluator.h"
-#include "CloudLighting.h" // LightingModel
+#include "CloudLightingParameters.h" // LightingParameters, Light, the models' names
 #include "FieldIO.h"       // FieldReadOptions
 
 #include <nlohmann/json.hpp>
@@ -109,13 +109,24 @@ struct CameraSpec
   double ViewAngle = 30.0; // degrees, vertical
 };
 
+// A scene's lighting before its keys are read: LightingParameters' defaults, with the ambient
+// section's own (a dim bluish light from every side; vtkCloudLightingProperty's default is none).
+inline LightingParameters DefaultSceneLighting()
+{
+  LightingParameters lighting;
+  lighting.AmbientColor = glm::vec3(0.6f, 0.6f, 0.75f);
+  lighting.AmbientStrength = 0.2f;
+  return lighting;
+}
+
 // The "render" section: how the mapper marches and how large the image is.
 struct RenderSpec
 {
-  LightingModel Lighting = LightingModel::None; // names: LightingModelNames()
-  // render.derivative.* and render.march.*. Its Model and Ambient* members are not read from
-  // here (render.lighting and the ambient section are): LightingOf(scene) assembles all three.
-  LightingParameters Parameters;
+  // The lighting, one value from the scene file to the renderers' uniforms: its Model is
+  // render.lighting (names: LightingModelTable), its parameters render.derivative.* and
+  // render.march.*, its AmbientColor and AmbientStrength the ambient section. The renderers are
+  // given it whole (SceneLighting.h).
+  LightingParameters Lighting = DefaultSceneLighting();
   double Step = 0.0; // world units; 0: one voxel (the smallest spacing of the field)
   bool Jitter = true;
   double ResolutionScale = 1.0;
@@ -146,13 +157,6 @@ struct BackgroundSpec
   // normalize(DefaultSun).
   std::optional<std::array<double, 3>> Sun;
   static constexpr std::array<double, 3> DefaultSun{ { 0.5, 0.6, 0.6 } };
-};
-
-// The "ambient" section: isotropic, unshadowed light added by the derivative and march models.
-struct AmbientSpec
-{
-  glm::vec3 Color{ 0.6f, 0.6f, 0.75f };
-  float Strength = 0.2f;
 };
 
 // The "view" section: how `cloudvis view` shows the scene besides the picture itself (the
@@ -210,9 +214,8 @@ struct Scene
   BackgroundSpec BackgroundStyle;
   RenderSpec Render;
   // The "lights" section (at most LightingLimits::MaxLights; DefaultLights() when the key is
-  // absent) and "ambient".
+  // absent), given to the renderers as they are. The "ambient" section is Render.Lighting's.
   std::vector<Light> Lights = DefaultLights();
-  AmbientSpec Ambient;
   // The "view" section, absent from scenes that have none (the viewer's defaults apply then).
   std::optional<ViewSpec> View;
   // The validated JSON document as given, after overrides and before defaults (the fully
@@ -229,18 +232,6 @@ struct SceneOverride
   nlohmann::json Value;
   std::string Option; // "--lighting", for messages
 };
-
-// The names render.lighting accepts, in the order of the table (for help and messages).
-std::vector<std::string> LightingModelNames();
-
-// The model a render.lighting name stands for (nullopt for an unknown name), and the name of a
-// model; both from the same table as LightingModelNames.
-std::optional<LightingModel> FindLightingModel(const std::string& name);
-std::string LightingModelName(LightingModel model);
-
-// The lighting the renderers use: the model of render.lighting, the parameters of
-// render.derivative and render.march, and the ambient section.
-LightingParameters LightingOf(const Scene& scene);
 
 // The scene used when none is given: the article's cloud (a unit sphere plus 6 octaves of value
 // noise on 128^3 voxels over [-2, 2]^3).

@@ -179,7 +179,8 @@ struct Viewer::Internals
   int FirstDirectionalLight() const;
   // Turns the first directional light about its focal point (elevation within +-89 degrees).
   void MoveLight(double azimuthDegrees, double elevationDegrees);
-  // render.step, or the field's smallest spacing when it is 0 (automatic).
+  // render.step, or when it is 0 (automatic) the one voxel the mapper marches with
+  // (EffectiveSampleDistance: the voxel edge after the volume's placement).
   double EffectiveStep() const;
   // p and Shift+p: the next preset of PresetDirectory(), the function saved as a preset.
   void LoadNextPreset();

@@ -1,0 +1,590 @@
+// The code of the scene schema: reading and writing what is more than a list of keys (a field
+// from a file or not, a shape list, a transfer-function preset, the camera, the typed objects
+// whose "type" decides which keys they take: shapes, lights, backgrounds), and what is resolved
+// once the whole scene is read (the sky's sun, the droplets' extinction). The tables that name
+// these functions are SceneSchema.cxx's.
+//
+// Every message has the shape "<source>: <dotted key>: <problem>" (Context::Fail); the wording
+// of a value's problem is Schema.cxx's, once per kind of value.
+#include "SceneSchemaReaders.h"
+
+#include "Errors.h"
+#include "FieldIO.h"
+#include "Presets.h"
+#include "SceneField.h"
+
+#include "CloudTransferTable.h" // MaxTransferDensity
+
+#include <cmath>
+#include <limits>
+
+namespace cloudvis
+{
+namespace schema
+{
+
+namespace
+{
+std::string IndexKey(const std::string& key, size_t i)
+{
+  return key + "[" + std::to_string(i) + "]";
+}
+
+// A key checked but stored nowhere: a preset file's labels.
+template<typename S>
+Key<S> Label(const std::string& name)
+{
+  const ValueType type = Text();
+  return Key<S>(
+    name,
+    type,
+    [type](const Context& c, const json& v, const std::string& k, S&) { Check(c, type, v, k); },
+    nullptr,
+    "");
+}
+
+// Reads a typed object's members (a shape, a light): the "type" first, which decides the keys
+// the object takes, then every member. `noun` follows the type's name in messages ("a point
+// light"). Returns the type's value.
+template<typename S>
+int ReadTypedMembers(const Context& c,
+  const json& v,
+  const std::string& key,
+  const Keys<S>& keys,
+  const std::string& noun,
+  S& target)
+{
+  const Key<S>& typeKey = *FindKey(keys, "type");
+  typeKey.Read(c, v["type"], key + ".type", target);
+  const int type = int(Check(c, typeKey.Type, v["type"], key + ".type"));
+  const std::string a = "a " + v["type"].get<std::string>() + noun;
+  const std::string allowed = "allowed keys for " + a + ": " + Join(KeyNames(keys, 1u << type));
+  for (const auto& member : v.items())
+  {
+    const std::string memberKey = key + "." + member.key();
+    const Key<S>* entry = FindKey(keys, member.key());
+    if (!entry)
+    {
+      c.Fail(memberKey, "unknown key; " + allowed);
+    }
+    if (!(entry->UsedBy & (1u << type)))
+    {
+      c.Fail(memberKey, "not a parameter of " + a + "; " + allowed);
+    }
+    entry->Read(c, member.value(), memberKey, target);
+  }
+  return type;
+}
+
+} // namespace
+
+// ---- field -----------------------------------------------------------------------------------
+
+namespace
+{
+const char* const MorphName = "morph";
+
+std::vector<std::string> AllShapeNames()
+{
+  std::vector<std::string> names = TextsOf(ShapeTypes());
+  names.emplace_back(MorphName);
+  return names;
+}
+
+// One entry of "shape": a name (that shape with its default parameters) or an object.
+// Returns false for "morph", which is not a Shape but a switch of the whole field.
+bool ReadShape(const Context& c, const json& v, const std::string& key, Shape& shape)
+{
+  if (v.is_string())
+  {
+    if (v.get<std::string>() == MorphName)
+    {
+      return false;
+    }
+    for (const Name& name : ShapeTypes())
+    {
+      if (v.get<std::string>() == name.Text)
+      {
+        shape.Type = static_cast<ShapeType>(name.Value);
+        return true;
+      }
+    }
+    c.Fail(
+      key, "unknown shape \"" + v.get<std::string>() + "\"; allowed: " + Join(AllShapeNames()));
+  }
+  if (!v.is_object())
+  {
+    c.Fail(key,
+      "expected a shape name (one of " + Join(AllShapeNames()) +
+        "), a shape object or a list of them, got " + Describe(v));
+  }
+  if (!v.contains("type"))
+  {
+    c.Fail(key + ".type",
+      "missing; a shape object needs a type (one of " + Join(TextsOf(ShapeTypes())) + ")");
+  }
+  if (v["type"] == MorphName)
+  {
+    c.Fail(key + ".type", "\"morph\" is not a shape type; write \"shape\": \"morph\" instead");
+  }
+  ReadTypedMembers(c, v, key, ShapeKeys(), "", shape);
+  return true;
+}
+
+} // namespace
+
+void ReadShapes(const Context& c, const json& v, const std::string& key, FieldSpec& f)
+{
+  const bool list = v.is_array();
+  if (list && v.empty())
+  {
+    c.Fail(key, "the list of shapes is empty; give at least one shape");
+  }
+  const json items = list ? v : json::array({ v });
+  f.Description.Shapes.clear();
+  f.Description.Morph = false;
+  for (size_t i = 0; i < items.size(); ++i)
+  {
+    const std::string itemKey = list ? IndexKey(key, i) : key;
+    Shape shape;
+    if (!ReadShape(c, items[i], itemKey, shape))
+    {
+      if (items.size() > 1)
+      {
+        c.Fail(itemKey, "\"morph\" cannot be combined with other shapes");
+      }
+      f.Description.Morph = true;
+      f.Description.Shapes = { Shape{} };
+      return;
+    }
+    f.Description.Shapes.push_back(shape);
+  }
+}
+
+json WriteShapes(const FieldSpec& f)
+{
+  if (f.Description.Morph)
+  {
+    return MorphName;
+  }
+  json shapes = json::array();
+  for (const Shape& shape : f.Description.Shapes)
+  {
+    shapes.push_back(WriteObject(ShapeKeys(), shape, Bit(shape.Type)));
+  }
+  return shapes;
+}
+
+namespace
+{
+// A field is read from a file or generated, never both: a section takes keys of one kind.
+void CheckFieldKind(const Context& c, const json& v, const std::string& key)
+{
+  if (!v.is_object())
+  {
+    return; // ReadObject says what is wrong
+  }
+  const bool fromFile = v.contains("file");
+  for (const auto& member : v.items())
+  {
+    const bool fileKey = FindKey(FieldFileKeys(), member.key()) != nullptr;
+    if (fromFile && !fileKey && FindKey(GeneratedFieldKeys(), member.key()))
+    {
+      c.Fail(key + ".file",
+        "cannot be combined with " + key + "." + member.key() +
+          ": a field loaded from a file has no procedural parameters");
+    }
+    if (!fromFile && fileKey)
+    {
+      c.Fail(key + "." + member.key(),
+        "says how a field file is read; give " + key +
+          ".file too (or leave it out for a procedural field)");
+    }
+  }
+}
+
+} // namespace
+
+void ReadField(const Context& c, const json& v, const std::string& key, Scene& scene)
+{
+  CheckFieldKind(c, v, key);
+  ReadObject(c, v, key, FieldKeys(), scene.Field);
+  if (scene.Field.FromFile())
+  {
+    // What the file's format decides, once every key is read (format may follow file): an
+    // extension no format has, options the format does not take, a raw file without its layout.
+    if (const auto problem = CheckFieldReadOptions(scene.Field.File, scene.Field.Read))
+    {
+      c.Fail(key + "." + problem->Key, problem->Problem);
+    }
+    return;
+  }
+  // The source's own checks, for what only a combination of keys can get wrong (a lacunarity
+  // that turns negative after some octaves, noise coordinates beyond the lattice's range).
+  const std::string problem = ValidateProceduralField(scene.Field);
+  if (!problem.empty())
+  {
+    c.Fail(key, problem);
+  }
+}
+
+json WriteField(const Scene& scene)
+{
+  const json units = WriteObject(FieldUnitKeys(), scene.Field);
+  if (!scene.Field.FromFile())
+  {
+    json field = WriteObject(GeneratedFieldKeys(), scene.Field);
+    field.update(units);
+    return field;
+  }
+  // What reading the file again needs: the file, and the read options that differ from their
+  // defaults.
+  json field = WriteObject(FieldFileKeys(), scene.Field);
+  const json defaults = WriteObject(FieldFileKeys(), FieldSpec{});
+  for (const auto& option : defaults.items())
+  {
+    if (field.value(option.key(), json()) == option.value())
+    {
+      field.erase(option.key());
+    }
+  }
+  field.update(units);
+  return field;
+}
+
+std::vector<Name> FieldFormatNames()
+{
+  std::vector<Name> names;
+  for (const FieldFormat& format : FieldFormats())
+  {
+    names.push_back({ format.Id, int(names.size()), format.Name });
+  }
+  return names;
+}
+
+std::string FieldFormatsInWords()
+{
+  std::vector<std::string> formats;
+  for (const FieldFormat& format : FieldFormats())
+  {
+    std::vector<std::string> extensions;
+    for (const std::string& extension : format.Extensions)
+    {
+      extensions.push_back("`" + extension + "`");
+    }
+    formats.push_back(format.Name + " " + Join(extensions, "/"));
+  }
+  return Join(formats);
+}
+
+ValueType Dimensions()
+{
+  return IntegerOrIntegersIn(3, 1, std::numeric_limits<int>::max(), "[nx, ny, nz]");
+}
+
+// ---- transfer_function -----------------------------------------------------------------------
+
+namespace
+{
+// A preset file in cloudvis's format: the transfer function's own keys plus two labels.
+const Keys<TransferFunctionSpec>& PresetKeys()
+{
+  static const Keys<TransferFunctionSpec> keys = {
+    Label<TransferFunctionSpec>("name"),
+    Label<TransferFunctionSpec>("description"),
+    *FindKey(TransferFunctionKeys(), "opacity"),
+    *FindKey(TransferFunctionKeys(), "color"),
+    *FindKey(TransferFunctionKeys(), "unit_distance"),
+  };
+  return keys;
+}
+
+} // namespace
+
+void ReadTransferFunction(const Context& c, const json& v, const std::string& key, Scene& scene)
+{
+  const Keys<TransferFunctionSpec>& keys = TransferFunctionKeys();
+  if (v.is_object() && v.contains("preset"))
+  {
+    const std::string presetKey = key + ".preset";
+    const std::string reference = Check(c, FindKey(keys, "preset")->Type, v["preset"], presetKey);
+    std::string paraViewName;
+    if (v.contains("preset_name"))
+    {
+      paraViewName =
+        Check(c, FindKey(keys, "preset_name")->Type, v["preset_name"], key + ".preset_name");
+    }
+    std::string problem;
+    try
+    {
+      const PresetDocument preset = ReadPreset(reference, c.BaseDirectory, paraViewName);
+      const Context presetContext{ preset.Path, "", {} };
+      TransferFunctionSpec fromPreset;
+      ReadObject(presetContext, preset.Document, "", PresetKeys(), fromPreset);
+      scene.TransferFunction = fromPreset;
+    }
+    catch (const InputError& e)
+    {
+      problem = e.what();
+    }
+    if (!problem.empty())
+    {
+      c.Fail(presetKey, problem);
+    }
+  }
+  else if (v.is_object() && v.contains("preset_name"))
+  {
+    c.Fail(key + ".preset_name", "applies only with " + key + ".preset (a ParaView preset file)");
+  }
+  ReadObject(c, v, key, keys, scene.TransferFunction);
+}
+
+std::string DensitiesWithinFloat(const json& points)
+{
+  const double first = points.front()[0].get<double>(), last = points.back()[0].get<double>();
+  if (std::abs(first) <= MaxTransferDensity && std::abs(last) <= MaxTransferDensity &&
+    last - first <= MaxTransferDensity)
+  {
+    return "";
+  }
+  return "its points span densities [" + FormatNumber(first) + ", " + FormatNumber(last) +
+    "], beyond what float arithmetic holds (" + FormatNumber(MaxTransferDensity) + ")";
+}
+
+Key<TransferFunctionSpec> PresetReference(const std::string& name, ValueType type, std::string help)
+{
+  return Key<TransferFunctionSpec>(
+    name,
+    std::move(type),
+    [](const Context&, const json&, const std::string&, TransferFunctionSpec&) {},
+    nullptr,
+    std::move(help));
+}
+
+// ---- camera ----------------------------------------------------------------------------------
+
+void ReadCamera(const Context& c, const json& v, const std::string& key, Scene& scene)
+{
+  ReadObject(c, v, key, CameraKeys(), scene.Camera);
+  // What can be checked before the field is known; the renderer checks the view direction
+  // against view_up once the defaults are filled in.
+  const CameraSpec& camera = scene.Camera;
+  if (camera.Position && camera.Orbit)
+  {
+    c.Fail(key + ".orbit",
+      "cannot be combined with " + key + ".position: give either the position " +
+        "or the orbit around the focal point");
+  }
+  if (camera.Position && camera.FocalPoint && *camera.Position == *camera.FocalPoint)
+  {
+    c.Fail(
+      key + ".position", "the camera position equals the focal point; the view has no direction");
+  }
+}
+
+// ---- background ------------------------------------------------------------------------------
+
+void ReadBackground(const Context& c, const json& v, const std::string& key, Scene& s)
+{
+  const Keys<Scene>& keys = BackgroundKeys();
+  s.BackgroundStyle = BackgroundSpec{};
+  if (v.is_array())
+  {
+    FindKey(keys, "color")->Read(c, v, key, s);
+    return;
+  }
+  const std::string types = Join(TextsOf(BackgroundTypes()));
+  if (!v.is_object())
+  {
+    c.Fail(key,
+      "expected [r, g, b] or an object with a \"type\" (one of " + types + "), got " + Describe(v));
+  }
+  if (!v.contains("type"))
+  {
+    c.Fail(key + ".type", "missing; one of " + types);
+  }
+  const Key<Scene>& typeKey = *FindKey(keys, "type");
+  const unsigned type = 1u << Check(c, typeKey.Type, v["type"], key + ".type").get<int>();
+  const std::string a = "a " + v["type"].get<std::string>() + " background";
+  const std::vector<std::string> allowed = KeyNames(keys, type);
+  for (const auto& member : v.items())
+  {
+    const Key<Scene>* entry = FindKey(keys, member.key());
+    if (!entry || !(entry->UsedBy & type))
+    {
+      c.Fail(key + "." + member.key(), "not a key of " + a + "; allowed keys: " + Join(allowed));
+    }
+    entry->Read(c, member.value(), key + "." + member.key(), s);
+  }
+  for (const Key<Scene>& entry : keys)
+  {
+    if ((entry.UsedBy & type) && entry.Type.Required && !v.contains(entry.Name))
+    {
+      c.Fail(key + "." + entry.Name,
+        "missing; " + a + " needs " +
+          Join(std::vector<std::string>(allowed.begin() + 1, allowed.end())));
+    }
+  }
+}
+
+json WriteBackground(const Scene& s)
+{
+  if (s.BackgroundStyle.Type == BackgroundType::Solid)
+  {
+    return ToJson(s.Background);
+  }
+  return WriteObject(BackgroundKeys(), s, Bit(s.BackgroundStyle.Type));
+}
+
+std::string NormalizeSun(Scene& s)
+{
+  std::array<double, 3>& sun = *s.BackgroundStyle.Sun;
+  const double length = std::sqrt(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
+  if (!(length > 0.0) || !std::isfinite(length))
+  {
+    return "the direction toward the sun must not be zero";
+  }
+  for (double& x : sun)
+  {
+    x /= length;
+  }
+  return "";
+}
+
+// ---- render ----------------------------------------------------------------------------------
+
+Key<RenderSpec> LightingObject(const std::string& name,
+  const Keys<LightingParameters>& (*keys)(),
+  std::string help)
+{
+  return Key<RenderSpec>(
+    name,
+    CustomValue("object").DefaultIs("below"),
+    [keys](const Context& c, const json& v, const std::string& k, RenderSpec& r)
+    {
+      ReadObject(c, v, k, keys(), r.Lighting);
+      const std::string problem = ValidateLightingParameters(r.Lighting);
+      if (!problem.empty())
+      {
+        c.Fail(k, problem);
+      }
+    },
+    [keys](const RenderSpec& r) { return WriteObject(keys(), r.Lighting); },
+    std::move(help),
+    Inside(keys));
+}
+
+// ---- lights ----------------------------------------------------------------------------------
+
+namespace
+{
+Light ReadLight(const Context& c, const json& v, const std::string& key)
+{
+  const std::string types = Join(TextsOf(LightTypes()));
+  if (!v.is_object())
+  {
+    c.Fail(key, "expected a light object with a type (one of " + types + "), got " + Describe(v));
+  }
+  for (const Key<Light>& entry : LightKeys())
+  {
+    if (entry.Type.Required && !v.contains(entry.Name))
+    {
+      c.Fail(key + "." + entry.Name,
+        "missing; a light needs a type (one of " + types + ") and a position");
+    }
+  }
+  Light light;
+  ReadTypedMembers(c, v, key, LightKeys(), " light", light);
+  if (!light.Positional && light.Position == light.FocalPoint)
+  {
+    c.Fail(key + ".position",
+      "a directional light's position equals its focal point; the " +
+        std::string("light has no direction"));
+  }
+  return light;
+}
+
+} // namespace
+
+void ReadLights(const Context& c, const json& v, const std::string& key, Scene& s)
+{
+  if (!v.is_array())
+  {
+    c.Fail(key, "expected a list of light objects, got " + Describe(v));
+  }
+  if (v.size() > size_t(LightingLimits::MaxLights))
+  {
+    c.Fail(key,
+      "at most " + std::to_string(LightingLimits::MaxLights) +
+        " lights (the renderer's limit), got " + std::to_string(v.size()));
+  }
+  s.Lights.clear();
+  for (size_t i = 0; i < v.size(); ++i)
+  {
+    s.Lights.push_back(ReadLight(c, v[i], IndexKey(key, i)));
+  }
+}
+
+json WriteLights(const Scene& s)
+{
+  json lights = json::array();
+  for (const Light& light : s.Lights)
+  {
+    lights.push_back(WriteObject(LightKeys(), light, light.Positional ? Point : Directional));
+  }
+  return lights;
+}
+
+// ---- resolved once the whole scene is read ---------------------------------------------------
+
+void ResolveDroplets(const Context& c, Scene& s)
+{
+  TransferFunctionSpec& t = s.TransferFunction;
+  if (t.Extinction != TransferFunctionSpec::ExtinctionRule::Droplets)
+  {
+    return;
+  }
+  const FieldUnits& units = s.Field.Units;
+  if (units.Quantity != FieldQuantity::Lwc)
+  {
+    c.Fail("transfer_function.extinction",
+      "\"droplets\" derives the extinction from liquid water content: it needs field.quantity "
+      "\"lwc\"");
+  }
+  if (!units.Length || *units.Length == LengthUnit::None)
+  {
+    c.Fail("transfer_function.extinction",
+      "\"droplets\" gives an extinction per metre: it needs field.length_unit \"m\" or "
+      "\"km\" to convert it to world units");
+  }
+  t.DropletExtinctionPerLwc =
+    DropletExtinctionPerMetre(1.0, units.EffectiveRadius.value_or(DefaultEffectiveRadius)) *
+    MetresPerUnit(*units.Length);
+}
+
+void ResolveSkySun(const json& document, Scene& s)
+{
+  BackgroundSpec& background = s.BackgroundStyle;
+  if (background.Type != BackgroundType::Sky || background.Sun)
+  {
+    return;
+  }
+  if (document.contains("lights"))
+  {
+    for (const Light& light : s.Lights)
+    {
+      if (!light.Positional)
+      {
+        const glm::dvec3 toward = DirectionTowardLight(light);
+        background.Sun = std::array<double, 3>{ { toward.x, toward.y, toward.z } };
+        return;
+      }
+    }
+  }
+  const std::array<double, 3>& d = BackgroundSpec::DefaultSun;
+  const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  background.Sun = std::array<double, 3>{ { d[0] / length, d[1] / length, d[2] / length } };
+}
+
+} // namespace schema
+} // namespace cloudvis

@@ -1,0 +1,259 @@
+// What a cloud is lit with, as one value from the scene file to the renderers' uniforms: the
+// lighting model and its parameters (LightingParameters, the model inside), the names of the
+// models (one table), the lights in the world (Light) and the limits the renderers put on them.
+// A scene holds a LightingParameters and a list of Lights (app/scene Scene.h);
+// vtkCloudLightingProperty holds one LightingParameters for VTK and Python; SetUpMarch
+// (CloudMarchUniforms.h) turns both into the march's uniforms for the GPU mapper and the CPU
+// renderers alike. The functions the models compute with are CloudLighting.h's.
+//
+// Public: the application's scene layer includes it. It includes glm and the standard library
+// only, no transport code.
+#ifndef CloudLightingParameters_h
+#define CloudLightingParameters_h
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cloudvis
+{
+
+enum class LightingModel
+{
+  None,       // emission-absorption: a sample emits its transfer-function color
+  Derivative, // directional derivative toward each light, one extra density sample per light
+  March,      // nested march toward each light: Beer-Lambert shadowing and a phase function
+  PathTrace,  // Monte Carlo volumetric path tracing: every order of scattering (CloudPathTrace.h)
+};
+
+// The one table of the models' names: render.lighting and --lighting, the viewer's m key,
+// `cloudvis compare`'s panels, vtkCloudLightingProperty::GetModelAsString and the reference
+// table of docs/scene-format.md all read it. In the enumeration's order.
+struct LightingModelEntry
+{
+  const char* Name;
+  LightingModel Model;
+  const char* Description; // for the docs and help
+};
+inline const std::array<LightingModelEntry, 4>& LightingModelTable()
+{
+  static const std::array<LightingModelEntry, 4> table{ {
+    { "none",
+      LightingModel::None,
+      "emission-absorption: the cloud shows its color, attenuated; no light sources" },
+    { "derivative", LightingModel::Derivative, "the directional derivative toward each light" },
+    { "march",
+      LightingModel::March,
+      "a nested march toward each light: shadows, phase function, multiple scattering" },
+    { "pathtrace",
+      LightingModel::PathTrace,
+      "Monte Carlo path tracing of the same medium, every order of scattering, `render.spp` "
+      "paths per pixel: the ground truth" },
+  } };
+  return table;
+}
+
+// The names of LightingModelTable, in its order (for help and messages).
+inline std::vector<std::string> LightingModelNames()
+{
+  std::vector<std::string> names;
+  for (const LightingModelEntry& entry : LightingModelTable())
+  {
+    names.emplace_back(entry.Name);
+  }
+  return names;
+}
+
+// The model a name stands for (nullopt for an unknown name), and the name of a model ("unknown"
+// for a value outside the enumeration).
+inline std::optional<LightingModel> FindLightingModel(const std::string& name)
+{
+  for (const LightingModelEntry& entry : LightingModelTable())
+  {
+    if (name == entry.Name)
+    {
+      return entry.Model;
+    }
+  }
+  return std::nullopt;
+}
+inline const char* LightingModelName(LightingModel model)
+{
+  for (const LightingModelEntry& entry : LightingModelTable())
+  {
+    if (entry.Model == model)
+    {
+      return entry.Name;
+    }
+  }
+  return "unknown";
+}
+
+// A light in the world, as a scene gives it to every renderer (a vtkLight, where VTK lights the
+// volume, becomes one through LightsOf, CloudMarchUniforms.h). Positions are double, like VTK's:
+// a light beside a volume far from the origin keeps its place, and a directional light may sit
+// at any distance along its direction.
+struct Light
+{
+  bool Positional = false; // false: directional, from Position toward FocalPoint
+  glm::dvec3 Position{ 0.0, 10.0, 10.0 };
+  glm::dvec3 FocalPoint{ 0.0 };
+  glm::vec3 Color{ 1.0f };
+  float Intensity = 1.0f;
+  glm::vec3 Attenuation{ 0.0f, 0.0f, 1.0f }; // positional: 1 / (a0 + a1 r + a2 r^2), world r
+};
+
+inline bool operator==(const Light& a, const Light& b)
+{
+  return a.Positional == b.Positional && a.Position == b.Position && a.FocalPoint == b.FocalPoint &&
+    a.Color == b.Color && a.Intensity == b.Intensity && a.Attenuation == b.Attenuation;
+}
+inline bool operator!=(const Light& a, const Light& b)
+{
+  return !(a == b);
+}
+
+// The unit direction toward a directional light, computed in double (so a sun placed at 1e300
+// keeps its direction); the zero vector when its position equals its focal point.
+inline glm::dvec3 DirectionTowardLight(const Light& light)
+{
+  const glm::dvec3 d = light.Position - light.FocalPoint;
+  // Scaled first: the squared length of a vector beyond 1e154 overflows even in double.
+  const double largest = std::max({ std::abs(d.x), std::abs(d.y), std::abs(d.z) });
+  return largest > 0.0 && std::isfinite(largest) ? glm::normalize(d / largest) : glm::dvec3(0.0);
+}
+
+// A light as the march computes with it: in the march's local frame (CloudMarchUniforms.h),
+// whose lengths are world lengths divided by the frame's unit. The uniforms of the GLSL's lights.
+struct LocalLight
+{
+  bool Positional = false;
+  glm::vec3 Position{ 0.0f };    // local coordinates; positional lights
+  glm::vec3 Direction{ 0.0f };   // unit, toward the light; directional lights
+  glm::vec3 Radiance{ 0.0f };    // color * intensity
+  glm::vec3 Attenuation{ 0.0f }; // (a0, a1 unit, a2 unit^2): the falloff of a local distance
+  // Directional lights, the same at every sample (SetUpMarch computes them once, in float, for
+  // both renderers): Direction in index units per local unit, and the derivative model's offset
+  // h Direction in index units.
+  glm::vec3 IndexDirection{ 0.0f };
+  glm::vec3 IndexOffset{ 0.0f };
+};
+
+// How the march finds the optical depth toward a light at a sample (docs/lighting.md).
+enum class LightTransmittance
+{
+  Volumes, // read from per-light optical-depth volumes computed when the inputs change
+  Nested,  // a march toward each light at every sample (the quality setting)
+};
+
+struct LightingParameters
+{
+  LightingModel Model = LightingModel::None;
+  glm::vec3 AmbientColor{ 1.0f };
+  float AmbientStrength = 0.0f;
+
+  // derivative: the finite-difference distance h toward the light, world units; 0 means 4
+  // voxel spacings (the smallest spacing of the field).
+  float DerivativeDistance = 0.0f;
+
+  // march: LightSteps segments toward each light spanning the way to the volume's exit (or a
+  // point light), each LightStepGrowth times longer than the one before (1: uniform steps), the
+  // first at least LightStep long (0 means 2 voxel spacings).
+  int LightSteps = 6;
+  float LightStep = 0.0f;
+  float LightStepGrowth = 1.6f;
+  // Where the optical depth comes from: the volumes (fast; their march has uniform steps of the
+  // view's step) or the nested march above at every sample.
+  LightTransmittance Transmittance = LightTransmittance::Volumes;
+  // Henyey-Greenstein phase, two lobes: w * HG(g1) + (1 - w) * HG(g2). w = 1 is one lobe.
+  float PhaseG1 = 0.6f;
+  float PhaseG2 = -0.3f;
+  float PhaseLobeWeight = 0.8f;
+  // Approximate multiple scattering: octaves n = 1..N added to single scattering (n = 0), each
+  // scaling scattering by a^n, extinction toward the light by b^n, eccentricity by c^n. The
+  // values are fitted to the path tracer (`cloudvis-bench-pathtrace fit`, docs/lighting.md
+  // "Fitting the march to the path tracer"); until that fit they were 3 and 0.5, 0.5, 0.5.
+  int MultipleScatteringOctaves = 3;
+  float ScatteringFalloff = 0.41f;   // a
+  float ExtinctionFalloff = 0.26f;   // b
+  float EccentricityFalloff = 0.46f; // c
+  // Non-physical "powder" darkening of thin regions (an artistic term): 0 disables.
+  float PowderStrength = 0.0f;
+};
+
+// Every member equal (vtkCloudLightingProperty is Modified only when a value changes).
+inline bool operator==(const LightingParameters& a, const LightingParameters& b)
+{
+  return a.Model == b.Model && a.AmbientColor == b.AmbientColor &&
+    a.AmbientStrength == b.AmbientStrength && a.DerivativeDistance == b.DerivativeDistance &&
+    a.LightSteps == b.LightSteps && a.LightStep == b.LightStep &&
+    a.LightStepGrowth == b.LightStepGrowth && a.Transmittance == b.Transmittance &&
+    a.PhaseG1 == b.PhaseG1 && a.PhaseG2 == b.PhaseG2 && a.PhaseLobeWeight == b.PhaseLobeWeight &&
+    a.MultipleScatteringOctaves == b.MultipleScatteringOctaves &&
+    a.ScatteringFalloff == b.ScatteringFalloff && a.ExtinctionFalloff == b.ExtinctionFalloff &&
+    a.EccentricityFalloff == b.EccentricityFalloff && a.PowderStrength == b.PowderStrength;
+}
+inline bool operator!=(const LightingParameters& a, const LightingParameters& b)
+{
+  return !(a == b);
+}
+
+// The limits ValidateLightingParameters puts on LightingParameters, and the number of lights
+// the renderers take; the scene schema states the same ones from here.
+struct LightingLimits
+{
+  // The GLSL's MAX_LIGHTS (the mapper substitutes it into shaders/transport/Transport.glsl). The
+  // GPU mapper and the CPU renderers refuse more (SetUpMarch), and so does a scene's lights
+  // section.
+  static constexpr int MaxLights = 8;
+  static constexpr int MinLightSteps = 1;
+  static constexpr int MaxLightSteps = 64;
+  static constexpr float MinLightStepGrowth = 1.0f;
+  static constexpr float MaxLightStepGrowth = 4.0f;
+  static constexpr int MaxMultipleScatteringOctaves = 8;
+};
+
+// Empty when the parameters are usable, else the problem, in words.
+inline std::string ValidateLightingParameters(const LightingParameters& p)
+{
+  using L = LightingLimits;
+  const auto finite3 = [](glm::vec3 v)
+  { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite3(p.AmbientColor) || !std::isfinite(p.AmbientStrength) || p.AmbientStrength < 0.0f)
+    return "ambient color and strength must be finite, strength >= 0";
+  if (!std::isfinite(p.DerivativeDistance) || p.DerivativeDistance < 0.0f)
+    return "the derivative distance must be >= 0 (0: automatic)";
+  if (p.LightSteps < L::MinLightSteps || p.LightSteps > L::MaxLightSteps)
+    return "light-march steps must be between " + std::to_string(L::MinLightSteps) + " and " +
+      std::to_string(L::MaxLightSteps);
+  if (!std::isfinite(p.LightStep) || p.LightStep < 0.0f)
+    return "the light-march step must be >= 0 (0: automatic)";
+  if (!std::isfinite(p.LightStepGrowth) || p.LightStepGrowth < L::MinLightStepGrowth ||
+    p.LightStepGrowth > L::MaxLightStepGrowth)
+    return "the light-march step growth must be between " +
+      std::to_string(int(L::MinLightStepGrowth)) + " and " +
+      std::to_string(int(L::MaxLightStepGrowth));
+  if (!(std::abs(p.PhaseG1) < 1.0f) || !(std::abs(p.PhaseG2) < 1.0f))
+    return "phase eccentricities g must be in (-1, 1)";
+  if (!(p.PhaseLobeWeight >= 0.0f && p.PhaseLobeWeight <= 1.0f))
+    return "the phase lobe weight must be in [0, 1]";
+  if (p.MultipleScatteringOctaves < 0 ||
+    p.MultipleScatteringOctaves > L::MaxMultipleScatteringOctaves)
+    return "multiple-scattering octaves must be between 0 and " +
+      std::to_string(L::MaxMultipleScatteringOctaves);
+  for (float f : { p.ScatteringFalloff, p.ExtinctionFalloff, p.EccentricityFalloff })
+    if (!(f >= 0.0f && f <= 1.0f))
+      return "multiple-scattering falloffs must be in [0, 1]";
+  if (!(p.PowderStrength >= 0.0f && p.PowderStrength <= 1.0f))
+    return "the powder strength must be in [0, 1]";
+  return {};
+}
+
+} // namespace cloudvis
+
+#endif
