@@ -19,6 +19,7 @@
 #ifndef CloudTransport_h
 #define CloudTransport_h
 
+#include "CloudLighting.h"
 #include "CloudMarchUniforms.h"
 #include "cloudvisFiltersModule.h"
 

@@ -113,60 +113,47 @@ std::string MarchShaderSource(LightingModel model,
 
 void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
 {
-  const float dims[3] = { float(u.Dimensions.x), float(u.Dimensions.y), float(u.Dimensions.z) };
-  program->SetUniform3f("Dimensions", dims);
-  program->SetUniformMatrix4x4("IndexToLocal", const_cast<float*>(glm::value_ptr(u.IndexToLocal)));
-  program->SetUniformMatrix3x3("LocalToIndex", const_cast<float*>(glm::value_ptr(u.LocalToIndex)));
-  program->SetUniformf("DensityScale", u.Density.Scale);
-  program->SetUniformf("DensityBias", u.Density.Bias);
+  // The transport's uniforms are the members of the CPU's glsl::Transport, by the same names:
+  // TransportOf is the one mapping from the march's set-up to them.
+  glsl::Transport t = TransportOf(u);
+  program->SetUniform3f("Dimensions", glm::value_ptr(t.Dimensions));
+  program->SetUniformMatrix4x4("IndexToLocal", glm::value_ptr(t.IndexToLocal));
+  program->SetUniformMatrix3x3("LocalToIndex", glm::value_ptr(t.LocalToIndex));
+  program->SetUniformf("DensityScale", t.DensityScale);
+  program->SetUniformf("DensityBias", t.DensityBias);
+  program->SetUniformf("ExtinctionUnit", t.ExtinctionUnit);
+
+  program->SetUniformi("LightCount", t.LightCount);
+  program->SetUniform1iv("LightPositional", MaxLights, t.LightPositional);
+  program->SetUniform3fv("LightPosition", MaxLights, glm::value_ptr(t.LightPosition[0]));
+  program->SetUniform3fv("LightDirection", MaxLights, glm::value_ptr(t.LightDirection[0]));
+  program->SetUniform3fv("LightRadiance", MaxLights, glm::value_ptr(t.LightRadiance[0]));
+  program->SetUniform3fv("LightAttenuation", MaxLights, glm::value_ptr(t.LightAttenuation[0]));
+  program->SetUniform3fv(
+    "LightIndexDirection", MaxLights, glm::value_ptr(t.LightIndexDirection[0]));
+  program->SetUniform3fv("LightIndexOffset", MaxLights, glm::value_ptr(t.LightIndexOffset[0]));
+  program->SetUniform3f("Ambient", glm::value_ptr(t.Ambient));
+
+  program->SetUniformf("DerivativeDistance", t.DerivativeDistance);
+  program->SetUniformf("DerivativeSlopeScale", t.DerivativeSlopeScale);
+  program->SetUniformi("LightSteps", t.LightSteps);
+  program->SetUniformf("LightStep", t.LightStep);
+  program->SetUniformf("LightStepGrowth", t.LightStepGrowth);
+  program->SetUniformf("PhaseG1", t.PhaseG1);
+  program->SetUniformf("PhaseG2", t.PhaseG2);
+  program->SetUniformf("PhaseLobeWeight", t.PhaseLobeWeight);
+  program->SetUniformi("MultipleScatteringOctaves", t.MultipleScatteringOctaves);
+  program->SetUniformf("ScatteringFalloff", t.ScatteringFalloff);
+  program->SetUniformf("ExtinctionFalloff", t.ExtinctionFalloff);
+  program->SetUniformf("EccentricityFalloff", t.EccentricityFalloff);
+  program->SetUniformf("PowderStrength", t.PowderStrength);
+
+  // The march loop's own (CloudMarchFS.glsl).
   const float tableRange[2] = { float(u.Table->Range[0]), float(u.Table->Range[1]) };
   program->SetUniform2f("TableRange", tableRange);
   program->SetUniformf("TableSize", float(u.Table->Size));
-  program->SetUniformf("ExtinctionUnit", u.ExtinctionUnit);
   program->SetUniformf("Step", u.Step);
   program->SetUniformf("TerminationTransmittance", u.TerminationTransmittance);
-
-  // The lights, packed into the GLSL's arrays.
-  std::vector<int> positional(MaxLights, 0);
-  std::vector<float> position(3 * MaxLights, 0.0f), direction(3 * MaxLights, 0.0f),
-    radiance(3 * MaxLights, 0.0f), attenuation(3 * MaxLights, 0.0f),
-    indexDirection(3 * MaxLights, 0.0f), indexOffset(3 * MaxLights, 0.0f);
-  const auto pack = [](std::vector<float>& array, size_t i, const glm::vec3& v)
-  { std::copy(glm::value_ptr(v), glm::value_ptr(v) + 3, array.begin() + 3 * i); };
-  for (size_t i = 0; i < u.Lights.size(); ++i)
-  {
-    const LocalLight& l = u.Lights[i];
-    positional[i] = l.Positional ? 1 : 0;
-    pack(position, i, l.Position);
-    pack(direction, i, l.Direction);
-    pack(radiance, i, l.Radiance);
-    pack(attenuation, i, l.Attenuation);
-    pack(indexDirection, i, l.IndexDirection);
-    pack(indexOffset, i, l.IndexOffset);
-  }
-  program->SetUniform1iv("LightPositional", MaxLights, positional.data());
-  program->SetUniform3fv("LightIndexDirection", MaxLights, indexDirection.data());
-  program->SetUniform3fv("LightIndexOffset", MaxLights, indexOffset.data());
-  program->SetUniform3fv("LightPosition", MaxLights, position.data());
-  program->SetUniform3fv("LightDirection", MaxLights, direction.data());
-  program->SetUniform3fv("LightRadiance", MaxLights, radiance.data());
-  program->SetUniform3fv("LightAttenuation", MaxLights, attenuation.data());
-  program->SetUniform3f("Ambient", glm::value_ptr(u.Ambient));
-
-  const LightingParameters& p = u.Lighting;
-  program->SetUniformf("DerivativeDistance", p.DerivativeDistance);
-  program->SetUniformf("DerivativeSlopeScale", u.DerivativeSlopeScale);
-  program->SetUniformi("LightSteps", p.LightSteps);
-  program->SetUniformf("LightStep", p.LightStep);
-  program->SetUniformf("LightStepGrowth", p.LightStepGrowth);
-  program->SetUniformf("PhaseG1", p.PhaseG1);
-  program->SetUniformf("PhaseG2", p.PhaseG2);
-  program->SetUniformf("PhaseLobeWeight", p.PhaseLobeWeight);
-  program->SetUniformi("MultipleScatteringOctaves", p.MultipleScatteringOctaves);
-  program->SetUniformf("ScatteringFalloff", p.ScatteringFalloff);
-  program->SetUniformf("ExtinctionFalloff", p.ExtinctionFalloff);
-  program->SetUniformf("EccentricityFalloff", p.EccentricityFalloff);
-  program->SetUniformf("PowderStrength", p.PowderStrength);
 }
 
 MarchPrograms::MarchPrograms() = default;

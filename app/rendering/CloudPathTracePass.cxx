@@ -79,7 +79,6 @@ void ExtinctionBoundsTexture::Release(vtkWindow* window)
 
 void SetPathTraceUniforms(vtkShaderProgram* program, const PathTraceFrame& frame)
 {
-  program->SetUniformi("LightCount", frame.LightCount);
   program->SetUniformi("MaxBounces", frame.MaxBounces);
   program->SetUniformi("RouletteBounces", PathTraceUniforms{}.RouletteBounces);
   program->SetUniformi("PathTraceSeed", frame.Seed);

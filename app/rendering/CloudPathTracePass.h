@@ -49,7 +49,6 @@ private:
 // of every pixel of a march target MarchWidth wide.
 struct PathTraceFrame
 {
-  int LightCount = 0;
   int MaxBounces = 1024;
   int Seed = 0;
   int SampleBase = 0;

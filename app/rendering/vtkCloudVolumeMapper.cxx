@@ -560,7 +560,6 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     // The same paths whatever the frame split: sample k of frame f is f * per frame + k.
     cloudvis::PathTraceFrame pathFrame;
-    pathFrame.LightCount = int(uniforms.Lights.size());
     pathFrame.MaxBounces = this->PathTraceMaxBounces;
     pathFrame.Seed = this->PathTraceSeed;
     pathFrame.SamplesPerFrame = this->PathTraceSamplesPerFrame;
