@@ -1,7 +1,8 @@
 // Signed distance functions of the shapes clouds are made from, their placement, unions, and
 // the morph timeline of the write-ups. Negative inside, positive outside, in world units.
 //
-// Written with GLM so each function reads the same as its GLSL twin.
+// Written with GLM, whose functions mirror GLSL's, so that the shapes could move to the GPU as
+// they are (docs/transport.md).
 #ifndef CloudShapes_h
 #define CloudShapes_h
 

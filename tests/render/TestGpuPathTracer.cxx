@@ -1,5 +1,5 @@
-// The GPU path tracer (vtkCloudVolumeMapper's pathtrace model, shaders/CloudLightingPathTrace.glsl)
-// against its CPU twin (vtkCloudPathTracer) and against closed forms. Both are Monte Carlo
+// The GPU path tracer (vtkCloudVolumeMapper's pathtrace model: shaders/transport/Transport.glsl
+// compiled as GLSL) against the CPU one (vtkCloudPathTracer: the same source compiled as C++) and against closed forms. Both are Monte Carlo
 // estimates with independent seeds, so they agree when their difference is within the combined
 // standard error each reports (the GPU's from its second-moment target, ReadVariance): checked
 // per channel on the mean over the cloud and on every 4 x 4 tile, with 4.5 standard errors as the
