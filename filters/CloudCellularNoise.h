@@ -87,30 +87,11 @@ inline float WorleyF1(double x, double y, double z, std::uint32_t seed, std::int
   return std::sqrt(best);
 }
 
-// Tileable versions of CloudNoise.h's point noises; with period 0 they are those functions.
+// Tileable white noise (Value and Perlin take their period themselves, CloudLatticeNoise.h); with
+// period 0 it is White().
 inline float TiledWhite(double x, double y, double z, std::uint32_t seed, std::int32_t period)
 {
   return HashToSigned(TiledHash(Split(x).Cell, Split(y).Cell, Split(z).Cell, seed, period));
-}
-
-// The lattice's row pieces (CornersOfRow, ValueColumn, PerlinColumn) with wrapped cells: the
-// hash of a corner is TiledHash's, and with period 0 these are Value() and Perlin() exactly.
-inline float TiledValue(double x, double y, double z, std::uint32_t seed, std::int32_t period)
-{
-  const LatticeCoordinate lx = Split(x);
-  const RowCorners r = CornersOfRow(y, z, seed, FadeCubic, period);
-  return ValueAlongX(ValueColumn(WrapCell(lx.Cell, period), r),
-    ValueColumn(WrapCell(lx.Cell + 1, period), r),
-    lx.Fraction);
-}
-
-inline float TiledPerlin(double x, double y, double z, std::uint32_t seed, std::int32_t period)
-{
-  const LatticeCoordinate lx = Split(x);
-  const RowCorners r = CornersOfRow(y, z, seed, FadeQuintic, period);
-  return PerlinAlongX(PerlinColumn(WrapCell(lx.Cell, period), r),
-    PerlinColumn(WrapCell(lx.Cell + 1, period), r),
-    lx.Fraction);
 }
 
 // Inverted Worley fBm in [0, 1]: 1 - F1 at lattice frequencies 1, 2 and 4 (periods P, 2P, 4P)
@@ -151,7 +132,7 @@ inline float Saturate(float v)
 // into a puff, elsewhere it keeps Perlin's shape.
 inline float PerlinWorley(double x, double y, double z, std::uint32_t seed, std::int32_t period)
 {
-  const float perlin = 0.5f + 0.5f * TiledPerlin(x, y, z, seed, period);
+  const float perlin = 0.5f + 0.5f * Perlin(x, y, z, seed, period);
   const float worley = InvertedWorleyFbm(x, y, z, seed ^ 0x27D4EB2Fu, period);
   return std::min(1.0f, std::max(0.0f, Remap(perlin, worley - 1.0f, 1.0f, 0.0f, 1.0f)));
 }
@@ -167,7 +148,7 @@ inline std::array<float, 3> CurlNoise(double x,
 {
   constexpr double step = 1.0 / 64.0;
   const auto psi = [&](int c, double px, double py, double pz)
-  { return TiledPerlin(px, py, pz, seed + static_cast<std::uint32_t>(c), period); };
+  { return Perlin(px, py, pz, seed + static_cast<std::uint32_t>(c), period); };
   const auto d = [&](int c, int axis)
   {
     const double e[3] = { axis == 0 ? step : 0.0, axis == 1 ? step : 0.0, axis == 2 ? step : 0.0 };

@@ -210,17 +210,23 @@ inline float White(double x, double y, double z, std::uint32_t seed)
 {
   return HashToSigned(Hash(Split(x).Cell, Split(y).Cell, Split(z).Cell, seed));
 }
-inline float Value(double x, double y, double z, std::uint32_t seed)
+// Value and Perlin noise repeat every `period` cells when it is positive (the lattice's cells
+// wrap, WrapCell), for the tileable noises of CloudCellularNoise.h.
+inline float Value(double x, double y, double z, std::uint32_t seed, std::int32_t period = 0)
 {
   const LatticeCoordinate lx = Split(x);
-  const RowCorners r = CornersOfRow(y, z, seed, FadeCubic);
-  return ValueAlongX(ValueColumn(lx.Cell, r), ValueColumn(lx.Cell + 1, r), lx.Fraction);
+  const RowCorners r = CornersOfRow(y, z, seed, FadeCubic, period);
+  return ValueAlongX(ValueColumn(WrapCell(lx.Cell, period), r),
+    ValueColumn(WrapCell(lx.Cell + 1, period), r),
+    lx.Fraction);
 }
-inline float Perlin(double x, double y, double z, std::uint32_t seed)
+inline float Perlin(double x, double y, double z, std::uint32_t seed, std::int32_t period = 0)
 {
   const LatticeCoordinate lx = Split(x);
-  const RowCorners r = CornersOfRow(y, z, seed, FadeQuintic);
-  return PerlinAlongX(PerlinColumn(lx.Cell, r), PerlinColumn(lx.Cell + 1, r), lx.Fraction);
+  const RowCorners r = CornersOfRow(y, z, seed, FadeQuintic, period);
+  return PerlinAlongX(PerlinColumn(WrapCell(lx.Cell, period), r),
+    PerlinColumn(WrapCell(lx.Cell + 1, period), r),
+    lx.Fraction);
 }
 } // namespace noise
 } // namespace cloudvis

@@ -48,9 +48,9 @@ inline float Evaluate(NoiseType type,
     case NoiseType::White:
       return TiledWhite(x, y, z, seed, period);
     case NoiseType::Value:
-      return TiledValue(x, y, z, seed, period);
+      return Value(x, y, z, seed, period);
     case NoiseType::Perlin:
-      return TiledPerlin(x, y, z, seed, period);
+      return Perlin(x, y, z, seed, period);
     case NoiseType::Worley:
       return std::min(1.0f, 2.0f * WorleyF1(x, y, z, seed, period) - 1.0f);
     case NoiseType::InvertedWorley:

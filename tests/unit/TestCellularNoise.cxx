@@ -364,8 +364,8 @@ TEST(Tiling, ALongPeriodGivesTheUntiledValuesWithinIt)
   for (int n = 0; n < 20000; ++n)
   {
     const double x = u(rng), y = u(rng), z = u(rng);
-    ASSERT_EQ(Bits(TiledValue(x, y, z, 9u, 1000)), Bits(Value(x, y, z, 9u)));
-    ASSERT_EQ(Bits(TiledPerlin(x, y, z, 9u, 1000)), Bits(Perlin(x, y, z, 9u)));
+    ASSERT_EQ(Bits(Value(x, y, z, 9u, 1000)), Bits(Value(x, y, z, 9u)));
+    ASSERT_EQ(Bits(Perlin(x, y, z, 9u, 1000)), Bits(Perlin(x, y, z, 9u)));
     ASSERT_EQ(Bits(TiledWhite(x, y, z, 9u, 1000)), Bits(White(x, y, z, 9u)));
   }
 }
