@@ -7,6 +7,7 @@
 #include "CloudMarchUniforms.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
+#include "CloudTransport.h"
 #include "OffscreenRender.h"
 #include "PathTraceBench.h"
 #include "vtkCloudPathTracer.h"
@@ -65,12 +66,13 @@ double OpticalDepth(const MarchUniforms& u,
 {
   const double ds = frame.SmallestVoxelEdge / frame.Unit / 16.0;
   const glm::vec3 indexStep = LocalToIndex(u, l);
+  glsl::Transport transport = TransportOf(u); // the march's medium, set up once for the loop
   double tau = 0.0;
   for (double s = s0 + 0.5 * ds; s < s1; s += ds)
   {
     const glm::vec3 q = p + float(s) * indexStep;
-    if (InsideVolume(u, q))
-      tau += ExtinctionAt(u, q) * std::min(ds, s1 - (s - 0.5 * ds));
+    if (transport.InsideVolume(q))
+      tau += transport.ExtinctionAt(q) * std::min(ds, s1 - (s - 0.5 * ds));
   }
   return tau;
 }
@@ -122,18 +124,19 @@ void LightMarchErrors(const char* name, vtkImageData* field, const TransferTable
   {
     Percentiles ratio;
     int samples = 0;
+    glsl::Transport transport = TransportOf(u);
     for (int k = 2; k < u.Dimensions.z - 2; k += 3)
       for (int j = 2; j < u.Dimensions.y - 2; j += 3)
         for (int i = 2; i < u.Dimensions.x - 2; i += 3)
         {
           // Off the lattice, as view samples are.
           const glm::vec3 p(i + 0.37f, j + 0.61f, k + 0.23f);
-          const float sigma = ExtinctionAt(u, p);
+          const float sigma = transport.ExtinctionAt(p);
           if (!(sigma > 0.0f))
             continue;
           ++samples;
           const glm::vec3 indexStep = LocalToIndex(u, toward);
-          const float tauMarch = LightOpticalDepth(u, p, sigma, indexStep, 1e30f);
+          const float tauMarch = transport.LightOpticalDepth(p, sigma, indexStep, 1e30f);
           const glm::vec2 exit =
             IntersectBox(p, indexStep, glm::vec3(0.0f), glm::vec3(u.Dimensions - 1));
           const double tauExact = OpticalDepth(u, frame, p, toward, 0.0, exit.y);

@@ -164,8 +164,8 @@ namespace fetch
 template<typename Texel>
 float Trilinear(glm::vec3 t, glm::ivec3 n, Texel texel)
 {
-  int i0[3], i1[3];
-  float f[3];
+  int i0[3] = {}, i1[3] = {}; // (initialised: GCC cannot see that the loop sets every element)
+  float f[3] = {};
   for (int a = 0; a < 3; ++a)
   {
     const float fl = std::floor(t[a]);
