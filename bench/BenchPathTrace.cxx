@@ -88,6 +88,10 @@ int main(int argc, char* argv[])
       options.BrickSize = std::atoi(argv[++i]);
     else if (arg == "--split" && hasValue)
       options.FitSplit = argv[++i];
+    else if (arg == "--reference-cache" && hasValue)
+      options.ReferenceCache = argv[++i];
+    else if (arg == "--multiple-scattering" && hasValue)
+      options.MultipleScattering = argv[++i];
     else if (arg == "--voxels" && hasValue)
       options.FitDimensions = std::atoi(argv[++i]);
     else if (arg == "--max-octaves" && hasValue)

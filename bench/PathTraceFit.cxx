@@ -11,6 +11,7 @@
 #include "CloudLightVolumes.h"
 #include "CloudMarchUniforms.h"
 #include "CloudReferenceMarch.h"
+#include "CloudScatteringVolume.h"
 #include "CloudTransferTable.h"
 #include "PathTraceBench.h"
 #include "vtkCloudPathTracer.h"
@@ -25,7 +26,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -196,6 +199,29 @@ struct PreparedMarch
     this->Width = size[0];
     this->Height = size[1];
   }
+
+  // The image with the multiple-scattering volume instead of the octaves, and the seconds its
+  // computation took.
+  std::vector<float> RenderWithVolume(const ScatteringSolve& solve, double& seconds)
+  {
+    const double start = vtkTimerLog::GetUniversalTime();
+    ComputeScatteringVolume(this->Uniforms, this->Scattering, solve);
+    seconds = vtkTimerLog::GetUniversalTime() - start;
+    if (std::getenv("MS_NODIFFUSE"))
+      for (auto& v : this->Scattering.Fluence)
+        v = glm::vec4(0.0f);
+    if (std::getenv("MS_SINGLE"))
+    {
+      LightingParameters single = this->Uniforms.Lighting;
+      single.MultipleScatteringOctaves = 0;
+      return this->Render(single);
+    }
+    this->Uniforms.MultipleScattering = &this->Scattering;
+    std::vector<float> image = this->Render(this->Uniforms.Lighting);
+    this->Uniforms.MultipleScattering = nullptr;
+    return image;
+  }
+  ScatteringGrid Scattering;
 
   // The image with these octaves (the other lighting parameters as prepared).
   std::vector<float> Render(const LightingParameters& octaves)
@@ -459,6 +485,78 @@ void PrintBeforeAfter(const char* title,
   std::fflush(stdout);
 }
 
+// A case's reference, read from options.ReferenceCache when an earlier run with the same
+// options left it there, else rendered (and left there).
+Rendered CachedReference(const Options& options,
+  const std::string& name,
+  const std::function<Rendered()>& render)
+{
+  if (options.ReferenceCache.empty())
+    return render();
+  char key[160];
+  std::snprintf(key,
+    sizeof(key),
+    "/%s-%dx%d-%dspp-%db-s%u-v%d.bin",
+    FileLabel(name).c_str(),
+    options.Width,
+    options.Height,
+    options.Samples,
+    options.Bounces,
+    options.Seed,
+    options.FitDimensions);
+  const std::string path = options.ReferenceCache + key;
+  const std::size_t values = std::size_t(options.Width) * options.Height * 4;
+  Rendered r;
+  std::ifstream in(path, std::ios::binary);
+  if (in)
+  {
+    r.RGBA.resize(values);
+    r.Variance.resize(values);
+    in.read(reinterpret_cast<char*>(r.RGBA.data()), std::streamsize(values * sizeof(float)));
+    in.read(reinterpret_cast<char*>(r.Variance.data()), std::streamsize(values * sizeof(float)));
+    if (in)
+      return r;
+  }
+  r = render();
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(r.RGBA.data()), std::streamsize(values * sizeof(float)));
+  out.write(
+    reinterpret_cast<const char*>(r.Variance.data()), std::streamsize(values * sizeof(float)));
+  return r;
+}
+
+// The multiple-scattering volume against the octaves on every case, with the shipped settings.
+int MeasureVolume(std::vector<FitCase>& cases, const Options& options)
+{
+  LightingParameters shipped;
+  shipped.Model = LightingModel::March;
+  const std::vector<ImageError> octaves = FitErrors(cases, shipped, true);
+  std::vector<ImageError> volume(cases.size());
+  double seconds = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i)
+  {
+    double s = 0.0;
+    ScatteringSolve solve;
+    if (const char* v = std::getenv("MS_COARSE"))
+      solve.CoarsestSweeps = std::atoi(v);
+    if (const char* v = std::getenv("MS_SWEEPS"))
+      solve.SweepsPerGrid = std::atoi(v);
+    if (const char* v = std::getenv("MS_OMEGA"))
+      solve.Relaxation = float(std::atof(v));
+    const std::vector<float> image = cases[i].Octaves->RenderWithVolume(solve, s);
+    seconds += s;
+    volume[i] = CompareWithReference(image.data(),
+      cases[i].Reference.RGBA.data(),
+      cases[i].Reference.Variance.data(),
+      image.size() / 4);
+    WritePng(
+      options.PngDirectory, FileLabel(cases[i].Name) + "-volume", image, options.Width, options.Height);
+  }
+  PrintBeforeAfter("march: octaves (before), multiple-scattering volume (after)", cases, octaves, volume);
+  std::printf("volume computations: %.3f s per case\n", seconds / double(cases.size()));
+  return 0;
+}
+
 } // namespace
 
 int Fit(const Options& options)
@@ -499,7 +597,8 @@ int Fit(const Options& options)
           double(albedo));
         c.Name = name;
         c.HeldOut = role == FitRole::HeldOut;
-        c.Reference = Run(NewTracer(gray, field, options.Bounces, options));
+        c.Reference = CachedReference(options, c.Name, [&]()
+          { return Run(NewTracer(gray, field, options.Bounces, options)); });
         c.ReferenceSeconds = c.Reference.Seconds;
         const double* spacing = field->GetSpacing();
         c.VoxelEdge = std::min({ spacing[0], spacing[1], spacing[2] });
@@ -524,6 +623,9 @@ int Fit(const Options& options)
     cases.size(),
     int(std::count_if(cases.begin(), cases.end(), [](const FitCase& c) { return c.HeldOut; })),
     referenceSeconds);
+
+  if (options.MultipleScattering == "volume")
+    return MeasureVolume(cases, options);
 
   // The octaves: for each N, Nelder-Mead over (a, b, c) in [0, 1]^3 from the old defaults.
   // "Before": the octaves' values until this fit (the rest: the shipped defaults, light volumes).

@@ -38,6 +38,7 @@ class vtkMatrix4x4;
 namespace cloudvis
 {
 struct LightVolumes;
+struct ScatteringGrid;
 
 // The most samples one view ray may take. A step that would need more along the volume's
 // longest ray is refused with the smallest step the volume allows (docs/scene-format.md,
@@ -143,6 +144,9 @@ struct MarchUniforms
   // Lighting.Transmittance Volumes; without them (a caller that marches single rays, as unit tests
   // do) the march takes the nested march toward each light. The GPU binds a texture instead.
   const LightVolumes* LightDepths = nullptr;
+  // The CPU's multiple-scattering volume (CloudScatteringVolume.h), computed by the renderer for
+  // the march when its multiple scattering comes from the volume; without it the octaves add it.
+  const ScatteringGrid* MultipleScattering = nullptr;
 };
 
 // What a renderer is given.

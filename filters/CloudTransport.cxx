@@ -4,6 +4,8 @@
 
 #include "CloudLighting.h"
 
+#include <cstdlib>
+
 namespace cloudvis
 {
 namespace
@@ -72,6 +74,13 @@ glsl::Transport TransportOf(const MarchUniforms& u)
     t.LightTransmittanceVolumes = 1;
     t.LightVolumeSize = glm::vec3(u.LightDepths->Size);
     t.LightVolumeCount = float(u.LightDepths->Lights);
+  }
+  if (u.MultipleScattering != nullptr && p.Model == LightingModel::March)
+  {
+    t.Scattering = u.MultipleScattering;
+    t.ScatteringVolumeOn = 1;
+    t.ScatteringVolumeSize = glm::vec3(u.MultipleScattering->Size);
+    t.ScatteringFluxWeight = std::getenv("MS_FLUX") ? float(std::atof(std::getenv("MS_FLUX"))) : 1.0f; // EXPERIMENT
   }
   return t;
 }

@@ -45,6 +45,16 @@ struct LightVolumes
   std::vector<float> Depth;
 };
 
+// The CPU's multiple-scattering grid (CloudScatteringVolume.h) as the GPU's textures hold it:
+// per cell, x fastest, Size.x * Size.y * Size.z texels each. Medium: albedo in rgb, sigma_t per
+// local unit in a; Source: the diffuse source Q0 in rgb; Direction: the beams' mean direction of
+// travel in xyz; Fluence: the diffuse fluence in rgb.
+struct ScatteringGrid
+{
+  glm::ivec3 Size{ 0 };
+  std::vector<glm::vec4> Medium, Source, Direction, Fluence, Flux;
+};
+
 // What the path tracer reads besides the march's uniforms.
 
 struct CLOUDVISFILTERS_EXPORT PathTraceUniforms
@@ -120,6 +130,11 @@ struct Transport
   const MarchUniforms* March = nullptr;
   const PathTraceUniforms* PathTrace = nullptr;
   const LightVolumes* Volumes = nullptr;
+  // The multiple-scattering grid being computed, the next coarser one (its Fluence), and the one
+  // the march reads.
+  const ScatteringGrid* Grid = nullptr;
+  const ScatteringGrid* Coarse = nullptr;
+  const ScatteringGrid* Scattering = nullptr;
   LightingModel Model = LightingModel::None;
 
   // The source term of Model at index point p: the GLSL's SourceTerm, which the mapper generates
@@ -144,6 +159,10 @@ struct Transport
         light += point ? MarchPointTerm(i, p, density, albedo, d)
                        : MarchDirectionalTerm(i, p, density, albedo, d);
       }
+    }
+    if (this->Model == LightingModel::March && ScatteringVolumeOn != 0)
+    {
+      light += MultipleScatteringTerm(p, d);
     }
     return albedo * light;
   }
@@ -234,6 +253,67 @@ inline float Transport::LightVolumeFetch(int i, vec3 t)
     size,
     [&](int x, int y, int z)
     { return volumes.Depth[((block + std::size_t(z)) * size.y + y) * size.x + std::size_t(x)]; });
+}
+
+inline std::size_t CellIndex(const ScatteringGrid& grid, ivec3 c)
+{
+  return (std::size_t(c.z) * grid.Size.y + c.y) * grid.Size.x + std::size_t(c.x);
+}
+
+inline vec4 Transport::ScatteringMediumAt(ivec3 c)
+{
+  return this->Grid->Medium[CellIndex(*this->Grid, c)];
+}
+
+inline vec4 Transport::ScatteringSourceAt(ivec3 c)
+{
+  return this->Grid->Source[CellIndex(*this->Grid, c)];
+}
+
+inline vec4 Transport::ScatteringDirectionAt(ivec3 c)
+{
+  return this->Grid->Direction[CellIndex(*this->Grid, c)];
+}
+
+inline vec4 Transport::ScatteringFluenceAt(ivec3 c)
+{
+  return this->Grid->Fluence[CellIndex(*this->Grid, c)];
+}
+
+namespace fetch
+{
+// GL_LINEAR of one of a grid's textures at texel coordinate t, per component.
+inline vec4 GridTrilinear(const ScatteringGrid& grid, const std::vector<vec4>& texels, vec3 t)
+{
+  vec4 result;
+  for (int channel = 0; channel < 4; ++channel)
+  {
+    result[channel] = Trilinear(t,
+      grid.Size,
+      [&](int x, int y, int z) { return texels[CellIndex(grid, ivec3(x, y, z))][channel]; });
+  }
+  return result;
+}
+
+inline vec4 FluenceTrilinear(const ScatteringGrid& grid, vec3 t)
+{
+  return GridTrilinear(grid, grid.Fluence, t);
+}
+}
+
+inline vec4 Transport::CoarseFluenceFetch(vec3 t)
+{
+  return fetch::FluenceTrilinear(*this->Coarse, t);
+}
+
+inline vec4 Transport::ScatteringVolumeFetch(vec3 t)
+{
+  return fetch::FluenceTrilinear(*this->Scattering, t);
+}
+
+inline vec4 Transport::ScatteringFluxFetch(vec3 t)
+{
+  return fetch::GridTrilinear(*this->Scattering, this->Scattering->Flux, t);
 }
 
 } // namespace glsl

@@ -2,6 +2,7 @@
 
 #include "CloudFieldGeometry.h"
 #include "CloudLightVolumes.h"
+#include "CloudScatteringVolume.h"
 #include "CloudReferenceMarch.h"
 #include "CloudTransferTable.h"
 
@@ -355,6 +356,13 @@ int vtkCloudReferenceRenderer::RequestData(
   {
     cloudvis::ComputeLightVolumes(uniforms, lightVolumes);
     uniforms.LightDepths = &lightVolumes;
+  }
+  // And the multiple-scattering volume, after them (its source reads them).
+  cloudvis::ScatteringGrid scattering;
+  if (cloudvis::UsesScatteringVolume(uniforms.Lighting))
+  {
+    cloudvis::ComputeScatteringVolume(uniforms, scattering);
+    uniforms.MultipleScattering = &scattering;
   }
 
   // The image.

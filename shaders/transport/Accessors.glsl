@@ -45,3 +45,42 @@ float LightVolumeFetch(int i, vec3 t)
   return texture(LightVolumeTexture,
     (t + 0.5) / vec3(LightVolumeSize.xy, LightVolumeSize.z * LightVolumeCount)).r;
 }
+
+// The multiple-scattering grids (filters/CloudScatteringVolume.h): the one being computed, read
+// per cell, the next coarser one's fluence and the finished volume the march reads, interpolated.
+uniform sampler3D ScatteringMediumTexture;
+uniform sampler3D ScatteringSourceTexture;
+uniform sampler3D ScatteringDirectionTexture;
+uniform sampler3D ScatteringFluenceTexture;
+uniform sampler3D CoarseFluenceTexture;
+uniform sampler3D ScatteringVolumeTexture;
+
+vec4 ScatteringMediumAt(ivec3 c)
+{
+  return texelFetch(ScatteringMediumTexture, c, 0);
+}
+
+vec4 ScatteringSourceAt(ivec3 c)
+{
+  return texelFetch(ScatteringSourceTexture, c, 0);
+}
+
+vec4 ScatteringDirectionAt(ivec3 c)
+{
+  return texelFetch(ScatteringDirectionTexture, c, 0);
+}
+
+vec4 ScatteringFluenceAt(ivec3 c)
+{
+  return texelFetch(ScatteringFluenceTexture, c, 0);
+}
+
+vec4 CoarseFluenceFetch(vec3 t)
+{
+  return texture(CoarseFluenceTexture, (t + 0.5) / ScatteringCoarseSize);
+}
+
+vec4 ScatteringVolumeFetch(vec3 t)
+{
+  return texture(ScatteringVolumeTexture, (t + 0.5) / ScatteringVolumeSize);
+}
