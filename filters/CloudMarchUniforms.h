@@ -147,6 +147,10 @@ struct MarchUniforms
   // The CPU's multiple-scattering volume (CloudScatteringVolume.h), computed by the renderer for
   // the march when its multiple scattering comes from the volume; without it the octaves add it.
   const ScatteringGrid* MultipleScattering = nullptr;
+  // Or, on the GPU, that the mapper binds the volume's textures for the march (MultipleScattering
+  // stays null). Either way TransportOf turns the volume on, with the finest grid's size
+  // (ScatteringVolumeSize of Dimensions).
+  bool ScatteringVolumeTextures = false;
 };
 
 // What a renderer is given.

@@ -3,6 +3,7 @@
 #include "CloudTransport.h"
 
 #include "CloudLighting.h"
+#include "CloudScatteringVolume.h"
 
 #include <cstdlib>
 
@@ -75,11 +76,12 @@ glsl::Transport TransportOf(const MarchUniforms& u)
     t.LightVolumeSize = glm::vec3(u.LightDepths->Size);
     t.LightVolumeCount = float(u.LightDepths->Lights);
   }
-  if (u.MultipleScattering != nullptr && p.Model == LightingModel::March)
+  if ((u.MultipleScattering != nullptr || u.ScatteringVolumeTextures) &&
+    p.Model == LightingModel::March)
   {
     t.Scattering = u.MultipleScattering;
     t.ScatteringVolumeOn = 1;
-    t.ScatteringVolumeSize = glm::vec3(u.MultipleScattering->Size);
+    t.ScatteringVolumeSize = glm::vec3(ScatteringVolumeSize(u.Dimensions));
     t.ScatteringFluxWeight = std::getenv("MS_FLUX") ? float(std::atof(std::getenv("MS_FLUX"))) : 1.0f; // EXPERIMENT
   }
   return t;

@@ -16,7 +16,6 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include <stdexcept>
 #include <string>
 
 namespace cloudvis
@@ -58,20 +57,6 @@ std::vector<double> LightSignatureOf(const MarchUniforms& u)
   return s;
 }
 
-// The pass's fragment shader: the march's (with the march model's lighting, for
-// LightOpticalDepth) without its main(), which CLOUD_OWN_MAIN leaves out as it does for the path
-// tracer, then the pass's main().
-std::string PassSource(const std::vector<LocalLight>& lights)
-{
-  std::string source = MarchShaderSource(LightingModel::March, lights);
-  const std::string marchMain = "#ifndef CLOUD_OWN_MAIN";
-  const std::size_t at = source.rfind(marchMain);
-  if (at == std::string::npos)
-  {
-    throw std::logic_error("the march shader has no \"" + marchMain + "\" around its main()");
-  }
-  return source.insert(at, "#define CLOUD_OWN_MAIN\n") + CloudLightVolumeFS;
-}
 }
 
 LightVolumeTexture::LightVolumeTexture() = default;
@@ -155,7 +140,7 @@ bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,
   if (!this->Pass || key != this->PassKey)
   {
     this->Pass =
-      std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, PassSource(u.Lights).c_str(), "");
+      std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, PassShaderSource(u.Lights, CloudLightVolumeFS).c_str(), "");
     this->PassKey = key;
   }
   else

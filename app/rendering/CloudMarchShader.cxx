@@ -18,6 +18,7 @@
 
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 namespace cloudvis
 {
@@ -90,6 +91,10 @@ std::string LightingSource(LightingModel model, const std::vector<LocalLight>& l
     source << "  light += " << prefix << (lights[i].Positional ? "PointTerm" : "DirectionalTerm")
            << "(" << i << ", p, density, albedo, d);\n";
   }
+  if (model == LightingModel::March) // orders two and up, as the CPU's SourceTerm adds them
+  {
+    source << "  if (ScatteringVolumeOn != 0) light += MultipleScatteringTerm(p, d);\n";
+  }
   source << "  return albedo * light;\n}\n";
   return source.str();
 }
@@ -109,6 +114,18 @@ std::string MarchShaderSource(LightingModel model,
   vtkShaderProgram::Substitute(source, "//CLOUD::Transport::Dec", TransportSource());
   vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", LightingSource(model, lights));
   return source;
+}
+
+std::string PassShaderSource(const std::vector<LocalLight>& lights, const std::string& passMain)
+{
+  std::string source = MarchShaderSource(LightingModel::March, lights);
+  const std::string marchMain = "#ifndef CLOUD_OWN_MAIN";
+  const std::size_t at = source.rfind(marchMain);
+  if (at == std::string::npos)
+  {
+    throw std::logic_error("the march shader has no \"" + marchMain + "\" around its main()");
+  }
+  return source.insert(at, "#define CLOUD_OWN_MAIN\n") + passMain;
 }
 
 void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
@@ -147,6 +164,9 @@ void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
   program->SetUniformf("ExtinctionFalloff", t.ExtinctionFalloff);
   program->SetUniformf("EccentricityFalloff", t.EccentricityFalloff);
   program->SetUniformf("PowderStrength", t.PowderStrength);
+  program->SetUniformi("ScatteringVolumeOn", t.ScatteringVolumeOn);
+  program->SetUniform3f("ScatteringVolumeSize", glm::value_ptr(t.ScatteringVolumeSize));
+  program->SetUniformf("ScatteringFluxWeight", t.ScatteringFluxWeight);
 
   // The march loop's own (CloudMarchFS.glsl).
   const float tableRange[2] = { float(u.Table->Range[0]), float(u.Table->Range[1]) };

@@ -49,9 +49,15 @@ std::string MarchShaderSource(LightingModel model,
   const std::vector<LocalLight>& lights,
   int samplesPerMapRead = 1);
 
+// The fragment shader of a pass over a light-transport volume (the light volumes, the
+// multiple-scattering volume): the march's, with the march model's lighting for the lights'
+// kinds, without its main() (CLOUD_OWN_MAIN, as for the path tracer), then the pass's `passMain`.
+std::string PassShaderSource(const std::vector<LocalLight>& lights, const std::string& passMain);
+
 // Uploads every uniform SetUpMarch computed: the geometry, the density texels' scale and bias,
 // the table's range, the step, the lighting parameters and the lights (arrays of
-// LightingLimits::MaxLights, unused entries zero).
+// LightingLimits::MaxLights, unused entries zero), and whether the march reads the
+// multiple-scattering volume (MarchUniforms::ScatteringVolumeTextures) and its size.
 void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& uniforms);
 
 // One compiled march program per lighting model, samples per map read and kind of lights

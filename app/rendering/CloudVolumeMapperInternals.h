@@ -13,6 +13,7 @@
 #include "CloudMarchShader.h"
 #include "CloudOccupancyTexture.h"
 #include "CloudPathTracePass.h"
+#include "CloudScatteringVolumeTexture.h"
 #include "CloudTransferTexture.h"
 #include "CloudViewTargets.h"
 
@@ -65,6 +66,7 @@ struct vtkCloudVolumeMapper::Internals
   cloudvis::JitterTexture Jitter;
   cloudvis::ExtinctionBoundsTexture ExtinctionBounds; // the path tracer's, made on first use
   cloudvis::LightVolumeTexture LightVolumes;
+  cloudvis::ScatteringVolumeTexture Scattering; // the march's multiple scattering
   cloudvis::MarchPrograms March;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<cloudvis::ViewTargets>> Views; // keys: identities only
@@ -83,7 +85,8 @@ struct vtkCloudVolumeMapper::Internals
   long long TextureBytes() const
   {
     return this->Density.GetBytes() + this->Transfer.GetBytes() + this->Occupancy.GetBytes() +
-      this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes() + this->LightVolumes.GetBytes();
+      this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes() + this->LightVolumes.GetBytes() +
+      this->Scattering.GetBytes();
   }
 
   long long Bytes() const

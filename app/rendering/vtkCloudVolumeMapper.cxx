@@ -8,6 +8,7 @@
 #include "CloudFieldGeometry.h"
 #include "CloudGpuMemory.h"
 #include "CloudMarchUniforms.h"
+#include "CloudScatteringVolume.h"
 #include "CloudVolumeMapperInternals.h"
 
 #include <vtkDataArray.h>
@@ -166,6 +167,33 @@ int vtkCloudVolumeMapper::GetLightVolumeComputeCount() const
 vtkTypeInt64 vtkCloudVolumeMapper::GetLightVolumeBytes() const
 {
   return this->Internal->LightVolumes.GetBytes();
+}
+
+int vtkCloudVolumeMapper::GetScatteringVolumeComputeCount() const
+{
+  return this->Internal->Scattering.GetComputeCount();
+}
+
+vtkTypeInt64 vtkCloudVolumeMapper::GetScatteringVolumeBytes() const
+{
+  return this->Internal->Scattering.GetBytes();
+}
+
+double vtkCloudVolumeMapper::GetScatteringVolumeSeconds() const
+{
+  return this->Internal->Scattering.GetLastComputeSeconds();
+}
+
+bool vtkCloudVolumeMapper::GetScatteringVolumeConverging() const
+{
+  return this->Internal->Scattering.IsConverging();
+}
+
+void vtkCloudVolumeMapper::GetScatteringVolumeProgress(int& done, int& total) const
+{
+  const cloudvis::ScatteringVolumeTexture& scattering = this->Internal->Scattering;
+  done = scattering.IsConverging() ? scattering.GetStepsDone() : 0;
+  total = scattering.IsConverging() ? scattering.GetStepCount() : 0;
 }
 
 vtkTypeInt64 vtkCloudVolumeMapper::GetDensityTextureBytes() const
@@ -406,6 +434,41 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   const bool nestedWhileInteracting =
     volumesAsked && interacting && in.LightVolumes.OnlyLightsChanged(uniforms, lightInputs);
   const bool lightVolumes = volumesAsked && !nestedWhileInteracting;
+  if (lightVolumes)
+  {
+    if (!in.LightVolumes.Update(window, uniforms, lightInputs, budget, problem))
+    {
+      return this->Fail(problem);
+    }
+  }
+  else if (!nestedWhileInteracting && in.LightVolumes.GetBytes() > 0)
+  {
+    in.LightVolumes.Release(window); // another model or the nested march: not held for nothing
+  }
+  // The multiple-scattering volume, after the light volumes (its source reads them, or marches
+  // toward the lights in the frames that do), progressive when the mapper is asked to spread it
+  // over frames.
+  const bool scatteringVolume = cloudvis::UsesScatteringVolume(uniforms.Lighting);
+  if (scatteringVolume)
+  {
+    cloudvis::ScatteringVolumeTexture::Inputs scatteringInputs;
+    static_cast<cloudvis::LightVolumeTexture::Inputs&>(scatteringInputs) = lightInputs;
+    scatteringInputs.LightVolumes = lightVolumes ? &in.LightVolumes : nullptr;
+    if (!in.Scattering.Update(window,
+          uniforms,
+          scatteringInputs,
+          budget,
+          problem,
+          this->ScatteringVolumeSecondsPerFrame))
+    {
+      return this->Fail(problem);
+    }
+  }
+  else if (!scatteringVolume && in.Scattering.GetBytes() > 0)
+  {
+    in.Scattering.Release(window);
+  }
+  uniforms.ScatteringVolumeTextures = scatteringVolume;
 
   // Progressive accumulation: continue averaging while everything the image depends on holds.
   // The temporal history survives a change of the camera (with the lights that follow it) and of
@@ -418,7 +481,8 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
          double(this->GetMTime()),
          double(volume->GetMTime()),
          double(LatestChangeOfOtherProps(renderer, volume)),
-         double(LatestChangeOfLights(renderer, this->CloudLights, false)) })
+         double(LatestChangeOfLights(renderer, this->CloudLights, false)),
+         double(in.Scattering.GetComputeCount()) })
   {
     content.push_back(v);
   }
@@ -451,18 +515,6 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   if (view.AccumulatedFrames >= this->MaximumAccumulatedFrames)
   {
     return true; // converged: the composite pass shows the accumulated image again
-  }
-
-  if (lightVolumes)
-  {
-    if (!in.LightVolumes.Update(window, uniforms, lightInputs, budget, problem))
-    {
-      return this->Fail(problem);
-    }
-  }
-  else if (!nestedWhileInteracting && in.LightVolumes.GetBytes() > 0)
-  {
-    in.LightVolumes.Release(window); // another model or the nested march: not held for nothing
   }
 
   // The march is one shader; a lighting model only supplies its source term, and the field's
@@ -581,10 +633,23 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
       program->SetUniformi("LightVolumeTexture", in.Density.GetTexture()->GetTextureUnit());
     }
   }
+  if (scatteringVolume)
+  {
+    in.Scattering.Activate(program);
+  }
+  else if (marchModel) // the octaves: never read, as above
+  {
+    program->SetUniformi("ScatteringVolumeTexture", in.Density.GetTexture()->GetTextureUnit());
+    program->SetUniformi("ScatteringFluxTexture", in.Density.GetTexture()->GetTextureUnit());
+  }
   in.March.Render();
   if (lightVolumes)
   {
     in.LightVolumes.Deactivate();
+  }
+  if (scatteringVolume)
+  {
+    in.Scattering.Deactivate();
   }
   for (vtkTextureObject* texture : textures)
   {
@@ -621,6 +686,7 @@ void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Jitter.Release(window);
   in.ExtinctionBounds.Release(window);
   in.LightVolumes.Release(window);
+  in.Scattering.Release(window);
   for (auto& view : in.Views)
   {
     view.second->Release(window);
@@ -651,6 +717,8 @@ void vtkCloudVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PathTraceSamplesPerFrame: " << this->PathTraceSamplesPerFrame << "\n";
   os << indent << "PathTraceSeed: " << this->PathTraceSeed << "\n";
   os << indent << "PathTraceMaxBounces: " << this->PathTraceMaxBounces << "\n";
+  os << indent << "ScatteringVolumeSecondsPerFrame: " << this->ScatteringVolumeSecondsPerFrame
+     << "\n";
   os << indent << "LightingProperty:\n";
   this->LightingProperty->PrintSelf(os, indent.GetNextIndent());
 }

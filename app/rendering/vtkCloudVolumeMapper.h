@@ -331,6 +331,37 @@ public:
   vtkTypeInt64 GetLightVolumeBytes() const;
 
   /**
+   * The march whose multiple scattering comes from a volume (docs/lighting.md, "The
+   * multiple-scattering volume") reads it from a grid the mapper computes on the GPU, after the
+   * light volumes, when the field, the transfer function, the extinction scale, the volume's
+   * placement, the phase or the lights change (or the light volumes it reads were recomputed).
+   * How many times it has finished computing it, the bytes its grids take (part of
+   * GetGPUMemoryBytes), and the wall time of its last computation in seconds.
+   */
+  int GetScatteringVolumeComputeCount() const;
+  vtkTypeInt64 GetScatteringVolumeBytes() const;
+  double GetScatteringVolumeSeconds() const;
+
+  ///@{
+  /**
+   * Progressive recompute of the multiple-scattering volume: when it has to be computed again and
+   * a finished volume of the same size exists, each render runs its passes for about this many
+   * seconds and the march reads the finished volume until the new one is done (the renders in
+   * between are not converged: keep rendering while GetScatteringVolumeConverging()). 0 computes
+   * it whole in the render that needs it. Default 0.
+   */
+  vtkSetClampMacro(ScatteringVolumeSecondsPerFrame, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ScatteringVolumeSecondsPerFrame, double);
+  ///@}
+
+  /**
+   * Whether a progressive recompute of the multiple-scattering volume is under way, and how far:
+   * its passes run so far and in all (0 and 0 when none is).
+   */
+  bool GetScatteringVolumeConverging() const;
+  void GetScatteringVolumeProgress(int& done, int& total) const;
+
+  /**
    * Also the latest change of the lighting property.
    */
   vtkMTimeType GetMTime() override;
@@ -367,6 +398,9 @@ public:
     int Height = 0;
     double OccupiedBrickFraction = 0;
     int SamplesPerMapRead = 1; // the march loop's variant (SetSamplesPerMapRead)
+    // The last finished computation of the multiple-scattering volume, in milliseconds (0 when
+    // the march reads none).
+    double ScatteringVolumeMilliseconds = 0;
   };
   /**
    * Statistics of the last frame (with CollectStatistics on).
@@ -465,6 +499,7 @@ protected:
   int PathTraceSamplesPerFrame = 1;
   int PathTraceSeed = 0;
   int PathTraceMaxBounces = 1024;
+  double ScatteringVolumeSecondsPerFrame = 0.0;
   vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
 #ifndef __VTK_WRAP__
   std::optional<std::vector<cloudvis::Light>> CloudLights; // in place of the renderer's when set

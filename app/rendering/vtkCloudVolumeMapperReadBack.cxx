@@ -33,6 +33,11 @@ void vtkCloudVolumeMapper::ReadStatistics(vtkRenderer* renderer)
   }
   statistics.OccupiedBrickFraction = this->Internal->Occupancy.GetOccupiedFraction();
   statistics.SamplesPerMapRead = this->Internal->March.GetSamplesPerMapRead();
+  if (this->Internal->Scattering.GetBytes() > 0)
+  {
+    statistics.ScatteringVolumeMilliseconds =
+      1000.0 * this->Internal->Scattering.GetLastComputeSeconds();
+  }
   this->LastStatistics = statistics;
 }
 

@@ -47,13 +47,15 @@ float LightVolumeFetch(int i, vec3 t)
 }
 
 // The multiple-scattering grids (filters/CloudScatteringVolume.h): the one being computed, read
-// per cell, the next coarser one's fluence and the finished volume the march reads, interpolated.
+// per cell, the next coarser one's fluence and the finished volume the march reads (the finest
+// grid's fluence and flux), interpolated.
 uniform sampler3D ScatteringMediumTexture;
 uniform sampler3D ScatteringSourceTexture;
 uniform sampler3D ScatteringDirectionTexture;
 uniform sampler3D ScatteringFluenceTexture;
 uniform sampler3D CoarseFluenceTexture;
 uniform sampler3D ScatteringVolumeTexture;
+uniform sampler3D ScatteringFluxTexture;
 
 vec4 ScatteringMediumAt(ivec3 c)
 {
@@ -83,4 +85,9 @@ vec4 CoarseFluenceFetch(vec3 t)
 vec4 ScatteringVolumeFetch(vec3 t)
 {
   return texture(ScatteringVolumeTexture, (t + 0.5) / ScatteringVolumeSize);
+}
+
+vec4 ScatteringFluxFetch(vec3 t)
+{
+  return texture(ScatteringFluxTexture, (t + 0.5) / ScatteringVolumeSize);
 }

@@ -87,6 +87,7 @@ struct Case
   LightingModel Model = LightingModel::March;
   bool Cloud = true;       // the article's cloud (perspective) or a constant sphere (parallel)
   bool PointLight = false; // a point light in front of the cloud instead of the sun
+  bool SunToo = false;     // with PointLight: the sun as well, two lights of both kinds
   std::function<void(LightingParameters&)> Lighting = [](LightingParameters&) {};
   double ExtinctionScale = 1.0;
   // Where the volume is: the field's geometry and the vtkVolume's matrix (the camera keeps
@@ -162,27 +163,31 @@ Rendered RenderBoth(const Case& c)
   camera->SetViewAngle(30.0);
   camera->SetClippingRange(0.1 * c.World.Scale, (2.0 * 6.0 + 10.0) * c.World.Scale);
 
-  // One directional light (or a point light, brighter to make up for its falloff), placed by the
-  // similarity; a point light's inverse-square falloff is rescaled so that it lights alike.
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetDiffuseColor(1.0, 0.9, 0.8);
-  light->SetIntensity(0.8);
+  // One directional light (or a point light, brighter to make up for its falloff, or both), placed
+  // by the similarity; a point light's inverse-square falloff is rescaled so that it lights alike.
   if (c.PointLight)
   {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetDiffuseColor(1.0, 0.9, 0.8);
     light->SetIntensity(0.8 * 9.0);
     light->SetPositional(true);
     light->SetConeAngle(180.0);
     light->SetPosition(centre[0], centre[1], centre[2] + 2.5 * c.World.Scale);
     light->SetFocalPoint(centre);
     light->SetAttenuationValues(0.0, 0.0, 1.0 / (c.World.Scale * c.World.Scale));
+    scene.Renderer->AddLight(light);
   }
-  else
+  if (!c.PointLight || c.SunToo)
   {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetDiffuseColor(1.0, 0.9, 0.8);
+    light->SetIntensity(0.8);
     light->SetPosition(centre[0] + 6.0, centre[1] + 8.0, centre[2] + 4.0);
     light->SetFocalPoint(centre);
+    scene.Renderer->AddLight(light);
   }
-  scene.Renderer->AddLight(light);
 
   Rendered r;
   r.Gpu = scene.RenderFloat();
@@ -317,6 +322,21 @@ std::vector<Case> Cases()
     nested.PointLight = point;
     nested.Lighting = [](LightingParameters& p) { p.Transmittance = LightTransmittance::Nested; };
     cases.push_back(nested);
+  }
+  // The multiple-scattering volume (every march case above reads it) from a point light and the
+  // sun together, with the light volumes and with the nested march toward the lights: its source
+  // sums both kinds, and the cloud's albedo (the ramp's colours) is below 1 in every channel.
+  for (const bool nested : { false, true })
+  {
+    Case both;
+    both.Name = nested ? "MarchSunAndPointLightNested" : "MarchSunAndPointLight";
+    both.PointLight = true;
+    both.SunToo = true;
+    if (nested)
+    {
+      both.Lighting = [](LightingParameters& p) { p.Transmittance = LightTransmittance::Nested; };
+    }
+    cases.push_back(both);
   }
   Case singleScattering;
   singleScattering.Name = "MarchSingleScatteringExtinctionScale";

@@ -389,3 +389,121 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
   EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
   EXPECT_EQ(mapper->GetLastError(), "");
 }
+
+namespace
+{
+// The sparse cloud lit by the sun, with the march (whose multiple scattering comes from the
+// volume).
+void SetSunlitMarch(GpuScene& scene, vtkCloudVolumeMapper* mapper, vtkLight* sun)
+{
+  mapper->GetLightingProperty()->SetModelToMarch();
+  SetField(scene, mapper, Storages[0]);
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(1.0, 0.5, 0.3);
+  sun->SetFocalPoint(0.0, 0.0, 0.0);
+  scene.Renderer->AddLight(sun);
+}
+
+// The multiple-scattering grids of the 64^3 field: 5^3, 9^3 and 17^3 texels, five RGBA32F
+// textures each (medium, source, direction, two fluences), and three more of the finest (its
+// flux, and the finished fluence and flux the march reads).
+constexpr long long ScatteringBytes = 16LL * (5 * (125 + 729 + 4913) + 3 * 4913);
+}
+
+TEST(MapperResources, TheScatteringVolumeIsComputedWhenItsInputsChangeAndCountsInTheBudget)
+{
+  auto mapper = CloudMapper(0.05);
+  GpuScene scene(mapper, ImageSize, ImageSize);
+  vtkNew<vtkLight> sun;
+  SetSunlitMarch(scene, mapper, sun);
+  const Image first = scene.RenderFloat();
+  ASSERT_EQ(mapper->GetLastError(), "");
+  EXPECT_GT(LargestAlpha(first), 0.3);
+  EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 1);
+  EXPECT_EQ(mapper->GetScatteringVolumeBytes(), ScatteringBytes);
+  EXPECT_GT(mapper->GetScatteringVolumeSeconds(), 0.0);
+  scene.Renderer->GetActiveCamera()->Azimuth(20.0); // a new view: the same volume
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 1);
+  sun->SetPosition(-1.0, 0.5, 0.3); // the light moves
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 2);
+  SetRampMedium(scene.Property, 1.0, 0.3); // another transfer function
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 3);
+  LightingParameters lighting = mapper->GetLightingProperty()->GetParameters();
+  lighting.PhaseG1 = 0.5f; // another phase
+  mapper->GetLightingProperty()->SetParameters(lighting);
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 4);
+  EXPECT_EQ(mapper->GetLastError(), "");
+  // Another model needs none: it is not held for nothing.
+  mapper->GetLightingProperty()->SetModelToDerivative();
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetScatteringVolumeBytes(), 0);
+
+  // Refused in words when the memory limit leaves no room for it, nothing drawn.
+  mapper->GetLightingProperty()->SetModelToMarch();
+  scene.RenderFloat();
+  const vtkTypeInt64 held = mapper->GetGPUMemoryBytes();
+  mapper->ReleaseGraphicsResources(scene.Window);
+  mapper->SetMaximumGPUMemory(held - 1);
+  const Image refused = scene.Render();
+  const std::string error = mapper->GetLastError();
+  EXPECT_NE(error.find("the multiple-scattering volume needs"), std::string::npos) << error;
+  EXPECT_NE(error.find("MaximumGPUMemory"), std::string::npos) << error;
+  EXPECT_EQ(Largest(refused, 3), 0.0) << "nothing drawn: the background everywhere";
+  mapper->SetMaximumGPUMemory(held);
+  EXPECT_GT(LargestAlpha(scene.RenderFloat()), 0.3);
+  EXPECT_EQ(mapper->GetLastError(), "");
+}
+
+TEST(MapperResources, AProgressiveRecomputeShowsTheLastVolumeUntilTheNewOneIsTheWholeOne)
+{
+  // Spread over frames (the viewer's setting), a recompute after the light moves runs a slice of
+  // its passes per render; meanwhile the march reads the last finished volume, and the renders
+  // report the progress. The volume it ends with is the one a whole computation makes (the same
+  // passes in the same order), so the image is a second mapper's to the bit.
+  auto mapper = CloudMapper(0.05);
+  mapper->SetScatteringVolumeSecondsPerFrame(1e-9); // one pass per render
+  GpuScene scene(mapper, ImageSize, ImageSize);
+  vtkNew<vtkLight> sun;
+  SetSunlitMarch(scene, mapper, sun);
+  auto whole = CloudMapper(0.05);
+  GpuScene reference(whole, ImageSize, ImageSize);
+  vtkNew<vtkLight> referenceSun;
+  SetSunlitMarch(reference, whole, referenceSun);
+
+  scene.RenderFloat(); // the first volume: computed whole, nothing to show meanwhile
+  ASSERT_EQ(mapper->GetLastError(), "");
+  EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 1);
+  EXPECT_FALSE(mapper->GetScatteringVolumeConverging());
+  EXPECT_LE(MaxDifference(scene.RenderFloat(), reference.RenderFloat()), 0.0);
+
+  sun->SetPosition(-1.0, 0.5, 0.3);
+  referenceSun->SetPosition(-1.0, 0.5, 0.3);
+  int renders = 0, done = 0, total = 0, lastDone = 0;
+  do
+  {
+    scene.RenderFloat();
+    ++renders;
+    ASSERT_EQ(mapper->GetLastError(), "");
+    if (mapper->GetScatteringVolumeConverging())
+    {
+      mapper->GetScatteringVolumeProgress(done, total);
+      EXPECT_GT(done, lastDone) << "render " << renders;
+      EXPECT_LT(done, total);
+      EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 1) << "the last volume is read";
+      lastDone = done;
+    }
+  } while (mapper->GetScatteringVolumeConverging() && renders < 1000);
+  EXPECT_FALSE(mapper->GetScatteringVolumeConverging());
+  EXPECT_EQ(renders, total) << "one pass per render, " << total << " passes";
+  EXPECT_GT(total, 100);
+  EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 2);
+  const Image progressive = scene.RenderFloat();
+  const Image computedWhole = reference.RenderFloat();
+  EXPECT_EQ(whole->GetScatteringVolumeComputeCount(), 2);
+  EXPECT_LE(MaxDifference(progressive, computedWhole), 0.0);
+}

@@ -1,0 +1,125 @@
+// The multiple-scattering volume of vtkCloudVolumeMapper (issue 21; filters/CloudScatteringVolume.h
+// states the grids, the solve and the order of its passes): the textures of every grid, from the
+// coarsest to the finest, computed on the GPU by fragment passes rendered into one layer of a 3-D
+// texture at a time (shaders/CloudScatteringVolumeFS.glsl, with the shared source's texel
+// functions, as the CPU's ComputeScatteringVolume runs them), when anything it depends on changed;
+// the march reads the finest grid's fluence and flux once per sample. Its memory goes through the
+// mapper's GpuMemoryBudget.
+//
+// A recompute may be spread over frames (progressive, for the viewer): each Update then runs the
+// passes a time budget allows, and the march meanwhile reads the last finished volume, which a
+// finished computation replaces at once (the march never reads a half-solved one, which would be
+// too dark until the sweeps had carried the light in). Private to the module.
+#ifndef CloudScatteringVolumeTexture_h
+#define CloudScatteringVolumeTexture_h
+
+#include "CloudLightVolumeTexture.h"
+
+#include <vtkSmartPointer.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkTextureObject;
+class vtkWindow;
+
+namespace cloudvis
+{
+class GpuMemoryBudget;
+struct MarchUniforms;
+
+class ScatteringVolumeTexture
+{
+public:
+  ScatteringVolumeTexture();
+  ~ScatteringVolumeTexture();
+
+  // What the passes read besides the uniforms: the light volumes' inputs, and the light volumes
+  // themselves when the march reads them (null: the source marches toward each light).
+  struct Inputs : LightVolumeTexture::Inputs
+  {
+    LightVolumeTexture* LightVolumes = nullptr;
+  };
+
+  // Brings the volume up to date with u and inputs: the field, the table, the extinction, the
+  // geometry, the phase, the albedo (the table's), the lights and the light volumes it read. With
+  // `seconds` > 0 and a finished volume of the same size to show meanwhile, a recompute runs
+  // passes for about that long per call and goes on in the next calls (IsConverging); otherwise
+  // it runs to the end. False with `problem` when the textures cannot be allocated or a pass
+  // cannot run.
+  bool Update(vtkOpenGLRenderWindow* window,
+    const MarchUniforms& u,
+    const Inputs& inputs,
+    GpuMemoryBudget& budget,
+    std::string& problem,
+    double seconds = 0.0);
+
+  // Whether a recompute is under way (the march reads the last finished volume), and its
+  // progress: the passes run and the passes in all.
+  bool IsConverging() const { return this->Next < this->Steps.size(); }
+  int GetStepsDone() const { return int(this->Next); }
+  int GetStepCount() const { return int(this->Steps.size()); }
+
+  // Binds the finished volume's fluence and flux for the march (ScatteringVolumeTexture,
+  // ScatteringFluxTexture); ScatteringVolumeOn and ScatteringVolumeSize come with the march's
+  // uniforms (MarchUniforms::ScatteringVolumeTextures). Deactivate after the draw.
+  void Activate(vtkShaderProgram* march);
+  void Deactivate();
+
+  long long GetBytes() const { return this->Bytes; }
+  // How many volumes were finished (the tests check they are not recomputed per frame); each
+  // replaces the one the march reads.
+  int GetComputeCount() const { return this->ComputeCount; }
+  // The wall time of the last finished computation, from its first pass to its last, in seconds
+  // (a progressive one: the passes' own time, not the frames between them).
+  double GetLastComputeSeconds() const { return this->LastComputeSeconds; }
+  void Release(vtkWindow* window);
+
+private:
+  struct Grid;
+  struct Step
+  {
+    int Level = 0;
+    int Pass = 0;
+    int Parity = 0;
+  };
+
+  bool Allocate(vtkOpenGLRenderWindow* window,
+    const MarchUniforms& u,
+    GpuMemoryBudget& budget,
+    std::string& problem);
+  void Plan(const MarchUniforms& u);
+  bool Run(vtkOpenGLRenderWindow* window,
+    const MarchUniforms& u,
+    const Inputs& inputs,
+    double seconds,
+    std::string& problem);
+  // One pass; the samplers it does not read name unit `unreadUnit` (a 3-D texture's).
+  bool RunStep(vtkOpenGLRenderWindow* window, const Step& step, int unreadUnit);
+  void Finish();
+
+  std::vector<Grid> Grids; // coarsest first
+  // The finished volume the march reads: the finest grid's fluence and flux, swapped in from
+  // the finest grid's when a computation ends.
+  vtkSmartPointer<vtkTextureObject> Fluence;
+  vtkSmartPointer<vtkTextureObject> Flux;
+  bool Finished = false;
+  std::unique_ptr<vtkOpenGLQuadHelper> Pass;
+  std::string PassKey; // the kinds of lights the pass was compiled for
+  unsigned int Framebuffer = 0;
+  std::vector<double> Signature; // what the volume (finished or under way) is computed for
+  std::vector<Step> Steps;       // the computation's passes, in order
+  std::size_t Next = 0;          // the next of Steps to run
+  double Seconds = 0.0;          // spent on the computation under way
+  long long Bytes = 0;
+  int ComputeCount = 0;
+  double LastComputeSeconds = 0.0;
+};
+
+} // namespace cloudvis
+
+#endif
