@@ -4,6 +4,7 @@
 // instruction counts under callgrind.
 #include "CloudFieldGeometry.h"
 #include "CloudLightVolumes.h"
+#include "CloudScatteringVolume.h"
 #include "CloudTransferTable.h"
 #include "RenderingBench.h"
 #include "Scene.h"
@@ -131,7 +132,7 @@ void CompareStorage(vtkImageData* field, const Options& options)
 
 // Issue 4's figures: the cost of each lighting model on the sparse cloud with one sun, against
 // VTK's mapper with shading on; issue 12's: the march with light volumes against the nested
-// march, and the volumes' recompute time.
+// march, and the volumes' recompute time; issue 21's: the multiple-scattering volume's.
 void CompareLighting(vtkImageData* field, const Options& options)
 {
   const double step = 4.0 / (options.Size - 1);
@@ -199,6 +200,21 @@ void CompareLighting(vtkImageData* field, const Options& options)
     if (lighting.Transmittance == LightTransmittance::Nested)
     {
       std::printf("  nested march / light volumes: %.2f\n", ms / volumesMs);
+    }
+    if (UsesScatteringVolume(lighting))
+    {
+      // The mapper's own time for its last computation of the volume (a frame's statistics).
+      mapper->CollectStatisticsOn();
+      mapper->Modified();
+      cloud.Window->Render();
+      const double recomputeMs = mapper->GetLastFrameStatistics().ScatteringVolumeMilliseconds;
+      mapper->CollectStatisticsOff();
+      std::printf("  multiple-scattering volume: %d^3 texels, %.1f MiB, recompute %.1f ms "
+                  "(%d computes)\n",
+        ScatteringVolumeSize(glm::ivec3(options.Size)).x,
+        double(mapper->GetScatteringVolumeBytes()) / (1 << 20),
+        recomputeMs,
+        mapper->GetScatteringVolumeComputeCount());
     }
     if (setting.MovingLight)
     {

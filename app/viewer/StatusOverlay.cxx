@@ -168,6 +168,14 @@ StatusOverlay::StatusOverlay(vtkRenderer* overlay)
   this->Readout->SetPosition(0.01, 0.01);
   this->Readout->VisibilityOff();
   overlay->AddActor2D(this->Readout);
+
+  StyleBoxedText(this->Progress, 12, 0.45);
+  this->Progress->GetTextProperty()->SetJustificationToRight();
+  this->Progress->GetTextProperty()->SetVerticalJustificationToTop();
+  this->Progress->GetTextProperty()->SetColor(0.85, 0.95, 0.85);
+  this->Progress->SetPosition(0.99, 0.99);
+  this->Progress->VisibilityOff();
+  overlay->AddActor2D(this->Progress);
 }
 
 StatusOverlay::~StatusOverlay() = default;
@@ -262,12 +270,24 @@ std::string StatusOverlay::GetReadout() const
   return this->Readout->GetVisibility() && text ? text : "";
 }
 
-std::array<bool, 5> StatusOverlay::HideAll()
+void StatusOverlay::SetProgress(const std::string& text)
 {
-  const std::array<vtkTextActor*, 5> actors = {
-    this->Message, this->Help[0], this->Help[1], this->Hint, this->Readout
+  this->Progress->SetInput(text.c_str());
+  this->Progress->SetVisibility(!text.empty());
+}
+
+std::string StatusOverlay::GetProgress() const
+{
+  const char* text = this->Progress->GetInput();
+  return this->Progress->GetVisibility() && text ? text : "";
+}
+
+StatusOverlay::Visibility StatusOverlay::HideAll()
+{
+  const std::array<vtkTextActor*, 6> actors = {
+    this->Message, this->Help[0], this->Help[1], this->Hint, this->Readout, this->Progress
   };
-  std::array<bool, 5> visible;
+  Visibility visible;
   for (size_t i = 0; i < actors.size(); ++i)
   {
     visible[i] = actors[i]->GetVisibility() != 0;
@@ -276,10 +296,10 @@ std::array<bool, 5> StatusOverlay::HideAll()
   return visible;
 }
 
-void StatusOverlay::Restore(const std::array<bool, 5>& visible)
+void StatusOverlay::Restore(const Visibility& visible)
 {
-  const std::array<vtkTextActor*, 5> actors = {
-    this->Message, this->Help[0], this->Help[1], this->Hint, this->Readout
+  const std::array<vtkTextActor*, 6> actors = {
+    this->Message, this->Help[0], this->Help[1], this->Hint, this->Readout, this->Progress
   };
   for (size_t i = 0; i < actors.size(); ++i)
   {
@@ -292,6 +312,7 @@ void StatusOverlay::Place(const std::array<double, 4>& view, const std::array<do
   this->View = view;
   this->Message->SetPosition(view[0] + 0.01, view[3] - 0.01);
   this->Hint->SetPosition(view[2] - 0.01, view[1] + 0.01);
+  this->Progress->SetPosition(view[2] - 0.01, view[3] - 0.01);
   this->Readout->SetPosition(readout[0], readout[1]);
   this->LayOut();
 }

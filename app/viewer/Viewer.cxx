@@ -9,7 +9,9 @@
 // Rendering: nothing here renders directly. Input and changes ask for a frame (Request(): the
 // interactor's RenderEvent, a function's ModifiedEvent, a key); the live loop (LiveLoop.h)
 // renders once per batch of input and then refines progressively until the mapper has averaged
-// MaximumAccumulatedFrames frames (render.accumulate). During a drag the interactor asks for
+// MaximumAccumulatedFrames frames (render.accumulate) and has finished the multiple-scattering
+// volume it recomputes a slice at a time (ScatteringVolumeSecondsPerFrame; the progress line says
+// how far). During a drag the interactor asks for
 // DesiredUpdateRate (the mapper lowers its resolution to keep up); when the drag ends it asks
 // for StillUpdateRate, and the full-resolution image refines from there.
 #include "ViewerInternals.h"
@@ -44,6 +46,11 @@ namespace
 {
 // The editor's share of the window, from the bottom; the views have the rest.
 constexpr double EditorHeight = 0.25;
+
+// The mapper's time per frame for recomputing the multiple-scattering volume after a light moved
+// or the transfer function changed: the frame then stays interactive (a 128^3 field's volume
+// takes several of these on llvmpipe), and the march reads the last finished volume meanwhile.
+constexpr double ScatteringVolumeSecondsPerFrame = 0.03;
 
 // The mouse's button and wheel events: every gesture undo counts begins or ends with one.
 constexpr unsigned long MouseButtonEvents[] = { vtkCommand::LeftButtonPressEvent,
@@ -135,6 +142,21 @@ void Viewer::Internals::RenderFrame()
   {
     this->Window->SetDesiredUpdateRate(this->Interactor->GetStillUpdateRate());
   }
+  // Shown from the next frame on (the overlay's text is drawn with this one): the line lags a
+  // frame, and a frame is asked for when it goes, so that it never stays after the work ends.
+  int done = 0, total = 0;
+  this->Mapper->GetScatteringVolumeProgress(done, total);
+  const std::string progress = total > 0
+    ? "multiple scattering: converging (" + std::to_string(done) + "/" + std::to_string(total) + ")"
+    : "";
+  if (progress != this->Status->GetProgress())
+  {
+    this->Status->SetProgress(progress);
+    if (progress.empty() && this->Loop)
+    {
+      this->Loop->Request();
+    }
+  }
   this->LastFrameWasPreview = preview;
   ++this->FramesRendered;
   this->LastFrameAt = MonotonicSeconds();
@@ -163,7 +185,8 @@ bool Viewer::Internals::Converged() const
 {
   return !this->Volume->GetVisibility() || !this->Mapper->GetLastError().empty() ||
     (!this->LastFrameWasPreview &&
-      this->Mapper->GetNumberOfAccumulatedFrames(this->View) >= this->FramesToConverge());
+      this->Mapper->GetNumberOfAccumulatedFrames(this->View) >= this->FramesToConverge() &&
+      !this->Mapper->GetScatteringVolumeConverging() && this->Status->GetProgress().empty());
 }
 
 bool Viewer::Internals::RefinementPending()
@@ -172,6 +195,10 @@ bool Viewer::Internals::RefinementPending()
     this->Window->GetDesiredUpdateRate() > this->Interactor->GetStillUpdateRate())
   {
     return false;
+  }
+  if (this->Mapper->GetScatteringVolumeConverging())
+  {
+    return true; // each frame computes a slice of the volume, whatever it accumulates
   }
   const int accumulated = this->Mapper->GetNumberOfAccumulatedFrames(this->View);
   if (!this->LastFrameWasPreview && this->FramesRendered > this->RefinementCheck.first &&
@@ -417,6 +444,7 @@ Viewer::Viewer(const Scene& scene,
   window->AddRenderer(in.View);
   in.Mapper->SetInputData(field);
   ConfigureMapper(in.Mapper, in.Current.Render);
+  in.Mapper->SetScatteringVolumeSecondsPerFrame(ScatteringVolumeSecondsPerFrame);
   // Only the viewer interacts: exports never hold the reprojection's full-resolution history.
   in.Mapper->SetTemporalReprojection(in.Current.Render.Reprojection);
   in.ApplyLighting();

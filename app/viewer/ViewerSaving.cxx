@@ -52,7 +52,7 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
     Internals& In;
     vtkRenderWindow* Window;
     std::array<int, 2> Size;
-    std::array<bool, 5> Texts;
+    StatusOverlay::Visibility Texts;
     ~Restore()
     {
       this->Window->vtkRenderWindow::SetSize(this->Size[0], this->Size[1]);

@@ -79,6 +79,7 @@ json ViewerStateJson(const ViewerState& state)
     { "legend_visible", state.LegendVisible },
     { "message", state.Message },
     { "readout", state.Readout },
+    { "progress", state.Progress },
     { "slices",
       { { "visible", state.SliceVisible },
         { "index", state.SliceIndex },
@@ -178,6 +179,7 @@ ViewerState Viewer::State() const
   state.LegendVisible = in.Legend->GetVisibility() != 0;
   state.Message = in.Status->GetMessage();
   state.Readout = in.Status->GetReadout();
+  state.Progress = in.Status->GetProgress();
   state.WindowId = static_cast<unsigned long>(reinterpret_cast<uintptr_t>(
     const_cast<vtkRenderWindow*>(in.Window.Get())->GetGenericWindowId()));
   const int* size = const_cast<vtkRenderWindow*>(in.Window.Get())->GetSize();

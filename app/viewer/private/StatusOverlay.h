@@ -3,8 +3,10 @@
 // (what a key did, saved files, errors), wrapped to the window's width and fading out after a few
 // seconds; the help (pages of two columns made from the key and mouse tables); a hint line at the
 // bottom right
-// ("h: keys ...") until the help has been shown once; and the readout at the bottom left: the
-// voxel under the pointer over the last probe (the viewer clears it when no slice is shown).
+// ("h: keys ...") until the help has been shown once; the readout at the bottom left: the
+// voxel under the pointer over the last probe (the viewer clears it when no slice is shown); and
+// the progress line at the top right, while work spread over frames goes on ("multiple
+// scattering: converging (k/n)"), gone when it is done.
 #ifndef cloudvis_StatusOverlay_h
 #define cloudvis_StatusOverlay_h
 
@@ -57,9 +59,14 @@ public:
   void SetReadout(const std::string& text);
   std::string GetReadout() const;
 
+  // The progress line; empty hides it.
+  void SetProgress(const std::string& text);
+  std::string GetProgress() const;
+
   // Hides or shows every text (for screenshots of the 3D view alone); returns what was visible.
-  std::array<bool, 5> HideAll();
-  void Restore(const std::array<bool, 5>& visible);
+  using Visibility = std::array<bool, 6>;
+  Visibility HideAll();
+  void Restore(const Visibility& visible);
 
   // Places the texts for a layout: the message at the top left and the hint at the bottom right
   // of `view` (the 3D view, in the overlay's normalized viewport coordinates), the readout's
@@ -79,6 +86,7 @@ private:
   std::vector<std::array<int, 4>> HelpBoxes; // in the overlay's pixels
   vtkNew<vtkTextActor> Hint;
   vtkNew<vtkTextActor> Readout;
+  vtkNew<vtkTextActor> Progress;
   std::string MessageText; // unwrapped
   bool Error = false;
   double ShownAt = -1.0; // steady-clock seconds; negative: no message

@@ -94,7 +94,8 @@ struct ViewerState
   // The live loop.
   long FramesRendered = 0;
   double LastFrameAt = -1.0;    // MonotonicSeconds when the last frame was complete
-  bool Converged = false;       // the 3D view has all the frames render.accumulate asks for
+  bool Converged = false;       // the 3D view has all the frames render.accumulate asks for,
+                                // and its multiple-scattering volume is up to date
   std::vector<HandledKey> Keys; // the last 64 handled
   // The camera of the 3D view.
   std::array<double, 3> CameraPosition{ { 0.0, 0.0, 0.0 } };
@@ -108,6 +109,7 @@ struct ViewerState
   bool LegendVisible = false; // the cloud's color legend
   std::string Message;        // the message on screen, as wrapped; empty once faded
   std::string Readout;        // the probe readout line
+  std::string Progress;       // the progress line ("multiple scattering: converging (k/n)")
   unsigned long WindowId = 0; // the X window
   std::array<int, 2> WindowSize{ { 0, 0 } };
   // Viewports in window pixels x0, y0, x1, y1 from the bottom left: "3d", "editor", and in the
