@@ -4,8 +4,6 @@
 
 #include "CloudLighting.h"
 
-#include <cstdlib>
-
 namespace cloudvis
 {
 namespace
@@ -80,7 +78,6 @@ glsl::Transport TransportOf(const MarchUniforms& u)
     t.Scattering = u.MultipleScattering;
     t.ScatteringVolumeOn = 1;
     t.ScatteringVolumeSize = glm::vec3(u.MultipleScattering->Size);
-    t.ScatteringFluxWeight = std::getenv("MS_FLUX") ? float(std::atof(std::getenv("MS_FLUX"))) : 1.0f; // EXPERIMENT
   }
   return t;
 }

@@ -48,6 +48,7 @@ std::string Constants(int samplesPerMapRead)
        << "const float PhaseToRadiance = " << GlslFloat(PhaseToRadiance) << ";\n"
        << "const float DirectionalLightDistance = " << GlslFloat(DirectionalLightDistance) << ";\n"
        << "const float LightBoxMargin = " << GlslFloat(LightBoxMargin) << ";\n"
+       << "const float DiffuseEscapeSpeed = " << GlslFloat(DiffuseEscapeSpeed) << ";\n"
        << "const float RatioTrackingRouletteThreshold = "
        << GlslFloat(RatioTrackingRouletteThreshold) << ";\n"
        << "const float NoCrossing = " << GlslFloat(NoCrossing) << ";\n"
