@@ -32,6 +32,35 @@ enum class LightingModel
   PathTrace,  // Monte Carlo volumetric path tracing: every order of scattering (CloudPathTrace.h)
 };
 
+// The look-ups of the name tables below (each entry a Name and the Model it stands for): the
+// value a name stands for (nullopt for an unknown name), and the name of a value ("unknown" for
+// a value outside the enumeration).
+template<typename Entry, std::size_t N>
+std::optional<decltype(Entry::Model)> FindInTable(const std::array<Entry, N>& table,
+  const std::string& name)
+{
+  for (const Entry& entry : table)
+  {
+    if (name == entry.Name)
+    {
+      return entry.Model;
+    }
+  }
+  return std::nullopt;
+}
+template<typename Entry, std::size_t N>
+const char* NameInTable(const std::array<Entry, N>& table, decltype(Entry::Model) value)
+{
+  for (const Entry& entry : table)
+  {
+    if (entry.Model == value)
+    {
+      return entry.Name;
+    }
+  }
+  return "unknown";
+}
+
 // The one table of the models' names: render.lighting and --lighting, the viewer's m key,
 // `cloudvis compare`'s panels, vtkCloudLightingProperty::GetModelAsString and the reference
 // table of docs/scene-format.md all read it. In the enumeration's order.
@@ -70,29 +99,14 @@ inline std::vector<std::string> LightingModelNames()
   return names;
 }
 
-// The model a name stands for (nullopt for an unknown name), and the name of a model ("unknown"
-// for a value outside the enumeration).
+// The model a name stands for, and the name of a model (FindInTable, NameInTable).
 inline std::optional<LightingModel> FindLightingModel(const std::string& name)
 {
-  for (const LightingModelEntry& entry : LightingModelTable())
-  {
-    if (name == entry.Name)
-    {
-      return entry.Model;
-    }
-  }
-  return std::nullopt;
+  return FindInTable(LightingModelTable(), name);
 }
 inline const char* LightingModelName(LightingModel model)
 {
-  for (const LightingModelEntry& entry : LightingModelTable())
-  {
-    if (entry.Model == model)
-    {
-      return entry.Name;
-    }
-  }
-  return "unknown";
+  return NameInTable(LightingModelTable(), model);
 }
 
 // How the march adds the light that has scattered more than once (docs/lighting.md, "Phase and
@@ -127,29 +141,14 @@ inline const std::array<MultipleScatteringModelEntry, 2>& MultipleScatteringMode
   return table;
 }
 
-// The model a name stands for (nullopt for an unknown name), and the name of a model ("unknown"
-// for a value outside the enumeration).
+// The model a name stands for, and the name of a model (FindInTable, NameInTable).
 inline std::optional<MultipleScatteringModel> FindMultipleScatteringModel(const std::string& name)
 {
-  for (const MultipleScatteringModelEntry& entry : MultipleScatteringModelTable())
-  {
-    if (name == entry.Name)
-    {
-      return entry.Model;
-    }
-  }
-  return std::nullopt;
+  return FindInTable(MultipleScatteringModelTable(), name);
 }
 inline const char* MultipleScatteringModelName(MultipleScatteringModel model)
 {
-  for (const MultipleScatteringModelEntry& entry : MultipleScatteringModelTable())
-  {
-    if (entry.Model == model)
-    {
-      return entry.Name;
-    }
-  }
-  return "unknown";
+  return NameInTable(MultipleScatteringModelTable(), model);
 }
 
 // A light in the world, as a scene gives it to every renderer (a vtkLight, where VTK lights the
