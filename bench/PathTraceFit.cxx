@@ -216,6 +216,8 @@ struct PreparedMarch
   // The image with these octaves (the other lighting parameters as prepared).
   std::vector<float> Render(const LightingParameters& octaves)
   {
+    // The octaves whatever the default multiple scattering: they are what is fitted.
+    this->Uniforms.Lighting.MultipleScattering = MultipleScatteringModel::Octaves;
     this->Uniforms.Lighting.MultipleScatteringOctaves = octaves.MultipleScatteringOctaves;
     this->Uniforms.Lighting.ScatteringFalloff = octaves.ScatteringFalloff;
     this->Uniforms.Lighting.ExtinctionFalloff = octaves.ExtinctionFalloff;
