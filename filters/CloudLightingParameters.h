@@ -231,10 +231,9 @@ struct LightingParameters
   float PhaseG1 = 0.6f;
   float PhaseG2 = -0.3f;
   float PhaseLobeWeight = 0.8f;
-  // Where the light scattered more than once comes from: the multiple-scattering volume or the
-  // octaves below. The octaves are the default until the volume is implemented; this line is the
-  // one that makes the volume the default.
-  MultipleScatteringModel MultipleScattering = MultipleScatteringModel::Octaves;
+  // Where the light scattered more than once comes from: the multiple-scattering volume (the
+  // default: docs/lighting.md, "The multiple-scattering volume") or the octaves below.
+  MultipleScatteringModel MultipleScattering = MultipleScatteringModel::Volume;
   // The octaves' approximate multiple scattering: octaves n = 1..N added to single scattering
   // (n = 0), each scaling scattering by a^n, extinction toward the light by b^n, eccentricity by
   // c^n. The values are fitted to the path tracer (`cloudvis-bench-pathtrace fit`,

@@ -111,7 +111,7 @@ public:
    * March model: how the light scattered more than once is added to single scattering.
    * ScatteringVolume: one fetch per sample of a precomputed volume of that light, recomputed when
    * the field, the transfer function or the lights change. ScatteringOctaves: the octaves below.
-   * Default ScatteringOctaves. docs/lighting.md compares the two with the path tracer.
+   * Default ScatteringVolume. docs/lighting.md compares the two with the path tracer.
    */
   enum MultipleScatterings
   {

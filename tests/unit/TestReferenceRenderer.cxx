@@ -254,6 +254,7 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   renderer->SetVolumeProperty(LinearMedium(sigma_t));
   renderer->SetSampleDistance(1.0 / 256.0);
   LightingParameters p = ModelOnly(LightingModel::March);
+  p.MultipleScattering = MultipleScatteringModel::Octaves; // single scattering alone
   p.MultipleScatteringOctaves = 0;
   p.PhaseLobeWeight = 1.0f;
   p.PhaseG1 = 0.5f;
@@ -590,7 +591,7 @@ TEST(LightingProperty, DefaultsAreThoseOfLightingParameters)
   EXPECT_EQ(property->GetPhaseG1(), 0.6f);
   EXPECT_EQ(property->GetPhaseG2(), -0.3f);
   EXPECT_EQ(property->GetPhaseLobeWeight(), 0.8f);
-  EXPECT_EQ(property->GetMultipleScattering(), vtkCloudLightingProperty::ScatteringOctaves);
+  EXPECT_EQ(property->GetMultipleScattering(), vtkCloudLightingProperty::ScatteringVolume);
   EXPECT_EQ(property->GetMultipleScatteringOctaves(), 3);
   EXPECT_EQ(property->GetAmbientStrength(), 0.0f);
   EXPECT_EQ(property->GetAmbientColor()[0], 1.0f);
