@@ -54,6 +54,7 @@ uniform sampler3D ScatteringDirectionTexture;
 uniform sampler3D ScatteringFluenceTexture;
 uniform sampler3D CoarseFluenceTexture;
 uniform sampler3D ScatteringVolumeTexture;
+uniform sampler3D ScatteringFluxTexture;
 
 vec4 ScatteringMediumAt(ivec3 c)
 {
@@ -83,4 +84,9 @@ vec4 CoarseFluenceFetch(vec3 t)
 vec4 ScatteringVolumeFetch(vec3 t)
 {
   return texture(ScatteringVolumeTexture, (t + 0.5) / ScatteringVolumeSize);
+}
+
+vec4 ScatteringFluxFetch(vec3 t)
+{
+  return texture(ScatteringFluxTexture, (t + 0.5) / ScatteringVolumeSize);
 }
