@@ -127,6 +127,8 @@ int Errors(const Options& options)
           }
           LightingParameters lighting = scene.Render.Lighting;
           lighting.Model = model.Model;
+          // The rows name octave counts: the octaves, whatever the default multiple scattering.
+          lighting.MultipleScattering = MultipleScatteringModel::Octaves;
           lighting.MultipleScatteringOctaves = model.Octaves;
           lighting.Transmittance =
             model.Nested ? LightTransmittance::Nested : LightTransmittance::Volumes;

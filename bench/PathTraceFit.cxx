@@ -26,7 +26,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -207,15 +206,6 @@ struct PreparedMarch
     const double start = vtkTimerLog::GetUniversalTime();
     ComputeScatteringVolume(this->Uniforms, this->Scattering, solve);
     seconds = vtkTimerLog::GetUniversalTime() - start;
-    if (std::getenv("MS_NODIFFUSE"))
-      for (auto& v : this->Scattering.Fluence)
-        v = glm::vec4(0.0f);
-    if (std::getenv("MS_SINGLE"))
-    {
-      LightingParameters single = this->Uniforms.Lighting;
-      single.MultipleScatteringOctaves = 0;
-      return this->Render(single);
-    }
     this->Uniforms.MultipleScattering = &this->Scattering;
     std::vector<float> image = this->Render(this->Uniforms.Lighting);
     this->Uniforms.MultipleScattering = nullptr;
@@ -226,6 +216,8 @@ struct PreparedMarch
   // The image with these octaves (the other lighting parameters as prepared).
   std::vector<float> Render(const LightingParameters& octaves)
   {
+    // The octaves whatever the default multiple scattering: they are what is fitted.
+    this->Uniforms.Lighting.MultipleScattering = MultipleScatteringModel::Octaves;
     this->Uniforms.Lighting.MultipleScatteringOctaves = octaves.MultipleScatteringOctaves;
     this->Uniforms.Lighting.ScatteringFalloff = octaves.ScatteringFalloff;
     this->Uniforms.Lighting.ExtinctionFalloff = octaves.ExtinctionFalloff;
@@ -536,14 +528,7 @@ int MeasureVolume(std::vector<FitCase>& cases, const Options& options)
   for (std::size_t i = 0; i < cases.size(); ++i)
   {
     double s = 0.0;
-    ScatteringSolve solve;
-    if (const char* v = std::getenv("MS_COARSE"))
-      solve.CoarsestSweeps = std::atoi(v);
-    if (const char* v = std::getenv("MS_SWEEPS"))
-      solve.SweepsPerGrid = std::atoi(v);
-    if (const char* v = std::getenv("MS_OMEGA"))
-      solve.Relaxation = float(std::atof(v));
-    const std::vector<float> image = cases[i].Octaves->RenderWithVolume(solve, s);
+    const std::vector<float> image = cases[i].Octaves->RenderWithVolume(ScatteringSolve(), s);
     seconds += s;
     volume[i] = CompareWithReference(image.data(),
       cases[i].Reference.RGBA.data(),
@@ -606,7 +591,7 @@ int Fit(const Options& options)
         lighting.Model = LightingModel::March;
         c.March = NewMarch(gray, field, lighting, options);
         c.Octaves = std::make_unique<PreparedMarch>(c.March, field);
-        if (Run(c.March).RGBA != c.Octaves->Render(lighting))
+        if (options.MultipleScattering != "volume" && Run(c.March).RGBA != c.Octaves->Render(lighting))
           Fail(c.Name + ": the prepared march differs from vtkCloudReferenceRenderer's");
         WritePng(options.PngDirectory,
           FileLabel(c.Name) + "-pathtrace",

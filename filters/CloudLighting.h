@@ -52,6 +52,12 @@ CLOUDVISFILTERS_EXPORT glm::vec3 ScatteredFraction(const LightingParameters& p,
 // once (at 1e-3 voxels the reach grows by at most 0.002 voxels elsewhere).
 constexpr float LightBoxMargin = 1e-3f;
 
+// The multiple-scattering volume's flux limiter (shaders/transport/Transport.glsl): the largest
+// |flux| / fluence it lets diffuse light stream at where the medium is thin. Marshak's half-space
+// would be 1/2; 0.35 is the best of 1/2, 0.45, 0.41, 0.35 and 0.29 on the training cases of
+// `cloudvis-bench-pathtrace fit` (docs/lighting.md, "The multiple-scattering volume").
+constexpr float DiffuseEscapeSpeed = 0.35f;
+
 // How far a directional light is, in local units: beyond any light march (the GLSL receives it
 // by substitution).
 constexpr float DirectionalLightDistance = 1e30f;

@@ -1,6 +1,7 @@
 // What a cloud is lit with, as one value from the scene file to the renderers' uniforms: the
 // lighting model and its parameters (LightingParameters, the model inside), the names of the
-// models (one table), the lights in the world (Light) and the limits the renderers put on them.
+// models and of the march's ways of adding multiple scattering (one table each), the lights in
+// the world (Light) and the limits the renderers put on them.
 // A scene holds a LightingParameters and a list of Lights (app/scene Scene.h);
 // vtkCloudLightingProperty holds one LightingParameters for VTK and Python; SetUpMarch
 // (CloudMarchUniforms.h) turns both into the march's uniforms for the GPU mapper and the CPU
@@ -30,6 +31,35 @@ enum class LightingModel
   March,      // nested march toward each light: Beer-Lambert shadowing and a phase function
   PathTrace,  // Monte Carlo volumetric path tracing: every order of scattering (CloudPathTrace.h)
 };
+
+// The look-ups of the name tables below (each entry a Name and the Model it stands for): the
+// value a name stands for (nullopt for an unknown name), and the name of a value ("unknown" for
+// a value outside the enumeration).
+template<typename Entry, std::size_t N>
+std::optional<decltype(Entry::Model)> FindInTable(const std::array<Entry, N>& table,
+  const std::string& name)
+{
+  for (const Entry& entry : table)
+  {
+    if (name == entry.Name)
+    {
+      return entry.Model;
+    }
+  }
+  return std::nullopt;
+}
+template<typename Entry, std::size_t N>
+const char* NameInTable(const std::array<Entry, N>& table, decltype(Entry::Model) value)
+{
+  for (const Entry& entry : table)
+  {
+    if (entry.Model == value)
+    {
+      return entry.Name;
+    }
+  }
+  return "unknown";
+}
 
 // The one table of the models' names: render.lighting and --lighting, the viewer's m key,
 // `cloudvis compare`'s panels, vtkCloudLightingProperty::GetModelAsString and the reference
@@ -69,29 +99,56 @@ inline std::vector<std::string> LightingModelNames()
   return names;
 }
 
-// The model a name stands for (nullopt for an unknown name), and the name of a model ("unknown"
-// for a value outside the enumeration).
+// The model a name stands for, and the name of a model (FindInTable, NameInTable).
 inline std::optional<LightingModel> FindLightingModel(const std::string& name)
 {
-  for (const LightingModelEntry& entry : LightingModelTable())
-  {
-    if (name == entry.Name)
-    {
-      return entry.Model;
-    }
-  }
-  return std::nullopt;
+  return FindInTable(LightingModelTable(), name);
 }
 inline const char* LightingModelName(LightingModel model)
 {
-  for (const LightingModelEntry& entry : LightingModelTable())
-  {
-    if (entry.Model == model)
-    {
-      return entry.Name;
-    }
-  }
-  return "unknown";
+  return NameInTable(LightingModelTable(), model);
+}
+
+// How the march adds the light that has scattered more than once (docs/lighting.md, "Phase and
+// multiple scattering"): from the precomputed multiple-scattering volume, or from the octaves,
+// an approximation that scales single scattering.
+enum class MultipleScatteringModel
+{
+  Volume,  // one fetch per sample of a volume of the light scattered at least twice
+  Octaves, // MultipleScatteringOctaves octaves added to single scattering (the earlier model)
+};
+
+// The one table of its names: render.march.multiple_scattering, `cloudvis compare`'s
+// `march:NAME` panels, vtkCloudLightingProperty::GetMultipleScatteringAsString and the reference
+// table of docs/scene-format.md all read it. In the enumeration's order.
+struct MultipleScatteringModelEntry
+{
+  const char* Name;
+  MultipleScatteringModel Model;
+  const char* Description; // for the docs and help
+};
+inline const std::array<MultipleScatteringModelEntry, 2>& MultipleScatteringModelTable()
+{
+  static const std::array<MultipleScatteringModelEntry, 2> table{ {
+    { "volume",
+      MultipleScatteringModel::Volume,
+      "a precomputed volume of the light scattered more than once, recomputed when the field, "
+      "transfer function or lights change" },
+    { "octaves",
+      MultipleScatteringModel::Octaves,
+      "`octaves` octaves added to single scattering, each a scaled copy of it" },
+  } };
+  return table;
+}
+
+// The model a name stands for, and the name of a model (FindInTable, NameInTable).
+inline std::optional<MultipleScatteringModel> FindMultipleScatteringModel(const std::string& name)
+{
+  return FindInTable(MultipleScatteringModelTable(), name);
+}
+inline const char* MultipleScatteringModelName(MultipleScatteringModel model)
+{
+  return NameInTable(MultipleScatteringModelTable(), model);
 }
 
 // A light in the world, as a scene gives it to every renderer (a vtkLight, where VTK lights the
@@ -174,10 +231,14 @@ struct LightingParameters
   float PhaseG1 = 0.6f;
   float PhaseG2 = -0.3f;
   float PhaseLobeWeight = 0.8f;
-  // Approximate multiple scattering: octaves n = 1..N added to single scattering (n = 0), each
-  // scaling scattering by a^n, extinction toward the light by b^n, eccentricity by c^n. The
-  // values are fitted to the path tracer (`cloudvis-bench-pathtrace fit`, docs/lighting.md
-  // "Fitting the march to the path tracer"); until that fit they were 3 and 0.5, 0.5, 0.5.
+  // Where the light scattered more than once comes from: the multiple-scattering volume (the
+  // default: docs/lighting.md, "The multiple-scattering volume") or the octaves below.
+  MultipleScatteringModel MultipleScattering = MultipleScatteringModel::Volume;
+  // The octaves' approximate multiple scattering: octaves n = 1..N added to single scattering
+  // (n = 0), each scaling scattering by a^n, extinction toward the light by b^n, eccentricity by
+  // c^n. The values are fitted to the path tracer (`cloudvis-bench-pathtrace fit`,
+  // docs/lighting.md "Fitting the march to the path tracer"); until that fit they were 3 and 0.5,
+  // 0.5, 0.5.
   int MultipleScatteringOctaves = 3;
   float ScatteringFalloff = 0.41f;   // a
   float ExtinctionFalloff = 0.26f;   // b
@@ -194,6 +255,7 @@ inline bool operator==(const LightingParameters& a, const LightingParameters& b)
     a.LightSteps == b.LightSteps && a.LightStep == b.LightStep &&
     a.LightStepGrowth == b.LightStepGrowth && a.Transmittance == b.Transmittance &&
     a.PhaseG1 == b.PhaseG1 && a.PhaseG2 == b.PhaseG2 && a.PhaseLobeWeight == b.PhaseLobeWeight &&
+    a.MultipleScattering == b.MultipleScattering &&
     a.MultipleScatteringOctaves == b.MultipleScatteringOctaves &&
     a.ScatteringFalloff == b.ScatteringFalloff && a.ExtinctionFalloff == b.ExtinctionFalloff &&
     a.EccentricityFalloff == b.EccentricityFalloff && a.PowderStrength == b.PowderStrength;
@@ -242,6 +304,14 @@ inline std::string ValidateLightingParameters(const LightingParameters& p)
     return "phase eccentricities g must be in (-1, 1)";
   if (!(p.PhaseLobeWeight >= 0.0f && p.PhaseLobeWeight <= 1.0f))
     return "the phase lobe weight must be in [0, 1]";
+  if (std::string(MultipleScatteringModelName(p.MultipleScattering)) == "unknown")
+  {
+    std::string names;
+    for (const MultipleScatteringModelEntry& entry : MultipleScatteringModelTable())
+      names += std::string(names.empty() ? "" : " or ") + entry.Name;
+    return "the multiple scattering must be " + names + ", got the value " +
+      std::to_string(int(p.MultipleScattering));
+  }
   if (p.MultipleScatteringOctaves < 0 ||
     p.MultipleScatteringOctaves > L::MaxMultipleScatteringOctaves)
     return "multiple-scattering octaves must be between 0 and " +

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 namespace cloudvis
 {
@@ -38,8 +37,7 @@ void ForEachCell(const glsl::Transport& transport,
 
 glm::ivec3 ScatteringVolumeSize(glm::ivec3 n)
 {
-  static const int divisor = std::getenv("MS_DIV") ? std::atoi(std::getenv("MS_DIV")) : ScatteringVolumeDivisor; // EXPERIMENT
-  return (glm::max(n, 1) - 1 + (divisor - 1)) / divisor + 1;
+  return (glm::max(n, 1) - 1 + (ScatteringVolumeDivisor - 1)) / ScatteringVolumeDivisor + 1;
 }
 
 std::vector<glm::ivec3> ScatteringGrids(glm::ivec3 fieldDimensions)
@@ -68,7 +66,6 @@ void ComputeScatteringVolume(const MarchUniforms& u,
   const ScatteringSolve& solve)
 {
   glsl::Transport transport = TransportOf(u);
-  transport.ScatteringRelaxation = solve.Relaxation;
   ScatteringGrid coarse;
   const std::vector<glm::ivec3> grids = ScatteringGrids(u.Dimensions);
   for (std::size_t level = 0; level < grids.size(); ++level)

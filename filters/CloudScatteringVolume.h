@@ -28,20 +28,20 @@ namespace cloudvis
 // voxels.
 constexpr int ScatteringVolumeDivisor = 4;
 
-// How the diffusion is solved: red-black sweeps on the coarsest grid and on each finer one, and
-// the over-relaxation factor.
+// How the diffusion is solved: red-black Gauss-Seidel sweeps on the coarsest grid and on each
+// finer one (docs/lighting.md: 24 per grid come within 0.6 points of the converged error).
 struct ScatteringSolve
 {
   int CoarsestSweeps = 64;
   int SweepsPerGrid = 24;
-  float Relaxation = 1.6f;
 };
 
 // Whether a march with these parameters reads the volume (the march model, with its multiple
 // scattering from the volume rather than the octaves).
 inline bool UsesScatteringVolume(const LightingParameters& p)
 {
-  return p.Model == LightingModel::March; // TODO(issue 21): && the setting chooses the volume
+  return p.Model == LightingModel::March &&
+    p.MultipleScattering == MultipleScatteringModel::Volume;
 }
 
 // The grids' sizes from the coarsest (at most 5 texels on its shortest axis... or the finest

@@ -5,8 +5,6 @@
 #include "CloudLighting.h"
 #include "CloudScatteringVolume.h"
 
-#include <cstdlib>
-
 namespace cloudvis
 {
 namespace
@@ -82,7 +80,6 @@ glsl::Transport TransportOf(const MarchUniforms& u)
     t.Scattering = u.MultipleScattering;
     t.ScatteringVolumeOn = 1;
     t.ScatteringVolumeSize = glm::vec3(ScatteringVolumeSize(u.Dimensions));
-    t.ScatteringFluxWeight = std::getenv("MS_FLUX") ? float(std::atof(std::getenv("MS_FLUX"))) : 1.0f; // EXPERIMENT
   }
   return t;
 }

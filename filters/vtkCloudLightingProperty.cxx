@@ -87,6 +87,23 @@ int vtkCloudLightingProperty::GetTransmittance()
   return int(this->Parameters.Transmittance);
 }
 
+void vtkCloudLightingProperty::SetMultipleScattering(int scattering)
+{
+  this->Assign(&P::MultipleScattering,
+    cloudvis::MultipleScatteringModel(
+      std::clamp(scattering, int(ScatteringVolume), int(ScatteringOctaves))));
+}
+
+int vtkCloudLightingProperty::GetMultipleScattering()
+{
+  return int(this->Parameters.MultipleScattering);
+}
+
+const char* vtkCloudLightingProperty::GetMultipleScatteringAsString() const
+{
+  return cloudvis::MultipleScatteringModelName(this->Parameters.MultipleScattering);
+}
+
 void vtkCloudLightingProperty::SetAmbientColor(float r, float g, float b)
 {
   this->Assign(&P::AmbientColor, glm::vec3(r, g, b));
@@ -134,6 +151,7 @@ void vtkCloudLightingProperty::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PhaseG1: " << p.PhaseG1 << "\n";
   os << indent << "PhaseG2: " << p.PhaseG2 << "\n";
   os << indent << "PhaseLobeWeight: " << p.PhaseLobeWeight << "\n";
+  os << indent << "MultipleScattering: " << this->GetMultipleScatteringAsString() << "\n";
   os << indent << "MultipleScatteringOctaves: " << p.MultipleScatteringOctaves << "\n";
   os << indent << "ScatteringFalloff: " << p.ScatteringFalloff << "\n";
   os << indent << "ExtinctionFalloff: " << p.ExtinctionFalloff << "\n";

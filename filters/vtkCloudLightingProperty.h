@@ -108,8 +108,28 @@ public:
 
   ///@{
   /**
-   * March model: approximate multiple scattering, octaves n = 1 .. MultipleScatteringOctaves
-   * (0 to 8; 0 is single scattering) added to single scattering, octave n scaling scattering by
+   * March model: how the light scattered more than once is added to single scattering.
+   * ScatteringVolume: one fetch per sample of a precomputed volume of that light, recomputed when
+   * the field, the transfer function or the lights change. ScatteringOctaves: the octaves below.
+   * Default ScatteringVolume. docs/lighting.md compares the two with the path tracer.
+   */
+  enum MultipleScatterings
+  {
+    ScatteringVolume = int(cloudvis::MultipleScatteringModel::Volume),
+    ScatteringOctaves = int(cloudvis::MultipleScatteringModel::Octaves),
+  };
+  virtual void SetMultipleScattering(int scattering); // clamped to the range above
+  virtual int GetMultipleScattering();
+  void SetMultipleScatteringToVolume() { this->SetMultipleScattering(ScatteringVolume); }
+  void SetMultipleScatteringToOctaves() { this->SetMultipleScattering(ScatteringOctaves); }
+  const char* GetMultipleScatteringAsString() const; // cloudvis::MultipleScatteringModelTable's
+  ///@}
+
+  ///@{
+  /**
+   * March model with ScatteringOctaves: approximate multiple scattering, octaves n = 1 ..
+   * MultipleScatteringOctaves (0 to 8; 0 is single scattering) added to single scattering,
+   * octave n scaling scattering by
    * ScatteringFalloff^n, the extinction toward the light by ExtinctionFalloff^n and the phase's
    * eccentricity by EccentricityFalloff^n (each in [0, 1]). Defaults 3, 0.41, 0.26 and 0.46
    * (fitted to the path tracer: docs/lighting.md).

@@ -177,6 +177,32 @@ Scene LoadOperandScene(const std::string& command,
   return LoadFieldFileScene(input, assignments, overrides);
 }
 
+const OptionSpec ImageOutputOption{ "output",
+  'o',
+  "IMAGE.png",
+  "write the rendered image to this file: .png (8-bit RGB unless --png-bits 16 or "
+  "--transparent) or .exr (float channels, docs/export.md); required",
+  false,
+  true };
+
+SceneInput LoadSceneInput(const std::string& command,
+  const Arguments& arguments,
+  const std::vector<SceneOverride>& options,
+  const std::string& output,
+  bool needsDisplay,
+  const std::function<void(double)>& generationProgress)
+{
+  const std::string& input = arguments.Operands[0];
+  CheckImageOutput(output);
+  SceneInput loaded{ LoadOperandScene(command, input, arguments, options), nullptr };
+  if (needsDisplay)
+  {
+    RequireDisplay("cloudvis " + command + " ...");
+  }
+  loaded.Field = ProduceField(loaded.Loaded, generationProgress);
+  return loaded;
+}
+
 namespace
 {
 
@@ -194,9 +220,6 @@ const OptionSpec PiecesOption{ "pieces",
   "(default: 1, or the number of MPI processes under mpirun); a procedural field is generated "
   "one piece at a time" };
 const OptionSpec JsonOption{ "json", 0, "", "print the statistics as one JSON object" };
-const OptionSpec ImageOutputOption{ "output", 'o', "IMAGE.png",
-  "write the rendered image to this file: .png (8-bit RGB unless --png-bits 16 or "
-  "--transparent) or .exr (float channels, docs/export.md); required", false, true };
 const OptionSpec SizeOption{ "size", 0, "WxH",
   "image size in pixels, e.g. 800x600 (each in [16, 16384]); overrides render.size" };
 const OptionSpec SamplesPerPixelOption{ "spp",
@@ -206,25 +229,12 @@ const OptionSpec SamplesPerPixelOption{ "spp",
 const OptionSpec BenchmarkOption{ "benchmark", 0, "N",
   "after the image is made, march N more frames in full and print the mean time per frame as "
   "'<milliseconds> ms/frame'" };
-const OptionSpec CpuReferenceOption{ "cpu-reference", 0, "",
+const OptionSpec CpuReferenceOption{ "cpu-reference",
+  0,
+  "",
   "render with the CPU reference renderer (vtkCloudReferenceRenderer) instead of the GPU: the "
   "same camera, transfer function, lights and step, one exact ray per pixel, no jitter; slow, "
   "needs no display" };
-const OptionSpec CompareLightingOption{ "lighting", 0, "M1,M2,...",
-  "the lighting models to compare, left to right, each at most once (default "
-  "none,derivative,march)" };
-const OptionSpec DifferenceOption{ "difference", 0, "A,B",
-  "add a panel showing |A - B| of two of the compared models, false colored, labelled with the "
-  "largest difference" };
-const OptionSpec ReferenceOption{ "reference",
-  0,
-  "pathtrace[:SPP]",
-  "add a ground-truth panel path-traced with SPP paths per pixel (default render.spp, at least "
-  "2) and measure every model against it: relative RMSE, bias (ratio of means) and max error "
-  "relative to the peak, on its panel and printed, with the reference's own standard error" };
-const OptionSpec PanelSizeOption{ "size", 0, "WxH",
-  "size of each panel in pixels, e.g. 400x300; overrides render.size (the window is the panels "
-  "side by side)" };
 
 std::string DescribeDimensions(vtkImageData* field)
 {
@@ -346,30 +356,6 @@ void MakeDirectory(const std::string& directory)
   }
 }
 
-// The operand of render and compare, a scene or a .vti field file, validated with its --set
-// assignments and option overrides and turned into its field. The cheap checks come first (field
-// keys set for a field file, a bad -o, scene values, the display when `needsDisplay`): none of
-// them should cost a field's generation.
-struct SceneInput
-{
-  Scene Loaded;
-  vtkSmartPointer<vtkImageData> Field;
-};
-SceneInput LoadSceneInput(const std::string& command, const Arguments& arguments,
-  const std::vector<SceneOverride>& options, const std::string& output, bool needsDisplay,
-  const std::function<void(double)>& generationProgress = {})
-{
-  const std::string& input = arguments.Operands[0];
-  CheckImageOutput(output);
-  SceneInput loaded{ LoadOperandScene(command, input, arguments, options), nullptr };
-  if (needsDisplay)
-  {
-    RequireDisplay("cloudvis " + command + " ...");
-  }
-  loaded.Field = ProduceField(loaded.Loaded, generationProgress);
-  return loaded;
-}
-
 int Render(const Arguments& arguments, std::ostream& out)
 {
   if (!arguments.Has("output"))
@@ -449,172 +435,6 @@ int Render(const Arguments& arguments, std::ostream& out)
   return ExitSuccess;
 }
 
-// --lighting of compare: a comma-separated list of distinct model names.
-std::vector<LightingModel> ParseModelList(const std::string& text)
-{
-  std::string allowed;
-  for (const std::string& name : LightingModelNames())
-  {
-    allowed += (allowed.empty() ? "" : ", ") + name;
-  }
-  std::vector<LightingModel> models;
-  std::vector<std::string> names;
-  std::string name;
-  std::istringstream in(text + ",");
-  while (std::getline(in, name, ','))
-  {
-    const std::optional<LightingModel> model = FindLightingModel(name);
-    if (!model)
-    {
-      throw UsageError("compare: --lighting: " +
-        (name.empty() ? std::string("an empty model name") : "unknown model \"" + name + "\"") +
-        " in \"" + text + "\"; allowed: " + allowed);
-    }
-    if (std::find(models.begin(), models.end(), *model) != models.end())
-    {
-      throw UsageError("compare: --lighting: \"" + name + "\" is listed twice");
-    }
-    models.push_back(*model);
-  }
-  return models;
-}
-
-// --reference pathtrace[:SPP]: the reference's paths per pixel (SPP), or 0 for the scene's
-// render.spp.
-int ParseReference(const std::string& text)
-{
-  const std::string name = LightingModelName(LightingModel::PathTrace);
-  const auto colon = text.find(':');
-  if (text.substr(0, colon) != name)
-  {
-    throw UsageError("compare: --reference expects " + name + " or " + name +
-      ":SPP (the path tracer with SPP paths per pixel), got \"" + text + "\"");
-  }
-  if (colon == std::string::npos)
-  {
-    return 0;
-  }
-  const std::string count = text.substr(colon + 1);
-  char* end = nullptr;
-  errno = 0;
-  const long value = std::strtol(count.c_str(), &end, 10);
-  if (count.empty() || *end != '\0' || errno != 0 || value < 2 || value > (1L << 24) ||
-    !std::isdigit(static_cast<unsigned char>(count[0])))
-  {
-    throw UsageError("compare: --reference: SPP must be an integer from 2 to 16777216 (paths per "
-                     "pixel), got \"" +
-      count + "\"");
-  }
-  return int(value);
-}
-
-// --difference A,B: two of the compared models, as indices into `models` (which ends with the
-// reference, pathtrace, when there is one). With a reference, one name A means A,pathtrace.
-std::pair<size_t, size_t> ParseDifference(const std::string& text,
-  const std::vector<LightingModel>& models,
-  bool reference)
-{
-  auto comma = text.find(',');
-  std::string pair = text;
-  if (comma == std::string::npos && reference)
-  {
-    pair = text + "," + LightingModelName(LightingModel::PathTrace);
-    comma = text.size();
-  }
-  const std::string names[2] = { pair.substr(0, comma),
-    comma == std::string::npos ? "" : pair.substr(comma + 1) };
-  size_t indices[2] = { 0, 0 };
-  for (int i = 0; i < 2; ++i)
-  {
-    const std::optional<LightingModel> model = FindLightingModel(names[i]);
-    const auto found = model ? std::find(models.begin(), models.end(), *model) : models.end();
-    if (comma == std::string::npos || found == models.end())
-    {
-      throw UsageError("compare: --difference expects two of the compared models, A,B (for " +
-        std::string("example march,derivative), got \"") + text + "\"");
-    }
-    indices[i] = size_t(found - models.begin());
-  }
-  if (indices[0] == indices[1])
-  {
-    throw UsageError("compare: --difference needs two different models, got \"" + text + "\"");
-  }
-  return { indices[0], indices[1] };
-}
-
-int Compare(const Arguments& arguments, std::ostream& out)
-{
-  if (!arguments.Has("output"))
-  {
-    throw UsageError("compare: missing the output image: -o IMAGE.png");
-  }
-  const std::string output = arguments.Value("output");
-  const std::vector<LightingModel> models =
-    ParseModelList(arguments.Has("lighting") ? arguments.Value("lighting") : "none,derivative,march");
-  std::optional<int> referenceSamples;
-  if (arguments.Has("reference"))
-  {
-    referenceSamples = ParseReference(arguments.Value("reference"));
-    if (std::find(models.begin(), models.end(), LightingModel::PathTrace) != models.end())
-    {
-      throw UsageError("compare: --lighting lists pathtrace, which --reference already adds as "
-                       "the reference panel");
-    }
-  }
-  std::vector<LightingModel> panels = models;
-  if (referenceSamples)
-  {
-    panels.push_back(LightingModel::PathTrace);
-  }
-  std::optional<std::pair<size_t, size_t>> difference;
-  if (arguments.Has("difference"))
-  {
-    difference = ParseDifference(arguments.Value("difference"), panels, bool(referenceSamples));
-  }
-  std::vector<SceneOverride> options;
-  if (arguments.Has("size"))
-  {
-    options.push_back({ "render.size", ParseSizeOption("compare", arguments.Value("size")), "--size" });
-  }
-  const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
-  if (referenceSamples && *referenceSamples == 0)
-  {
-    referenceSamples = loaded.Loaded.Render.SamplesPerPixel;
-  }
-  const ComparisonResult result = RenderComparison(
-    loaded.Loaded, loaded.Field, arguments.Operands[0], models, difference, 3, referenceSamples);
-  WriteImage(result.Image, output);
-  out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, " << panels.size() + (difference ? 1 : 0) << " panels, "
-      << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
-      << " averaged)\n";
-  for (size_t i = 0; i < panels.size(); ++i)
-  {
-    out << LightingModelName(panels[i]) << ": " << std::fixed << std::setprecision(2)
-        << result.Milliseconds[i] << " ms/frame";
-    if (referenceSamples && i < models.size())
-    {
-      const ImageError& e = result.Errors[i];
-      out << "; against the reference: relative RMSE " << std::setprecision(4) << e.RelativeRMSE
-          << ", bias " << e.BiasRatio << " (ratio of means), max error " << e.MaxErrorOverPeak
-          << " of the peak";
-    }
-    else if (referenceSamples)
-    {
-      out << "; reference: " << result.ReferenceSamples << " paths per pixel, relative standard "
-          << "error " << std::setprecision(4) << result.ReferenceNoise.RelativeStandardError;
-    }
-    out << "\n";
-  }
-  if (difference)
-  {
-    out << "max |" << LightingModelName(panels[difference->first]) << " - "
-        << LightingModelName(panels[difference->second]) << "|: " << std::setprecision(6)
-        << result.MaxDifference << "\n";
-  }
-  return ExitSuccess;
-}
-
 int Info(const Arguments& arguments, std::ostream& out)
 {
   const std::string& input = arguments.Operands[0];
@@ -683,8 +503,13 @@ int RunDefault(std::ostream& out)
   Scene halfSize = scene;
   halfSize.Render.Size[0] = std::max(16, scene.Render.Size[0] / 2);
   halfSize.Render.Size[1] = std::max(16, scene.Render.Size[1] / 2);
-  const ComparisonResult compared = RenderComparison(halfSize, field, scene.Source,
-    { LightingModel::None, LightingModel::Derivative, LightingModel::March }, std::nullopt);
+  const ComparisonResult compared = RenderComparison(halfSize,
+    field,
+    scene.Source,
+    { { LightingModel::None, std::nullopt },
+      { LightingModel::Derivative, std::nullopt },
+      { LightingModel::March, std::nullopt } },
+    std::nullopt);
   WriteImage(compared.Image, comparison);
   out << "wrote " << comparison << " (none, derivative and march side by side)\n\n";
   PrintFieldStatistics(out, ComputeFieldStatistics(field), output);
@@ -781,30 +606,7 @@ const std::vector<CommandSpec>& Commands()
         FieldFileOptions[2],
         HelpOption },
       Render },
-    { "compare",
-      "SCENE|FIELD",
-      1,
-      1,
-      "render lighting models side by side on one field and camera, with their frame times",
-      "One off-screen window with one panel per model (--lighting), render.size each, all\n"
-      "sharing one camera and jitter sequence; each panel is labelled with the model and its\n"
-      "mean frame time, measured with the other panels hidden. --difference A,B adds a panel\n"
-      "of |A - B|. --reference pathtrace[:SPP] adds the path tracer's ground truth and each\n"
-      "model's error against it (--difference A then means A,pathtrace).\n"
-      "The scene's render.lighting is not used; everything else is as in render.\n"
-      "Prints each model's time as '<model>: <milliseconds> ms/frame'. Needs an X display:\n"
-      "xvfb-run -a cloudvis compare ...",
-      { ImageOutputOption,
-        PanelSizeOption,
-        CompareLightingOption,
-        ReferenceOption,
-        DifferenceOption,
-        SetOption,
-        FieldFileOptions[0],
-        FieldFileOptions[1],
-        FieldFileOptions[2],
-        HelpOption },
-      Compare },
+    CompareCommand(),
     AnimateCommand(),
     ViewCommand(),
     { "schema",

@@ -119,7 +119,6 @@ void ReadPanel(Panel& panel,
 
 // Each model's error against the reference panel, into `result` and onto the labels.
 void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
-  const std::vector<LightingModel>& models,
   size_t referencePanel,
   const std::string& input,
   ComparisonResult& result)
@@ -135,7 +134,7 @@ void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
   std::snprintf(text,
     sizeof(text),
     "%s  %s\nreference: %d paths/pixel, noise %.2g%%",
-    LightingModelName(LightingModel::PathTrace),
+    result.Names[referencePanel].c_str(),
     FormatMilliseconds(result.Milliseconds[referencePanel]).c_str(),
     result.ReferenceSamples,
     100.0 * result.ReferenceNoise.RelativeStandardError);
@@ -155,7 +154,7 @@ void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
     std::snprintf(text,
       sizeof(text),
       "%s  %s\nrRMSE %.1f%%  bias %.2f  max %.0f%%",
-      LightingModelName(models[i]),
+      result.Names[i].c_str(),
       FormatMilliseconds(result.Milliseconds[i]).c_str(),
       100.0 * error.RelativeRMSE,
       error.BiasRatio,
@@ -165,6 +164,27 @@ void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
 }
 
 } // namespace
+
+bool operator==(const ComparedLighting& a, const ComparedLighting& b)
+{
+  return a.Model == b.Model && a.MultipleScattering == b.MultipleScattering;
+}
+
+LightingParameters PanelLighting(const LightingParameters& scene, const ComparedLighting& panel)
+{
+  LightingParameters lighting = scene;
+  lighting.Model = panel.Model;
+  lighting.MultipleScattering = panel.MultipleScattering.value_or(scene.MultipleScattering);
+  return lighting;
+}
+
+std::string PanelName(const LightingParameters& scene, const ComparedLighting& panel)
+{
+  const std::string model = LightingModelName(panel.Model);
+  return panel.Model == LightingModel::March
+    ? model + ":" + MultipleScatteringModelName(PanelLighting(scene, panel).MultipleScattering)
+    : model;
+}
 
 std::array<double, 3> DifferenceColor(double t)
 {
@@ -183,7 +203,7 @@ std::array<double, 3> DifferenceColor(double t)
 ComparisonResult RenderComparison(const Scene& scene,
   vtkImageData* field,
   const std::string& input,
-  const std::vector<LightingModel>& comparedModels,
+  const std::vector<ComparedLighting>& comparedModels,
   const std::optional<std::pair<size_t, size_t>>& difference,
   int timingFrames,
   std::optional<int> referenceSamples)
@@ -191,10 +211,10 @@ ComparisonResult RenderComparison(const Scene& scene,
   const int width = scene.Render.Size[0];
   const int height = scene.Render.Size[1];
   // The reference is one more panel, the path tracer's, after the compared models.
-  std::vector<LightingModel> models = comparedModels;
+  std::vector<ComparedLighting> models = comparedModels;
   if (referenceSamples)
   {
-    models.push_back(LightingModel::PathTrace);
+    models.push_back({ LightingModel::PathTrace, std::nullopt });
   }
   const size_t referencePanel = comparedModels.size();
   const int panelCount = int(models.size()) + (difference ? 1 : 0);
@@ -211,11 +231,13 @@ ComparisonResult RenderComparison(const Scene& scene,
       ": give a smaller --size");
   }
 
+  ComparisonResult result;
   Scene checked = scene;
-  for (LightingModel model : models)
+  for (const ComparedLighting& model : models)
   {
-    checked.Render.Lighting.Model = model;
+    checked.Render.Lighting = PanelLighting(scene.Render.Lighting, model);
     CheckSceneRenderable(checked, field, input);
+    result.Names.push_back(PanelName(scene.Render.Lighting, model));
   }
   const DisplayConnection display("cloudvis compare ...");
   VtkMessageCapture messages;
@@ -239,7 +261,7 @@ ComparisonResult RenderComparison(const Scene& scene,
     panel.Renderer->SetActiveCamera(camera);
     window->AddRenderer(panel.Renderer);
     Scene lit = scene;
-    lit.Render.Lighting.Model = models[i];
+    lit.Render.Lighting = PanelLighting(scene.Render.Lighting, models[i]);
     ConfigureLighting(lit, panel.Mapper);
     ApplyBackground(lit, panel.Renderer);
     panel.Mapper->SetInputData(field);
@@ -257,7 +279,7 @@ ComparisonResult RenderComparison(const Scene& scene,
     panel.Volume->SetProperty(property);
     panel.Renderer->AddVolume(panel.Volume);
     PlaceLabel(panel.Label, panel.Renderer, height);
-    panel.Label->SetInput(LightingModelName(models[i]));
+    panel.Label->SetInput(result.Names[i].c_str());
   }
   // Every panel has the viewport of a `render` of render.size, so this is render's camera.
   ApplyCamera(scene.Camera, field->GetBounds(), panels[0]->Renderer, scene.Source);
@@ -279,7 +301,6 @@ ComparisonResult RenderComparison(const Scene& scene,
 
   // Untimed: shader compilation, texture uploads, occupancy.
   renderChecked();
-  ComparisonResult result;
   for (size_t i = 0; i < panels.size(); ++i)
   {
     for (size_t j = 0; j < panels.size(); ++j)
@@ -298,9 +319,8 @@ ComparisonResult RenderComparison(const Scene& scene,
       CheckMapper(panels[i]->Mapper, input, messages);
     }
     result.Milliseconds.push_back(timingFrames > 0 ? total / timingFrames : 0.0);
-    panels[i]->Label->SetInput((std::string(LightingModelName(models[i])) + "  " +
-      FormatMilliseconds(result.Milliseconds.back()))
-                                 .c_str());
+    panels[i]->Label->SetInput(
+      (result.Names[i] + "  " + FormatMilliseconds(result.Milliseconds.back())).c_str());
   }
 
   // The picture: every panel, accumulated from the same first jitter frame.
@@ -334,7 +354,7 @@ ComparisonResult RenderComparison(const Scene& scene,
 
   if (referenceSamples)
   {
-    MeasureAgainstReference(panels, models, referencePanel, input, result);
+    MeasureAgainstReference(panels, referencePanel, input, result);
   }
 
   vtkNew<vtkImageActor> differenceActor;
@@ -372,8 +392,8 @@ ComparisonResult RenderComparison(const Scene& scene,
     std::snprintf(text,
       sizeof(text),
       "|%s - %s|  max %.4g",
-      LightingModelName(models[difference->first]),
-      LightingModelName(models[difference->second]),
+      result.Names[difference->first].c_str(),
+      result.Names[difference->second].c_str(),
       result.MaxDifference);
     differenceLabel->SetInput(text);
   }

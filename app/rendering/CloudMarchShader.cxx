@@ -49,6 +49,7 @@ std::string Constants(int samplesPerMapRead)
        << "const float PhaseToRadiance = " << GlslFloat(PhaseToRadiance) << ";\n"
        << "const float DirectionalLightDistance = " << GlslFloat(DirectionalLightDistance) << ";\n"
        << "const float LightBoxMargin = " << GlslFloat(LightBoxMargin) << ";\n"
+       << "const float DiffuseEscapeSpeed = " << GlslFloat(DiffuseEscapeSpeed) << ";\n"
        << "const float RatioTrackingRouletteThreshold = "
        << GlslFloat(RatioTrackingRouletteThreshold) << ";\n"
        << "const float NoCrossing = " << GlslFloat(NoCrossing) << ";\n"
@@ -166,7 +167,6 @@ void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
   program->SetUniformf("PowderStrength", t.PowderStrength);
   program->SetUniformi("ScatteringVolumeOn", t.ScatteringVolumeOn);
   program->SetUniform3f("ScatteringVolumeSize", glm::value_ptr(t.ScatteringVolumeSize));
-  program->SetUniformf("ScatteringFluxWeight", t.ScatteringFluxWeight);
 
   // The march loop's own (CloudMarchFS.glsl).
   const float tableRange[2] = { float(u.Table->Range[0]), float(u.Table->Range[1]) };

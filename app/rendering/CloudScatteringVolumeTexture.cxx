@@ -306,7 +306,6 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   {
     program->SetUniformi("LightVolumeTexture", inputs.Density->GetTextureUnit());
   }
-  program->SetUniformf("ScatteringRelaxation", ScatteringSolve().Relaxation);
 
   state->PushFramebufferBindings();
   if (!this->Framebuffer)

@@ -57,15 +57,7 @@ const std::vector<Name>& LightTypes()
 // The lighting models by the one table of their names (CloudLightingParameters.h).
 const std::vector<Name>& LightingModels()
 {
-  static const std::vector<Name> names = []
-  {
-    std::vector<Name> all;
-    for (const LightingModelEntry& entry : LightingModelTable())
-    {
-      all.push_back({ entry.Name, int(entry.Model), entry.Description });
-    }
-    return all;
-  }();
+  static const std::vector<Name> names = NamesOfTable(LightingModelTable());
   return names;
 }
 
@@ -740,9 +732,16 @@ const Keys<LightingParameters>& MarchKeys()
       &P::PhaseLobeWeight,
       "weight of the first lobe (1: one lobe)" },
     { "multiple_scattering",
+      ChoiceOf(NamesOfTable(MultipleScatteringModelTable())).RefusesOutdated(OctaveCountMoved),
+      &P::MultipleScattering,
+      "how the march adds the light scattered more than once to single scattering "
+      "([lighting.md](lighting.md#phase-and-multiple-scattering-both-settings)). Until issue 21 "
+      "this key held the number of octaves, now `octaves`: a number here is refused, saying so" },
+    { "octaves",
       IntegerIn(0, L::MaxMultipleScatteringOctaves),
       &P::MultipleScatteringOctaves,
-      "octaves of approximate multiple scattering added to single scattering (0: none)" },
+      "with `multiple_scattering: \"octaves\"`: octaves of approximate multiple scattering added "
+      "to single scattering (0: none)" },
     { "scattering_falloff",
       NumberIn(UnitInterval),
       &P::ScatteringFalloff,

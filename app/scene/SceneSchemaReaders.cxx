@@ -453,6 +453,23 @@ std::string NormalizeSun(Scene& s)
 
 // ---- render ----------------------------------------------------------------------------------
 
+std::string OctaveCountMoved(const json& value)
+{
+  if (!value.is_number())
+  {
+    return "";
+  }
+  std::string names;
+  for (const MultipleScatteringModelEntry& entry : MultipleScatteringModelTable())
+  {
+    names += std::string(names.empty() ? "" : " or ") + "\"" + entry.Name + "\"";
+  }
+  return "the number " + value.dump() + ": this key is now " + names +
+    "; the number of octaves is render.march.octaves (what " + value.dump() + " meant: \"" +
+    MultipleScatteringModelName(MultipleScatteringModel::Octaves) +
+    "\" here and render.march.octaves " + value.dump() + ")";
+}
+
 Key<RenderSpec> LightingObject(const std::string& name,
   const Keys<LightingParameters>& (*keys)(),
   std::string help)

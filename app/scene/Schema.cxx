@@ -154,6 +154,13 @@ ValueType ValueType::CheckedBy(ValueCheck refuse) const
   return t;
 }
 
+ValueType ValueType::RefusesOutdated(ValueCheck outdated) const
+{
+  ValueType t = *this;
+  t.Outdated = outdated;
+  return t;
+}
+
 ValueType NumberIn(const Range& allowed)
 {
   ValueType t;
@@ -454,6 +461,11 @@ json CheckKind(const Context& c, const ValueType& t, const json& v, const std::s
 
 json Check(const Context& c, const ValueType& t, const json& v, const std::string& key)
 {
+  const std::string outdated = t.Outdated ? t.Outdated(v) : std::string();
+  if (!outdated.empty())
+  {
+    c.Fail(key, outdated);
+  }
   json checked = CheckKind(c, t, v, key);
   const std::string problem = t.Refuse ? t.Refuse(v) : std::string();
   if (!problem.empty())

@@ -293,14 +293,12 @@ float LightVolumeDepth(int i, vec3 p)
 // with sigma_tr = sigma_t (1 - albedo g), the source Q0 = sigma_t albedo (1 - f) E exp(-tau (1 -
 // albedo f)) of the beam's first diffuse scattering and its first moment Q1 = g* Q0 times the
 // beam's direction, and Marshak's vacuum condition on the grid's faces. It is solved per colour
-// channel by red-black over-relaxation on the cells, coarse to fine (filters/CloudScatteringVolume.h).
+// channel by red-black Gauss-Seidel on the cells, coarse to fine (filters/CloudScatteringVolume.h).
 
 UNIFORM int ScatteringVolumeOn;        // 1: the march's orders >= 2 are the volume's (no octaves)
 UNIFORM vec3 ScatteringVolumeSize;     // texels per axis of the grid computed or read
 UNIFORM vec3 ScatteringCoarseSize;     // texels per axis of the next coarser grid
 UNIFORM vec3 ScatteringCellSize;       // local length of a cell per axis, on the grid computed
-UNIFORM float ScatteringRelaxation;    // the over-relaxation factor (1: Gauss-Seidel)
-UNIFORM float ScatteringFluxWeight;    // EXPERIMENT
 
 // The phase's first moment g and the delta-Eddington forward fraction f (its second moment, at
 // most g: a phase that scatters backward keeps no beam).
@@ -424,11 +422,12 @@ vec3 SourceMoment(ivec3 c, int a)
 vec3 LimitedDiffusion(vec3 sigmaTr, vec3 phi, vec3 gradient, float reach)
 {
   vec3 ratio = abs(gradient) / max(phi, vec3(1e-30f));
-  vec3 d = inversesqrt(max(9.0f * sigmaTr * sigmaTr + 4.0f * ratio * ratio, vec3(1e-30f)));
+  vec3 speed = ratio * (1.0f / DiffuseEscapeSpeed);
+  vec3 d = inversesqrt(max(9.0f * sigmaTr * sigmaTr + speed * speed, vec3(1e-30f)));
   return min(d, vec3(reach));
 }
 
-// One half-sweep of red-black over-relaxation at cell c: cells whose x + y + z has the parity
+// One half-sweep of red-black Gauss-Seidel at cell c: cells whose x + y + z has the parity
 // `parity` take a new value from their neighbours', the others keep theirs.
 vec4 ScatteringRelaxTexel(ivec3 c, int parity)
 {
@@ -480,9 +479,7 @@ vec4 ScatteringRelaxTexel(ivec3 c, int parity)
       numerator += d * phiN / (h * h) - 3.0f * d * (float(s) * momentFace) / h;
     }
   }
-  vec3 solved = max(numerator, vec3(0.0f)) / max(denominator, vec3(1e-30f));
-  vec3 relaxed = max(phi + ScatteringRelaxation * (solved - phi), vec3(0.0f));
-  return vec4(relaxed, 0.0f);
+  return vec4(max(numerator, vec3(0.0f)) / max(denominator, vec3(1e-30f)), 0.0f);
 }
 
 // The diffuse flux at cell c over the fluence, by luminance (|flux| / phi <= 1/2 by the limiter):
@@ -534,8 +531,7 @@ vec3 MultipleScatteringTerm(vec3 p, vec3 d)
     ((ScatteringVolumeSize - 1.0f) / max(Dimensions - 1.0f, vec3(1.0f)));
   vec4 fluence = ScatteringVolumeFetch(t);
   vec4 flux = ScatteringFluxFetch(t);
-  float anisotropy = 1.0f - 3.0f * ScatteringFluxWeight * PhaseMeanCosine() *
-    dot(vec3(flux.x, flux.y, flux.z), d);
+  float anisotropy = 1.0f - 3.0f * PhaseMeanCosine() * dot(vec3(flux.x, flux.y, flux.z), d);
   return vec3(fluence.x, fluence.y, fluence.z) * (max(anisotropy, 0.0f) / PhaseToRadiance);
 }
 

@@ -4,6 +4,7 @@
 // change the rendered pixels; --cpu-reference agrees with the GPU render of the same scene; and
 // compare lays its panels side by side. The render and compare tests need an X display (Xvfb).
 #include "CloudMarchUniforms.h"
+#include "Compare.h"
 #include "Errors.h"
 #include "OffscreenRender.h"
 #include "Scene.h"
@@ -151,7 +152,9 @@ TEST(SceneLighting, RenderSectionsAndAmbientReachLightingParameters)
     "render.march.g1=" + Number(v.PhaseG1),
     "render.march.g2=" + Number(v.PhaseG2),
     "render.march.lobe_weight=" + Number(v.PhaseLobeWeight),
-    "render.march.multiple_scattering=" + std::to_string(v.MultipleScatteringOctaves),
+    std::string("render.march.multiple_scattering=") +
+      cloudvis::MultipleScatteringModelName(v.MultipleScattering),
+    "render.march.octaves=" + std::to_string(v.MultipleScatteringOctaves),
     "render.march.scattering_falloff=" + Number(v.ScatteringFalloff),
     "render.march.extinction_falloff=" + Number(v.ExtinctionFalloff),
     "render.march.eccentricity_falloff=" + Number(v.EccentricityFalloff),
@@ -166,8 +169,44 @@ TEST(SceneLighting, RenderSectionsAndAmbientReachLightingParameters)
   const cloudvis::LightingParameters documented;
   EXPECT_EQ(defaults.LightSteps, documented.LightSteps);
   EXPECT_EQ(defaults.PhaseG1, documented.PhaseG1);
+  EXPECT_EQ(defaults.MultipleScattering, documented.MultipleScattering);
   EXPECT_EQ(defaults.MultipleScatteringOctaves, documented.MultipleScatteringOctaves);
   EXPECT_EQ(defaults.PowderStrength, 0.0f);
+}
+
+// render.march.multiple_scattering chooses by name between the volume and the octaves, whose
+// count is render.march.octaves; a scene written when the key held that count is refused with
+// the key, the value and where the count went, not read as something else.
+TEST(SceneLighting, MultipleScatteringIsAChoiceAndTheOctaveCountItsOwnKey)
+{
+  for (const cloudvis::MultipleScatteringModelEntry& entry :
+    cloudvis::MultipleScatteringModelTable())
+  {
+    const cloudvis::Scene scene =
+      SceneWith({ std::string("render.march.multiple_scattering=") + entry.Name });
+    EXPECT_EQ(scene.Render.Lighting.MultipleScattering, entry.Model) << entry.Name;
+  }
+  EXPECT_EQ(SceneWith({ "render.march.octaves=7" }).Render.Lighting.MultipleScatteringOctaves, 7);
+  EXPECT_EQ(SceneWith({ R"(render={"march": {"multiple_scattering": "octaves", "octaves": 0}})" })
+              .Render.Lighting.MultipleScatteringOctaves,
+    0);
+
+  const std::string outdated = ErrorOf({ R"(render={"march": {"multiple_scattering": 3}})" });
+  EXPECT_NE(outdated.find("render.march.multiple_scattering: the number 3: this key is now "
+                          "\"volume\" or \"octaves\"; the number of octaves is "
+                          "render.march.octaves"),
+    std::string::npos)
+    << outdated;
+  EXPECT_NE(ErrorOf({ "render.march.multiple_scattering=0" }).find("render.march.octaves"),
+    std::string::npos)
+    << "0 (no octaves) is refused too, not read as the first name";
+  EXPECT_NE(ErrorOf({ "render.march.multiple_scattering=bogus" })
+              .find("render.march.multiple_scattering: unknown name \"bogus\"; allowed: volume, "
+                    "octaves"),
+    std::string::npos);
+  EXPECT_NE(ErrorOf({ "render.march.octaves=9" })
+              .find("render.march.octaves: value 9 is out of range: allowed an integer in [0, 8]"),
+    std::string::npos);
 }
 
 // The scene's lights reach the mapper as they are, cloudvis::Lights, in place of the renderer's
@@ -417,6 +456,33 @@ TEST(Compare, ThreePanelsOfTheSizeThatDiffer)
     std::cout << models[i] << ": panel vs render " << rms << " levels RMS\n";
     EXPECT_LT(rms, 0.25) << models[i]; // measured on llvmpipe: 0, the same pixels
   }
+}
+
+// A compare panel of the march is the scene's lighting with the panel's multiple scattering, or
+// the scene's own where the panel names none, and its name says which it renders with.
+TEST(Compare, AMarchPanelNamesAndUsesItsMultipleScattering)
+{
+  using cloudvis::ComparedLighting;
+  using cloudvis::MultipleScatteringModel;
+  cloudvis::LightingParameters scene = SceneWith(
+    { "render.march.multiple_scattering=volume", "render.march.octaves=5", "render.lighting=none" })
+                                         .Render.Lighting;
+  const ComparedLighting plain{ LightingModel::March, std::nullopt };
+  const ComparedLighting octaves{ LightingModel::March, MultipleScatteringModel::Octaves };
+  EXPECT_EQ(cloudvis::PanelName(scene, plain), "march:volume") << "the scene's setting";
+  EXPECT_EQ(cloudvis::PanelName(scene, octaves), "march:octaves");
+  EXPECT_EQ(cloudvis::PanelName(scene, { LightingModel::Derivative, std::nullopt }), "derivative");
+  EXPECT_EQ(
+    cloudvis::PanelLighting(scene, plain).MultipleScattering, MultipleScatteringModel::Volume);
+  const cloudvis::LightingParameters lit = cloudvis::PanelLighting(scene, octaves);
+  EXPECT_EQ(lit.Model, LightingModel::March);
+  EXPECT_EQ(lit.MultipleScattering, MultipleScatteringModel::Octaves);
+  cloudvis::LightingParameters expected = scene;
+  expected.Model = LightingModel::March;
+  expected.MultipleScattering = MultipleScatteringModel::Octaves;
+  cloudvis::support::ExpectSameLighting(lit, expected, "the rest is the scene's");
+  scene.MultipleScattering = MultipleScatteringModel::Octaves;
+  EXPECT_EQ(cloudvis::PanelName(scene, plain), "march:octaves");
 }
 
 TEST(Compare, DifferenceAddsAPanel)

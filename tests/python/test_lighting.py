@@ -1,9 +1,11 @@
 """A vtkCloudLightingProperty set from Python changes what the mapper draws: switching the
 mapper's property from none to march after a first render re-renders the cloud lit (the mapper
-watches its property), and the lit image is the CPU reference's march, not just any change."""
+watches its property), and the lit image is the CPU reference's march, not just any change; the
+march's multiple-scattering setting is reached by name."""
 
 import numpy as np
 
+import cloudvis
 from conftest import Scene, cloud_field, ramp_medium
 
 
@@ -36,3 +38,20 @@ def test_switching_to_march_lights_the_cloud_as_the_reference_does():
     reference = scene.reference()
     gate = 1e-4 if scene.on_llvmpipe() else 1e-3
     assert np.abs(lit[:, :3].astype(np.float64) - reference[:, :3]).max() < gate * brightest
+
+
+def test_multiple_scattering_is_chosen_by_name_on_the_property():
+    """The march's choice between the multiple-scattering volume and the octaves, from Python: the
+    setters reach the one LightingParameters (its name is the scene file's), a change marks the
+    property modified, and the octave count stays a setting of its own."""
+    lighting = cloudvis.vtkCloudLightingProperty()
+    lighting.SetMultipleScatteringOctaves(5)
+    lighting.SetMultipleScatteringToVolume()
+    assert lighting.GetMultipleScattering() == cloudvis.vtkCloudLightingProperty.ScatteringVolume
+    assert lighting.GetMultipleScatteringAsString() == "volume"
+    before = lighting.GetMTime()
+    lighting.SetMultipleScatteringToOctaves()
+    assert lighting.GetMultipleScattering() == cloudvis.vtkCloudLightingProperty.ScatteringOctaves
+    assert lighting.GetMultipleScatteringAsString() == "octaves"
+    assert lighting.GetMTime() > before
+    assert lighting.GetMultipleScatteringOctaves() == 5

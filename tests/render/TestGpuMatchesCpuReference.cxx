@@ -304,6 +304,7 @@ std::vector<Case> Cases()
   octaves.Name = "MarchOctavesAndFalloffs";
   octaves.Lighting = [](LightingParameters& p)
   {
+    p.MultipleScattering = MultipleScatteringModel::Octaves;
     p.MultipleScatteringOctaves = 6;
     p.ScatteringFalloff = 0.7f;
     p.ExtinctionFalloff = 0.3f;
@@ -340,7 +341,11 @@ std::vector<Case> Cases()
   }
   Case singleScattering;
   singleScattering.Name = "MarchSingleScatteringExtinctionScale";
-  singleScattering.Lighting = [](LightingParameters& p) { p.MultipleScatteringOctaves = 0; };
+  singleScattering.Lighting = [](LightingParameters& p)
+  {
+    p.MultipleScattering = MultipleScatteringModel::Octaves;
+    p.MultipleScatteringOctaves = 0;
+  };
   singleScattering.ExtinctionScale = 2.5;
   cases.push_back(singleScattering);
   Case derivativeDistance;

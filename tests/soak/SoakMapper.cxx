@@ -131,6 +131,8 @@ int main()
     lighting.Model = static_cast<cloudvis::LightingModel>(frame % 3);
     lighting.LightSteps = 2 + frame % 5;
     lighting.AmbientStrength = 0.1f * float(frame % 4);
+    lighting.MultipleScattering = frame % 8 < 4 ? cloudvis::MultipleScatteringModel::Volume
+                                                : cloudvis::MultipleScatteringModel::Octaves;
     lighting.MultipleScatteringOctaves = frame % 4;
     mapper->GetLightingProperty()->SetParameters(lighting);
     SetTransferFunction(property, frame);

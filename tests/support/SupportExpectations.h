@@ -57,6 +57,7 @@ inline void ExpectSameLighting(const LightingParameters& actual,
   CLOUDVIS_EXPECT_SAME(PhaseG1);
   CLOUDVIS_EXPECT_SAME(PhaseG2);
   CLOUDVIS_EXPECT_SAME(PhaseLobeWeight);
+  CLOUDVIS_EXPECT_SAME(MultipleScattering);
   CLOUDVIS_EXPECT_SAME(MultipleScatteringOctaves);
   CLOUDVIS_EXPECT_SAME(ScatteringFalloff);
   CLOUDVIS_EXPECT_SAME(ExtinctionFalloff);

@@ -202,6 +202,9 @@ LightingParameters EveryLightingParameterChanged()
   p.PhaseG1 = d.PhaseG1 + 0.1f;
   p.PhaseG2 = d.PhaseG2 + 0.1f;
   p.PhaseLobeWeight = d.PhaseLobeWeight - 0.2f;
+  p.MultipleScattering = d.MultipleScattering == MultipleScatteringModel::Volume
+    ? MultipleScatteringModel::Octaves
+    : MultipleScatteringModel::Volume;
   p.MultipleScatteringOctaves = d.MultipleScatteringOctaves + 2;
   p.ScatteringFalloff = d.ScatteringFalloff + 0.04f;
   p.ExtinctionFalloff = d.ExtinctionFalloff + 0.09f;

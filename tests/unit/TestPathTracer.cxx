@@ -419,6 +419,7 @@ TEST(PathTracer, OneBounceEqualsTheMarchWithoutMultipleScattering)
   const glm::dvec3 view(0.2, -0.1, -1.0);
   LightingParameters lighting;
   lighting.Model = LightingModel::March;
+  lighting.MultipleScattering = MultipleScatteringModel::Octaves; // single scattering alone
   lighting.MultipleScatteringOctaves = 0;
   lighting.LightStepGrowth = 1.0f;
   lighting.LightSteps = 64;

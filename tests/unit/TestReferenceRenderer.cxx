@@ -254,6 +254,7 @@ TEST(ReferenceRenderer, SlabLitFromBehindMatchesSingleScattering)
   renderer->SetVolumeProperty(LinearMedium(sigma_t));
   renderer->SetSampleDistance(1.0 / 256.0);
   LightingParameters p = ModelOnly(LightingModel::March);
+  p.MultipleScattering = MultipleScatteringModel::Octaves; // single scattering alone
   p.MultipleScatteringOctaves = 0;
   p.PhaseLobeWeight = 1.0f;
   p.PhaseG1 = 0.5f;
@@ -590,6 +591,7 @@ TEST(LightingProperty, DefaultsAreThoseOfLightingParameters)
   EXPECT_EQ(property->GetPhaseG1(), 0.6f);
   EXPECT_EQ(property->GetPhaseG2(), -0.3f);
   EXPECT_EQ(property->GetPhaseLobeWeight(), 0.8f);
+  EXPECT_EQ(property->GetMultipleScattering(), vtkCloudLightingProperty::ScatteringVolume);
   EXPECT_EQ(property->GetMultipleScatteringOctaves(), 3);
   EXPECT_EQ(property->GetAmbientStrength(), 0.0f);
   EXPECT_EQ(property->GetAmbientColor()[0], 1.0f);
@@ -611,6 +613,7 @@ TEST(LightingProperty, EverySetterReachesTheParametersAndOnlyChangesModify)
   property->SetPhaseG1(v.PhaseG1);
   property->SetPhaseG2(v.PhaseG2);
   property->SetPhaseLobeWeight(v.PhaseLobeWeight);
+  property->SetMultipleScattering(int(v.MultipleScattering));
   property->SetMultipleScatteringOctaves(v.MultipleScatteringOctaves);
   property->SetScatteringFalloff(v.ScatteringFalloff);
   property->SetExtinctionFalloff(v.ExtinctionFalloff);
@@ -657,6 +660,57 @@ TEST(LightingProperty, ModelNamesAndValuesAreTheOneTables)
   EXPECT_EQ(property->GetModel(), vtkCloudLightingProperty::NoLighting);
   property->SetTransmittance(7);
   EXPECT_EQ(property->GetParameters().Transmittance, LightTransmittance::Nested);
+}
+
+// The march's two ways of adding multiple scattering have one table of names too: the property's
+// values and names are the table's, a name finds its model back, the setters modify only on a
+// change, and a value outside the enumeration is refused by the validation, not rendered.
+TEST(LightingProperty, MultipleScatteringNamesAndValuesAreTheOneTable)
+{
+  vtkNew<vtkCloudLightingProperty> property;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < MultipleScatteringModelTable().size(); ++i)
+  {
+    const MultipleScatteringModelEntry& entry = MultipleScatteringModelTable()[i];
+    EXPECT_EQ(int(entry.Model), int(i)) << "in the enumeration's order";
+    property->SetMultipleScattering(int(entry.Model));
+    EXPECT_STREQ(property->GetMultipleScatteringAsString(), entry.Name);
+    EXPECT_EQ(property->GetParameters().MultipleScattering, entry.Model);
+    EXPECT_EQ(FindMultipleScatteringModel(entry.Name), entry.Model);
+    EXPECT_STREQ(MultipleScatteringModelName(entry.Model), entry.Name);
+    names.emplace_back(entry.Name);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{ "volume", "octaves" }))
+    << "the names scene files and compare's march:NAME take";
+  EXPECT_FALSE(FindMultipleScatteringModel("diffusion"));
+  EXPECT_STREQ(MultipleScatteringModelName(MultipleScatteringModel(7)), "unknown");
+
+  property->SetMultipleScatteringToVolume();
+  EXPECT_EQ(property->GetMultipleScattering(), vtkCloudLightingProperty::ScatteringVolume);
+  const vtkMTimeType time = property->GetMTime();
+  property->SetMultipleScatteringToVolume();
+  EXPECT_EQ(property->GetMTime(), time) << "the same value";
+  property->SetMultipleScatteringToOctaves();
+  EXPECT_EQ(property->GetParameters().MultipleScattering, MultipleScatteringModel::Octaves);
+  EXPECT_GT(property->GetMTime(), time);
+  property->SetMultipleScattering(9);
+  EXPECT_EQ(property->GetMultipleScattering(), vtkCloudLightingProperty::ScatteringOctaves)
+    << "clamped";
+  property->SetMultipleScattering(-2);
+  EXPECT_EQ(property->GetMultipleScattering(), vtkCloudLightingProperty::ScatteringVolume);
+
+  LightingParameters p;
+  for (const MultipleScatteringModelEntry& entry : MultipleScatteringModelTable())
+  {
+    p.MultipleScattering = entry.Model;
+    EXPECT_EQ(ValidateLightingParameters(p), "") << entry.Name;
+  }
+  p.MultipleScattering = MultipleScatteringModel(7); // a C++ caller's cast
+  EXPECT_EQ(ValidateLightingParameters(p),
+    "the multiple scattering must be volume or octaves, got the value 7");
+  LightingParameters other = p;
+  other.MultipleScattering = MultipleScatteringModel::Volume;
+  EXPECT_FALSE(other == p) << "operator== sees the choice";
 }
 
 // A scene's lights reach a CPU renderer as cloudvis::Lights and light the cloud exactly as the

@@ -1,7 +1,7 @@
-// What the command files (Commands.cxx, ExportCommands.cxx, ViewCommand.cxx) share: the options
-// several commands take, the parsing of option values that stand for scene keys, the handling
-// of an operand that is a field file rather than a scene, and the commands defined outside
-// Commands.cxx, which the command table lists.
+// What the command files (Commands.cxx, CompareCommand.cxx, ExportCommands.cxx, ViewCommand.cxx)
+// share: the options several commands take, the parsing of option values that stand for scene keys,
+// the handling of an operand that is a field file rather than a scene, and the commands defined
+// outside Commands.cxx, which the command table lists.
 #ifndef cloudvis_CommandSupport_h
 #define cloudvis_CommandSupport_h
 
@@ -9,15 +9,20 @@
 #include "Scene.h"
 
 #include <nlohmann/json.hpp>
+#include <vtkSmartPointer.h>
 
+#include <functional>
 #include <string>
 #include <vector>
+
+class vtkImageData;
 
 namespace cloudvis
 {
 
 extern const OptionSpec SetOption;  // --set KEY=VALUE, repeatable
 extern const OptionSpec HelpOption; // --help, -h
+extern const OptionSpec ImageOutputOption; // -o IMAGE.png of render and compare
 
 // --lighting MODEL, listing the model names of the scene language.
 OptionSpec LightingOption();
@@ -57,7 +62,24 @@ Scene LoadOperandScene(const std::string& command,
   std::vector<SceneOverride> overrides,
   bool fieldKeysOnly = false);
 
+// The operand of render and compare, a scene or a field file, validated with its --set
+// assignments and option overrides and turned into its field. The cheap checks come first (field
+// keys set for a field file, a bad -o, scene values, the display when `needsDisplay`): none of
+// them should cost a field's generation.
+struct SceneInput
+{
+  Scene Loaded;
+  vtkSmartPointer<vtkImageData> Field;
+};
+SceneInput LoadSceneInput(const std::string& command,
+  const Arguments& arguments,
+  const std::vector<SceneOverride>& options,
+  const std::string& output,
+  bool needsDisplay,
+  const std::function<void(double)>& generationProgress = {});
+
 // The commands defined in their own files.
+CommandSpec CompareCommand(); // CompareCommand.cxx
 CommandSpec AnimateCommand(); // ExportCommands.cxx
 CommandSpec ViewCommand();    // ViewCommand.cxx
 

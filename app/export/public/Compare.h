@@ -1,9 +1,11 @@
 // `cloudvis compare`: the lighting models side by side on one field. One window holds one
 // viewport per model, render.size each, left to right in the order given, plus an optional
 // difference panel; every viewport shares one vtkCamera (the one ApplyCamera sets up) and the
-// mappers start from the same jitter frame, so the panels differ only by their model. Each panel
-// has its own vtkVolume and vtkCloudVolumeMapper (ConfigureMapper, ConfigureLighting with the
-// panel's model) and a label with the model's name and its measured frame time.
+// mappers start from the same jitter frame, so the panels differ only by their lighting. A panel
+// is a model, and for the march also how it adds multiple scattering (ComparedLighting), so the
+// volume and the octaves can stand side by side. Each panel has its own vtkVolume and
+// vtkCloudVolumeMapper (ConfigureMapper, ConfigureLighting with the panel's lighting) and a label
+// with the panel's name and its measured frame time.
 #ifndef cloudvis_Compare_h
 #define cloudvis_Compare_h
 
@@ -18,9 +20,28 @@
 namespace cloudvis
 {
 
+// One panel's lighting: a model and, for the march, how it adds multiple scattering (none given:
+// the scene's render.march.multiple_scattering).
+struct ComparedLighting
+{
+  LightingModel Model = LightingModel::None;
+  std::optional<MultipleScatteringModel> MultipleScattering;
+};
+bool operator==(const ComparedLighting& a, const ComparedLighting& b);
+
+// The lighting a panel renders with: the scene's, with the panel's model and, where the panel
+// gives one, its multiple scattering.
+LightingParameters PanelLighting(const LightingParameters& scene, const ComparedLighting& panel);
+
+// A panel's name on its label and in what compare prints: the model's name, and for the march
+// "march:NAME" with the multiple scattering it renders with (the scene's where the panel gives
+// none), so that a picture says which it shows.
+std::string PanelName(const LightingParameters& scene, const ComparedLighting& panel);
+
 struct ComparisonResult
 {
   RenderedImage Image;
+  std::vector<std::string> Names;   // per panel, in the order given (then the reference): PanelName
   std::vector<double> Milliseconds; // per model, in the order given: mean full-window frame time
   int AccumulatedFrames = 0;        // frames averaged into each panel
   double MaxDifference = 0.0;       // with a difference panel: max over pixels of |A - B|
@@ -43,7 +64,8 @@ constexpr int MaximumComparisonWidth = 16384;
 // `difference` (indices into `models`) adds a last panel: the per-pixel max over r, g, b of
 // |A - B| between the two models' accumulated float radiances (vtkCloudVolumeMapper::ReadImage),
 // scaled so the largest difference is the top of a black-purple-orange-yellow ramp, labelled
-// "|A - B|" with that largest difference. The scene's render.lighting is not used.
+// "|A - B|" with that largest difference. The scene's render.lighting is not used; its
+// render.march.multiple_scattering is, by a march panel that gives none.
 //
 // `referenceSamples` adds a ground-truth panel after the models' (before the difference): the
 // GPU path tracer with that many paths per pixel (a difference index of models.size() is that
@@ -55,7 +77,7 @@ constexpr int MaximumComparisonWidth = 16384;
 ComparisonResult RenderComparison(const Scene& scene,
   vtkImageData* field,
   const std::string& input,
-  const std::vector<LightingModel>& models,
+  const std::vector<ComparedLighting>& models,
   const std::optional<std::pair<size_t, size_t>>& difference,
   int timingFrames = 3,
   std::optional<int> referenceSamples = std::nullopt);

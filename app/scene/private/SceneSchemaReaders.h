@@ -94,6 +94,23 @@ std::string NormalizeSun(Scene& s);
 
 // ---- render ----------------------------------------------------------------------------------
 
+// The names of one of CloudLightingParameters.h's tables (LightingModelTable,
+// MultipleScatteringModelTable), with their descriptions, in the table's order.
+template<typename Table>
+std::vector<Name> NamesOfTable(const Table& table)
+{
+  std::vector<Name> names;
+  for (const auto& entry : table)
+  {
+    names.push_back({ entry.Name, int(entry.Model), entry.Description });
+  }
+  return names;
+}
+
+// render.march.multiple_scattering held the number of octaves before it chose between the
+// volume and the octaves: a number there is refused with where the count went.
+std::string OctaveCountMoved(const json& value);
+
 // render.derivative or render.march: the keys, then the lighting's own check (a value a float
 // cannot hold, say 0.99999999 for g, passes the double range but not it).
 Key<RenderSpec> LightingObject(const std::string& name,

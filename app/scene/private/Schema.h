@@ -126,6 +126,9 @@ struct ValueType
   // the kind's own checks pass: returns the problem, or empty.
   using ValueCheck = std::string (*)(const json& value);
   ValueCheck Refuse = nullptr;
+  // A value an earlier version of the format gave this key, refused before the kind's own checks
+  // with words that say what to write now: returns that, or empty for any other value.
+  ValueCheck Outdated = nullptr;
 
   // For the docs only.
   std::string Unit;        // "degrees", "world units": added to the type column
@@ -138,6 +141,7 @@ struct ValueType
   ValueType DefaultIs(std::string defaultText) const;
   ValueType Mandatory() const;
   ValueType CheckedBy(ValueCheck refuse) const;
+  ValueType RefusesOutdated(ValueCheck outdated) const;
 };
 
 ValueType NumberIn(const Range& allowed);
@@ -155,9 +159,9 @@ ValueType IntegerOrIntegersIn(size_t count, long long min, long long max, std::s
 ValueType PointsIn(size_t count, const Range& allowed, std::string form);
 ValueType CustomValue(std::string typeText);
 
-// Checks `value` against `type` (and its Refuse) and returns it in the form members are assigned
-// from: a choice as its integer value, one integer that fills an array as the array, a path
-// resolved against the context's base directory. Fails through `c` naming `key`.
+// Checks `value` against `type` (its Outdated first, its Refuse last) and returns it in the form
+// members are assigned from: a choice as its integer value, one integer that fills an array as the
+// array, a path resolved against the context's base directory. Fails through `c` naming `key`.
 json Check(const Context& c, const ValueType& type, const json& value, const std::string& key);
 
 // The value as a scene file writes it: a choice by its name, numbers as they are.
