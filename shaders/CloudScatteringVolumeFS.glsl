@@ -1,6 +1,7 @@
 // The multiple-scattering volume's passes in vtkCloudVolumeMapper (issue 21,
 // filters/CloudScatteringVolume.h states the grids and the order of the passes): one fragment per
-// texel of one slice of the grid being computed. The mapper splices this main() after the march
+// texel of the grid being computed, every layer in one draw (CloudScatteringVolumeGS.glsl sends
+// the quad to each). The mapper splices this main() after the march
 // shader's functions (CloudMarchFS.glsl without its main, with the march model's lighting), so
 // each texel is one of the shared source's texel functions (shaders/transport/Transport.glsl, "The
 // multiple-scattering volume", which the CPU's ComputeScatteringVolume runs too); ScatteringPass
@@ -10,13 +11,13 @@
 // coarser grid's fluence.
 uniform int ScatteringPass; // ScatteringVolumeTexture.cxx's Pass enum
 uniform int ScatteringParity; // the half-sweep's cells: x + y + z of this parity
-uniform float ScatteringSlice; // the texel's z
+flat in int ScatteringLayer; // the texel's z
 
 void main()
 {
   // The fragment's texel from the quad's texture coordinate, (i + 0.5) / size at its centre (using
   // it keeps the quad's vertex attribute alive in the linked program).
-  vec3 t = vec3(floor(texCoord * ScatteringVolumeSize.xy), ScatteringSlice);
+  vec3 t = vec3(floor(texCoord * ScatteringVolumeSize.xy), float(ScatteringLayer));
   ivec3 c = ivec3(t);
   vec4 second = vec4(0.0);
   vec4 first;

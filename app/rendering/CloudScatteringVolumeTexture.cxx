@@ -6,11 +6,14 @@
 #include "CloudScatteringVolume.h"
 
 #include "CloudScatteringVolumeFS.h"
+#include "CloudScatteringVolumeGS.h"
+#include "CloudScatteringVolumeVS.h"
 
 #include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLState.h>
+#include <vtkOpenGLVertexArrayObject.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
 #include <vtkTimerLog.h>
@@ -255,8 +258,10 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   }
   if (!this->Pass || key != this->PassKey)
   {
-    this->Pass = std::make_unique<vtkOpenGLQuadHelper>(
-      window, nullptr, PassShaderSource(u.Lights, CloudScatteringVolumeFS).c_str(), "");
+    this->Pass = std::make_unique<vtkOpenGLQuadHelper>(window,
+      CloudScatteringVolumeVS,
+      PassShaderSource(u.Lights, CloudScatteringVolumeFS).c_str(),
+      CloudScatteringVolumeGS);
     this->PassKey = key;
   }
   else
@@ -331,8 +336,8 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   }
   window->WaitForCompletion();
   this->Seconds += vtkTimerLog::GetUniversalTime() - start;
-  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0, 0);
-  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0, 0);
+  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
+  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0);
   state->PopFramebufferBindings();
   if (inputs.LightVolumes)
   {
@@ -355,8 +360,7 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   return true;
 }
 
-// One pass over every slice of a grid: its inputs bound, its output (two for the source) one
-// layer at a time.
+// One pass over every layer of a grid: its inputs bound, its output (two for the source).
 bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   const Step& step,
   int unreadUnit)
@@ -434,23 +438,19 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   state->vtkglViewport(0, 0, grid.Size.x, grid.Size.y);
   unsigned int buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
   state->vtkglDrawBuffers(outputs[1] ? 2 : 1, buffers);
-  bool complete = true;
-  for (int k = 0; k < grid.Size.z && complete; ++k)
+  // Every layer of the output(s) attached at once (layered): the quad is drawn once per layer,
+  // as instances, which the geometry shader sends to their layers.
+  for (int i = 0; i < 2; ++i)
   {
-    for (int i = 0; i < 2; ++i)
-    {
-      glFramebufferTextureLayer(GL_FRAMEBUFFER,
-        GL_COLOR_ATTACHMENT0 + unsigned(i),
-        outputs[i] ? outputs[i]->GetHandle() : 0,
-        0,
-        k);
-    }
-    complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    if (complete)
-    {
-      program->SetUniformf("ScatteringSlice", float(k));
-      this->Pass->Render();
-    }
+    glFramebufferTexture(
+      GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + unsigned(i), outputs[i] ? outputs[i]->GetHandle() : 0, 0);
+  }
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  if (complete)
+  {
+    this->Pass->VAO->Bind();
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, grid.Size.z);
+    this->Pass->VAO->Release();
   }
   for (auto& read : reads)
   {

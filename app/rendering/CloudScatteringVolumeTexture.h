@@ -1,10 +1,11 @@
 // The multiple-scattering volume of vtkCloudVolumeMapper (issue 21; filters/CloudScatteringVolume.h
 // states the grids, the solve and the order of its passes): the textures of every grid, from the
-// coarsest to the finest, computed on the GPU by fragment passes rendered into one layer of a 3-D
-// texture at a time (shaders/CloudScatteringVolumeFS.glsl, with the shared source's texel
-// functions, as the CPU's ComputeScatteringVolume runs them), when anything it depends on changed;
-// the march reads the finest grid's fluence and flux once per sample. Its memory goes through the
-// mapper's GpuMemoryBudget.
+// coarsest to the finest, computed on the GPU by fragment passes, each rendered into every layer
+// of a 3-D texture in one instanced draw (shaders/CloudScatteringVolume{VS,GS,FS}.glsl, with the
+// shared source's texel functions, as the CPU's ComputeScatteringVolume runs them: one draw per
+// pass rather than one per layer, which a GPU pays for more than for the cells themselves), when
+// anything it depends on changed; the march reads the finest grid's fluence and flux once per
+// sample. Its memory goes through the mapper's GpuMemoryBudget.
 //
 // A recompute may be spread over frames (progressive, for the viewer): each Update then runs the
 // passes a time budget allows, and the march meanwhile reads the last finished volume, which a
