@@ -99,6 +99,13 @@ struct ScatteringVolumeTexture::Grid
   vtkSmartPointer<vtkTextureObject> Medium, Source, Direction, Flux;
   std::array<vtkSmartPointer<vtkTextureObject>, 2> Fluence;
   int Current = 0; // the fluence holding the latest values
+
+  // Every texture it holds (the coarser grids have no flux: null).
+  std::array<vtkTextureObject*, 6> Textures() const
+  {
+    return { this->Medium, this->Source, this->Direction, this->Fluence[0], this->Fluence[1],
+      this->Flux };
+  }
 };
 
 ScatteringVolumeTexture::ScatteringVolumeTexture() = default;
@@ -206,9 +213,7 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
   this->Bytes = 0;
   for (const Grid& grid : this->Grids)
   {
-    for (vtkTextureObject* texture :
-      { grid.Medium.Get(), grid.Source.Get(), grid.Direction.Get(), grid.Fluence[0].Get(),
-        grid.Fluence[1].Get(), grid.Flux.Get() })
+    for (vtkTextureObject* texture : grid.Textures())
     {
       this->Bytes += texture ? TextureBytes(texture) : 0;
     }
@@ -489,9 +494,7 @@ void ScatteringVolumeTexture::Release(vtkWindow* window)
 {
   for (Grid& grid : this->Grids)
   {
-    for (vtkTextureObject* texture :
-      { grid.Medium.Get(), grid.Source.Get(), grid.Direction.Get(), grid.Fluence[0].Get(),
-        grid.Fluence[1].Get(), grid.Flux.Get() })
+    for (vtkTextureObject* texture : grid.Textures())
     {
       if (texture)
       {
