@@ -56,7 +56,6 @@ std::vector<double> LightSignatureOf(const MarchUniforms& u)
   }
   return s;
 }
-
 }
 
 LightVolumeTexture::LightVolumeTexture() = default;
@@ -139,8 +138,8 @@ bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,
   }
   if (!this->Pass || key != this->PassKey)
   {
-    this->Pass =
-      std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, PassShaderSource(u.Lights, CloudLightVolumeFS).c_str(), "");
+    this->Pass = std::make_unique<vtkOpenGLQuadHelper>(
+      window, nullptr, PassShaderSource(u.Lights, CloudLightVolumeFS).c_str(), "");
     this->PassKey = key;
   }
   else

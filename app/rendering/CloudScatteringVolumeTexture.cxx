@@ -65,11 +65,8 @@ std::vector<double> SignatureOf(const MarchUniforms& u, const ScatteringVolumeTe
   for (const LocalLight& light : u.Lights)
   {
     s.push_back(light.Positional ? 1.0 : 0.0);
-    for (const glm::vec3& v : { light.Position,
-           light.Direction,
-           light.Radiance,
-           light.Attenuation,
-           light.IndexDirection })
+    for (const glm::vec3& v :
+      { light.Position, light.Direction, light.Radiance, light.Attenuation, light.IndexDirection })
     {
       s.insert(s.end(), glm::value_ptr(v), glm::value_ptr(v) + 3);
     }
@@ -103,8 +100,9 @@ struct ScatteringVolumeTexture::Grid
   // Every texture it holds (the coarser grids have no flux: null).
   std::array<vtkTextureObject*, 6> Textures() const
   {
-    return { this->Medium, this->Source, this->Direction, this->Fluence[0], this->Fluence[1],
-      this->Flux };
+    return {
+      this->Medium, this->Source, this->Direction, this->Fluence[0], this->Fluence[1], this->Flux
+    };
   }
 };
 
@@ -192,8 +190,7 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
         grid.Source = NewGridTexture(window, grid.Size);
         grid.Direction = NewGridTexture(window, grid.Size);
         grid.Fluence = { NewGridTexture(window, grid.Size), NewGridTexture(window, grid.Size) };
-        if (!grid.Medium || !grid.Source || !grid.Direction || !grid.Fluence[0] ||
-          !grid.Fluence[1])
+        if (!grid.Medium || !grid.Source || !grid.Direction || !grid.Fluence[0] || !grid.Fluence[1])
         {
           return false;
         }
@@ -327,8 +324,7 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   bool complete = true;
   while (complete && this->IsConverging())
   {
-    complete =
-      this->RunStep(window, this->Steps[this->Next], inputs.Density->GetTextureUnit());
+    complete = this->RunStep(window, this->Steps[this->Next], inputs.Density->GetTextureUnit());
     ++this->Next;
     if (seconds > 0.0 && this->IsConverging())
     {
@@ -447,8 +443,10 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   // as instances, which the geometry shader sends to their layers.
   for (int i = 0; i < 2; ++i)
   {
-    glFramebufferTexture(
-      GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + unsigned(i), outputs[i] ? outputs[i]->GetHandle() : 0, 0);
+    glFramebufferTexture(GL_FRAMEBUFFER,
+      GL_COLOR_ATTACHMENT0 + unsigned(i),
+      outputs[i] ? outputs[i]->GetHandle() : 0,
+      0);
   }
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   if (complete)

@@ -45,20 +45,22 @@ std::array<int, 2> Progress(const json& state)
 // Returns the converged state.
 json ExpectProgressThenConvergence(LiveSession& session, const std::string& change)
 {
-  const json first = session.WaitFor([](const json& s) { return Progress(s)[0] >= 0; },
-    "the progress line after " + change, 60.0);
+  const json first = session.WaitFor(
+    [](const json& s) { return Progress(s)[0] >= 0; }, "the progress line after " + change, 60.0);
   const std::array<int, 2> k = Progress(first);
   EXPECT_GT(k[1], 100) << "every pass of the volume counts";
   EXPECT_LT(k[0], k[1]);
   EXPECT_FALSE(first["converged"].get<bool>()) << "converged while the volume is computed";
-  const json later = session.WaitFor(
-    [&](const json& s) { return Progress(s)[0] > k[0] || Progress(s)[0] < 0; },
-    "the progress to advance after " + change, 60.0);
+  const json later =
+    session.WaitFor([&](const json& s) { return Progress(s)[0] > k[0] || Progress(s)[0] < 0; },
+      "the progress to advance after " + change,
+      60.0);
   EXPECT_GT(later["frames_rendered"].get<long>(), first["frames_rendered"].get<long>())
     << "the work is spread over frames";
-  const json converged = session.WaitFor(
-    [](const json& s) { return s["converged"].get<bool>() && Progress(s)[0] < 0; },
-    "the picture to converge after " + change, 90.0);
+  const json converged =
+    session.WaitFor([](const json& s) { return s["converged"].get<bool>() && Progress(s)[0] < 0; },
+      "the picture to converge after " + change,
+      90.0);
   EXPECT_EQ(converged["progress"], "");
   return converged;
 }
@@ -71,15 +73,16 @@ TEST(LiveScattering, TurningTheLightRecomputesTheVolumeOverFramesThenConverges)
   EXPECT_EQ(opened["progress"], "") << "the first volume is computed whole";
   session.Key("Right"); // the light turns 10 degrees
   const json first = session.WaitFor([](const json& s) { return Progress(s)[0] >= 0; },
-    "the progress line after the light turned", 60.0);
+    "the progress line after the light turned",
+    60.0);
   // Input is handled while the volume converges: the next key turns the light on, and its
   // frame comes (a new computation starts from the beginning).
   const size_t keys = first["keys"].size();
   session.Key("Right");
-  const json handled = session.WaitFor(
-    [&](const json& s)
+  const json handled = session.WaitFor([&](const json& s)
     { return s["keys"].size() > keys && !s["keys"].back()["shown_at"].is_null(); },
-    "the second key's frame while the volume converges", 30.0);
+    "the second key's frame while the volume converges",
+    30.0);
   EXPECT_NE(handled["first_light_position"], opened["first_light_position"]);
   const json converged = ExpectProgressThenConvergence(session, "the light turned twice");
   EXPECT_EQ(converged["first_light_position"], handled["first_light_position"]);
@@ -108,8 +111,8 @@ TEST(LiveScattering, TurningTheLightRecomputesTheVolumeOverFramesThenConverges)
       "--set",
       "field.dimensions=96",
       "--set",
-      "lights=[{\"type\":\"directional\",\"position\":[" + exact(light[0]) + "," +
-        exact(light[1]) + "," + exact(light[2]) + "]}]" }));
+      "lights=[{\"type\":\"directional\",\"position\":[" + exact(light[0]) + "," + exact(light[1]) +
+        "," + exact(light[2]) + "]}]" }));
   fresh.WaitUntilConverged();
   if (const char* dump = std::getenv("CLOUDVIS_LIVE_DUMP"))
   {
