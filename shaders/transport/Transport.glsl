@@ -347,15 +347,16 @@ vec3 BeamFraction(float mu, float tau, vec3 albedo)
   return beam * (Phase(mu, 1.0f) * powder);
 }
 
-// The optical depth toward light i at index point p (from the light volumes, or marched).
-float OpticalDepthToLight(int i, vec3 p, vec3 l, float lightDistance)
+// The optical depth toward light i at index point p, where the extinction is sigmaHere, the
+// light lies along l at lightDistance: from the light volumes, or marched.
+float OpticalDepthToLight(int i, vec3 p, float sigmaHere, vec3 l, float lightDistance)
 {
   if (LightTransmittanceVolumes != 0)
   {
     return LightVolumeDepth(i, p);
   }
   vec3 indexStep = LightPositional[i] != 0 ? LocalToIndex * l : LightIndexDirection[i];
-  return LightOpticalDepth(p, ExtinctionAt(p), indexStep, lightDistance);
+  return LightOpticalDepth(p, sigmaHere, indexStep, lightDistance);
 }
 
 // The beams' fluence at cell t, sum of E exp(-tau (1 - albedo f)) over the lights, per channel:
@@ -370,7 +371,7 @@ vec4 ScatteringStartTexel(vec3 t, vec4 m)
     vec3 l;
     float lightDistance, falloff;
     SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
-    float tau = OpticalDepthToLight(i, p, l, lightDistance);
+    float tau = OpticalDepthToLight(i, p, ExtinctionAt(p), l, lightDistance);
     fluence += LightRadiance[i] * (falloff * PhaseToRadiance) *
       exp(-tau * (vec3(1.0f) - albedo * PhaseForwardFraction()));
   }
@@ -391,7 +392,7 @@ void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction
     vec3 l;
     float lightDistance, falloff;
     SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
-    float tau = OpticalDepthToLight(i, p, l, lightDistance);
+    float tau = OpticalDepthToLight(i, p, ExtinctionAt(p), l, lightDistance);
     vec3 beam = LightRadiance[i] * (falloff * PhaseToRadiance) *
       exp(-tau * (vec3(1.0f) - albedo * f));
     fluence += beam;
@@ -585,9 +586,8 @@ vec3 DerivativePointTerm(int i, vec3 p, float density, vec3 albedo, vec3 d)
 // A directional light: its direction in index units is the same everywhere (precomputed).
 vec3 MarchDirectionalTerm(int i, vec3 p, float density, vec3 albedo, vec3 d)
 {
-  float tau = LightTransmittanceVolumes != 0
-    ? LightVolumeDepth(i, p)
-    : LightOpticalDepth(p, Optical(density).w, LightIndexDirection[i], DirectionalLightDistance);
+  float tau = OpticalDepthToLight(
+    i, p, Optical(density).w, LightDirection[i], DirectionalLightDistance);
   float mu = dot(d, LightDirection[i]);
   return LightRadiance[i] * PhaseToRadiance *
     (ScatteringVolumeOn != 0 ? BeamFraction(mu, tau, albedo) : ScatteredFraction(mu, tau, albedo));
@@ -598,9 +598,7 @@ vec3 MarchPointTerm(int i, vec3 p, float density, vec3 albedo, vec3 d)
   vec3 l;
   float lightDistance, falloff;
   SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
-  float tau = LightTransmittanceVolumes != 0
-    ? LightVolumeDepth(i, p)
-    : LightOpticalDepth(p, Optical(density).w, LocalToIndex * l, lightDistance);
+  float tau = OpticalDepthToLight(i, p, Optical(density).w, l, lightDistance);
   float mu = dot(d, l);
   return LightRadiance[i] * falloff * PhaseToRadiance *
     (ScatteringVolumeOn != 0 ? BeamFraction(mu, tau, albedo) : ScatteredFraction(mu, tau, albedo));
