@@ -121,6 +121,7 @@ struct Transport
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 #include "../shaders/transport/Transport.glsl"
+#include "../shaders/transport/Scattering.glsl"
 #pragma GCC diagnostic pop
 
   // ---- C++ only ----
