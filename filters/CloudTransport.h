@@ -120,8 +120,8 @@ struct Transport
 // The shared source leaves some parameters unused (a model's term takes every term's arguments).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-parameter"
-#include "../shaders/transport/Transport.glsl"
 #include "../shaders/transport/Scattering.glsl"
+#include "../shaders/transport/Transport.glsl"
 #pragma GCC diagnostic pop
 
   // ---- C++ only ----
