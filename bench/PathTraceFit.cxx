@@ -591,7 +591,8 @@ int Fit(const Options& options)
         lighting.Model = LightingModel::March;
         c.March = NewMarch(gray, field, lighting, options);
         c.Octaves = std::make_unique<PreparedMarch>(c.March, field);
-        if (options.MultipleScattering != "volume" && Run(c.March).RGBA != c.Octaves->Render(lighting))
+        if (options.MultipleScattering != "volume" &&
+          Run(c.March).RGBA != c.Octaves->Render(lighting))
           Fail(c.Name + ": the prepared march differs from vtkCloudReferenceRenderer's");
         WritePng(options.PngDirectory,
           FileLabel(c.Name) + "-pathtrace",

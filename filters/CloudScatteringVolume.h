@@ -40,8 +40,7 @@ struct ScatteringSolve
 // scattering from the volume rather than the octaves).
 inline bool UsesScatteringVolume(const LightingParameters& p)
 {
-  return p.Model == LightingModel::March &&
-    p.MultipleScattering == MultipleScatteringModel::Volume;
+  return p.Model == LightingModel::March && p.MultipleScattering == MultipleScatteringModel::Volume;
 }
 
 // The grids' sizes from the coarsest (at most 5 texels on its shortest axis... or the finest

@@ -120,6 +120,7 @@ struct Transport
 // The shared source leaves some parameters unused (a model's term takes every term's arguments).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-parameter"
+#include "../shaders/transport/Scattering.glsl"
 #include "../shaders/transport/Transport.glsl"
 #pragma GCC diagnostic pop
 

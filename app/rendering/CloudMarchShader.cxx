@@ -7,6 +7,7 @@
 #include "CloudMarchFS.h"
 #include "CloudTransportAccessors.h"
 #include "CloudTransportPrelude.h"
+#include "CloudTransportScattering.h"
 #include "CloudTransportSource.h"
 
 #include <vtkOpenGLQuadHelper.h>
@@ -66,7 +67,7 @@ std::string Constants(int samplesPerMapRead)
 std::string TransportSource()
 {
   return std::string(CloudTransportPrelude) + "\n" + CloudTransportSource + "\n" +
-    CloudTransportAccessors;
+    CloudTransportScattering + "\n" + CloudTransportAccessors;
 }
 
 // The lighting model's SourceTerm, which calls the model's term of each light (the shared

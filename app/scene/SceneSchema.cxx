@@ -735,7 +735,7 @@ const Keys<LightingParameters>& MarchKeys()
       ChoiceOf(NamesOfTable(MultipleScatteringModelTable())).RefusesOutdated(OctaveCountMoved),
       &P::MultipleScattering,
       "how the march adds the light scattered more than once to single scattering "
-      "([lighting.md](lighting.md#phase-and-multiple-scattering-both-settings)). Until issue 21 "
+      "([lighting.md](lighting.md#the-multiple-scattering-volume-the-default)). Until issue 21 "
       "this key held the number of octaves, now `octaves`: a number here is refused, saying so" },
     { "octaves",
       IntegerIn(0, L::MaxMultipleScatteringOctaves),

@@ -123,8 +123,13 @@ TEST_P(MultipleScatteringVolume, StaysWithinItsMeasuredErrorOfThePathTracer)
 // has. Errors from docs/lighting.md's table.
 INSTANTIATE_TEST_SUITE_P(HeldOut,
   MultipleScatteringVolume,
-  testing::Values(
-    HeldOutCase{ "PerlinFalloffSideLit", "perlin-falloff.json", {}, { 1, 0, 0 }, 0.9f, 0.089, 0.793 },
+  testing::Values(HeldOutCase{ "PerlinFalloffSideLit",
+                    "perlin-falloff.json",
+                    {},
+                    { 1, 0, 0 },
+                    0.9f,
+                    0.089,
+                    0.793 },
     HeldOutCase{ "SparseSideLit",
       "fbm-sphere.json",
       { "field.shape.radius=0.5" },

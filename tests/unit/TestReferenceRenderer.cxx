@@ -295,26 +295,40 @@ TEST(ReferenceRenderer, LightsAddUp)
   auto renderer = FrontView(SoftSphere(40), 24);
   const Light a = DirectionalLight({ 1, 0.5f, 0.2f }, 0.8f, { 1.0f, 0.6f, 0.3f });
   const Light b = PointLight({ -0.5f, 1.5f, 1.0f }, 3.0f);
-  for (LightingModel model : { LightingModel::Derivative, LightingModel::March })
+  // The derivative and the march with the octaves are linear in the lights: exactly additive.
+  // The multiple-scattering volume's flux limiter is not (its diffusion coefficient depends on
+  // the fluence's own gradient), so two lights' diffuse light adds up only nearly: measured
+  // 3.5% of the image's largest value at worst.
+  LightingParameters octaves = ModelOnly(LightingModel::March);
+  octaves.MultipleScattering = MultipleScatteringModel::Octaves;
+  const struct
   {
-    const LightingParameters p = ModelOnly(model); // ambient strength 0
+    LightingParameters Parameters;
+    double Tolerance; // of the image's largest value
+  } settings[] = { { ModelOnly(LightingModel::Derivative), 3e-5 },
+    { octaves, 3e-5 },
+    { ModelOnly(LightingModel::March), 0.05 } };
+  for (const auto& setting : settings)
+  {
+    const LightingParameters& p = setting.Parameters; // ambient strength 0
     const Image both = RenderWith(renderer, p, { a, b });
     const Image onlyA = RenderWith(renderer, p, { a });
     const Image onlyB = RenderWith(renderer, p, { b });
     ASSERT_EQ(both.Values.size(), onlyA.Values.size());
-    double largest = 0.0;
+    const double largest = *std::max_element(both.Values.begin(), both.Values.end());
+    double worst = 0.0;
     for (std::size_t v = 0; v < both.Values.size(); ++v)
     {
-      largest = std::max(largest, both.Values[v]);
       if (v % 4 == 3)
       {
         EXPECT_EQ(both.Values[v], onlyA.Values[v]); // opacity does not depend on the lights
         continue;
       }
-      EXPECT_NEAR(
-        both.Values[v], onlyA.Values[v] + onlyB.Values[v], 1e-5f * (1.0f + both.Values[v]))
-        << int(model) << " value " << v;
+      worst = std::max(worst, std::abs(both.Values[v] - (onlyA.Values[v] + onlyB.Values[v])));
     }
+    EXPECT_LT(worst, setting.Tolerance * largest)
+      << LightingModelName(p.Model) << ", " << MultipleScatteringModelName(p.MultipleScattering)
+      << ": worst " << worst / largest << " of the largest value";
     EXPECT_GT(largest, 0.05f);
     EXPECT_GT(MeanRadiance(onlyB), 0.0);
   }

@@ -1,0 +1,208 @@
+// The multiple-scattering volume's solver (issue 21), written once for both renderers like
+// shaders/transport/Transport.glsl, after which it is spliced (GPU) or included (CPU, inside
+// cloudvis::glsl::Transport): the texel functions of each pass over a grid's cells, whose order
+// filters/CloudScatteringVolume.h states (ComputeScatteringVolume) and the GPU follows
+// (app/rendering/CloudScatteringVolumeTexture.cxx). Transport.glsl's section "The
+// multiple-scattering volume" gives the equations, the march's use of the result and the phase's
+// moments these functions read. A cell c is an integer texel of a corner-aligned grid of
+// ScatteringVolumeSize texels; t the same as a vec3.
+
+UNIFORM vec3 ScatteringCoarseSize; // texels per axis of the next coarser grid
+UNIFORM vec3 ScatteringCellSize;   // local length of a cell per axis, on the grid computed
+
+// The grid being computed, read per cell (c within the grid), and the next coarser grid's
+// fluence, linearly interpolated at texel coordinate t.
+vec4 ScatteringMediumAt(ivec3 c);
+vec4 ScatteringSourceAt(ivec3 c);
+vec4 ScatteringDirectionAt(ivec3 c);
+vec4 ScatteringFluenceAt(ivec3 c);
+vec4 CoarseFluenceFetch(vec3 t);
+
+// The index point of texel t of a corner-aligned grid of `size` texels.
+vec3 IndexOfGridTexel(vec3 t, vec3 size)
+{
+  return t * ((Dimensions - 1.0f) / max(size - 1.0f, vec3(1.0f)));
+}
+
+// The medium of cell t: albedo (weighted by extinction) in rgb, mean sigma_t per local unit in a,
+// over eight points a quarter cell from its centre.
+vec4 ScatteringMediumTexel(vec3 t)
+{
+  vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
+  vec3 quarter = 0.25f * ((Dimensions - 1.0f) / max(ScatteringVolumeSize - 1.0f, vec3(1.0f)));
+  vec3 albedo = vec3(0.0f);
+  float sigma = 0.0f;
+  for (int k = 0; k < 8; ++k)
+  {
+    vec3 corner = vec3(float(k % 2), float((k / 2) % 2), float(k / 4)) * 2.0f - 1.0f;
+    vec4 optical = Optical(DensityAt(clamp(p + corner * quarter, vec3(0.0f), Dimensions - 1.0f)));
+    albedo += optical.w * vec3(optical.x, optical.y, optical.z);
+    sigma += optical.w;
+  }
+  return vec4(sigma > 0.0f ? albedo / sigma : vec3(0.0f), 0.125f * sigma);
+}
+
+// The beams' fluence at cell t, sum of E exp(-tau (1 - albedo f)) over the lights, per channel:
+// the coarsest grid's first guess (the limiter has no direction to stream in where phi is 0).
+vec4 ScatteringStartTexel(vec3 t, vec4 m)
+{
+  vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
+  vec3 albedo = vec3(m.x, m.y, m.z);
+  vec3 fluence = vec3(0.0f);
+  for (int i = 0; i < LightCount; ++i)
+  {
+    vec3 l;
+    float lightDistance, falloff;
+    SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
+    float tau = OpticalDepthToLight(i, p, ExtinctionAt(p), l, lightDistance);
+    fluence += LightRadiance[i] * (falloff * PhaseToRadiance) *
+      exp(-tau * (vec3(1.0f) - albedo * PhaseForwardFraction()));
+  }
+  return vec4(m.w > 0.0f ? fluence : vec3(0.0f), 0.0f);
+}
+
+// The diffuse source of cell t with medium m: Q0 per channel in rgb, and the beams' mean
+// direction of travel (weighted by their luminance) in the other vec4's xyz.
+void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction)
+{
+  vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
+  vec3 albedo = vec3(m.x, m.y, m.z);
+  float f = PhaseForwardFraction();
+  vec3 fluence = vec3(0.0f);
+  vec3 travel = vec3(0.0f);
+  for (int i = 0; i < LightCount; ++i)
+  {
+    vec3 l;
+    float lightDistance, falloff;
+    SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
+    float tau = OpticalDepthToLight(i, p, ExtinctionAt(p), l, lightDistance);
+    vec3 beam = LightRadiance[i] * (falloff * PhaseToRadiance) *
+      exp(-tau * (vec3(1.0f) - albedo * f));
+    fluence += beam;
+    travel -= (beam.x + beam.y + beam.z) * l;
+  }
+  float total = fluence.x + fluence.y + fluence.z;
+  source = vec4(m.w * (1.0f - f) * albedo * fluence, 0.0f);
+  direction = vec4(total > 0.0f ? travel / total : vec3(0.0f), 0.0f);
+}
+
+// The first moment Q1 of cell c's source along axis a, per channel.
+vec3 SourceMoment(ivec3 c, int a)
+{
+  float f = PhaseForwardFraction();
+  float reduced = (PhaseMeanCosine() - f) / (1.0f - f);
+  vec4 source = ScatteringSourceAt(c);
+  vec4 direction = ScatteringDirectionAt(c);
+  float along = a == 0 ? direction.x : (a == 1 ? direction.y : direction.z);
+  return vec3(source.x, source.y, source.z) * (reduced * along);
+}
+
+// The flux-limited diffusion coefficient per channel between two cells: the reduced extinction
+// sigmaTr and the fluence phi at the face, and the face's effective gradient (grad phi - 3 Q1
+// along the axis). It is 1 / (3 sigma_tr) where the medium is thick and phi / |gradient| (light
+// streams at most at its speed: |flux| <= phi) where it is thin or empty; at most `reach` (the
+// grid's diagonal: phi / |grad phi| in vacuum is the distance to the light's origin) where
+// there is no gradient.
+vec3 LimitedDiffusion(vec3 sigmaTr, vec3 phi, vec3 gradient, float reach)
+{
+  vec3 ratio = abs(gradient) / max(phi, vec3(1e-30f));
+  vec3 speed = ratio * (1.0f / DiffuseEscapeSpeed);
+  vec3 d = inversesqrt(max(9.0f * sigmaTr * sigmaTr + speed * speed, vec3(1e-30f)));
+  return min(d, vec3(reach));
+}
+
+// One half-sweep of red-black Gauss-Seidel at cell c: cells whose x + y + z has the parity
+// `parity` take a new value from their neighbours', the others keep theirs.
+vec4 ScatteringRelaxTexel(ivec3 c, int parity)
+{
+  vec4 old = ScatteringFluenceAt(c);
+  if ((c.x + c.y + c.z) % 2 != parity)
+  {
+    return old;
+  }
+  float g = PhaseMeanCosine();
+  vec4 m = ScatteringMediumAt(c);
+  vec3 albedo = vec3(m.x, m.y, m.z);
+  vec3 sigmaTr = m.w * (vec3(1.0f) - albedo * g);
+  vec3 sigmaA = m.w * (vec3(1.0f) - albedo);
+  vec3 phi = vec3(old.x, old.y, old.z);
+  vec4 source = ScatteringSourceAt(c);
+  vec3 numerator = vec3(source.x, source.y, source.z);
+  vec3 denominator = sigmaA;
+  ivec3 size = ivec3(ScatteringVolumeSize);
+  float reach = length(ScatteringCellSize * (ScatteringVolumeSize - 1.0f));
+  for (int face = 0; face < 6; ++face)
+  {
+    int a = face / 2;
+    int s = face % 2 == 0 ? -1 : 1;
+    ivec3 n = c;
+    if (a == 0) n.x += s;
+    if (a == 1) n.y += s;
+    if (a == 2) n.z += s;
+    float h = a == 0 ? ScatteringCellSize.x : (a == 1 ? ScatteringCellSize.y : ScatteringCellSize.z);
+    vec3 moment = SourceMoment(c, a);
+    bool outside = n.x < 0 || n.y < 0 || n.z < 0 || n.x >= size.x || n.y >= size.y || n.z >= size.z;
+    if (outside)
+    {
+      // Marshak's vacuum condition half a cell out: the outflow phi_face / 2, with phi_face
+      // between the cell's and 0 as the diffusion across the half cell allows.
+      vec3 d = LimitedDiffusion(sigmaTr, phi, 2.0f * phi / h, reach);
+      denominator += d / ((0.5f * h + 2.0f * d) * h);
+      numerator -= 3.0f * d * (float(s) * moment) / h;
+    }
+    else
+    {
+      vec4 next = ScatteringFluenceAt(n);
+      vec3 phiN = vec3(next.x, next.y, next.z);
+      vec4 mN = ScatteringMediumAt(n);
+      vec3 sigmaTrN = mN.w * (vec3(1.0f) - vec3(mN.x, mN.y, mN.z) * g);
+      vec3 momentFace = 0.5f * (moment + SourceMoment(n, a));
+      vec3 gradient = (phiN - phi) / h - 3.0f * float(s) * momentFace;
+      vec3 d = LimitedDiffusion(0.5f * (sigmaTr + sigmaTrN), 0.5f * (phi + phiN), gradient, reach);
+      denominator += d / (h * h);
+      numerator += d * phiN / (h * h) - 3.0f * d * (float(s) * momentFace) / h;
+    }
+  }
+  return vec4(max(numerator, vec3(0.0f)) / max(denominator, vec3(1e-30f)), 0.0f);
+}
+
+// The diffuse flux at cell c over the fluence, by luminance (|flux| / phi <= 1/2 by the limiter):
+// the net direction the diffuse light travels, which the march's phase weighs.
+vec4 ScatteringFluxTexel(ivec3 c)
+{
+  float g = PhaseMeanCosine();
+  vec4 m = ScatteringMediumAt(c);
+  vec3 sigmaTr = m.w * (vec3(1.0f) - vec3(m.x, m.y, m.z) * g);
+  vec4 here = ScatteringFluenceAt(c);
+  vec3 phi = vec3(here.x, here.y, here.z);
+  ivec3 size = ivec3(ScatteringVolumeSize);
+  float reach = length(ScatteringCellSize * (ScatteringVolumeSize - 1.0f));
+  vec3 flux = vec3(0.0f);
+  for (int a = 0; a < 3; ++a)
+  {
+    ivec3 lo = c, hi = c;
+    if (a == 0) { lo.x = max(c.x - 1, 0); hi.x = min(c.x + 1, size.x - 1); }
+    if (a == 1) { lo.y = max(c.y - 1, 0); hi.y = min(c.y + 1, size.y - 1); }
+    if (a == 2) { lo.z = max(c.z - 1, 0); hi.z = min(c.z + 1, size.z - 1); }
+    float h = a == 0 ? ScatteringCellSize.x : (a == 1 ? ScatteringCellSize.y : ScatteringCellSize.z);
+    float span = float(a == 0 ? hi.x - lo.x : (a == 1 ? hi.y - lo.y : hi.z - lo.z)) * h;
+    vec4 fl = ScatteringFluenceAt(lo);
+    vec4 fh = ScatteringFluenceAt(hi);
+    vec3 gradient = (vec3(fh.x, fh.y, fh.z) - vec3(fl.x, fl.y, fl.z)) / max(span, 1e-30f) -
+      3.0f * SourceMoment(c, a);
+    vec3 d = LimitedDiffusion(sigmaTr, phi, gradient, reach);
+    float along = -dot(d * gradient, vec3(1.0f));
+    if (a == 0) flux.x = along;
+    if (a == 1) flux.y = along;
+    if (a == 2) flux.z = along;
+  }
+  float total = phi.x + phi.y + phi.z;
+  return vec4(total > 0.0f ? flux / total : vec3(0.0f), 0.0f);
+}
+
+// The first guess on a finer grid: the coarser grid's fluence at the same place.
+vec4 ScatteringProlongTexel(vec3 t)
+{
+  return CoarseFluenceFetch(
+    t * ((ScatteringCoarseSize - 1.0f) / max(ScatteringVolumeSize - 1.0f, vec3(1.0f))));
+}
