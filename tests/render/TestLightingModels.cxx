@@ -63,34 +63,51 @@ TEST_P(EveryLightModel, TheSideFacingTheLightIsBrighterAndMovingTheLightFlipsIt)
 TEST_P(EveryLightModel, LightsAddUp)
 {
   // With no ambient term the source is linear in the lights, and the transmittance does not
-  // depend on them: the image of A and B together is the sum of the images of each.
-  const auto render = [&](bool a, bool b) {
-    auto mapper = LitMapper(GetParam());
-    GpuScene scene(mapper, 48, 48);
-    scene.ShowSparseCloud(48);
-    if (a)
-      AddLight(scene.Renderer, DirectionalLight(glm::dvec3(10.0, 5.0, 3.0), 0.7));
-    if (b)
-      AddLight(
-        scene.Renderer, PointLight(glm::dvec3(-2.5, 1.0, 2.0), 4.0, glm::vec3(1.0, 0.5, 0.8)));
-    return scene.RenderFloat();
-  };
-  const Image both = render(true, true), onlyA = render(true, false), onlyB = render(false, true);
-  double largest = 0.0, brightest = 0.0;
-  for (size_t i = 0; i < both.Values.size(); ++i)
+  // depend on them: the image of A and B together is the sum of the images of each. For the
+  // march, with its octaves; its multiple-scattering volume (the default) is not linear: its
+  // flux limiter's diffusion depends on the fluence's own gradient, so two lights' diffuse light
+  // adds up only nearly (the CPU's ReferenceRenderer.LightsAddUp measures the same).
+  for (const bool volume : { false, true })
   {
-    if (i % 4 != 3)
+    if (volume && GetParam() != LightingModel::March)
     {
-      largest =
-        std::max(largest, double(std::abs(both.Values[i] - onlyA.Values[i] - onlyB.Values[i])));
-      brightest = std::max(brightest, double(both.Values[i]));
+      continue;
     }
+    const auto render = [&](bool a, bool b)
+    {
+      auto mapper = LitMapper(GetParam());
+      LightingParameters lighting = mapper->GetLightingProperty()->GetParameters();
+      lighting.MultipleScattering =
+        volume ? MultipleScatteringModel::Volume : MultipleScatteringModel::Octaves;
+      mapper->GetLightingProperty()->SetParameters(lighting);
+      GpuScene scene(mapper, 48, 48);
+      scene.ShowSparseCloud(48);
+      if (a)
+        AddLight(scene.Renderer, DirectionalLight(glm::dvec3(10.0, 5.0, 3.0), 0.7));
+      if (b)
+        AddLight(
+          scene.Renderer, PointLight(glm::dvec3(-2.5, 1.0, 2.0), 4.0, glm::vec3(1.0, 0.5, 0.8)));
+      return scene.RenderFloat();
+    };
+    const Image both = render(true, true), onlyA = render(true, false), onlyB = render(false, true);
+    double largest = 0.0, brightest = 0.0;
+    for (size_t i = 0; i < both.Values.size(); ++i)
+    {
+      if (i % 4 != 3)
+      {
+        largest =
+          std::max(largest, double(std::abs(both.Values[i] - onlyA.Values[i] - onlyB.Values[i])));
+        brightest = std::max(brightest, double(both.Values[i]));
+      }
+    }
+    std::cout << (volume ? "volume: " : "") << "largest departure from the sum " << largest
+              << ", brightest " << brightest << "\n";
+    // Measured on llvmpipe: 1.8e-7, float rounding (the gate was 1e-3, which a second light
+    // weighted 1.001 passed); with the volume 0.014 of a brightest 0.375 (3.8%), gated at 5% as
+    // the CPU's.
+    EXPECT_GT(brightest, 0.05);
+    EXPECT_LT(largest, (volume ? 0.05 * brightest : 2e-6 * std::max(1.0, brightest)));
   }
-  std::cout << "largest departure from the sum " << largest << ", brightest " << brightest << "\n";
-  // Measured on llvmpipe: 1.8e-7, float rounding (the gate was 1e-3, which a second light
-  // weighted 1.001 passed).
-  EXPECT_GT(brightest, 0.05);
-  EXPECT_LT(largest, 2e-6 * std::max(1.0, brightest));
 }
 
 TEST_P(EveryLightModel, APointLightDimsWithDistance)
