@@ -21,6 +21,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -29,6 +30,10 @@ namespace cloudvis
 
 namespace
 {
+// A progressive computation's most cells per step: about 4 ms of the relaxation's on llvmpipe
+// (a frame runs as many steps as its time allows).
+constexpr int CellsPerStep = 1 << 12;
+
 // The passes of CloudScatteringVolumeFS.glsl, as its ScatteringPass numbers them.
 enum Pass
 {
@@ -124,14 +129,15 @@ bool ScatteringVolumeTexture::Update(vtkOpenGLRenderWindow* window,
       return false;
     }
     this->Signature = std::move(signature);
-    this->Plan(u);
+    // Without a finished volume to show meanwhile, the march waits for this one.
+    this->Progressive = this->Finished && seconds > 0.0;
+    this->Plan(u, this->Progressive);
   }
   if (!this->IsConverging())
   {
     return true;
   }
-  // Without a finished volume to show meanwhile, the march waits for this one.
-  if (!this->Run(window, u, inputs, this->Finished ? seconds : 0.0, problem))
+  if (!this->Run(window, u, inputs, this->Progressive ? seconds : 0.0, problem))
   {
     this->Signature.clear();
     this->Steps.clear();
@@ -222,7 +228,10 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
 // The passes of ComputeScatteringVolume, in its order: per grid from the coarsest, the medium,
 // the source, the first guess (the start on the coarsest, the coarser grid's fluence on the
 // others), the sweeps' half-sweeps of parity 0 then 1, and on the finest grid the flux.
-void ScatteringVolumeTexture::Plan(const MarchUniforms& u)
+// A progressive computation splits each pass into layers of at most about CellsPerStep cells, so
+// that a frame's share of the work is bounded whatever the field's size (a pass over a 256^3
+// field's 65^3 finest grid takes about 0.3 s on llvmpipe); a whole one draws each pass at once.
+void ScatteringVolumeTexture::Plan(const MarchUniforms& u, bool progressive)
 {
   const ScatteringSolve solve;
   this->Steps.clear();
@@ -230,19 +239,28 @@ void ScatteringVolumeTexture::Plan(const MarchUniforms& u)
   {
     grid.CellSize = ScatteringCellSize(u, grid.Size);
   }
+  const auto add = [&](int level, int pass, int parity)
+  {
+    const glm::ivec3 size = this->Grids[std::size_t(level)].Size;
+    const int layers = progressive ? std::max(1, CellsPerStep / (size.x * size.y)) : size.z;
+    for (int first = 0; first < size.z; first += layers)
+    {
+      this->Steps.push_back({ level, pass, parity, first, std::min(layers, size.z - first) });
+    }
+  };
   for (int level = 0; level < int(this->Grids.size()); ++level)
   {
-    this->Steps.push_back({ level, MediumPass, 0 });
-    this->Steps.push_back({ level, SourcePass, 0 });
-    this->Steps.push_back({ level, level == 0 ? StartPass : ProlongPass, 0 });
+    add(level, MediumPass, 0);
+    add(level, SourcePass, 0);
+    add(level, level == 0 ? StartPass : ProlongPass, 0);
     const int sweeps = level == 0 ? solve.CoarsestSweeps : solve.SweepsPerGrid;
     for (int sweep = 0; sweep < sweeps; ++sweep)
     {
-      this->Steps.push_back({ level, RelaxPass, 0 });
-      this->Steps.push_back({ level, RelaxPass, 1 });
+      add(level, RelaxPass, 0);
+      add(level, RelaxPass, 1);
     }
   }
-  this->Steps.push_back({ int(this->Grids.size()) - 1, FluxPass, 0 });
+  add(int(this->Grids.size()) - 1, FluxPass, 0);
   this->Next = 0;
   this->Seconds = 0.0;
 }
@@ -402,8 +420,7 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
         { "ScatteringFluenceTexture", grid.Fluence[std::size_t(grid.Current)] } };
       if (step.Pass == RelaxPass)
       {
-        grid.Current = 1 - grid.Current;
-        outputs[0] = grid.Fluence[std::size_t(grid.Current)];
+        outputs[0] = grid.Fluence[std::size_t(1 - grid.Current)];
       }
       else
       {
@@ -451,9 +468,15 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   if (complete)
   {
+    program->SetUniformi("ScatteringFirstLayer", step.FirstLayer);
     this->Pass->VAO->Bind();
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, grid.Size.z);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, step.Layers);
     this->Pass->VAO->Release();
+  }
+  // The half-sweep's output holds the latest fluence once all its layers are written.
+  if (step.Pass == RelaxPass && step.FirstLayer + step.Layers == grid.Size.z)
+  {
+    grid.Current = 1 - grid.Current;
   }
   for (auto& read : reads)
   {
@@ -511,6 +534,7 @@ void ScatteringVolumeTexture::Release(vtkWindow* window)
   this->Fluence = nullptr;
   this->Flux = nullptr;
   this->Finished = false;
+  this->Progressive = false;
   this->Pass.reset();
   this->PassKey.clear();
   if (this->Framebuffer)

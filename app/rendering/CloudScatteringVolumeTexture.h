@@ -60,7 +60,7 @@ public:
     double seconds = 0.0);
 
   // Whether a recompute is under way (the march reads the last finished volume), and its
-  // progress: the passes run and the passes in all.
+  // progress: the steps run and the steps in all (a step: a pass over some of a grid's layers).
   bool IsConverging() const { return this->Next < this->Steps.size(); }
   int GetStepsDone() const { return int(this->Next); }
   int GetStepCount() const { return int(this->Steps.size()); }
@@ -82,18 +82,21 @@ public:
 
 private:
   struct Grid;
+  // One draw: a pass over some of a grid's layers (all of them unless progressive).
   struct Step
   {
     int Level = 0;
     int Pass = 0;
     int Parity = 0;
+    int FirstLayer = 0;
+    int Layers = 0;
   };
 
   bool Allocate(vtkOpenGLRenderWindow* window,
     const MarchUniforms& u,
     GpuMemoryBudget& budget,
     std::string& problem);
-  void Plan(const MarchUniforms& u);
+  void Plan(const MarchUniforms& u, bool progressive);
   bool Run(vtkOpenGLRenderWindow* window,
     const MarchUniforms& u,
     const Inputs& inputs,
@@ -109,6 +112,7 @@ private:
   vtkSmartPointer<vtkTextureObject> Fluence;
   vtkSmartPointer<vtkTextureObject> Flux;
   bool Finished = false;
+  bool Progressive = false; // the computation under way is spread over frames
   std::unique_ptr<vtkOpenGLQuadHelper> Pass;
   std::string PassKey; // the kinds of lights the pass was compiled for
   unsigned int Framebuffer = 0;
