@@ -9,7 +9,6 @@
 
 #include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
-#include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLState.h>
 #include <vtkShaderProgram.h>
 #include <vtk_glew.h>
@@ -131,64 +130,21 @@ bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,
   const Inputs& inputs,
   std::string& problem)
 {
-  std::string key;
-  for (const LocalLight& light : u.Lights)
+  vtkShaderProgram* program = this->Pass.Begin(window,
+    LightVolumeMarch(u),
+    inputs,
+    { CloudLightVolumeFS, nullptr, nullptr },
+    "light-volume",
+    problem);
+  if (!program)
   {
-    key += light.Positional ? 'P' : 'D';
-  }
-  if (!this->Pass || key != this->PassKey)
-  {
-    this->Pass = std::make_unique<vtkOpenGLQuadHelper>(
-      window, nullptr, PassShaderSource(u.Lights, CloudLightVolumeFS).c_str(), "");
-    this->PassKey = key;
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(this->Pass->Program);
-  }
-  vtkShaderProgram* program = this->Pass->Program;
-  if (!program || !program->GetCompiled())
-  {
-    problem = "the light-volume shader failed to compile or link (the driver's log is in VTK's "
-              "error output)";
     return false;
   }
-
-  vtkOpenGLState* state = window->GetState();
-  vtkOpenGLState::ScopedglViewport savedViewport(state);
-  vtkOpenGLState::ScopedglEnableDisable savedBlend(state, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable savedScissor(state, GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_BLEND);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglViewport(0, 0, this->Size[0], this->Size[1]);
-
-  vtkTextureObject* textures[] = { inputs.Density, inputs.Transfer, inputs.Occupancy };
-  for (vtkTextureObject* texture : textures)
-  {
-    texture->Activate();
-  }
-  SetMarchUniforms(program, LightVolumeMarch(u));
-  program->SetUniformi("DensityTexture", inputs.Density->GetTextureUnit());
-  program->SetUniformi("TransferTexture", inputs.Transfer->GetTextureUnit());
-  program->SetUniformi("EmptyDistanceTexture", inputs.Occupancy->GetTextureUnit());
-  const float brickCount[3] = {
-    float(inputs.BrickCount[0]), float(inputs.BrickCount[1]), float(inputs.BrickCount[2])
-  };
-  program->SetUniform3f("BrickCount", brickCount);
-  program->SetUniformf("BrickSize", float(inputs.BrickSize));
-  program->SetUniformi("SkipEmptySpace", inputs.SkipEmptySpace ? 1 : 0);
+  window->GetState()->vtkglViewport(0, 0, this->Size[0], this->Size[1]);
   const float size[3] = { float(this->Size[0]), float(this->Size[1]), float(this->Size[2]) };
   program->SetUniform3f("LightVolumeSize", size);
 
   // One layer of the texture at a time is the framebuffer's colour attachment.
-  state->PushFramebufferBindings();
-  if (!this->Framebuffer)
-  {
-    glGenFramebuffers(1, &this->Framebuffer);
-  }
-  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
   bool complete = true;
   for (int light = 0; light < this->Lights && complete; ++light)
   {
@@ -206,15 +162,10 @@ bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,
         break;
       }
       program->SetUniformf("LightVolumeSlice", float(k));
-      this->Pass->Render();
+      this->Pass.Quad().Render();
     }
   }
-  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0, 0);
-  state->PopFramebufferBindings();
-  for (vtkTextureObject* texture : textures)
-  {
-    texture->Deactivate();
-  }
+  this->Pass.End();
   if (!complete)
   {
     problem = "the light volumes cannot be rendered into on this GPU (incomplete framebuffer)";
@@ -239,13 +190,7 @@ void LightVolumeTexture::Deactivate()
 void LightVolumeTexture::Release(vtkWindow* window)
 {
   this->Texture->ReleaseGraphicsResources(window);
-  this->Pass.reset();
-  this->PassKey.clear();
-  if (this->Framebuffer)
-  {
-    glDeleteFramebuffers(1, &this->Framebuffer);
-    this->Framebuffer = 0;
-  }
+  this->Pass.Release();
   this->InputSignature.clear();
   this->LightSignature.clear();
   this->Bytes = 0;

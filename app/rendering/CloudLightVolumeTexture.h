@@ -7,6 +7,8 @@
 #ifndef CloudLightVolumeTexture_h
 #define CloudLightVolumeTexture_h
 
+#include "CloudVolumePass.h"
+
 #include <vtkNew.h>
 #include <vtkTextureObject.h>
 
@@ -14,7 +16,6 @@
 #include <string>
 #include <vector>
 
-class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
 class vtkWindow;
@@ -31,18 +32,7 @@ public:
   ~LightVolumeTexture();
 
   // What the pass reads besides the uniforms: the march's textures and empty-space settings.
-  struct Inputs
-  {
-    vtkTextureObject* Density = nullptr;
-    vtkTextureObject* Transfer = nullptr;
-    vtkTextureObject* Occupancy = nullptr;
-    const int* BrickCount = nullptr;
-    int BrickSize = 1;
-    bool SkipEmptySpace = true;
-    // Changes of the density texture and the transfer table (their upload times).
-    double DensityTime = 0.0;
-    double TableTime = 0.0;
-  };
+  using Inputs = VolumePassInputs;
 
   // Recomputes the volumes for u's lights when the field, the table, the extinction, the step,
   // the geometry or the lights changed since the last time: false with `problem` when the
@@ -77,9 +67,7 @@ private:
     std::string& problem);
 
   vtkNew<vtkTextureObject> Texture;
-  std::unique_ptr<vtkOpenGLQuadHelper> Pass;
-  std::string PassKey; // the kinds of lights the pass was compiled for
-  unsigned int Framebuffer = 0;
+  VolumePass Pass;
   std::vector<double> InputSignature; // what the volumes were computed for, lights apart
   std::vector<double> LightSignature;
   int Size[3] = { 0, 0, 0 }; // one light's block

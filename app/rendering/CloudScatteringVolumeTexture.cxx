@@ -11,7 +11,6 @@
 
 #include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
-#include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLState.h>
 #include <vtkOpenGLVertexArrayObject.h>
 #include <vtkShaderProgram.h>
@@ -35,7 +34,7 @@ namespace
 constexpr int CellsPerStep = 1 << 12;
 
 // The passes of CloudScatteringVolumeFS.glsl, as its ScatteringPass numbers them.
-enum Pass
+enum PassNumber
 {
   MediumPass = 0,
   SourcePass = 1,
@@ -271,57 +270,18 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   double seconds,
   std::string& problem)
 {
-  std::string key;
-  for (const LocalLight& light : u.Lights)
+  // The march's textures and uniforms for the texel functions (the source's march toward the
+  // lights or its light volumes).
+  vtkShaderProgram* program = this->Pass.Begin(window,
+    u,
+    inputs,
+    { CloudScatteringVolumeFS, CloudScatteringVolumeVS, CloudScatteringVolumeGS },
+    "multiple-scattering",
+    problem);
+  if (!program)
   {
-    key += light.Positional ? 'P' : 'D';
-  }
-  if (!this->Pass || key != this->PassKey)
-  {
-    this->Pass = std::make_unique<vtkOpenGLQuadHelper>(window,
-      CloudScatteringVolumeVS,
-      PassShaderSource(u.Lights, CloudScatteringVolumeFS).c_str(),
-      CloudScatteringVolumeGS);
-    this->PassKey = key;
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(this->Pass->Program);
-  }
-  vtkShaderProgram* program = this->Pass->Program;
-  if (!program || !program->GetCompiled())
-  {
-    problem = "the multiple-scattering shader failed to compile or link (the driver's log is in "
-              "VTK's error output)";
     return false;
   }
-
-  vtkOpenGLState* state = window->GetState();
-  vtkOpenGLState::ScopedglViewport savedViewport(state);
-  vtkOpenGLState::ScopedglEnableDisable savedBlend(state, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable savedScissor(state, GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_BLEND);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-
-  // The march's textures and uniforms for the texel functions (the source's march toward the
-  // lights or its light volumes), with the solve's settings.
-  std::vector<vtkTextureObject*> textures = { inputs.Density, inputs.Transfer, inputs.Occupancy };
-  for (vtkTextureObject* texture : textures)
-  {
-    texture->Activate();
-  }
-  SetMarchUniforms(program, u);
-  program->SetUniformi("DensityTexture", inputs.Density->GetTextureUnit());
-  program->SetUniformi("TransferTexture", inputs.Transfer->GetTextureUnit());
-  program->SetUniformi("EmptyDistanceTexture", inputs.Occupancy->GetTextureUnit());
-  const float brickCount[3] = {
-    float(inputs.BrickCount[0]), float(inputs.BrickCount[1]), float(inputs.BrickCount[2])
-  };
-  program->SetUniform3f("BrickCount", brickCount);
-  program->SetUniformf("BrickSize", float(inputs.BrickSize));
-  program->SetUniformi("SkipEmptySpace", inputs.SkipEmptySpace ? 1 : 0);
   program->SetUniformi("LightTransmittanceVolumes", inputs.LightVolumes ? 1 : 0);
   if (inputs.LightVolumes)
   {
@@ -332,12 +292,6 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
     program->SetUniformi("LightVolumeTexture", inputs.Density->GetTextureUnit());
   }
 
-  state->PushFramebufferBindings();
-  if (!this->Framebuffer)
-  {
-    glGenFramebuffers(1, &this->Framebuffer);
-  }
-  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
   const double start = vtkTimerLog::GetUniversalTime();
   bool complete = true;
   while (complete && this->IsConverging())
@@ -355,17 +309,11 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   }
   window->WaitForCompletion();
   this->Seconds += vtkTimerLog::GetUniversalTime() - start;
-  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0);
-  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0);
-  state->PopFramebufferBindings();
   if (inputs.LightVolumes)
   {
     inputs.LightVolumes->Deactivate();
   }
-  for (vtkTextureObject* texture : textures)
-  {
-    texture->Deactivate();
-  }
+  this->Pass.End();
   if (!complete)
   {
     problem =
@@ -385,7 +333,7 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   int unreadUnit)
 {
   vtkOpenGLState* state = window->GetState();
-  vtkShaderProgram* program = this->Pass->Program;
+  vtkShaderProgram* program = this->Pass.Quad().Program;
   Grid& grid = this->Grids[std::size_t(step.Level)];
   const Grid* coarse = step.Level > 0 ? &this->Grids[std::size_t(step.Level) - 1] : nullptr;
 
@@ -469,9 +417,9 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   if (complete)
   {
     program->SetUniformi("ScatteringFirstLayer", step.FirstLayer);
-    this->Pass->VAO->Bind();
+    this->Pass.Quad().VAO->Bind();
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, step.Layers);
-    this->Pass->VAO->Release();
+    this->Pass.Quad().VAO->Release();
   }
   // The half-sweep's output holds the latest fluence once all its layers are written.
   if (step.Pass == RelaxPass && step.FirstLayer + step.Layers == grid.Size.z)
@@ -535,13 +483,7 @@ void ScatteringVolumeTexture::Release(vtkWindow* window)
   this->Flux = nullptr;
   this->Finished = false;
   this->Progressive = false;
-  this->Pass.reset();
-  this->PassKey.clear();
-  if (this->Framebuffer)
-  {
-    glDeleteFramebuffers(1, &this->Framebuffer);
-    this->Framebuffer = 0;
-  }
+  this->Pass.Release();
   this->Signature.clear();
   this->Steps.clear();
   this->Next = 0;

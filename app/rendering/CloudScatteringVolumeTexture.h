@@ -22,7 +22,6 @@
 #include <string>
 #include <vector>
 
-class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
 class vtkTextureObject;
@@ -113,9 +112,7 @@ private:
   vtkSmartPointer<vtkTextureObject> Flux;
   bool Finished = false;
   bool Progressive = false; // the computation under way is spread over frames
-  std::unique_ptr<vtkOpenGLQuadHelper> Pass;
-  std::string PassKey; // the kinds of lights the pass was compiled for
-  unsigned int Framebuffer = 0;
+  VolumePass Pass;
   std::vector<double> Signature; // what the volume (finished or under way) is computed for
   std::vector<Step> Steps;       // the computation's passes, in order
   std::size_t Next = 0;          // the next of Steps to run
