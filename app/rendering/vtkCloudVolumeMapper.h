@@ -299,7 +299,8 @@ public:
   /**
    * Bytes of GPU memory the mapper's textures and targets take now, as the driver allocated them
    * (from the sizes it reports for their formats): the density, transfer, occupancy and jitter
-   * textures and every renderer's depth and march targets.
+   * textures, the light volumes and the multiple-scattering volume, and every renderer's depth
+   * and march targets.
    */
   vtkTypeInt64 GetGPUMemoryBytes() const;
 
