@@ -53,8 +53,10 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
     vtkRenderWindow* Window;
     std::array<int, 2> Size;
     StatusOverlay::Visibility Texts;
+    double ScatteringSeconds;
     ~Restore()
     {
+      this->In.Mapper->SetScatteringVolumeSecondsPerFrame(this->ScatteringSeconds);
       this->Window->vtkRenderWindow::SetSize(this->Size[0], this->Size[1]);
       this->Window->SetUseOffScreenBuffers(false);
       this->Window->SwapBuffersOn();
@@ -65,7 +67,15 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
       this->In.Status->Restore(this->Texts);
       this->In.Request(); // the window's own frame again
     }
-  } restore{ *this, window, windowSize, this->Status->HideAll() };
+  } restore{ *this,
+    window,
+    windowSize,
+    this->Status->HideAll(),
+    this->Mapper->GetScatteringVolumeSecondsPerFrame() };
+
+  // A multiple-scattering volume still converging (ScatteringVolumeSecondsPerFrame) is finished
+  // in the capture's first frame: the picture saved is the converged one.
+  this->Mapper->SetScatteringVolumeSecondsPerFrame(0.0);
 
   this->Exporting = true;
   window->SetUseOffScreenBuffers(true);
