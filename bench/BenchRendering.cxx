@@ -18,7 +18,8 @@
 // met or not. Its default is the full matrix; on a software renderer (llvmpipe) without subset
 // options, 128^3 and 256^3 at 800x600. What the GPU or the host cannot hold is reported as
 // refused with the size needed. Lighting models are named as in scenes (render.lighting), plus
-// `nested` for the march with the nested light march.
+// `nested` for the march with the nested light march and `octaves` for the march with the
+// multiple-scattering octaves instead of the volume.
 #include "RenderingBench.h"
 
 #include <cstdio>
@@ -44,8 +45,8 @@ const char* const UsageText =
   "                  one mapper alone, timed, e.g. under valgrind --tool=callgrind with\n"
   "                  LP_NUM_THREADS=0 and VTK_SMP_BACKEND_IN_USE=Sequential for instruction\n"
   "                  counts: cloudvis with the lighting model M (none, derivative, march,\n"
-  "                  nested) and one sun, or VTK's mapper unlit (M = vtk); --dense: the dense\n"
-  "                  field instead of the sparse one; --brick: cloudvis's brick size\n"
+  "                  nested, octaves) and one sun, or VTK's mapper unlit (M = vtk); --dense:\n"
+  "                  the dense field instead of the sparse one; --brick: cloudvis's brick size\n"
   "  reprojection [--dump DIR]\n"
   "                  only temporal reprojection: an orbit of interactive frames with and\n"
   "                  without it, timed and compared with still renders; --dump writes each\n"

@@ -220,6 +220,12 @@ std::optional<LightingParameters> MeasuredLighting(const std::string& name)
     lighting.Transmittance = LightTransmittance::Nested;
     return lighting;
   }
+  if (name == "octaves")
+  {
+    lighting.Model = LightingModel::March;
+    lighting.MultipleScattering = MultipleScatteringModel::Octaves;
+    return lighting;
+  }
   const std::optional<LightingModel> model = FindLightingModel(name);
   if (!model || *model == LightingModel::PathTrace)
   {
