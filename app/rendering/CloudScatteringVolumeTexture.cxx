@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <utility>
 
 namespace cloudvis
@@ -41,7 +42,7 @@ enum PassNumber
   StartPass = 2,
   ProlongPass = 3,
   RelaxPass = 4,
-  FluxPass = 5
+  FinishPass = 5 // the finest grid's fluence and flux, into the 3-D textures the march reads
 };
 
 // What the volume depends on, as numbers: when one changes it is computed again. The light
@@ -78,35 +79,44 @@ std::vector<double> SignatureOf(const MarchUniforms& u, const ScatteringVolumeTe
   return s;
 }
 
-vtkSmartPointer<vtkTextureObject> NewGridTexture(vtkOpenGLRenderWindow* window, glm::ivec3 size)
+// An RGBA32F texture of `size` texels (z 0: a 2-D one), linearly interpolated, clamped to its
+// edges; null when the GL refuses it.
+vtkSmartPointer<vtkTextureObject> NewTexture(vtkOpenGLRenderWindow* window, glm::ivec3 size)
 {
   auto texture = vtkSmartPointer<vtkTextureObject>::New();
   texture->SetContext(window);
-  if (!texture->Allocate3D(size.x, size.y, size.z, 4, VTK_FLOAT))
+  if (size.z > 0 ? !texture->Allocate3D(size.x, size.y, size.z, 4, VTK_FLOAT)
+                 : !texture->Allocate2D(size.x, size.y, 4, VTK_FLOAT))
   {
     return nullptr;
   }
   SetSampling(texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
   return texture;
 }
+
+// The tiles of a grid's atlas (Accessors.glsl): its layers in rows of about their square root.
+glm::ivec2 AtlasTiles(glm::ivec3 size)
+{
+  const int columns = int(std::ceil(std::sqrt(double(size.z))));
+  return { columns, (size.z + columns - 1) / columns };
+}
 }
 
-// One grid's textures: the medium, the source and its direction, two fluences (a half-sweep
-// reads one and writes the other) and, on the finest grid, the flux.
+// One grid's textures, atlases of its layers: the medium, the source and its direction, and two
+// fluences (a half-sweep reads one and writes the other).
 struct ScatteringVolumeTexture::Grid
 {
   glm::ivec3 Size{ 0 };
+  glm::ivec2 Tiles{ 0 };      // columns and rows of layers in its atlases
   glm::vec3 CellSize{ 0.0f }; // a cell's local length per axis (ScatteringCellSize)
-  vtkSmartPointer<vtkTextureObject> Medium, Source, Direction, Flux;
+  vtkSmartPointer<vtkTextureObject> Medium, Source, Direction;
   std::array<vtkSmartPointer<vtkTextureObject>, 2> Fluence;
   int Current = 0; // the fluence holding the latest values
 
-  // Every texture it holds (the coarser grids have no flux: null).
-  std::array<vtkTextureObject*, 6> Textures() const
+  glm::ivec2 AtlasSize() const { return this->Tiles * glm::ivec2(this->Size); }
+  std::array<vtkTextureObject*, 5> Textures() const
   {
-    return {
-      this->Medium, this->Source, this->Direction, this->Fluence[0], this->Fluence[1], this->Flux
-    };
+    return { this->Medium, this->Source, this->Direction, this->Fluence[0], this->Fluence[1] };
   }
 };
 
@@ -174,13 +184,15 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
     budget.Release(held);
     return false;
   }
-  // RGBA32F: five textures per grid, the flux on the finest, and the finished fluence and flux.
+  // RGBA32F: five atlases per grid, and the finished fluence and flux the march reads with the
+  // two the next computation writes.
   long long texels = 0;
   for (const glm::ivec3& size : sizes)
   {
-    texels += 5LL * size.x * size.y * size.z;
+    const glm::ivec2 atlas = AtlasTiles(size) * glm::ivec2(size);
+    texels += 5LL * atlas.x * atlas.y;
   }
-  texels += 3LL * finest.x * finest.y * finest.z;
+  texels += 4LL * finest.x * finest.y * finest.z + 1; // and a texel for the unread samplers
   std::vector<Grid> grids(sizes.size());
   problem = budget.Allocate("the multiple-scattering volume",
     16 * texels,
@@ -191,19 +203,23 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
       {
         Grid& grid = grids[level];
         grid.Size = sizes[level];
-        grid.Medium = NewGridTexture(window, grid.Size);
-        grid.Source = NewGridTexture(window, grid.Size);
-        grid.Direction = NewGridTexture(window, grid.Size);
-        grid.Fluence = { NewGridTexture(window, grid.Size), NewGridTexture(window, grid.Size) };
+        grid.Tiles = AtlasTiles(grid.Size);
+        const glm::ivec3 atlas(grid.AtlasSize(), 0);
+        grid.Medium = NewTexture(window, atlas);
+        grid.Source = NewTexture(window, atlas);
+        grid.Direction = NewTexture(window, atlas);
+        grid.Fluence = { NewTexture(window, atlas), NewTexture(window, atlas) };
         if (!grid.Medium || !grid.Source || !grid.Direction || !grid.Fluence[0] || !grid.Fluence[1])
         {
           return false;
         }
       }
-      grids.back().Flux = NewGridTexture(window, finest);
-      this->Fluence = NewGridTexture(window, finest);
-      this->Flux = NewGridTexture(window, finest);
-      return grids.back().Flux && this->Fluence && this->Flux;
+      for (auto& texture : { &this->Fluence, &this->Flux, &this->NextFluence, &this->NextFlux })
+      {
+        *texture = NewTexture(window, finest);
+      }
+      this->Unread = NewTexture(window, glm::ivec3(1, 1, 0));
+      return this->Fluence && this->Flux && this->NextFluence && this->NextFlux && this->Unread;
     });
   this->Grids = std::move(grids);
   if (!problem.empty())
@@ -220,16 +236,21 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
       this->Bytes += texture ? TextureBytes(texture) : 0;
     }
   }
-  this->Bytes += TextureBytes(this->Fluence) + TextureBytes(this->Flux);
+  for (vtkTextureObject* texture :
+    { this->Fluence, this->Flux, this->NextFluence, this->NextFlux, this->Unread })
+  {
+    this->Bytes += TextureBytes(texture);
+  }
   return true;
 }
 
 // The passes of ComputeScatteringVolume, in its order: per grid from the coarsest, the medium,
 // the source, the first guess (the start on the coarsest, the coarser grid's fluence on the
 // others), the sweeps' half-sweeps of parity 0 then 1, and on the finest grid the flux.
-// A progressive computation splits each pass into layers of at most about CellsPerStep cells, so
-// that a frame's share of the work is bounded whatever the field's size (a pass over a 256^3
-// field's 65^3 finest grid takes about 0.3 s on llvmpipe); a whole one draws each pass at once.
+// A progressive computation splits each pass into steps of at most about CellsPerStep cells (rows
+// of an atlas' tiles, or layers of the finished volume), so that a frame's share of the work is
+// bounded whatever the field's size (a pass over a 256^3 field's 65^3 finest grid takes about
+// 0.3 s on llvmpipe); a whole one draws each pass at once.
 void ScatteringVolumeTexture::Plan(const MarchUniforms& u, bool progressive)
 {
   const ScatteringSolve solve;
@@ -240,11 +261,14 @@ void ScatteringVolumeTexture::Plan(const MarchUniforms& u, bool progressive)
   }
   const auto add = [&](int level, int pass, int parity)
   {
-    const glm::ivec3 size = this->Grids[std::size_t(level)].Size;
-    const int layers = progressive ? std::max(1, CellsPerStep / (size.x * size.y)) : size.z;
-    for (int first = 0; first < size.z; first += layers)
+    const Grid& grid = this->Grids[std::size_t(level)];
+    // The units a step covers: rows of tiles, or for the finished volume layers.
+    const int units = pass == FinishPass ? grid.Size.z : grid.Tiles.y;
+    const int cells = grid.Size.x * grid.Size.y * (pass == FinishPass ? 1 : grid.Tiles.x);
+    const int perStep = progressive ? std::max(1, CellsPerStep / cells) : units;
+    for (int first = 0; first < units; first += perStep)
     {
-      this->Steps.push_back({ level, pass, parity, first, std::min(layers, size.z - first) });
+      this->Steps.push_back({ level, pass, parity, first, std::min(perStep, units - first) });
     }
   };
   for (int level = 0; level < int(this->Grids.size()); ++level)
@@ -259,7 +283,7 @@ void ScatteringVolumeTexture::Plan(const MarchUniforms& u, bool progressive)
       add(level, RelaxPass, 1);
     }
   }
-  add(int(this->Grids.size()) - 1, FluxPass, 0);
+  add(int(this->Grids.size()) - 1, FinishPass, 0);
   this->Next = 0;
   this->Seconds = 0.0;
 }
@@ -327,7 +351,8 @@ bool ScatteringVolumeTexture::Run(vtkOpenGLRenderWindow* window,
   return true;
 }
 
-// One pass over every layer of a grid: its inputs bound, its output (two for the source).
+// One step of a pass: its inputs bound, its outputs (two for the source and the finished volume)
+// attached, the step's rows of atlas tiles drawn (or the finished volume's layers).
 bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   const Step& step,
   int unreadUnit)
@@ -361,7 +386,7 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
       outputs[0] = grid.Fluence[0];
       grid.Current = 0;
       break;
-    default: // a half-sweep from the latest fluence into the other, or the flux from the latest
+    default: // a half-sweep from the latest fluence into the other, or the finished volume
       reads = { { "ScatteringMediumTexture", grid.Medium },
         { "ScatteringSourceTexture", grid.Source },
         { "ScatteringDirectionTexture", grid.Direction },
@@ -372,17 +397,23 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
       }
       else
       {
-        outputs[0] = grid.Flux;
+        outputs[0] = this->NextFluence;
+        outputs[1] = this->NextFlux;
       }
       break;
   }
+  // The samplers the pass does not read name a unit of their own type: the 1 x 1 texture's (2-D)
+  // or `unreadUnit` (3-D).
+  this->Unread->Activate();
   for (const char* sampler : { "ScatteringMediumTexture",
          "ScatteringSourceTexture",
          "ScatteringDirectionTexture",
          "ScatteringFluenceTexture",
-         "CoarseFluenceTexture",
-         "ScatteringVolumeTexture",
-         "ScatteringFluxTexture" })
+         "CoarseFluenceTexture" })
+  {
+    program->SetUniformi(sampler, this->Unread->GetTextureUnit());
+  }
+  for (const char* sampler : { "ScatteringVolumeTexture", "ScatteringFluxTexture" })
   {
     program->SetUniformi(sampler, unreadUnit);
   }
@@ -401,11 +432,22 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   program->SetUniform3f("ScatteringCellSize", glm::value_ptr(grid.CellSize));
   program->SetUniformi("ScatteringPass", step.Pass);
   program->SetUniformi("ScatteringParity", step.Parity);
-  state->vtkglViewport(0, 0, grid.Size.x, grid.Size.y);
+  program->SetUniformf("ScatteringAtlasColumns", float(grid.Tiles.x));
+  program->SetUniformf("CoarseAtlasColumns", coarse ? float(coarse->Tiles.x) : 1.0f);
+  // An atlas pass draws the quad over its rows of tiles; the finished volume's, once per layer
+  // (instances the geometry shader sends to their layers of the outputs, attached layered).
+  const bool finish = step.Pass == FinishPass;
+  if (finish)
+  {
+    state->vtkglViewport(0, 0, grid.Size.x, grid.Size.y);
+  }
+  else
+  {
+    const glm::ivec2 atlas = grid.AtlasSize();
+    state->vtkglViewport(0, step.First * grid.Size.y, atlas.x, step.Count * grid.Size.y);
+  }
   unsigned int buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
   state->vtkglDrawBuffers(outputs[1] ? 2 : 1, buffers);
-  // Every layer of the output(s) attached at once (layered): the quad is drawn once per layer,
-  // as instances, which the geometry shader sends to their layers.
   for (int i = 0; i < 2; ++i)
   {
     glFramebufferTexture(GL_FRAMEBUFFER,
@@ -416,13 +458,14 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   if (complete)
   {
-    program->SetUniformi("ScatteringFirstLayer", step.FirstLayer);
+    program->SetUniformi("ScatteringFirstLayer", finish ? step.First : 0);
     this->Pass.Quad().VAO->Bind();
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, step.Layers);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, finish ? step.Count : 1);
     this->Pass.Quad().VAO->Release();
   }
-  // The half-sweep's output holds the latest fluence once all its layers are written.
-  if (step.Pass == RelaxPass && step.FirstLayer + step.Layers == grid.Size.z)
+  this->Unread->Deactivate();
+  // The half-sweep's output holds the latest fluence once all its rows are written.
+  if (step.Pass == RelaxPass && step.First + step.Count == grid.Tiles.y)
   {
     grid.Current = 1 - grid.Current;
   }
@@ -433,13 +476,12 @@ bool ScatteringVolumeTexture::RunStep(vtkOpenGLRenderWindow* window,
   return complete;
 }
 
-// The finest grid's fluence and flux become the volume the march reads; the textures they
+// The finished volume's fluence and flux become the ones the march reads; the textures they
 // replace take their place for the next computation.
 void ScatteringVolumeTexture::Finish()
 {
-  Grid& finest = this->Grids.back();
-  std::swap(finest.Fluence[std::size_t(finest.Current)], this->Fluence);
-  std::swap(finest.Flux, this->Flux);
+  std::swap(this->NextFluence, this->Fluence);
+  std::swap(this->NextFlux, this->Flux);
   this->Finished = true;
   ++this->ComputeCount;
   this->LastComputeSeconds = this->Seconds;
@@ -472,15 +514,15 @@ void ScatteringVolumeTexture::Release(vtkWindow* window)
     }
   }
   this->Grids.clear();
-  for (vtkTextureObject* texture : { this->Fluence.Get(), this->Flux.Get() })
+  for (auto* texture :
+    { &this->Fluence, &this->Flux, &this->NextFluence, &this->NextFlux, &this->Unread })
   {
-    if (texture)
+    if (*texture)
     {
-      texture->ReleaseGraphicsResources(window);
+      (*texture)->ReleaseGraphicsResources(window);
     }
+    *texture = nullptr;
   }
-  this->Fluence = nullptr;
-  this->Flux = nullptr;
   this->Finished = false;
   this->Progressive = false;
   this->Pass.Release();

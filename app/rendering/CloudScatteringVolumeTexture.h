@@ -1,11 +1,13 @@
 // The multiple-scattering volume of vtkCloudVolumeMapper (issue 21; filters/CloudScatteringVolume.h
 // states the grids, the solve and the order of its passes): the textures of every grid, from the
-// coarsest to the finest, computed on the GPU by fragment passes, each rendered into every layer
-// of a 3-D texture in one instanced draw (shaders/CloudScatteringVolume{VS,GS,FS}.glsl, with the
-// shared source's texel functions, as the CPU's ComputeScatteringVolume runs them: one draw per
-// pass rather than one per layer, which a GPU pays for more than for the cells themselves), when
-// anything it depends on changed; the march reads the finest grid's fluence and flux once per
-// sample. Its memory goes through the mapper's GpuMemoryBudget.
+// coarsest to the finest, computed on the GPU by fragment passes (shaders/CloudScatteringVolume
+// {VS,GS,FS}.glsl, with the shared source's texel functions, as the CPU's ComputeScatteringVolume
+// runs them) when anything it depends on changed, one draw per pass. A grid's textures are 2-D
+// atlases of its layers: llvmpipe shares a draw among its threads by 64 x 64 tiles of the target,
+// and a grid's layer (33 x 33 texels for a 128^3 field) is one, so a 3-D texture's layers would be
+// computed on one thread. The last pass writes the finest grid's fluence and flux into 3-D
+// textures, all layers in one instanced draw, for the march to read once per sample with the
+// texture unit's interpolation. Its memory goes through the mapper's GpuMemoryBudget.
 //
 // A recompute may be spread over frames (progressive, for the viewer): each Update then runs the
 // passes a time budget allows, and the march meanwhile reads the last finished volume, which a
@@ -81,14 +83,15 @@ public:
 
 private:
   struct Grid;
-  // One draw: a pass over some of a grid's layers (all of them unless progressive).
+  // One draw: a pass over some of a grid's rows of atlas tiles, or of the finished volume's
+  // layers (all of them unless progressive).
   struct Step
   {
     int Level = 0;
     int Pass = 0;
     int Parity = 0;
-    int FirstLayer = 0;
-    int Layers = 0;
+    int First = 0;
+    int Count = 0;
   };
 
   bool Allocate(vtkOpenGLRenderWindow* window,
@@ -106,10 +109,10 @@ private:
   void Finish();
 
   std::vector<Grid> Grids; // coarsest first
-  // The finished volume the march reads: the finest grid's fluence and flux, swapped in from
-  // the finest grid's when a computation ends.
-  vtkSmartPointer<vtkTextureObject> Fluence;
-  vtkSmartPointer<vtkTextureObject> Flux;
+  // The finished volume the march reads, 3-D: the finest grid's fluence and flux, and the two the
+  // computation under way writes in its last pass, swapped in when it ends.
+  vtkSmartPointer<vtkTextureObject> Fluence, Flux, NextFluence, NextFlux;
+  vtkSmartPointer<vtkTextureObject> Unread; // 1 x 1, 2-D: what the unread atlas samplers name
   bool Finished = false;
   bool Progressive = false; // the computation under way is spread over frames
   VolumePass Pass;

@@ -47,39 +47,79 @@ float LightVolumeFetch(int i, vec3 t)
 }
 
 // The multiple-scattering grids (filters/CloudScatteringVolume.h): the one being computed, read
-// per cell, the next coarser one's fluence and the finished volume the march reads (the finest
-// grid's fluence and flux), interpolated.
-uniform sampler3D ScatteringMediumTexture;
-uniform sampler3D ScatteringSourceTexture;
-uniform sampler3D ScatteringDirectionTexture;
-uniform sampler3D ScatteringFluenceTexture;
-uniform sampler3D CoarseFluenceTexture;
+// per cell, and the next coarser one's fluence, interpolated, are 2-D atlases of their layers
+// (layer k's tile is column k % columns, row k / columns: a pass over an atlas is spread among
+// llvmpipe's threads, which share a draw by 64 x 64 tiles of its target, where a grid's layer is
+// one); the finished volume the march reads (the finest grid's fluence and flux) is 3-D,
+// interpolated by the texture unit.
+uniform sampler2D ScatteringMediumTexture;
+uniform sampler2D ScatteringSourceTexture;
+uniform sampler2D ScatteringDirectionTexture;
+uniform sampler2D ScatteringFluenceTexture;
+uniform sampler2D CoarseFluenceTexture;
+uniform float ScatteringAtlasColumns; // layers per row of the computed grid's atlases
+uniform float CoarseAtlasColumns;     // and of the coarser grid's
 uniform sampler3D ScatteringVolumeTexture;
 uniform sampler3D ScatteringFluxTexture;
 
+// Cell c's texel in the atlas of a grid of `size` texels, and the cell of an atlas texel.
+ivec2 AtlasTexel(ivec3 c, vec3 size, float columns)
+{
+  int n = int(columns);
+  return ivec2(c.x + (c.z % n) * int(size.x), c.y + (c.z / n) * int(size.y));
+}
+
+ivec3 AtlasCell(ivec2 texel, vec3 size, float columns)
+{
+  ivec2 tile = texel / ivec2(size.xy);
+  return ivec3(texel - tile * ivec2(size.xy), tile.y * int(columns) + tile.x);
+}
+
 vec4 ScatteringMediumAt(ivec3 c)
 {
-  return texelFetch(ScatteringMediumTexture, c, 0);
+  return texelFetch(
+    ScatteringMediumTexture, AtlasTexel(c, ScatteringVolumeSize, ScatteringAtlasColumns), 0);
 }
 
 vec4 ScatteringSourceAt(ivec3 c)
 {
-  return texelFetch(ScatteringSourceTexture, c, 0);
+  return texelFetch(
+    ScatteringSourceTexture, AtlasTexel(c, ScatteringVolumeSize, ScatteringAtlasColumns), 0);
 }
 
 vec4 ScatteringDirectionAt(ivec3 c)
 {
-  return texelFetch(ScatteringDirectionTexture, c, 0);
+  return texelFetch(
+    ScatteringDirectionTexture, AtlasTexel(c, ScatteringVolumeSize, ScatteringAtlasColumns), 0);
 }
 
 vec4 ScatteringFluenceAt(ivec3 c)
 {
-  return texelFetch(ScatteringFluenceTexture, c, 0);
+  return texelFetch(
+    ScatteringFluenceTexture, AtlasTexel(c, ScatteringVolumeSize, ScatteringAtlasColumns), 0);
 }
 
+// GL_LINEAR with CLAMP_TO_EDGE of layer `layer` at texel coordinate xy, within its tile: the
+// coordinate clamped to the tile's first and last texel centres reads what clamped indices read.
+vec4 AtlasBilinear(sampler2D atlas, vec2 xy, int layer, vec3 size, float columns)
+{
+  int n = int(columns);
+  vec2 tile = vec2(float(layer % n), float(layer / n)) * size.xy;
+  return texture(
+    atlas, (tile + clamp(xy, vec2(0.0), size.xy - 1.0) + 0.5) / vec2(textureSize(atlas, 0)));
+}
+
+// Trilinear as the CPU's fetch::Trilinear: the layers floor(t.z) and the next, clamped, weighted by
+// fract(t.z).
 vec4 CoarseFluenceFetch(vec3 t)
 {
-  return texture(CoarseFluenceTexture, (t + 0.5) / ScatteringCoarseSize);
+  float z0 = floor(t.z);
+  int l0 = int(clamp(z0, 0.0, ScatteringCoarseSize.z - 1.0));
+  int l1 = int(clamp(z0 + 1.0, 0.0, ScatteringCoarseSize.z - 1.0));
+  return mix(
+    AtlasBilinear(CoarseFluenceTexture, t.xy, l0, ScatteringCoarseSize, CoarseAtlasColumns),
+    AtlasBilinear(CoarseFluenceTexture, t.xy, l1, ScatteringCoarseSize, CoarseAtlasColumns),
+    t.z - z0);
 }
 
 vec4 ScatteringVolumeFetch(vec3 t)

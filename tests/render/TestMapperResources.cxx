@@ -405,10 +405,12 @@ void SetSunlitMarch(GpuScene& scene, vtkCloudVolumeMapper* mapper, vtkLight* sun
   scene.Renderer->AddLight(sun);
 }
 
-// The multiple-scattering grids of the 64^3 field: 5^3, 9^3 and 17^3 texels, five RGBA32F
-// textures each (medium, source, direction, two fluences), and three more of the finest (its
-// flux, and the finished fluence and flux the march reads).
-constexpr long long ScatteringBytes = 16LL * (5 * (125 + 729 + 4913) + 3 * 4913);
+// The multiple-scattering grids of the 64^3 field: 5^3, 9^3 and 17^3 texels, five RGBA32F atlases
+// each (medium, source, direction, two fluences) of 3 x 2, 3 x 3 and 5 x 4 tiles of their layers,
+// four 3-D textures of the finest grid (the finished fluence and flux the march reads, and the
+// next), and one texel for the samplers a pass does not read.
+constexpr long long ScatteringBytes =
+  16LL * (5 * (6 * 25 + 9 * 81 + 20 * 289) + 4 * 17 * 17 * 17 + 1);
 }
 
 TEST(MapperResources, TheScatteringVolumeIsComputedWhenItsInputsChangeAndCountsInTheBudget)
@@ -462,8 +464,8 @@ TEST(MapperResources, TheScatteringVolumeIsComputedWhenItsInputsChangeAndCountsI
 TEST(MapperResources, AProgressiveRecomputeShowsTheLastVolumeUntilTheNewOneIsTheWholeOne)
 {
   // Spread over frames (the viewer's setting), a recompute after the light moves runs a slice of
-  // its passes per render (here one step: a pass over some of a grid's layers, the finest grid's
-  // 17 layers in two steps); meanwhile the march reads the last finished volume, and the renders
+  // its passes per render (here one step: a pass over some of a grid's cells, the finest grid's
+  // in two steps); meanwhile the march reads the last finished volume, and the renders
   // report the progress. The volume it ends with is the one a whole computation makes (the same
   // passes in the same order), so the image is a second mapper's to the bit.
   auto mapper = CloudMapper(0.05);
@@ -502,7 +504,8 @@ TEST(MapperResources, AProgressiveRecomputeShowsTheLastVolumeUntilTheNewOneIsThe
   EXPECT_FALSE(mapper->GetScatteringVolumeConverging());
   EXPECT_EQ(renders, total) << "one pass per render, " << total << " passes";
   // 5^3: medium, source, start and 128 half-sweeps; 9^3: medium, source, prolongation and 48; 17^3
-  // the same 51 passes in two steps each, and the flux in two.
+  // the same 51 passes in two steps each (two rows of its atlas' 5 x 4 tiles), and the finished
+  // volume in two (of 14 and 3 layers).
   EXPECT_EQ(total, 131 + 51 + 2 * 51 + 2);
   EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 2);
   const Image progressive = scene.RenderFloat();
