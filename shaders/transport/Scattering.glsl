@@ -42,21 +42,27 @@ vec4 ScatteringMediumTexel(vec3 t)
   return vec4(sigma > 0.0f ? albedo / sigma : vec3(0.0f), 0.125f * sigma);
 }
 
-// The beams' fluence at cell t, sum of E exp(-tau (1 - albedo f)) over the lights, per channel:
-// the coarsest grid's first guess (the limiter has no direction to stream in where phi is 0).
+// Light i's beam at index point p of albedo `albedo`, per channel: E exp(-tau (1 - albedo f)), its
+// fluence; l the direction toward the light.
+vec3 BeamFluence(int i, vec3 p, vec3 albedo, OUT(vec3) l)
+{
+  float lightDistance, falloff;
+  SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
+  float tau = OpticalDepthToLight(i, p, ExtinctionAt(p), l, lightDistance);
+  return LightRadiance[i] * (falloff * PhaseToRadiance) *
+    exp(-tau * (vec3(1.0f) - albedo * PhaseForwardFraction()));
+}
+
+// The beams' fluence at cell t of medium m, summed over the lights: the coarsest grid's first
+// guess where there is medium (the limiter has no direction to stream in where phi is 0).
 vec4 ScatteringStartTexel(vec3 t, vec4 m)
 {
   vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
-  vec3 albedo = vec3(m.x, m.y, m.z);
   vec3 fluence = vec3(0.0f);
   for (int i = 0; i < LightCount; ++i)
   {
     vec3 l;
-    float lightDistance, falloff;
-    SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
-    float tau = OpticalDepthToLight(i, p, ExtinctionAt(p), l, lightDistance);
-    fluence += LightRadiance[i] * (falloff * PhaseToRadiance) *
-      exp(-tau * (vec3(1.0f) - albedo * PhaseForwardFraction()));
+    fluence += BeamFluence(i, p, vec3(m.x, m.y, m.z), l);
   }
   return vec4(m.w > 0.0f ? fluence : vec3(0.0f), 0.0f);
 }
@@ -67,22 +73,17 @@ void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction
 {
   vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
   vec3 albedo = vec3(m.x, m.y, m.z);
-  float f = PhaseForwardFraction();
   vec3 fluence = vec3(0.0f);
   vec3 travel = vec3(0.0f);
   for (int i = 0; i < LightCount; ++i)
   {
     vec3 l;
-    float lightDistance, falloff;
-    SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
-    float tau = OpticalDepthToLight(i, p, ExtinctionAt(p), l, lightDistance);
-    vec3 beam = LightRadiance[i] * (falloff * PhaseToRadiance) *
-      exp(-tau * (vec3(1.0f) - albedo * f));
+    vec3 beam = BeamFluence(i, p, albedo, l);
     fluence += beam;
     travel -= (beam.x + beam.y + beam.z) * l;
   }
   float total = fluence.x + fluence.y + fluence.z;
-  source = vec4(m.w * (1.0f - f) * albedo * fluence, 0.0f);
+  source = vec4(m.w * (1.0f - PhaseForwardFraction()) * albedo * fluence, 0.0f);
   direction = vec4(total > 0.0f ? travel / total : vec3(0.0f), 0.0f);
 }
 
