@@ -2,7 +2,8 @@
 // editing the transfer function recomputes the volume a slice of work per frame, the progress line
 // says "multiple scattering: converging (k/n)" while it does, input is handled meanwhile, and the
 // picture converges: the line goes, the state says converged, and the image is the one a viewer
-// opened on the new light shows. The real binary on its own Xvfb, real X input (LiveSession.h).
+// opened on the new light shows; a screenshot taken meanwhile saves that converged picture. The
+// real binary on its own Xvfb, real X input (LiveSession.h).
 #include "LiveHelpers.h"
 #include "LiveSession.h"
 
@@ -10,6 +11,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 
 namespace cloudvis
@@ -27,6 +29,41 @@ const std::string Converging = "multiple scattering: converging (";
 std::vector<std::string> MarchArguments()
 {
   return Arguments({ "--set", "render.lighting=march", "--set", "field.dimensions=96" });
+}
+
+// The same viewer opened with its one light where `state`'s first light is.
+std::vector<std::string> ArgumentsWithTheLightOf(const json& state)
+{
+  const json light = state["first_light_position"];
+  const auto exact = [](const json& v)
+  {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", v.get<double>());
+    return std::string(text);
+  };
+  std::vector<std::string> arguments = MarchArguments();
+  arguments.push_back("--set");
+  arguments.push_back("lights=[{\"type\":\"directional\",\"position\":[" + exact(light[0]) + "," +
+    exact(light[1]) + "," + exact(light[2]) + "]}]");
+  return arguments;
+}
+
+// Takes a screenshot (s) and returns the PNG it saved.
+support::Image Screenshot(LiveSession& session)
+{
+  const size_t before = session.State()["saved_files"].size();
+  session.Key("s");
+  const json saved = session.WaitFor(
+    [&](const json& s) { return s["saved_files"].size() >= before + 2; }, "the screenshot", 90.0);
+  for (const json& file : saved["saved_files"])
+  {
+    const std::string path = file.get<std::string>();
+    if (path.size() > 4 && path.compare(path.size() - 4, 4, ".png") == 0)
+    {
+      return support::ReadPng(path);
+    }
+  }
+  throw std::runtime_error("the screenshot saved no PNG");
 }
 
 // The progress line's k and n, or {-1, -1} when it says nothing.
@@ -98,21 +135,7 @@ TEST(LiveScattering, TurningTheLightRecomputesTheVolumeOverFramesThenConverges)
     view[2].get<int>() - width / 4,
     view[3].get<int>() - height / 4 } };
   const support::Image progressive = session.Pixels(rectangle);
-  const json light = converged["first_light_position"];
-  const auto exact = [](const json& v)
-  {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", v.get<double>());
-    return std::string(text);
-  };
-  LiveSession fresh(Cloudvis,
-    Arguments({ "--set",
-      "render.lighting=march",
-      "--set",
-      "field.dimensions=96",
-      "--set",
-      "lights=[{\"type\":\"directional\",\"position\":[" + exact(light[0]) + "," + exact(light[1]) +
-        "," + exact(light[2]) + "]}]" }));
+  LiveSession fresh(Cloudvis, ArgumentsWithTheLightOf(converged));
   fresh.WaitUntilConverged();
   if (const char* dump = std::getenv("CLOUDVIS_LIVE_DUMP"))
   {
@@ -132,6 +155,24 @@ TEST(LiveScattering, EditingTheTransferFunctionRecomputesTheVolumeOverFrames)
   session.Drag(1, point, { { point[0], point[1] - 15 } }); // less opaque there
   const json converged = ExpectProgressThenConvergence(session, "the opacity point moved");
   EXPECT_NE(converged["transfer_function"]["opacity"], start["transfer_function"]["opacity"]);
+}
+
+TEST(LiveScattering, AScreenshotWhileTheVolumeConvergesSavesTheConvergedPicture)
+{
+  // The capture finishes the volume before its frames: the file is what a viewer opened on the
+  // new light saves, not the old multiple scattering under the new light.
+  LiveSession session(Cloudvis, MarchArguments());
+  session.WaitUntilConverged();
+  session.Key("Right");
+  const json converging = session.WaitFor([](const json& s) { return Progress(s)[0] >= 0; },
+    "the progress line after the light turned",
+    60.0);
+  const support::Image taken = Screenshot(session);
+  LiveSession fresh(Cloudvis, ArgumentsWithTheLightOf(converging));
+  fresh.WaitUntilConverged();
+  const support::Image expected = Screenshot(fresh);
+  ASSERT_EQ(taken.Width, expected.Width);
+  EXPECT_LE(support::MaxDifference(taken, expected), 2.0 / 255.0);
 }
 
 } // namespace live
