@@ -189,11 +189,16 @@ bool vtkCloudVolumeMapper::GetScatteringVolumeConverging() const
   return this->Internal->Scattering.IsConverging();
 }
 
-void vtkCloudVolumeMapper::GetScatteringVolumeProgress(int& done, int& total) const
+int vtkCloudVolumeMapper::GetScatteringVolumeStepsDone() const
 {
   const cloudvis::ScatteringVolumeTexture& scattering = this->Internal->Scattering;
-  done = scattering.IsConverging() ? scattering.GetStepsDone() : 0;
-  total = scattering.IsConverging() ? scattering.GetStepCount() : 0;
+  return scattering.IsConverging() ? scattering.GetStepsDone() : 0;
+}
+
+int vtkCloudVolumeMapper::GetScatteringVolumeStepCount() const
+{
+  const cloudvis::ScatteringVolumeTexture& scattering = this->Internal->Scattering;
+  return scattering.IsConverging() ? scattering.GetStepCount() : 0;
 }
 
 vtkTypeInt64 vtkCloudVolumeMapper::GetDensityTextureBytes() const

@@ -357,10 +357,11 @@ public:
 
   /**
    * Whether a progressive recompute of the multiple-scattering volume is under way, and how far:
-   * its passes run so far and in all (0 and 0 when none is).
+   * its steps (a pass over some of a grid's cells) run so far and in all (0 and 0 when none is).
    */
   bool GetScatteringVolumeConverging() const;
-  void GetScatteringVolumeProgress(int& done, int& total) const;
+  int GetScatteringVolumeStepsDone() const;
+  int GetScatteringVolumeStepCount() const;
 
   /**
    * Also the latest change of the lighting property.

@@ -144,8 +144,8 @@ void Viewer::Internals::RenderFrame()
   }
   // Shown from the next frame on (the overlay's text is drawn with this one): the line lags a
   // frame, and a frame is asked for when it goes, so that it never stays after the work ends.
-  int done = 0, total = 0;
-  this->Mapper->GetScatteringVolumeProgress(done, total);
+  const int done = this->Mapper->GetScatteringVolumeStepsDone();
+  const int total = this->Mapper->GetScatteringVolumeStepCount();
   const std::string progress = total > 0
     ? "multiple scattering: converging (" + std::to_string(done) + "/" + std::to_string(total) + ")"
     : "";

@@ -494,7 +494,8 @@ TEST(MapperResources, AProgressiveRecomputeShowsTheLastVolumeUntilTheNewOneIsThe
     ASSERT_EQ(mapper->GetLastError(), "");
     if (mapper->GetScatteringVolumeConverging())
     {
-      mapper->GetScatteringVolumeProgress(done, total);
+      done = mapper->GetScatteringVolumeStepsDone();
+      total = mapper->GetScatteringVolumeStepCount();
       EXPECT_GT(done, lastDone) << "render " << renders;
       EXPECT_LT(done, total);
       EXPECT_EQ(mapper->GetScatteringVolumeComputeCount(), 1) << "the last volume is read";
