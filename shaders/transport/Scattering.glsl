@@ -68,22 +68,38 @@ vec4 ScatteringStartTexel(vec3 t, vec4 m)
 }
 
 // The diffuse source of cell t with medium m: Q0 per channel in rgb, and the beams' mean
-// direction of travel (weighted by their luminance) in the other vec4's xyz.
+// direction of travel (weighted by their luminance) in the other vec4's xyz. A beam leaves in the
+// cell what it loses across it, E (T*(in) - T*(out)) over the cell's mean chord s along the beam
+// (T* = exp(-tau (1 - albedo f)), read where the beam enters and leaves), of which the fraction
+// albedo (1 - f) / (1 - albedo f) scatters out of the beam: energy is conserved however thick a
+// cell is (sigma_t T* at its centre would deposit up to sigma_t s times the light that enters
+// a cell whose centre lies just outside a dense edge).
 void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction)
 {
   vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
   vec3 albedo = vec3(m.x, m.y, m.z);
-  vec3 fluence = vec3(0.0f);
+  float f = PhaseForwardFraction();
+  vec3 deposit = vec3(0.0f);
   vec3 travel = vec3(0.0f);
   for (int i = 0; i < LightCount; ++i)
   {
     vec3 l;
-    vec3 beam = BeamFluence(i, p, albedo, l);
-    fluence += beam;
-    travel -= (beam.x + beam.y + beam.z) * l;
+    float lightDistance, falloff;
+    SampleLight(i, LocalOfIndex(p), l, lightDistance, falloff);
+    float chord = 1.0f / max(dot(abs(l), 1.0f / ScatteringCellSize), 1e-30f);
+    vec3 halfChord = (0.5f * chord) * (LocalToIndex * l);
+    vec3 enter = clamp(p + halfChord, vec3(0.0f), Dimensions - 1.0f);
+    vec3 leave = clamp(p - halfChord, vec3(0.0f), Dimensions - 1.0f);
+    float tauIn = OpticalDepthToLight(i, enter, ExtinctionAt(enter), l, lightDistance);
+    float tauOut = OpticalDepthToLight(i, leave, ExtinctionAt(leave), l, lightDistance);
+    vec3 beamLoss = exp(-tauIn * (vec3(1.0f) - albedo * f)) - exp(-tauOut * (vec3(1.0f) - albedo * f));
+    vec3 lost = LightRadiance[i] * (falloff * PhaseToRadiance / chord) * max(beamLoss, vec3(0.0f));
+    deposit += lost;
+    travel -= (lost.x + lost.y + lost.z) * l;
   }
-  float total = fluence.x + fluence.y + fluence.z;
-  source = vec4(m.w * (1.0f - PhaseForwardFraction()) * albedo * fluence, 0.0f);
+  float total = deposit.x + deposit.y + deposit.z;
+  vec3 scattered = albedo * (1.0f - f) / max(vec3(1.0f) - albedo * f, vec3(1e-6f));
+  source = vec4(m.w > 0.0f ? scattered * deposit : vec3(0.0f), 0.0f);
   direction = vec4(total > 0.0f ? travel / total : vec3(0.0f), 0.0f);
 }
 
