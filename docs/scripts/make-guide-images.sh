@@ -46,8 +46,8 @@ render hero cumulus.json
 # both under the light march.
 render clouds-cumulus cumulus.json
 render clouds-fbm-sphere fbm-sphere.json --lighting march \
-  --set 'background={"type": "sky", "sun": [0.5, 0.8, 0.3]}' --set 'ambient={"strength": 0.24}' \
-  --set 'lights=[{"type": "directional", "position": [0.5, 0.8, 0.3], "intensity": 0.3}]' \
+  --set 'background={"type": "sky", "sun": [0.5, 0.8, 0.3]}' --set 'ambient={"strength": 0.6}' \
+  --set 'lights=[{"type": "directional", "position": [0.5, 0.8, 0.3], "intensity": 1.2}]' \
   --set 'camera.orbit={"azimuth": 20, "elevation": 2, "distance": 6.5}'
 render clouds-stratocumulus stratocumulus.json
 render clouds-cumulonimbus cumulonimbus.json
