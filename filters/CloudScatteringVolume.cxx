@@ -45,7 +45,7 @@ std::vector<glm::ivec3> ScatteringGrids(glm::ivec3 fieldDimensions)
   std::vector<glm::ivec3> grids = { ScatteringVolumeSize(fieldDimensions) };
   while (std::min({ grids.back().x, grids.back().y, grids.back().z }) > 5)
   {
-    grids.push_back((grids.back() - 1 + 1) / 2 + 1);
+    grids.push_back(grids.back() / 2 + 1); // half the cells, (n - 1) / 2 rounded up
   }
   std::reverse(grids.begin(), grids.end());
   return grids;

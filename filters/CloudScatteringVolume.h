@@ -43,8 +43,9 @@ inline bool UsesScatteringVolume(const LightingParameters& p)
   return p.Model == LightingModel::March && p.MultipleScattering == MultipleScatteringModel::Volume;
 }
 
-// The grids' sizes from the coarsest (at most 5 texels on its shortest axis... or the finest
-// itself when it is that small) to the finest, ScatteringVolumeSize's.
+// The finest grid's size for a field of these dimensions, and every grid's from the coarsest
+// (the first with at most 5 texels along its shortest axis, or the finest when it is that small)
+// to the finest: 5^3, 9^3, 17^3 and 33^3 for 128^3 voxels.
 CLOUDVISFILTERS_EXPORT glm::ivec3 ScatteringVolumeSize(glm::ivec3 fieldDimensions);
 CLOUDVISFILTERS_EXPORT std::vector<glm::ivec3> ScatteringGrids(glm::ivec3 fieldDimensions);
 

@@ -116,10 +116,10 @@ vec3 SourceMoment(ivec3 c, int a)
 
 // The flux-limited diffusion coefficient per channel between two cells: the reduced extinction
 // sigmaTr and the fluence phi at the face, and the face's effective gradient (grad phi - 3 Q1
-// along the axis). It is 1 / (3 sigma_tr) where the medium is thick and phi / |gradient| (light
-// streams at most at its speed: |flux| <= phi) where it is thin or empty; at most `reach` (the
-// grid's diagonal: phi / |grad phi| in vacuum is the distance to the light's origin) where
-// there is no gradient.
+// along the axis). It is 1 / (3 sigma_tr) where the medium is thick and DiffuseEscapeSpeed phi /
+// |gradient| where it is thin or empty (diffuse light streams out at most at that speed: |flux|
+// <= DiffuseEscapeSpeed phi); at most `reach` (the grid's diagonal: phi / |grad phi| in vacuum
+// is about the distance to where the light comes from) where there is no gradient.
 vec3 LimitedDiffusion(vec3 sigmaTr, vec3 phi, vec3 gradient, float reach)
 {
   vec3 ratio = abs(gradient) / max(phi, vec3(1e-30f));

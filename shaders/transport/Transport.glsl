@@ -277,18 +277,20 @@ float LightVolumeDepth(int i, vec3 p)
 }
 
 // ---- The multiple-scattering volume (issue 21, docs/lighting.md "The multiple-scattering volume") ----
-// Light scattered at least once, on a coarse grid, for the march to read with one fetch per
-// sample. The phase is split as in delta-Eddington: a fraction f (its second moment) stays in the
-// light's beam, so the beam's extinction is sigma_t (1 - albedo f), and the rest scatters with the
-// reduced eccentricity g* = (g - f) / (1 - f). The beam's scattered share, E (exp(-tau (1 - albedo
-// f)) - exp(-tau)), is added to single scattering at every sample with the phase toward the eye
-// (BeamFraction); the diffuse rest is the fluence phi of a flux-limited diffusion equation
-//   -div(D (grad phi - 3 Q1)) + sigma_a phi = Q0,  D = 1 / sqrt(9 sigma_tr^2 + |grad phi - 3 Q1|^2 / phi^2)
-// with sigma_tr = sigma_t (1 - albedo g), the source Q0 = sigma_t albedo (1 - f) E exp(-tau (1 -
-// albedo f)) of the beam's first diffuse scattering and its first moment Q1 = g* Q0 times the
-// beam's direction, and Marshak's vacuum condition on the grid's faces. It is solved per colour
-// channel by red-black Gauss-Seidel on the cells, coarse to fine: the solver's texel functions are
-// in shaders/transport/Scattering.glsl, its order of passes in filters/CloudScatteringVolume.h.
+// Light scattered at least once, on a coarse grid, for the march to read with two fetches per
+// sample (fluence and flux). The phase is split as in delta-Eddington: a fraction f (its second
+// moment) stays in the light's beam, so the beam's extinction is sigma_t (1 - albedo f), and the
+// rest scatters with the reduced eccentricity g* = (g - f) / (1 - f). The beam's scattered share,
+// E (exp(-tau (1 - albedo f)) - exp(-tau)), is added to single scattering at every sample with the
+// phase toward the eye (BeamFraction); the diffuse rest is the fluence phi of a flux-limited
+// diffusion equation
+//   -div(D (grad phi - 3 Q1)) + sigma_a phi = Q0,
+//   D = 1 / sqrt(9 sigma_tr^2 + |grad phi - 3 Q1|^2 / (DiffuseEscapeSpeed phi)^2)
+// with sigma_tr = sigma_t (1 - albedo g), the source Q0 what the beams lose across a cell and
+// scatter out of themselves, its first moment Q1 = g* Q0 times the beams' direction, and
+// Marshak's vacuum condition on the grid's faces. It is solved per colour channel by red-black
+// Gauss-Seidel on the cells, coarse to fine: the solver's texel functions are in
+// shaders/transport/Scattering.glsl, its order of passes in filters/CloudScatteringVolume.h.
 
 UNIFORM int ScatteringVolumeOn;        // 1: the march's orders >= 2 are the volume's (no octaves)
 UNIFORM vec3 ScatteringVolumeSize;     // texels per axis of the grid computed or read
@@ -328,8 +330,9 @@ float OpticalDepthToLight(int i, vec3 p, float sigmaHere, vec3 l, float lightDis
   return LightOpticalDepth(p, sigmaHere, indexStep, lightDistance);
 }
 
-// The light scattered toward the eye at index point p by the volume's diffuse fluence, per unit
-// albedo: phi / 4 pi, the isotropic in-scattering of a diffuse field.
+// The light scattered toward the eye at index point p by the volume's diffuse light, per unit
+// albedo: its first-order (P1) radiance (phi + 3 F . w) / 4 pi weighed by the phase, which gives
+// phi (1 - 3 g (F / phi) . d) / 4 pi (the flux over the fluence F / phi is stored by luminance).
 vec3 MultipleScatteringTerm(vec3 p, vec3 d)
 {
   vec3 t = clamp(p, vec3(0.0f), Dimensions - 1.0f) *
