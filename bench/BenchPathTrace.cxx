@@ -18,11 +18,16 @@
 //     the light march's midpoint sampling and reach, the octaves per opacity, and bright
 //     isolated pixels of a field that touches the box.
 //   fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--split first|stratified] [--voxels N]
-//       [--max-octaves N] [--evaluations E] [--png DIR]
+//       [--max-octaves N] [--evaluations E] [--png DIR] [--reference-cache DIR]
+//       [--multiple-scattering octaves|volume]
 //     Fits the march's multiple-scattering octaves (N, a, b, c) and the derivative model's
 //     distance h to the path tracer on a fixed case set with held-out cases (docs/lighting.md,
 //     "Fitting the march to the path tracer"), and prints the errors before and after, per case
-//     and per set, with the light volumes and with the nested light march.
+//     and per set, with the light volumes and with the nested light march. With
+//     --multiple-scattering volume it fits nothing: it prints the octaves' and the
+//     multiple-scattering volume's errors per case, and the volume's computation time
+//     (docs/lighting.md, "The multiple-scattering volume"). --reference-cache keeps the path
+//     tracer's references in DIR, keyed by case and options, and reads them back next time.
 //
 // Scenes are read by the scene library as `cloudvis render` reads them (any scene it renders), and
 // rendered by the CPU renderers set up as `cloudvis render --cpu-reference` sets them up; each
@@ -50,7 +55,8 @@ int Usage(const char* program, std::FILE* out = stderr)
     "       %s bounces [--size WxH] [--spp N] [--seed S]\n"
     "       %s defects [--size WxH] [--spp N] [--bounces B]\n"
     "       %s fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--split first|stratified] "
-    "[--voxels N] [--max-octaves N] [--evaluations E] [--png DIR]\n",
+    "[--voxels N] [--max-octaves N] [--evaluations E] [--png DIR] [--reference-cache DIR] "
+    "[--multiple-scattering octaves|volume]\n",
     program,
     program,
     program,
@@ -108,7 +114,8 @@ int main(int argc, char* argv[])
   if (options.Samples < 2 || options.Bounces < 1 || options.FitDimensions == 1 ||
     options.FitDimensions < 0 || options.FitMaxOctaves < 1 ||
     options.FitMaxOctaves > cloudvis::LightingLimits::MaxMultipleScatteringOctaves ||
-    options.FitEvaluations < 1 || (options.FitSplit != "first" && options.FitSplit != "stratified"))
+    options.FitEvaluations < 1 || (options.FitSplit != "first" && options.FitSplit != "stratified") ||
+    (options.MultipleScattering != "octaves" && options.MultipleScattering != "volume"))
     return Usage(argv[0]);
   try
   {
