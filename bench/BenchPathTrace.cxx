@@ -114,7 +114,8 @@ int main(int argc, char* argv[])
   if (options.Samples < 2 || options.Bounces < 1 || options.FitDimensions == 1 ||
     options.FitDimensions < 0 || options.FitMaxOctaves < 1 ||
     options.FitMaxOctaves > cloudvis::LightingLimits::MaxMultipleScatteringOctaves ||
-    options.FitEvaluations < 1 || (options.FitSplit != "first" && options.FitSplit != "stratified") ||
+    options.FitEvaluations < 1 ||
+    (options.FitSplit != "first" && options.FitSplit != "stratified") ||
     (options.MultipleScattering != "octaves" && options.MultipleScattering != "volume"))
     return Usage(argv[0]);
   try
