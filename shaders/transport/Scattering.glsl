@@ -103,15 +103,19 @@ void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction
   direction = vec4(total > 0.0f ? travel / total : vec3(0.0f), 0.0f);
 }
 
-// The first moment Q1 of cell c's source along axis a, per channel.
-vec3 SourceMoment(ivec3 c, int a)
+// The first moment Q1 along axis a, per channel, of a cell's source and its beams' direction.
+vec3 MomentAlong(vec4 source, vec4 direction, int a)
 {
   float f = PhaseForwardFraction();
   float reduced = (PhaseMeanCosine() - f) / (1.0f - f);
-  vec4 source = ScatteringSourceAt(c);
-  vec4 direction = ScatteringDirectionAt(c);
   float along = a == 0 ? direction.x : (a == 1 ? direction.y : direction.z);
   return vec3(source.x, source.y, source.z) * (reduced * along);
+}
+
+// The same of cell c.
+vec3 SourceMoment(ivec3 c, int a)
+{
+  return MomentAlong(ScatteringSourceAt(c), ScatteringDirectionAt(c), a);
 }
 
 // The flux-limited diffusion coefficient per channel between two cells: the reduced extinction
@@ -144,6 +148,7 @@ vec4 ScatteringRelaxTexel(ivec3 c, int parity)
   vec3 sigmaA = m.w * (vec3(1.0f) - albedo);
   vec3 phi = vec3(old.x, old.y, old.z);
   vec4 source = ScatteringSourceAt(c);
+  vec4 direction = ScatteringDirectionAt(c); // read once: every face needs this cell's moment
   vec3 numerator = vec3(source.x, source.y, source.z);
   vec3 denominator = sigmaA;
   ivec3 size = ivec3(ScatteringVolumeSize);
@@ -157,7 +162,7 @@ vec4 ScatteringRelaxTexel(ivec3 c, int parity)
     if (a == 1) n.y += s;
     if (a == 2) n.z += s;
     float h = a == 0 ? ScatteringCellSize.x : (a == 1 ? ScatteringCellSize.y : ScatteringCellSize.z);
-    vec3 moment = SourceMoment(c, a);
+    vec3 moment = MomentAlong(source, direction, a);
     bool outside = n.x < 0 || n.y < 0 || n.z < 0 || n.x >= size.x || n.y >= size.y || n.z >= size.z;
     if (outside)
     {
