@@ -40,7 +40,8 @@ for entry in /usr/bin/* "$dir"/python/usr/bin/*; do
   ln -sf "$entry" "$usr/bin/$(basename "$entry")"
 done
 for entry in /usr/lib/"$arch"/*; do
-  [ "$(basename "$entry")" = cmake ] || ln -s "$entry" "$usr/lib/$arch/$(basename "$entry")"
+  case "$(basename "$entry")" in cmake | vtk) continue ;; esac
+  ln -s "$entry" "$usr/lib/$arch/$(basename "$entry")"
 done
 # ParaView's CMake files are copied, not linked: they find their prefix from their real path.
 mkdir -p "$usr/lib/$arch/cmake"
@@ -49,5 +50,8 @@ for entry in /usr/lib/"$arch"/cmake/*; do
 done
 rm "$usr/lib/$arch/cmake/paraview-5.11"
 cp -r "/usr/lib/$arch/cmake/paraview-5.11" "$usr/lib/$arch/cmake/"
+# The wrap hierarchies of ParaView's modules, which the package does not ship, are written here by
+# the build (paraview/WrapHierarchies.cmake).
+mkdir -p "$usr/lib/$arch/vtk/hierarchy/ParaView"
 ln -s "$dir/python/usr/lib/python3/dist-packages" "$usr/lib/python3/dist-packages"
 echo "$version" > "$dir/version"
