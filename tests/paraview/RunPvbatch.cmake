@@ -1,0 +1,26 @@
+# Runs one ParaView test script: cmake -DPVBATCH=... -DMPIRUN=... -DRANKS=<n, 0: no mpirun>
+#   -DSCRIPT=<file.py> -DARGS=<a|b|...> -DWORK_DIR=<dir> -P RunPvbatch.cmake
+# The script runs in WORK_DIR (emptied first) and fails the test by exiting non-zero. pvbatch
+# runs with a timeout, so a rank left waiting for another shows as a failure, not a hang.
+cmake_minimum_required(VERSION 3.16)
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+# Open MPI in a container, as root, on one machine (as tests/app/MpiGeneration.cmake runs it).
+set(ENV{OMPI_MCA_plm_rsh_agent} "")
+set(ENV{OMPI_MCA_btl} "self,vader")
+set(ENV{OMPI_MCA_btl_vader_single_copy_mechanism} "none")
+set(ENV{OMPI_MCA_oob_tcp_if_include} "lo")
+set(ENV{OMPI_MCA_rmaps_base_oversubscribe} "1")
+set(ENV{OMPI_ALLOW_RUN_AS_ROOT} "1")
+set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} "1")
+string(REPLACE "|" ";" args "${ARGS}")
+set(command "${PVBATCH}" --force-offscreen-rendering "${SCRIPT}" ${args})
+if(RANKS GREATER 0)
+  set(command "${MPIRUN}" --oversubscribe -np ${RANKS} ${command})
+endif()
+execute_process(COMMAND ${command} WORKING_DIRECTORY "${WORK_DIR}" TIMEOUT 500
+  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "${SCRIPT} exited with '${status}'")
+endif()
