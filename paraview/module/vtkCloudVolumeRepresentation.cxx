@@ -1,9 +1,11 @@
 #include "vtkCloudVolumeRepresentation.h"
 
 #include "CloudLightingParameters.h"
+#include "CloudOpticalDepthGrid.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkCommunicator.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkMultiProcessController.h>
@@ -14,8 +16,16 @@
 #include <vtkVolumeProperty.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 vtkStandardNewMacro(vtkCloudVolumeRepresentation);
+
+namespace
+{
+// The exchange's grid is this many times coarser than the finest piece's voxels.
+constexpr double ExchangeGridDivisor = 4.0;
+}
 
 vtkCloudVolumeRepresentation::vtkCloudVolumeRepresentation()
 {
@@ -120,6 +130,7 @@ void vtkCloudVolumeRepresentation::UpdateSun()
   sun.Color = glm::vec3(float(this->SunColor[0]), float(this->SunColor[1]), float(this->SunColor[2]));
   sun.Intensity = float(this->SunIntensity);
   this->CloudMapper->SetLights({ sun });
+  this->ExchangeInputsTime.Modified();
 }
 
 // ---- The mapper ----
@@ -132,6 +143,7 @@ void vtkCloudVolumeRepresentation::SetSampleDistance(double distance)
 void vtkCloudVolumeRepresentation::SetExtinctionScale(double scale)
 {
   this->CloudMapper->SetExtinctionScale(scale);
+  this->ExchangeInputsTime.Modified();
 }
 
 void vtkCloudVolumeRepresentation::SetJitter(bool jitter)
@@ -181,15 +193,132 @@ int vtkCloudVolumeRepresentation::ProcessViewRequest(
   }
   if (requestType == vtkPVView::REQUEST_RENDER())
   {
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+    if (ranks > 1 && this->Lighting->GetModel() == vtkCloudLightingProperty::PathTraceLighting)
+    {
+      // A path wanders through the whole field, which no rank holds: refused, not drawn wrong.
+      vtkErrorMacro(<< "the pathtrace lighting model traces paths through the whole field, which "
+                    << "none of the " << ranks << " ranks holds: render it on one rank, or "
+                    << "choose the march model");
+      this->Actor->SetVisibility(false);
+      return 1;
+    }
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
     this->ExchangeOpticalDepth(view ? view->GetRenderer() : nullptr);
   }
   return 1;
 }
 
-void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer*)
+namespace
 {
-  // Filled in with the mapper's piece optical depth (issue 25).
+// The exchange's grid: the whole field's box (the union of the ranks' pieces) at a quarter of
+// the finest spacing any piece has, as the multiple-scattering volume's grid (at least 2 points
+// per axis). The same on every rank, which all call this together.
+cloudvis::OpticalDepthGrid WholeFieldGrid(vtkMultiProcessController* controller, vtkImageData* piece)
+{
+  double lower[3], upper[3], spacing[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lower[a] = std::numeric_limits<double>::max();
+    upper[a] = -std::numeric_limits<double>::max();
+    spacing[a] = std::numeric_limits<double>::max();
+  }
+  if (piece && piece->GetNumberOfPoints() > 0)
+  {
+    double bounds[6];
+    piece->GetBounds(bounds);
+    for (int a = 0; a < 3; ++a)
+    {
+      lower[a] = bounds[2 * a];
+      upper[a] = bounds[2 * a + 1];
+      spacing[a] = std::abs(piece->GetSpacing()[a]);
+    }
+  }
+  double globalLower[3], globalUpper[3], globalSpacing[3];
+  controller->AllReduce(lower, globalLower, 3, vtkCommunicator::MIN_OP);
+  controller->AllReduce(upper, globalUpper, 3, vtkCommunicator::MAX_OP);
+  controller->AllReduce(spacing, globalSpacing, 3, vtkCommunicator::MIN_OP);
+
+  cloudvis::OpticalDepthGrid grid;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double extent = globalUpper[a] - globalLower[a];
+    const int cells = extent > 0.0 && globalSpacing[a] > 0.0
+      ? int(std::ceil(extent / (ExchangeGridDivisor * globalSpacing[a]) - 1e-9))
+      : 1;
+    grid.Size[a] = std::max(cells, 1) + 1;
+    grid.Origin[a] = globalLower[a];
+    grid.Spacing[a] = extent > 0.0 ? extent / (grid.Size[a] - 1) : 1.0;
+  }
+  return grid;
+}
+}
+
+void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!controller || controller->GetNumberOfProcesses() < 2)
+  {
+    return;
+  }
+  // Every rank holds the same properties, so every rank takes the same branch, and either all
+  // of them reduce below or none does.
+  auto* piece = vtkImageData::SafeDownCast(this->Cache);
+  const bool wanted = this->ShadowExchange &&
+    this->Lighting->GetModel() == vtkCloudLightingProperty::MarchLighting;
+  if (!wanted)
+  {
+    if (!this->CloudMapper->GetExternalOpticalDepths().Empty())
+    {
+      this->CloudMapper->SetExternalOpticalDepths(cloudvis::OpticalDepthGrid());
+    }
+    this->ExchangedTime = 0;
+    return;
+  }
+  // Recomputed when any rank's piece, transfer function, lighting, sun or extinction changed
+  // since the last exchange.
+  const vtkMTimeType inputs = std::max({ piece ? piece->GetMTime() : vtkMTimeType(0),
+    this->Property->GetMTime(), this->Lighting->GetMTime(), this->ExchangeInputsTime.GetMTime() });
+  int stale = inputs > this->ExchangedTime ? 1 : 0, anyStale = 0;
+  controller->AllReduce(&stale, &anyStale, 1, vtkCommunicator::MAX_OP);
+  if (!anyStale)
+  {
+    return;
+  }
+
+  cloudvis::OpticalDepthGrid own = WholeFieldGrid(controller, piece);
+  const std::size_t values = own.PointCount(); // per light: the representation has one sun
+  own.Lights = 1;
+  own.Depths.assign(values, 0.0f);
+  int failed = 0;
+  if (piece && piece->GetNumberOfPoints() > 0)
+  {
+    cloudvis::OpticalDepthGrid computed = own;
+    if (this->CloudMapper->ComputePieceOpticalDepths(renderer, this->Actor, computed) &&
+      computed.Lights == 1 && computed.Depths.size() == values)
+    {
+      own = computed;
+    }
+    else
+    {
+      failed = 1;
+    }
+  }
+  // A rank that cannot compute its share (its mapper says why) makes every rank light its piece
+  // without the others', rather than with a wrong sum.
+  int anyFailed = 0;
+  controller->AllReduce(&failed, &anyFailed, 1, vtkCommunicator::MAX_OP);
+  cloudvis::OpticalDepthGrid total = own;
+  if (!anyFailed)
+  {
+    controller->AllReduce(own.Depths.data(), total.Depths.data(), vtkIdType(values),
+      vtkCommunicator::SUM_OP);
+  }
+  this->CloudMapper->SetExternalOpticalDepths(
+    anyFailed ? cloudvis::OpticalDepthGrid() : cloudvis::DepthsFromOutside(total, own));
+  this->ExchangedTime = inputs;
+  ++this->ExchangeCount;
 }
 
 void vtkCloudVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)

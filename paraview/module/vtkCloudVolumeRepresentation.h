@@ -27,8 +27,7 @@
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkCloudLightingProperty.h" // for the lighting property
 #include "vtkNew.h"                    // for the lighting property
-
-#include <string> // for the last exchange's error
+#include "vtkTimeStamp.h"              // for the exchange's inputs
 
 class vtkCloudVolumeMapper;
 class vtkRenderer;
@@ -120,8 +119,10 @@ private:
   double SunIntensity = 1.0;
   bool ShadowExchange = true;
   int ExchangeCount = 0;
-  // What the last exchange was computed for: the modification times of the piece, the volume
-  // property, the lighting, the mapper, and the sun.
+  // What the last exchange was computed for: the latest modification time of its inputs (the
+  // piece, the volume property, the lighting, and ExchangeInputsTime: the sun, the extinction
+  // scale).
+  vtkTimeStamp ExchangeInputsTime;
   vtkMTimeType ExchangedTime = 0;
 };
 
