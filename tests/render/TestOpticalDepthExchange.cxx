@@ -1,0 +1,418 @@
+// Light across the pieces of a distributed field (issue 25), without MPI or ParaView: what a
+// rank's mapper computes of its piece (ComputePieceOpticalDepths) and what it adds from the other
+// pieces (SetExternalOpticalDepths), checked on pieces cut with vtkExtractVOI, which share one
+// plane of points as ParaView's pieces do.
+//
+// - The depths of two pieces add up to the whole field's at every grid point (CPU alone).
+// - A piece rendered with external depths: the GPU image equals the CPU reference given the
+//   same depths, and clearing them brings the unshadowed image back (on both).
+// - The exchange's end-to-end property: a dense slab between the sun and a cloud, cut so that the
+//   slab is one piece and the cloud another; the cloud piece rendered with the slab piece's
+//   depths equals the whole field rendered at once over the pixels whose rays cross the cloud
+//   piece alone (a side view, the sun from above).
+#include "SupportReference.h"
+#include "SupportScene.h"
+
+#include "CloudOpticalDepthGrid.h"
+#include "vtkCloudReferenceRenderer.h"
+
+#include <vtkCamera.h>
+#include <vtkExtractVOI.h>
+#include <vtkImageData.h>
+#include <vtkOpenGLRenderWindow.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+
+using namespace cloudvis;
+using namespace cloudvis::support;
+
+namespace
+{
+constexpr int Points = 40;     // per axis of the field over [-1, 1]^3
+constexpr int SplitPoint = 20; // the plane of points both pieces hold
+constexpr int ImageSize = 64;
+constexpr float SigmaT = 8.0f; // per world unit at density 1
+
+// The points [first, last] along `axis` of `whole`, as a piece of its own (its extent a
+// sub-extent of the whole's, origin and spacing the whole's).
+vtkSmartPointer<vtkImageData> Piece(vtkImageData* whole, int axis, int first, int last)
+{
+  int voi[6];
+  whole->GetExtent(voi);
+  voi[2 * axis] = first;
+  voi[2 * axis + 1] = last;
+  vtkNew<vtkExtractVOI> extract;
+  extract->SetInputData(whole);
+  extract->SetVOI(voi);
+  extract->Update();
+  auto piece = vtkSmartPointer<vtkImageData>::New();
+  piece->DeepCopy(extract->GetOutput());
+  return piece;
+}
+
+double Ramp(double x)
+{
+  return std::min(1.0, std::max(0.0, x));
+}
+
+// A dense slab across the top (z in [0.35, 0.75]) and a soft ball below it (centre z = -0.45):
+// with the sun above, the slab shadows the ball. Soft edges keep the GPU's 8-bit filter weights
+// from deciding whole samples.
+vtkSmartPointer<vtkImageData> SlabOverCloud()
+{
+  return MakeBoxField({ Points, Points, Points },
+    glm::dvec3(-1.0),
+    glm::dvec3(1.0),
+    [](double x, double y, double z)
+    {
+      const double slab = Ramp((0.2 - std::abs(z - 0.55)) / 0.08) *
+        Ramp((0.9 - std::max(std::abs(x), std::abs(y))) / 0.1);
+      const double r = std::sqrt(x * x + y * y + (z + 0.45) * (z + 0.45));
+      return slab + Ramp((0.4 - r) / 0.15);
+    });
+}
+
+// The world z of the plane of points the pieces share.
+double SplitZ()
+{
+  return -1.0 + 2.0 * SplitPoint / (Points - 1);
+}
+
+// The common grid: the whole field's bounds at about a quarter of its resolution.
+OpticalDepthGrid CommonGrid(vtkImageData* whole)
+{
+  double bounds[6];
+  whole->GetBounds(bounds);
+  OpticalDepthGrid grid;
+  const int size = (Points - 1) / 4 + 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.Origin[a] = bounds[2 * a];
+    grid.Size[a] = size;
+    grid.Spacing[a] = (bounds[2 * a + 1] - bounds[2 * a]) / (size - 1);
+  }
+  return grid;
+}
+
+// `grid` filled with what `piece` adds, drawn as `like`'s mapper draws (its lighting, step,
+// extinction, the renderer's lights), by a mapper of its own, as another rank's.
+OpticalDepthGrid DepthsOf(vtkImageData* piece, GpuScene& like, OpticalDepthGrid grid)
+{
+  auto* drawn = vtkCloudVolumeMapper::SafeDownCast(like.Mapper);
+  vtkNew<vtkCloudVolumeMapper> mapper;
+  mapper->SetLightingProperty(drawn->GetLightingProperty());
+  mapper->SetSampleDistance(drawn->GetSampleDistance());
+  mapper->SetExtinctionScale(drawn->GetExtinctionScale());
+  mapper->SetInputData(piece);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(like.Volume->GetProperty());
+  EXPECT_TRUE(mapper->ComputePieceOpticalDepths(like.Renderer, volume, grid))
+    << mapper->GetLastError();
+  return grid;
+}
+
+// How a case lights the cloud: the march, its transmittance and its multiple scattering.
+struct Case
+{
+  std::string Name;
+  LightTransmittance Transmittance = LightTransmittance::Volumes;
+  MultipleScatteringModel MultipleScattering = MultipleScatteringModel::Octaves;
+  // The nested march at 64 uniform segments of at least half a voxel. At its defaults (6 segments
+  // growing 1.6 times) the whole field's own nested march misjudges the slab by far more than
+  // the exchange errs (RMS 0.14 of the brightest against the piece with depths, whose march is
+  // short and accurate): a comparison with the whole would measure that, not the exchange.
+  bool FineNested = false;
+};
+
+void PrintTo(const Case& c, std::ostream* out)
+{
+  *out << c.Name;
+}
+
+const Case Cases[] = {
+  { "LightVolumes", LightTransmittance::Volumes, MultipleScatteringModel::Octaves },
+  { "NestedMarch", LightTransmittance::Nested, MultipleScatteringModel::Octaves, true },
+  { "ScatteringVolume", LightTransmittance::Volumes, MultipleScatteringModel::Volume },
+};
+
+// The scene: the field (or a piece of it) in the slab's medium, the sun above, seen from the side
+// (along -y, z up) in a parallel view, so that an image row is a plane of constant z.
+struct SideScene
+{
+  vtkNew<vtkCloudVolumeMapper> Mapper;
+  GpuScene Scene{ Mapper, ImageSize, ImageSize };
+  static constexpr double Scale = 1.1; // half the view's height, world units
+
+  SideScene(const Case& c, vtkImageData* field)
+  {
+    LightingParameters lighting;
+    lighting.Model = LightingModel::March;
+    lighting.Transmittance = c.Transmittance;
+    lighting.MultipleScattering = c.MultipleScattering;
+    lighting.AmbientStrength = 0.1f;
+    if (c.FineNested)
+    {
+      lighting.LightSteps = LightingLimits::MaxLightSteps;
+      lighting.LightStepGrowth = 1.0f;
+      lighting.LightStep = 0.025f;
+    }
+    this->Mapper->GetLightingProperty()->SetParameters(lighting);
+    this->Mapper->SetSampleDistance(0.025);
+    this->Mapper->JitterOff();
+    this->Scene.Volume->SetProperty(LinearMedium(SigmaT, glm::vec3(0.9f)));
+    this->Scene.SetInput(field);
+    AddLight(this->Scene.Renderer, DirectionalLight(glm::dvec3(0.25, 0.15, 1.0), 2.0f));
+    vtkCamera* camera = this->Scene.Renderer->GetActiveCamera();
+    camera->SetFocalPoint(0.0, 0.0, 0.0);
+    camera->SetPosition(0.0, 5.0, 0.0);
+    camera->SetViewUp(0.0, 0.0, 1.0);
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(Scale);
+    camera->SetClippingRange(1.0, 10.0);
+  }
+
+  // The world z of image row y (row 0 at the bottom).
+  static double RowZ(int y) { return Scale * (2.0 * (y + 0.5) / ImageSize - 1.0); }
+
+  Image Render()
+  {
+    const Image image = this->Scene.RenderFloat();
+    EXPECT_EQ(this->Mapper->GetLastError(), "");
+    return image;
+  }
+
+  Image Reference(const OpticalDepthGrid& external)
+  {
+    vtkNew<vtkCloudReferenceRenderer> reference;
+    ConfigureReference(reference, this->Scene);
+    reference->SetExternalOpticalDepths(external);
+    reference->Update();
+    return ImageOf(reference->GetOutput());
+  }
+};
+
+// |a - b| over r, g, b of the pixels `mask` accepts where either shows cloud, relative to b's
+// brightest there.
+struct Relative
+{
+  size_t Pixels = 0;
+  double Brightest = 0.0, Rms = 0.0, Max = 0.0;
+};
+
+Relative CompareRelative(const Image& a, const Image& b, const Mask& mask)
+{
+  const Mask cloud = OpacityAbove(a, b, 1e-4);
+  const Mask both = [&](int x, int y) { return mask(x, y) && cloud(x, y); };
+  const Difference d = Compare(a, b, 3, both);
+  Relative r;
+  r.Pixels = d.Count / 3;
+  r.Brightest = Largest(b, 3, both);
+  r.Rms = d.Rms / r.Brightest;
+  r.Max = d.Max / r.Brightest;
+  return r;
+}
+
+double MeanColor(const Image& image, const Mask& mask)
+{
+  double sum = 0.0;
+  size_t count = 0;
+  for (int y = 0; y < image.Height; ++y)
+    for (int x = 0; x < image.Width; ++x)
+      if (mask(x, y))
+      {
+        sum += image.At(x, y, 0) + image.At(x, y, 1) + image.At(x, y, 2);
+        ++count;
+      }
+  return count ? sum / double(count) : 0.0;
+}
+
+bool OnLlvmpipe(GpuScene& scene)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(scene.Window);
+  return std::string(window->ReportCapabilities()).find("llvmpipe") != std::string::npos;
+}
+
+class OpticalDepthExchange : public ::testing::TestWithParam<Case>
+{
+};
+}
+
+// The depths of two pieces that share a plane of points add up to the whole field's: each piece
+// counts only the part of a ray inside its own box, from grid points inside it, in the other piece
+// and outside both. A noisy cloud cut across x, a tilted sun and a point light beside the field.
+TEST(OpticalDepthExchangeCpu, PiecesAddUpToTheWhole)
+{
+  const vtkSmartPointer<vtkImageData> whole = SparseCloud(Points);
+  LightingParameters lighting;
+  lighting.Model = LightingModel::March;
+  vtkNew<vtkCloudVolumeMapper> mapper;
+  mapper->GetLightingProperty()->SetParameters(lighting);
+  mapper->SetLights({ DirectionalLight(glm::dvec3(0.6, 0.3, 0.75)),
+    PointLight(glm::dvec3(2.6, 0.5, 1.0)) });
+  vtkNew<vtkVolumeProperty> property;
+  SetRampMedium(property, 1.0, 0.6);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+
+  const auto depths = [&](vtkImageData* field)
+  {
+    OpticalDepthGrid grid = CommonGrid(whole);
+    mapper->SetInputData(field);
+    EXPECT_TRUE(mapper->ComputePieceOpticalDepths(nullptr, volume, grid)) << mapper->GetLastError();
+    EXPECT_EQ(grid.Lights, 2);
+    EXPECT_EQ(grid.Depths.size(), 2 * grid.PointCount());
+    return grid;
+  };
+  const OpticalDepthGrid all = depths(whole);
+  const OpticalDepthGrid low = depths(Piece(whole, 0, 0, SplitPoint));
+  const OpticalDepthGrid high = depths(Piece(whole, 0, SplitPoint, Points - 1));
+  ASSERT_EQ(low.Depths.size(), all.Depths.size());
+  ASSERT_EQ(high.Depths.size(), all.Depths.size());
+
+  double largest = 0.0, largestLow = 0.0, largestHigh = 0.0, worst = 0.0;
+  for (std::size_t v = 0; v < all.Depths.size(); ++v)
+  {
+    largest = std::max(largest, double(all.Depths[v]));
+    largestLow = std::max(largestLow, double(low.Depths[v]));
+    largestHigh = std::max(largestHigh, double(high.Depths[v]));
+    worst = std::max(worst, std::abs(double(low.Depths[v]) + high.Depths[v] - all.Depths[v]));
+  }
+  std::cout << "largest depth " << largest << " (pieces " << largestLow << ", " << largestHigh
+            << "); largest |low + high - whole| " << worst << " = " << worst / largest
+            << " of it\n";
+  // Both pieces hold cloud toward both lights: the sum is not one piece's alone.
+  ASSERT_GT(largest, 2.0);
+  ASSERT_GT(largestLow, 0.5);
+  ASSERT_GT(largestHigh, 0.5);
+  // Measured: 7.9e-4 of the largest depth, 0.006 (the trapezoid's half-voxel steps fall
+  // differently in a piece and in the whole, across the noise's sharp features).
+  EXPECT_LT(worst, 2e-3 * largest);
+}
+
+// The cloud piece lit through the slab piece's depths: the GPU equals the CPU reference given the
+// same depths, the shadow is there (the image is much darker than without), and clearing the
+// depths brings the unshadowed image back on the GPU too (what depends on them is recomputed).
+TEST_P(OpticalDepthExchange, GpuMatchesCpuReference)
+{
+  const Case& c = GetParam();
+  const vtkSmartPointer<vtkImageData> whole = SlabOverCloud();
+  SideScene side(c, Piece(whole, 2, 0, SplitPoint));
+  const OpticalDepthGrid external =
+    DepthsOf(Piece(whole, 2, SplitPoint, Points - 1), side.Scene, CommonGrid(whole));
+
+  side.Mapper->SetExternalOpticalDepths(external);
+  const Image gpu = side.Render();
+  const vtkTypeInt64 bytes = side.Mapper->GetGPUMemoryBytes();
+  const Image cpu = side.Reference(external);
+  side.Mapper->SetExternalOpticalDepths(OpticalDepthGrid());
+  const Image gpuAlone = side.Render();
+  const Image cpuAlone = side.Reference(OpticalDepthGrid());
+  Dump(gpu, "exchange-" + c.Name + "-gpu");
+  Dump(cpu, "exchange-" + c.Name + "-cpu");
+  Dump(gpuAlone, "exchange-" + c.Name + "-gpu-alone");
+
+  // The texture of the depths counts in the GPU memory: 11^3 floats, one light.
+  EXPECT_GE(bytes - side.Mapper->GetGPUMemoryBytes(), 4 * vtkTypeInt64(external.PointCount()));
+
+  const Mask all = [](int, int) { return true; };
+  const Relative shadowed = CompareRelative(gpu, cpu, all);
+  const Relative alone = CompareRelative(gpuAlone, cpuAlone, all);
+  const double darkening = MeanColor(cpu, all) / MeanColor(cpuAlone, all);
+  std::cout << c.Name << ": " << shadowed.Pixels << " cloud pixels; with the depths, GPU vs CPU RMS "
+            << shadowed.Rms << ", max " << shadowed.Max << " of the brightest; without them RMS "
+            << alone.Rms << ", max " << alone.Max << "; mean radiance with / without "
+            << darkening << "\n";
+  ASSERT_GT(shadowed.Pixels, size_t(ImageSize * ImageSize / 10));
+  // The slab's optical depth, about 2.7 along the sun: the cloud is in its shadow. Measured: the
+  // mean radiance falls to 0.51 of the unshadowed (the octaves, whose extinction falls off, carry
+  // light through) and to 0.21 with the multiple-scattering volume.
+  EXPECT_LT(darkening, 0.7);
+  EXPECT_LT(MeanColor(gpu, all), 0.7 * MeanColor(gpuAlone, all));
+  // Measured on llvmpipe: RMS up to 3.4e-7 and max up to 1.3e-6 of the brightest, with the
+  // depths and without; the gates of render.GpuMatchesCpuReference (ten times looser elsewhere).
+  const bool llvmpipe = OnLlvmpipe(side.Scene);
+  const double rmsGate = llvmpipe ? 1e-5 : 1e-4, maxGate = llvmpipe ? 1e-4 : 1e-3;
+  for (const Relative& d : { shadowed, alone })
+  {
+    EXPECT_LT(d.Rms, rmsGate);
+    EXPECT_LT(d.Max, maxGate);
+  }
+}
+
+// The property the distributed renderer relies on: the cloud piece with the slab piece's depths
+// is the whole field, over the rows below the shared plane (whose rays, in this side view, cross
+// the cloud piece alone). Without the depths the two differ by the slab's shadow.
+TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
+{
+  const Case& c = GetParam();
+  const vtkSmartPointer<vtkImageData> whole = SlabOverCloud();
+  SideScene wholeScene(c, whole);
+  const Image all = wholeScene.Render();
+
+  SideScene pieceScene(c, Piece(whole, 2, 0, SplitPoint));
+  const OpticalDepthGrid external =
+    DepthsOf(Piece(whole, 2, SplitPoint, Points - 1), pieceScene.Scene, CommonGrid(whole));
+  const Image alone = pieceScene.Render();
+  pieceScene.Mapper->SetExternalOpticalDepths(external);
+  const Image piece = pieceScene.Render();
+  Dump(all, "exchange-" + c.Name + "-whole");
+  Dump(piece, "exchange-" + c.Name + "-piece");
+
+  // Rows a voxel below the shared plane and lower; the slab's rows show in the whole field only.
+  const double voxel = 2.0 / (Points - 1);
+  const Mask below = [&](int, int y) { return SideScene::RowZ(y) < SplitZ() - voxel; };
+  const Mask slabRows = [&](int, int y) { return std::abs(SideScene::RowZ(y) - 0.55) < 0.1; };
+  ASSERT_GT(MeanColor(all, slabRows), 0.0) << "the side view must show the slab above the cloud";
+  ASSERT_EQ(MeanColor(piece, slabRows), 0.0) << "the cloud piece must not reach the slab's rows";
+
+  const Relative with = CompareRelative(piece, all, below);
+  const Relative without = CompareRelative(alone, all, below);
+  std::cout << c.Name << ": " << with.Pixels << " cloud pixels below the shared plane; piece with "
+            << "depths vs whole: RMS " << with.Rms << ", max " << with.Max
+            << " of the brightest; without depths: RMS " << without.Rms << ", max " << without.Max
+            << "\n";
+  for (double band : { 0.15, 0.3, 0.45, 0.6 })
+  {
+    const Mask rows = [&](int, int y)
+    {
+      const double below = SplitZ() - SideScene::RowZ(y);
+      return below >= band - 0.15 && below < band;
+    };
+    const Relative d = CompareRelative(piece, all, rows);
+    std::cout << "  " << band - 0.15 << " to " << band << " below the plane: " << d.Pixels
+              << " pixels, RMS " << d.Rms * d.Brightest / with.Brightest << ", mean piece/whole "
+              << MeanColor(piece, rows) / MeanColor(all, rows) << "\n";
+  }
+  ASSERT_GT(with.Pixels, size_t(ImageSize * ImageSize / 10));
+  EXPECT_GT(without.Rms, 0.3) << "the slab must shadow the cloud";
+  if (c.MultipleScattering != MultipleScatteringModel::Volume)
+  {
+    // Measured on llvmpipe: RMS 1.1e-3 (light volumes) and 0.9e-3 (nested), max 7.1e-3 of the
+    // brightest: the coarse grid's interpolation of the slab's depth against the whole field's
+    // light volumes or march (the GPU-vs-CPU differences are 1000 times smaller).
+    EXPECT_LT(with.Rms, 3e-3);
+    EXPECT_LT(with.Max, 2e-2);
+    return;
+  }
+  // With the multiple-scattering volume each piece solves its own diffusion: the light the slab
+  // scatters no longer diffuses down to the cloud (the exchange carries optical depth, not
+  // diffuse light), so the piece is darker than the whole, at every distance from the shared
+  // plane (measured: 0.48 of the whole's mean radiance within 0.15 below the plane, 0.69 at 0.45
+  // to 0.6; RMS 0.21, max 0.46 of the brightest over all). A known limit of the exchange, gated
+  // at what it is, and still far closer than no exchange (RMS 1.19).
+  EXPECT_LT(with.Rms, 0.3);
+  EXPECT_LT(with.Max, 0.6);
+  EXPECT_LT(with.Rms, 0.25 * without.Rms);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases,
+  OpticalDepthExchange,
+  ::testing::ValuesIn(Cases),
+  [](const ::testing::TestParamInfo<Case>& param) { return param.param.Name; });
