@@ -29,7 +29,10 @@ std::string Text(double value)
 // The optical depth the volume adds along p + t indexStep (t in local units) from t = 0 to
 // maxDistance, counting only where the ray is inside the volume's box [0, Dimensions - 1]: the
 // trapezoid rule on at most PieceDepthStep voxels per step between the box's faces.
-float DepthInsideBox(glsl::Transport& transport, glm::vec3 p, glm::vec3 indexStep, float maxDistance)
+float DepthInsideBox(glsl::Transport& transport,
+  glm::vec3 p,
+  glm::vec3 indexStep,
+  float maxDistance)
 {
   const glm::vec3 last = transport.Dimensions - 1.0f;
   const glm::vec2 box = transport.IntersectBox(p, indexStep, glm::vec3(0.0f), last);
@@ -150,7 +153,9 @@ MarchProblem ComputePieceOpticalDepths(const MarchSetup& setup, OpticalDepthGrid
   return {};
 }
 
-void SetExternalOpticalDepths(MarchUniforms& u, const LocalFrame& frame, const OpticalDepthGrid* grid)
+void SetExternalOpticalDepths(MarchUniforms& u,
+  const LocalFrame& frame,
+  const OpticalDepthGrid* grid)
 {
   u.ExternalDepths = grid && !grid->Empty() ? grid : nullptr;
   u.IndexToExternal = glm::mat4(1.0f);

@@ -40,12 +40,14 @@ struct OpticalDepthGrid
 
   // An empty grid means no depths (it clears what a renderer was given).
   bool Empty() const { return this->Lights == 0 || this->Depths.empty(); }
-  std::size_t PointCount() const { return std::size_t(this->Size[0]) * this->Size[1] * this->Size[2]; }
+  std::size_t PointCount() const
+  {
+    return std::size_t(this->Size[0]) * this->Size[1] * this->Size[2];
+  }
   float& At(int light, int i, int j, int k)
   {
-    return this->Depths[((std::size_t(light) * this->Size[2] + k) * this->Size[1] + j) *
-        this->Size[0] +
-      i];
+    return this
+      ->Depths[((std::size_t(light) * this->Size[2] + k) * this->Size[1] + j) * this->Size[0] + i];
   }
 };
 

@@ -6,9 +6,9 @@
 // - the C++ prelude: INOUT(T) and OUT(T) are references, UNIFORM is empty, and glm's names
 //   (vec3, mix, clamp, dot, exp...) are visible unqualified inside namespace cloudvis::glsl;
 // - the accessors the shared file declares (DensityAt, TransferAt, EmptyBricksAround,
-//   BrickExtinctionBounds, LightVolumeFetch, ExternalDepthFetch...), which read from memory what the GLSL reads from
-//   textures: the GL_LINEAR fetches are computed exactly (the GPU's filter weights have 8
-//   fractional bits);
+//   BrickExtinctionBounds, LightVolumeFetch, ExternalDepthFetch...), which read from memory what
+//   the GLSL reads from textures: the GL_LINEAR fetches are computed exactly (the GPU's filter
+//   weights have 8 fractional bits);
 // - SourceTerm, which sums one model's light terms over the lights in a loop where the GPU's
 //   program calls each light's term with a constant index (app/rendering/CloudMarchShader.cxx).
 // A Transport (about a kilobyte) is filled from the uniforms SetUpMarch computes (TransportOf);

@@ -3,8 +3,8 @@
 #include "CloudFieldGeometry.h"
 #include "CloudLightVolumes.h"
 #include "CloudOpticalDepthGrid.h"
-#include "CloudScatteringVolume.h"
 #include "CloudReferenceMarch.h"
+#include "CloudScatteringVolume.h"
 #include "CloudTransferTable.h"
 
 #include <vtkDataArray.h>

@@ -42,12 +42,8 @@ bool ExternalDepthTexture::Update(vtkOpenGLRenderWindow* window,
     this->Bytes,
     [&]()
     {
-      return this->Texture->Create3DFromRaw(grid.Size[0],
-        grid.Size[1],
-        layers,
-        1,
-        VTK_FLOAT,
-        const_cast<float*>(grid.Depths.data()));
+      return this->Texture->Create3DFromRaw(
+        grid.Size[0], grid.Size[1], layers, 1, VTK_FLOAT, const_cast<float*>(grid.Depths.data()));
     });
   if (!problem.empty())
   {

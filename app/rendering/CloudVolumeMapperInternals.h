@@ -68,7 +68,7 @@ struct vtkCloudVolumeMapper::Internals
   cloudvis::ExtinctionBoundsTexture ExtinctionBounds; // the path tracer's, made on first use
   cloudvis::LightVolumeTexture LightVolumes;
   cloudvis::ScatteringVolumeTexture Scattering; // the march's multiple scattering
-  cloudvis::ExternalDepthTexture External; // optical depths from outside the field
+  cloudvis::ExternalDepthTexture External;      // optical depths from outside the field
   cloudvis::MarchPrograms March;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<cloudvis::ViewTargets>> Views; // keys: identities only

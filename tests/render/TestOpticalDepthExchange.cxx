@@ -253,8 +253,8 @@ TEST(OpticalDepthExchangeCpu, PiecesAddUpToTheWhole)
   lighting.Model = LightingModel::March;
   vtkNew<vtkCloudVolumeMapper> mapper;
   mapper->GetLightingProperty()->SetParameters(lighting);
-  mapper->SetLights({ DirectionalLight(glm::dvec3(0.6, 0.3, 0.75)),
-    PointLight(glm::dvec3(2.6, 0.5, 1.0)) });
+  mapper->SetLights(
+    { DirectionalLight(glm::dvec3(0.6, 0.3, 0.75)), PointLight(glm::dvec3(2.6, 0.5, 1.0)) });
   vtkNew<vtkVolumeProperty> property;
   SetRampMedium(property, 1.0, 0.6);
   vtkNew<vtkVolume> volume;
@@ -325,10 +325,10 @@ TEST_P(OpticalDepthExchange, GpuMatchesCpuReference)
   const Relative shadowed = CompareRelative(gpu, cpu, all);
   const Relative alone = CompareRelative(gpuAlone, cpuAlone, all);
   const double darkening = MeanColor(cpu, all) / MeanColor(cpuAlone, all);
-  std::cout << c.Name << ": " << shadowed.Pixels << " cloud pixels; with the depths, GPU vs CPU RMS "
-            << shadowed.Rms << ", max " << shadowed.Max << " of the brightest; without them RMS "
-            << alone.Rms << ", max " << alone.Max << "; mean radiance with / without "
-            << darkening << "\n";
+  std::cout << c.Name << ": " << shadowed.Pixels
+            << " cloud pixels; with the depths, GPU vs CPU RMS " << shadowed.Rms << ", max "
+            << shadowed.Max << " of the brightest; without them RMS " << alone.Rms << ", max "
+            << alone.Max << "; mean radiance with / without " << darkening << "\n";
   ASSERT_GT(shadowed.Pixels, size_t(ImageSize * ImageSize / 10));
   // The slab's optical depth, about 2.7 along the sun: the cloud is in its shadow. Measured: the
   // mean radiance falls to 0.51 of the unshadowed (the octaves, whose extinction falls off, carry
