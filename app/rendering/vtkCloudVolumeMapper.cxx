@@ -163,8 +163,7 @@ bool vtkCloudVolumeMapper::ComputePieceOpticalDepths(vtkRenderer* renderer,
     return false;
   }
   int cellFlag = 0;
-  vtkDataArray* scalars = this->GetScalars(
-    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkDataArray* scalars = this->InputScalars(input, cellFlag);
   const std::string valueProblem = cloudvis::ValidateDensityValues(scalars);
   if (!valueProblem.empty())
   {
@@ -316,6 +315,12 @@ void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
 }
 
+vtkDataArray* vtkCloudVolumeMapper::InputScalars(vtkImageData* input, int& cellFlag)
+{
+  return this->GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+}
+
 vtkImageData* vtkCloudVolumeMapper::ValidInput(vtkVolume* volume)
 {
   vtkImageData* input = vtkImageData::SafeDownCast(this->GetInput());
@@ -325,8 +330,7 @@ vtkImageData* vtkCloudVolumeMapper::ValidInput(vtkVolume* volume)
     return nullptr;
   }
   int cellFlag = 0;
-  vtkDataArray* scalars = this->GetScalars(
-    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkDataArray* scalars = this->InputScalars(input, cellFlag);
   const std::string scalarProblem = cloudvis::ValidateDensityScalars(scalars);
   if (!scalarProblem.empty())
   {
@@ -361,8 +365,7 @@ bool vtkCloudVolumeMapper::UpdateTextures(vtkRenderer* renderer,
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = WindowOf(renderer);
   int cellFlag = 0;
-  vtkDataArray* scalars = this->GetScalars(
-    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkDataArray* scalars = this->InputScalars(input, cellFlag);
   cloudvis::GpuMemoryBudget budget(window, this->MaximumGPUMemory, in.Bytes());
   std::string problem;
   const bool ready =

@@ -78,6 +78,7 @@
 #include <string>
 #include <vector>
 
+class vtkDataArray;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
@@ -543,6 +544,8 @@ private:
   void operator=(const vtkCloudVolumeMapper&) = delete;
 
   bool Fail(const std::string& message);
+  // The scalars the mapper draws of `input` (its scalar mode and array selection).
+  vtkDataArray* InputScalars(vtkImageData* input, int& cellFlag);
   vtkImageData* ValidInput(vtkVolume* volume);
   bool IsInteracting(vtkRenderer* renderer) const;
   double ChooseResolutionScale(vtkRenderer* renderer);

@@ -378,12 +378,14 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
             << "depths vs whole: RMS " << with.Rms << ", max " << with.Max
             << " of the brightest; without depths: RMS " << without.Rms << ", max " << without.Max
             << "\n";
+  // By distance below the shared plane: where the pieces' multiple scattering parts, if at the
+  // face alone or everywhere.
   for (double band : { 0.15, 0.3, 0.45, 0.6 })
   {
     const Mask rows = [&](int, int y)
     {
-      const double below = SplitZ() - SideScene::RowZ(y);
-      return below >= band - 0.15 && below < band;
+      const double depth = SplitZ() - SideScene::RowZ(y);
+      return depth >= band - 0.15 && depth < band;
     };
     const Relative d = CompareRelative(piece, all, rows);
     std::cout << "  " << band - 0.15 << " to " << band << " below the plane: " << d.Pixels
