@@ -153,6 +153,22 @@ MarchProblem ComputePieceOpticalDepths(const MarchSetup& setup, OpticalDepthGrid
   return {};
 }
 
+OpticalDepthGrid DepthsFromOutside(const OpticalDepthGrid& total, const OpticalDepthGrid& own)
+{
+  const bool same = total.Lights == own.Lights && total.Depths.size() == own.Depths.size() &&
+    std::equal(total.Size, total.Size + 3, own.Size);
+  if (!same)
+  {
+    return {};
+  }
+  OpticalDepthGrid outside = total;
+  for (std::size_t v = 0; v < outside.Depths.size(); ++v)
+  {
+    outside.Depths[v] = std::max(total.Depths[v] - own.Depths[v], 0.0f);
+  }
+  return outside;
+}
+
 void SetExternalOpticalDepths(MarchUniforms& u,
   const LocalFrame& frame,
   const OpticalDepthGrid* grid)

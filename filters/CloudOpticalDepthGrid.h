@@ -72,6 +72,13 @@ CLOUDVISFILTERS_EXPORT std::string ValidateOpticalDepthGrid(const OpticalDepthGr
 CLOUDVISFILTERS_EXPORT MarchProblem ComputePieceOpticalDepths(const MarchSetup& setup,
   OpticalDepthGrid& grid);
 
+// What comes from outside a piece, given the sum over all pieces (an MPI_Allreduce of their
+// Depths) and the piece's own depths on the same grid: total - own per value, at least 0. In
+// float, a sum of values >= 0 is never below any of its terms, so the clamp only guards sums
+// made otherwise. Empty when the two grids differ in size or lights.
+CLOUDVISFILTERS_EXPORT OpticalDepthGrid DepthsFromOutside(const OpticalDepthGrid& total,
+  const OpticalDepthGrid& own);
+
 // Makes the march of `u` (set up by SetUpMarch with `frame`) add `grid`'s depths (not owned: it
 // must outlive u's use) to its optical depth toward each light; null clears them. Sets
 // u.ExternalDepths and u.IndexToExternal, the map from the volume's index points to the grid's

@@ -117,6 +117,22 @@ OpticalDepthGrid DepthsOf(vtkImageData* piece, GpuScene& like, OpticalDepthGrid 
   return grid;
 }
 
+// The cloud piece's external depths as a rank gets them: the sum of both pieces' grids (what an
+// MPI_Allreduce of their Depths makes) less its own.
+OpticalDepthGrid ExchangedDepths(vtkImageData* whole, GpuScene& cloudPiece)
+{
+  const OpticalDepthGrid slab =
+    DepthsOf(Piece(whole, 2, SplitPoint, Points - 1), cloudPiece, CommonGrid(whole));
+  const OpticalDepthGrid own = DepthsOf(
+    vtkImageData::SafeDownCast(cloudPiece.Mapper->GetInput()), cloudPiece, CommonGrid(whole));
+  OpticalDepthGrid total = own;
+  for (std::size_t v = 0; v < total.Depths.size(); ++v)
+  {
+    total.Depths[v] += slab.Depths[v];
+  }
+  return DepthsFromOutside(total, own);
+}
+
 // How a case lights the cloud: the march, its transmittance and its multiple scattering.
 struct Case
 {
@@ -304,8 +320,7 @@ TEST_P(OpticalDepthExchange, GpuMatchesCpuReference)
   const Case& c = GetParam();
   const vtkSmartPointer<vtkImageData> whole = SlabOverCloud();
   SideScene side(c, Piece(whole, 2, 0, SplitPoint));
-  const OpticalDepthGrid external =
-    DepthsOf(Piece(whole, 2, SplitPoint, Points - 1), side.Scene, CommonGrid(whole));
+  const OpticalDepthGrid external = ExchangedDepths(whole, side.Scene);
 
   side.Mapper->SetExternalOpticalDepths(external);
   const Image gpu = side.Render();
@@ -357,8 +372,7 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
   const Image all = wholeScene.Render();
 
   SideScene pieceScene(c, Piece(whole, 2, 0, SplitPoint));
-  const OpticalDepthGrid external =
-    DepthsOf(Piece(whole, 2, SplitPoint, Points - 1), pieceScene.Scene, CommonGrid(whole));
+  const OpticalDepthGrid external = ExchangedDepths(whole, pieceScene.Scene);
   const Image alone = pieceScene.Render();
   pieceScene.Mapper->SetExternalOpticalDepths(external);
   const Image piece = pieceScene.Render();
@@ -412,6 +426,29 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
   EXPECT_LT(with.Rms, 0.3);
   EXPECT_LT(with.Max, 0.6);
   EXPECT_LT(with.Rms, 0.25 * without.Rms);
+}
+
+// Depths the mapper cannot use are refused in words, not drawn: a grid for other lights than the
+// mapper's, a grid without points to compute.
+TEST(OpticalDepthExchangeRefusals, OtherLightsAndEmptyGrids)
+{
+  const vtkSmartPointer<vtkImageData> whole = SlabOverCloud();
+  SideScene side(Cases[0], Piece(whole, 2, 0, SplitPoint));
+  OpticalDepthGrid grid = CommonGrid(whole);
+  grid.Lights = 2;
+  grid.Depths.assign(2 * grid.PointCount(), 1.0f);
+  side.Mapper->SetExternalOpticalDepths(grid);
+  side.Scene.Window->Render();
+  EXPECT_NE(side.Mapper->GetLastError().find("lit by 1"), std::string::npos)
+    << side.Mapper->GetLastError();
+
+  OpticalDepthGrid none = CommonGrid(whole);
+  none.Size[1] = 0;
+  EXPECT_FALSE(
+    side.Mapper->ComputePieceOpticalDepths(side.Scene.Renderer, side.Scene.Volume, none));
+  EXPECT_NE(side.Mapper->GetLastError().find("at least 1 point"), std::string::npos)
+    << side.Mapper->GetLastError();
+  EXPECT_TRUE(none.Depths.empty());
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases,
