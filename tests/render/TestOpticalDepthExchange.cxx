@@ -19,6 +19,7 @@
 #include <vtkCamera.h>
 #include <vtkExtractVOI.h>
 #include <vtkImageData.h>
+#include <vtkMatrix4x4.h>
 #include <vtkOpenGLRenderWindow.h>
 
 #include <gtest/gtest.h>
@@ -83,11 +84,33 @@ double SplitZ()
   return -1.0 + 2.0 * SplitPoint / (Points - 1);
 }
 
-// The common grid: the whole field's bounds at about a quarter of its resolution.
-OpticalDepthGrid CommonGrid(vtkImageData* whole)
+// The common grid: the whole field's world bounds (placed by `volume`'s matrix, when given) at
+// about a quarter of its resolution.
+OpticalDepthGrid CommonGrid(vtkImageData* whole, vtkVolume* volume = nullptr)
 {
-  double bounds[6];
-  whole->GetBounds(bounds);
+  double model[6];
+  whole->GetBounds(model);
+  double bounds[6] = { VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX };
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    double point[4] = {
+      model[corner % 2], model[2 + (corner / 2) % 2], model[4 + corner / 4], 1.0
+    };
+    if (volume)
+    {
+      volume->GetMatrix()->MultiplyPoint(point, point);
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], point[a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], point[a]);
+    }
+  }
   OpticalDepthGrid grid;
   const int size = (Points - 1) / 4 + 1;
   for (int a = 0; a < 3; ++a)
@@ -112,6 +135,7 @@ OpticalDepthGrid DepthsOf(vtkImageData* piece, GpuScene& like, OpticalDepthGrid 
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(like.Volume->GetProperty());
+  volume->SetUserMatrix(like.Volume->GetMatrix());
   EXPECT_TRUE(mapper->ComputePieceOpticalDepths(like.Renderer, volume, grid))
     << mapper->GetLastError();
   return grid;
@@ -121,10 +145,11 @@ OpticalDepthGrid DepthsOf(vtkImageData* piece, GpuScene& like, OpticalDepthGrid 
 // MPI_Allreduce of their Depths makes) less its own.
 OpticalDepthGrid ExchangedDepths(vtkImageData* whole, GpuScene& cloudPiece)
 {
-  const OpticalDepthGrid slab =
-    DepthsOf(Piece(whole, 2, SplitPoint, Points - 1), cloudPiece, CommonGrid(whole));
-  const OpticalDepthGrid own = DepthsOf(
-    vtkImageData::SafeDownCast(cloudPiece.Mapper->GetInput()), cloudPiece, CommonGrid(whole));
+  const OpticalDepthGrid slab = DepthsOf(
+    Piece(whole, 2, SplitPoint, Points - 1), cloudPiece, CommonGrid(whole, cloudPiece.Volume));
+  const OpticalDepthGrid own = DepthsOf(vtkImageData::SafeDownCast(cloudPiece.Mapper->GetInput()),
+    cloudPiece,
+    CommonGrid(whole, cloudPiece.Volume));
   OpticalDepthGrid total = own;
   for (std::size_t v = 0; v < total.Depths.size(); ++v)
   {
@@ -144,6 +169,13 @@ struct Case
   // the exchange errs (RMS 0.14 of the brightest against the piece with depths, whose march is
   // short and accurate): a comparison with the whole would measure that, not the exchange.
   bool FineNested = false;
+  // The volume placed in the world by a vtkVolume: moved far from the origin, turned 30 degrees
+  // about z and scaled 1.5 times (the grid's map from a piece's index points holds that too).
+  bool Moved = false;
+  // The end-to-end gates over the rows below the shared plane, relative to the brightest
+  // radiance (without the multiple-scattering volume, whose gates are its own).
+  double RmsGate = 3e-3;
+  double MaxGate = 2e-2;
 };
 
 void PrintTo(const Case& c, std::ostream* out)
@@ -155,6 +187,13 @@ const Case Cases[] = {
   { "LightVolumes", LightTransmittance::Volumes, MultipleScatteringModel::Octaves },
   { "NestedMarch", LightTransmittance::Nested, MultipleScatteringModel::Octaves, true },
   { "ScatteringVolume", LightTransmittance::Volumes, MultipleScatteringModel::Volume },
+  { "Moved",
+    LightTransmittance::Volumes,
+    MultipleScatteringModel::Octaves,
+    false,
+    true,
+    2e-2,
+    9e-2 },
 };
 
 // The scene: the field (or a piece of it) in the slab's medium, the sun above, seen from the side
@@ -163,10 +202,19 @@ struct SideScene
 {
   vtkNew<vtkCloudVolumeMapper> Mapper;
   GpuScene Scene{ Mapper, ImageSize, ImageSize };
-  static constexpr double Scale = 1.1; // half the view's height, world units
+  glm::dvec3 Centre{ 0.0 }; // where the field's centre is in the world
+  double Size = 1.0;        // world units per model unit
 
   SideScene(const Case& c, vtkImageData* field)
   {
+    if (c.Moved)
+    {
+      this->Centre = glm::dvec3(1e3, -400.0, 300.0);
+      this->Size = 1.5;
+      this->Scene.Volume->SetPosition(this->Centre.x, this->Centre.y, this->Centre.z);
+      this->Scene.Volume->SetOrientation(0.0, 0.0, 30.0);
+      this->Scene.Volume->SetScale(this->Size);
+    }
     LightingParameters lighting;
     lighting.Model = LightingModel::March;
     lighting.Transmittance = c.Transmittance;
@@ -185,16 +233,21 @@ struct SideScene
     this->Scene.SetInput(field);
     AddLight(this->Scene.Renderer, DirectionalLight(glm::dvec3(0.25, 0.15, 1.0), 2.0f));
     vtkCamera* camera = this->Scene.Renderer->GetActiveCamera();
-    camera->SetFocalPoint(0.0, 0.0, 0.0);
-    camera->SetPosition(0.0, 5.0, 0.0);
+    camera->SetFocalPoint(this->Centre.x, this->Centre.y, this->Centre.z);
+    camera->SetPosition(this->Centre.x, this->Centre.y + 5.0, this->Centre.z);
     camera->SetViewUp(0.0, 0.0, 1.0);
     camera->ParallelProjectionOn();
-    camera->SetParallelScale(Scale);
+    camera->SetParallelScale(1.1 * this->Size);
     camera->SetClippingRange(1.0, 10.0);
   }
 
-  // The world z of image row y (row 0 at the bottom).
-  static double RowZ(int y) { return Scale * (2.0 * (y + 0.5) / ImageSize - 1.0); }
+  // The world z of image row y (row 0 at the bottom), and of a model z (the field's turn is
+  // about z).
+  double RowZ(int y) const
+  {
+    return this->Centre.z + 1.1 * this->Size * (2.0 * (y + 0.5) / ImageSize - 1.0);
+  }
+  double WorldZ(double modelZ) const { return this->Centre.z + this->Size * modelZ; }
 
   Image Render()
   {
@@ -381,8 +434,10 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
 
   // Rows a voxel below the shared plane and lower; the slab's rows show in the whole field only.
   const double voxel = 2.0 / (Points - 1);
-  const Mask below = [&](int, int y) { return SideScene::RowZ(y) < SplitZ() - voxel; };
-  const Mask slabRows = [&](int, int y) { return std::abs(SideScene::RowZ(y) - 0.55) < 0.1; };
+  const SideScene& at = pieceScene;
+  const Mask below = [&](int, int y) { return at.RowZ(y) < at.WorldZ(SplitZ() - voxel); };
+  const Mask slabRows = [&](int, int y)
+  { return std::abs(at.RowZ(y) - at.WorldZ(0.55)) < 0.1 * at.Size; };
   ASSERT_GT(MeanColor(all, slabRows), 0.0) << "the side view must show the slab above the cloud";
   ASSERT_EQ(MeanColor(piece, slabRows), 0.0) << "the cloud piece must not reach the slab's rows";
 
@@ -398,7 +453,7 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
   {
     const Mask rows = [&](int, int y)
     {
-      const double depth = SplitZ() - SideScene::RowZ(y);
+      const double depth = (at.WorldZ(SplitZ()) - at.RowZ(y)) / at.Size;
       return depth >= band - 0.15 && depth < band;
     };
     const Relative d = CompareRelative(piece, all, rows);
@@ -412,9 +467,13 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
   {
     // Measured on llvmpipe: RMS 1.1e-3 (light volumes) and 0.9e-3 (nested), max 7.1e-3 of the
     // brightest: the coarse grid's interpolation of the slab's depth against the whole field's
-    // light volumes or march (the GPU-vs-CPU differences are 1000 times smaller).
-    EXPECT_LT(with.Rms, 3e-3);
-    EXPECT_LT(with.Max, 2e-2);
+    // light volumes or march (the GPU-vs-CPU differences are 1000 times smaller). Moved: RMS
+    // 6.0e-3, max 2.9e-2, growing away from the plane: the world grid over the turned field's
+    // box is coarser (0.27 model units, not 0.2), and the rays from the cloud's lower side pass
+    // near the slab's soft edge, where its depth varies within a grid cell. At half the field's
+    // resolution (21^3) instead of a quarter the four cases measure RMS 0.8e-3, 0.5e-3, 1.0e-3.
+    EXPECT_LT(with.Rms, c.RmsGate);
+    EXPECT_LT(with.Max, c.MaxGate);
     return;
   }
   // With the multiple-scattering volume each piece solves its own diffusion: the light the slab
