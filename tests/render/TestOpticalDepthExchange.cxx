@@ -444,9 +444,10 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
   const Relative with = CompareRelative(piece, all, below);
   const Relative without = CompareRelative(alone, all, below);
   std::cout << c.Name << ": " << with.Pixels << " cloud pixels below the shared plane; piece with "
-            << "depths vs whole: RMS " << with.Rms << ", max " << with.Max
-            << " of the brightest; without depths: RMS " << without.Rms << ", max " << without.Max
-            << "\n";
+            << "depths vs whole: RMS " << with.Rms << ", max " << with.Max << " of the brightest ("
+            << 255.0 * with.Rms * with.Brightest
+            << " RMS 8-bit levels of the linear radiance); without depths: RMS " << without.Rms
+            << ", max " << without.Max << "\n";
   // By distance below the shared plane: where the pieces' multiple scattering parts, if at the
   // face alone or everywhere.
   for (double band : { 0.15, 0.3, 0.45, 0.6 })
