@@ -38,6 +38,7 @@ class vtkMatrix4x4;
 namespace cloudvis
 {
 struct LightVolumes;
+struct OpticalDepthGrid;
 struct ScatteringGrid;
 
 // The most samples one view ray may take. A step that would need more along the volume's
@@ -151,6 +152,12 @@ struct MarchUniforms
   // stays null). Either way TransportOf turns the volume on, with the finest grid's size
   // (ScatteringVolumeSize of Dimensions).
   bool ScatteringVolumeTextures = false;
+  // Optical depth toward each light from outside the volume (CloudOpticalDepthGrid.h: other
+  // pieces of a distributed field), added to every optical depth toward a light; null: none.
+  // IndexToExternal maps an index point to the grid's texel coordinates. Both set by
+  // SetExternalOpticalDepths; on the GPU the mapper binds the grid as a texture.
+  const OpticalDepthGrid* ExternalDepths = nullptr;
+  glm::mat4 IndexToExternal{ 1.0f };
 };
 
 // What a renderer is given.

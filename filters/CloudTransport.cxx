@@ -74,6 +74,15 @@ glsl::Transport TransportOf(const MarchUniforms& u)
     t.LightVolumeSize = glm::vec3(u.LightDepths->Size);
     t.LightVolumeCount = float(u.LightDepths->Lights);
   }
+  if (u.ExternalDepths != nullptr && !u.ExternalDepths->Empty())
+  {
+    const OpticalDepthGrid& grid = *u.ExternalDepths;
+    t.External = &grid;
+    t.ExternalOpticalDepths = 1;
+    t.ExternalDepthSize = glm::vec3(grid.Size[0], grid.Size[1], grid.Size[2]);
+    t.ExternalDepthCount = float(grid.Lights);
+    t.IndexToExternal = u.IndexToExternal;
+  }
   if ((u.MultipleScattering != nullptr || u.ScatteringVolumeTextures) &&
     p.Model == LightingModel::March)
   {

@@ -6,9 +6,9 @@
 // - the C++ prelude: INOUT(T) and OUT(T) are references, UNIFORM is empty, and glm's names
 //   (vec3, mix, clamp, dot, exp...) are visible unqualified inside namespace cloudvis::glsl;
 // - the accessors the shared file declares (DensityAt, TransferAt, EmptyBricksAround,
-//   BrickExtinctionBounds, LightVolumeFetch), which read from memory what the GLSL reads from
-//   textures: the GL_LINEAR fetches are computed exactly (the GPU's filter weights have 8
-//   fractional bits);
+//   BrickExtinctionBounds, LightVolumeFetch, ExternalDepthFetch...), which read from memory what
+//   the GLSL reads from textures: the GL_LINEAR fetches are computed exactly (the GPU's filter
+//   weights have 8 fractional bits);
 // - SourceTerm, which sums one model's light terms over the lights in a loop where the GPU's
 //   program calls each light's term with a constant index (app/rendering/CloudMarchShader.cxx).
 // A Transport (about a kilobyte) is filled from the uniforms SetUpMarch computes (TransportOf);
@@ -21,6 +21,7 @@
 
 #include "CloudLighting.h"
 #include "CloudMarchUniforms.h"
+#include "CloudOpticalDepthGrid.h"
 #include "cloudvisFiltersModule.h"
 
 #include <glm/glm.hpp>
@@ -131,6 +132,8 @@ struct Transport
   const MarchUniforms* March = nullptr;
   const PathTraceUniforms* PathTrace = nullptr;
   const LightVolumes* Volumes = nullptr;
+  // The optical depths from outside the field (CloudOpticalDepthGrid.h), when given.
+  const OpticalDepthGrid* External = nullptr;
   // The multiple-scattering grid being computed, the next coarser one (its Fluence), and the one
   // the march reads.
   const ScatteringGrid* Grid = nullptr;
@@ -256,6 +259,18 @@ inline float Transport::LightVolumeFetch(int i, vec3 t)
     { return volumes.Depth[((block + std::size_t(z)) * size.y + y) * size.x + std::size_t(x)]; });
 }
 
+// As LightVolumeFetch: t within [0, size - 1] keeps to light i's block.
+inline float Transport::ExternalDepthFetch(int i, vec3 t)
+{
+  const OpticalDepthGrid& grid = *this->External;
+  const ivec3 size(grid.Size[0], grid.Size[1], grid.Size[2]);
+  const std::size_t block = std::size_t(i) * size.z;
+  return fetch::Trilinear(t,
+    size,
+    [&](int x, int y, int z)
+    { return grid.Depths[((block + std::size_t(z)) * size.y + y) * size.x + std::size_t(x)]; });
+}
+
 inline std::size_t CellIndex(const ScatteringGrid& grid, ivec3 c)
 {
   return (std::size_t(c.z) * grid.Size.y + c.y) * grid.Size.x + std::size_t(c.x);
@@ -321,7 +336,8 @@ inline vec4 Transport::ScatteringFluxFetch(vec3 t)
 
 // The shared source's uniforms for the march's uniforms `u`, as the mapper uploads them
 // (CloudMarchShader.cxx): the field, the lights, the lighting parameters and model, and the light
-// volumes when u.LightDepths is set and the march reads them. No occupancy: the CPU march reads
+// volumes when u.LightDepths is set and the march reads them, the optical depths from outside
+// the field when u.ExternalDepths is set. No occupancy: the CPU march reads
 // every sample (SkipEmptySpace 0).
 CLOUDVISFILTERS_EXPORT glsl::Transport TransportOf(const MarchUniforms& u);
 // The same with the path tracer's bricks and bounces (`pt` must outlive the result).

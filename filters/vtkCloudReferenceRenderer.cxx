@@ -2,8 +2,9 @@
 
 #include "CloudFieldGeometry.h"
 #include "CloudLightVolumes.h"
-#include "CloudScatteringVolume.h"
+#include "CloudOpticalDepthGrid.h"
 #include "CloudReferenceMarch.h"
+#include "CloudScatteringVolume.h"
 #include "CloudTransferTable.h"
 
 #include <vtkDataArray.h>
@@ -107,6 +108,13 @@ void vtkCloudReferenceRenderer::SetLights(const std::vector<cloudvis::Light>& li
     this->CloudLights = lights;
     this->Modified();
   }
+}
+
+void vtkCloudReferenceRenderer::SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid)
+{
+  this->ExternalDepths =
+    grid.Empty() ? nullptr : std::make_shared<const cloudvis::OpticalDepthGrid>(grid);
+  this->Modified();
 }
 
 const std::vector<cloudvis::Light>* vtkCloudReferenceRenderer::GetCloudLights() const
@@ -346,6 +354,19 @@ int vtkCloudReferenceRenderer::RequestData(
   {
     vtkErrorMacro(<< problem.Message);
     return 0;
+  }
+
+  // Depths from outside the field, added to the march's own toward each light.
+  if (this->ExternalDepths)
+  {
+    const std::string gridProblem =
+      cloudvis::ValidateOpticalDepthGrid(*this->ExternalDepths, int(uniforms.Lights.size()));
+    if (!gridProblem.empty())
+    {
+      vtkErrorMacro(<< gridProblem);
+      return 0;
+    }
+    cloudvis::SetExternalOpticalDepths(uniforms, frame, this->ExternalDepths.get());
   }
 
   // The march with light volumes reads them: computed once per image, as the GPU computes them

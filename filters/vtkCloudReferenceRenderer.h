@@ -51,6 +51,7 @@
 #include <vtkSmartPointer.h>
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -62,6 +63,7 @@ class vtkVolumeProperty;
 namespace cloudvis
 {
 struct MarchUniforms;
+struct OpticalDepthGrid;
 }
 
 class CLOUDVISFILTERS_EXPORT vtkCloudReferenceRenderer : public vtkImageAlgorithm
@@ -189,6 +191,15 @@ public:
   const std::vector<cloudvis::Light>* GetCloudLights() const;
   std::vector<cloudvis::Light> GetLightList() const;
   ///@}
+
+  /**
+   * Optical depths toward the lights from outside the input (CloudOpticalDepthGrid.h: other
+   * pieces of a distributed field), which the march adds wherever it uses an optical depth
+   * toward a light, as vtkCloudVolumeMapper::SetExternalOpticalDepths; an empty grid clears them.
+   * The grid is copied; it must hold the lights the renderer lights with (else RequestData
+   * fails in words). Default none. Not for the path tracer (vtkCloudPathTracer ignores them).
+   */
+  void SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid);
 #endif
 
   ///@{
@@ -293,6 +304,7 @@ protected:
   vtkSmartPointer<vtkLightCollection> Lights;
 #ifndef __VTK_WRAP__
   std::optional<std::vector<cloudvis::Light>> CloudLights; // in place of Lights when set
+  std::shared_ptr<const cloudvis::OpticalDepthGrid> ExternalDepths; // null: none
 #endif
   vtkNew<vtkMatrix4x4> VolumeMatrix;
   double SampleDistance = 0.0;

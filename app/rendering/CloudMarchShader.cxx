@@ -168,6 +168,10 @@ void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
   program->SetUniformf("PowderStrength", t.PowderStrength);
   program->SetUniformi("ScatteringVolumeOn", t.ScatteringVolumeOn);
   program->SetUniform3f("ScatteringVolumeSize", glm::value_ptr(t.ScatteringVolumeSize));
+  program->SetUniformi("ExternalOpticalDepths", t.ExternalOpticalDepths);
+  program->SetUniform3f("ExternalDepthSize", glm::value_ptr(t.ExternalDepthSize));
+  program->SetUniformf("ExternalDepthCount", t.ExternalDepthCount);
+  program->SetUniformMatrix4x4("IndexToExternal", glm::value_ptr(t.IndexToExternal));
 
   // The march loop's own (CloudMarchFS.glsl).
   const float tableRange[2] = { float(u.Table->Range[0]), float(u.Table->Range[1]) };

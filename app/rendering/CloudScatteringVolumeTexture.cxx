@@ -46,7 +46,8 @@ enum PassNumber
 };
 
 // What the volume depends on, as numbers: when one changes it is computed again. The light
-// volumes count by their computations (the source reads them).
+// volumes count by their computations (the source reads them), the external depths by their
+// uploads (the source adds them).
 std::vector<double> SignatureOf(const MarchUniforms& u, const ScatteringVolumeTexture::Inputs& in)
 {
   const LightingParameters& p = u.Lighting;
@@ -64,7 +65,8 @@ std::vector<double> SignatureOf(const MarchUniforms& u, const ScatteringVolumeTe
     double(p.LightSteps),
     double(p.LightStep),
     double(p.LightStepGrowth),
-    in.LightVolumes ? double(in.LightVolumes->GetComputeCount()) : -1.0 };
+    in.LightVolumes ? double(in.LightVolumes->GetComputeCount()) : -1.0,
+    in.ExternalDepthsTime };
   s.insert(s.end(), glm::value_ptr(u.IndexToLocal), glm::value_ptr(u.IndexToLocal) + 16);
   s.insert(s.end(), glm::value_ptr(u.LocalToIndex), glm::value_ptr(u.LocalToIndex) + 9);
   for (const LocalLight& light : u.Lights)

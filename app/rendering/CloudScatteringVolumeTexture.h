@@ -48,7 +48,8 @@ public:
   };
 
   // Brings the volume up to date with u and inputs: the field, the table, the extinction, the
-  // geometry, the phase, the albedo (the table's), the lights and the light volumes it read. With
+  // geometry, the phase, the albedo (the table's), the lights, the light volumes it read and the
+  // optical depths from outside the field. With
   // `seconds` > 0 and a finished volume of the same size to show meanwhile, a recompute runs
   // passes for about that long per call and goes on in the next calls (IsConverging); otherwise
   // it runs to the end. False with `problem` when the textures cannot be allocated or a pass

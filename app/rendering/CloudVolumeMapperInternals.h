@@ -8,6 +8,7 @@
 #include "vtkCloudVolumeMapper.h"
 
 #include "CloudDensityTexture.h"
+#include "CloudExternalDepthTexture.h"
 #include "CloudJitterTexture.h"
 #include "CloudLightVolumeTexture.h"
 #include "CloudMarchShader.h"
@@ -67,6 +68,7 @@ struct vtkCloudVolumeMapper::Internals
   cloudvis::ExtinctionBoundsTexture ExtinctionBounds; // the path tracer's, made on first use
   cloudvis::LightVolumeTexture LightVolumes;
   cloudvis::ScatteringVolumeTexture Scattering; // the march's multiple scattering
+  cloudvis::ExternalDepthTexture External;      // optical depths from outside the field
   cloudvis::MarchPrograms March;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<cloudvis::ViewTargets>> Views; // keys: identities only
@@ -86,7 +88,7 @@ struct vtkCloudVolumeMapper::Internals
   {
     return this->Density.GetBytes() + this->Transfer.GetBytes() + this->Occupancy.GetBytes() +
       this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes() + this->LightVolumes.GetBytes() +
-      this->Scattering.GetBytes();
+      this->Scattering.GetBytes() + this->External.GetBytes();
   }
 
   long long Bytes() const

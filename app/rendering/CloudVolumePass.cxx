@@ -1,5 +1,6 @@
 #include "CloudVolumePass.h"
 
+#include "CloudExternalDepthTexture.h"
 #include "CloudMarchShader.h"
 #include "CloudMarchUniforms.h"
 
@@ -90,6 +91,11 @@ vtkShaderProgram* VolumePass::Begin(vtkOpenGLRenderWindow* window,
   program->SetUniform3f("BrickCount", brickCount);
   program->SetUniformf("BrickSize", float(inputs.BrickSize));
   program->SetUniformi("SkipEmptySpace", inputs.SkipEmptySpace ? 1 : 0);
+  if (inputs.ExternalDepths)
+  {
+    inputs.ExternalDepths->Activate();
+  }
+  BindExternalDepths(program, inputs.ExternalDepths, inputs.Density->GetTextureUnit());
 
   state->PushFramebufferBindings();
   if (!this->Framebuffer)
@@ -109,6 +115,10 @@ void VolumePass::End()
   for (vtkTextureObject* texture : { inputs.Density, inputs.Transfer, inputs.Occupancy })
   {
     texture->Deactivate();
+  }
+  if (inputs.ExternalDepths)
+  {
+    inputs.ExternalDepths->Deactivate();
   }
   this->Saved.reset();
 }

@@ -28,9 +28,14 @@ struct VolumePassInputs
   const int* BrickCount = nullptr;
   int BrickSize = 1;
   bool SkipEmptySpace = true;
-  // Changes of the density texture and the transfer table (their upload times).
+  // The optical depths from outside the field (CloudExternalDepthTexture.h) when the march adds
+  // them; null: none.
+  vtkTextureObject* ExternalDepths = nullptr;
+  // Changes of the density texture, the transfer table and the external depths (their upload
+  // times; the last -1 without them).
   double DensityTime = 0.0;
   double TableTime = 0.0;
+  double ExternalDepthsTime = -1.0;
 };
 
 // The shaders of a pass: its fragment main() (spliced after the march's functions), and a vertex

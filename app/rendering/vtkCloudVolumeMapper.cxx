@@ -8,6 +8,7 @@
 #include "CloudFieldGeometry.h"
 #include "CloudGpuMemory.h"
 #include "CloudMarchUniforms.h"
+#include "CloudOpticalDepthGrid.h"
 #include "CloudScatteringVolume.h"
 #include "CloudVolumeMapperInternals.h"
 
@@ -143,6 +144,62 @@ const std::vector<cloudvis::Light>* vtkCloudVolumeMapper::GetCloudLights() const
   return this->CloudLights ? &*this->CloudLights : nullptr;
 }
 
+bool vtkCloudVolumeMapper::ComputePieceOpticalDepths(vtkRenderer* renderer,
+  vtkVolume* volume,
+  cloudvis::OpticalDepthGrid& grid)
+{
+  // What ComputeUniforms gives the march, from the objects rather than the textures (which need
+  // a context and may not be made yet): the same texels, table and lights.
+  this->LastError.clear();
+  grid.Lights = 0;
+  grid.Depths.clear();
+  if (!volume)
+  {
+    return this->Fail("ComputePieceOpticalDepths needs the volume the mapper draws");
+  }
+  vtkImageData* input = this->ValidInput(volume);
+  if (!input)
+  {
+    return false;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = this->InputScalars(input, cellFlag);
+  const std::string valueProblem = cloudvis::ValidateDensityValues(scalars);
+  if (!valueProblem.empty())
+  {
+    return this->Fail(valueProblem);
+  }
+  std::string tableProblem;
+  const cloudvis::TransferTable table =
+    cloudvis::TransferTableOf(volume->GetProperty(), this->ExtinctionScale, tableProblem);
+  if (!tableProblem.empty())
+  {
+    return this->Fail(tableProblem);
+  }
+  const cloudvis::MarchSetup setup = cloudvis::MakeMarchSetup(input,
+    volume->GetMatrix(),
+    cloudvis::DensityTexelsOf(scalars, this->HalfFloatDensity),
+    &table,
+    this->SampleDistance,
+    this->TerminationTransmittance,
+    this->LightingProperty->GetParameters(),
+    this->CloudLights ? *this->CloudLights
+                      : cloudvis::LightsOf(renderer ? renderer->GetLights() : nullptr));
+  const cloudvis::MarchProblem problem = cloudvis::ComputePieceOpticalDepths(setup, grid);
+  return !problem || this->Fail(problem.Message);
+}
+
+void vtkCloudVolumeMapper::SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid)
+{
+  this->Internal->External.Set(grid);
+  this->Modified();
+}
+
+const cloudvis::OpticalDepthGrid& vtkCloudVolumeMapper::GetExternalOpticalDepths() const
+{
+  return this->Internal->External.GetGrid();
+}
+
 vtkMTimeType vtkCloudVolumeMapper::GetMTime()
 {
   return std::max(this->Superclass::GetMTime(), this->LightingProperty->GetMTime());
@@ -258,6 +315,12 @@ void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
 }
 
+vtkDataArray* vtkCloudVolumeMapper::InputScalars(vtkImageData* input, int& cellFlag)
+{
+  return this->GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+}
+
 vtkImageData* vtkCloudVolumeMapper::ValidInput(vtkVolume* volume)
 {
   vtkImageData* input = vtkImageData::SafeDownCast(this->GetInput());
@@ -267,8 +330,7 @@ vtkImageData* vtkCloudVolumeMapper::ValidInput(vtkVolume* volume)
     return nullptr;
   }
   int cellFlag = 0;
-  vtkDataArray* scalars = this->GetScalars(
-    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkDataArray* scalars = this->InputScalars(input, cellFlag);
   const std::string scalarProblem = cloudvis::ValidateDensityScalars(scalars);
   if (!scalarProblem.empty())
   {
@@ -303,8 +365,7 @@ bool vtkCloudVolumeMapper::UpdateTextures(vtkRenderer* renderer,
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = WindowOf(renderer);
   int cellFlag = 0;
-  vtkDataArray* scalars = this->GetScalars(
-    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkDataArray* scalars = this->InputScalars(input, cellFlag);
   cloudvis::GpuMemoryBudget budget(window, this->MaximumGPUMemory, in.Bytes());
   std::string problem;
   const bool ready =
@@ -417,6 +478,25 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   const int* bricks = in.Occupancy.GetBrickCount();
   const int iterations = uniforms.MaximumSamples + 3 * (bricks[0] + bricks[1] + bricks[2]);
 
+  // The march adds the optical depths from outside the field, when given, to its own toward each
+  // light (the march model's; the other models have none).
+  const bool marchModel = uniforms.Lighting.Model == cloudvis::LightingModel::March;
+  const bool external = marchModel && in.External.HasDepths();
+  if (external)
+  {
+    problem =
+      cloudvis::ValidateOpticalDepthGrid(in.External.GetGrid(), int(uniforms.Lights.size()));
+    if (!problem.empty() || !in.External.Update(window, budget, problem))
+    {
+      return this->Fail(problem);
+    }
+    cloudvis::SetExternalOpticalDepths(uniforms, localFrame, &in.External.GetGrid());
+  }
+  else if (in.External.GetBytes() > 0)
+  {
+    in.External.Release(window);
+  }
+
   // The march with light volumes reads the optical depth toward each light from them, computed
   // (in a pass of their own, before the march's program is made current) when what they depend
   // on changed. While the view is interacting, volumes made stale by the lights alone (a light
@@ -424,7 +504,6 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   // toward the lights (the nested march) and the still render after the interaction recomputes
   // them once.
   const bool interacting = this->IsInteracting(renderer);
-  const bool marchModel = uniforms.Lighting.Model == cloudvis::LightingModel::March;
   cloudvis::LightVolumeTexture::Inputs lightInputs;
   lightInputs.Density = in.Density.GetTexture();
   lightInputs.Transfer = in.Transfer.GetTexture();
@@ -434,6 +513,8 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   lightInputs.SkipEmptySpace = this->EmptySpaceSkipping;
   lightInputs.DensityTime = double(in.Density.GetUploadTime());
   lightInputs.TableTime = double(in.Transfer.GetTableTime());
+  lightInputs.ExternalDepths = external ? in.External.GetTexture() : nullptr;
+  lightInputs.ExternalDepthsTime = external ? in.External.GetUploadTime() : -1.0;
   const bool volumesAsked =
     marchModel && uniforms.Lighting.Transmittance == cloudvis::LightTransmittance::Volumes;
   const bool nestedWhileInteracting =
@@ -591,6 +672,10 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     textures.push_back(in.ExtinctionBounds.GetTexture());
   }
+  if (external)
+  {
+    textures.push_back(in.External.GetTexture());
+  }
   for (vtkTextureObject* texture : textures)
   {
     texture->Activate();
@@ -637,6 +722,9 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     {
       program->SetUniformi("LightVolumeTexture", in.Density.GetTexture()->GetTextureUnit());
     }
+    cloudvis::BindExternalDepths(program,
+      external ? in.External.GetTexture() : nullptr,
+      in.Density.GetTexture()->GetTextureUnit());
   }
   if (scatteringVolume)
   {
@@ -692,6 +780,7 @@ void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.ExtinctionBounds.Release(window);
   in.LightVolumes.Release(window);
   in.Scattering.Release(window);
+  in.External.Release(window);
   for (auto& view : in.Views)
   {
     view.second->Release(window);

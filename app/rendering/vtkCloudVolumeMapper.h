@@ -78,6 +78,7 @@
 #include <string>
 #include <vector>
 
+class vtkDataArray;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
@@ -85,6 +86,7 @@ namespace cloudvis
 {
 struct LocalFrame;
 struct MarchUniforms;
+struct OpticalDepthGrid;
 }
 
 class CLOUDVISRENDERING_EXPORT vtkCloudVolumeMapper : public vtkVolumeMapper
@@ -270,6 +272,35 @@ public:
   void UseRendererLights();
   const std::vector<cloudvis::Light>* GetCloudLights() const;
   ///@}
+
+  ///@{
+  /**
+   * Light across the pieces of a distributed field (a ParaView representation under MPI, where
+   * each rank's mapper draws its piece; filters/CloudOpticalDepthGrid.h, docs/transport.md).
+   *
+   * ComputePieceOpticalDepths fills `grid`'s Depths and Lights for its Origin, Spacing and Size:
+   * at each grid point, per light (the mapper's lights, in order: SetLights, else `renderer`'s
+   * switched-on lights), the optical depth this mapper's input adds along the ray toward the
+   * light, counting only the part inside the input's box, with the march's extinction (the
+   * volume's property, ExtinctionScale, HalfFloatDensity's texels). On the CPU, with
+   * vtkSMPTools; it needs no OpenGL context and no MPI. False, with GetLastError(), when the
+   * input, the volume or the grid cannot be used.
+   *
+   * SetExternalOpticalDepths gives the mapper the depths that come from outside its input (the
+   * sum over the other pieces: over all of them, minus this piece's own): the march adds them
+   * wherever it uses an optical depth toward a light (the single-scattering beam with the light
+   * volumes or the nested march, and the multiple-scattering volume's source), for the march
+   * lighting model. The grid is copied (an empty one clears them) and must hold the lights the
+   * mapper lights with, else the render fails in words. Setting it restarts the progressive
+   * accumulation and recomputes the multiple-scattering volume, not the light volumes (which
+   * hold the field's own depths). Its texture is part of GetGPUMemoryBytes. Default none.
+   */
+  bool ComputePieceOpticalDepths(vtkRenderer* renderer,
+    vtkVolume* volume,
+    cloudvis::OpticalDepthGrid& grid);
+  void SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid);
+  const cloudvis::OpticalDepthGrid& GetExternalOpticalDepths() const;
+  ///@}
 #endif
 
   ///@{
@@ -299,7 +330,8 @@ public:
   /**
    * Bytes of GPU memory the mapper's textures and targets take now, as the driver allocated them
    * (from the sizes it reports for their formats): the density, transfer, occupancy and jitter
-   * textures, the light volumes and the multiple-scattering volume, and every renderer's depth
+   * textures, the light volumes, the multiple-scattering volume and the optical depths from
+   * outside the field, and every renderer's depth
    * and march targets.
    */
   vtkTypeInt64 GetGPUMemoryBytes() const;
@@ -512,6 +544,8 @@ private:
   void operator=(const vtkCloudVolumeMapper&) = delete;
 
   bool Fail(const std::string& message);
+  // The scalars the mapper draws of `input` (its scalar mode and array selection).
+  vtkDataArray* InputScalars(vtkImageData* input, int& cellFlag);
   vtkImageData* ValidInput(vtkVolume* volume);
   bool IsInteracting(vtkRenderer* renderer) const;
   double ChooseResolutionScale(vtkRenderer* renderer);

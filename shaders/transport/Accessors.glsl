@@ -10,6 +10,7 @@ uniform float TableSize;
 uniform sampler3D EmptyDistanceTexture; // Chebyshev distance in bricks to occupied space, /255
 uniform sampler3D ExtinctionBoundsTexture; // the path tracer's, per brick: r = minorant, g = majorant
 uniform sampler3D LightVolumeTexture; // the light volumes, one block per light stacked along z
+uniform sampler3D ExternalDepthTexture; // depths from outside the field, blocks as the above
 
 float DensityAt(vec3 p)
 {
@@ -44,6 +45,13 @@ float LightVolumeFetch(int i, vec3 t)
   t.z += float(i) * LightVolumeSize.z;
   return texture(LightVolumeTexture,
     (t + 0.5) / vec3(LightVolumeSize.xy, LightVolumeSize.z * LightVolumeCount)).r;
+}
+
+float ExternalDepthFetch(int i, vec3 t)
+{
+  t.z += float(i) * ExternalDepthSize.z;
+  return texture(ExternalDepthTexture,
+    (t + 0.5) / vec3(ExternalDepthSize.xy, ExternalDepthSize.z * ExternalDepthCount)).r;
 }
 
 // The multiple-scattering grids (filters/CloudScatteringVolume.h): the one being computed, read

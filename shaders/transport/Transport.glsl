@@ -55,6 +55,9 @@ float LightVolumeFetch(int i, vec3 t);
 // texel coordinate t (as LightVolumeFetch); shaders/transport/Scattering.glsl computes it.
 vec4 ScatteringVolumeFetch(vec3 t);
 vec4 ScatteringFluxFetch(vec3 t);
+// Light i's block of the optical depths from outside the field at texel coordinate t (within
+// [0, ExternalDepthSize - 1]), linearly interpolated.
+float ExternalDepthFetch(int i, vec3 t);
 
 // ---- The medium ----
 
@@ -318,16 +321,36 @@ vec3 BeamFraction(float mu, float tau, vec3 albedo)
   return beam * (Phase(mu, 1.0f) * powder);
 }
 
+// ---- Optical depth from outside the field (issue 25, filters/CloudOpticalDepthGrid.h) ----
+// What other pieces of a distributed field add toward each light: a world grid of depths (tau,
+// as this file's), one block per light stacked along z as the light volumes are, which
+// OpticalDepthToLight adds to the field's own. Read where the grid is, through IndexToExternal
+// (an affine map: the grid is the same on every piece, so a point on a face two pieces share
+// reads the same depth in both, and no resampling blurs it twice).
+
+UNIFORM int ExternalOpticalDepths;  // 1: added; 0: nothing read (a field on its own)
+UNIFORM vec3 ExternalDepthSize;     // grid points per axis of one light's block
+UNIFORM float ExternalDepthCount;   // blocks stacked along z
+UNIFORM mat4 IndexToExternal;       // an index point to the grid's texel coordinates
+
+float ExternalOpticalDepth(int i, vec3 p)
+{
+  vec3 t = clamp(vec3(IndexToExternal * vec4(p, 1.0f)), vec3(0.0f), ExternalDepthSize - 1.0f);
+  return ExternalDepthFetch(i, t);
+}
+
 // The optical depth toward light i at index point p, where the extinction is sigmaHere, the
-// light lies along l at lightDistance: from the light volumes, or marched.
+// light lies along l at lightDistance: the field's own from the light volumes, or marched, plus
+// what lies outside the field when it is given.
 float OpticalDepthToLight(int i, vec3 p, float sigmaHere, vec3 l, float lightDistance)
 {
+  float outside = ExternalOpticalDepths != 0 ? ExternalOpticalDepth(i, p) : 0.0f;
   if (LightTransmittanceVolumes != 0)
   {
-    return LightVolumeDepth(i, p);
+    return outside + LightVolumeDepth(i, p);
   }
   vec3 indexStep = LightPositional[i] != 0 ? LocalToIndex * l : LightIndexDirection[i];
-  return LightOpticalDepth(p, sigmaHere, indexStep, lightDistance);
+  return outside + LightOpticalDepth(p, sigmaHere, indexStep, lightDistance);
 }
 
 // The light scattered toward the eye at index point p by the volume's diffuse light, per unit
