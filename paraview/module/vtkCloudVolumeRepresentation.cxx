@@ -82,6 +82,29 @@ void vtkCloudVolumeRepresentation::SetPhaseLobeWeight(double weight)
 
 void vtkCloudVolumeRepresentation::SetMultipleScattering(int scattering)
 {
+  this->MultipleScattering = scattering;
+  this->Lighting->SetMultipleScattering(scattering);
+}
+
+void vtkCloudVolumeRepresentation::ChooseMultipleScattering(int ranks)
+{
+  // The multiple-scattering volume is a diffusion solved over the mapper's input: on more than
+  // one rank, over each piece alone, so light would not diffuse across the ranks' faces and each
+  // face would show as a seam. Until the solve spans the ranks, the march adds the octaves there,
+  // which each sample computes for itself, and says so once.
+  int scattering = this->MultipleScattering;
+  if (ranks > 1 && scattering == vtkCloudLightingProperty::ScatteringVolume &&
+    this->Lighting->GetModel() == vtkCloudLightingProperty::MarchLighting)
+  {
+    scattering = vtkCloudLightingProperty::ScatteringOctaves;
+    if (!this->WarnedOfOctaves)
+    {
+      vtkWarningMacro(<< "on " << ranks << " ranks the march adds multiple scattering by octaves: "
+                      << "the multiple-scattering volume is solved per piece and would show the "
+                      << "ranks' faces (docs/paraview.md)");
+      this->WarnedOfOctaves = true;
+    }
+  }
   this->Lighting->SetMultipleScattering(scattering);
 }
 
@@ -204,6 +227,7 @@ int vtkCloudVolumeRepresentation::ProcessViewRequest(
       this->Actor->SetVisibility(false);
       return 1;
     }
+    this->ChooseMultipleScattering(ranks);
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
     this->ExchangeOpticalDepth(view ? view->GetRenderer() : nullptr);
   }

@@ -18,7 +18,8 @@
  * over a coarse grid of the whole field, an MPI_Allreduce sums them, and each rank's march adds
  * what the other ranks' pieces hold (ShadowExchange, on by default; docs/paraview.md states the
  * grid and what it costs). The path tracer needs the whole field on one rank and is refused on
- * more.
+ * more; the march's multiple scattering is the octaves there (the multiple-scattering volume is
+ * solved per piece).
  */
 #ifndef vtkCloudVolumeRepresentation_h
 #define vtkCloudVolumeRepresentation_h
@@ -109,6 +110,8 @@ private:
   void operator=(const vtkCloudVolumeRepresentation&) = delete;
 
   void UpdateSun();
+  // The multiple scattering the march uses on this many ranks (the octaves on more than one).
+  void ChooseMultipleScattering(int ranks);
   // Collective over the ranks of the global controller: every rank calls it in each render.
   void ExchangeOpticalDepth(vtkRenderer* renderer);
 
@@ -117,6 +120,8 @@ private:
   double SunDirection[3] = { 6.0, 8.0, 4.0 };
   double SunColor[3] = { 1.0, 1.0, 1.0 };
   double SunIntensity = 1.0;
+  int MultipleScattering = vtkCloudLightingProperty::ScatteringVolume; // as the user chose it
+  bool WarnedOfOctaves = false;
   bool ShadowExchange = true;
   int ExchangeCount = 0;
   // What the last exchange was computed for: the latest modification time of its inputs (the
