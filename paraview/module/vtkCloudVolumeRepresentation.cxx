@@ -33,6 +33,10 @@ vtkCloudVolumeRepresentation::vtkCloudVolumeRepresentation()
   this->VolumeMapper.TakeReference(mapper);
   this->CloudMapper = mapper;
   mapper->SetLightingProperty(this->Lighting);
+  // ParaView, not the mapper, decides what an interactive render is (its LOD settings): the
+  // mapper's own lowering of the resolution, keyed to the window's desired update rate, would
+  // blur ParaView's still renders, whose update rate ParaView does not keep below 1.
+  mapper->SetInteractiveFrameRate(0.0);
   this->UpdateSun();
 }
 
