@@ -74,11 +74,15 @@ int vtkCloudFieldReader::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  // A file that cannot be read is reported once, by name (ReadFile), and yields an empty image:
+  // failing the request would add the executive's own message, which names no file.
   if (!this->ReadFile())
   {
-    return 0;
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+    return 1;
   }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->Field->GetExtent(), 6);
   outInfo->Set(vtkDataObject::ORIGIN(), this->Field->GetOrigin(), 3);
   outInfo->Set(vtkDataObject::SPACING(), this->Field->GetSpacing(), 3);
@@ -95,10 +99,10 @@ int vtkCloudFieldReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
   output->Initialize();
-  // The pipeline asks for data even after RequestInformation failed; the error is reported once.
+  // A file that cannot be read leaves the output empty (its problem has been reported).
   if (!this->ReadFile())
   {
-    return 0;
+    return 1;
   }
   int extent[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);

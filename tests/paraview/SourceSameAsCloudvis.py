@@ -7,6 +7,7 @@ that differs between the panel and the scene fails too.
 
 Usage: pvbatch SourceSameAsCloudvis.py SCENE.json"""
 import json
+import os
 import sys
 
 import numpy
@@ -32,7 +33,8 @@ def set_coverage_map(source, value):
     if value in ("shapes", "noise"):
         source.CoverageSource = value
     else:
-        source.CoverageMapFile = value
+        # A scene's path is relative to the scene's folder.
+        source.CoverageMapFile = os.path.join(os.path.dirname(os.path.abspath(scene_path)), value)
         source.CoverageSource = "map"
 
 
