@@ -6,9 +6,10 @@
  * of app/scene/public/FieldIO.h: VTK XML image data, OpenVDB, NetCDF-CF, NRRD, MetaImage), with
  * the same protections against hostile files and the same result as `cloudvis render FILE`: a
  * float point-data array "density" on image data with the file's extent, origin, spacing and
- * direction. The plugin registers it for OpenVDB files, which ParaView 5.11 cannot read
- * (docs/paraview.md, "Reading field files"); the other formats are read by name
- * (CloudFieldReader in Python) when what cloudvis reads is wanted rather than ParaView's reader.
+ * direction. The plugin registers it for the files ParaView 5.11 cannot open, OpenVDB (.vdb) and
+ * NetCDF named .nc4 or .cdf (docs/paraview.md, "Reading field files"); the other formats are read
+ * by name (CloudFieldReader in Python) when what cloudvis reads is wanted rather than ParaView's
+ * reader.
  *
  * A file that cannot be read (missing, truncated, corrupt, too large, an option it does not
  * take) gives one vtkErrorMacro naming the file and the problem and an empty output: a bad file

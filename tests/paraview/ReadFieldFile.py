@@ -1,19 +1,22 @@
 """A field file opens in ParaView through the plugin's reader as cloudvis reads it, and a bad one
 gives an error naming the file, no data and no crash.
 
-`cloudvis generate SCENE` writes the field as FORMAT (.vdb: a format ParaView 5.11 cannot read
-itself) and as .vti, and `cloudvis generate FILE` writes what cloudvis reads of the file as .vti.
-ParaView's own OpenDataFile must pick the plugin's reader for the file, whose output must equal
-what cloudvis reads (extent, origin, spacing, direction, density: bit for bit), and lie on the
-generated field's lattice with its values (an OpenVDB file holds the active voxels' box: every
-non-empty voxel, at its place). Then broken copies of the file
-(truncated, garbage, empty, missing) are opened: each must leave the reader's output empty and
-its LastError naming the file, and the same reader must read the good file again afterwards.
-A reader that crashed would end pvbatch with a non-zero status; one that returned data for a
-broken file, or an error without the file's name, fails the checks.
+The file field.EXTENSION is made from SOURCE: a scene, which `cloudvis generate` writes as the
+file (.vdb) and as .vti, or a CDL text, which ncgen writes as a NetCDF file (.nc4, .cdf: NetCDF
+names ParaView 5.11 does not offer). `cloudvis generate FILE` writes what cloudvis reads of the
+file as .vti. ParaView's own OpenDataFile must pick the plugin's reader for the file, whose output
+must equal what cloudvis reads (extent, origin, spacing, direction, density: bit for bit); a
+generated field must also be found on its lattice with its values (an OpenVDB file holds the
+active voxels' box: every non-empty voxel, at its place).
 
-Usage: pvbatch ReadFieldFile.py SCENE.json FORMAT"""
+Then broken copies of the file (truncated, garbage, empty, missing) are opened: each must leave
+the reader's output empty and its LastError naming the file, and the same reader must read the
+good file again afterwards. A reader that crashed would end pvbatch with a non-zero status; one
+that returned data for a broken file, or an error without the file's name, fails the checks.
+
+Usage: pvbatch ReadFieldFile.py SOURCE.json|SOURCE.cdl EXTENSION"""
 import os
+import subprocess
 import sys
 
 import numpy
@@ -23,11 +26,18 @@ from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
 import cloudvis_paraview_testing as testing
 
-scene_path, extension = sys.argv[1], sys.argv[2]
+source_path, extension = sys.argv[1], sys.argv[2]
 testing.load_plugin()
 path = os.path.abspath("field." + extension)
-testing.run_cloudvis("generate", scene_path, "-o", path)
-testing.run_cloudvis("generate", scene_path, "-o", "generated.vti")
+generated = None
+if source_path.endswith(".cdl"):
+    # ncgen's kind: 1 (classic) for .cdf, 3 (netCDF-4 on HDF5) for .nc4.
+    kind = "3" if extension == "nc4" else "1"
+    result = subprocess.run(["ncgen", "-k", kind, "-o", path, source_path], capture_output=True, text=True)
+    testing.check(result.returncode == 0, "ncgen failed: %s" % result.stderr)
+else:
+    testing.run_cloudvis("generate", source_path, "-o", path)
+    testing.run_cloudvis("generate", source_path, "-o", "generated.vti")
 testing.run_cloudvis("generate", path, "-o", "cloudvis.vti")
 
 
@@ -39,7 +49,8 @@ def read_vti(name):
 
 
 expected = read_vti("cloudvis.vti")
-generated = read_vti("generated.vti")
+if not source_path.endswith(".cdl"):
+    generated = read_vti("generated.vti")
 
 
 def density(image):
@@ -91,7 +102,8 @@ def check_same_as_cloudvis(reader, what):
     different = int(numpy.count_nonzero(got != want))
     print("%s: %d voxels, %d differ from cloudvis's" % (what, want.size, different))
     testing.check(different == 0, "%s: %d of %d voxels differ from cloudvis's" % (what, different, want.size))
-    on_generated_lattice(output, got, what)
+    if generated is not None:
+        on_generated_lattice(output, got, what)
 
 
 reader = simple.OpenDataFile(path)
