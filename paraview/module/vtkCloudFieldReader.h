@@ -15,9 +15,9 @@
  * take) gives one vtkErrorMacro naming the file and the problem and an empty output: a bad file
  * never ends the process (parsing that can crash runs in a forked child, IsolatedRead.h).
  *
- * The whole file is read once (again when the file name or an option changes) on every process
- * that asks for data, and each process is given the sub-extent it requests (UPDATE_EXTENT, as
- * ParaView splits an image among MPI ranks): memory per rank is the whole field's.
+ * The whole file is read once (again when the file name or an option changes) on every process,
+ * and each process is given the sub-extent it requests (UPDATE_EXTENT, as ParaView splits an
+ * image among MPI ranks): memory per rank is the whole field's.
  */
 #ifndef vtkCloudFieldReader_h
 #define vtkCloudFieldReader_h
