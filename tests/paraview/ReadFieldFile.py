@@ -11,7 +11,8 @@ active voxels' box: every non-empty voxel, at its place).
 
 Then broken copies of the file (truncated, garbage, empty, missing) are opened: each must leave
 the reader's output empty and its LastError naming the file, and the same reader must read the
-good file again afterwards. A reader that crashed would end pvbatch with a non-zero status; one
+good file again afterwards; so must too small a MaximumVoxels and an ArrayName the file does not
+hold. A reader that crashed would end pvbatch with a non-zero status; one
 that returned data for a broken file, or an error without the file's name, fails the checks.
 
 Usage: pvbatch ReadFieldFile.py SOURCE.json|SOURCE.cdl EXTENSION"""
@@ -133,5 +134,18 @@ for name in list(broken) + ["missing"]:
                   "%s: %d points read from a broken file" % (name, output.GetNumberOfPoints()))
     testing.check(bad in message, "%s: the error %r does not name the file" % (name, message))
 
+# The reader's options reach cloudvis's reader: a field larger than MaximumVoxels and an array the
+# file does not hold are refused, naming the file.
 reader.FileName = path
-check_same_as_cloudvis(reader, path + " after the broken files")
+for option, value, default in (("MaximumVoxels", 100, reader.MaximumVoxels),
+                               ("ArrayName", "no_such_array", "")):
+    setattr(reader, option, value)
+    reader.UpdatePipeline()
+    output = servermanager.Fetch(reader)
+    message = last_error(reader)
+    print("%s %s: %s" % (option, value, message))
+    testing.check(output.GetNumberOfPoints() == 0 and path in message,
+                  "%s %s: %d points, error %r" % (option, value, output.GetNumberOfPoints(), message))
+    setattr(reader, option, default)
+
+check_same_as_cloudvis(reader, path + " after the broken files and options")
