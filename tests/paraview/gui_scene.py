@@ -25,12 +25,13 @@ SCENES = {
     "picture": {
         "source": {"Dimensions": [128, 128, 128]},
         "render": {"jitter": True, "accumulate": 16},
-        "camera": {"position": [3.2, 1.4, 5.6], "focal_point": [0, -0.05, 0], "view_angle": 30},
+        "camera": {"position": [3.8, 1.7, 6.6], "focal_point": [0, -0.05, 0], "view_angle": 30},
         "background": [0.36, 0.52, 0.74],
         "transfer_function": {"opacity": [[0, 0], [0.05, 0], [1, 1]],
-                              "color": [[0, 1, 1, 1], [1, 1, 1, 1]], "unit_distance": 0.05},
-        "lights": [{"position": [4, 6, 2], "color": [1, 0.96, 0.9], "intensity": 1.6}],
-        "ambient": {"color": [0.6, 0.75, 1], "strength": 0.35},
+                              "color": [[0, 0.95, 0.95, 0.95], [1, 0.95, 0.95, 0.95]],
+                              "unit_distance": 0.07},
+        "lights": [{"position": [4, 6, 2], "color": [1, 0.96, 0.9], "intensity": 0.9}],
+        "ambient": {"color": [0.6, 0.75, 1], "strength": 0.25},
         "orientation_axes": True,
     },
 }

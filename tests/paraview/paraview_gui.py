@@ -181,19 +181,37 @@ def xdotool(display, *args):
     subprocess.run(["xdotool", *args], env=dict(os.environ, DISPLAY=display), check=True)
 
 
+def drag(display, start, end):
+    """A left-button drag, in steps, as Qt's splitters follow a moving mouse."""
+    xdotool(display, "mousemove", "--sync", str(start[0]), str(start[1]))
+    time.sleep(0.3)
+    xdotool(display, "mousedown", "1")
+    time.sleep(0.3)
+    steps = 5
+    for step in range(1, steps + 1):
+        x = start[0] + (end[0] - start[0]) * step // steps
+        y = start[1] + (end[1] - start[1]) * step // steps
+        xdotool(display, "mousemove", "--sync", str(x), str(y))
+        time.sleep(0.1)
+    xdotool(display, "mouseup", "1")
+    time.sleep(0.5)
+
+
 def picture(work_dir, display, paraview, output):
-    """The docs' picture: the Properties panel scrolled down to the representation's Cloud
-    Lighting group, then the screen once the view has settled."""
+    """The docs' picture: the left docks made wider and the Properties panel taller (ParaView
+    5.11's default layout of a 1400 x 900 window: the docks' splitters at x 295 and y 400), the
+    panel scrolled so that the representation and its Cloud Lighting group show together, then
+    the screen once the view has settled."""
     if not wait_for_ready(work_dir, paraview, 120):
         fail("paraview did not run its script within 120 s")
     time.sleep(5)  # the window reaching its final size and the view drawn at it
-    # The Properties panel's scroll area (left dock, below the pipeline browser): the wheel
-    # scrolls it past the source's properties and ParaView's display sections.
-    xdotool(display, "mousemove", "140", "700")
-    for _ in range(int(os.environ.get("CLOUDVIS_GUI_SCROLL", "14"))):
+    drag(display, (295, 600), (440, 600))
+    drag(display, (150, 400), (150, 250))
+    xdotool(display, "mousemove", "200", "700")
+    for _ in range(int(os.environ.get("CLOUDVIS_GUI_SCROLL", "1"))):
         xdotool(display, "click", "5")
     xdotool(display, "mousemove", "1399", "899")  # no hover highlight in the picture
-    time.sleep(3)
+    time.sleep(5)  # the view redrawn at its new size, its frames accumulated
     capture(display, output)
     print("wrote %s" % output)
 
