@@ -136,14 +136,21 @@ def find_cloud(screen):
 
 
 def wait_for_ready(work_dir, paraview, timeout):
+    """Waits for gui_scene.py's `ready` file. A script that raises leaves the GUI running, so
+    its traceback in ParaView's output ends the wait too."""
     ready = os.path.join(work_dir, "ready")
+    log = os.path.join(work_dir, "paraview.log")
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         if os.path.exists(ready):
             return True
         if paraview.poll() is not None:
             fail("paraview exited with %d before showing the cloud (%s)" % (
-                paraview.returncode, os.path.join(work_dir, "paraview.log")))
+                paraview.returncode, log))
+        with open(log, errors="replace") as f:
+            output = f.read()
+        if "Traceback (most recent call last)" in output:
+            fail("gui_scene.py failed in paraview:\n" + output)
         time.sleep(0.5)
     return False
 
