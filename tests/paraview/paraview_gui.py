@@ -22,6 +22,7 @@ scene, scrolls the Properties panel to the Cloud Lighting group with xdotool and
 Environment: CLOUDVIS_PARAVIEW_PLUGIN (the plugin), PYTHONPATH with ParaView's Python package
 (the private prefix, paraview/make-prefix.sh), PARAVIEW (the binary, default `paraview`)."""
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -172,6 +173,10 @@ def check(work_dir, display, paraview):
         # Seen on several screens in a row: the window settles (its final size, a dialog that
         # opens after the script) in the first seconds.
         if seen == STEADY_CAPTURES:
+            errors = paraview_errors(work_dir)
+            if errors:
+                fail("the cloud is drawn, but ParaView reported errors (its Output Messages "
+                     "window):\n" + errors)
             box, count, centre = found
             print("the cloud covers %d pixels of the %d x %d render view at %d,%d "
                   "(centre at %.2f, %.2f), %.0f s after paraview started" % (
@@ -180,8 +185,16 @@ def check(work_dir, display, paraview):
             return
         time.sleep(1.0)
     capture(display, os.path.join(work_dir, "screen.png"))
-    fail("%s after %d s; the screen is in %s" % (found, CHECK_TIMEOUT_S,
-                                                 os.path.join(work_dir, "screen.png")))
+    fail("%s after %d s; the screen is in %s\n%s" % (
+        found, CHECK_TIMEOUT_S, os.path.join(work_dir, "screen.png"), paraview_errors(work_dir)))
+
+
+def paraview_errors(work_dir):
+    """The errors ParaView printed (VTK's, such as the mapper's refusals, which the GUI also
+    shows in its Output Messages window), one a line."""
+    with open(os.path.join(work_dir, "paraview.log"), errors="replace") as f:
+        # Without loguru's colour codes.
+        return "".join(re.sub(r"\x1b\[[0-9;]*m", "", line) for line in f if "ERR|" in line)
 
 
 def xdotool(display, *args):
