@@ -16,7 +16,8 @@ what is checked is what is on the display.
 
 `check` sets up the scene so that a cloud is easy to tell apart from everything else on screen
 (a pure blue background, a yellow cloud) and passes once a cloud-coloured blob fills part of the
-middle of the blue render view; it fails when none appears in time. `picture` shows the docs'
+middle of the blue render view on several captures in a row and ParaView has printed no error;
+it fails when no cloud appears in time, saying what the screen showed and what ParaView reported. `picture` shows the docs'
 scene, scrolls the Properties panel to the Cloud Lighting group with xdotool and saves the screen.
 
 Environment: CLOUDVIS_PARAVIEW_PLUGIN (the plugin), PYTHONPATH with ParaView's Python package
@@ -157,8 +158,8 @@ def wait_for_ready(work_dir, paraview, timeout):
 
 
 def check(work_dir, display, paraview):
-    """Passes once the cloud is on the screen; fails after CHECK_TIMEOUT_S, leaving the last
-    screen as screen.png in work_dir."""
+    """Passes once the cloud is on STEADY_CAPTURES screens in a row; fails after
+    CHECK_TIMEOUT_S, leaving the last screen as screen.png in work_dir."""
     start = time.monotonic()
     if not wait_for_ready(work_dir, paraview, CHECK_TIMEOUT_S):
         fail("paraview did not run its script within %d s (%s)" % (
