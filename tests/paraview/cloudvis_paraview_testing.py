@@ -67,6 +67,13 @@ def render_view(scene):
     width, height = scene["render"]["size"]
     view.ViewSize = [width, height]
     view.OrientationAxesVisibility = 0
+    set_view(view, scene)
+    return view
+
+
+def set_view(view, scene):
+    """The scene's background and camera on a view (pvbatch's, or the GUI's own, whose size is
+    the window's)."""
     view.UseColorPaletteForBackground = 0
     view.Background = scene.get("background", [0, 0, 0])
     # The camera is the scene's, not the one ParaView's first render would fit to the data.
@@ -77,7 +84,6 @@ def render_view(scene):
     view.CameraViewUp = camera.get("view_up", [0, 1, 0])
     view.CameraViewAngle = camera.get("view_angle", 30)
     view.CameraParallelProjection = 0
-    return view
 
 
 def show_cloud(source, view, scene, lighting):
