@@ -12,8 +12,8 @@ frames=${2:-12}
 dimensions=${3:-128,512,128}
 here=$(cd "$(dirname "$0")" && pwd)
 scene="$here/../tests/paraview/scenes/shadow.json"
-plugin="$build/paraview/lib/paraview-5.11/plugins/CloudVis/CloudVis.so"
-export PYTHONPATH="$build/paraview-prefix/python/usr/lib/python3/dist-packages"
+export CLOUDVIS_PARAVIEW_PLUGIN="$build/paraview/lib/paraview-5.11/plugins/CloudVis/CloudVis.so"
+export PYTHONPATH="$build/paraview-prefix/python/usr/lib/python3/dist-packages:$here/../tests/paraview"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # Open MPI on one machine, as the tests run it (tests/paraview/RunPvbatch.cmake).
@@ -22,14 +22,13 @@ export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_R
 
 "$build/bin/cloudvis" generate "$scene" --set "field.dimensions=$dimensions" -o "$work/field.vti" > /dev/null
 echo "field: $dimensions voxels (float), scene $scene, $frames frames, each marched anew"
-echo "(multiple scattering: the volume on one process and one rank, the octaves on more: docs/paraview.md)"
 printf 'cloudvis render, one process: '
-"$build/bin/cloudvis" render "$scene" --set "field.dimensions=$dimensions" --set render.march.multiple_scattering=volume \
-  -o "$work/cloudvis.png" -q --benchmark "$frames" | tail -1
+"$build/bin/cloudvis" render "$scene" --set "field.dimensions=$dimensions" -o "$work/cloudvis.png" -q \
+  --benchmark "$frames" | tail -1
 one=""
 for ranks in 1 2 4; do
   line=$(mpirun -np "$ranks" pvbatch --symmetric --force-offscreen-rendering "$here/paraview/ranks.py" \
-    "$plugin" "$work/field.vti" "$scene" "$frames" 2> /dev/null | grep "^ranks")
+    "$work/field.vti" "$scene" "$frames" 2> /dev/null | grep "^ranks")
   ms=$(echo "$line" | sed -E 's/^ranks [0-9]+: ([0-9.]+) ms.*/\1/')
   one=${one:-$ms}
   echo "$line; $(awk -v a="$ms" -v b="$one" 'BEGIN { printf "%.2fx the time of one rank", a / b }')"

@@ -4,37 +4,26 @@ marched anew: no accumulation) and prints, on rank 0, the mean milliseconds per 
 frame's (which uploads the pieces and exchanges the optical depth), and every rank's peak resident
 memory.
 
-Usage: pvbatch --symmetric ranks.py PLUGIN FIELD.vti SCENE.json FRAMES"""
-import json
+Usage: pvbatch --symmetric ranks.py FIELD.vti SCENE.json FRAMES, with the plugin's path in
+CLOUDVIS_PARAVIEW_PLUGIN and tests/paraview on PYTHONPATH (bench/paraview-ranks.sh sets them)."""
 import sys
 import time
 
-from paraview import servermanager, simple
+from paraview import simple
 from paraview.modules.vtkRemotingCore import vtkProcessModule
+from vtkmodules.vtkCommonCore import vtkIntArray
 
-plugin, field, scene_path, frames = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
-simple.LoadPlugin(plugin, remote=False, ns=vars(simple))
-with open(scene_path) as f:
-    scene = json.load(f)
+import cloudvis_paraview_testing as testing  # tests/paraview: the scene's view and display
+
+field, scene_path, frames = sys.argv[1], sys.argv[2], int(sys.argv[3])
+testing.load_plugin()
+scene = testing.read_scene(scene_path)
 controller = vtkProcessModule.GetProcessModule().GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 
 reader = simple.XMLImageDataReader(FileName=[field])
-view = simple.CreateView("RenderView")
-view.ViewSize = scene["render"]["size"]
-view.OrientationAxesVisibility = 0
-display = simple.Show(reader, view)
-display.SetRepresentationType("Cloud Volume")
-simple.ColorBy(display, ("POINTS", "density"))
-transfer = scene["transfer_function"]
-lut = simple.GetColorTransferFunction("density")
-lut.AutomaticRescaleRangeMode = "Never"
-lut.RGBPoints = [value for point in transfer["color"] for value in point]
-simple.GetOpacityTransferFunction("density").Points = [
-    value for x, a in transfer["opacity"] for value in (x, a, 0.5, 0.0)]
-display.ScalarOpacityUnitDistance = transfer["unit_distance"]
-display.CloudLighting = "march"
-display.CloudSunDirection = scene["lights"][0]["position"]
+view = testing.render_view(scene)
+display = testing.show_cloud(reader, view, scene, "march")
 display.CloudJitter = 0
 display.CloudAccumulatedFrames = 1
 
@@ -53,8 +42,6 @@ per_frame = (time.perf_counter() - start) / frames
 
 with open("/proc/self/status") as f:
     peak = next(int(line.split()[1]) for line in f if line.startswith("VmHWM:"))
-peaks = [0] * ranks
-from vtkmodules.vtkCommonCore import vtkIntArray
 mine, all_ranks = vtkIntArray(), vtkIntArray()
 mine.InsertNextValue(peak // 1024)
 controller.AllGather(mine, all_ranks)

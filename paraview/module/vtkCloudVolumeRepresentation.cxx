@@ -154,7 +154,8 @@ void vtkCloudVolumeRepresentation::UpdateSun()
   sun.Positional = false;
   sun.Position = glm::dvec3(this->SunDirection[0], this->SunDirection[1], this->SunDirection[2]);
   sun.FocalPoint = glm::dvec3(0.0);
-  sun.Color = glm::vec3(float(this->SunColor[0]), float(this->SunColor[1]), float(this->SunColor[2]));
+  sun.Color =
+    glm::vec3(float(this->SunColor[0]), float(this->SunColor[1]), float(this->SunColor[2]));
   sun.Intensity = float(this->SunIntensity);
   this->CloudMapper->SetLights({ sun });
   this->ExchangeInputsTime.Modified();
@@ -211,8 +212,9 @@ void vtkCloudVolumeRepresentation::UpdateMapperParameters()
   this->Actor->SetMapper(this->CloudMapper);
 }
 
-int vtkCloudVolumeRepresentation::ProcessViewRequest(
-  vtkInformationRequestKey* requestType, vtkInformation* inInfo, vtkInformation* outInfo)
+int vtkCloudVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* requestType,
+  vtkInformation* inInfo,
+  vtkInformation* outInfo)
 {
   if (!this->Superclass::ProcessViewRequest(requestType, inInfo, outInfo))
   {
@@ -243,7 +245,8 @@ namespace
 // The exchange's grid: the whole field's box (the union of the ranks' pieces) at a quarter of
 // the finest spacing any piece has, as the multiple-scattering volume's grid (at least 2 points
 // per axis). The same on every rank, which all call this together.
-cloudvis::OpticalDepthGrid WholeFieldGrid(vtkMultiProcessController* controller, vtkImageData* piece)
+cloudvis::OpticalDepthGrid WholeFieldGrid(vtkMultiProcessController* controller,
+  vtkImageData* piece)
 {
   double lower[3], upper[3], spacing[3];
   for (int a = 0; a < 3; ++a)
@@ -293,8 +296,8 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
   // Every rank holds the same properties, so every rank takes the same branch, and either all
   // of them reduce below or none does.
   auto* piece = vtkImageData::SafeDownCast(this->Cache);
-  const bool wanted = this->ShadowExchange &&
-    this->Lighting->GetModel() == vtkCloudLightingProperty::MarchLighting;
+  const bool wanted =
+    this->ShadowExchange && this->Lighting->GetModel() == vtkCloudLightingProperty::MarchLighting;
   if (!wanted)
   {
     if (!this->CloudMapper->GetExternalOpticalDepths().Empty())
@@ -307,7 +310,9 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
   // Recomputed when any rank's piece, transfer function, lighting, sun or extinction changed
   // since the last exchange.
   const vtkMTimeType inputs = std::max({ piece ? piece->GetMTime() : vtkMTimeType(0),
-    this->Property->GetMTime(), this->Lighting->GetMTime(), this->ExchangeInputsTime.GetMTime() });
+    this->Property->GetMTime(),
+    this->Lighting->GetMTime(),
+    this->ExchangeInputsTime.GetMTime() });
   int stale = inputs > this->ExchangedTime ? 1 : 0, anyStale = 0;
   controller->AllReduce(&stale, &anyStale, 1, vtkCommunicator::MAX_OP);
   if (!anyStale)
@@ -340,8 +345,8 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
   cloudvis::OpticalDepthGrid total = own;
   if (!anyFailed)
   {
-    controller->AllReduce(own.Depths.data(), total.Depths.data(), vtkIdType(values),
-      vtkCommunicator::SUM_OP);
+    controller->AllReduce(
+      own.Depths.data(), total.Depths.data(), vtkIdType(values), vtkCommunicator::SUM_OP);
   }
   this->CloudMapper->SetExternalOpticalDepths(
     anyFailed ? cloudvis::OpticalDepthGrid() : cloudvis::DepthsFromOutside(total, own));
@@ -353,8 +358,8 @@ void vtkCloudVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Lighting: " << this->Lighting->GetModelAsString() << "\n";
-  os << indent << "SunDirection: " << this->SunDirection[0] << ", " << this->SunDirection[1]
-     << ", " << this->SunDirection[2] << "\n";
+  os << indent << "SunDirection: " << this->SunDirection[0] << ", " << this->SunDirection[1] << ", "
+     << this->SunDirection[2] << "\n";
   os << indent << "SunIntensity: " << this->SunIntensity << "\n";
   os << indent << "ShadowExchange: " << this->ShadowExchange << "\n";
   os << indent << "ExchangeCount: " << this->ExchangeCount << "\n";

@@ -25,10 +25,10 @@
 #define vtkCloudVolumeRepresentation_h
 
 #include "cloudvisParaViewModule.h"
-#include "vtkImageVolumeRepresentation.h"
 #include "vtkCloudLightingProperty.h" // for the lighting property
-#include "vtkNew.h"                    // for the lighting property
-#include "vtkTimeStamp.h"              // for the exchange's inputs
+#include "vtkImageVolumeRepresentation.h"
+#include "vtkNew.h"       // for the lighting property
+#include "vtkTimeStamp.h" // for the exchange's inputs
 
 class vtkCloudVolumeMapper;
 class vtkRenderer;
@@ -40,7 +40,8 @@ public:
   vtkTypeMacro(vtkCloudVolumeRepresentation, vtkImageVolumeRepresentation);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  int ProcessViewRequest(vtkInformationRequestKey* requestType, vtkInformation* inInfo,
+  int ProcessViewRequest(vtkInformationRequestKey* requestType,
+    vtkInformation* inInfo,
     vtkInformation* outInfo) override;
 
   ///@{

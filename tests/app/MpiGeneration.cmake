@@ -12,15 +12,7 @@
 cmake_minimum_required(VERSION 3.16)
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-# Open MPI in a container, as root, on one machine: no ssh launcher, shared memory and loopback
-# only, no single-copy mechanism that needs ptrace, more ranks than cores allowed.
-set(ENV{OMPI_MCA_plm_rsh_agent} "")
-set(ENV{OMPI_MCA_btl} "self,vader")
-set(ENV{OMPI_MCA_btl_vader_single_copy_mechanism} "none")
-set(ENV{OMPI_MCA_oob_tcp_if_include} "lo")
-set(ENV{OMPI_MCA_rmaps_base_oversubscribe} "1")
-set(ENV{OMPI_ALLOW_RUN_AS_ROOT} "1")
-set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} "1")
+include("${CMAKE_CURRENT_LIST_DIR}/../../cmake/OpenMpiOnOneMachine.cmake")
 # Under LeakSanitizer (make test-asan): Open MPI keeps what MPI_Init allocates until the process
 # exits, and unloads its components (dlclose) in MPI_Finalize, so those allocations would be
 # reported from "<unknown module>" that no suppression can name. The components stay loaded, and
