@@ -204,14 +204,6 @@ void vtkCloudVolumeRepresentation::SetShadowExchange(bool exchange)
   }
 }
 
-void vtkCloudVolumeRepresentation::UpdateMapperParameters()
-{
-  this->Superclass::UpdateMapperParameters();
-  // cloudvis's mapper reads the active scalars; ParaView's choice of the array to color by
-  // becomes them (the superclass has set it on the mapper as VTK's mappers take it).
-  this->Actor->SetMapper(this->CloudMapper);
-}
-
 int vtkCloudVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* requestType,
   vtkInformation* inInfo,
   vtkInformation* outInfo)

@@ -104,8 +104,6 @@ protected:
   vtkCloudVolumeRepresentation();
   ~vtkCloudVolumeRepresentation() override;
 
-  void UpdateMapperParameters() override;
-
 private:
   vtkCloudVolumeRepresentation(const vtkCloudVolumeRepresentation&) = delete;
   void operator=(const vtkCloudVolumeRepresentation&) = delete;
