@@ -335,6 +335,16 @@ MarchProblem ComputePieceScatteringInputs(const MarchSetup& setup,
   return {};
 }
 
+std::size_t ScatteringInputValues(glm::ivec3 wholeDimensions)
+{
+  // Three vec4 per cell of every grid, and the coarsest grid's first guess.
+  const std::vector<glm::ivec3> grids = ScatteringGrids(wholeDimensions);
+  std::size_t values = 0;
+  for (const glm::ivec3& size : grids)
+    values += 12 * std::size_t(size.x) * size.y * size.z;
+  return values + 4 * std::size_t(grids.front().x) * grids.front().y * grids.front().z;
+}
+
 std::vector<float> PackScatteringInputs(const ScatteringInputs& inputs)
 {
   std::vector<float> values;
@@ -358,13 +368,9 @@ bool UnpackScatteringInputs(const std::vector<float>& values,
   const VolumeGeometry& whole,
   ScatteringInputs& inputs)
 {
-  const std::vector<glm::ivec3> grids = ScatteringGrids(whole.Dimensions);
-  std::size_t expected = 0;
-  for (const glm::ivec3& size : grids)
-    expected += 12 * std::size_t(size.x) * size.y * size.z;
-  expected += 4 * std::size_t(grids.front().x) * grids.front().y * grids.front().z;
-  if (values.size() != expected)
+  if (values.size() != ScatteringInputValues(whole.Dimensions))
     return false;
+  const std::vector<glm::ivec3> grids = ScatteringGrids(whole.Dimensions);
   inputs.assign(grids.size(), ScatteringGrid());
   std::size_t next = 0;
   const auto take = [&](std::vector<glm::vec4>& texels, glm::ivec3 size)

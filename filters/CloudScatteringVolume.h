@@ -99,7 +99,8 @@ CLOUDVISFILTERS_EXPORT void ComputeScatteringVolume(const MarchUniforms& u,
 // (ComputePieceScatteringInputs: zero elsewhere), a sum over the pieces (an MPI_Allreduce of
 // PackScatteringInputs) gives every piece the whole field's inputs, each solves them
 // (SolveWholeFieldScattering, identical everywhere) and its march reads the result through a world
-// map (SetExternalScatteringVolume). docs/lighting.md, "Across the pieces of a field".
+// map (SetExternalScatteringVolume). docs/transport.md, "The multiple-scattering volume over the
+// whole field".
 
 // A multiple-scattering volume over a whole field: where its voxels lie (Dimensions, the map from
 // index points to world points) and its finest grid's Fluence and Flux. Empty: none.
@@ -122,7 +123,7 @@ CLOUDVISFILTERS_EXPORT VolumeGeometry WholeFieldGeometry(vtkImageData* piece,
 // [first, last) of the piece's points along each axis, or [first, last] where the piece ends with
 // the whole field, so each cell has one owner, cells on the faces pieces share included. Other
 // cells are 0 (as are those of no piece). A cell's samples near a face read the piece's clamped
-// edge where they would read the neighbour's (docs/lighting.md gives the difference measured).
+// edge where they would read the neighbour's (docs/transport.md gives the difference measured).
 // Media and sources are per local unit of whole's frame. Returns SetUpMarch's problem, or one of
 // the geometry when the piece's voxels are not a sub-grid of whole's.
 CLOUDVISFILTERS_EXPORT MarchProblem ComputePieceScatteringInputs(const MarchSetup& setup,
@@ -134,6 +135,8 @@ CLOUDVISFILTERS_EXPORT MarchProblem ComputePieceScatteringInputs(const MarchSetu
 // Medium, Source and Direction of each grid from the coarsest, then the coarsest's Fluence.
 // UnpackScatteringInputs sizes `inputs` for `whole` and returns false when `values` has another
 // length.
+// ScatteringInputValues is the array's length for a whole field of these dimensions.
+CLOUDVISFILTERS_EXPORT std::size_t ScatteringInputValues(glm::ivec3 wholeDimensions);
 CLOUDVISFILTERS_EXPORT std::vector<float> PackScatteringInputs(const ScatteringInputs& inputs);
 CLOUDVISFILTERS_EXPORT bool UnpackScatteringInputs(const std::vector<float>& values,
   const VolumeGeometry& whole,

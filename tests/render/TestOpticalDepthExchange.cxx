@@ -6,6 +6,9 @@
 // - The depths of two pieces add up to the whole field's at every grid point (CPU alone).
 // - A piece rendered with external depths: the GPU image equals the CPU reference given the
 //   same depths, and clearing them brings the unshadowed image back (on both).
+// - The multiple-scattering volume over the whole field (ScatteringAcrossPieces): the inputs the
+//   pieces own, summed, are the whole field's; a piece reading the volume solved from them is the
+//   whole field, on the GPU as on the CPU.
 // - The exchange's end-to-end property: a dense slab between the sun and a cloud, cut so that the
 //   slab is one piece and the cloud another; the cloud piece rendered with the slab piece's
 //   depths equals the whole field rendered at once over the pixels whose rays cross the cloud
@@ -500,12 +503,13 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
     EXPECT_LT(with.Max, c.MaxGate);
     return;
   }
-  // With the multiple-scattering volume each piece solves its own diffusion: the light the slab
-  // scatters no longer diffuses down to the cloud (the exchange carries optical depth, not
-  // diffuse light), so the piece is darker than the whole, at every distance from the shared
+  // With a multiple-scattering volume of its own each piece solves its own diffusion: the light
+  // the slab scatters no longer diffuses down to the cloud (the exchange carries optical depth,
+  // not diffuse light), so the piece is darker than the whole, at every distance from the shared
   // plane (measured: 0.48 of the whole's mean radiance within 0.15 below the plane, 0.69 at 0.45
-  // to 0.6; RMS 0.21, max 0.46 of the brightest over all). A known limit of the exchange, gated
-  // at what it is, and still far closer than no exchange (RMS 1.19).
+  // to 0.6; RMS 0.21, max 0.46 of the brightest over all). Why the pieces share one volume of the
+  // whole field (ScatteringAcrossPieces below); gated at what it is, and still far closer than no
+  // exchange (RMS 1.19).
   EXPECT_LT(with.Rms, 0.3);
   EXPECT_LT(with.Max, 0.6);
   EXPECT_LT(with.Rms, 0.25 * without.Rms);
