@@ -47,9 +47,9 @@ constexpr float SigmaT = 8.0f; // per world unit at density 1
 // summed inputs against the whole field's, relative to the largest value, and a piece reading the
 // whole field's volume against the whole rendered at once, relative to the brightest radiance.
 // Measured on llvmpipe: the sources (with their moments and the first guess) differ by at most
-// 0.050 and RMS 0.0069 of the largest; the piece's image by RMS 0.0078 (1.1 8-bit levels of the
-// linear radiance) and at most 0.023 of the brightest, against RMS 0.21 and 0.46 with the
-// piece's own volume. The gates are twice that.
+// 0.051 and RMS 0.0069 of the largest (pieces cut through the ball, at z = 13); the piece's image
+// by RMS 0.0078 (1.1 8-bit levels of the linear radiance) and at most 0.023 of the brightest,
+// against RMS 0.21 and 0.46 with the piece's own volume. The gates are twice that.
 constexpr double SourceMaxGate = 0.1, SourceRmsGate = 0.015;
 constexpr double WholeVolumeRmsGate = 0.015, WholeVolumeMaxGate = 0.045;
 
@@ -597,9 +597,9 @@ ScatteringInputs SummedInputs(vtkImageData* whole,
   return summed;
 }
 
-std::vector<vtkSmartPointer<vtkImageData>> TwoPieces(vtkImageData* whole)
+std::vector<vtkSmartPointer<vtkImageData>> TwoPieces(vtkImageData* whole, int split = SplitPoint)
 {
-  return { Piece(whole, 2, 0, SplitPoint), Piece(whole, 2, SplitPoint, Points - 1) };
+  return { Piece(whole, 2, 0, split), Piece(whole, 2, split, Points - 1) };
 }
 
 // One input's largest |a - b| and RMS over all grids' cells and channels, and its largest |b|.
@@ -640,7 +640,11 @@ TEST(ScatteringAcrossPieces, OwnedInputsSumToTheWholeField)
   const vtkSmartPointer<vtkImageData> whole = SlabOverCloud();
   SideScene scene(Cases[2], whole);
   std::vector<std::size_t> counts;
-  const ScatteringInputs summed = SummedInputs(whole, TwoPieces(whole), scene.Scene, &counts);
+  // Cut through the ball at z = 13, where the coarsest grid (4^3) has cells centred on the plane
+  // the pieces share: the rule that gives such a cell one owner is in the sum.
+  const int split = 13;
+  const ScatteringInputs summed =
+    SummedInputs(whole, TwoPieces(whole, split), scene.Scene, &counts);
   const ScatteringInputs all = SummedInputs(whole, { whole }, scene.Scene);
   ASSERT_EQ(summed.size(), all.size());
   ASSERT_EQ(counts.size(), 2u);
@@ -677,10 +681,13 @@ TEST(ScatteringAcrossPieces, OwnedInputsSumToTheWholeField)
   }
   ASSERT_GT(sigma.Largest, 0.1);
   ASSERT_GT(source.Largest, 0.0);
-  // The medium: the same texels, read at the same points (a cell's samples beyond its piece's
-  // face read the face, where this field's density is 0 on both sides).
+  // The medium: the same texels, read at the same points, but for the samples of the cells next
+  // to the shared plane that fall beyond their piece's face, which read the face (measured:
+  // extinction at most 0.93% of the largest, RMS 0.046%; albedo, whose density ramp is flat, and
+  // every cell away from the plane to float rounding, 3e-7).
   EXPECT_LT(albedo.Worst, 1e-5 * albedo.Largest);
-  EXPECT_LT(sigma.Worst, 1e-5 * sigma.Largest);
+  EXPECT_LT(sigma.Worst, 2e-2 * sigma.Largest);
+  EXPECT_LT(sigma.Rms, 1e-3 * sigma.Largest);
   // The sources: the beams' optical depth from the exchanged grid (a quarter of the field's
   // resolution, trilinear) where the whole field reads its own light volumes, and the cells
   // whose beams enter across the shared plane, whose entry point the piece clamps to its face.
