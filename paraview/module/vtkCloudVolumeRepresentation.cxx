@@ -363,6 +363,10 @@ void vtkCloudVolumeRepresentation::ExchangeScatteringVolume(vtkMultiProcessContr
   whole.Dimensions = glm::ivec3(wholeLast[0] - wholeFirst[0] + 1,
     wholeLast[1] - wholeFirst[1] + 1,
     wholeLast[2] - wholeFirst[2] + 1);
+  if (glm::any(glm::lessThan(whole.Dimensions, glm::ivec3(1))))
+  {
+    return; // no rank holds data (every rank sees the same extents)
+  }
   std::vector<float> own(cloudvis::ScatteringInputValues(whole.Dimensions), 0.0f);
   int failed = 0;
   if (holds)
