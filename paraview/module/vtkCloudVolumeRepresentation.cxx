@@ -3,6 +3,7 @@
 #include "CloudLightingParameters.h"
 #include "CloudOpticalDepthGrid.h"
 #include "CloudScatteringVolume.h"
+#include "CloudTransferTable.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkAlgorithm.h>
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -281,8 +283,21 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
   }
   // Recomputed when any rank's piece, transfer function, lighting, sun or extinction changed
   // since the last exchange.
+  // The transfer function by what the march reads of it (its table), not by the volume
+  // property's MTime: ParaView touches the property after the first render without changing it,
+  // and an exchange with the multiple-scattering volume costs seconds on a large field.
+  std::string tableProblem;
+  const cloudvis::TransferTable table = cloudvis::TransferTableOf(
+    this->Property, this->CloudMapper->GetExtinctionScale(), tableProblem);
+  std::vector<double> tableSignature = { table.Range[0], table.Range[1] };
+  tableSignature.insert(tableSignature.end(), table.RGBA.begin(), table.RGBA.end());
+  if (tableSignature != this->ExchangedTable)
+  {
+    this->ExchangedTable = std::move(tableSignature);
+    this->ExchangedTableTime.Modified();
+  }
   const vtkMTimeType inputs = std::max({ piece ? piece->GetMTime() : vtkMTimeType(0),
-    this->Property->GetMTime(),
+    this->ExchangedTableTime.GetMTime(),
     this->Lighting->GetMTime(),
     this->ExchangeInputsTime.GetMTime() });
   int stale = inputs > this->ExchangedTime ? 1 : 0, anyStale = 0;

@@ -31,6 +31,8 @@
 #include "vtkNew.h"       // for the lighting property
 #include "vtkTimeStamp.h" // for the exchange's inputs
 
+#include <vector> // for the exchange's inputs
+
 class vtkCloudVolumeMapper;
 class vtkImageData;
 class vtkMultiProcessController;
@@ -129,10 +131,13 @@ private:
   bool ShadowExchange = true;
   int ExchangeCount = 0;
   // What the last exchange was computed for: the latest modification time of its inputs (the
-  // piece, the volume property, the lighting, and ExchangeInputsTime: the sun, the extinction
+  // piece, the transfer table, the lighting, and ExchangeInputsTime: the sun, the extinction
   // scale).
   vtkTimeStamp ExchangeInputsTime;
   vtkMTimeType ExchangedTime = 0;
+  // The transfer table the last exchange read (its range and entries), and when it last changed.
+  std::vector<double> ExchangedTable;
+  vtkTimeStamp ExchangedTableTime;
 };
 
 #endif
