@@ -92,16 +92,19 @@ public:
 
   ///@{
   /**
-   * Exchange optical depth between ranks so that light crosses pieces. Default on. Off, each
-   * rank lights its piece as if it were the whole field (what ParaView's own volume mappers do).
+   * Exchange optical depth between ranks so that light crosses pieces, and with the
+   * multiple-scattering volume its inputs, so that diffuse light crosses them too. Default on.
+   * Off, each rank lights its piece as if it were the whole field (what ParaView's own volume
+   * mappers do).
    */
   void SetShadowExchange(bool exchange);
   vtkGetMacro(ShadowExchange, bool);
   ///@}
 
   /**
-   * Times the ranks have exchanged optical depth (each exchange is one MPI_Allreduce of the grid),
-   * for tests and the benchmark.
+   * Times the ranks have exchanged optical depth (each exchange is one MPI_Allreduce of the grid,
+   * and one of the multiple-scattering volume's inputs when the march reads the volume), for
+   * tests and the benchmark.
    */
   vtkGetMacro(ExchangeCount, int);
 
