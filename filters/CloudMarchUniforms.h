@@ -40,6 +40,7 @@ namespace cloudvis
 struct LightVolumes;
 struct OpticalDepthGrid;
 struct ScatteringGrid;
+struct WholeFieldScattering;
 
 // The most samples one view ray may take. A step that would need more along the volume's
 // longest ray is refused with the smallest step the volume allows (docs/scene-format.md,
@@ -158,6 +159,12 @@ struct MarchUniforms
   // SetExternalOpticalDepths; on the GPU the mapper binds the grid as a texture.
   const OpticalDepthGrid* ExternalDepths = nullptr;
   glm::mat4 IndexToExternal{ 1.0f };
+  // A multiple-scattering volume solved over the whole field this volume is a piece of
+  // (CloudScatteringVolume.h), read instead of its own through IndexToScattering (index points to
+  // its texel coordinates); null: none. Both set by SetExternalScatteringVolume; on the GPU the
+  // mapper binds it as the volume's textures.
+  const WholeFieldScattering* ExternalScattering = nullptr;
+  glm::mat4 IndexToScattering{ 1.0f };
 };
 
 // What a renderer is given.

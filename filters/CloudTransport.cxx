@@ -90,6 +90,15 @@ glsl::Transport TransportOf(const MarchUniforms& u)
     t.ScatteringVolumeOn = 1;
     t.ScatteringVolumeSize = glm::vec3(ScatteringVolumeSize(u.Dimensions));
   }
+  if (u.ExternalScattering != nullptr && !u.ExternalScattering->Empty() && UsesScatteringVolume(p))
+  {
+    // A whole field's volume, on the GPU bound in place of the field's own.
+    t.Scattering = &u.ExternalScattering->Volume;
+    t.ScatteringVolumeOn = 1;
+    t.ScatteringVolumeSize = glm::vec3(u.ExternalScattering->Volume.Size);
+    t.ExternalScatteringVolume = 1;
+    t.IndexToScattering = u.IndexToScattering;
+  }
   return t;
 }
 

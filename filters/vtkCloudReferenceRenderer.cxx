@@ -117,6 +117,14 @@ void vtkCloudReferenceRenderer::SetExternalOpticalDepths(const cloudvis::Optical
   this->Modified();
 }
 
+void vtkCloudReferenceRenderer::SetExternalScatteringVolume(
+  const cloudvis::WholeFieldScattering& volume)
+{
+  this->ExternalScattering =
+    volume.Empty() ? nullptr : std::make_shared<const cloudvis::WholeFieldScattering>(volume);
+  this->Modified();
+}
+
 const std::vector<cloudvis::Light>* vtkCloudReferenceRenderer::GetCloudLights() const
 {
   return this->CloudLights ? &*this->CloudLights : nullptr;
@@ -378,9 +386,14 @@ int vtkCloudReferenceRenderer::RequestData(
     cloudvis::ComputeLightVolumes(uniforms, lightVolumes);
     uniforms.LightDepths = &lightVolumes;
   }
-  // And the multiple-scattering volume, after them (its source reads them).
+  // And the multiple-scattering volume, after them (its source reads them), unless one solved
+  // over the whole field is given.
   cloudvis::ScatteringGrid scattering;
-  if (cloudvis::UsesScatteringVolume(uniforms.Lighting))
+  if (this->ExternalScattering)
+  {
+    cloudvis::SetExternalScatteringVolume(uniforms, frame, this->ExternalScattering.get());
+  }
+  else if (cloudvis::UsesScatteringVolume(uniforms.Lighting))
   {
     cloudvis::ComputeScatteringVolume(uniforms, scattering);
     uniforms.MultipleScattering = &scattering;

@@ -64,6 +64,7 @@ namespace cloudvis
 {
 struct MarchUniforms;
 struct OpticalDepthGrid;
+struct WholeFieldScattering;
 }
 
 class CLOUDVISFILTERS_EXPORT vtkCloudReferenceRenderer : public vtkImageAlgorithm
@@ -200,6 +201,14 @@ public:
    * fails in words). Default none. Not for the path tracer (vtkCloudPathTracer ignores them).
    */
   void SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid);
+
+  /**
+   * A multiple-scattering volume solved over the whole distributed field the input is a piece of
+   * (CloudScatteringVolume.h), read instead of a volume of the input's own, as
+   * vtkCloudVolumeMapper::SetExternalScatteringVolume; an empty one clears it. Copied. Default
+   * none.
+   */
+  void SetExternalScatteringVolume(const cloudvis::WholeFieldScattering& volume);
 #endif
 
   ///@{
@@ -305,6 +314,7 @@ protected:
 #ifndef __VTK_WRAP__
   std::optional<std::vector<cloudvis::Light>> CloudLights; // in place of Lights when set
   std::shared_ptr<const cloudvis::OpticalDepthGrid> ExternalDepths; // null: none
+  std::shared_ptr<const cloudvis::WholeFieldScattering> ExternalScattering; // null: none
 #endif
   vtkNew<vtkMatrix4x4> VolumeMatrix;
   double SampleDistance = 0.0;

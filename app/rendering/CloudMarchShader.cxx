@@ -172,6 +172,8 @@ void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
   program->SetUniform3f("ExternalDepthSize", glm::value_ptr(t.ExternalDepthSize));
   program->SetUniformf("ExternalDepthCount", t.ExternalDepthCount);
   program->SetUniformMatrix4x4("IndexToExternal", glm::value_ptr(t.IndexToExternal));
+  program->SetUniformi("ExternalScatteringVolume", t.ExternalScatteringVolume);
+  program->SetUniformMatrix4x4("IndexToScattering", glm::value_ptr(t.IndexToScattering));
 
   // The march loop's own (CloudMarchFS.glsl).
   const float tableRange[2] = { float(u.Table->Range[0]), float(u.Table->Range[1]) };

@@ -9,6 +9,7 @@
 
 #include "CloudDensityTexture.h"
 #include "CloudExternalDepthTexture.h"
+#include "CloudExternalScatteringTexture.h"
 #include "CloudJitterTexture.h"
 #include "CloudLightVolumeTexture.h"
 #include "CloudMarchShader.h"
@@ -69,6 +70,7 @@ struct vtkCloudVolumeMapper::Internals
   cloudvis::LightVolumeTexture LightVolumes;
   cloudvis::ScatteringVolumeTexture Scattering; // the march's multiple scattering
   cloudvis::ExternalDepthTexture External;      // optical depths from outside the field
+  cloudvis::ExternalScatteringTexture ExternalScattering; // a whole field's volume, read instead
   cloudvis::MarchPrograms March;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   std::map<vtkRenderer*, std::unique_ptr<cloudvis::ViewTargets>> Views; // keys: identities only
@@ -88,7 +90,7 @@ struct vtkCloudVolumeMapper::Internals
   {
     return this->Density.GetBytes() + this->Transfer.GetBytes() + this->Occupancy.GetBytes() +
       this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes() + this->LightVolumes.GetBytes() +
-      this->Scattering.GetBytes() + this->External.GetBytes();
+      this->Scattering.GetBytes() + this->External.GetBytes() + this->ExternalScattering.GetBytes();
   }
 
   long long Bytes() const

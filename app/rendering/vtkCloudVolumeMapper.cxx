@@ -144,18 +144,17 @@ const std::vector<cloudvis::Light>* vtkCloudVolumeMapper::GetCloudLights() const
   return this->CloudLights ? &*this->CloudLights : nullptr;
 }
 
-bool vtkCloudVolumeMapper::ComputePieceOpticalDepths(vtkRenderer* renderer,
+bool vtkCloudVolumeMapper::ComputeOnPiece(vtkRenderer* renderer,
   vtkVolume* volume,
-  cloudvis::OpticalDepthGrid& grid)
+  const char* what,
+  const std::function<cloudvis::MarchProblem(const cloudvis::MarchSetup&)>& compute)
 {
   // What ComputeUniforms gives the march, from the objects rather than the textures (which need
   // a context and may not be made yet): the same texels, table and lights.
   this->LastError.clear();
-  grid.Lights = 0;
-  grid.Depths.clear();
   if (!volume)
   {
-    return this->Fail("ComputePieceOpticalDepths needs the volume the mapper draws");
+    return this->Fail(std::string(what) + " needs the volume the mapper draws");
   }
   vtkImageData* input = this->ValidInput(volume);
   if (!input)
@@ -185,8 +184,49 @@ bool vtkCloudVolumeMapper::ComputePieceOpticalDepths(vtkRenderer* renderer,
     this->LightingProperty->GetParameters(),
     this->CloudLights ? *this->CloudLights
                       : cloudvis::LightsOf(renderer ? renderer->GetLights() : nullptr));
-  const cloudvis::MarchProblem problem = cloudvis::ComputePieceOpticalDepths(setup, grid);
+  const cloudvis::MarchProblem problem = compute(setup);
   return !problem || this->Fail(problem.Message);
+}
+
+bool vtkCloudVolumeMapper::ComputePieceOpticalDepths(vtkRenderer* renderer,
+  vtkVolume* volume,
+  cloudvis::OpticalDepthGrid& grid)
+{
+  grid.Lights = 0;
+  grid.Depths.clear();
+  return this->ComputeOnPiece(renderer,
+    volume,
+    "ComputePieceOpticalDepths",
+    [&grid](const cloudvis::MarchSetup& setup)
+    { return cloudvis::ComputePieceOpticalDepths(setup, grid); });
+}
+
+bool vtkCloudVolumeMapper::ComputePieceScatteringInputs(vtkRenderer* renderer,
+  vtkVolume* volume,
+  const cloudvis::VolumeGeometry& whole,
+  std::vector<cloudvis::ScatteringGrid>& inputs)
+{
+  inputs.clear();
+  const cloudvis::OpticalDepthGrid& external = this->Internal->External.GetGrid();
+  return this->ComputeOnPiece(renderer,
+    volume,
+    "ComputePieceScatteringInputs",
+    [&](const cloudvis::MarchSetup& setup)
+    {
+      return cloudvis::ComputePieceScatteringInputs(
+        setup, external.Empty() ? nullptr : &external, whole, inputs);
+    });
+}
+
+void vtkCloudVolumeMapper::SetExternalScatteringVolume(const cloudvis::WholeFieldScattering& volume)
+{
+  this->Internal->ExternalScattering.Set(volume);
+  this->Modified();
+}
+
+const cloudvis::WholeFieldScattering& vtkCloudVolumeMapper::GetExternalScatteringVolume() const
+{
+  return this->Internal->ExternalScattering.GetVolume();
 }
 
 void vtkCloudVolumeMapper::SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid)
@@ -495,6 +535,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   else if (in.External.GetBytes() > 0)
   {
     in.External.Release(window);
+    in.ExternalScattering.Release(window);
   }
 
   // The march with light volumes reads the optical depth toward each light from them, computed
@@ -534,7 +575,24 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   // The multiple-scattering volume, after the light volumes (its source reads them, or marches
   // toward the lights in the frames that do), progressive when the mapper is asked to spread it
   // over frames.
-  const bool scatteringVolume = cloudvis::UsesScatteringVolume(uniforms.Lighting);
+  // A volume solved over the whole distributed field, when given, is read instead of one of the
+  // input's own.
+  const bool externalScattering =
+    cloudvis::UsesScatteringVolume(uniforms.Lighting) && in.ExternalScattering.HasVolume();
+  if (externalScattering)
+  {
+    if (!in.ExternalScattering.Update(window, budget, problem))
+    {
+      return this->Fail(problem);
+    }
+    cloudvis::SetExternalScatteringVolume(uniforms, localFrame, &in.ExternalScattering.GetVolume());
+  }
+  else if (in.ExternalScattering.GetBytes() > 0)
+  {
+    in.ExternalScattering.Release(window);
+  }
+  const bool scatteringVolume =
+    cloudvis::UsesScatteringVolume(uniforms.Lighting) && !externalScattering;
   if (scatteringVolume)
   {
     cloudvis::ScatteringVolumeTexture::Inputs scatteringInputs;
@@ -568,7 +626,8 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
          double(volume->GetMTime()),
          double(LatestChangeOfOtherProps(renderer, volume)),
          double(LatestChangeOfLights(renderer, this->CloudLights, false)),
-         double(in.Scattering.GetComputeCount()) })
+         double(in.Scattering.GetComputeCount()),
+         in.ExternalScattering.GetUploadTime() })
   {
     content.push_back(v);
   }
@@ -730,6 +789,10 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     in.Scattering.Activate(program);
   }
+  else if (externalScattering)
+  {
+    in.ExternalScattering.Activate(program);
+  }
   else if (marchModel) // the octaves: never read, as above
   {
     program->SetUniformi("ScatteringVolumeTexture", in.Density.GetTexture()->GetTextureUnit());
@@ -743,6 +806,10 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   if (scatteringVolume)
   {
     in.Scattering.Deactivate();
+  }
+  if (externalScattering)
+  {
+    in.ExternalScattering.Deactivate();
   }
   for (vtkTextureObject* texture : textures)
   {

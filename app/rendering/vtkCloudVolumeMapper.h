@@ -73,6 +73,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkVolumeMapper.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -85,8 +86,13 @@ class vtkRenderWindow;
 namespace cloudvis
 {
 struct LocalFrame;
+struct MarchProblem;
+struct MarchSetup;
 struct MarchUniforms;
 struct OpticalDepthGrid;
+struct ScatteringGrid;
+struct VolumeGeometry;
+struct WholeFieldScattering;
 }
 
 class CLOUDVISRENDERING_EXPORT vtkCloudVolumeMapper : public vtkVolumeMapper
@@ -300,6 +306,33 @@ public:
     cloudvis::OpticalDepthGrid& grid);
   void SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid);
   const cloudvis::OpticalDepthGrid& GetExternalOpticalDepths() const;
+  ///@}
+
+  ///@{
+  /**
+   * The multiple-scattering volume across the pieces of a distributed field
+   * (filters/CloudScatteringVolume.h, "Across the pieces of a distributed field"): the diffusion
+   * must be solved over the whole field, or light would not diffuse across the pieces' faces.
+   *
+   * ComputePieceScatteringInputs fills `inputs` with the inputs of the grids of the whole field
+   * `whole` (cloudvis::WholeFieldGeometry) for the cells this mapper's input owns, zero elsewhere,
+   * lit as the march lights (the volume's property, the mapper's lights or `renderer`'s, and the
+   * external optical depths the mapper was given). On the CPU, without OpenGL or MPI. False,
+   * with GetLastError(), when the input, the volume or the geometry cannot be used.
+   *
+   * SetExternalScatteringVolume gives the mapper a volume solved over the whole field
+   * (cloudvis::SolveWholeFieldScattering of the inputs summed over the pieces): while it is set
+   * and the march's multiple scattering comes from the volume, the march reads it through the map
+   * from its input's voxels to the whole field's, instead of computing a volume of its input.
+   * Copied (an empty one clears it); setting it restarts the progressive accumulation; its
+   * textures are part of GetGPUMemoryBytes. Default none.
+   */
+  bool ComputePieceScatteringInputs(vtkRenderer* renderer,
+    vtkVolume* volume,
+    const cloudvis::VolumeGeometry& whole,
+    std::vector<cloudvis::ScatteringGrid>& inputs);
+  void SetExternalScatteringVolume(const cloudvis::WholeFieldScattering& volume);
+  const cloudvis::WholeFieldScattering& GetExternalScatteringVolume() const;
   ///@}
 #endif
 
@@ -544,6 +577,14 @@ private:
   void operator=(const vtkCloudVolumeMapper&) = delete;
 
   bool Fail(const std::string& message);
+#ifndef __VTK_WRAP__
+  // Builds the MarchSetup of this mapper's input as `volume` draws it and runs `compute` on it,
+  // `what` naming the caller in the refusal of a missing volume.
+  bool ComputeOnPiece(vtkRenderer* renderer,
+    vtkVolume* volume,
+    const char* what,
+    const std::function<cloudvis::MarchProblem(const cloudvis::MarchSetup&)>& compute);
+#endif
   // The scalars the mapper draws of `input` (its scalar mode and array selection).
   vtkDataArray* InputScalars(vtkImageData* input, int& cellFlag);
   vtkImageData* ValidInput(vtkVolume* volume);

@@ -2,6 +2,8 @@
 
 #include "CloudLightingParameters.h"
 #include "CloudOpticalDepthGrid.h"
+#include "CloudScatteringVolume.h"
+#include "CloudTransferTable.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkAlgorithm.h>
@@ -18,6 +20,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkCloudVolumeRepresentation);
 
@@ -86,29 +91,6 @@ void vtkCloudVolumeRepresentation::SetPhaseLobeWeight(double weight)
 
 void vtkCloudVolumeRepresentation::SetMultipleScattering(int scattering)
 {
-  this->MultipleScattering = scattering;
-  this->Lighting->SetMultipleScattering(scattering);
-}
-
-void vtkCloudVolumeRepresentation::ChooseMultipleScattering(int ranks)
-{
-  // The multiple-scattering volume is a diffusion solved over the mapper's input: on more than
-  // one rank, over each piece alone, so light would not diffuse across the ranks' faces and each
-  // face would show as a seam. Until the solve spans the ranks, the march adds the octaves there,
-  // which each sample computes for itself, and says so once.
-  int scattering = this->MultipleScattering;
-  if (ranks > 1 && scattering == vtkCloudLightingProperty::ScatteringVolume &&
-    this->Lighting->GetModel() == vtkCloudLightingProperty::MarchLighting)
-  {
-    scattering = vtkCloudLightingProperty::ScatteringOctaves;
-    if (!this->WarnedOfOctaves)
-    {
-      vtkWarningMacro(<< "on " << ranks << " ranks the march adds multiple scattering by octaves: "
-                      << "the multiple-scattering volume is solved per piece and would show the "
-                      << "ranks' faces (docs/paraview.md)");
-      this->WarnedOfOctaves = true;
-    }
-  }
   this->Lighting->SetMultipleScattering(scattering);
 }
 
@@ -225,7 +207,6 @@ int vtkCloudVolumeRepresentation::ProcessViewRequest(vtkInformationRequestKey* r
       this->Actor->SetVisibility(false);
       return 1;
     }
-    this->ChooseMultipleScattering(ranks);
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
     this->ExchangeOpticalDepth(view ? view->GetRenderer() : nullptr);
   }
@@ -296,13 +277,27 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
     {
       this->CloudMapper->SetExternalOpticalDepths(cloudvis::OpticalDepthGrid());
     }
+    this->ExchangeScatteringVolume(controller, renderer, piece, false);
     this->ExchangedTime = 0;
     return;
   }
   // Recomputed when any rank's piece, transfer function, lighting, sun or extinction changed
   // since the last exchange.
+  // The transfer function by what the march reads of it (its table), not by the volume
+  // property's MTime: ParaView touches the property after the first render without changing it,
+  // and an exchange with the multiple-scattering volume costs seconds on a large field.
+  std::string tableProblem;
+  const cloudvis::TransferTable table = cloudvis::TransferTableOf(
+    this->Property, this->CloudMapper->GetExtinctionScale(), tableProblem);
+  std::vector<double> tableSignature = { table.Range[0], table.Range[1] };
+  tableSignature.insert(tableSignature.end(), table.RGBA.begin(), table.RGBA.end());
+  if (tableSignature != this->ExchangedTable)
+  {
+    this->ExchangedTable = std::move(tableSignature);
+    this->ExchangedTableTime.Modified();
+  }
   const vtkMTimeType inputs = std::max({ piece ? piece->GetMTime() : vtkMTimeType(0),
-    this->Property->GetMTime(),
+    this->ExchangedTableTime.GetMTime(),
     this->Lighting->GetMTime(),
     this->ExchangeInputsTime.GetMTime() });
   int stale = inputs > this->ExchangedTime ? 1 : 0, anyStale = 0;
@@ -342,8 +337,84 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
   }
   this->CloudMapper->SetExternalOpticalDepths(
     anyFailed ? cloudvis::OpticalDepthGrid() : cloudvis::DepthsFromOutside(total, own));
+  this->ExchangeScatteringVolume(controller,
+    renderer,
+    piece,
+    !anyFailed && cloudvis::UsesScatteringVolume(this->Lighting->GetParameters()));
   this->ExchangedTime = inputs;
   ++this->ExchangeCount;
+}
+
+void vtkCloudVolumeRepresentation::ExchangeScatteringVolume(vtkMultiProcessController* controller,
+  vtkRenderer* renderer,
+  vtkImageData* piece,
+  bool wanted)
+{
+  // `wanted` is the same on every rank (the same properties, and a failure's flag reduced), so
+  // either all of them reduce below or none does.
+  if (!wanted)
+  {
+    if (!this->CloudMapper->GetExternalScatteringVolume().Empty())
+    {
+      this->CloudMapper->SetExternalScatteringVolume(cloudvis::WholeFieldScattering());
+    }
+    return;
+  }
+  // The whole field: the union of the pieces' extents (ParaView's pieces of one image share its
+  // origin, spacing and direction, and a plane of points with each neighbour).
+  const bool holds = piece && piece->GetNumberOfPoints() > 0;
+  int first[3], last[3], wholeFirst[3], wholeLast[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    first[a] = holds ? piece->GetExtent()[2 * a] : std::numeric_limits<int>::max();
+    last[a] = holds ? piece->GetExtent()[2 * a + 1] : std::numeric_limits<int>::min();
+  }
+  controller->AllReduce(first, wholeFirst, 3, vtkCommunicator::MIN_OP);
+  controller->AllReduce(last, wholeLast, 3, vtkCommunicator::MAX_OP);
+  const int wholeExtent[6] = {
+    wholeFirst[0], wholeLast[0], wholeFirst[1], wholeLast[1], wholeFirst[2], wholeLast[2]
+  };
+  cloudvis::VolumeGeometry whole;
+  whole.Dimensions = glm::ivec3(wholeLast[0] - wholeFirst[0] + 1,
+    wholeLast[1] - wholeFirst[1] + 1,
+    wholeLast[2] - wholeFirst[2] + 1);
+  if (glm::any(glm::lessThan(whole.Dimensions, glm::ivec3(1))))
+  {
+    return; // no rank holds data (every rank sees the same extents)
+  }
+  std::vector<float> own(cloudvis::ScatteringInputValues(whole.Dimensions), 0.0f);
+  int failed = 0;
+  if (holds)
+  {
+    whole = cloudvis::WholeFieldGeometry(piece, this->Actor->GetMatrix(), wholeExtent);
+    cloudvis::ScatteringInputs inputs;
+    if (this->CloudMapper->ComputePieceScatteringInputs(renderer, this->Actor, whole, inputs))
+    {
+      own = cloudvis::PackScatteringInputs(inputs);
+    }
+    else
+    {
+      failed = 1;
+    }
+  }
+  // A rank that cannot compute its cells (its mapper says why) makes every rank solve its own
+  // piece's volume, rather than a whole with a hole.
+  int anyFailed = 0;
+  controller->AllReduce(&failed, &anyFailed, 1, vtkCommunicator::MAX_OP);
+  if (anyFailed)
+  {
+    this->CloudMapper->SetExternalScatteringVolume(cloudvis::WholeFieldScattering());
+    return;
+  }
+  std::vector<float> total(own.size());
+  controller->AllReduce(own.data(), total.data(), vtkIdType(own.size()), vtkCommunicator::SUM_OP);
+  cloudvis::ScatteringInputs inputs;
+  if (holds && cloudvis::UnpackScatteringInputs(total, whole, inputs))
+  {
+    // Every rank solves the same sums with the same code: the same volume on every rank.
+    this->CloudMapper->SetExternalScatteringVolume(cloudvis::SolveWholeFieldScattering(
+      this->Lighting->GetParameters(), whole, std::move(inputs)));
+  }
 }
 
 void vtkCloudVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)

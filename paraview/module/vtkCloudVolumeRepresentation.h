@@ -17,9 +17,10 @@
  * shadows a cloud on another), each rank computes the optical depth its piece adds toward the sun
  * over a coarse grid of the whole field, an MPI_Allreduce sums them, and each rank's march adds
  * what the other ranks' pieces hold (ShadowExchange, on by default; docs/paraview.md states the
- * grid and what it costs). The path tracer needs the whole field on one rank and is refused on
- * more; the march's multiple scattering is the octaves there (the multiple-scattering volume is
- * solved per piece).
+ * grid and what it costs). With the multiple-scattering volume (the march's default), the ranks
+ * then sum the inputs of the whole field's volume, each for the cells its piece owns, and every
+ * rank solves the same whole-field volume, which its march reads (docs/paraview.md). The path
+ * tracer needs the whole field on one rank and is refused on more.
  */
 #ifndef vtkCloudVolumeRepresentation_h
 #define vtkCloudVolumeRepresentation_h
@@ -30,7 +31,11 @@
 #include "vtkNew.h"       // for the lighting property
 #include "vtkTimeStamp.h" // for the exchange's inputs
 
+#include <vector> // for the exchange's inputs
+
 class vtkCloudVolumeMapper;
+class vtkImageData;
+class vtkMultiProcessController;
 class vtkRenderer;
 
 class CLOUDVISPARAVIEW_EXPORT vtkCloudVolumeRepresentation : public vtkImageVolumeRepresentation
@@ -87,16 +92,19 @@ public:
 
   ///@{
   /**
-   * Exchange optical depth between ranks so that light crosses pieces. Default on. Off, each
-   * rank lights its piece as if it were the whole field (what ParaView's own volume mappers do).
+   * Exchange optical depth between ranks so that light crosses pieces, and with the
+   * multiple-scattering volume its inputs, so that diffuse light crosses them too. Default on.
+   * Off, each rank lights its piece as if it were the whole field (what ParaView's own volume
+   * mappers do).
    */
   void SetShadowExchange(bool exchange);
   vtkGetMacro(ShadowExchange, bool);
   ///@}
 
   /**
-   * Times the ranks have exchanged optical depth (each exchange is one MPI_Allreduce of the grid),
-   * for tests and the benchmark.
+   * Times the ranks have exchanged optical depth (each exchange is one MPI_Allreduce of the grid,
+   * and one of the multiple-scattering volume's inputs when the march reads the volume), for
+   * tests and the benchmark.
    */
   vtkGetMacro(ExchangeCount, int);
 
@@ -109,25 +117,30 @@ private:
   void operator=(const vtkCloudVolumeRepresentation&) = delete;
 
   void UpdateSun();
-  // The multiple scattering the march uses on this many ranks (the octaves on more than one).
-  void ChooseMultipleScattering(int ranks);
   // Collective over the ranks of the global controller: every rank calls it in each render.
   void ExchangeOpticalDepth(vtkRenderer* renderer);
+  // Collective, after the optical depths are exchanged: the multiple-scattering volume over the
+  // whole field when `wanted`, else none (each rank's mapper solves its own piece's).
+  void ExchangeScatteringVolume(vtkMultiProcessController* controller,
+    vtkRenderer* renderer,
+    vtkImageData* piece,
+    bool wanted);
 
   vtkCloudVolumeMapper* CloudMapper = nullptr; // this->VolumeMapper, as the cloud mapper it is
   vtkNew<vtkCloudLightingProperty> Lighting;
   double SunDirection[3] = { 6.0, 8.0, 4.0 };
   double SunColor[3] = { 1.0, 1.0, 1.0 };
   double SunIntensity = 1.0;
-  int MultipleScattering = vtkCloudLightingProperty::ScatteringVolume; // as the user chose it
-  bool WarnedOfOctaves = false;
   bool ShadowExchange = true;
   int ExchangeCount = 0;
   // What the last exchange was computed for: the latest modification time of its inputs (the
-  // piece, the volume property, the lighting, and ExchangeInputsTime: the sun, the extinction
+  // piece, the transfer table, the lighting, and ExchangeInputsTime: the sun, the extinction
   // scale).
   vtkTimeStamp ExchangeInputsTime;
   vtkMTimeType ExchangedTime = 0;
+  // The transfer table the last exchange read (its range and entries), and when it last changed.
+  std::vector<double> ExchangedTable;
+  vtkTimeStamp ExchangedTableTime;
 };
 
 #endif

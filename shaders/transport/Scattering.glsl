@@ -26,10 +26,10 @@ vec3 IndexOfGridTexel(vec3 t, vec3 size)
 
 // The medium of cell t: albedo (weighted by extinction) in rgb, mean sigma_t per local unit in a,
 // over eight points a quarter cell from its centre.
-vec4 ScatteringMediumTexel(vec3 t)
+// The same of the cell centred at index point p whose quarter cell is `quarter` index units (a
+// piece of a distributed field computes its cells of the whole field's grid so).
+vec4 ScatteringMediumAround(vec3 p, vec3 quarter)
 {
-  vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
-  vec3 quarter = 0.25f * ((Dimensions - 1.0f) / max(ScatteringVolumeSize - 1.0f, vec3(1.0f)));
   vec3 albedo = vec3(0.0f);
   float sigma = 0.0f;
   for (int k = 0; k < 8; ++k)
@@ -40,6 +40,12 @@ vec4 ScatteringMediumTexel(vec3 t)
     sigma += optical.w;
   }
   return vec4(sigma > 0.0f ? albedo / sigma : vec3(0.0f), 0.125f * sigma);
+}
+
+vec4 ScatteringMediumTexel(vec3 t)
+{
+  vec3 quarter = 0.25f * ((Dimensions - 1.0f) / max(ScatteringVolumeSize - 1.0f, vec3(1.0f)));
+  return ScatteringMediumAround(IndexOfGridTexel(t, ScatteringVolumeSize), quarter);
 }
 
 // Light i's beam at index point p of albedo `albedo`, per channel: E exp(-tau (1 - albedo f)), its
@@ -53,11 +59,10 @@ vec3 BeamFluence(int i, vec3 p, vec3 albedo, OUT(vec3) l)
     exp(-tau * (vec3(1.0f) - albedo * PhaseForwardFraction()));
 }
 
-// The beams' fluence at cell t of medium m, summed over the lights: the coarsest grid's first
+// The beams' fluence at cell t (centred at index point p) of medium m, summed over the lights: the coarsest grid's first
 // guess where there is medium (the limiter has no direction to stream in where phi is 0).
-vec4 ScatteringStartTexel(vec3 t, vec4 m)
+vec4 ScatteringStartAt(vec3 p, vec4 m)
 {
-  vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
   vec3 fluence = vec3(0.0f);
   for (int i = 0; i < LightCount; ++i)
   {
@@ -67,16 +72,20 @@ vec4 ScatteringStartTexel(vec3 t, vec4 m)
   return vec4(m.w > 0.0f ? fluence : vec3(0.0f), 0.0f);
 }
 
-// The diffuse source of cell t with medium m: Q0 per channel in rgb, and the beams' mean
+vec4 ScatteringStartTexel(vec3 t, vec4 m)
+{
+  return ScatteringStartAt(IndexOfGridTexel(t, ScatteringVolumeSize), m);
+}
+
+// The diffuse source of cell t (centred at index point p) with medium m: Q0 per channel in rgb, and the beams' mean
 // direction of travel (weighted by their luminance) in the other vec4's xyz. A beam leaves in the
 // cell what it loses across it, E (T*(in) - T*(out)) over the cell's mean chord s along the beam
 // (T* = exp(-tau (1 - albedo f)), read where the beam enters and leaves), of which the fraction
 // albedo (1 - f) / (1 - albedo f) scatters out of the beam: energy is conserved however thick a
 // cell is (sigma_t T* at its centre would deposit up to sigma_t s times the light that enters
 // a cell whose centre lies just outside a dense edge).
-void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction)
+void ScatteringSourceAt(vec3 p, vec4 m, OUT(vec4) source, OUT(vec4) direction)
 {
-  vec3 p = IndexOfGridTexel(t, ScatteringVolumeSize);
   vec3 albedo = vec3(m.x, m.y, m.z);
   float f = PhaseForwardFraction();
   vec3 deposit = vec3(0.0f);
@@ -101,6 +110,11 @@ void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction
   vec3 scattered = albedo * (1.0f - f) / max(vec3(1.0f) - albedo * f, vec3(1e-6f));
   source = vec4(m.w > 0.0f ? scattered * deposit : vec3(0.0f), 0.0f);
   direction = vec4(total > 0.0f ? travel / total : vec3(0.0f), 0.0f);
+}
+
+void ScatteringSourceTexel(vec3 t, vec4 m, OUT(vec4) source, OUT(vec4) direction)
+{
+  ScatteringSourceAt(IndexOfGridTexel(t, ScatteringVolumeSize), m, source, direction);
 }
 
 // The first moment Q1 along axis a, per channel, of a cell's source and its beams' direction.

@@ -353,13 +353,22 @@ float OpticalDepthToLight(int i, vec3 p, float sigmaHere, vec3 l, float lightDis
   return outside + LightOpticalDepth(p, sigmaHere, indexStep, lightDistance);
 }
 
+// The volume the march reads is the field's own, or one solved over the whole of a distributed
+// field that this field is a piece of (filters/CloudScatteringVolume.h, SolveScatteringVolume):
+// then ScatteringVolumeSize is the whole field's finest grid and IndexToScattering (affine) maps
+// this piece's index points to its texel coordinates, so pieces read one volume where they meet.
+UNIFORM int ExternalScatteringVolume; // 1: read through IndexToScattering; 0: the field's own
+UNIFORM mat4 IndexToScattering;
+
 // The light scattered toward the eye at index point p by the volume's diffuse light, per unit
 // albedo: its first-order (P1) radiance (phi + 3 F . w) / 4 pi weighed by the phase, which gives
 // phi (1 - 3 g (F / phi) . d) / 4 pi (the flux over the fluence F / phi is stored by luminance).
 vec3 MultipleScatteringTerm(vec3 p, vec3 d)
 {
-  vec3 t = clamp(p, vec3(0.0f), Dimensions - 1.0f) *
-    ((ScatteringVolumeSize - 1.0f) / max(Dimensions - 1.0f, vec3(1.0f)));
+  vec3 t = ExternalScatteringVolume != 0
+    ? clamp(vec3(IndexToScattering * vec4(p, 1.0f)), vec3(0.0f), ScatteringVolumeSize - 1.0f)
+    : clamp(p, vec3(0.0f), Dimensions - 1.0f) *
+      ((ScatteringVolumeSize - 1.0f) / max(Dimensions - 1.0f, vec3(1.0f)));
   vec4 fluence = ScatteringVolumeFetch(t);
   vec4 flux = ScatteringFluxFetch(t);
   float anisotropy = 1.0f - 3.0f * PhaseMeanCosine() * dot(vec3(flux.x, flux.y, flux.z), d);

@@ -1,0 +1,104 @@
+#include "CloudExternalScatteringTexture.h"
+
+#include "CloudGpuMemory.h"
+
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkShaderProgram.h>
+#include <vtk_glew.h>
+
+namespace cloudvis
+{
+
+void ExternalScatteringTexture::Set(const WholeFieldScattering& volume)
+{
+  this->Volume = volume.Empty() ? WholeFieldScattering() : volume;
+  this->Changed.Modified();
+}
+
+bool ExternalScatteringTexture::Update(vtkOpenGLRenderWindow* window,
+  GpuMemoryBudget& budget,
+  std::string& problem)
+{
+  if (this->Fluence->GetHandle() && this->Uploaded.GetMTime() > this->Changed.GetMTime())
+  {
+    return true;
+  }
+  const ScatteringGrid& grid = this->Volume.Volume;
+  const std::size_t texels = std::size_t(grid.Size.x) * grid.Size.y * grid.Size.z;
+  if (grid.Fluence.size() != texels || grid.Flux.size() != texels)
+  {
+    problem = "the multiple-scattering volume of the whole field holds " +
+      std::to_string(grid.Fluence.size()) + " fluence and " + std::to_string(grid.Flux.size()) +
+      " flux texels, not its size's " + std::to_string(texels);
+    this->Release(window);
+    return false;
+  }
+  GLint largest = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
+  if (grid.Size.x > largest || grid.Size.y > largest || grid.Size.z > largest)
+  {
+    problem = "the multiple-scattering volume of the whole field needs a 3-D texture of " +
+      std::to_string(grid.Size.x) + " x " + std::to_string(grid.Size.y) + " x " +
+      std::to_string(grid.Size.z) + " texels, more than this GPU's " + std::to_string(largest) +
+      " per axis";
+    this->Release(window);
+    return false;
+  }
+  const long long held = this->Bytes;
+  problem = budget.Allocate("the multiple-scattering volume of the whole field",
+    2 * 16LL * grid.Size.x * grid.Size.y * grid.Size.z,
+    held,
+    [&]()
+    {
+      bool made = true;
+      for (auto texture : { std::make_pair(this->Fluence.Get(), &grid.Fluence),
+             std::make_pair(this->Flux.Get(), &grid.Flux) })
+      {
+        texture.first->SetContext(window);
+        made = made &&
+          texture.first->Create3DFromRaw(grid.Size.x,
+            grid.Size.y,
+            grid.Size.z,
+            4,
+            VTK_FLOAT,
+            const_cast<float*>(&texture.second->front().x));
+      }
+      return made;
+    });
+  if (!problem.empty())
+  {
+    this->Release(window);
+    return false;
+  }
+  this->Bytes = 0;
+  for (vtkTextureObject* texture : { this->Fluence.Get(), this->Flux.Get() })
+  {
+    SetSampling(texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
+    this->Bytes += TextureBytes(texture);
+  }
+  this->Uploaded.Modified();
+  return true;
+}
+
+void ExternalScatteringTexture::Activate(vtkShaderProgram* march)
+{
+  this->Fluence->Activate();
+  this->Flux->Activate();
+  march->SetUniformi("ScatteringVolumeTexture", this->Fluence->GetTextureUnit());
+  march->SetUniformi("ScatteringFluxTexture", this->Flux->GetTextureUnit());
+}
+
+void ExternalScatteringTexture::Deactivate()
+{
+  this->Fluence->Deactivate();
+  this->Flux->Deactivate();
+}
+
+void ExternalScatteringTexture::Release(vtkWindow* window)
+{
+  this->Fluence->ReleaseGraphicsResources(window);
+  this->Flux->ReleaseGraphicsResources(window);
+  this->Bytes = 0;
+}
+
+} // namespace cloudvis
