@@ -28,14 +28,25 @@ set(CLOUDVIS_PARAVIEW_BINARY_DIR "${CMAKE_BINARY_DIR}/paraview")
 ExternalProject_Add(cloudvis-paraview
   SOURCE_DIR "${CMAKE_SOURCE_DIR}/paraview"
   BINARY_DIR "${CLOUDVIS_PARAVIEW_BINARY_DIR}"
-  CMAKE_ARGS
-    "-DParaView_DIR=${CLOUDVIS_PARAVIEW_DIR}"
-    "-DCMAKE_BUILD_TYPE=${CMAKE_BUILD_TYPE}"
-    "-DCMAKE_CXX_COMPILER_LAUNCHER=${CMAKE_CXX_COMPILER_LAUNCHER}"
-    "-DCMAKE_C_COMPILER_LAUNCHER=${CMAKE_C_COMPILER_LAUNCHER}"
+  # Configured by the build step itself whenever its folder has no cache (a deleted
+  # build/paraview is remade), then built with make's own job slots.
+  CONFIGURE_COMMAND ""
+  BUILD_COMMAND "${CMAKE_COMMAND}"
+    "-DSOURCE_DIR=${CMAKE_SOURCE_DIR}/paraview" "-DBINARY_DIR=${CLOUDVIS_PARAVIEW_BINARY_DIR}"
+    "-DPARAVIEW_DIR=${CLOUDVIS_PARAVIEW_DIR}" "-DBUILD_TYPE=${CMAKE_BUILD_TYPE}"
+    "-DLAUNCHER=${CMAKE_CXX_COMPILER_LAUNCHER}"
+    -P "${CMAKE_SOURCE_DIR}/cmake/ConfigureParaViewPlugin.cmake"
+    COMMAND $(MAKE)
   # The sources it compiles are this project's: always let its own build decide what changed.
   BUILD_ALWAYS ON
   INSTALL_COMMAND "")
+# The build step runs in the plugin's folder: it must exist even after `rm -rf build/paraview`.
+ExternalProject_Add_Step(cloudvis-paraview folder
+  COMMAND "${CMAKE_COMMAND}" -E make_directory "${CLOUDVIS_PARAVIEW_BINARY_DIR}"
+  WORKING_DIRECTORY "${CMAKE_BINARY_DIR}"
+  DEPENDEES configure
+  DEPENDERS build
+  ALWAYS ON)
 set(CLOUDVIS_PARAVIEW_PLUGIN
   "${CLOUDVIS_PARAVIEW_BINARY_DIR}/lib/paraview-5.11/plugins/CloudVis/CloudVis.so"
   CACHE INTERNAL "The plugin ParaView loads")
