@@ -342,7 +342,6 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
     piece,
     !anyFailed && cloudvis::UsesScatteringVolume(this->Lighting->GetParameters()));
   this->ExchangedTime = inputs;
-  ++this->ExchangeCount;
 }
 
 void vtkCloudVolumeRepresentation::ExchangeScatteringVolume(vtkMultiProcessController* controller,
@@ -425,5 +424,4 @@ void vtkCloudVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
      << this->SunDirection[2] << "\n";
   os << indent << "SunIntensity: " << this->SunIntensity << "\n";
   os << indent << "ShadowExchange: " << this->ShadowExchange << "\n";
-  os << indent << "ExchangeCount: " << this->ExchangeCount << "\n";
 }

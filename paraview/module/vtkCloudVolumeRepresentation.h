@@ -101,13 +101,6 @@ public:
   vtkGetMacro(ShadowExchange, bool);
   ///@}
 
-  /**
-   * Times the ranks have exchanged optical depth (each exchange is one MPI_Allreduce of the grid,
-   * and one of the multiple-scattering volume's inputs when the march reads the volume), for
-   * tests and the benchmark.
-   */
-  vtkGetMacro(ExchangeCount, int);
-
 protected:
   vtkCloudVolumeRepresentation();
   ~vtkCloudVolumeRepresentation() override;
@@ -132,7 +125,6 @@ private:
   double SunColor[3] = { 1.0, 1.0, 1.0 };
   double SunIntensity = 1.0;
   bool ShadowExchange = true;
-  int ExchangeCount = 0;
   // What the last exchange was computed for: the latest modification time of its inputs (the
   // piece, the transfer table, the lighting, and ExchangeInputsTime: the sun, the extinction
   // scale).
