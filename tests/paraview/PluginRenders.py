@@ -9,14 +9,7 @@ source = simple.CloudDensity(Dimensions=[48, 48, 48])
 source.UpdatePipeline()
 info = source.GetDataInformation()
 testing.check(info.GetNumberOfPoints() == 48 ** 3, "the source made %d points" % info.GetNumberOfPoints())
-scene = {
-    "render": {"size": [128, 96], "jitter": False, "accumulate": 1},
-    "camera": {"position": [0, 0, 8]},
-    "background": [0, 0, 0],
-    "transfer_function": {"opacity": [[0, 0], [1, 1]], "color": [[0, 1, 1, 1], [1, 1, 1, 1]],
-                          "unit_distance": 0.1},
-    "lights": [{"position": [6, 8, 4]}],
-}
+scene = testing.white_cloud_scene([128, 96], 8)
 view = testing.render_view(scene)
 testing.show_cloud(source, view, scene, "march")
 simple.Render(view)

@@ -19,14 +19,7 @@ ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 testing.check(ranks == 2, "the server has %d ranks, not 2" % ranks)
 
 source = simple.CloudDensity(Dimensions=[48, 48, 48])
-scene = {
-    "render": {"size": [160, 120], "jitter": False, "accumulate": 1},
-    "camera": {"position": [0, 0, 7]},
-    "background": [0, 0, 0],
-    "transfer_function": {"opacity": [[0, 0], [1, 1]], "color": [[0, 1, 1, 1], [1, 1, 1, 1]],
-                          "unit_distance": 0.1},
-    "lights": [{"position": [6, 8, 4]}],
-}
+scene = testing.white_cloud_scene([160, 120], 7)
 view = testing.render_view(scene)
 testing.show_cloud(source, view, scene, "march")
 simple.Render(view)

@@ -61,6 +61,20 @@ def read_scene(path):
         return json.load(f)
 
 
+def white_cloud_scene(size, distance):
+    """A plain scene for the tests that only need a cloud on the screen: a white cloud, opaque
+    at density 1 per 0.1 world units, the default sun, a black background, the camera on +z at
+    `distance`, one unjittered frame of `size` pixels."""
+    return {
+        "render": {"size": size, "jitter": False, "accumulate": 1},
+        "camera": {"position": [0, 0, distance]},
+        "background": [0, 0, 0],
+        "transfer_function": {"opacity": [[0, 0], [1, 1]], "color": [[0, 1, 1, 1], [1, 1, 1, 1]],
+                              "unit_distance": 0.1},
+        "lights": [{"position": [6, 8, 4]}],
+    }
+
+
 def render_view(scene):
     """A render view as the scene's render, camera and background sections say."""
     view = simple.CreateView("RenderView")
