@@ -15,6 +15,10 @@
 // cloud edge that moved cannot leave a ghost), blended with the current upsampled sample by
 // HistoryWeight, less as the views it holds turn away from this one. Everywhere else the current
 // sample stands alone.
+//
+// Drawn over the viewport, the cloud's radiance goes through the display transform (exposure and
+// curve, shaders/display/DisplayTransform.glsl, which the mapper splices in below); the history
+// target keeps linear radiance.
 
 in vec2 texCoord;
 
@@ -37,8 +41,12 @@ uniform mat4 LastLocalDCMatrix;
 uniform float HistoryWeight;           // share of the reprojected history in the blend
 uniform float DepthTolerance;          // local units a reprojected depth may differ by
 uniform float FadeAngle;               // radians of turn that leave no history
+uniform float ExposureScale;           // 2^EV
+uniform int DisplayCurve;              // DisplayLinear or DisplayFilmic
 
 //VTK::Output::Dec
+
+//CLOUDVIS::DisplayTransform
 
 // Below this opacity (one 8-bit level) the cloud is too faint for its depth to mean anything.
 const float MinimumDepthOpacity = 1.0 / 255.0;
@@ -206,7 +214,7 @@ void main()
   }
   if (ResolveHistory == 0)
   {
-    gl_FragData[0] = current;
+    gl_FragData[0] = vec4(DisplayValue(current.rgb, current.a, ExposureScale, DisplayCurve), current.a);
     return;
   }
   float age = 0.0;

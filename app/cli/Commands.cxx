@@ -356,6 +356,18 @@ void MakeDirectory(const std::string& directory)
   }
 }
 
+// ", filmic, exposure +1.25 EV (auto)": how the picture's display values were made, unless it
+// is the plain default (linear, 0 EV).
+std::string DescribeDisplay(const RenderedImage& image, const RenderSpec& render)
+{
+  if (image.Display == DisplayCurve::Linear && image.ExposureEV == 0.0 && !render.AutoExposure)
+  {
+    return "";
+  }
+  return ", " + DisplayCurveName(image.Display) + ", exposure " + ShowExposure(image.ExposureEV) +
+    (render.AutoExposure ? " (auto)" : "");
+}
+
 int Render(const Arguments& arguments, std::ostream& out)
 {
   if (!arguments.Has("output"))
@@ -408,7 +420,7 @@ int Render(const Arguments& arguments, std::ostream& out)
     progress.Finish();
     WriteImage(image, output, exportOptions);
     out << "wrote " << output << " (" << image.Width << " x " << image.Height
-        << " pixels, CPU reference)\n";
+        << " pixels, CPU reference" << DescribeDisplay(image, scene.Render) << ")\n";
     return ExitSuccess;
   }
   const OffscreenRenderResult result =
@@ -419,13 +431,14 @@ int Render(const Arguments& arguments, std::ostream& out)
       << " pixels, ";
   if (scene.Render.Lighting.Model == LightingModel::PathTrace)
   {
-    out << result.AccumulatedSamples << " paths per pixel averaged)\n";
+    out << result.AccumulatedSamples << " paths per pixel averaged";
   }
   else
   {
     out << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
-        << " averaged)\n";
+        << " averaged";
   }
+  out << DescribeDisplay(result.Image, scene.Render) << ")\n";
   if (benchmarkFrames > 0)
   {
     const double total =
@@ -599,6 +612,7 @@ const std::vector<CommandSpec>& Commands()
         PngBitsOption,
         ExrHalfOption,
         TransparentOption,
+        ExposureOption,
         QuietOption,
         SetOption,
         FieldFileOptions[0],

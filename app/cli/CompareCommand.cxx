@@ -7,6 +7,7 @@
 
 #include "Compare.h"
 #include "Errors.h"
+#include "ExportCommands.h"
 #include "ImageWriters.h"
 
 #include <vtkImageData.h>
@@ -238,6 +239,11 @@ int Compare(const Arguments& arguments, std::ostream& out)
     options.push_back(
       { "render.size", ParseSizeOption("compare", arguments.Value("size")), "--size" });
   }
+  if (arguments.Has("exposure"))
+  {
+    options.push_back(
+      NumericOverride("render.exposure", arguments.Value("exposure"), "--exposure"));
+  }
   const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
   if (referenceSamples && *referenceSamples == 0)
   {
@@ -249,7 +255,13 @@ int Compare(const Arguments& arguments, std::ostream& out)
   out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
       << " pixels, " << panels.size() + (difference ? 1 : 0) << " panels, "
       << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
-      << " averaged)\n";
+      << " averaged";
+  if (loaded.Loaded.Render.AutoExposure || result.Image.ExposureEV != 0.0)
+  {
+    out << ", one exposure for all: " << ShowExposure(result.Image.ExposureEV)
+        << (loaded.Loaded.Render.AutoExposure ? " (auto)" : "");
+  }
+  out << ")\n";
   for (size_t i = 0; i < panels.size(); ++i)
   {
     out << result.Names[i] << ": " << std::fixed << std::setprecision(2) << result.Milliseconds[i]
@@ -299,6 +311,7 @@ CommandSpec CompareCommand()
       PanelSizeOption,
       CompareLightingOption,
       ReferenceOption,
+      ExposureOption,
       DifferenceOption,
       SetOption,
       FieldFileOptions[0],

@@ -28,6 +28,9 @@ const OptionSpec ExrHalfOption{ "exr-half", 0, "",
   "write EXR channels as 16-bit half floats instead of 32-bit floats; overrides render.exr_type" };
 const OptionSpec TransparentOption{ "transparent", 0, "",
   "PNG with an alpha channel: straight color and alpha = the cloud's opacity, no background" };
+const OptionSpec ExposureOption{ "exposure", 0, "EV|auto",
+  "exposure of PNG and the viewer in EV (the radiance times 2^EV before render.display's curve), "
+  "or auto: from the cloud's luminance (docs/export.md); overrides render.exposure" };
 const OptionSpec QuietOption{ "quiet", 'q', "",
   "no progress bar (it is shown only when stderr is a terminal)" };
 
@@ -160,6 +163,11 @@ void AddExportOverrides(const Arguments& arguments, std::vector<SceneOverride>& 
   {
     overrides.push_back({ "render.exr_type", "half", "--exr-half" });
   }
+  if (arguments.Has("exposure"))
+  {
+    overrides.push_back(
+      NumericOverride("render.exposure", arguments.Value("exposure"), "--exposure"));
+  }
 }
 
 ImageExportOptions MakeExportOptions(
@@ -222,7 +230,7 @@ CommandSpec AnimateCommand()
     "written; a failure part-way keeps the frames written before it. Needs an X display\n"
     "(xvfb-run -a cloudvis animate ...).",
     { DirectoryOption, FramesOption, TurntableOption, TimeOption, AnimateSizeOption, FormatOption,
-      LightingOption(), PngBitsOption, ExrHalfOption, TransparentOption, QuietOption, SetOption,
+      LightingOption(), PngBitsOption, ExrHalfOption, TransparentOption, ExposureOption, QuietOption, SetOption,
       HelpOption },
     Animate };
 }

@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -126,6 +127,8 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
   };
   vtkSmartPointer<vtkImageData> field;
   ResolvedCamera start;
+  // An automatic exposure is metered on the first frame and kept: a sequence must not flicker.
+  std::optional<double> exposureEV;
   int written = 0;
   for (int index = 0; index < n; ++index)
   {
@@ -147,11 +150,17 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
         }
         frame = FrameScene(scene, request, index, start);
       }
+      if (exposureEV)
+      {
+        frame.Render.AutoExposure = false;
+        frame.Render.ExposureEV = *exposureEV;
+      }
       RenderOptions options;
       options.FloatImage = NeedsFloatImage(FrameFileName(request, index), request.Export);
       options.OnFrame = [&](int f, int frames)
       { report(index, "rendering", generationShare + (1.0 - generationShare) * f / frames); };
       const OffscreenRenderResult result = RenderOffscreen(frame, field, input, 0, options);
+      exposureEV = result.Image.ExposureEV;
       ImageExportOptions exportOptions = request.Export;
       exportOptions.SceneJson = ResolvedSceneJson(frame, field);
       if (index == 0 && ::mkdir(request.Directory.c_str(), 0777) != 0 && errno != EEXIST)

@@ -347,9 +347,23 @@ ComparisonResult RenderComparison(const Scene& scene,
       (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
   }
   window->MakeCurrent();
+  std::vector<std::vector<float>> images;
   for (const auto& panel : panels)
   {
-    CheckMapperImageFinite(panel->Mapper, panel->Renderer, input);
+    images.push_back(ReadCheckedMapperImage(panel->Mapper, panel->Renderer, input));
+  }
+  // One exposure for every panel, so that their brightness compares: an automatic one is metered
+  // on all the panels' pixels together, so that the brightest model keeps its highlights too.
+  std::vector<float> metered;
+  for (const std::vector<float>& image : images)
+  {
+    metered.insert(metered.end(), image.begin(), image.end());
+  }
+  const double exposureEV = ResolveExposureEV(scene.Render, metered.data(), metered.size() / 4);
+  const bool exposed = exposureEV != panels[0]->Mapper->GetExposureEV();
+  for (const auto& panel : panels)
+  {
+    ConfigureDisplay(panel->Mapper, scene.Render, exposureEV);
   }
 
   if (referenceSamples)
@@ -397,12 +411,15 @@ ComparisonResult RenderComparison(const Scene& scene,
       result.MaxDifference);
     differenceLabel->SetInput(text);
   }
-  if (difference || referenceSamples)
+  if (difference || referenceSamples || exposed)
   {
-    // The model panels are converged: this frame shows them again, with the new labels.
+    // The model panels are converged: this frame shows them again, with the new labels and the
+    // chosen exposure.
     renderChecked();
   }
   result.Image = CaptureWindow(window, input, messages);
+  result.Image.ExposureEV = exposureEV;
+  result.Image.Display = scene.Render.Display;
   return result;
 }
 

@@ -141,13 +141,17 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   RenderedImage image;
   image.Width = width;
   image.Height = height;
+  image.ExposureEV = ResolveExposureEV(scene.Render, pixels, size_t(width) * size_t(height));
+  image.Display = scene.Render.Display;
   image.RGB.resize(size_t(width) * size_t(height) * 3);
   for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
   {
     const float* p = pixels + 4 * i;
+    const glm::vec3 shown =
+      DisplayValueOf(glm::vec3(p[0], p[1], p[2]), p[3], image.ExposureEV, image.Display);
     for (int c = 0; c < 3; ++c)
     {
-      const double value = p[c] + (1.0 - p[3]) * scene.Background[c];
+      const double value = shown[c] + (1.0 - p[3]) * scene.Background[c];
       image.RGB[3 * i + c] =
         static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, value))));
     }

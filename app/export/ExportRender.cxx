@@ -145,9 +145,8 @@ void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input
   }
 }
 
-void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
-  vtkRenderer* renderer,
-  const std::string& input)
+std::vector<float> ReadCheckedMapperImage(
+  vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, const std::string& input)
 {
   std::vector<float> rgba;
   int width = 0, height = 0;
@@ -156,6 +155,14 @@ void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
     throw InputError(input + ": the renderer kept no float image to check");
   }
   CheckFiniteImage(rgba.data(), size_t(width) * size_t(height), input);
+  return rgba;
+}
+
+void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
+  vtkRenderer* renderer,
+  const std::string& input)
+{
+  ReadCheckedMapperImage(mapper, renderer, input);
 }
 
 void ReadBackgroundImage(vtkRenderWindow* window, vtkVolume* volume, RenderedImage& image)

@@ -13,6 +13,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
+#include <ImfFloatAttribute.h>
 #include <ImfStringAttribute.h>
 #include <half.h>
 
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
 #include <limits>
 #include <vector>
@@ -33,6 +35,14 @@
 
 namespace cloudvis
 {
+
+std::string ShowExposure(double ev)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.2f EV", ev);
+  return text;
+}
+
 namespace
 {
 
@@ -46,8 +56,9 @@ T Quantize(double value, double maximum)
 // The float image as display values, per pixel: opaque, the "over" of the cloud on the
 // background the window drew (the computation the GPU's blend does for the 8-bit window, here
 // without its rounding); transparent, the straight color (premultiplied color / alpha) and the
-// alpha. The mapper's radiance goes to the display as it is, with no transfer curve, exactly as
-// the window shows it, so every PNG of a scene shows the same picture (docs/export.md).
+// alpha. The mapper's radiance goes through the display transform the window applied (the
+// image's exposure and curve, the shared source of CloudDisplayTransform.h), so every PNG of a
+// scene shows the same picture (docs/export.md).
 template <typename T>
 void FillDisplayPixels(const RenderedImage& image, bool transparent, T* out)
 {
@@ -56,8 +67,11 @@ void FillDisplayPixels(const RenderedImage& image, bool transparent, T* out)
   const int components = transparent ? 4 : 3;
   for (size_t p = 0; p < pixels; ++p)
   {
-    const float* c = image.Radiance.data() + 4 * p;
-    const double alpha = std::min(std::max(double(c[3]), 0.0), 1.0);
+    const float* premultiplied = image.Radiance.data() + 4 * p;
+    const glm::vec3 c = DisplayValueOf(
+      glm::vec3(premultiplied[0], premultiplied[1], premultiplied[2]), premultiplied[3],
+      image.ExposureEV, image.Display);
+    const double alpha = std::min(std::max(double(premultiplied[3]), 0.0), 1.0);
     T* o = out + components * p;
     for (int k = 0; k < 3; ++k)
     {
@@ -105,6 +119,13 @@ void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& opt
       names[c], Imf::Slice(type, reinterpret_cast<char*>(row.data() + c * width), sizeof(T), 0));
   }
   header.insert("cloudvis.version", Imf::StringAttribute(CloudvisVersion()));
+  // The channels stay linear radiance; what the PNG of the same render shows is recorded.
+  header.insert("cloudvis.radiance",
+    Imf::StringAttribute("linear, premultiplied by alpha, in the lights' radiance units (a light "
+                         "of intensity 1 facing a white albedo-1 surface gives about 1); not "
+                         "exposed"));
+  header.insert("cloudvis.exposure_ev", Imf::FloatAttribute(float(image.ExposureEV)));
+  header.insert("cloudvis.display", Imf::StringAttribute(DisplayCurveName(image.Display)));
   header.insert("cloudvis.scene", Imf::StringAttribute(options.SceneJson));
   header.insert("cloudvis.command", Imf::StringAttribute(options.CommandLine));
   Imf::OutputFile file(path.c_str(), header);
@@ -220,6 +241,8 @@ void WritePngImage(const RenderedImage& image, const ImageExportOptions& options
   {
     writer->AddText("cloudvis.command", options.CommandLine.c_str());
   }
+  writer->AddText("cloudvis.display",
+    (DisplayCurveName(image.Display) + ", exposure " + ShowExposure(image.ExposureEV)).c_str());
   writer->Write();
   if (writer->GetErrorCode() != 0 || !messages.Messages().empty())
   {

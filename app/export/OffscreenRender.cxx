@@ -97,8 +97,20 @@ PathTraceFrames PathTraceFramesOf(int samplesPerPixel)
   return frames;
 }
 
+double ResolveExposureEV(const RenderSpec& render, const float* rgba, size_t pixels)
+{
+  return render.AutoExposure ? ComputeAutoExposure(rgba, pixels).EV : render.ExposureEV;
+}
+
+void ConfigureDisplay(vtkCloudVolumeMapper* mapper, const RenderSpec& render, double exposureEV)
+{
+  mapper->SetDisplayCurve(int(render.Display));
+  mapper->SetExposureEV(exposureEV);
+}
+
 void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
 {
+  ConfigureDisplay(mapper, render, render.ExposureEV);
   mapper->SetJitter(render.Jitter);
   mapper->SetResolutionScale(render.ResolutionScale);
   mapper->SetMaximumAccumulatedFrames(render.Accumulate);
@@ -243,6 +255,9 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const int frames = scene.Render.Lighting.Model == LightingModel::PathTrace
     ? mapper->GetMaximumAccumulatedFrames()
     : (scene.Render.Jitter ? scene.Render.Accumulate : 1);
+  // So that a render after the last frame (the automatic exposure's) composites the still again
+  // rather than marching one more frame.
+  mapper->SetMaximumAccumulatedFrames(frames);
   for (int frame = 0; frame < frames; ++frame)
   {
     window->Render();
@@ -261,15 +276,22 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
       (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
   }
 
+  // Checked for NaN and infinity before anything is made of it.
+  const std::vector<float> rgba = ReadCheckedMapperImage(mapper, renderer, input);
+  const double exposureEV = ResolveExposureEV(scene.Render, rgba.data(), rgba.size() / 4);
+  if (exposureEV != mapper->GetExposureEV())
+  {
+    ConfigureDisplay(mapper, scene.Render, exposureEV);
+    window->Render(); // the converged still, composited again under the chosen exposure
+    CheckMapper(mapper, input, messages);
+  }
   result.Image = CaptureWindow(window, input, messages);
+  result.Image.ExposureEV = exposureEV;
+  result.Image.Display = scene.Render.Display;
   if (options.FloatImage)
   {
-    ReadFloatImage(mapper, renderer, result.Image, input); // checked for NaN and infinity
+    ReadFloatImage(mapper, renderer, result.Image, input);
     ReadBackgroundImage(window, volume, result.Image);
-  }
-  else
-  {
-    CheckMapperImageFinite(mapper, renderer, input);
   }
 
   for (int frame = 0; frame < benchmarkFrames; ++frame)

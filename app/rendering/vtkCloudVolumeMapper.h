@@ -448,6 +448,20 @@ public:
 
   ///@{
   /**
+   * The display transform the composite pass applies to the cloud's radiance
+   * (filters/CloudDisplayTransform.h): the exposure in EV (a factor of 2^EV, default 0) and the
+   * curve, cloudvis::DisplayCurve's value (default 0, linear). Neither changes what is marched:
+   * they do not modify the mapper, so a converged still is composited again, not re-marched,
+   * when the window renders after a change.
+   */
+  void SetExposureEV(double ev) { this->ExposureEV = ev; }
+  double GetExposureEV() const { return this->ExposureEV; }
+  void SetDisplayCurve(int curve) { this->DisplayCurve = curve; }
+  int GetDisplayCurve() const { return this->DisplayCurve; }
+  ///@}
+
+  ///@{
+  /**
    * Read back the per-pixel sample counts after each frame to fill the statistics below. Costs
    * a read-back per frame. Default off.
    */
@@ -560,6 +574,8 @@ protected:
   bool TemporalReprojection = false;
   int MaximumAccumulatedFrames = 1;
   int DisplayMode = Radiance;
+  double ExposureEV = 0.0;
+  int DisplayCurve = 0;
   bool CollectStatistics = false;
   bool HalfFloatDensity = false;
   vtkTypeInt64 MaximumGPUMemory = 0;

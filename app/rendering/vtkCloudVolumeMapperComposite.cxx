@@ -4,6 +4,7 @@
 #include "CloudVolumeMapperInternals.h"
 
 #include "CloudCompositeFS.h"
+#include "CloudDisplayTransformSource.h"
 
 #include <vtkMath.h>
 #include <vtkOpenGLShaderCache.h>
@@ -12,11 +13,25 @@
 #include <vtk_glew.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 using cloudvis::mapper::HistoryFadeDegrees;
 using cloudvis::mapper::HistoryWeight;
 using cloudvis::mapper::SetMatrix;
 using cloudvis::mapper::WindowOf;
+
+namespace
+{
+// The composite shader with the shared display transform spliced in.
+std::string CompositeSource()
+{
+  std::string source = CloudCompositeFS;
+  const std::string marker = "//CLOUDVIS::DisplayTransform";
+  source.replace(source.find(marker), marker.size(), CloudDisplayTransformSource);
+  return source;
+}
+} // namespace
 
 bool vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
 {
@@ -26,7 +41,8 @@ bool vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
   cloudvis::ViewTargets& view = in.ViewOf(renderer);
   if (!in.Composite)
   {
-    in.Composite = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, CloudCompositeFS, "");
+    in.Composite = std::make_unique<vtkOpenGLQuadHelper>(
+      window, nullptr, CompositeSource().c_str(), "");
   }
   else
   {
@@ -57,6 +73,8 @@ bool vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
   program->SetUniformi("CountTexture", counts->GetTextureUnit());
   program->SetUniformi("ShowSampleCount", this->DisplayMode == SampleCount ? 1 : 0);
   program->SetUniformf("SampleCountScale", float(1.0 / view.MostSamplesPerRay));
+  program->SetUniformf("ExposureScale", float(std::exp2(this->ExposureEV)));
+  program->SetUniformi("DisplayCurve", this->DisplayCurve);
   // The samplers the pass does not read must still name units of their type.
   program->SetUniformi("HistoryColorTexture", color->GetTextureUnit());
   program->SetUniformi("HistoryDepthTexture", counts->GetTextureUnit());

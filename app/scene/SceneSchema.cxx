@@ -13,6 +13,7 @@
 #include "CloudMarchUniforms.h" // FloatLimit, MaxSamplesPerRay
 #include "CloudTransferTable.h" // MaxTransferDensity, MinUnitDistance
 
+#include <cmath>
 #include <limits>
 
 namespace cloudvis
@@ -664,6 +665,54 @@ const Keys<RenderSpec>& RenderKeys()
       }(),
       &R::ExrHalf,
       "pixel type of every EXR channel; `--exr-half` sets `\"half\"`" },
+    { "exposure",
+      CustomValue("number (EV) or `\"auto\"`").DefaultIs("`0`"),
+      [](const Context& c, const json& v, const std::string& k, R& r)
+      {
+        if (v.is_string() && v.get<std::string>() == "auto")
+        {
+          r.AutoExposure = true;
+          r.ExposureEV = 0.0;
+          return;
+        }
+        if (!v.is_number() || !std::isfinite(v.get<double>()) ||
+          std::abs(v.get<double>()) > MaxExposureEV)
+        {
+          c.Fail(k,
+            "expected \"auto\" or a number of EV in [-" + ShowValue(MaxExposureEV) + ", " +
+              ShowValue(MaxExposureEV) + "], got " + Describe(v));
+        }
+        r.AutoExposure = false;
+        r.ExposureEV = v.get<double>();
+      },
+      [](const R& r) -> json
+      {
+        if (r.AutoExposure)
+        {
+          return "auto";
+        }
+        return r.ExposureEV;
+      },
+      "the cloud's radiance is multiplied by 2^EV before the display curve; `\"auto\"` chooses "
+      "EV so that the " +
+        ShowValue(100.0 * AutoExposurePercentile) +
+        "th percentile of the cloud's luminance (pixels at least " +
+        ShowValue(AutoExposureMinimumAlpha) + " opaque) lands at " +
+        ShowValue(AutoExposureTarget) +
+        " ([export.md](export.md#exposure-and-the-display-curve)); PNG, `compare` and the "
+        "viewer; EXR stays linear and records it; `--exposure` overrides it" },
+    { "display",
+      []
+      {
+        ValueType t = ChoiceOf(NamesOf<DisplayCurve>(
+          { { "linear", DisplayCurve::Linear }, { "filmic", DisplayCurve::Filmic } }));
+        t.StrictNames = true;
+        return t;
+      }(),
+      &R::Display,
+      "the curve from exposed radiance to display values: `linear` (clamped at 1) or `filmic` "
+      "(an ACES-like tone curve with sRGB's encoding, which rolls highlights off instead of "
+      "clipping them)" },
     { "reprojection",
       Boolean(),
       &R::Reprojection,

@@ -5,6 +5,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfFloatAttribute.h>
 #include <ImfStringAttribute.h>
 
 #include <vtkDataArray.h>
@@ -153,6 +154,10 @@ Exr ReadExr(const std::string& path)
     if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&a.attribute()))
     {
       exr.Strings[a.name()] = text->value();
+    }
+    else if (const auto* number = dynamic_cast<const Imf::FloatAttribute*>(&a.attribute()))
+    {
+      exr.Floats[a.name()] = number->value();
     }
   }
   return exr;

@@ -87,6 +87,7 @@ struct Exr
   std::map<std::string, Imf::PixelType> Types;
   std::map<std::string, std::vector<float>> Channels; // rows top to bottom, as stored
   std::map<std::string, std::string> Strings;
+  std::map<std::string, float> Floats;
   // Channel value at (x, y) with y counted from the bottom, like VTK and the mapper.
   float At(const std::string& name, int x, int y) const
   {

@@ -20,6 +20,7 @@ namespace cloudvis
 {
 
 extern const OptionSpec PngBitsOption;
+extern const OptionSpec ExposureOption;
 extern const OptionSpec ExrHalfOption;
 extern const OptionSpec TransparentOption;
 extern const OptionSpec QuietOption;

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 class vtkImageData;
 class vtkRenderWindow;
@@ -60,8 +61,13 @@ void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, Rendere
 // the file as a silently wrong color.
 void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input);
 
-// Reads the mapper's float image of `renderer` and checks it with CheckFiniteImage; for renders
-// whose export needs only the window's 8-bit pixels.
+// The mapper's float image of `renderer` (premultiplied RGBA), checked with CheckFiniteImage;
+// throws InputError naming `input` when the mapper kept none.
+std::vector<float> ReadCheckedMapperImage(
+  vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, const std::string& input);
+
+// Checks the mapper's float image with ReadCheckedMapperImage; for renders whose export needs
+// only the window's 8-bit pixels.
 void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
   vtkRenderer* renderer,
   const std::string& input);

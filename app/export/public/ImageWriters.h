@@ -5,7 +5,9 @@
 //     window applies (cloud + (1 - alpha) * background, in the window's display values), or with
 //     --transparent not composited at all: straight (un-premultiplied) color and alpha;
 //   OpenEXR: the float image itself, linear and premultiplied, with depth, transmittance and
-//     sample-count channels.
+//     sample-count channels, and the exposure and display curve PNG would apply in its header.
+// PNG's display values are the cloud's radiance through the render's display transform
+// (RenderedImage::ExposureEV and Display) over the background.
 // Every file carries the cloudvis version, the resolved scene and the command line as metadata.
 #ifndef cloudvis_ImageWriters_h
 #define cloudvis_ImageWriters_h
@@ -26,6 +28,9 @@ struct ImageExportOptions
   std::string SceneJson;    // the resolved scene (SceneToJson), embedded as "cloudvis.scene"
   std::string CommandLine;  // embedded as "cloudvis.command"
 };
+
+// An exposure as cloudvis prints and records it: "+1.25 EV".
+std::string ShowExposure(double ev);
 
 // "0.1.0": the CMake project version cloudvis was built as.
 std::string CloudvisVersion();

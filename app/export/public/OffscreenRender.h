@@ -46,7 +46,16 @@ struct PathTraceFrames
 };
 PathTraceFrames PathTraceFramesOf(int samplesPerPixel);
 
-// Sets what only the GPU mapper has from the render section: jitter, resolution scale,
+// The exposure (EV) a render's display values use: render.exposure, or with "auto" the one
+// ComputeAutoExposure (filters/CloudDisplayTransform.h) chooses from the cloud's float image,
+// `pixels` premultiplied RGBA values.
+double ResolveExposureEV(const RenderSpec& render, const float* rgba, size_t pixels);
+
+// Sets the mapper's display transform: render.display and the exposure `exposureEV`.
+void ConfigureDisplay(vtkCloudVolumeMapper* mapper, const RenderSpec& render, double exposureEV);
+
+// Sets what only the GPU mapper has from the render section: jitter, resolution scale, the
+// display transform (with the scene's exposure; "auto" is resolved after the render),
 // accumulation (for pathtrace: render.spp paths, PathTraceFramesOf, and the path tracer's bricks,
 // cloudvis::PathTraceBrickSize) and empty-space skipping.
 // What every renderer takes (the step, the lighting, the

@@ -3,6 +3,8 @@
 #ifndef cloudvis_RenderedImage_h
 #define cloudvis_RenderedImage_h
 
+#include "CloudDisplayTransform.h" // DisplayCurve
+
 #include <cstddef>
 #include <vector>
 
@@ -15,6 +17,11 @@ struct RenderedImage
   int Width = 0;
   int Height = 0;
   std::vector<unsigned char> RGB; // Width * Height * 3
+  // The display transform RGB's cloud went through (render.exposure, resolved when "auto", and
+  // render.display): the writers that make display values from Radiance apply the same, and EXR
+  // records it.
+  double ExposureEV = 0.0;
+  DisplayCurve Display = DisplayCurve::Linear;
 
   // Kept only when RenderOptions::FloatImage asks for them (exports: ImageWriters.h), same size
   // and row order: the mapper's premultiplied linear RGBA (alpha = 1 - transmittance); per pixel

@@ -14,6 +14,7 @@
 
 #include "CloudDensityEvaluator.h"
 #include "CloudLightingParameters.h" // LightingParameters, Light, the models' names
+#include "CloudDisplayTransform.h"   // DisplayCurve
 #include "FieldIO.h"       // FieldReadOptions
 
 #include <nlohmann/json.hpp>
@@ -137,6 +138,12 @@ struct RenderSpec
   std::array<int, 2> Size{ { 800, 600 } }; // pixels, width and height
   int PngBits = 8;      // 8 or 16 bits per PNG channel (docs/export.md)
   bool ExrHalf = false; // EXR channels as 16-bit half floats instead of 32-bit floats
+  // The display transform of PNG, compare panels and the viewer (filters/CloudDisplayTransform.h):
+  // render.exposure (EV, or "auto": AutoExposure, chosen from the rendered cloud's luminance)
+  // and render.display. EXR stays linear radiance.
+  double ExposureEV = 0.0;
+  bool AutoExposure = false;
+  DisplayCurve Display = DisplayCurve::Linear;
 };
 
 // The "background" section beyond a plain color (Scene::Background): a VTK gradient, or the
