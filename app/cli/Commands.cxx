@@ -34,6 +34,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
@@ -356,16 +357,38 @@ void MakeDirectory(const std::string& directory)
   }
 }
 
-// ", filmic, exposure +1.25 EV (auto)": how the picture's display values were made, unless it
-// is the plain default (linear, 0 EV).
-std::string DescribeDisplay(const RenderedImage& image, const RenderSpec& render)
+// ", filmic, exposure +1.25 EV (auto), 0.3% of the cloud clipped": how the picture's display
+// values were made, unless it is the plain default (linear, 0 EV).
+std::string DescribeDisplay(
+  const RenderedImage& image, const RenderSpec& render, double clippedCloudShare)
 {
   if (image.Display == DisplayCurve::Linear && image.ExposureEV == 0.0 && !render.AutoExposure)
   {
     return "";
   }
+  char clipped[64];
+  std::snprintf(clipped, sizeof clipped, ", %.1f%% of the cloud clipped", 100.0 * clippedCloudShare);
   return ", " + DisplayCurveName(image.Display) + ", exposure " + ShowExposure(image.ExposureEV) +
-    (render.AutoExposure ? " (auto)" : "");
+    (render.AutoExposure ? " (auto)" : "") + clipped;
+}
+
+// The share of the cloud clipped above which a linear picture gets ClippingNote.
+constexpr double ClippingNoteShare = 0.05;
+
+// A line after "wrote ..." when a linear picture clips much of the cloud to white, saying what
+// keeps it; empty otherwise.
+std::string ClippingNote(const RenderedImage& image, double clippedCloudShare)
+{
+  if (image.Display != DisplayCurve::Linear || clippedCloudShare < ClippingNoteShare)
+  {
+    return "";
+  }
+  char text[256];
+  std::snprintf(text, sizeof text,
+    "note: %.1f%% of the cloud's pixels are clipped to white; render.display \"filmic\" with "
+    "render.exposure \"auto\" (--exposure auto) keeps their shading (docs/export.md)\n",
+    100.0 * clippedCloudShare);
+  return text;
 }
 
 int Render(const Arguments& arguments, std::ostream& out)
@@ -417,10 +440,12 @@ int Render(const Arguments& arguments, std::ostream& out)
       throw InputError(output + ": --cpu-reference writes 8-bit PNG images only");
     }
     const RenderedImage image = RenderCpuReference(scene, field, input);
+    const double clipped = ClippedCloudShare(image, image.Radiance);
     progress.Finish();
     WriteImage(image, output, exportOptions);
     out << "wrote " << output << " (" << image.Width << " x " << image.Height
-        << " pixels, CPU reference" << DescribeDisplay(image, scene.Render) << ")\n";
+        << " pixels, CPU reference" << DescribeDisplay(image, scene.Render, clipped) << ")\n"
+        << ClippingNote(image, clipped);
     return ExitSuccess;
   }
   const OffscreenRenderResult result =
@@ -438,7 +463,8 @@ int Render(const Arguments& arguments, std::ostream& out)
     out << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
         << " averaged";
   }
-  out << DescribeDisplay(result.Image, scene.Render) << ")\n";
+  out << DescribeDisplay(result.Image, scene.Render, result.ClippedCloudShare) << ")\n"
+      << ClippingNote(result.Image, result.ClippedCloudShare);
   if (benchmarkFrames > 0)
   {
     const double total =
@@ -511,7 +537,8 @@ int RunDefault(std::ostream& out)
   const OffscreenRenderResult result = RenderOffscreen(scene, field, scene.Source);
   WriteImage(result.Image, image);
   out << "wrote " << image << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, lighting " << LightingModelName(scene.Render.Lighting.Model) << ")\n";
+      << " pixels, lighting " << LightingModelName(scene.Render.Lighting.Model)
+      << DescribeDisplay(result.Image, scene.Render, result.ClippedCloudShare) << ")\n";
   // The three lighting models side by side, each panel half the render's size.
   Scene halfSize = scene;
   halfSize.Render.Size[0] = std::max(16, scene.Render.Size[0] / 2);

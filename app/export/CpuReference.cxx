@@ -143,6 +143,7 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
   image.Height = height;
   image.ExposureEV = ResolveExposureEV(scene.Render, pixels, size_t(width) * size_t(height));
   image.Display = scene.Render.Display;
+  image.Radiance.assign(pixels, pixels + 4 * size_t(width) * size_t(height));
   image.RGB.resize(size_t(width) * size_t(height) * 3);
   for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
   {

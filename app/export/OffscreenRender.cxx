@@ -97,6 +97,22 @@ PathTraceFrames PathTraceFramesOf(int samplesPerPixel)
   return frames;
 }
 
+double ClippedCloudShare(const RenderedImage& image, const std::vector<float>& rgba)
+{
+  const size_t pixels = std::min(rgba.size() / 4, image.RGB.size() / 3);
+  size_t cloud = 0, clipped = 0;
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    if (rgba[4 * p + 3] >= AutoExposureMinimumAlpha)
+    {
+      ++cloud;
+      const unsigned char* c = image.RGB.data() + 3 * p;
+      clipped += c[0] == 255 || c[1] == 255 || c[2] == 255;
+    }
+  }
+  return cloud > 0 ? double(clipped) / double(cloud) : 0.0;
+}
+
 double ResolveExposureEV(const RenderSpec& render, const float* rgba, size_t pixels)
 {
   return render.AutoExposure ? ComputeAutoExposure(rgba, pixels).EV : render.ExposureEV;
@@ -288,6 +304,10 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   result.Image = CaptureWindow(window, input, messages);
   result.Image.ExposureEV = exposureEV;
   result.Image.Display = scene.Render.Display;
+  if (rgba.size() / 4 == result.Image.RGB.size() / 3)
+  {
+    result.ClippedCloudShare = ClippedCloudShare(result.Image, rgba);
+  }
   if (options.FloatImage)
   {
     ReadFloatImage(mapper, renderer, result.Image, input);

@@ -40,8 +40,9 @@ void SetUpReference(const Scene& scene, vtkImageData* field, vtkCloudReferenceRe
 // command that renders calls it once the field is known and before anything is drawn or written.
 void CheckSceneRenderable(const Scene& scene, vtkImageData* field, const std::string& input);
 
-// The reference's premultiplied RGBA (render.size pixels, rows bottom to top) composited over the
-// scene's background, c + (1 - a) * background, rounded to 8 bits. Throws InputError
+// The reference's premultiplied RGBA (render.size pixels, rows bottom to top; kept in Radiance)
+// through the display transform and composited over the scene's background,
+// D(c, a) + (1 - a) * background, rounded to 8 bits. Throws InputError
 // "<input>: CPU reference: <problem>" when the reference refuses the field or the parameters, and
 // CheckFiniteImage's error when a pixel is not finite.
 RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const std::string& input);

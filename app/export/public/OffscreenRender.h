@@ -32,7 +32,14 @@ struct OffscreenRenderResult
   int AccumulatedFrames = 0;             // frames the mapper averaged into Image
   int AccumulatedSamples = 0;            // samples per pixel in them (pathtrace: paths)
   std::vector<double> FrameMilliseconds; // wall clock of each benchmark frame, in order
+  // Of the cloud's pixels (at least AutoExposureMinimumAlpha opaque), the share that Image
+  // shows white in some channel: what the display transform failed to keep (0 without cloud).
+  double ClippedCloudShare = 0.0;
 };
+
+// The share of the cloud's pixels (premultiplied RGBA `rgba`, at least AutoExposureMinimumAlpha
+// opaque) that `image` shows at 255 in some channel; 0 when there is no such pixel.
+double ClippedCloudShare(const RenderedImage& image, const std::vector<float>& rgba);
 
 // The volume property of a transfer function: piecewise-linear opacity per unit distance and
 // color, linear interpolation of the density, no VTK shading (lighting is the mapper's).
