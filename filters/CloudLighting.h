@@ -37,8 +37,23 @@ constexpr float PhaseToRadiance = 4.0f * Pi;
 // Henyey-Greenstein phase function: (1 / 4 pi) (1 - g^2) / (1 + g^2 - 2 g mu)^(3/2).
 CLOUDVISFILTERS_EXPORT float HenyeyGreenstein(float g, float mu);
 
-// The two-lobe phase with both eccentricities scaled by `eccentricityScale` (c^n for octave n).
-CLOUDVISFILTERS_EXPORT float Phase(const LightingParameters& p, float mu, float eccentricityScale);
+// The phase function of `p` at mu, per channel, its eccentricity scaled by `eccentricityScale`
+// (c^n for octave n): the two lobes, or the droplets' table (scale 1) and their g's lobe.
+CLOUDVISFILTERS_EXPORT glm::vec3 Phase(
+  const LightingParameters& p, float mu, float eccentricityScale);
+
+// The droplets' table of `p` (its effective radius and variance, the default wavelengths), from
+// DropletPhase's cache, and its moments as the light transport takes them: the means over the
+// channels of g (chi_1) and chi_2.
+CLOUDVISFILTERS_EXPORT const DropletPhaseTable& DropletPhaseOf(const LightingParameters& p);
+inline float DropletMeanCosineOf(const DropletPhaseTable& table)
+{
+  return (table.g.x + table.g.y + table.g.z) / 3.0f;
+}
+inline float DropletSecondMomentOf(const DropletPhaseTable& table)
+{
+  return (table.chi_2.x + table.chi_2.y + table.chi_2.z) / 3.0f;
+}
 
 // Light scattered toward the eye at a sample from one light whose optical depth to the sample
 // is tau: single scattering plus the multiple-scattering octaves (docs/lighting.md), per channel.
@@ -84,9 +99,22 @@ inline double PeakRadiancePerLightRadiance(const LightingParameters& p)
     return (1.0 + a) / (4.0 * 3.14159265358979323846 * (1.0 - a) * (1.0 - a));
   };
   double sum = 0.0, a = 1.0, c = 1.0;
+  const bool droplets = p.Phase == PhaseModel::Droplets;
   for (int n = 0; n <= p.MultipleScatteringOctaves; ++n)
   {
-    sum += a * std::max(peakHG(p.PhaseG1 * c), peakHG(p.PhaseG2 * c));
+    if (droplets)
+    {
+      // The table's largest value is its forward peak; the octaves' lobes have the table's g.
+      const DropletPhaseTable& table = DropletPhaseOf(p);
+      const glm::vec3 forward = table.Phase.front();
+      sum += a *
+        (n == 0 ? double(std::max(std::max(forward.x, forward.y), forward.z))
+                : peakHG(DropletMeanCosineOf(table) * c));
+    }
+    else
+    {
+      sum += a * std::max(peakHG(p.PhaseG1 * c), peakHG(p.PhaseG2 * c));
+    }
     a *= p.ScatteringFalloff;
     c *= p.EccentricityFalloff;
   }

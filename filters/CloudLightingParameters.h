@@ -12,6 +12,8 @@
 #ifndef CloudLightingParameters_h
 #define CloudLightingParameters_h
 
+#include "CloudDropletOptics.h" // the droplets' ranges
+
 #include <glm/glm.hpp>
 
 #include <algorithm>
@@ -201,6 +203,16 @@ struct LocalLight
   glm::vec3 IndexOffset{ 0.0f };
 };
 
+// The phase function every lighting model that scatters uses (render.march.phase): the
+// transport's PhaseTwoLobe and PhaseDroplets (shaders/transport/Transport.glsl).
+enum class PhaseModel
+{
+  TwoLobe = 0,  // two Henyey-Greenstein lobes, PhaseG1, PhaseG2, PhaseLobeWeight
+  Droplets = 1, // the Mie phase of water droplets (CloudDropletOptics.h), tabulated per channel
+};
+constexpr int PhaseTwoLobe = int(PhaseModel::TwoLobe);
+constexpr int PhaseDroplets = int(PhaseModel::Droplets);
+
 // How the march finds the optical depth toward a light at a sample (docs/lighting.md).
 enum class LightTransmittance
 {
@@ -227,10 +239,15 @@ struct LightingParameters
   // Where the optical depth comes from: the volumes (fast; their march has uniform steps of the
   // view's step) or the nested march above at every sample.
   LightTransmittance Transmittance = LightTransmittance::Volumes;
-  // Henyey-Greenstein phase, two lobes: w * HG(g1) + (1 - w) * HG(g2). w = 1 is one lobe.
+  // The phase function. Henyey-Greenstein, two lobes: w * HG(g1) + (1 - w) * HG(g2); w = 1 is
+  // one lobe. Droplets: a modified gamma distribution of effective radius r_e (micrometres) and
+  // effective variance v_e, at the table's wavelengths (DefaultDropletWavelengthsUm).
+  PhaseModel Phase = PhaseModel::TwoLobe;
   float PhaseG1 = 0.6f;
   float PhaseG2 = -0.3f;
   float PhaseLobeWeight = 0.8f;
+  float DropletEffectiveRadius = 10.0f;
+  float DropletEffectiveVariance = 0.1f;
   // Where the light scattered more than once comes from: the multiple-scattering volume (the
   // default: docs/lighting.md, "The multiple-scattering volume") or the octaves below.
   MultipleScatteringModel MultipleScattering = MultipleScatteringModel::Volume;
@@ -254,7 +271,10 @@ inline bool operator==(const LightingParameters& a, const LightingParameters& b)
     a.AmbientStrength == b.AmbientStrength && a.DerivativeDistance == b.DerivativeDistance &&
     a.LightSteps == b.LightSteps && a.LightStep == b.LightStep &&
     a.LightStepGrowth == b.LightStepGrowth && a.Transmittance == b.Transmittance &&
-    a.PhaseG1 == b.PhaseG1 && a.PhaseG2 == b.PhaseG2 && a.PhaseLobeWeight == b.PhaseLobeWeight &&
+    a.Phase == b.Phase && a.PhaseG1 == b.PhaseG1 && a.PhaseG2 == b.PhaseG2 &&
+    a.PhaseLobeWeight == b.PhaseLobeWeight &&
+    a.DropletEffectiveRadius == b.DropletEffectiveRadius &&
+    a.DropletEffectiveVariance == b.DropletEffectiveVariance &&
     a.MultipleScattering == b.MultipleScattering &&
     a.MultipleScatteringOctaves == b.MultipleScatteringOctaves &&
     a.ScatteringFalloff == b.ScatteringFalloff && a.ExtinctionFalloff == b.ExtinctionFalloff &&
@@ -304,6 +324,18 @@ inline std::string ValidateLightingParameters(const LightingParameters& p)
     return "phase eccentricities g must be in (-1, 1)";
   if (!(p.PhaseLobeWeight >= 0.0f && p.PhaseLobeWeight <= 1.0f))
     return "the phase lobe weight must be in [0, 1]";
+  if (p.Phase != PhaseModel::TwoLobe && p.Phase != PhaseModel::Droplets)
+    return "the phase must be two_lobe or droplets, got the value " + std::to_string(int(p.Phase));
+  if (!(p.DropletEffectiveRadius >= DropletEffectiveRadiusMinUm &&
+        p.DropletEffectiveRadius <= DropletEffectiveRadiusMaxUm))
+    return "the droplets' effective radius must be in [" +
+      std::to_string(int(DropletEffectiveRadiusMinUm)) + ", " +
+      std::to_string(int(DropletEffectiveRadiusMaxUm)) + "] micrometres, got " +
+      std::to_string(p.DropletEffectiveRadius);
+  if (!(p.DropletEffectiveVariance >= DropletEffectiveVarianceMin &&
+        p.DropletEffectiveVariance <= DropletEffectiveVarianceMax))
+    return "the droplets' effective variance must be in [0.01, 0.3], got " +
+      std::to_string(p.DropletEffectiveVariance);
   if (std::string(MultipleScatteringModelName(p.MultipleScattering)) == "unknown")
   {
     std::string names;

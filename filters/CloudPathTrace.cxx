@@ -18,9 +18,10 @@ float SampleHenyeyGreensteinCosine(float g, float xi)
   return glsl::Transport{}.SampleHenyeyGreensteinCosine(g, xi);
 }
 
-glm::vec3 SamplePhaseDirection(const LightingParameters& lighting, glm::vec3 d, RandomStream& rng)
+glm::vec3 SamplePhaseDirection(
+  const LightingParameters& lighting, glm::vec3 d, RandomStream& rng, glm::vec3& weight)
 {
-  return TransportOf(lighting).SamplePhaseDirection(d, rng);
+  return TransportOf(lighting).SamplePhaseDirection(d, rng, weight);
 }
 
 glm::vec3 DirectLight(

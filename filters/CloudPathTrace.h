@@ -48,9 +48,10 @@ CLOUDVISFILTERS_EXPORT float NextRandom(RandomStream& rng);
 
 // The cosine of a scattering angle drawn from HG(g, mu) with xi in [0, 1).
 CLOUDVISFILTERS_EXPORT float SampleHenyeyGreensteinCosine(float g, float xi);
-// A new direction of travel after scattering along d, drawn from Phase(lighting, mu, 1).
+// A new direction of travel after scattering along d, drawn from Phase(lighting, mu, 1) (the
+// droplets: from the mean of its channels), and in `weight` the path's factor Phase / pdf.
 CLOUDVISFILTERS_EXPORT glm::vec3 SamplePhaseDirection(
-  const LightingParameters& lighting, glm::vec3 d, RandomStream& rng);
+  const LightingParameters& lighting, glm::vec3 d, RandomStream& rng, glm::vec3& weight);
 
 // Next-event estimation at scattering point p for light arriving along unit direction d.
 CLOUDVISFILTERS_EXPORT glm::vec3 DirectLight(

@@ -11,6 +11,14 @@ namespace
 {
 void SetPhase(glsl::Transport& t, const LightingParameters& p)
 {
+  t.PhaseType = int(p.Phase);
+  if (p.Phase == PhaseModel::Droplets)
+  {
+    const DropletPhaseTable& table = DropletPhaseOf(p);
+    t.DropletTable = &table;
+    t.DropletMeanCosine = DropletMeanCosineOf(table);
+    t.DropletSecondMoment = DropletSecondMomentOf(table);
+  }
   t.PhaseG1 = p.PhaseG1;
   t.PhaseG2 = p.PhaseG2;
   t.PhaseLobeWeight = p.PhaseLobeWeight;
@@ -120,9 +128,14 @@ float HenyeyGreenstein(float g, float mu)
   return glsl::Transport{}.HenyeyGreenstein(g, mu);
 }
 
-float Phase(const LightingParameters& p, float mu, float eccentricityScale)
+glm::vec3 Phase(const LightingParameters& p, float mu, float eccentricityScale)
 {
   return TransportOf(p).Phase(mu, eccentricityScale);
+}
+
+const DropletPhaseTable& DropletPhaseOf(const LightingParameters& p)
+{
+  return DropletPhase(p.DropletEffectiveRadius, p.DropletEffectiveVariance);
 }
 
 glm::vec3 ScatteredFraction(const LightingParameters& p, float mu, float tau, glm::vec3 albedo)

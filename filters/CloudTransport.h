@@ -19,6 +19,7 @@
 #ifndef CloudTransport_h
 #define CloudTransport_h
 
+#include "CloudDropletOptics.h"
 #include "CloudLighting.h"
 #include "CloudMarchUniforms.h"
 #include "CloudOpticalDepthGrid.h"
@@ -121,6 +122,7 @@ struct Transport
 // The shared source leaves some parameters unused (a model's term takes every term's arguments).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-parameter"
+#include "../shaders/transport/DropletPhase.glsl"
 #include "../shaders/transport/Scattering.glsl"
 #include "../shaders/transport/Transport.glsl"
 #pragma GCC diagnostic pop
@@ -139,6 +141,8 @@ struct Transport
   const ScatteringGrid* Grid = nullptr;
   const ScatteringGrid* Coarse = nullptr;
   const ScatteringGrid* Scattering = nullptr;
+  // The droplets' phase table (PhaseType PhaseDroplets).
+  const DropletPhaseTable* DropletTable = nullptr;
   LightingModel Model = LightingModel::None;
 
   // The source term of Model at index point p: the GLSL's SourceTerm, which the mapper generates
@@ -229,6 +233,16 @@ inline float Transport::DensityAt(vec3 p)
 inline vec4 Transport::TransferAt(float density)
 {
   return this->March->Table->Lookup(density);
+}
+
+inline vec3 Transport::DropletPhaseNode(int i)
+{
+  return this->DropletTable->Phase[std::size_t(i)];
+}
+
+inline vec3 Transport::DropletCdfNode(int i)
+{
+  return this->DropletTable->CDF[std::size_t(i)];
 }
 
 // No occupancy without the path tracer's bricks: the CPU march reads every sample.

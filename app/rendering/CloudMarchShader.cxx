@@ -6,6 +6,7 @@
 
 #include "CloudMarchFS.h"
 #include "CloudTransportAccessors.h"
+#include "CloudTransportDropletPhase.h"
 #include "CloudTransportPrelude.h"
 #include "CloudTransportScattering.h"
 #include "CloudTransportSource.h"
@@ -58,7 +59,10 @@ std::string Constants(int samplesPerMapRead)
        << "const float GaveUp = " << GlslFloat(GaveUp) << ";\n"
        << "const int MaxWalkSteps = " << MaxWalkSteps << ";\n"
        << "const float NoDepth = " << GlslFloat(NoDepth) << ";\n"
-       << "const float DepthTransmittance = " << GlslFloat(DepthTransmittance) << ";\n";
+       << "const float DepthTransmittance = " << GlslFloat(DepthTransmittance) << ";\n"
+       << "const int PhaseTwoLobe = " << PhaseTwoLobe << ";\n"
+       << "const int PhaseDroplets = " << PhaseDroplets << ";\n"
+       << "const int DropletPhaseNodeCount = " << DropletPhaseNodeCount << ";\n";
   return glsl.str();
 }
 
@@ -66,7 +70,8 @@ std::string Constants(int samplesPerMapRead)
 // accessors (docs/transport.md).
 std::string TransportSource()
 {
-  return std::string(CloudTransportPrelude) + "\n" + CloudTransportSource + "\n" +
+  return std::string(CloudTransportPrelude) + "\n" + CloudTransportDropletPhase + "\n" +
+    CloudTransportSource + "\n" +
     CloudTransportScattering + "\n" + CloudTransportAccessors;
 }
 
@@ -158,6 +163,9 @@ void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
   program->SetUniformi("LightSteps", t.LightSteps);
   program->SetUniformf("LightStep", t.LightStep);
   program->SetUniformf("LightStepGrowth", t.LightStepGrowth);
+  program->SetUniformi("PhaseType", t.PhaseType);
+  program->SetUniformf("DropletMeanCosine", t.DropletMeanCosine);
+  program->SetUniformf("DropletSecondMoment", t.DropletSecondMoment);
   program->SetUniformf("PhaseG1", t.PhaseG1);
   program->SetUniformf("PhaseG2", t.PhaseG2);
   program->SetUniformf("PhaseLobeWeight", t.PhaseLobeWeight);

@@ -8,6 +8,7 @@
 #include "vtkCloudVolumeMapper.h"
 
 #include "CloudDensityTexture.h"
+#include "CloudDropletPhaseTexture.h"
 #include "CloudExternalDepthTexture.h"
 #include "CloudExternalScatteringTexture.h"
 #include "CloudJitterTexture.h"
@@ -64,6 +65,7 @@ struct vtkCloudVolumeMapper::Internals
 {
   cloudvis::DensityTexture Density;
   cloudvis::TransferTexture Transfer;
+  cloudvis::DropletPhaseTexture DropletPhase; // the droplets' phase table
   cloudvis::OccupancyTexture Occupancy;
   cloudvis::JitterTexture Jitter;
   cloudvis::ExtinctionBoundsTexture ExtinctionBounds; // the path tracer's, made on first use
@@ -88,7 +90,8 @@ struct vtkCloudVolumeMapper::Internals
 
   long long TextureBytes() const
   {
-    return this->Density.GetBytes() + this->Transfer.GetBytes() + this->Occupancy.GetBytes() +
+    return this->Density.GetBytes() + this->Transfer.GetBytes() +
+      this->DropletPhase.GetBytes() + this->Occupancy.GetBytes() +
       this->Jitter.GetBytes() + this->ExtinctionBounds.GetBytes() + this->LightVolumes.GetBytes() +
       this->Scattering.GetBytes() + this->External.GetBytes() + this->ExternalScattering.GetBytes();
   }

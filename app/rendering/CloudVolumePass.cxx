@@ -77,7 +77,8 @@ vtkShaderProgram* VolumePass::Begin(vtkOpenGLRenderWindow* window,
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_SCISSOR_TEST);
 
-  for (vtkTextureObject* texture : { inputs.Density, inputs.Transfer, inputs.Occupancy })
+  for (vtkTextureObject* texture :
+    { inputs.Density, inputs.Transfer, inputs.Occupancy, inputs.DropletPhase })
   {
     texture->Activate();
   }
@@ -85,6 +86,7 @@ vtkShaderProgram* VolumePass::Begin(vtkOpenGLRenderWindow* window,
   program->SetUniformi("DensityTexture", inputs.Density->GetTextureUnit());
   program->SetUniformi("TransferTexture", inputs.Transfer->GetTextureUnit());
   program->SetUniformi("EmptyDistanceTexture", inputs.Occupancy->GetTextureUnit());
+  program->SetUniformi("DropletPhaseTexture", inputs.DropletPhase->GetTextureUnit());
   const float brickCount[3] = {
     float(inputs.BrickCount[0]), float(inputs.BrickCount[1]), float(inputs.BrickCount[2])
   };
@@ -112,7 +114,8 @@ void VolumePass::End()
   glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0);
   this->Saved->State->PopFramebufferBindings();
   const VolumePassInputs& inputs = this->Saved->Inputs;
-  for (vtkTextureObject* texture : { inputs.Density, inputs.Transfer, inputs.Occupancy })
+  for (vtkTextureObject* texture :
+    { inputs.Density, inputs.Transfer, inputs.Occupancy, inputs.DropletPhase })
   {
     texture->Deactivate();
   }

@@ -25,6 +25,7 @@ struct VolumePassInputs
   vtkTextureObject* Density = nullptr;
   vtkTextureObject* Transfer = nullptr;
   vtkTextureObject* Occupancy = nullptr;
+  vtkTextureObject* DropletPhase = nullptr; // the droplets' phase table (or its placeholder)
   const int* BrickCount = nullptr;
   int BrickSize = 1;
   bool SkipEmptySpace = true;

@@ -513,6 +513,12 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   const glm::dmat4 worldToDevice = glm::transpose(ToGlm(wcdc));
   const glm::dmat4 modelToWorld = ToGlm(volume->GetMatrix());
 
+  // Every program that holds the transport reads the droplets' table (or its placeholder).
+  if (!in.DropletPhase.Update(window, uniforms.Lighting, budget, problem))
+  {
+    return this->Fail(problem);
+  }
+
   view.MostSamplesPerRay = std::max(1.0, double(uniforms.LongestRaySamples));
   // One iteration per sample, and at most about three leaps per brick crossed.
   const int* bricks = in.Occupancy.GetBrickCount();
@@ -549,6 +555,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   lightInputs.Density = in.Density.GetTexture();
   lightInputs.Transfer = in.Transfer.GetTexture();
   lightInputs.Occupancy = in.Occupancy.GetTexture();
+  lightInputs.DropletPhase = in.DropletPhase.GetTexture();
   lightInputs.BrickCount = bricks;
   lightInputs.BrickSize = this->BrickSize;
   lightInputs.SkipEmptySpace = this->EmptySpaceSkipping;
@@ -726,6 +733,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     in.Transfer.GetTexture(),
     in.Occupancy.GetTexture(),
     in.Jitter.GetTexture(),
+    in.DropletPhase.GetTexture(),
     view.GetDepth() };
   if (pathTrace)
   {
@@ -744,6 +752,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   program->SetUniformi("DensityTexture", in.Density.GetTexture()->GetTextureUnit());
   program->SetUniformi("TransferTexture", in.Transfer.GetTexture()->GetTextureUnit());
   program->SetUniformi("EmptyDistanceTexture", in.Occupancy.GetTexture()->GetTextureUnit());
+  program->SetUniformi("DropletPhaseTexture", in.DropletPhase.GetTexture()->GetTextureUnit());
   const float brickCount[3] = { float(bricks[0]), float(bricks[1]), float(bricks[2]) };
   program->SetUniform3f("BrickCount", brickCount);
   program->SetUniformf("BrickSize", float(this->BrickSize));
@@ -842,6 +851,7 @@ void vtkCloudVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   Internals& in = *this->Internal;
   in.Density.Release(window);
   in.Transfer.Release(window);
+  in.DropletPhase.Release(window);
   in.Occupancy.Release(window);
   in.Jitter.Release(window);
   in.ExtinctionBounds.Release(window);

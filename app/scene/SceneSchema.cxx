@@ -780,6 +780,30 @@ const Keys<LightingParameters>& MarchKeys()
       NumberIn(UnitInterval),
       &P::PhaseLobeWeight,
       "weight of the first lobe (1: one lobe)" },
+    { "phase",
+      []
+      {
+        ValueType t = ChoiceOf(NamesOf<PhaseModel>(
+          { { "two_lobe", PhaseModel::TwoLobe }, { "droplets", PhaseModel::Droplets } }));
+        t.StrictNames = true;
+        return t;
+      }(),
+      &P::Phase,
+      "the phase function of the march and the path tracer: `two_lobe`, Henyey-Greenstein with `g1`, `g2` and `lobe_weight`, or "
+      "`droplets`, the Mie phase of liquid water droplets computed by cloudvis for "
+      "`effective_radius` and `effective_variance` at 680, 550 and 440 nm, with its forward "
+      "peak, cloudbow and glory ([lighting.md](lighting.md#droplet-optics))" },
+    { "effective_radius",
+      NumberIn(Range{ DropletEffectiveRadiusMinUm, DropletEffectiveRadiusMaxUm })
+        .In("micrometres"),
+      &P::DropletEffectiveRadius,
+      "`phase: \"droplets\"`: the droplets' effective radius r_e (the ratio of the third to the "
+      "second moment of their radii)" },
+    { "effective_variance",
+      NumberIn(Range{ DropletEffectiveVarianceMin, DropletEffectiveVarianceMax }),
+      &P::DropletEffectiveVariance,
+      "`phase: \"droplets\"`: the effective variance v_e of their modified gamma size "
+      "distribution (Hansen and Travis 1974)" },
     { "multiple_scattering",
       ChoiceOf(NamesOfTable(MultipleScatteringModelTable())).RefusesOutdated(OctaveCountMoved),
       &P::MultipleScattering,

@@ -11,6 +11,7 @@ uniform sampler3D EmptyDistanceTexture; // Chebyshev distance in bricks to occup
 uniform sampler3D ExtinctionBoundsTexture; // the path tracer's, per brick: r = minorant, g = majorant
 uniform sampler3D LightVolumeTexture; // the light volumes, one block per light stacked along z
 uniform sampler3D ExternalDepthTexture; // depths from outside the field, blocks as the above
+uniform sampler2D DropletPhaseTexture; // the droplets' table: row 0 its phase, row 1 its CDF
 
 float DensityAt(vec3 p)
 {
@@ -26,6 +27,16 @@ float TableCoordinate(float density)
 vec4 TransferAt(float density)
 {
   return texture(TransferTexture, TableCoordinate(density));
+}
+
+vec3 DropletPhaseNode(int i)
+{
+  return texelFetch(DropletPhaseTexture, ivec2(i, 0), 0).rgb;
+}
+
+vec3 DropletCdfNode(int i)
+{
+  return texelFetch(DropletPhaseTexture, ivec2(i, 1), 0).rgb;
 }
 
 float EmptyBricksAround(vec3 brick)

@@ -147,10 +147,16 @@ void SampleLight(int i, vec3 x, OUT(vec3) l, OUT(float) lightDistance, OUT(float
 
 // ---- Phase functions and the multiple-scattering octaves ----
 
-// Henyey-Greenstein, two lobes: w * HG(g1) + (1 - w) * HG(g2); w = 1 is one lobe.
+// The phase function: PhaseTwoLobe, Henyey-Greenstein with two lobes, w * HG(g1) + (1 - w) *
+// HG(g2) (w = 1 is one lobe), or PhaseDroplets, the Mie phase of cloud droplets tabulated per
+// channel (shaders/transport/DropletPhase.glsl), whose first moment g and second moment chi_2
+// (means over the channels) stand in for the lobes' where the light transport needs moments.
+UNIFORM int PhaseType;
 UNIFORM float PhaseG1;
 UNIFORM float PhaseG2;
 UNIFORM float PhaseLobeWeight;
+UNIFORM float DropletMeanCosine;
+UNIFORM float DropletSecondMoment;
 // Octaves n = 1..N added to single scattering (n = 0), each scaling scattering by a^n,
 // extinction toward the light by b^n, eccentricity by c^n.
 UNIFORM int MultipleScatteringOctaves;
@@ -168,11 +174,21 @@ float HenyeyGreenstein(float g, float mu)
   return (1.0f - g2) / (4.0f * Pi * denominator * sqrt(denominator));
 }
 
-// The two-lobe phase with both eccentricities scaled by `eccentricityScale` (c^n for octave n).
-float Phase(float mu, float eccentricityScale)
+// The phase function at mu per channel, with its eccentricity scaled by `eccentricityScale` (c^n
+// for octave n): the two lobes' both, or for the droplets a Henyey-Greenstein lobe of their g
+// (scale 1 is the table itself).
+vec3 Phase(float mu, float eccentricityScale)
 {
-  return PhaseLobeWeight * HenyeyGreenstein(PhaseG1 * eccentricityScale, mu) +
-    (1.0f - PhaseLobeWeight) * HenyeyGreenstein(PhaseG2 * eccentricityScale, mu);
+  if (PhaseType == PhaseDroplets)
+  {
+    if (eccentricityScale == 1.0f)
+    {
+      return DropletPhaseAt(mu);
+    }
+    return vec3(HenyeyGreenstein(DropletMeanCosine * eccentricityScale, mu));
+  }
+  return vec3(PhaseLobeWeight * HenyeyGreenstein(PhaseG1 * eccentricityScale, mu) +
+    (1.0f - PhaseLobeWeight) * HenyeyGreenstein(PhaseG2 * eccentricityScale, mu));
 }
 
 // Light scattered toward the eye at a sample from one light whose optical depth to the sample is
@@ -302,12 +318,18 @@ UNIFORM vec3 ScatteringVolumeSize;     // texels per axis of the grid computed o
 // most g: a phase that scatters backward keeps no beam).
 float PhaseMeanCosine()
 {
+  if (PhaseType == PhaseDroplets)
+  {
+    return DropletMeanCosine;
+  }
   return PhaseLobeWeight * PhaseG1 + (1.0f - PhaseLobeWeight) * PhaseG2;
 }
 
 float PhaseForwardFraction()
 {
-  float second = PhaseLobeWeight * PhaseG1 * PhaseG1 + (1.0f - PhaseLobeWeight) * PhaseG2 * PhaseG2;
+  float second = PhaseType == PhaseDroplets
+    ? DropletSecondMoment
+    : PhaseLobeWeight * PhaseG1 * PhaseG1 + (1.0f - PhaseLobeWeight) * PhaseG2 * PhaseG2;
   return min(second, max(PhaseMeanCosine(), 0.0f));
 }
 
@@ -728,13 +750,28 @@ vec3 DirectionAround(vec3 axis, float mu, float phi)
   return normalize(sinTheta * cos(phi) * b1 + sinTheta * sin(phi) * b2 + mu * axis);
 }
 
-// A new direction of travel after scattering light travelling along d: a lobe (the first with
-// probability PhaseLobeWeight), then its HG cosine, then a uniform azimuth. Its density is
-// exactly Phase(dot(d, new), 1), so a path's weight needs no phase / pdf factor.
-vec3 SamplePhaseDirection(vec3 d, INOUT(RandomStream) rng)
+// A new direction of travel after scattering light travelling along d, and the path's weight
+// Phase / pdf for it. Two lobes: a lobe (the first with probability PhaseLobeWeight), then its HG
+// cosine, then a uniform azimuth; the density is exactly the phase, so the weight is 1. Droplets:
+// a channel chosen uniformly, then its tabulated cosine, so the density is the channels' mean
+// phase and the weight each channel's phase over that mean (at most 3; near 1 but at the
+// cloudbow and the glory, where the colours part).
+vec3 SamplePhaseDirection(vec3 d, INOUT(RandomStream) rng, OUT(vec3) weight)
 {
-  float g = NextRandom(rng) < PhaseLobeWeight ? PhaseG1 : PhaseG2;
-  float mu = SampleHenyeyGreensteinCosine(g, NextRandom(rng));
+  float mu;
+  weight = vec3(1.0f);
+  if (PhaseType == PhaseDroplets)
+  {
+    int c = min(int(3.0f * NextRandom(rng)), 2);
+    mu = SampleDropletCosine(c, NextRandom(rng));
+    vec3 p = DropletPhaseAt(mu);
+    weight = p * (3.0f / max(p.x + p.y + p.z, 1e-30f));
+  }
+  else
+  {
+    float g = NextRandom(rng) < PhaseLobeWeight ? PhaseG1 : PhaseG2;
+    mu = SampleHenyeyGreensteinCosine(g, NextRandom(rng));
+  }
   float phi = 2.0f * Pi * NextRandom(rng);
   return DirectionAround(d, mu, phi);
 }
@@ -818,7 +855,9 @@ vec4 TracePath(vec3 nearPoint, vec3 farPoint, INOUT(RandomStream) rng)
       }
       throughput /= survival;
     }
-    d = SamplePhaseDirection(d, rng);
+    vec3 phaseWeight;
+    d = SamplePhaseDirection(d, rng, phaseWeight);
+    throughput *= phaseWeight;
     direction = LocalToIndex * d;
     tStart = 0.0f;
     tEnd = IntersectBox(p, direction, vec3(0.0f), boxHigh).y;

@@ -300,6 +300,20 @@ std::vector<Case> Cases()
     p.PowderStrength = 0.7f;
   };
   cases.push_back(lobes);
+  // The droplets' Mie table (the texture and the shared evaluation), with the sun in front so
+  // that the forward peak and the bow both fall on the cloud, and their moments in the volume.
+  Case droplets;
+  droplets.Name = "MarchDropletPhase";
+  droplets.Lighting = [](LightingParameters& p)
+  {
+    p.Phase = PhaseModel::Droplets;
+    p.DropletEffectiveRadius = 8.0f;
+  };
+  cases.push_back(droplets);
+  Case dropletPoint = droplets;
+  dropletPoint.Name = "MarchDropletPhasePointLight";
+  dropletPoint.PointLight = true;
+  cases.push_back(dropletPoint);
   Case octaves;
   octaves.Name = "MarchOctavesAndFalloffs";
   octaves.Lighting = [](LightingParameters& p)

@@ -93,7 +93,7 @@ TEST(Lighting, TwoLobePhaseIntegratesToOneForAnyWeight)
     p.PhaseLobeWeight = w;
     for (float scale : { 1.0f, 0.5f, 0.125f })
     {
-      EXPECT_NEAR(IntegrateOverSphere([&](float mu) { return Phase(p, mu, scale); }), 1.0, 1e-3)
+      EXPECT_NEAR(IntegrateOverSphere([&](float mu) { return Phase(p, mu, scale).x; }), 1.0, 1e-3)
         << "w = " << w << ", eccentricity scale " << scale;
     }
   }
@@ -108,9 +108,9 @@ TEST(Lighting, ScatteredFractionIsSingleScatteringWithoutOctaves)
   p.MultipleScatteringOctaves = 0;
   for (float mu : { -1.0f, -0.2f, 0.5f, 1.0f })
   {
-    EXPECT_FLOAT_EQ(ScatteredFraction(p, mu, 0.0f, White).x, Phase(p, mu, 1.0f)) << mu;
+    EXPECT_FLOAT_EQ(ScatteredFraction(p, mu, 0.0f, White).x, Phase(p, mu, 1.0f).x) << mu;
     EXPECT_NEAR(
-      ScatteredFraction(p, mu, 1.5f, White).x, Phase(p, mu, 1.0f) * std::exp(-1.5f), 1e-6f);
+      ScatteredFraction(p, mu, 1.5f, White).x, Phase(p, mu, 1.0f).x * std::exp(-1.5f), 1e-6f);
   }
 }
 
@@ -142,7 +142,7 @@ TEST(Lighting, ScatteredFractionMatchesTheOctaveSum)
     double expected = 0.0;
     for (int n = 0; n <= 4; ++n)
     {
-      expected += std::pow(0.6, n) * Phase(p, 0.3f, float(std::pow(0.7, n))) *
+      expected += std::pow(0.6, n) * Phase(p, 0.3f, float(std::pow(0.7, n))).x *
         std::exp(-std::pow(0.4, n) * tau);
     }
     EXPECT_NEAR(ScatteredFraction(p, 0.3f, tau, White).x, expected, 1e-5 * expected) << tau;
@@ -165,7 +165,7 @@ TEST(Lighting, OctaveNCarriesTheAlbedoNMoreTimes)
       double expected = 0.0;
       for (int n = 0; n <= 3; ++n)
       {
-        expected += std::pow(0.5 * albedo[channel], n) * Phase(p, 0.2f, float(std::pow(0.5, n))) *
+        expected += std::pow(0.5 * albedo[channel], n) * Phase(p, 0.2f, float(std::pow(0.5, n))).x *
           std::exp(-std::pow(0.5, n) * tau);
       }
       EXPECT_NEAR(f[channel], expected, 1e-5 * expected)

@@ -166,8 +166,10 @@ TEST(PathTracer, TwoLobePhaseSamplingFollowsItsDensity)
     {
       RandomStream rng;
       rng.Pixel = std::uint32_t(k);
-      const glm::vec3 scattered = SamplePhaseDirection(lighting, d, rng);
+      glm::vec3 weight;
+      const glm::vec3 scattered = SamplePhaseDirection(lighting, d, rng, weight);
       ASSERT_NEAR(glm::length(scattered), 1.0f, 1e-5f);
+      ASSERT_EQ(weight, glm::vec3(1.0f)) << "the two lobes are sampled exactly";
       const double mu = glm::dot(d, scattered);
       ++histogram[std::min(int((mu + 1.0) / 2.0 * bins), bins - 1)];
       sum += glm::dvec3(scattered);
@@ -324,7 +326,7 @@ TEST(PathTracer, SingleScatteringOfASlabMatchesItsClosedForm)
         MakeLights({ DirectionalLight(glm::vec3(float(s), 0.0f, float(-c)), 1.5f) }));
       const Image image = Render(tracer);
       const double tau = sigma_t * L;
-      const double phase = Phase(lighting, float(c), 1.0f);
+      const double phase = Phase(lighting, float(c), 1.0f).x;
       double path = 0.0; // the closed form without 4 pi E a P
       if (c == 1.0)
         path = tau * std::exp(-tau);
@@ -693,9 +695,9 @@ TEST(PathTracer, NextEventEstimationIsTheShadowedLightFromEachSource)
   const glm::vec3 toSun = glm::normalize(glm::vec3(-1.0f, 0.0f, -0.5f));
   const float s = x.x / -toSun.x; // it leaves through the face x = 0
   const double expected[2] = { 2.0 / (0.5 + 0.2 * r + r * r) * PhaseToRadiance *
-      Phase(u.Lighting, glm::dot(d, (glm::vec3(point.Position) - x) / r), 1.0f) *
+      Phase(u.Lighting, glm::dot(d, (glm::vec3(point.Position) - x) / r), 1.0f).x *
       std::exp(-sigma_t * r),
-    1.5 * PhaseToRadiance * Phase(u.Lighting, glm::dot(d, toSun), 1.0f) * std::exp(-sigma_t * s) };
+    1.5 * PhaseToRadiance * Phase(u.Lighting, glm::dot(d, toSun), 1.0f).x * std::exp(-sigma_t * s) };
   for (int light = 0; light < 2; ++light)
   {
     const MarchUniforms lit = uniformsWith(light == 0 ? point : sun);
