@@ -226,6 +226,7 @@ bool Viewer::Internals::MeterExposure()
 {
   this->ExposureMetered = true;
   ++this->ExposureMeterings;
+  this->MeteredFrames = this->Mapper->GetNumberOfAccumulatedFrames(this->View);
   const double before = this->Mapper->GetExposureEV();
   try
   {

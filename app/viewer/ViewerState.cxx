@@ -72,7 +72,8 @@ json ViewerStateJson(const ViewerState& state)
       { { "ev", state.ExposureEV },
         { "auto", state.AutoExposure },
         { "display", state.Display },
-        { "meterings", state.ExposureMeterings } } },
+        { "meterings", state.ExposureMeterings },
+        { "metered_frames", state.MeteredFrames } } },
     { "first_light_position", state.FirstLightPosition },
     { "volume_visible", state.VolumeVisible },
     { "help_visible", state.HelpVisible },
@@ -176,6 +177,7 @@ ViewerState Viewer::State() const
   state.AutoExposure = in.Current.Render.AutoExposure;
   state.Display = DisplayCurveName(in.Current.Render.Display);
   state.ExposureMeterings = in.ExposureMeterings;
+  state.MeteredFrames = in.MeteredFrames;
   state.LastFrameAt = in.LastFrameAt;
   state.Converged = in.Converged();
   state.Keys = in.Keys;

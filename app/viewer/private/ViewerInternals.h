@@ -101,6 +101,7 @@ struct Viewer::Internals
   bool ExposureMetered = false;
   bool AnnounceExposure = false;
   long ExposureMeterings = 0;
+  int MeteredFrames = 0; // the frames the still last metered had accumulated
   // Frames whose render marched the cloud: its accumulation grew or started over (a frame that
   // only composited the converged still again, under a new exposure say, counts none; a restart
   // from one accumulated frame to one, with render.accumulate 1, goes unseen).

@@ -91,12 +91,13 @@ struct ViewerState
   int AccumulatedFrames = 0;
   std::array<int, 2> ViewSize{ { 0, 0 } }; // the 3D view's pixels
   // The display transform the 3D view applies: the EV (the metered one while AutoExposure),
-  // render.display's curve ("linear", "filmic"), and how many stills the automatic exposure has
-  // metered.
+  // render.display's curve ("linear", "filmic"), how many stills the automatic exposure has
+  // metered, and how many frames the last one had accumulated.
   double ExposureEV = 0.0;
   bool AutoExposure = false;
   std::string Display;
   long ExposureMeterings = 0;
+  int MeteredFrames = 0;
 
   // The live loop.
   long FramesRendered = 0;
