@@ -96,6 +96,9 @@ const std::vector<KeyBinding>& KeyBindings()
       "resolution scale - 0.125",
       true },
     { { "bracketright" }, {}, false, A::ResolutionUp, Rendering, "resolution scale + 0.125", true },
+    // The exposure is the composite pass's alone: the converged still is shown again, not marched.
+    { { "e", "E" }, {}, false, A::StepExposure, Rendering, "exposure - / + 1/2 EV" },
+    { { "e" }, {}, true, A::AutoExposure, Rendering, "automatic exposure" },
     { { "p" }, {}, false, A::NextPreset, Function, "next preset", true },
     { { "P" }, {}, false, A::SavePreset, Function, "save as a preset file" },
     { { "l" }, {}, false, A::HistogramScale, Function, "histogram: log / linear" },

@@ -137,7 +137,13 @@ void Viewer::Internals::RenderFrame()
   {
     this->Window->SetDesiredUpdateRate(this->Interactor->GetDesiredUpdateRate());
   }
-  this->Window->Render();
+  const auto render = [this]
+  {
+    const int before = this->Mapper->GetNumberOfAccumulatedFrames(this->View);
+    this->Window->Render();
+    this->MarchedFrames += this->Mapper->GetNumberOfAccumulatedFrames(this->View) != before ? 1 : 0;
+  };
+  render();
   if (preview)
   {
     this->Window->SetDesiredUpdateRate(this->Interactor->GetStillUpdateRate());
@@ -158,6 +164,26 @@ void Viewer::Internals::RenderFrame()
     }
   }
   this->LastFrameWasPreview = preview;
+  // The automatic exposure, once per still: metered on the converged picture, never on the
+  // frames of a drag or of a refinement, whose changing image would make it hunt. A new EV
+  // composites the still again at once (the exposure does not modify the mapper: no march).
+  if (!this->StillComplete())
+  {
+    this->ExposureMetered = false;
+  }
+  else if (this->Current.Render.AutoExposure && !this->ExposureMetered)
+  {
+    if (this->MeterExposure())
+    {
+      render();
+    }
+    if (this->AnnounceExposure)
+    {
+      this->AnnounceExposure = false;
+      this->Show(this->ExposureText(), false);
+      this->Loop->Request(); // the message is drawn by the next frame
+    }
+  }
   ++this->FramesRendered;
   this->LastFrameAt = MonotonicSeconds();
   this->History.FrameDrawn(this->LastFrameAt);
@@ -187,6 +213,58 @@ bool Viewer::Internals::Converged() const
     (!this->LastFrameWasPreview &&
       this->Mapper->GetNumberOfAccumulatedFrames(this->View) >= this->FramesToConverge() &&
       !this->Mapper->GetScatteringVolumeConverging() && this->Status->GetProgress().empty());
+}
+
+bool Viewer::Internals::StillComplete() const
+{
+  return this->Volume->GetVisibility() && this->Mapper->GetLastError().empty() &&
+    this->Converged() && !this->Style->IsDragging() &&
+    this->Window->GetDesiredUpdateRate() <= this->Interactor->GetStillUpdateRate();
+}
+
+bool Viewer::Internals::MeterExposure()
+{
+  this->ExposureMetered = true;
+  ++this->ExposureMeterings;
+  this->MeteredFrames = this->Mapper->GetNumberOfAccumulatedFrames(this->View);
+  const double before = this->Mapper->GetExposureEV();
+  try
+  {
+    this->Window->MakeCurrent();
+    const std::vector<float> rgba =
+      ReadCheckedMapperImage(this->Mapper, this->View, "automatic exposure");
+    ConfigureDisplay(this->Mapper,
+      this->Current.Render,
+      ResolveExposureEV(this->Current.Render, rgba.data(), rgba.size() / 4));
+  }
+  catch (const std::exception& e)
+  {
+    this->Show(std::string(e.what()) + "; the exposure stays at " + ShowExposure(before), true);
+  }
+  return this->Mapper->GetExposureEV() != before;
+}
+
+bool Viewer::Internals::ApplyExposure()
+{
+  if (!this->Current.Render.AutoExposure)
+  {
+    ConfigureDisplay(this->Mapper, this->Current.Render, this->Current.Render.ExposureEV);
+    return false;
+  }
+  // The metered EV stays until the next metering, which the still shown gets now.
+  this->ExposureMetered = false;
+  if (!this->StillComplete())
+  {
+    return false;
+  }
+  this->MeterExposure();
+  return true;
+}
+
+std::string Viewer::Internals::ExposureText() const
+{
+  return "exposure " + ShowExposure(this->Mapper->GetExposureEV()) +
+    (this->Current.Render.AutoExposure ? " (auto)" : "");
 }
 
 bool Viewer::Internals::RefinementPending()

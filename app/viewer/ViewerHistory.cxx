@@ -41,6 +41,10 @@ std::string UndoableDifference(const UndoableState& a, const UndoableState& b)
   {
     parts.push_back("lighting");
   }
+  if (a.AutoExposure != b.AutoExposure || a.ExposureEV != b.ExposureEV)
+  {
+    parts.push_back("exposure");
+  }
   if (!SameTransferFunction(a.TransferFunction, b.TransferFunction))
   {
     parts.push_back("transfer function");
@@ -125,6 +129,8 @@ UndoableState Viewer::Internals::Undoable() const
   state.Lights = this->Current.Lights;
   state.Step = this->Current.Render.Step;
   state.ResolutionScale = this->Current.Render.ResolutionScale;
+  state.AutoExposure = this->Current.Render.AutoExposure;
+  state.ExposureEV = state.AutoExposure ? 0.0 : this->Current.Render.ExposureEV;
   for (int axis = 0; axis < 3; ++axis)
   {
     state.SliceVisible[size_t(axis)] = this->Slices->GetSliceVisible(axis);
@@ -154,6 +160,12 @@ void Viewer::Internals::RestoreUndoable(const UndoableState& state)
   this->Current.Render.ResolutionScale = state.ResolutionScale;
   this->Mapper->SetResolutionScale(state.ResolutionScale);
   this->ApplyLighting(); // the model, lights and step
+  if (now.AutoExposure != state.AutoExposure || now.ExposureEV != state.ExposureEV)
+  {
+    this->Current.Render.AutoExposure = state.AutoExposure;
+    this->Current.Render.ExposureEV = state.ExposureEV;
+    this->ApplyExposure(); // automatic again: metered now, or when the picture converges
+  }
   for (int axis = 0; axis < 3; ++axis)
   {
     if (now.SliceIndex[size_t(axis)] != state.SliceIndex[size_t(axis)])

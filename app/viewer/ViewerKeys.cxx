@@ -2,6 +2,7 @@
 // a transfer-function point, and the record of handled keys the state file reports.
 #include "ViewerInternals.h"
 
+#include "ImageWriters.h" // ShowExposure
 #include "OffscreenRender.h"
 #include "Presets.h"
 #include "Scene.h"
@@ -74,6 +75,31 @@ void Viewer::Internals::MoveLight(double azimuthDegrees, double elevationDegrees
     azimuth * 180.0 / ViewerPi,
     elevation * 180.0 / ViewerPi);
   this->Show(text, false);
+}
+
+void Viewer::Internals::StepExposure(double stops)
+{
+  // From the EV the window shows, the metered one included: a step is relative to the picture.
+  RenderSpec& render = this->Current.Render;
+  render.AutoExposure = false;
+  this->AnnounceExposure = false;
+  render.ExposureEV =
+    std::max(-MaxExposureEV, std::min(MaxExposureEV, this->Mapper->GetExposureEV() + stops));
+  this->ApplyExposure();
+  this->Show(this->ExposureText(), false);
+}
+
+void Viewer::Internals::UseAutoExposure()
+{
+  this->Current.Render.AutoExposure = true;
+  this->Current.Render.ExposureEV = 0.0; // as the scene reads "auto"
+  this->AnnounceExposure = !this->ApplyExposure();
+  if (!this->AnnounceExposure)
+  {
+    this->Show(this->ExposureText(), false);
+    return;
+  }
+  this->Show("exposure: auto, metered when the picture has converged", false);
 }
 
 double Viewer::Internals::EffectiveStep() const
@@ -436,6 +462,12 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Mapper->SetResolutionScale(this->Current.Render.ResolutionScale);
       this->Show(
         "resolution scale: " + Format("%.3g", this->Current.Render.ResolutionScale), false);
+      break;
+    case A::StepExposure:
+      this->StepExposure(variant == 0 ? -0.5 : 0.5);
+      break;
+    case A::AutoExposure:
+      this->UseAutoExposure();
       break;
     case A::NextPreset:
       this->LoadNextPreset();

@@ -96,6 +96,13 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
   {
     throw InputError("screenshot: " + this->Mapper->GetLastError());
   }
+  // The window's exposure, so that the picture is the window's. An automatic one the window has
+  // not metered yet (its still had not converged) is metered on the capture's converged still,
+  // as the window's will be.
+  if (this->Current.Render.AutoExposure && !this->ExposureMetered && this->MeterExposure())
+  {
+    window->Render();
+  }
   ScreenshotImages images;
   try
   {
@@ -122,6 +129,12 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
   {
     window->MakeCurrent();
     ReadFloatImage(this->Mapper, this->View, images.Cloud, "screenshot");
+  }
+  // What the PNG's pixels went through, and what the EXR records (its radiance stays linear).
+  for (RenderedImage* image : { &images.Layout, &images.Cloud })
+  {
+    image->ExposureEV = this->Mapper->GetExposureEV();
+    image->Display = this->Current.Render.Display;
   }
   return images;
 }

@@ -53,6 +53,7 @@ json ViewerStateJson(const ViewerState& state)
   // Saved files' paths (from --output-dir) may hold bytes that are not UTF-8, which dump() refuses.
   return WithValidUtf8({
     { "frames_rendered", state.FramesRendered },
+    { "marched_frames", state.MarchedFrames },
     { "last_frame_at", state.LastFrameAt },
     { "converged", state.Converged },
     { "accumulated_frames", state.AccumulatedFrames },
@@ -67,6 +68,12 @@ json ViewerStateJson(const ViewerState& state)
     { "lighting", LightingModelName(state.Lighting) },
     { "step", state.Step },
     { "resolution_scale", state.ResolutionScale },
+    { "exposure",
+      { { "ev", state.ExposureEV },
+        { "auto", state.AutoExposure },
+        { "display", state.Display },
+        { "meterings", state.ExposureMeterings },
+        { "metered_frames", state.MeteredFrames } } },
     { "first_light_position", state.FirstLightPosition },
     { "volume_visible", state.VolumeVisible },
     { "help_visible", state.HelpVisible },
@@ -165,6 +172,12 @@ ViewerState Viewer::State() const
   state.ViewSize = in.ViewSize();
 
   state.FramesRendered = in.FramesRendered;
+  state.MarchedFrames = in.MarchedFrames;
+  state.ExposureEV = in.Mapper->GetExposureEV();
+  state.AutoExposure = in.Current.Render.AutoExposure;
+  state.Display = DisplayCurveName(in.Current.Render.Display);
+  state.ExposureMeterings = in.ExposureMeterings;
+  state.MeteredFrames = in.MeteredFrames;
   state.LastFrameAt = in.LastFrameAt;
   state.Converged = in.Converged();
   state.Keys = in.Keys;

@@ -36,6 +36,8 @@ enum class ViewerAction
   StepSmaller,
   ResolutionDown,
   ResolutionUp,
+  StepExposure, // variant 0: down (e), 1: up (E)
+  AutoExposure,
   NextPreset,
   SavePreset,
   HistogramScale,

@@ -1,10 +1,11 @@
 // The viewer's one undo history, as ParaView's undo stack: a step is what the user could change
 // and take back, as it was before a change (UndoableState: the transfer function, the camera, the
-// lighting model, lights, step and resolution scale, and the slices' visibility, places and
-// window/level). The viewer records a step around each gesture that changed something: a key, a
-// mouse drag from press to release (a camera turn, a point dragged, a slice moved), and a burst
-// of wheel notches (those less than WheelBurstSeconds apart make one step). Undo puts a step back
-// whole and keeps the present state for redo; a new step clears the redo side.
+// lighting model, lights, step and resolution scale, the exposure, and the slices' visibility,
+// places and window/level). The viewer records a step around each gesture that changed
+// something: a key, a mouse drag from press to release (a camera turn, a point dragged, a slice
+// moved), and a burst of wheel notches (those less than WheelBurstSeconds apart make one step).
+// Undo puts a step back whole and keeps the present state for redo; a new step clears the redo
+// side.
 #ifndef cloudvis_ViewerHistory_h
 #define cloudvis_ViewerHistory_h
 
@@ -30,6 +31,10 @@ struct UndoableState
   std::vector<Light> Lights;
   double Step = 0.0;
   double ResolutionScale = 1.0;
+  // The exposure: render.exposure's EV, or automatic (then EV is 0, as the scene reads "auto":
+  // a metering is no step of the user's).
+  bool AutoExposure = false;
+  double ExposureEV = 0.0;
   // Slices.
   std::array<bool, 3> SliceVisible{ { false, false, false } };
   std::array<int, 3> SliceIndex{ { 0, 0, 0 } };
@@ -37,8 +42,8 @@ struct UndoableState
   std::array<double, 2> WindowLevel{ { 1.0, 0.5 } };
 };
 
-// What differs between two states, for messages: "camera", "lighting", "transfer function",
-// "slices", joined by ", " (empty when nothing does).
+// What differs between two states, for messages: "camera", "lighting", "exposure", "transfer
+// function", "slices", joined by ", " (empty when nothing does).
 std::string UndoableDifference(const UndoableState& a, const UndoableState& b);
 
 class UndoHistory

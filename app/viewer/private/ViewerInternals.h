@@ -94,6 +94,18 @@ struct Viewer::Internals
   // Where refinement stood when it last asked for a frame: the frames rendered then and the
   // frames the mapper had accumulated.
   std::pair<long, int> RefinementCheck{ std::numeric_limits<long>::max(), 0 };
+  // The automatic exposure (render.exposure "auto"): metered once per still, when it has
+  // converged (StillComplete), on the mapper's float image; ExposureMetered says the still shown
+  // has been, and is cleared by every frame that is not a converged still. AnnounceExposure: Ctrl+e
+  // came before the still converged, and the metering says its EV when it comes.
+  bool ExposureMetered = false;
+  bool AnnounceExposure = false;
+  long ExposureMeterings = 0;
+  int MeteredFrames = 0; // the frames the still last metered had accumulated
+  // Frames whose render marched the cloud: its accumulation grew or started over (a frame that
+  // only composited the converged still again, under a new exposure say, counts none; a restart
+  // from one accumulated frame to one, with render.accumulate 1, goes unseen).
+  long MarchedFrames = 0;
   std::string Preset;
   std::vector<std::string> MessageLog;
   std::vector<std::string> SavedFiles;
@@ -131,6 +143,23 @@ struct Viewer::Internals
   int FramesToConverge() const;
   // The 3D view shows its final image (or no cloud to refine).
   bool Converged() const;
+  // The 3D view shows a cloud's converged still at full resolution, and nothing is being dragged:
+  // the picture the automatic exposure meters.
+  bool StillComplete() const;
+  // Meters the automatic exposure on the mapper's float image of the 3D view (ResolveExposureEV,
+  // as `render` does after its still converges) and sets it on the mapper; the caller composites
+  // again. Returns whether the EV changed. A float image that cannot be read, or holds NaN or
+  // infinity, is shown as an error and the exposure kept.
+  bool MeterExposure();
+  // The scene's exposure on the mapper: render.exposure's EV, or with "auto" a metering of the
+  // next converged still (now, when the one shown is). Returns whether it metered now.
+  bool ApplyExposure();
+  // e and E: the exposure EV steps (from the metered one when it was automatic, which they end);
+  // Ctrl+e: automatic again.
+  void StepExposure(double stops);
+  void UseAutoExposure();
+  // "exposure +0.50 EV", "exposure -1.37 EV (auto)": the exposure the mapper applies.
+  std::string ExposureText() const;
   // Another frame would improve the image: it has not converged, nothing is being dragged, and
   // the last refinement frame did accumulate (a guard: something that restarted the accumulation
   // on every frame would otherwise keep the loop rendering forever).

@@ -90,9 +90,20 @@ struct ViewerState
   std::vector<std::string> SavedFiles;
   int AccumulatedFrames = 0;
   std::array<int, 2> ViewSize{ { 0, 0 } }; // the 3D view's pixels
+  // The display transform the 3D view applies: the EV (the metered one while AutoExposure),
+  // render.display's curve ("linear", "filmic"), how many stills the automatic exposure has
+  // metered, and how many frames the last one had accumulated.
+  double ExposureEV = 0.0;
+  bool AutoExposure = false;
+  std::string Display;
+  long ExposureMeterings = 0;
+  int MeteredFrames = 0;
 
   // The live loop.
   long FramesRendered = 0;
+  // Of them, those that marched the cloud (its accumulation grew or started over); a frame that
+  // composited the converged still again (a message, a new exposure) marched nothing.
+  long MarchedFrames = 0;
   double LastFrameAt = -1.0;    // MonotonicSeconds when the last frame was complete
   bool Converged = false;       // the 3D view has all the frames render.accumulate asks for,
                                 // and its multiple-scattering volume is up to date
