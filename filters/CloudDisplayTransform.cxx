@@ -27,13 +27,23 @@ glm::vec3 DisplayValueOf(
 
 AutoExposure ComputeAutoExposure(const float* rgba, size_t pixels)
 {
+  // The curve maps the cloud's own colour C / A (DisplayValue), so that is what is metered; over
+  // the pixels the cloud covers well, or for a thin cloud that covers none so well, over every
+  // pixel it shows in at all.
   std::vector<float> luminance;
-  for (size_t i = 0; i < pixels; ++i)
+  for (const float minimumAlpha : { float(AutoExposureMinimumAlpha), AutoExposureThinAlpha })
   {
-    const float* p = rgba + 4 * i;
-    if (p[3] >= AutoExposureMinimumAlpha)
+    for (size_t i = 0; i < pixels; ++i)
     {
-      luminance.push_back(0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
+      const float* p = rgba + 4 * i;
+      if (p[3] >= minimumAlpha)
+      {
+        luminance.push_back((0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]) / p[3]);
+      }
+    }
+    if (!luminance.empty())
+    {
+      break;
     }
   }
   AutoExposure result;

@@ -25,15 +25,17 @@ enum class DisplayCurve
   Filmic = 1,
 };
 
-// The automatic exposure (render.exposure "auto") puts this percentile of the cloud pixels'
-// luminance at AutoExposureTarget before the curve: under the filmic curve that is a bright
+// The automatic exposure (render.exposure "auto") puts this percentile of the luminance of the
+// cloud pixels' own colour (C / A, what the curve maps) at AutoExposureTarget before the curve: under the filmic curve that is a bright
 // grey (display value 0.92, 236 of 255) with room left for the highlights (only pixels about 5
 // times brighter clip to white), and the shading below it spread over the curve's middle (a
 // target of 2 made the demo's cumulus a flat white with all of it above 0.76). A cloud pixel
-// is one the cloud covers at least AutoExposureMinimumAlpha.
+// is one the cloud covers at least AutoExposureMinimumAlpha, or where no pixel is covered so
+// much (a thin sheet), at least AutoExposureThinAlpha (one 8-bit level).
 constexpr double AutoExposurePercentile = 0.99;
 constexpr double AutoExposureTarget = 1.2;
 constexpr double AutoExposureMinimumAlpha = 0.5;
+constexpr float AutoExposureThinAlpha = 1.0f / 255.0f;
 // The exposures render.exposure accepts, in EV (a factor of 2^-64 to 2^64).
 constexpr double MaxExposureEV = 64.0;
 
@@ -46,7 +48,8 @@ struct AutoExposure
 };
 
 // The automatic exposure of a float image: `pixels` premultiplied linear RGBA values. An image
-// whose cloud pixels are all black gets EV 0 (Found stays true, Luminance 0).
+// without cloud pixels gets EV 0 (Found false), and one whose cloud pixels are all black EV 0
+// too (Found true, Luminance 0).
 CLOUDVISFILTERS_EXPORT AutoExposure ComputeAutoExposure(const float* rgba, size_t pixels);
 
 // The premultiplied display value of one pixel's premultiplied radiance and opacity under

@@ -57,6 +57,8 @@ CLOUDVIS_LIGHTING_ACCESSORS(float, LightStepGrowth)
 CLOUDVIS_LIGHTING_ACCESSORS(float, PhaseG1)
 CLOUDVIS_LIGHTING_ACCESSORS(float, PhaseG2)
 CLOUDVIS_LIGHTING_ACCESSORS(float, PhaseLobeWeight)
+CLOUDVIS_LIGHTING_ACCESSORS(float, DropletEffectiveRadius)
+CLOUDVIS_LIGHTING_ACCESSORS(float, DropletEffectiveVariance)
 CLOUDVIS_LIGHTING_ACCESSORS(int, MultipleScatteringOctaves)
 CLOUDVIS_LIGHTING_ACCESSORS(float, ScatteringFalloff)
 CLOUDVIS_LIGHTING_ACCESSORS(float, ExtinctionFalloff)
@@ -85,6 +87,17 @@ void vtkCloudLightingProperty::SetTransmittance(int transmittance)
 int vtkCloudLightingProperty::GetTransmittance()
 {
   return int(this->Parameters.Transmittance);
+}
+
+void vtkCloudLightingProperty::SetPhase(int phase)
+{
+  this->Assign(
+    &P::Phase, cloudvis::PhaseModel(std::clamp(phase, int(TwoLobePhase), int(DropletPhase))));
+}
+
+int vtkCloudLightingProperty::GetPhase()
+{
+  return int(this->Parameters.Phase);
 }
 
 void vtkCloudLightingProperty::SetMultipleScattering(int scattering)
@@ -151,6 +164,10 @@ void vtkCloudLightingProperty::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PhaseG1: " << p.PhaseG1 << "\n";
   os << indent << "PhaseG2: " << p.PhaseG2 << "\n";
   os << indent << "PhaseLobeWeight: " << p.PhaseLobeWeight << "\n";
+  os << indent << "Phase: " << (p.Phase == cloudvis::PhaseModel::Droplets ? "droplets" : "two lobes")
+     << "\n";
+  os << indent << "DropletEffectiveRadius: " << p.DropletEffectiveRadius << "\n";
+  os << indent << "DropletEffectiveVariance: " << p.DropletEffectiveVariance << "\n";
   os << indent << "MultipleScattering: " << this->GetMultipleScatteringAsString() << "\n";
   os << indent << "MultipleScatteringOctaves: " << p.MultipleScatteringOctaves << "\n";
   os << indent << "ScatteringFalloff: " << p.ScatteringFalloff << "\n";

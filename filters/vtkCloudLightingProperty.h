@@ -108,6 +108,28 @@ public:
 
   ///@{
   /**
+   * The phase function of the march and the path tracer: TwoLobePhase (the lobes above, the
+   * default) or DropletPhase, the Mie phase of liquid water droplets (cloudvis's own Mie code,
+   * CloudDropletOptics.h) of effective radius DropletEffectiveRadius micrometres (2 to 30,
+   * default 10) and effective variance DropletEffectiveVariance (0.01 to 0.3, default 0.1).
+   */
+  enum Phases
+  {
+    TwoLobePhase = int(cloudvis::PhaseModel::TwoLobe),
+    DropletPhase = int(cloudvis::PhaseModel::Droplets),
+  };
+  virtual void SetPhase(int phase); // clamped to the range above
+  virtual int GetPhase();
+  void SetPhaseToTwoLobe() { this->SetPhase(TwoLobePhase); }
+  void SetPhaseToDroplets() { this->SetPhase(DropletPhase); }
+  virtual void SetDropletEffectiveRadius(float value);
+  virtual float GetDropletEffectiveRadius();
+  virtual void SetDropletEffectiveVariance(float value);
+  virtual float GetDropletEffectiveVariance();
+  ///@}
+
+  ///@{
+  /**
    * March model: how the light scattered more than once is added to single scattering.
    * ScatteringVolume: one fetch per sample of a precomputed volume of that light, recomputed when
    * the field, the transfer function or the lights change. ScatteringOctaves: the octaves below.

@@ -83,6 +83,11 @@ int View(const Arguments& arguments, std::ostream& out)
     }
     overrides.push_back({ "view.layout", layout, "--layout" });
   }
+  if (arguments.Has("exposure"))
+  {
+    overrides.push_back(
+      NumericOverride("render.exposure", arguments.Value("exposure"), "--exposure"));
+  }
   for (const std::string& target : { saveOnExit, options.RecordFile, options.StateFile })
   {
     if (!target.empty())
@@ -202,6 +207,7 @@ CommandSpec ViewCommand()
         "FILE.json",
         "write the viewer's state as JSON after every frame and every input (for tests and "
         "tools; docs/viewer.md)" },
+      ExposureOption,
       { "keys", 0, "", "print the key bindings (a Markdown table) and exit" },
       { "mouse", 0, "", "print the mouse bindings (a Markdown table) and exit" },
       SetOption,

@@ -48,11 +48,17 @@ render clouds-cumulus cumulus.json
 render clouds-fbm-sphere fbm-sphere.json --lighting march \
   --set 'background={"type": "sky", "sun": [0.5, 0.8, 0.3]}' --set 'ambient={"strength": 0.6}' \
   --set 'lights=[{"type": "directional", "position": [0.5, 0.8, 0.3], "intensity": 1.2}]' \
-  --set 'camera.orbit={"azimuth": 20, "elevation": 2, "distance": 6.5}'
+  --set 'camera.orbit={"azimuth": 20, "elevation": 2, "distance": 6.5}' \
+  --set render.display=filmic --exposure auto
 render clouds-stratocumulus stratocumulus.json
 render clouds-cumulonimbus cumulonimbus.json
 render clouds-cloudscape-above cloudscape-above.json
 render clouds-cloudscape-ground cloudscape-ground.json
+
+# Droplet optics (docs/lighting.md): the cloudbow and the glory, path traced.
+# Square, as the ring is round; 64 paths per pixel for every frame the other pictures accumulate.
+"$cloudvis" render "$scenes/cloudbow.json" -o "$out/cloudbow.png" --size "${height}x${height}" \
+  --set "render.spp=$((64 * accumulate))"
 
 # The tour: the article's cloud as its scene says (the directional derivative), closer than the
 # default camera, then with the other two lighting models, then all three side by side.

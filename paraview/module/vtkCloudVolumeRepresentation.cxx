@@ -89,6 +89,21 @@ void vtkCloudVolumeRepresentation::SetPhaseLobeWeight(double weight)
   this->Lighting->SetPhaseLobeWeight(float(weight));
 }
 
+void vtkCloudVolumeRepresentation::SetPhase(int phase)
+{
+  this->Lighting->SetPhase(phase);
+}
+
+void vtkCloudVolumeRepresentation::SetDropletEffectiveRadius(double radius)
+{
+  this->Lighting->SetDropletEffectiveRadius(float(radius));
+}
+
+void vtkCloudVolumeRepresentation::SetDropletEffectiveVariance(double variance)
+{
+  this->Lighting->SetDropletEffectiveVariance(float(variance));
+}
+
 void vtkCloudVolumeRepresentation::SetMultipleScattering(int scattering)
 {
   this->Lighting->SetMultipleScattering(scattering);

@@ -62,6 +62,9 @@ public:
   void SetPhaseG1(double g);
   void SetPhaseG2(double g);
   void SetPhaseLobeWeight(double weight);
+  void SetPhase(int phase);
+  void SetDropletEffectiveRadius(double radius);
+  void SetDropletEffectiveVariance(double variance);
   void SetMultipleScattering(int scattering);
   void SetMultipleScatteringOctaves(int octaves);
   void SetTransmittance(int transmittance);

@@ -8,6 +8,7 @@
 #include "Errors.h"
 #include "OffscreenRender.h"
 #include "Scene.h"
+#include "SceneField.h"
 #include "SceneLighting.h"
 #include "SupportBaselines.h"
 #include "SupportExpectations.h"
@@ -25,12 +26,14 @@
 #include <vtkRenderer.h>
 #include <vtkVolumeProperty.h>
 
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -350,6 +353,59 @@ TEST(LightingRender, DerivativeAndMarchDifferFromNone)
   EXPECT_GT(RmsLevels(images[0], 0, images[1], 0, 48), 5.0);
   EXPECT_GT(RmsLevels(images[0], 0, images[2], 0, 48), 5.0);
   EXPECT_GT(RmsLevels(images[1], 0, images[2], 0, 48), 5.0);
+}
+
+TEST(LightingRender, PathTracedDropletsShowTheCloudbowAtItsAngle)
+{
+  // The shipped cloudbow scene (a thin sheet of 10 um droplets, the sun behind the camera),
+  // path traced small. In an optically thin sheet seen along its normal the radiance is the
+  // single-scattering phase times the path length, so L |d . n| over rings around the antisolar
+  // point is the phase function of the scattering angle: its primary bow is the maximum between
+  // 130 and 150 degrees, at 141.5 degrees in the droplets' table (tests/unit/TestDropletOptics).
+  const int size = 128;
+  cloudvis::Scene scene = cloudvis::LoadScene(CLOUDVIS_SCENES "/cloudbow.json",
+    { "render.size=" + std::to_string(size) + "," + std::to_string(size), "render.spp=64" });
+  cloudvis::RenderOptions options;
+  options.FloatImage = true;
+  const cloudvis::RenderedImage image =
+    cloudvis::RenderOffscreen(scene, cloudvis::ProduceField(scene), "cloudbow", 0, options).Image;
+  ASSERT_EQ(image.Radiance.size(), size_t(4 * size * size));
+  // The camera looks down -z with a 100-degree vertical view; the sun is along +z.
+  const double pi = std::acos(-1.0);
+  const double halfHeight = std::tan(pi * 50.0 / 180.0);
+  const double binDegrees = 1.0;
+  std::vector<double> sum(180, 0.0);
+  std::vector<int> count(180, 0);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const glm::dvec3 d = glm::normalize(glm::dvec3((2.0 * (x + 0.5) / size - 1.0) * halfHeight,
+        (2.0 * (y + 0.5) / size - 1.0) * halfHeight, -1.0));
+      const double scattering = std::acos(std::clamp(d.z, -1.0, 1.0)) * 180.0 / pi;
+      const float* c = image.Radiance.data() + 4 * (size_t(y) * size + size_t(x));
+      const int bin = std::min(179, int(scattering / binDegrees));
+      sum[size_t(bin)] += (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]) * std::abs(d.z);
+      ++count[size_t(bin)];
+    }
+  }
+  int bow = -1;
+  double brightest = 0.0;
+  for (int bin = 130; bin < 150; ++bin)
+  {
+    ASSERT_GT(count[size_t(bin)], 20) << "the view holds the ring at " << bin << " degrees";
+    const double mean = sum[size_t(bin)] / count[size_t(bin)];
+    if (mean > brightest)
+    {
+      brightest = mean;
+      bow = bin;
+    }
+  }
+  const double bowDegrees = (bow + 0.5) * binDegrees;
+  std::cout << "[ cloudbow ] brightest ring at " << bowDegrees << " degrees\n";
+  EXPECT_NEAR(bowDegrees, 141.5, 1.5);
+  // It stands out: brighter than the rings 10 degrees inside it.
+  EXPECT_GT(brightest, 1.2 * sum[size_t(bow - 10)] / count[size_t(bow - 10)]);
 }
 
 struct ReferenceCase

@@ -151,28 +151,13 @@ std::vector<std::string> SmallCumulus()
     "480x400" };
 }
 
-// The EV the automatic exposure gives a float image: the percentile of its cloud pixels'
-// luminance at the target, as docs/export.md defines it (computed here from the EXR, apart from
-// the viewer's code).
+// The EV the automatic exposure gives a float image (tests/support), with enough cloud to meter.
 double AutoExposureOf(const support::Exr& exr)
 {
-  std::vector<double> luminance;
-  for (int y = 0; y < exr.Height; ++y)
-  {
-    for (int x = 0; x < exr.Width; ++x)
-    {
-      if (exr.At("A", x, y) >= AutoExposureMinimumAlpha)
-      {
-        luminance.push_back(
-          0.2126 * exr.At("R", x, y) + 0.7152 * exr.At("G", x, y) + 0.0722 * exr.At("B", x, y));
-      }
-    }
-  }
-  EXPECT_GT(luminance.size(), 1000u) << "the screenshot holds little cloud";
-  std::sort(luminance.begin(), luminance.end());
-  const double p =
-    luminance[size_t(std::floor(AutoExposurePercentile * double(luminance.size() - 1) + 0.5))];
-  return std::log2(AutoExposureTarget / p);
+  size_t cloud = 0;
+  const double ev = support::AutoExposureOf(exr, cloud);
+  EXPECT_GT(cloud, 1000u) << "the screenshot holds little cloud";
+  return ev;
 }
 
 // A scene with render.exposure "auto" is metered when its still has converged, once: the EV is

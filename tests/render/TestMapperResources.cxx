@@ -61,8 +61,9 @@ TEST(MapperResources, EachFieldIsUploadedInItsNativeTexelsAndItsMemoryReported)
   const long long voxels = static_cast<long long>(FieldSize) * FieldSize * FieldSize;
   // Everything else the mapper holds, whatever the field's type: the transfer table (1024 RGBA32F
   // texels), the occupancy map (one R8 texel per brick of 3: 21^3), the 64 x 64 R32F jitter mask,
+  // the droplets' phase table's placeholder (1 x 2 RGB32F texels: the phase is the two lobes),
   // the viewport's 32-bit depth and its two RGBA32F march targets.
-  const long long others = 1024 * 16 + 21 * 21 * 21 + 64 * 64 * 4 +
+  const long long others = 1024 * 16 + 21 * 21 * 21 + 64 * 64 * 4 + 2 * 12 +
     static_cast<long long>(ImageSize) * ImageSize * (4 + 2 * 16);
   for (const Storage& storage : Storages)
   {

@@ -163,6 +163,39 @@ Exr ReadExr(const std::string& path)
   return exr;
 }
 
+double AutoExposureOf(const Exr& exr, size_t& cloudPixels)
+{
+  std::vector<double> luminance;
+  for (const double minimumAlpha : { 0.5, 1.0 / 255.0 })
+  {
+    for (int y = 0; y < exr.Height; ++y)
+    {
+      for (int x = 0; x < exr.Width; ++x)
+      {
+        const double a = exr.At("A", x, y);
+        if (a >= minimumAlpha)
+        {
+          luminance.push_back(
+            (0.2126 * exr.At("R", x, y) + 0.7152 * exr.At("G", x, y) + 0.0722 * exr.At("B", x, y)) /
+            a);
+        }
+      }
+    }
+    if (!luminance.empty())
+    {
+      break;
+    }
+  }
+  cloudPixels = luminance.size();
+  if (luminance.empty())
+  {
+    return 0.0;
+  }
+  std::sort(luminance.begin(), luminance.end());
+  const double p99 = luminance[size_t(std::floor(0.99 * double(luminance.size() - 1) + 0.5))];
+  return p99 > 0.0 ? std::log2(1.2 / p99) : 0.0;
+}
+
 Image OverBackground(const Image& premultiplied, double r, double g, double b)
 {
   Image image = premultiplied;

@@ -97,6 +97,12 @@ struct Exr
 // Throws (OpenEXR's exceptions) when the file cannot be read.
 Exr ReadExr(const std::string& path);
 
+// The EV render.exposure "auto" gives the float image of an EXR, computed here from its channels
+// as docs/export.md defines it, apart from the product's code: the 99th percentile of the
+// luminance of R G B / A over the pixels at least half opaque (or, with none, at least one 8-bit
+// level) put at 1.2. `cloudPixels` receives how many it metered.
+double AutoExposureOf(const Exr& exr, size_t& cloudPixels);
+
 // A premultiplied RGBA image composited over an opaque background, c + (1 - a) * background,
 // rounded to 8-bit levels as a window shows it (alpha 1).
 Image OverBackground(const Image& premultiplied, double r, double g, double b);
