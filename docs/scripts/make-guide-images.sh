@@ -58,7 +58,7 @@ render clouds-cloudscape-ground cloudscape-ground.json
 # Droplet optics (docs/lighting.md): the cloudbow and the glory, path traced.
 # Square, as the ring is round; 64 paths per pixel for every frame the other pictures accumulate.
 "$cloudvis" render "$scenes/cloudbow.json" -o "$out/cloudbow.png" --size "${height}x${height}" \
-  --set "render.spp=$((64 * accumulate))"
+  --spp "$((64 * accumulate))"
 
 # The tour: the article's cloud as its scene says (the directional derivative), closer than the
 # default camera, then with the other two lighting models, then all three side by side.
