@@ -42,10 +42,11 @@ constexpr int MaxLights = LightingLimits::MaxLights;
 
 // The constants the GLSL shares with the C++, from their one definition, and the program's
 // variant of the march loop.
-std::string Constants(int samplesPerMapRead)
+std::string Constants(int samplesPerMapRead, PhaseModel phase)
 {
   std::ostringstream glsl;
   glsl << "#define MAX_LIGHTS " << MaxLights << "\n"
+       << "#define PhaseType " << int(phase) << "\n"
        << "#define SAMPLES_PER_MAP_READ " << samplesPerMapRead << "\n"
        << "const float Pi = " << GlslFloat(Pi) << ";\n"
        << "const float PhaseToRadiance = " << GlslFloat(PhaseToRadiance) << ";\n"
@@ -114,18 +115,21 @@ int SamplesPerMapRead(double occupiedBrickFraction)
 
 std::string MarchShaderSource(LightingModel model,
   const std::vector<LocalLight>& lights,
-  int samplesPerMapRead)
+  int samplesPerMapRead,
+  PhaseModel phase)
 {
   std::string source = CloudMarchFS;
-  vtkShaderProgram::Substitute(source, "//CLOUD::Constants::Dec", Constants(samplesPerMapRead));
+  vtkShaderProgram::Substitute(
+    source, "//CLOUD::Constants::Dec", Constants(samplesPerMapRead, phase));
   vtkShaderProgram::Substitute(source, "//CLOUD::Transport::Dec", TransportSource());
   vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", LightingSource(model, lights));
   return source;
 }
 
-std::string PassShaderSource(const std::vector<LocalLight>& lights, const std::string& passMain)
+std::string PassShaderSource(
+  const std::vector<LocalLight>& lights, PhaseModel phase, const std::string& passMain)
 {
-  std::string source = MarchShaderSource(LightingModel::March, lights);
+  std::string source = MarchShaderSource(LightingModel::March, lights, 1, phase);
   const std::string marchMain = "#ifndef CLOUD_OWN_MAIN";
   const std::size_t at = source.rfind(marchMain);
   if (at == std::string::npos)
@@ -163,7 +167,6 @@ void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
   program->SetUniformi("LightSteps", t.LightSteps);
   program->SetUniformf("LightStep", t.LightStep);
   program->SetUniformf("LightStepGrowth", t.LightStepGrowth);
-  program->SetUniformi("PhaseType", t.PhaseType);
   program->SetUniformf("DropletMeanCosine", t.DropletMeanCosine);
   program->SetUniformf("DropletSecondMoment", t.DropletSecondMoment);
   program->SetUniformf("PhaseG1", t.PhaseG1);
@@ -197,9 +200,11 @@ MarchPrograms::~MarchPrograms() = default;
 vtkShaderProgram* MarchPrograms::Ready(vtkOpenGLRenderWindow* window,
   LightingModel model,
   const std::vector<LocalLight>& lights,
-  int samplesPerMapRead)
+  int samplesPerMapRead,
+  PhaseModel phase)
 {
-  std::string key = std::to_string(int(model)) + ":" + std::to_string(samplesPerMapRead) + ":";
+  std::string key = std::to_string(int(model)) + ":" + std::to_string(samplesPerMapRead) + ":" +
+    std::to_string(int(phase)) + ":";
   if (model != LightingModel::None)
   {
     for (const LocalLight& light : lights)
@@ -211,7 +216,7 @@ vtkShaderProgram* MarchPrograms::Ready(vtkOpenGLRenderWindow* window,
   if (!quad)
   {
     quad = std::make_unique<vtkOpenGLQuadHelper>(
-      window, nullptr, MarchShaderSource(model, lights, samplesPerMapRead).c_str(), "");
+      window, nullptr, MarchShaderSource(model, lights, samplesPerMapRead, phase).c_str(), "");
   }
   else
   {

@@ -44,15 +44,20 @@ constexpr int DenseSamplesPerMapRead = 4;
 int SamplesPerMapRead(double occupiedBrickFraction);
 
 // The fragment shader's source for a lighting model, the kinds of the lights (positional or
-// directional, in order) and the samples the march takes per reading of the occupancy map.
+// directional, in order), the samples the march takes per reading of the occupancy map and the
+// phase function: the transport's PhaseType is a constant of the program, so the two lobes'
+// programs hold none of the droplets' table code (a uniform choice cost the march 1.46x on
+// llvmpipe, docs/performance.md).
 std::string MarchShaderSource(LightingModel model,
   const std::vector<LocalLight>& lights,
-  int samplesPerMapRead = 1);
+  int samplesPerMapRead = 1,
+  PhaseModel phase = PhaseModel::TwoLobe);
 
 // The fragment shader of a pass over a light-transport volume (the light volumes, the
 // multiple-scattering volume): the march's, with the march model's lighting for the lights'
 // kinds, without its main() (CLOUD_OWN_MAIN, as for the path tracer), then the pass's `passMain`.
-std::string PassShaderSource(const std::vector<LocalLight>& lights, const std::string& passMain);
+std::string PassShaderSource(
+  const std::vector<LocalLight>& lights, PhaseModel phase, const std::string& passMain);
 
 // Uploads every uniform SetUpMarch computed: the geometry, the density texels' scale and bias,
 // the table's range, the step, the lighting parameters and the lights (arrays of
@@ -71,7 +76,8 @@ public:
   vtkShaderProgram* Ready(vtkOpenGLRenderWindow* window,
     LightingModel model,
     const std::vector<LocalLight>& lights,
-    int samplesPerMapRead);
+    int samplesPerMapRead,
+    PhaseModel phase);
   // The quad the last Ready() made current draws with.
   void Render();
   // The samples per map read of the program the last Ready() made current.

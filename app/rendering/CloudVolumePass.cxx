@@ -46,7 +46,7 @@ vtkShaderProgram* VolumePass::Begin(vtkOpenGLRenderWindow* window,
   const std::string& what,
   std::string& problem)
 {
-  std::string key;
+  std::string key = std::to_string(int(u.Lighting.Phase)) + ":";
   for (const LocalLight& light : u.Lights)
   {
     key += light.Positional ? 'P' : 'D';
@@ -55,7 +55,7 @@ vtkShaderProgram* VolumePass::Begin(vtkOpenGLRenderWindow* window,
   {
     this->Pass = std::make_unique<vtkOpenGLQuadHelper>(window,
       shaders.Vertex,
-      PassShaderSource(u.Lights, shaders.FragmentMain).c_str(),
+      PassShaderSource(u.Lights, u.Lighting.Phase, shaders.FragmentMain).c_str(),
       shaders.Geometry ? shaders.Geometry : "");
     this->Key = key;
   }

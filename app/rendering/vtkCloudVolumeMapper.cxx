@@ -681,7 +681,8 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
     samplesPerMapRead = cloudvis::SamplesPerMapRead(in.Occupancy.GetOccupiedFraction());
   }
   vtkShaderProgram* program =
-    in.March.Ready(window, uniforms.Lighting.Model, uniforms.Lights, samplesPerMapRead);
+    in.March.Ready(window, uniforms.Lighting.Model, uniforms.Lights, samplesPerMapRead,
+      uniforms.Lighting.Phase);
   if (!program)
   {
     return this->Fail("the march shader failed to compile or link (the driver's log is in VTK's "

@@ -151,7 +151,11 @@ void SampleLight(int i, vec3 x, OUT(vec3) l, OUT(float) lightDistance, OUT(float
 // HG(g2) (w = 1 is one lobe), or PhaseDroplets, the Mie phase of cloud droplets tabulated per
 // channel (shaders/transport/DropletPhase.glsl), whose first moment g and second moment chi_2
 // (means over the channels) stand in for the lobes' where the light transport needs moments.
+// PhaseType is a constant of each GPU program (the mapper defines it, so a program holds one
+// phase's code); the CPU's is a member.
+#ifndef PhaseType
 UNIFORM int PhaseType;
+#endif
 UNIFORM float PhaseG1;
 UNIFORM float PhaseG2;
 UNIFORM float PhaseLobeWeight;
