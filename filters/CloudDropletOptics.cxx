@@ -439,18 +439,7 @@ DropletPolydisperseOptics ComputeDropletPolydisperse(double effectiveRadiusUm,
   double wavelengthUm,
   const std::vector<double>& mu)
 {
-  RequireInRange("effective radius",
-    "r_e",
-    effectiveRadiusUm,
-    DropletEffectiveRadiusMinUm,
-    DropletEffectiveRadiusMaxUm,
-    " um");
-  RequireInRange("effective variance",
-    "v_e",
-    effectiveVariance,
-    DropletEffectiveVarianceMin,
-    DropletEffectiveVarianceMax,
-    "");
+  ValidateDropletParameters(effectiveRadiusUm, effectiveVariance, glm::vec3(float(wavelengthUm)));
   const double r_e = effectiveRadiusUm, v_e = effectiveVariance;
   const std::complex<double> m = WaterRefractiveIndex(wavelengthUm);
 
