@@ -4,9 +4,10 @@
 // --spp P%` and `compare --reference pathtrace:P%` use it (docs/lighting.md, "A noise target").
 // Reading the variance back stalls the GPU and copies two float images, so the noise is read only
 // at the frame counts NextNoiseCheck chooses: where the 1 / sqrt(paths) law puts the target, at
-// most double the frames of the last reading, which lands within a few percent of the paths the
-// target needs in two to four readings, where a fixed schedule reads back every few frames and
-// plain doubling traces up to twice the paths needed.
+// most double the frames of the last reading. That is doubling far from the target and the law's
+// count near it: log2(paths / 64) + 1 or 2 readings and a few percent more paths than needed,
+// where a fixed schedule reads back every few frames and plain doubling traces up to twice the
+// paths needed; the cap keeps one early reading that is too high from overshooting by any factor.
 #ifndef cloudvis_NoiseTarget_h
 #define cloudvis_NoiseTarget_h
 
