@@ -688,11 +688,13 @@ TEST(Animate, FailurePartWayKeepsTheFramesWrittenAndNoPartialFrame)
 // ---- noise target (docs/lighting.md, "A noise target") -------------------------------------
 
 // The path tracer on the two-lights field at 24^3, 32 x 24 pixels: 10% takes a few readings of
-// the noise (about 250 paths), 20% one or two.
+// the noise (about 250 paths), 20% one or two. The automatic exposure renders the window once
+// more after the accumulation, which must composite the image measured, not trace a new one.
 cloudvis::Scene NoiseScene()
 {
   return cloudvis::LoadScene(CLOUDVIS_SCENES "/two-lights.json",
-    { "field.dimensions=24", "render.size=32,24", "render.lighting=pathtrace" });
+    { "field.dimensions=24", "render.size=32,24", "render.lighting=pathtrace",
+      "render.exposure=auto" });
 }
 
 cloudvis::NoiseTarget Target(double relativeStandardError)
