@@ -191,11 +191,16 @@ SceneInput LoadSceneInput(const std::string& command,
   const std::vector<SceneOverride>& options,
   const std::string& output,
   bool needsDisplay,
-  const std::function<void(double)>& generationProgress)
+  const std::function<void(double)>& generationProgress,
+  const std::function<void(const Scene&)>& checkScene)
 {
   const std::string& input = arguments.Operands[0];
   CheckImageOutput(output);
   SceneInput loaded{ LoadOperandScene(command, input, arguments, options), nullptr };
+  if (checkScene)
+  {
+    checkScene(loaded.Loaded);
+  }
   if (needsDisplay)
   {
     RequireDisplay("cloudvis " + command + " ...");
@@ -225,8 +230,11 @@ const OptionSpec SizeOption{ "size", 0, "WxH",
   "image size in pixels, e.g. 800x600 (each in [16, 16384]); overrides render.size" };
 const OptionSpec SamplesPerPixelOption{ "spp",
   0,
-  "N",
-  "paths per pixel of a pathtrace still, at least 2; overrides render.spp" };
+  "N|P%",
+  "paths per pixel of a pathtrace still, at least 2; overrides render.spp. P% (e.g. 2%) is a "
+  "noise target instead: paths are traced until the image's relative standard error over the "
+  "cloud is at most P% (see --spp-time, docs/lighting.md)" };
+const NoiseTargetOptions SamplesNoiseNames{ "render", "spp", "spp-time", "--spp 2%" };
 const OptionSpec BenchmarkOption{ "benchmark", 0, "N",
   "after the image is made, march N more frames in full and print the mean time per frame as "
   "'<milliseconds> ms/frame'" };
@@ -411,9 +419,14 @@ int Render(const Arguments& arguments, std::ostream& out)
   {
     options.push_back({ "render.size", ParseSizeOption("render", arguments.Value("size")), "--size" });
   }
-  if (arguments.Has("spp"))
+  // --spp is a count (render.spp) or a noise target, which no scene key holds: a time limit and
+  // a refusal belong to a run, not to a scene the viewer and the CPU reference also read.
+  const std::string spp = arguments.Has("spp") ? arguments.Value("spp") : "";
+  const std::optional<NoiseTarget> noiseTarget = ReadNoiseTarget(
+    SamplesNoiseNames, arguments, ParseNoisePercent(SamplesNoiseNames, spp), spp);
+  if (arguments.Has("spp") && !noiseTarget)
   {
-    options.push_back(NumericOverride("render.spp", arguments.Value("spp"), "--spp"));
+    options.push_back(NumericOverride("render.spp", spp, "--spp"));
   }
   AddExportOverrides(arguments, options);
   const bool cpuReference = arguments.Has("cpu-reference");
@@ -421,9 +434,24 @@ int Render(const Arguments& arguments, std::ostream& out)
   {
     throw UsageError("render: --benchmark times the GPU; it cannot be combined with --cpu-reference");
   }
+  if (cpuReference && noiseTarget)
+  {
+    throw UsageError("render: --spp " + spp + ": a noise target is the GPU path tracer's; " +
+      "--cpu-reference traces a fixed count (--spp N)");
+  }
+  const auto checkLighting = [&](const Scene& scene)
+  {
+    const LightingModel model = scene.Render.Lighting.Model;
+    if (noiseTarget && model != LightingModel::PathTrace)
+    {
+      throw UsageError("render: --spp " + spp + ": a noise target needs the path tracer, and the " +
+        "lighting is " + LightingModelName(model) + ": add --lighting " +
+        LightingModelName(LightingModel::PathTrace));
+    }
+  };
   Progress progress(std::cerr, ShowProgress(arguments));
   const SceneInput loaded = LoadSceneInput("render", arguments, options, output, !cpuReference,
-    [&](double fraction) { progress.Update("generating", fraction); });
+    [&](double fraction) { progress.Update("generating", fraction); }, checkLighting);
   const Scene& scene = loaded.Loaded;
   const vtkSmartPointer<vtkImageData>& field = loaded.Field;
   // Format details and metadata (docs/export.md).
@@ -433,6 +461,7 @@ int Render(const Arguments& arguments, std::ostream& out)
   renderOptions.FloatImage = NeedsFloatImage(output, exportOptions);
   renderOptions.OnFrame = [&](int frame, int frames)
   { progress.Update("rendering", double(frame) / double(frames)); };
+  renderOptions.TargetNoise = noiseTarget;
   if (cpuReference)
   {
     if (renderOptions.FloatImage)
@@ -451,6 +480,10 @@ int Render(const Arguments& arguments, std::ostream& out)
   const OffscreenRenderResult result =
     RenderOffscreen(scene, field, input, benchmarkFrames, renderOptions);
   progress.Finish();
+  if (result.Noise)
+  {
+    CheckNoiseReport(SamplesNoiseNames, spp, *result.Noise);
+  }
   WriteImage(result.Image, output, exportOptions);
   out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
       << " pixels, ";
@@ -463,8 +496,12 @@ int Render(const Arguments& arguments, std::ostream& out)
     out << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
         << " averaged";
   }
-  out << DescribeDisplay(result.Image, scene.Render, result.ClippedCloudShare) << ")\n"
-      << ClippingNote(result.Image, result.ClippedCloudShare);
+  out << DescribeDisplay(result.Image, scene.Render, result.ClippedCloudShare) << ")\n";
+  if (result.Noise)
+  {
+    out << "noise target: " << DescribeNoiseReport(SamplesNoiseNames, *result.Noise) << "\n";
+  }
+  out << ClippingNote(result.Image, result.ClippedCloudShare);
   if (benchmarkFrames > 0)
   {
     const double total =
@@ -634,6 +671,8 @@ const std::vector<CommandSpec>& Commands()
         SizeOption,
         LightingOption(),
         SamplesPerPixelOption,
+        NoiseTimeOption(SamplesNoiseNames),
+        AcceptNoiseOption,
         BenchmarkOption,
         CpuReferenceOption,
         PngBitsOption,

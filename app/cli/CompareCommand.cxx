@@ -38,10 +38,16 @@ const OptionSpec DifferenceOption{ "difference",
   "largest difference" };
 const OptionSpec ReferenceOption{ "reference",
   0,
-  "pathtrace[:SPP]",
+  "pathtrace[:SPP|:P%]",
   "add a ground-truth panel path-traced with SPP paths per pixel (default render.spp, at least "
-  "2) and measure every model against it: relative RMSE, bias (ratio of means) and max error "
-  "relative to the peak, on its panel and printed, with the reference's own standard error" };
+  "2), or with P% (e.g. pathtrace:2%) until its relative standard error over the cloud is at "
+  "most P% (see --reference-time), and measure every model against it: relative RMSE, bias "
+  "(ratio of means) and max error relative to the peak, on its panel and printed, with the "
+  "reference's own standard error" };
+const NoiseTargetOptions ReferenceNoiseNames{ "compare",
+  "reference",
+  "reference-time",
+  "--reference pathtrace:2%" };
 const OptionSpec PanelSizeOption{ "size",
   0,
   "WxH",
@@ -138,22 +144,27 @@ std::vector<ComparedLighting> ParseModelList(const std::string& text)
   return panels;
 }
 
-// --reference pathtrace[:SPP]: the reference's paths per pixel (SPP), or 0 for the scene's
-// render.spp.
-int ParseReference(const std::string& text)
+// --reference pathtrace[:SPP|:P%]: the reference's paths per pixel (SPP, or 0 for the scene's
+// render.spp), or its noise target (P%, with --reference-time and --accept-noise).
+ReferencePaths ParseReference(const std::string& text, const Arguments& arguments)
 {
   const std::string name = LightingModelName(LightingModel::PathTrace);
   const auto colon = text.find(':');
   if (text.substr(0, colon) != name)
   {
     throw UsageError("compare: --reference expects " + name + " or " + name +
-      ":SPP (the path tracer with SPP paths per pixel), got \"" + text + "\"");
+      ":SPP (the path tracer with SPP paths per pixel) or " + name +
+      ":P% (until a noise of P%), got \"" + text + "\"");
   }
-  if (colon == std::string::npos)
+  const std::string count = colon == std::string::npos ? "" : text.substr(colon + 1);
+  ReferencePaths reference;
+  reference.SamplesPerPixel = 0;
+  reference.Target = ReadNoiseTarget(
+    ReferenceNoiseNames, arguments, ParseNoisePercent(ReferenceNoiseNames, count), text);
+  if (colon == std::string::npos || reference.Target)
   {
-    return 0;
+    return reference;
   }
-  const std::string count = text.substr(colon + 1);
   char* end = nullptr;
   errno = 0;
   const long value = std::strtol(count.c_str(), &end, 10);
@@ -161,10 +172,11 @@ int ParseReference(const std::string& text)
     !std::isdigit(static_cast<unsigned char>(count[0])))
   {
     throw UsageError("compare: --reference: SPP must be an integer from 2 to 16777216 (paths per "
-                     "pixel), got \"" +
+                     "pixel) or a noise target P%, got \"" +
       count + "\"");
   }
-  return int(value);
+  reference.SamplesPerPixel = int(value);
+  return reference;
 }
 
 // --difference A,B: two of the compared panels, as indices into `panels` (which ends with the
@@ -211,10 +223,10 @@ int Compare(const Arguments& arguments, std::ostream& out)
   const std::string output = arguments.Value("output");
   const std::vector<ComparedLighting> models = ParseModelList(
     arguments.Has("lighting") ? arguments.Value("lighting") : "none,derivative,march");
-  std::optional<int> referenceSamples;
+  std::optional<ReferencePaths> reference;
   if (arguments.Has("reference"))
   {
-    referenceSamples = ParseReference(arguments.Value("reference"));
+    reference = ParseReference(arguments.Value("reference"), arguments);
     if (std::any_of(models.begin(),
           models.end(),
           [](const ComparedLighting& m) { return m.Model == LightingModel::PathTrace; }))
@@ -223,15 +235,19 @@ int Compare(const Arguments& arguments, std::ostream& out)
                        "the reference panel");
     }
   }
+  else
+  {
+    ReadNoiseTarget(ReferenceNoiseNames, arguments, std::nullopt, "");
+  }
   std::vector<ComparedLighting> panels = models;
-  if (referenceSamples)
+  if (reference)
   {
     panels.push_back({ LightingModel::PathTrace, std::nullopt });
   }
   std::optional<std::pair<size_t, size_t>> difference;
   if (arguments.Has("difference"))
   {
-    difference = ParseDifference(arguments.Value("difference"), panels, bool(referenceSamples));
+    difference = ParseDifference(arguments.Value("difference"), panels, bool(reference));
   }
   std::vector<SceneOverride> options;
   if (arguments.Has("size"))
@@ -245,12 +261,17 @@ int Compare(const Arguments& arguments, std::ostream& out)
       NumericOverride("render.exposure", arguments.Value("exposure"), "--exposure"));
   }
   const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
-  if (referenceSamples && *referenceSamples == 0)
+  if (reference && !reference->Target && reference->SamplesPerPixel == 0)
   {
-    referenceSamples = loaded.Loaded.Render.SamplesPerPixel;
+    reference->SamplesPerPixel = loaded.Loaded.Render.SamplesPerPixel;
   }
   const ComparisonResult result = RenderComparison(
-    loaded.Loaded, loaded.Field, arguments.Operands[0], models, difference, 3, referenceSamples);
+    loaded.Loaded, loaded.Field, arguments.Operands[0], models, difference, 3, reference);
+  if (result.ReferenceTarget)
+  {
+    const std::string text = arguments.Value("reference");
+    CheckNoiseReport(ReferenceNoiseNames, text, *result.ReferenceTarget);
+  }
   WriteImage(result.Image, output);
   out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
       << " pixels, " << panels.size() + (difference ? 1 : 0) << " panels, "
@@ -266,14 +287,18 @@ int Compare(const Arguments& arguments, std::ostream& out)
   {
     out << result.Names[i] << ": " << std::fixed << std::setprecision(2) << result.Milliseconds[i]
         << " ms/frame";
-    if (referenceSamples && i < models.size())
+    if (reference && i < models.size())
     {
       const ImageError& e = result.Errors[i];
       out << "; against the reference: relative RMSE " << std::setprecision(4) << e.RelativeRMSE
           << ", bias " << e.BiasRatio << " (ratio of means), max error " << e.MaxErrorOverPeak
           << " of the peak";
     }
-    else if (referenceSamples)
+    else if (result.ReferenceTarget)
+    {
+      out << "; reference: " << DescribeNoiseReport(ReferenceNoiseNames, *result.ReferenceTarget);
+    }
+    else if (reference)
     {
       out << "; reference: " << result.ReferenceSamples << " paths per pixel, relative standard "
           << "error " << std::setprecision(4) << result.ReferenceNoise.RelativeStandardError;
@@ -303,7 +328,9 @@ CommandSpec CompareCommand()
     "multiple scattering it renders with: march:volume or march:octaves as listed, plain\n"
     "march the scene's render.march.multiple_scattering. --difference A,B adds a panel\n"
     "of |A - B|. --reference pathtrace[:SPP] adds the path tracer's ground truth and each\n"
-    "model's error against it (--difference A then means A,pathtrace).\n"
+    "model's error against it (--difference A then means A,pathtrace); pathtrace:P% traces\n"
+    "until the reference's relative standard error is P% (docs/lighting.md), checked every\n"
+    "few frames, within --reference-time.\n"
     "The scene's render.lighting is not used; everything else is as in render.\n"
     "Prints each panel's time as '<name>: <milliseconds> ms/frame'. Needs an X display:\n"
     "xvfb-run -a cloudvis compare ...",
@@ -311,6 +338,8 @@ CommandSpec CompareCommand()
       PanelSizeOption,
       CompareLightingOption,
       ReferenceOption,
+      NoiseTimeOption(ReferenceNoiseNames),
+      AcceptNoiseOption,
       ExposureOption,
       DifferenceOption,
       SetOption,

@@ -130,14 +130,23 @@ void MeasureAgainstReference(std::vector<std::unique_ptr<Panel>>& panels,
   result.ReferenceNoise = MeasureImageNoise(reference.data(), variance.data(), pixels);
   result.ReferenceSamples =
     panels[referencePanel]->Mapper->GetNumberOfAccumulatedSamples(panels[referencePanel]->Renderer);
-  char text[160];
+  char target[48] = "";
+  if (result.ReferenceTarget)
+  {
+    std::snprintf(target,
+      sizeof(target),
+      " (target %.2g%%)",
+      100.0 * result.ReferenceTarget->Target.RelativeStandardError);
+  }
+  char text[200];
   std::snprintf(text,
     sizeof(text),
-    "%s  %s\nreference: %d paths/pixel, noise %.2g%%",
+    "%s  %s\nreference: %d paths/pixel, noise %.2g%%%s",
     result.Names[referencePanel].c_str(),
     FormatMilliseconds(result.Milliseconds[referencePanel]).c_str(),
     result.ReferenceSamples,
-    100.0 * result.ReferenceNoise.RelativeStandardError);
+    100.0 * result.ReferenceNoise.RelativeStandardError,
+    target);
   panels[referencePanel]->Label->SetInput(text);
   for (size_t i = 0; i < referencePanel; ++i)
   {
@@ -206,13 +215,13 @@ ComparisonResult RenderComparison(const Scene& scene,
   const std::vector<ComparedLighting>& comparedModels,
   const std::optional<std::pair<size_t, size_t>>& difference,
   int timingFrames,
-  std::optional<int> referenceSamples)
+  const std::optional<ReferencePaths>& reference)
 {
   const int width = scene.Render.Size[0];
   const int height = scene.Render.Size[1];
   // The reference is one more panel, the path tracer's, after the compared models.
   std::vector<ComparedLighting> models = comparedModels;
-  if (referenceSamples)
+  if (reference)
   {
     models.push_back({ LightingModel::PathTrace, std::nullopt });
   }
@@ -265,10 +274,16 @@ ComparisonResult RenderComparison(const Scene& scene,
     ConfigureLighting(lit, panel.Mapper);
     ApplyBackground(lit, panel.Renderer);
     panel.Mapper->SetInputData(field);
-    if (referenceSamples && i == referencePanel)
+    if (reference && i == referencePanel)
     {
-      lit.Render.SamplesPerPixel = *referenceSamples;
-      ConfigureMapper(panel.Mapper, lit.Render); // its frames: referenceSamples paths
+      // Its frames: the reference's paths, or frames of a noise target's paths each.
+      lit.Render.SamplesPerPixel =
+        reference->Target ? NoiseTargetSamplesPerFrame : reference->SamplesPerPixel;
+      ConfigureMapper(panel.Mapper, lit.Render);
+      if (reference->Target)
+      {
+        ConfigureNoiseTarget(panel.Mapper);
+      }
     }
     else
     {
@@ -329,6 +344,16 @@ ComparisonResult RenderComparison(const Scene& scene,
     panel->Volume->SetVisibility(true);
     panel->Mapper->Modified();
   }
+  // A noise target's reference accumulates with the models' frames and goes on alone after them
+  // (the converged models only composite); it then keeps the frames it reached.
+  int rendered = 0;
+  if (reference && reference->Target)
+  {
+    Panel& traced = *panels[referencePanel];
+    result.ReferenceTarget = AccumulateToNoiseTarget(
+      *reference->Target, window, traced.Mapper, traced.Renderer, renderChecked, input);
+    rendered = result.ReferenceTarget->Frames;
+  }
   // A converged panel shows its image again without marching, so the window renders until the
   // panel with the most frames (the reference's, usually) has them all.
   int mostFrames = 0;
@@ -336,7 +361,7 @@ ComparisonResult RenderComparison(const Scene& scene,
   {
     mostFrames = std::max(mostFrames, panel->Mapper->GetMaximumAccumulatedFrames());
   }
-  for (int frame = 0; frame < mostFrames; ++frame)
+  for (int frame = rendered; frame < mostFrames; ++frame)
   {
     renderChecked();
   }
@@ -366,7 +391,7 @@ ComparisonResult RenderComparison(const Scene& scene,
     ConfigureDisplay(panel->Mapper, scene.Render, exposureEV);
   }
 
-  if (referenceSamples)
+  if (reference)
   {
     MeasureAgainstReference(panels, referencePanel, input, result);
   }
@@ -411,7 +436,7 @@ ComparisonResult RenderComparison(const Scene& scene,
       result.MaxDifference);
     differenceLabel->SetInput(text);
   }
-  if (difference || referenceSamples || exposed)
+  if (difference || reference || exposed)
   {
     // The model panels are converged: this frame shows them again, with the new labels and the
     // chosen exposure.

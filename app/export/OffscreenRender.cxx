@@ -266,24 +266,43 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   // Before anything is drawn: the GPU's limit, stated in the message (ExportRender.h).
   CheckRenderSize(scene.Render.Size, QueryRenderLimits(window), scene.Source);
 
-  // Without jitter every frame marches the same samples: one is the converged still. The path
-  // tracer's frames are all different.
-  const int frames = scene.Render.Lighting.Model == LightingModel::PathTrace
-    ? mapper->GetMaximumAccumulatedFrames()
-    : (scene.Render.Jitter ? scene.Render.Accumulate : 1);
-  // So that a render after the last frame (the automatic exposure's) composites the still again
-  // rather than marching one more frame.
-  mapper->SetMaximumAccumulatedFrames(frames);
-  for (int frame = 0; frame < frames; ++frame)
+  OffscreenRenderResult result;
+  const auto renderChecked = [&]()
   {
     window->Render();
     CheckMapper(mapper, input, messages);
-    if (options.OnFrame)
+  };
+  if (options.TargetNoise)
+  {
+    if (scene.Render.Lighting.Model != LightingModel::PathTrace)
     {
-      options.OnFrame(frame + 1, frames);
+      throw InputError(input + ": a noise target needs the path tracer (render.lighting " +
+        LightingModelName(LightingModel::PathTrace) + "), not " +
+        LightingModelName(scene.Render.Lighting.Model));
+    }
+    ConfigureNoiseTarget(mapper);
+    result.Noise = AccumulateToNoiseTarget(
+      *options.TargetNoise, window, mapper, renderer, renderChecked, input, options.OnFrame);
+  }
+  else
+  {
+    // Without jitter every frame marches the same samples: one is the converged still. The path
+    // tracer's frames are all different.
+    const int frames = scene.Render.Lighting.Model == LightingModel::PathTrace
+      ? mapper->GetMaximumAccumulatedFrames()
+      : (scene.Render.Jitter ? scene.Render.Accumulate : 1);
+    // So that a render after the last frame (the automatic exposure's) composites the still
+    // again rather than marching one more frame.
+    mapper->SetMaximumAccumulatedFrames(frames);
+    for (int frame = 0; frame < frames; ++frame)
+    {
+      renderChecked();
+      if (options.OnFrame)
+      {
+        options.OnFrame(frame + 1, frames);
+      }
     }
   }
-  OffscreenRenderResult result;
   result.AccumulatedFrames = mapper->GetNumberOfAccumulatedFrames(renderer);
   result.AccumulatedSamples = mapper->GetNumberOfAccumulatedSamples(renderer);
   if (result.AccumulatedFrames == 0)

@@ -212,9 +212,16 @@ public:
 
   ///@{
   /**
-   * Most frames averaged while the view does not change. 1 disables accumulation. Default 1.
+   * Most frames averaged while the view does not change, 1 to 65536. 1 disables accumulation.
+   * Default 1. Like the exposure, it does not change what a frame marches, so it does not modify
+   * the mapper and a change never restarts the accumulation: a larger limit goes on from the
+   * frames already averaged, and a limit at or below them keeps the image as it is (what a noise
+   * target does once it is reached: the next renders composite that image again).
    */
-  vtkSetClampMacro(MaximumAccumulatedFrames, int, 1, 65536);
+  void SetMaximumAccumulatedFrames(int frames)
+  {
+    this->MaximumAccumulatedFrames = frames < 1 ? 1 : (frames > 65536 ? 65536 : frames);
+  }
   vtkGetMacro(MaximumAccumulatedFrames, int);
   ///@}
 

@@ -6,9 +6,11 @@
 // refused command leaves a file behind. The scenes are small (<= 64^3 voxels, <= 160 x 120
 // pixels, few frames) apart from one large-size render. Needs an X display (Xvfb under ctest).
 #include "Animate.h"
+#include "Compare.h"
 #include "Errors.h"
 #include "ExportRender.h"
 #include "ImageWriters.h"
+#include "NoiseTarget.h"
 #include "OffscreenRender.h"
 #include "Progress.h"
 #include "Scene.h"
@@ -669,6 +671,84 @@ TEST(Animate, FailurePartWayKeepsTheFramesWrittenAndNoPartialFrame)
   EXPECT_NE(run.Err.find("frames 0 .. 0 were written"), std::string::npos) << run.Err;
   EXPECT_EQ(dir.Files("/f"), (std::vector<std::string>{ "frame_0000.png", "frame_0001.png" }));
   EXPECT_TRUE(dir.Files("/f/frame_0001.png").empty());
+}
+
+// ---- noise target (docs/lighting.md, "A noise target") -------------------------------------
+
+// The path tracer on the two-lights field at 24^3, 32 x 24 pixels: 10% takes a few readings of
+// the noise (about 250 paths), 20% one or two. The automatic exposure renders the window once
+// more after the accumulation, which must composite the image measured, not trace a new one.
+cloudvis::Scene NoiseScene()
+{
+  return cloudvis::LoadScene(CLOUDVIS_SCENES "/two-lights.json",
+    { "field.dimensions=24", "render.size=32,24", "render.lighting=pathtrace",
+      "render.exposure=auto" });
+}
+
+cloudvis::NoiseTarget Target(double relativeStandardError)
+{
+  cloudvis::NoiseTarget target;
+  target.RelativeStandardError = relativeStandardError;
+  target.TimeLimit = 120.0; // far beyond what it takes: a loose target must be reached
+  return target;
+}
+
+TEST(NoiseTarget, RenderStopsAtTheTargetWithTheImageItMeasured)
+{
+  // The still's own float image and variance (what an EXR holds) give the noise reported: the
+  // image is the one measured, at or below the target, and it stopped there rather than running
+  // on (one reading past the target at most halves the noise under 1 / sqrt(paths)).
+  cloudvis::RenderOptions options;
+  options.FloatImage = true;
+  options.TargetNoise = Target(0.1);
+  const cloudvis::Scene scene = NoiseScene();
+  const cloudvis::OffscreenRenderResult result =
+    cloudvis::RenderOffscreen(scene, cloudvis::ProduceField(scene), "test", 0, options);
+  ASSERT_TRUE(result.Noise);
+  const cloudvis::NoiseReport& report = *result.Noise;
+  EXPECT_TRUE(report.Reached());
+  EXPECT_LE(report.Noise.RelativeStandardError, 0.1);
+  EXPECT_GT(report.Noise.RelativeStandardError, 0.05);
+  EXPECT_GT(report.Samples, cloudvis::FirstNoiseCheckFrames * cloudvis::NoiseTargetSamplesPerFrame)
+    << "10% takes more than the first reading here";
+  EXPECT_EQ(result.AccumulatedSamples, report.Samples);
+  const cloudvis::RenderedImage& image = result.Image;
+  ASSERT_EQ(image.Variance.size(), image.Radiance.size());
+  const cloudvis::ImageNoise own = cloudvis::MeasureImageNoise(
+    image.Radiance.data(), image.Variance.data(), image.Radiance.size() / 4);
+  EXPECT_GT(own.Pixels, 100u);
+  EXPECT_DOUBLE_EQ(own.RelativeStandardError, report.Noise.RelativeStandardError);
+}
+
+TEST(NoiseTarget, CompareKeepsTheReferenceItMeasuredWhileTheModelsAccumulate)
+{
+  // 20% is reached within the models' 16 frames: the reference must stop there and stay, so
+  // that the errors are measured against the image whose noise was reported.
+  cloudvis::Scene scene = NoiseScene();
+  scene.Render.Accumulate = 16;
+  cloudvis::ReferencePaths reference;
+  reference.Target = Target(0.2);
+  const cloudvis::ComparisonResult result = cloudvis::RenderComparison(scene,
+    cloudvis::ProduceField(scene), "test",
+    { { cloudvis::LightingModel::March, std::nullopt } }, std::nullopt, 1, reference);
+  ASSERT_TRUE(result.ReferenceTarget);
+  EXPECT_TRUE(result.ReferenceTarget->Reached());
+  EXPECT_LE(result.ReferenceTarget->Frames, 16);
+  EXPECT_EQ(result.AccumulatedFrames, 16);
+  EXPECT_EQ(result.ReferenceSamples, result.ReferenceTarget->Samples);
+  EXPECT_LE(result.ReferenceNoise.RelativeStandardError, 0.2);
+  EXPECT_DOUBLE_EQ(
+    result.ReferenceNoise.RelativeStandardError, result.ReferenceTarget->Noise.RelativeStandardError);
+}
+
+TEST(NoiseTarget, ReadingsFollowTheSquareRootLawAtMostDoubling)
+{
+  // Twice the target's noise needs four times the paths: capped at double the frames.
+  EXPECT_EQ(cloudvis::NextNoiseCheck(8, 0.04, 0.02), 16);
+  // Just above the target: 5% past the law's count, and at least one frame more.
+  EXPECT_EQ(cloudvis::NextNoiseCheck(100, 0.021, 0.02), 116);
+  EXPECT_EQ(cloudvis::NextNoiseCheck(8, 0.02000001, 0.02), 9);
+  EXPECT_EQ(cloudvis::NextNoiseCheck(60000, 1.0, 0.02), cloudvis::MaximumNoiseTargetFrames);
 }
 
 // ---- progress -----------------------------------------------------------------------------

@@ -435,6 +435,33 @@ TEST(CloudVolumeMapper, AccumulationAveragesJitteredFramesUntilTheViewChanges)
     << "a change of the lighting property restarts";
 }
 
+// The frame limit is no part of what a frame marches: a noise target (app/export NoiseTarget.h)
+// stops an accumulation by lowering the limit to the frames averaged, and the image must stay the
+// one it measured, not restart; a raised limit goes on from there.
+TEST(CloudVolumeMapper, ChangingTheFrameLimitKeepsTheAccumulation)
+{
+  auto mapper = vtkSmartPointer<vtkCloudVolumeMapper>::New();
+  mapper->SetSampleDistance(0.05);
+  mapper->JitterOn();
+  mapper->SetMaximumAccumulatedFrames(16);
+  GpuScene scene(mapper, 64, 64);
+  scene.ShowSparseCloud(48);
+  Image measured;
+  for (int i = 0; i < 3; ++i)
+  {
+    measured = scene.RenderFloat();
+  }
+  ASSERT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 3);
+  mapper->SetMaximumAccumulatedFrames(3);
+  const Image kept = scene.RenderFloat();
+  EXPECT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 3)
+    << "a limit at the frames averaged stops there";
+  EXPECT_EQ(RmsDifference(kept, measured), 0.0) << "and keeps their image";
+  mapper->SetMaximumAccumulatedFrames(5);
+  scene.RenderFloat();
+  EXPECT_EQ(mapper->GetNumberOfAccumulatedFrames(scene.Renderer), 4) << "a raised limit goes on";
+}
+
 TEST(CloudVolumeMapper, InteractionLowersTheResolutionAndStillnessRestoresIt)
 {
   auto mapper = CloudMapper(0.02);

@@ -6,12 +6,14 @@
 #define cloudvis_CommandSupport_h
 
 #include "CommandLine.h"
+#include "NoiseTarget.h"
 #include "Scene.h"
 
 #include <nlohmann/json.hpp>
 #include <vtkSmartPointer.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,8 +66,8 @@ Scene LoadOperandScene(const std::string& command,
 
 // The operand of render and compare, a scene or a field file, validated with its --set
 // assignments and option overrides and turned into its field. The cheap checks come first (field
-// keys set for a field file, a bad -o, scene values, the display when `needsDisplay`): none of
-// them should cost a field's generation.
+// keys set for a field file, a bad -o, scene values, `checkScene` on the scene, the display when
+// `needsDisplay`): none of them should cost a field's generation.
 struct SceneInput
 {
   Scene Loaded;
@@ -76,7 +78,46 @@ SceneInput LoadSceneInput(const std::string& command,
   const std::vector<SceneOverride>& options,
   const std::string& output,
   bool needsDisplay,
-  const std::function<void(double)>& generationProgress = {});
+  const std::function<void(double)>& generationProgress = {},
+  const std::function<void(const Scene&)>& checkScene = {});
+
+// The noise target of the GPU path tracer on the command line (NoiseTargetOptions.cxx): render's
+// --spp P%, --spp-time, --accept-noise and compare's --reference pathtrace:P%, --reference-time,
+// --accept-noise, parsed, checked and reported by one set of functions over the option names.
+struct NoiseTargetOptions
+{
+  std::string Command;      // "render"
+  std::string TargetOption; // "spp": the option whose value may be a percentage
+  std::string TimeOption;   // "spp-time"
+  std::string Example;      // "--spp 2%", in messages
+};
+extern const OptionSpec AcceptNoiseOption; // --accept-noise
+// --TIME-OPTION SECONDS, the time limit of the noise target.
+OptionSpec NoiseTimeOption(const NoiseTargetOptions& names);
+
+// A value ending in '%' as a noise target: P% for a finite P in (0, 100] is the relative standard
+// error P / 100; nullopt for a value without the '%' (a count of paths). Throws UsageError
+// "COMMAND: --TARGET-OPTION: ..." naming the value for any other P.
+std::optional<double> ParseNoisePercent(const NoiseTargetOptions& names, const std::string& value);
+
+// The noise target of `relativeStandardError` (ParseNoisePercent's) with the time option (default
+// DefaultNoiseTimeLimit) and --accept-noise; without one (nullopt), refuses those two options as
+// meaningless with `given`, the value of the target option (empty: the option is absent).
+// Throws UsageError.
+std::optional<NoiseTarget> ReadNoiseTarget(const NoiseTargetOptions& names,
+  const Arguments& arguments,
+  std::optional<double> relativeStandardError,
+  const std::string& given);
+
+// "1536 paths per pixel, relative standard error 0.0198 (target 0.02), 41.2 s", and where the
+// target was not reached (accepted), "; target not reached: <why>".
+std::string DescribeNoiseReport(const NoiseTargetOptions& names, const NoiseReport& report);
+
+// Throws InputError (exit status 1) when the target was not reached and not accepted: what noise
+// was reached in how many paths and seconds, why it stopped, what the target needs at this rate,
+// and the options that change the outcome. `given` is the target as typed (e.g. "2%").
+void CheckNoiseReport(
+  const NoiseTargetOptions& names, const std::string& given, const NoiseReport& report);
 
 // The commands defined in their own files.
 CommandSpec CompareCommand(); // CompareCommand.cxx

@@ -10,6 +10,7 @@
 #define cloudvis_Compare_h
 
 #include "CloudImageComparison.h"
+#include "NoiseTarget.h"
 #include "OffscreenRender.h"
 
 #include <optional>
@@ -49,6 +50,14 @@ struct ComparisonResult
   std::vector<ImageError> Errors;
   ImageNoise ReferenceNoise;
   int ReferenceSamples = 0; // paths per pixel in the reference panel
+  std::optional<NoiseReport> ReferenceTarget; // with a noise target: how the reference met it
+};
+
+// The reference panel's paths: SamplesPerPixel, or with Target as many as reach that noise.
+struct ReferencePaths
+{
+  int SamplesPerPixel = 256;
+  std::optional<NoiseTarget> Target;
 };
 
 // The widest window compare opens, in pixels (render.size's own limit per axis).
@@ -67,11 +76,14 @@ constexpr int MaximumComparisonWidth = 16384;
 // "|A - B|" with that largest difference. The scene's render.lighting is not used; its
 // render.march.multiple_scattering is, by a march panel that gives none.
 //
-// `referenceSamples` adds a ground-truth panel after the models' (before the difference): the
-// GPU path tracer with that many paths per pixel (a difference index of models.size() is that
-// panel), labelled with its noise (MeasureImageNoise); each model's panel is labelled with its
-// error against it (CompareWithReference: relative RMSE, bias as the ratio of means, max error
-// relative to the reference's peak), which Errors and ReferenceNoise return.
+// `reference` adds a ground-truth panel after the models' (before the difference): the GPU path
+// tracer with that many paths per pixel, or accumulated to its noise target alongside the models'
+// frames and on alone after them (AccumulateToNoiseTarget; ReferenceTarget says how it went; the
+// models' errors are measured against the image it reached either way), a difference index of
+// models.size() being that panel. It is labelled with its noise (MeasureImageNoise); each model's
+// panel is labelled with its error against it (CompareWithReference: relative RMSE, bias as the
+// ratio of means, max error relative to the reference's peak), which Errors and ReferenceNoise
+// return.
 // Throws InputError naming `input` for a window wider than MaximumComparisonWidth, a mapper
 // error, or nothing drawn.
 ComparisonResult RenderComparison(const Scene& scene,
@@ -80,7 +92,7 @@ ComparisonResult RenderComparison(const Scene& scene,
   const std::vector<ComparedLighting>& models,
   const std::optional<std::pair<size_t, size_t>>& difference,
   int timingFrames = 3,
-  std::optional<int> referenceSamples = std::nullopt);
+  const std::optional<ReferencePaths>& reference = std::nullopt);
 
 // The ramp of the difference panel: t in [0, 1] (clamped) to RGB in [0, 1].
 std::array<double, 3> DifferenceColor(double t);

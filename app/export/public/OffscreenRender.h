@@ -7,12 +7,14 @@
 #ifndef cloudvis_OffscreenRender_h
 #define cloudvis_OffscreenRender_h
 
+#include "NoiseTarget.h"
 #include "RenderedImage.h"
 #include "Scene.h"
 
 #include <vtkSmartPointer.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,7 @@ struct OffscreenRenderResult
   // Of the cloud's pixels (at least AutoExposureMinimumAlpha opaque), the share that Image
   // shows white in some channel: what the display transform failed to keep (0 without cloud).
   double ClippedCloudShare = 0.0;
+  std::optional<NoiseReport> Noise;      // with RenderOptions::TargetNoise: how it went
 };
 
 // The share of the cloud's pixels (premultiplied RGBA `rgba`, at least AutoExposureMinimumAlpha
@@ -83,10 +86,16 @@ void ApplyCamera(
 // field in errors. Throws InputError "<input>: <problem>" when the mapper reports an error (a
 // field it cannot draw, an invalid transfer function, a GPU failure) or when nothing was drawn,
 // and before drawing when render.size is beyond the GPU's limit (ExportRender.h).
+//
+// With TargetNoise (the path tracer only), the still accumulates until that noise rather than
+// render.spp paths (AccumulateToNoiseTarget); the result's Noise says whether it was reached, and
+// the image is the one measured either way: refusing it is the caller's choice.
 struct RenderOptions
 {
   bool FloatImage = false; // keep RenderedImage's float image, auxiliary channels and background
-  std::function<void(int frame, int frames)> OnFrame; // after each accumulated frame (progress)
+  // After each accumulated frame (progress); with a noise target `frames` is the latest estimate.
+  std::function<void(int frame, int frames)> OnFrame;
+  std::optional<NoiseTarget> TargetNoise;
 };
 OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const std::string& input, int benchmarkFrames = 0, const RenderOptions& options = {});
