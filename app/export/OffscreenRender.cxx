@@ -6,6 +6,7 @@
 
 #include "AtomicFile.h"
 #include "Background.h"
+#include "CloudDisplayTransform.h"
 #include "CpuReference.h"
 #include "Display.h"
 #include "Errors.h"
@@ -99,15 +100,21 @@ PathTraceFrames PathTraceFramesOf(int samplesPerPixel)
 
 double ClippedCloudShare(const RenderedImage& image, const std::vector<float>& rgba)
 {
-  const size_t pixels = std::min(rgba.size() / 4, image.RGB.size() / 3);
+  const size_t pixels = rgba.size() / 4;
   size_t cloud = 0, clipped = 0;
   for (size_t p = 0; p < pixels; ++p)
   {
-    if (rgba[4 * p + 3] >= AutoExposureMinimumAlpha)
+    const float* pixel = rgba.data() + 4 * p;
+    const float alpha = pixel[3];
+    if (alpha >= AutoExposureMinimumAlpha)
     {
       ++cloud;
-      const unsigned char* c = image.RGB.data() + 3 * p;
-      clipped += c[0] == 255 || c[1] == 255 || c[2] == 255;
+      // Clipped where the cloud's own display colour (the display value over alpha) rounds to
+      // white: the composite over the background may still be below 255 where alpha < 1.
+      const glm::vec3 shown = DisplayValueOf(
+        glm::vec3(pixel[0], pixel[1], pixel[2]), alpha, image.ExposureEV, image.Display);
+      const float white = alpha * (254.5f / 255.0f);
+      clipped += shown.x >= white || shown.y >= white || shown.z >= white;
     }
   }
   return cloud > 0 ? double(clipped) / double(cloud) : 0.0;
