@@ -154,6 +154,103 @@ std::string ValidateNoiseRange(const FieldDescription& field, const double bound
   return {};
 }
 
+namespace
+{
+// How deep below its surface a point inside the shape can lie: its largest inscribed radius,
+// bounded by its smallest half-size (the signed distance's magnitude inside), in world units.
+double InnerDepth(const Shape& s)
+{
+  double depth = 0.0;
+  switch (s.Type)
+  {
+    case ShapeType::Sphere:
+    case ShapeType::Capsule:
+      depth = s.Radius;
+      break;
+    case ShapeType::Box:
+      depth = std::min({ s.HalfSize.x, s.HalfSize.y, s.HalfSize.z });
+      break;
+    case ShapeType::Torus:
+      depth = s.MinorRadius;
+      break;
+    case ShapeType::Cross:
+      depth = std::min(s.ArmWidth, s.ArmLength);
+      break;
+  }
+  return depth * double(s.Scale);
+}
+}
+
+std::string ValidateDensityRange(const FieldDescription& field, const double bounds[6])
+{
+  std::ostringstream error;
+  error.precision(6);
+  const double largestFloat = double(std::numeric_limits<float>::max());
+  const std::vector<Shape> shapes = field.Morph ? MorphTimeline::Shapes() : field.Shapes;
+  const bool smooth = field.Blend == ShapeBlend::SmoothUnion && shapes.size() > 1 && !field.Morph;
+  if (field.Model == DensityModel::SdfPlusFbm && smooth)
+  {
+    double diagonal = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      diagonal += (bounds[2 * a + 1] - bounds[2 * a]) * (bounds[2 * a + 1] - bounds[2 * a]);
+    }
+    diagonal = std::sqrt(diagonal);
+    if (field.BlendRadius > diagonal)
+    {
+      error << "blend_radius " << field.BlendRadius << " is wider than the whole field (its "
+            << "bounds' diagonal is " << diagonal << "): the smooth union would merge every "
+            << "shape into one block filling the field; use a radius of at most " << diagonal;
+      return error.str();
+    }
+  }
+  // What the model multiplies by density_scale, at most.
+  double reach = 1.0;
+  std::string what = "the model's largest value, 1";
+  const double fbm = noise::FbmBound(field.Noise);
+  std::ostringstream fbmWords;
+  fbmWords.precision(6);
+  fbmWords << "the noise's largest value (amplitude " << field.Noise.Amplitude << " x the gain "
+           << field.Noise.Gain << " over " << field.Noise.Octaves << " octaves: " << fbm << ")";
+  if (field.Model == DensityModel::FbmFalloff)
+  {
+    reach = fbm;
+    what = fbmWords.str();
+  }
+  else if (field.Model == DensityModel::SdfPlusFbm)
+  {
+    double depth = 0.0;
+    for (const Shape& s : shapes)
+    {
+      depth = std::max(depth, InnerDepth(s));
+    }
+    // A smooth union lowers the distance by up to a quarter of the radius at each of its joins.
+    const double blend = smooth ? 0.25 * field.BlendRadius * double(shapes.size() - 1) : 0.0;
+    reach = depth + blend + fbm;
+    std::ostringstream words;
+    words.precision(6);
+    words << "the deepest point inside a shape (" << depth << ")";
+    if (blend > 0.0)
+    {
+      words << " plus the smooth union's blend_radius share (" << blend << ")";
+    }
+    words << " plus " << fbmWords.str();
+    what = words.str();
+  }
+  if (!(reach * field.DensityScale <= largestFloat))
+  {
+    error << "the density can reach density_scale " << field.DensityScale << " x " << what
+          << " = " << reach * field.DensityScale << ", beyond the largest float ("
+          << largestFloat << "): lower density_scale";
+    if (field.Model != DensityModel::Constant && field.Model != DensityModel::Cloud)
+    {
+      error << ", amplitude or gain";
+    }
+    return error.str();
+  }
+  return {};
+}
+
 DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
   : Field(field)
   , NoiseOffset(field.Wind * time)

@@ -65,6 +65,15 @@ CLOUDVISFILTERS_EXPORT std::string ValidateFieldDescription(const FieldDescripti
 CLOUDVISFILTERS_EXPORT std::string ValidateNoiseRange(
   const FieldDescription& field, const double bounds[6], double time);
 
+// Empty when every density the description can give over the bounds is a finite float, else
+// the problem, naming the keys: the largest density is density_scale times what the model's
+// shapes and noise can reach (the deepest point inside a shape, what smooth unions add, the
+// fBm's bound: the sum of its octaves' amplitudes), computed in double. Also refuses a smooth
+// union's blend_radius wider than the bounds' diagonal, which merges every shape into one block
+// filling the field (and, far beyond, loses the distances to float rounding).
+CLOUDVISFILTERS_EXPORT std::string ValidateDensityRange(
+  const FieldDescription& field, const double bounds[6]);
+
 // Scratch memory of one thread for EvaluateRow; reused from row to row.
 struct RowScratch
 {

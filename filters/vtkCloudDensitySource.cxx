@@ -410,6 +410,10 @@ std::string vtkCloudDensitySource::Validate() const
   {
     error = cloudvis::ValidateNoiseRange(this->Field, this->Bounds, this->Time);
   }
+  if (error.empty())
+  {
+    error = cloudvis::ValidateDensityRange(this->Field, this->Bounds);
+  }
   if (error.empty() && (this->NumberOfTimeSteps < 0 || !(this->TimeRange[0] <= this->TimeRange[1])))
   {
     error = "time steps need a count >= 0 and an increasing time range";
