@@ -23,6 +23,7 @@
 #include "Progress.h"
 #include "Scene.h"
 #include "SceneField.h"
+#include "Utf8.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudDensitySource.h"
 
@@ -314,7 +315,7 @@ int Generate(const Arguments& arguments, std::ostream& out)
     const Scene scene = LoadOperandScene("generate", input, arguments, {});
     const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
     WriteField(field, output, { ResolvedSceneJson(scene, field) });
-    out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
+    out << "wrote " << PrintableText(output) << " (" << DescribeDimensions(field) << " voxels)\n";
     return ExitSuccess;
   }
   const int pieces = requestedPieces > 0 ? requestedPieces : processes.Size();
@@ -345,9 +346,10 @@ int Generate(const Arguments& arguments, std::ostream& out)
   if (processes.Rank() == 0)
   {
     const Extent& e = lattice.WholeExtent;
-    out << "wrote " << output << " (" << e[1] - e[0] + 1 << " x " << e[3] - e[2] + 1 << " x "
-        << e[5] - e[4] + 1 << " voxels in " << pieces << " piece" << (pieces == 1 ? "" : "s")
-        << ", " << PieceSource(output, 0) << " .. " << PieceSource(output, pieces - 1);
+    out << "wrote " << PrintableText(output) << " (" << e[1] - e[0] + 1 << " x " << e[3] - e[2] + 1
+        << " x " << e[5] - e[4] + 1 << " voxels in " << pieces << " piece"
+        << (pieces == 1 ? "" : "s") << ", " << PrintableText(PieceSource(output, 0)) << " .. "
+        << PrintableText(PieceSource(output, pieces - 1));
     if (processes.Size() > 1)
     {
       out << ", written by " << processes.Size() << " MPI processes";
@@ -472,7 +474,7 @@ int Render(const Arguments& arguments, std::ostream& out)
     const double clipped = ClippedCloudShare(image, image.Radiance);
     progress.Finish();
     WriteImage(image, output, exportOptions);
-    out << "wrote " << output << " (" << image.Width << " x " << image.Height
+    out << "wrote " << PrintableText(output) << " (" << image.Width << " x " << image.Height
         << " pixels, CPU reference" << DescribeDisplay(image, scene.Render, clipped) << ")\n"
         << ClippingNote(image, clipped);
     return ExitSuccess;
@@ -485,8 +487,8 @@ int Render(const Arguments& arguments, std::ostream& out)
     CheckNoiseReport(SamplesNoiseNames, spp, *result.Noise);
   }
   WriteImage(result.Image, output, exportOptions);
-  out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, ";
+  out << "wrote " << PrintableText(output) << " (" << result.Image.Width << " x "
+      << result.Image.Height << " pixels, ";
   if (scene.Render.Lighting.Model == LightingModel::PathTrace)
   {
     out << result.AccumulatedSamples << " paths per pixel averaged";
@@ -570,11 +572,12 @@ int RunDefault(std::ostream& out)
   const Scene scene = LoadScene(DemoScenePath(), {});
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene);
   WriteField(field, output);
-  out << "wrote " << output << " (" << DescribeDimensions(field) << " voxels)\n";
+  out << "wrote " << PrintableText(output) << " (" << DescribeDimensions(field) << " voxels)\n";
   const OffscreenRenderResult result = RenderOffscreen(scene, field, scene.Source);
   WriteImage(result.Image, image);
-  out << "wrote " << image << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, lighting " << LightingModelName(scene.Render.Lighting.Model)
+  out << "wrote " << PrintableText(image) << " (" << result.Image.Width << " x "
+      << result.Image.Height << " pixels, lighting "
+      << LightingModelName(scene.Render.Lighting.Model)
       << DescribeDisplay(result.Image, scene.Render, result.ClippedCloudShare) << ")\n";
   // The three lighting models side by side, each panel half the render's size.
   Scene halfSize = scene;
@@ -588,7 +591,7 @@ int RunDefault(std::ostream& out)
       { LightingModel::March, std::nullopt } },
     std::nullopt);
   WriteImage(compared.Image, comparison);
-  out << "wrote " << comparison << " (none, derivative and march side by side)\n\n";
+  out << "wrote " << PrintableText(comparison) << " (none, derivative and march side by side)\n\n";
   PrintFieldStatistics(out, ComputeFieldStatistics(field), output);
   return ExitSuccess;
 }

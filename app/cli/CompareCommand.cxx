@@ -9,6 +9,7 @@
 #include "Errors.h"
 #include "ExportCommands.h"
 #include "ImageWriters.h"
+#include "Utf8.h"
 
 #include <vtkImageData.h>
 
@@ -273,8 +274,8 @@ int Compare(const Arguments& arguments, std::ostream& out)
     CheckNoiseReport(ReferenceNoiseNames, text, *result.ReferenceTarget);
   }
   WriteImage(result.Image, output);
-  out << "wrote " << output << " (" << result.Image.Width << " x " << result.Image.Height
-      << " pixels, " << panels.size() + (difference ? 1 : 0) << " panels, "
+  out << "wrote " << PrintableText(output) << " (" << result.Image.Width << " x "
+      << result.Image.Height << " pixels, " << panels.size() + (difference ? 1 : 0) << " panels, "
       << result.AccumulatedFrames << " frame" << (result.AccumulatedFrames == 1 ? "" : "s")
       << " averaged";
   if (loaded.Loaded.Render.AutoExposure || result.Image.ExposureEV != 0.0)

@@ -128,8 +128,9 @@ int Animate(const Arguments& arguments, std::ostream& out)
   const int written = RenderAnimation(scene, input, request,
     [&](const std::string& label, double fraction) { progress.Update(label, fraction); });
   progress.Finish();
-  out << "wrote " << written << " frame" << (written == 1 ? "" : "s") << " to " << request.Directory
-      << "/ (" << FrameFileName(request, 0).substr(request.Directory.size() + 1) << " .. "
+  out << "wrote " << written << " frame" << (written == 1 ? "" : "s") << " to "
+      << PrintableText(request.Directory) << "/ ("
+      << FrameFileName(request, 0).substr(request.Directory.size() + 1) << " .. "
       << FrameFileName(request, written - 1).substr(request.Directory.size() + 1) << ", "
       << scene.Render.Size[0] << " x " << scene.Render.Size[1] << " pixels)\n";
   return ExitSuccess;

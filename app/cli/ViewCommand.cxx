@@ -10,6 +10,7 @@
 #include "ImageWriters.h"
 #include "InputFiles.h"
 #include "SceneField.h"
+#include "Utf8.h"
 #include "Viewer.h"
 
 #include <vtkImageData.h>
@@ -146,12 +147,12 @@ int View(const Arguments& arguments, std::ostream& out)
   if (!windowImage.empty())
   {
     viewer.SaveWindowImage(windowImage);
-    out << "wrote " << windowImage << "\n";
+    out << "wrote " << PrintableText(windowImage) << "\n";
   }
   if (!saveOnExit.empty())
   {
     viewer.SaveScene(saveOnExit);
-    out << "wrote " << saveOnExit << "\n";
+    out << "wrote " << PrintableText(saveOnExit) << "\n";
   }
   return ExitSuccess;
 }

@@ -23,8 +23,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <memory>
+#include <ostream>
 #include <pthread.h>
+#include <streambuf>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -374,6 +377,262 @@ mode_t FinalMode(const std::string& target)
   return 0666 & ~mask;
 }
 
+// The file a write to `target` replaces: `target` itself, or, when it is a symbolic link, the
+// file at the end of its chain of links (which need not exist yet: a dangling link names the
+// file to create). An output is written through links, as editors and `sed -i
+// --follow-symlinks` do, so the link stays a link and the file it names gets the content.
+std::string FileBehindLinks(const std::string& target)
+{
+  std::string path = target;
+  for (int depth = 0; depth < 40; ++depth) // Linux's own limit (MAXSYMLINKS)
+  {
+    struct stat info;
+    if (::lstat(path.c_str(), &info) != 0 || !S_ISLNK(info.st_mode))
+    {
+      return path;
+    }
+    std::vector<char> link(std::size_t(info.st_size > 0 ? info.st_size : PATH_MAX) + 1);
+    const ssize_t length = ::readlink(path.c_str(), link.data(), link.size());
+    if (length < 0 || std::size_t(length) >= link.size())
+    {
+      throw InputError(target + ": cannot read the symbolic link " + path + " (" +
+        (length < 0 ? SystemReason() : "it changed while being read") + ")");
+    }
+    const std::string next(link.data(), std::size_t(length));
+    path = next[0] == '/' ? next : DirectoryOf(path) + "/" + next;
+  }
+  throw InputError(target + ": cannot write: too many levels of symbolic links");
+}
+
+// The stream buffer of a file being written (CheckedOutput): a buffer flushed with write(2),
+// every call checked and retried after a short write or EINTR, and seekable (OpenVDB and VTK go
+// back to fill in offsets). The first failure is kept with its errno; from then on nothing more
+// is written, and the stream the writer holds goes bad, so a writer that checks its stream stops
+// and one that does not (OpenVDB's) cannot leave a file that looks whole: Finish reports it.
+class CheckedBuffer : public std::streambuf
+{
+public:
+  explicit CheckedBuffer(int fd)
+    : Descriptor(fd)
+    , Buffer(std::size_t(1) << 20)
+  {
+    this->setp(this->Buffer.data(), this->Buffer.data() + this->Buffer.size());
+  }
+  CheckedBuffer(const CheckedBuffer&) = delete;
+  CheckedBuffer& operator=(const CheckedBuffer&) = delete;
+
+  int Error = 0;          // the errno of the first failure, 0 while there is none
+  std::string FailedCall; // the call that failed: "write", "seek"
+  off_t End = 0;          // the end of the data written so far (what the file's size must be)
+
+protected:
+  int_type overflow(int_type c) override
+  {
+    if (!this->Drain())
+    {
+      return traits_type::eof();
+    }
+    if (!traits_type::eq_int_type(c, traits_type::eof()))
+    {
+      *this->pptr() = traits_type::to_char_type(c);
+      this->pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return this->Drain() ? 0 : -1; }
+  pos_type seekoff(off_type offset, std::ios_base::seekdir way, std::ios_base::openmode) override
+  {
+    if (way == std::ios_base::cur && offset == 0 && this->Error == 0)
+    {
+      return pos_type(this->Position + (this->pptr() - this->pbase())); // tellp: no flush
+    }
+    if (!this->Drain())
+    {
+      return pos_type(off_type(-1));
+    }
+    const int whence = way == std::ios_base::beg ? SEEK_SET
+      : way == std::ios_base::cur                ? SEEK_CUR
+                                                 : SEEK_END;
+    const off_t at = ::lseek(this->Descriptor, off_t(offset), whence);
+    if (at < 0)
+    {
+      this->Fail("seek");
+      return pos_type(off_type(-1));
+    }
+    this->Position = at;
+    return pos_type(at);
+  }
+  pos_type seekpos(pos_type position, std::ios_base::openmode which) override
+  {
+    return this->seekoff(off_type(position), std::ios_base::beg, which);
+  }
+
+private:
+  // Writes out the buffer; false once anything has failed.
+  bool Drain()
+  {
+    const char* at = this->pbase();
+    const char* end = this->pptr();
+    while (this->Error == 0 && at < end)
+    {
+      const ssize_t written = ::write(this->Descriptor, at, std::size_t(end - at));
+      if (written < 0 && errno == EINTR)
+      {
+        continue;
+      }
+      if (written <= 0)
+      {
+        if (written == 0)
+        {
+          errno = ENOSPC; // write(2) returns 0 for a non-empty request only when nothing fits
+        }
+        this->Fail("write");
+        break;
+      }
+      at += written;
+      this->Position += written;
+      this->End = std::max(this->End, this->Position);
+    }
+    this->setp(this->Buffer.data(), this->Buffer.data() + this->Buffer.size());
+    return this->Error == 0;
+  }
+  void Fail(const char* call)
+  {
+    if (this->Error == 0)
+    {
+      this->Error = errno != 0 ? errno : EIO;
+      this->FailedCall = call;
+    }
+  }
+
+  int Descriptor;
+  std::vector<char> Buffer;
+  off_t Position = 0; // the file offset of the buffer's first byte
+};
+
+// Writes a file through a CheckedBuffer and finishes it: the final flush, fsync (so that a
+// write-back error the kernel reports late, as NFS and quotas do, is seen before the rename),
+// the file's size against the bytes written, and close, each checked. Every failure is an
+// InputError "TARGET: cannot write WHAT: REASON" naming the OS reason (strerror).
+void WriteChecked(int fd,
+  const std::string& target,
+  const std::string& what,
+  const std::function<void(std::ostream& out)>& write)
+{
+  struct Closer
+  {
+    int& Fd;
+    ~Closer()
+    {
+      if (this->Fd >= 0)
+      {
+        ::close(this->Fd);
+      }
+    }
+  } closer{ fd };
+  const auto fail = [&](const std::string& reason)
+  { throw InputError(target + ": cannot write " + what + ": " + reason); };
+  CheckedBuffer buffer(fd);
+  std::ostream out(&buffer);
+  const auto osFailure = [&]
+  {
+    return buffer.Error == 0 ? std::string()
+                             : std::strerror(buffer.Error) +
+        (buffer.FailedCall == "write" ? std::string() : " (" + buffer.FailedCall + ")");
+  };
+  try
+  {
+    write(out);
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw;
+  }
+  catch (const std::exception&)
+  {
+    // The writer's own complaint ("cannot write the field") is the consequence; the OS reason,
+    // when there is one, is the cause.
+    if (buffer.Error != 0)
+    {
+      fail(osFailure());
+    }
+    throw;
+  }
+  out.flush();
+  if (buffer.Error != 0)
+  {
+    fail(osFailure());
+  }
+  if (!out)
+  {
+    fail("the writer's stream failed");
+  }
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) // EINVAL: fsync is not offered
+  {
+    fail(SystemReason() + " (fsync)");
+  }
+  struct stat written;
+  if (::fstat(fd, &written) != 0)
+  {
+    fail(SystemReason() + " (fstat)");
+  }
+  if (written.st_size != buffer.End)
+  {
+    fail("the file holds " + std::to_string(written.st_size) + " bytes of the " +
+      std::to_string(buffer.End) + " written");
+  }
+  const int closing = fd;
+  fd = -1;
+  if (::close(closing) != 0)
+  {
+    fail(SystemReason() + " (close)");
+  }
+}
+
+// A new temporary beside `file` (the file to replace), registered for removal; its descriptor
+// is left open in `fd` with the final mode already set.
+std::unique_ptr<TemporaryFile> CreateTemporary(const std::string& target,
+  const std::string& file,
+  int& fd)
+{
+  const std::string directory = DirectoryOf(file);
+  const TemporaryName name = TemporaryNameFor(directory, FileNameOf(file));
+  std::vector<char> buffer(name.Pattern.begin(), name.Pattern.end());
+  buffer.push_back('\0');
+  InstallInterruptCleanup();
+  std::unique_ptr<TemporaryFile> created;
+  {
+    // Held process-wide, whichever thread the kernel gives a signal to.
+    const InterruptionHold noSignalUntilRegistered;
+    fd = ::mkstemps(buffer.data(), name.SuffixLength);
+    if (fd < 0)
+    {
+      throw InputError(
+        target + ": cannot create a temporary file in " + directory + " (" + SystemReason() + ")");
+    }
+    created = std::make_unique<TemporaryFile>(buffer.data());
+  }
+  if (::fchmod(fd, FinalMode(file)) != 0)
+  {
+    const std::string reason = SystemReason();
+    ::close(fd);
+    fd = -1;
+    throw InputError(target + ": cannot set permissions of the temporary file " +
+      created->GetPath() + " (" + reason + ")");
+  }
+  return created;
+}
+
+void Replace(TemporaryFile& temporary, const std::string& target, const std::string& file)
+{
+  if (::rename(temporary.GetPath().c_str(), file.c_str()) != 0)
+  {
+    throw InputError(target + ": cannot replace the target" +
+      (file == target ? "" : " " + file + " it links to") + " (" + SystemReason() + ")");
+  }
+  temporary.Release();
+}
+
 } // namespace
 
 void InstallInterruptCleanup()
@@ -509,85 +768,106 @@ std::string TemporaryGroup::Member(const std::string& name)
 void TemporaryGroup::Commit(const std::string& name, const std::string& target)
 {
   const std::string member = this->Directory + "/" + name;
-  if (::rename(member.c_str(), target.c_str()) != 0)
+  if (::rename(member.c_str(), FileBehindLinks(target).c_str()) != 0)
   {
     throw InputError(
       target + ": cannot replace the target with " + member + " (" + SystemReason() + ")");
   }
 }
 
-void CheckOutputTarget(const std::string& target)
+void CheckOutputTarget(const std::string& requested)
 {
-  if (target.empty())
+  if (requested.empty())
   {
     throw InputError("the output path is empty");
   }
+  // The checks apply to the file that will be replaced: behind the links, if any.
+  const std::string target = FileBehindLinks(requested);
+  const std::string named = target == requested ? requested : requested + " (" + target + ")";
   const std::string directory = DirectoryOf(target);
   struct stat info;
   if (::stat(directory.c_str(), &info) != 0)
   {
-    throw InputError(target + ": cannot write: directory " + directory + " does not exist (" +
+    throw InputError(named + ": cannot write: directory " + directory + " does not exist (" +
       SystemReason() + ")");
   }
   if (!S_ISDIR(info.st_mode))
   {
-    throw InputError(target + ": cannot write: " + directory + " is not a directory");
+    throw InputError(named + ": cannot write: " + directory + " is not a directory");
   }
   if (::access(directory.c_str(), W_OK | X_OK) != 0)
   {
-    throw InputError(
-      target + ": cannot write: directory " + directory + " is not writable (" + SystemReason() + ")");
+    throw InputError(named + ": cannot write: directory " + directory + " is not writable (" +
+      SystemReason() + ")");
   }
   if (::stat(target.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
   {
-    throw InputError(target + ": cannot write: it is a directory");
+    throw InputError(named + ": cannot write: it is a directory");
   }
 }
 
-void WriteFileAtomically(
-  const std::string& target, const std::function<void(const std::string& temporaryPath)>& write)
+std::string OutputFileBehindLinks(const std::string& target)
+{
+  return FileBehindLinks(target);
+}
+
+void WriteFileAtomically(const std::string& target,
+  const std::function<void(const std::string& temporaryPath)>& write)
 {
   CheckOutputTarget(target);
-  const std::string directory = DirectoryOf(target);
-  const TemporaryName name = TemporaryNameFor(directory, FileNameOf(target));
-  std::vector<char> buffer(name.Pattern.begin(), name.Pattern.end());
-  buffer.push_back('\0');
-  InstallInterruptCleanup();
+  const std::string file = FileBehindLinks(target);
   int fd = -1;
-  std::unique_ptr<TemporaryFile> created;
-  {
-    // Held process-wide, whichever thread the kernel gives a signal to.
-    const InterruptionHold noSignalUntilRegistered;
-    fd = ::mkstemps(buffer.data(), name.SuffixLength);
-    if (fd < 0)
-    {
-      throw InputError(target + ": cannot create a temporary file in " + directory + " (" +
-        SystemReason() + ")");
-    }
-    created = std::make_unique<TemporaryFile>(buffer.data());
-  }
-  TemporaryFile& temporary = *created;
-  const mode_t mode = FinalMode(target);
-  const bool modeSet = ::fchmod(fd, mode) == 0;
+  const std::unique_ptr<TemporaryFile> temporary = CreateTemporary(target, file, fd);
   ::close(fd);
-  if (!modeSet)
-  {
-    throw InputError(target + ": cannot set permissions of the temporary file " +
-      temporary.GetPath() + " (" + SystemReason() + ")");
-  }
 
-  write(temporary.GetPath());
+  write(temporary->GetPath());
 
-  struct stat written;
-  if (::stat(temporary.GetPath().c_str(), &written) != 0)
+  // The writer wrote by name; what it did not check can still be: a write-back error reported
+  // late (fsync), or no file at all.
+  fd = ::open(temporary->GetPath().c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0)
   {
     throw InputError(target + ": the writer left no file behind (" + SystemReason() + ")");
   }
-  if (::rename(temporary.GetPath().c_str(), target.c_str()) != 0)
+  const bool synced = ::fsync(fd) == 0 || errno == EINVAL || errno == EROFS;
+  const std::string reason = SystemReason();
+  ::close(fd);
+  if (!synced)
   {
-    throw InputError(target + ": cannot replace the target (" + SystemReason() + ")");
+    throw InputError(target + ": cannot write: " + reason + " (fsync)");
   }
-  temporary.Release();
+  Replace(*temporary, target, file);
+}
+
+void WriteStreamAtomically(const std::string& target,
+  const std::string& what,
+  const std::function<void(std::ostream& out)>& write)
+{
+  CheckOutputTarget(target);
+  const std::string file = FileBehindLinks(target);
+  int fd = -1;
+  const std::unique_ptr<TemporaryFile> temporary = CreateTemporary(target, file, fd);
+  WriteChecked(fd, target, what, write);
+  Replace(*temporary, target, file);
+}
+
+void WriteNewFileChecked(const std::string& path,
+  const std::string& target,
+  const std::string& what,
+  const std::function<void(std::ostream& out)>& write)
+{
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd < 0)
+  {
+    throw InputError(target + ": cannot create " + path + " (" + SystemReason() + ")");
+  }
+  if (::fchmod(fd, FinalMode(FileBehindLinks(target))) != 0)
+  {
+    const std::string reason = SystemReason();
+    ::close(fd);
+    throw InputError(target + ": cannot set permissions of " + path + " (" + reason + ")");
+  }
+  WriteChecked(fd, target, what, write);
 }
 
 } // namespace cloudvis

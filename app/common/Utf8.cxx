@@ -72,30 +72,50 @@ bool IsValidUtf8(const std::string& text)
   return true;
 }
 
-std::string EscapeInvalidUtf8(const std::string& text)
+namespace
 {
-  if (IsValidUtf8(text))
-  {
-    return text;
-  }
+
+// `text` with each byte outside a well-formed sequence, and with `controls` each control
+// character (C0, DEL, and C1 as U+0080..U+009F), written as \xNN (one escape per byte).
+std::string Escaped(const std::string& text, bool controls)
+{
   static const char digits[] = "0123456789abcdef";
   std::string escaped;
   escaped.reserve(text.size() + 16);
   for (std::size_t i = 0; i < text.size();)
   {
     const std::size_t length = SequenceLength(text, i);
-    if (length > 0)
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const bool control = controls &&
+      ((length == 1 && (lead < 0x20 || lead == 0x7F)) ||
+        (length == 2 && lead == 0xC2 && static_cast<unsigned char>(text[i + 1]) < 0xA0));
+    if (length > 0 && !control)
     {
       escaped.append(text, i, length);
       i += length;
       continue;
     }
-    const auto byte = static_cast<unsigned char>(text[i++]);
-    escaped += "\\x";
-    escaped += digits[byte >> 4];
-    escaped += digits[byte & 15];
+    for (const std::size_t end = i + (length > 0 ? length : 1); i < end; ++i)
+    {
+      const auto byte = static_cast<unsigned char>(text[i]);
+      escaped += "\\x";
+      escaped += digits[byte >> 4];
+      escaped += digits[byte & 15];
+    }
   }
   return escaped;
+}
+
+} // namespace
+
+std::string EscapeInvalidUtf8(const std::string& text)
+{
+  return IsValidUtf8(text) ? text : Escaped(text, false);
+}
+
+std::string PrintableText(const std::string& text)
+{
+  return Escaped(text, true);
 }
 
 } // namespace cloudvis

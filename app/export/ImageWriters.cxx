@@ -1,5 +1,7 @@
 // PNG through vtkPNGWriter (8- or 16-bit samples from unsigned char or unsigned short scalars,
-// tEXt chunks from AddText), EXR through OpenEXR's scan-line Imf::OutputFile. Rows: VTK and the
+// tEXt chunks from AddText), EXR through OpenEXR's scan-line Imf::OutputFile. Both write onto
+// the checked stream of the atomic write (AtomicFile.h), not to a file of their own: PNG from
+// memory (WriteToMemory), EXR through an Imf::OStream over the stream. Rows: VTK and the
 // mapper keep them bottom to top, which is what vtkPNGWriter expects; EXR stores the top row
 // first, so the EXR writer hands OpenEXR one line at a time, from the last in memory.
 #include "ImageWriters.h"
@@ -12,6 +14,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfOutputFile.h>
 #include <ImfFloatAttribute.h>
 #include <ImfStringAttribute.h>
@@ -20,6 +23,7 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +31,8 @@
 #include <cstdio>
 #include <exception>
 #include <limits>
+#include <ostream>
+#include <stdexcept>
 #include <vector>
 
 #ifndef CLOUDVIS_VERSION
@@ -93,12 +99,50 @@ void FillDisplayPixels(const RenderedImage& image, bool transparent, T* out)
   }
 }
 
+// OpenEXR's output onto a std::ostream: it seeks back to fill in the line offsets. A failed
+// stream throws, which OpenEXR passes on; the atomic write then names the OS reason.
+class ExrStream : public Imf::OStream
+{
+public:
+  explicit ExrStream(std::ostream& out)
+    : Imf::OStream("the EXR image")
+    , Out(out)
+  {
+  }
+  void write(const char c[], int n) override
+  {
+    if (!this->Out.write(c, n))
+    {
+      throw std::runtime_error("the write failed");
+    }
+  }
+  uint64_t tellp() override
+  {
+    const std::streamoff at = this->Out.tellp();
+    if (at < 0)
+    {
+      throw std::runtime_error("the stream has no position");
+    }
+    return uint64_t(at);
+  }
+  void seekp(uint64_t position) override
+  {
+    if (!this->Out.seekp(std::streamoff(position)))
+    {
+      throw std::runtime_error("the seek failed");
+    }
+  }
+
+private:
+  std::ostream& Out;
+};
+
 // One scan line at a time through a row buffer per channel (y stride 0: every line of the
 // frame buffer is the same memory), filled from the bottom-up buffers in EXR's top-down order.
 // OpenEXR writes a channel from a slice of its own pixel type only, hence T = float or half.
 template <typename T>
 void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& options,
-  const std::string& path, Imf::PixelType type)
+  std::ostream& out, Imf::PixelType type)
 {
   // A path-traced image adds the variance of each RGBA mean, as the layer "variance".
   const bool variance = !image.Variance.empty();
@@ -128,7 +172,8 @@ void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& opt
   header.insert("cloudvis.display", Imf::StringAttribute(DisplayCurveName(image.Display)));
   header.insert("cloudvis.scene", Imf::StringAttribute(options.SceneJson));
   header.insert("cloudvis.command", Imf::StringAttribute(options.CommandLine));
-  Imf::OutputFile file(path.c_str(), header);
+  ExrStream stream(out);
+  Imf::OutputFile file(stream, header);
   file.setFrameBuffer(frame);
   for (int y = image.Height - 1; y >= 0; --y)
   {
@@ -156,14 +201,15 @@ void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& opt
 struct ImageFormat
 {
   const char* Extension;
-  // Writes to `path` (a temporary); `target` names the file in errors.
-  void (*Write)(const RenderedImage& image, const ImageExportOptions& options,
-    const std::string& path, const std::string& target);
+  const char* What; // in "cannot write WHAT: REASON"
+  // Writes onto `out` (the temporary's checked stream); `target` names the file in errors.
+  void (*Write)(const RenderedImage& image, const ImageExportOptions& options, std::ostream& out,
+    const std::string& target);
 };
 
 const ImageFormat ImageFormats[] = {
-  { ".png", WritePngImage },
-  { ".exr", WriteExrImage },
+  { ".png", "the PNG image", WritePngImage },
+  { ".exr", "the EXR image", WriteExrImage },
 };
 
 const ImageFormat& FormatOf(const std::string& path)
@@ -200,11 +246,11 @@ bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options)
 }
 
 void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,
-  const std::string& path, const std::string& target)
+  std::ostream& out, const std::string& target)
 {
   vtkNew<vtkImageData> pixels;
   pixels->SetDimensions(image.Width, image.Height, 1);
-  const bool fromFloat = NeedsFloatImage(path, options);
+  const bool fromFloat = NeedsFloatImage(target, options);
   if (fromFloat && (image.Radiance.size() != 4 * size_t(image.Width) * size_t(image.Height) ||
                      (!options.Transparent && image.BackgroundRGB.size() != image.RGB.size())))
   {
@@ -231,7 +277,7 @@ void WritePngImage(const RenderedImage& image, const ImageExportOptions& options
   VtkMessageCapture messages;
   vtkNew<vtkPNGWriter> writer;
   writer->SetInputData(pixels);
-  writer->SetFileName(path.c_str());
+  writer->WriteToMemoryOn();
   writer->AddText("Software", ("cloudvis " + CloudvisVersion()).c_str());
   if (!options.SceneJson.empty())
   {
@@ -244,15 +290,18 @@ void WritePngImage(const RenderedImage& image, const ImageExportOptions& options
   writer->AddText("cloudvis.display",
     (DisplayCurveName(image.Display) + ", exposure " + ShowExposure(image.ExposureEV)).c_str());
   writer->Write();
-  if (writer->GetErrorCode() != 0 || !messages.Messages().empty())
+  vtkUnsignedCharArray* encoded = writer->GetResult();
+  if (writer->GetErrorCode() != 0 || !messages.Messages().empty() || !encoded)
   {
     throw InputError(target + ": cannot write the PNG image" +
       (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
   }
+  out.write(reinterpret_cast<const char*>(encoded->GetPointer(0)),
+    std::streamsize(encoded->GetNumberOfValues()));
 }
 
 void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options,
-  const std::string& path, const std::string& target)
+  std::ostream& out, const std::string& target)
 {
   const size_t pixels = size_t(image.Width) * size_t(image.Height);
   if (image.Radiance.size() != 4 * pixels || image.Auxiliary.size() != 4 * pixels ||
@@ -264,11 +313,11 @@ void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options
   {
     if (options.ExrHalf)
     {
-      WriteExrScanLines<half>(image, options, path, Imf::HALF);
+      WriteExrScanLines<half>(image, options, out, Imf::HALF);
     }
     else
     {
-      WriteExrScanLines<float>(image, options, path, Imf::FLOAT);
+      WriteExrScanLines<float>(image, options, out, Imf::FLOAT);
     }
   }
   catch (const std::exception& e)
@@ -302,8 +351,8 @@ void WriteImage(
   const RenderedImage& image, const std::string& path, const ImageExportOptions& options)
 {
   const ImageFormat& format = FormatOf(path);
-  WriteFileAtomically(
-    path, [&](const std::string& temporary) { format.Write(image, options, temporary, path); });
+  WriteStreamAtomically(
+    path, format.What, [&](std::ostream& out) { format.Write(image, options, out, path); });
 }
 
 } // namespace cloudvis

@@ -181,6 +181,10 @@ public:
   static vtkCloudRunImageDataWriter* New();
   vtkTypeMacro(vtkCloudRunImageDataWriter, vtkXMLImageDataWriter);
   std::string Run;
+  // Writes to `out` rather than to a file of the writer's own: vtkXMLWriter's Stream, which
+  // it otherwise sets only for itself. No FileName then, so that a failure cannot make VTK
+  // delete a file by name.
+  void SetOutputStream(ostream* out) { this->Stream = out; }
 
 protected:
   vtkCloudRunImageDataWriter() = default;
@@ -212,9 +216,9 @@ const std::vector<FieldWriter>& FieldWriters()
     { ".vti",
       [](vtkImageData* field, const std::string& path, const FieldMetadata&)
       {
-        WriteFileAtomically(path,
-          [field, &path](const std::string& temporary)
-          { WriteVtkXmlImageFile(field, temporary, path); });
+        WriteStreamAtomically(path,
+          "the field",
+          [field, &path](std::ostream& out) { WriteVtkXmlImage(field, out, path); });
       } },
     { ".pvti",
       [](vtkImageData* field, const std::string& path, const FieldMetadata&)
@@ -413,8 +417,8 @@ void WriteField(vtkImageData* field, const std::string& path, const FieldMetadat
   }
 }
 
-void WriteVtkXmlImageFile(vtkImageData* field,
-  const std::string& path,
+void WriteVtkXmlImage(vtkImageData* field,
+  std::ostream& out,
   const std::string& target,
   const std::string& run)
 {
@@ -422,7 +426,7 @@ void WriteVtkXmlImageFile(vtkImageData* field,
   vtkNew<vtkCloudRunImageDataWriter> writer;
   writer->Run = run;
   writer->SetInputData(field);
-  writer->SetFileName(path.c_str());
+  writer->SetOutputStream(&out);
   // Raw appended binary (no base64) compressed with zlib: the smallest file VTK and
   // ParaView read back exactly.
   writer->SetDataModeToAppended();
@@ -433,6 +437,17 @@ void WriteVtkXmlImageFile(vtkImageData* field,
     const std::string summary = messages.Summary();
     Fail(target, "cannot write the field" + (summary.empty() ? "" : " (VTK: " + summary + ")"));
   }
+}
+
+void WriteVtkXmlImageFile(vtkImageData* field,
+  const std::string& path,
+  const std::string& target,
+  const std::string& run)
+{
+  WriteNewFileChecked(path,
+    target,
+    "the field",
+    [&](std::ostream& out) { WriteVtkXmlImage(field, out, target, run); });
 }
 
 } // namespace cloudvis

@@ -125,13 +125,10 @@ std::string PvtiText(const FieldLattice& lattice,
 
 void WriteText(const std::string& text, const std::string& file, const std::string& target)
 {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out)
-  {
-    Fail(target, "cannot write the parallel image data file");
-  }
+  WriteNewFileChecked(file,
+    target,
+    "the parallel image data file",
+    [&](std::ostream& out) { out.write(text.data(), std::streamsize(text.size())); });
 }
 
 // The first `bytes` of a file (less when it is shorter), empty when it cannot be read.
@@ -374,11 +371,15 @@ void RunAgreed(vtkMultiProcessController* controller, const std::function<void()
 }
 
 void WriteFieldPieces(const FieldLattice& lattice,
-  const std::string& path,
+  const std::string& requested,
   int pieces,
   const PieceProducer& produce,
   vtkMultiProcessController* controller)
 {
+  // A .pvti that is a symbolic link is written through it (AtomicFile.h), pieces included: they
+  // go beside the file the link names, where that file's relative Source attributes find them.
+  // Every process sees the same links, so all reach the same answer.
+  const std::string path = OutputFileBehindLinks(requested);
   const int processes = controller ? controller->GetNumberOfProcesses() : 1;
   const int rank = controller ? controller->GetLocalProcessId() : 0;
   // From the start, so that a signal on any process, whenever it comes, goes through the handler

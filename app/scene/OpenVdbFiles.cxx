@@ -48,6 +48,20 @@ namespace cloudvis
 namespace
 {
 
+// An archive written to a stream of the caller's, seekable, as io::File writes its file
+// (Archive::write is protected; io::Stream writes a non-seekable archive, without the grid
+// offsets that io::File needs to read it back).
+class SeekableArchive : public openvdb::io::Archive
+{
+public:
+  void WriteTo(std::ostream& out,
+    const openvdb::GridCPtrVec& grids,
+    const openvdb::MetaMap& metadata) const
+  {
+    this->write(out, grids, /*seekable=*/true, metadata);
+  }
+};
+
 std::string BoxText(const openvdb::CoordBBox& box)
 {
   std::ostringstream text;
@@ -402,14 +416,17 @@ void WriteOpenVdbFile(vtkImageData* field, const std::string& path, const FieldM
   {
     fileMetadata.insertMeta("cloudvis_scene", openvdb::StringMetadata(metadata.Scene));
   }
-  WriteFileAtomically(path,
-    [&](const std::string& temporary)
+  // Onto the checked stream of the shared atomic path (AtomicFile.h), not by name: io::File
+  // writes through its own std::ofstream and never looks at it again, so on a full disk it
+  // returned as if the file were whole. SeekableArchive is exactly what io::File::write does
+  // with its stream (a seekable archive: grid offsets filled in, as readers of files expect).
+  WriteStreamAtomically(path,
+    "the field as OpenVDB",
+    [&](std::ostream& out)
     {
       try
       {
-        openvdb::io::File file(temporary);
-        file.write(openvdb::GridCPtrVec{ grid }, fileMetadata);
-        file.close();
+        SeekableArchive().WriteTo(out, openvdb::GridCPtrVec{ grid }, fileMetadata);
       }
       catch (const std::exception& e)
       {

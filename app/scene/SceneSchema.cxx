@@ -356,6 +356,7 @@ const Keys<FieldSpec>& CloudKeys()
           c.Fail(k, "expected \"shapes\", \"noise\" or a file path, got " + Describe(v));
         }
         const std::string text = v.get<std::string>();
+        RefuseNul(c, k, text);
         f.CoverageMapFile.clear();
         if (text == "shapes" || text == "noise")
         {

@@ -408,6 +408,7 @@ json CheckKind(const Context& c, const ValueType& t, const json& v, const std::s
         c.Fail(key, "expected " + t.Expected + ", got " + Describe(v));
       }
       const std::string text = v.get<std::string>();
+      RefuseNul(c, key, text);
       const bool relative = t.IsPath && text[0] != '/' && !c.BaseDirectory.empty();
       return relative ? c.BaseDirectory + "/" + text : text;
     }
@@ -458,6 +459,17 @@ json CheckKind(const Context& c, const ValueType& t, const json& v, const std::s
 }
 
 } // namespace
+
+void RefuseNul(const Context& c, const std::string& key, const std::string& text)
+{
+  const auto at = text.find('\0');
+  if (at != std::string::npos)
+  {
+    c.Fail(key,
+      "the string holds a NUL character (\\u0000) at byte " + std::to_string(at) +
+        ", which no path or name can hold: got " + Describe(json(text)));
+  }
+}
 
 json Check(const Context& c, const ValueType& t, const json& v, const std::string& key)
 {

@@ -93,17 +93,8 @@ RenderedImage GrabWindow(vtkRenderWindow* window, const double* viewport)
 
 void WriteTextFile(const std::string& path, const std::string& text, const std::string& what)
 {
-  WriteFileAtomically(path,
-    [&](const std::string& temporary)
-    {
-      std::ofstream out(temporary);
-      out << text;
-      out.close();
-      if (!out)
-      {
-        throw InputError(path + ": cannot write " + what);
-      }
-    });
+  WriteStreamAtomically(
+    path, what, [&](std::ostream& out) { out.write(text.data(), std::streamsize(text.size())); });
 }
 
 std::vector<std::string> WriteScreenshot(const std::string& directory,

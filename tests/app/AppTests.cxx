@@ -389,6 +389,124 @@ TEST(AtomicFile, RefusesMissingDirectoryBeforeWriting)
   EXPECT_FALSE(called);
 }
 
+// An output that is a symbolic link is written through it (AtomicFile.h): the link stays a link,
+// the file it names gets the content and keeps its own mode, a dangling link's file is created
+// with the umask's mode, and the temporary is made beside the file, not beside the link.
+TEST(AtomicFile, WritesThroughSymbolicLinks)
+{
+  TemporaryDirectory dir;
+  ASSERT_EQ(::mkdir(dir.File("real").c_str(), 0755), 0);
+  const std::string real = dir.Write("real/f.vti", "previous");
+  ::chmod(real.c_str(), 0640);
+  ASSERT_EQ(::symlink("real/f.vti", dir.File("link.vti").c_str()), 0);
+  ASSERT_EQ(::symlink("link.vti", dir.File("link2.vti").c_str()), 0); // a chain of two
+  cloudvis::WriteStreamAtomically(
+    dir.File("link2.vti"), "the test file", [](std::ostream& out) { out << "new"; });
+  struct stat info;
+  ASSERT_EQ(::lstat(dir.File("link.vti").c_str(), &info), 0);
+  EXPECT_TRUE(S_ISLNK(info.st_mode)) << "the link was replaced by a file";
+  ASSERT_EQ(::lstat(dir.File("link2.vti").c_str(), &info), 0);
+  EXPECT_TRUE(S_ISLNK(info.st_mode)) << "the link was replaced by a file";
+  EXPECT_EQ(ReadText(real), "new");
+  ASSERT_EQ(::stat(real.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 0777, 0640u) << "the file behind the link keeps its mode";
+  EXPECT_EQ(dir.Files("/real"), std::vector<std::string>{ "f.vti" });
+
+  ASSERT_EQ(::symlink("real/new.vdb", dir.File("dangling.vdb").c_str()), 0);
+  cloudvis::WriteStreamAtomically(
+    dir.File("dangling.vdb"), "the test file", [](std::ostream& out) { out << "x"; });
+  EXPECT_EQ(ReadText(dir.File("real/new.vdb")), "x");
+  ASSERT_EQ(::lstat(dir.File("dangling.vdb").c_str(), &info), 0);
+  EXPECT_TRUE(S_ISLNK(info.st_mode));
+  ASSERT_EQ(::stat(dir.File("real/new.vdb").c_str(), &info), 0);
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  EXPECT_EQ(info.st_mode & 0777, 0666u & ~mask) << "a new file gets the umask's permissions";
+
+  ASSERT_EQ(::symlink("loop.vti", dir.File("loop.vti").c_str()), 0);
+  EXPECT_NE(cloudvis::test::ErrorOf([&]
+              { cloudvis::WriteStreamAtomically(dir.File("loop.vti"), "x", [](std::ostream&) {}); })
+              .find("loop.vti: cannot write: too many levels of symbolic links"),
+    std::string::npos);
+}
+
+// Through cloudvis itself: a .vdb and a .pvti behind links. The pieces of a .pvti go beside the
+// file the link names, where its relative Source attributes find them.
+TEST(AtomicFile, GenerateWritesThroughLinks)
+{
+  TemporaryDirectory dir;
+  ASSERT_EQ(::mkdir(dir.File("sub").c_str(), 0755), 0);
+  ASSERT_EQ(::symlink("sub/real.vdb", dir.File("f.vdb").c_str()), 0);
+  ASSERT_EQ(::symlink("sub/real.pvti", dir.File("p.pvti").c_str()), 0);
+  RunCloudvis({ "generate", "--set", "field.dimensions=8", "-o", dir.File("f.vdb") });
+  RunCloudvis({ "generate", "--set", "field.dimensions=8", "-o", dir.File("p.pvti") });
+  struct stat info;
+  ASSERT_EQ(::lstat(dir.File("f.vdb").c_str(), &info), 0);
+  EXPECT_TRUE(S_ISLNK(info.st_mode));
+  ASSERT_EQ(::lstat(dir.File("p.pvti").c_str(), &info), 0);
+  EXPECT_TRUE(S_ISLNK(info.st_mode));
+  EXPECT_EQ(dir.Files("/sub"), (std::vector<std::string>{ "real.pvti", "real.vdb", "real_0.vti" }));
+  EXPECT_NE(RunCloudvis({ "info", dir.File("f.vdb") }).find("OpenVDB"), std::string::npos);
+  EXPECT_NE(RunCloudvis({ "info", dir.File("sub/real.pvti") }).find("parallel image data"),
+    std::string::npos);
+}
+
+// The checked stream is seekable as OpenVDB, VTK and OpenEXR need (tellp without a flush, seekp
+// back to fill in an offset), and the file holds exactly what was written.
+TEST(AtomicFile, StreamSeeksBackAndChecksTheSize)
+{
+  TemporaryDirectory dir;
+  const std::string target = dir.File("f.bin");
+  cloudvis::WriteStreamAtomically(target,
+    "the test file",
+    [](std::ostream& out)
+    {
+      out << "0000";
+      EXPECT_EQ(out.tellp(), std::streampos(4));
+      out << std::string(3u << 20, 'x'); // more than the buffer holds
+      const std::streampos end = out.tellp();
+      EXPECT_EQ(end, std::streampos(4 + (3 << 20)));
+      out.seekp(0);
+      out << "head";
+      out.seekp(end);
+      out << "tail";
+    });
+  const std::string text = ReadText(target);
+  ASSERT_EQ(text.size(), 4u + (3u << 20) + 4u);
+  EXPECT_EQ(text.substr(0, 4), "head");
+  EXPECT_EQ(text.substr(text.size() - 4), "tail");
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{ "f.bin" });
+}
+
+// Every InputError and UsageError is one printable line (Errors.h): control characters in what
+// it quotes are escaped as \xNN, a NUL included (which would otherwise end the message), C1
+// controls too; valid UTF-8 passes; escaping twice changes nothing.
+TEST(Messages, ControlCharactersAreEscaped)
+{
+  EXPECT_EQ(
+    std::string(cloudvis::InputError(std::string("a\0b\nc\td\x1b[31m\x7f", 13) + ".vti").what()),
+    "a\\x00b\\x0ac\\x09d\\x1b[31m\\x7f.vti");
+  EXPECT_EQ(std::string(cloudvis::UsageError("x\ry").what()), "x\\x0dy");
+  EXPECT_EQ(cloudvis::PrintableText("\xc2\x9b\xc3\xa9\xff"),
+    "\\xc2\\x9b\xc3\xa9\\xff"); // CSI, é, a stray byte
+  const std::string once = cloudvis::PrintableText("a\nb\xfe");
+  EXPECT_EQ(cloudvis::PrintableText(once), once);
+  EXPECT_EQ(cloudvis::EscapeInvalidUtf8("a\nb"), "a\nb") << "JSON text keeps its newlines";
+
+  // End to end: the error about a missing file whose name holds a newline and an ESC is one line,
+  // and so is the "wrote" line of an output with a tab and a newline in its name.
+  TemporaryDirectory dir;
+  const cloudvis::support::CommandResult missing =
+    cloudvis::support::RunCloudvis({ "info", dir.File("new\nline\x1b[2J.vti") });
+  EXPECT_EQ(missing.Status, 1);
+  EXPECT_EQ(missing.Err,
+    "cloudvis: error: " + dir.File("new\\x0aline\\x1b[2J.vti") +
+      ": cannot read field: No such file or directory\n");
+  const std::string out =
+    RunCloudvis({ "generate", "--set", "field.dimensions=8", "-o", dir.File("a\tb\nc.vti") });
+  EXPECT_EQ(out, "wrote " + dir.File("a\\x09b\\x0ac.vti") + " (8 x 8 x 8 voxels)\n");
+}
+
 // ---- help documents every option of every command -------------------------------------------
 
 TEST(Help, EveryOptionOfEveryCommand)

@@ -1,6 +1,15 @@
-// Every file cloudvis writes (fields now, PNG and EXR renders later) goes through
-// WriteFileAtomically: the content is written to a temporary file next to the target (same
-// directory, hence same filesystem) and renamed over the target only once it is complete. A
+// Every file cloudvis writes (fields, PNG and EXR renders, saved scenes) goes through
+// WriteStreamAtomically: the content is written to a temporary file next to the target (same
+// directory, hence same filesystem) and renamed over the target only once it is complete.
+// Complete means checked: every write(2), the final flush, fsync, the file's size against the
+// bytes written, and close; any failure (a full disk) refuses the output with the OS reason
+// ("x.vdb: cannot write the field as OpenVDB: No space left on device") and leaves the target
+// as it was. Writers that can only write by name (WriteFileAtomically) get what can be checked
+// after them (fsync); every writer in cloudvis writes to the stream instead, because a library
+// writing by name may not check its own writes (OpenVDB's io::File does not).
+// A target that is a symbolic link is written through: the file at the end of the link's chain
+// is replaced (in its own directory), the link stays a link. A new file gets the mode an
+// ordinary new file would (0666 less the umask), a replaced one keeps its own. A
 // reader therefore never sees a half-written file, and a failed or interrupted export leaves the
 // previous target untouched and no temporary behind. "Interrupted" means any signal whose
 // default action ends the process and that can be caught (SIGHUP, SIGINT, SIGQUIT, SIGPIPE,
@@ -18,6 +27,7 @@
 #define cloudvis_AtomicFile_h
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -29,7 +39,26 @@ namespace cloudvis
 // fails in milliseconds rather than after the field has been generated.
 void CheckOutputTarget(const std::string& target);
 
-// Calls write(temporaryPath), which must create the complete file at that path and throw on
+// The file a write to `target` replaces: `target`, or the end of its chain of symbolic links.
+std::string OutputFileBehindLinks(const std::string& target);
+
+// Calls write(out) with a stream onto a new temporary, checks the file as above, and renames it
+// over `target` (behind its links). `what` completes the message "TARGET: cannot write WHAT:
+// REASON" ("the field as OpenVDB"). The writer may seek (tellp, seekp). When the writer throws
+// after a write failed, the OS reason is reported instead of the writer's message.
+void WriteStreamAtomically(const std::string& target,
+  const std::string& what,
+  const std::function<void(std::ostream& out)>& write);
+
+// The same checked writing onto a new file at `path` (a TemporaryGroup member) that its owner
+// renames over `target` later; the file gets `target`'s final mode. Messages name `target`.
+void WriteNewFileChecked(const std::string& path,
+  const std::string& target,
+  const std::string& what,
+  const std::function<void(std::ostream& out)>& write);
+
+// For a writer that can only write by name. Calls write(temporaryPath), which must create the
+// complete file at that path and throw on
 // failure, then renames the temporary over `target`. On any failure the temporary is removed,
 // the target is left as it was, and the exception propagates (OS failures as InputError naming
 // the target). The temporary keeps the target's extension, for writers that look at it.

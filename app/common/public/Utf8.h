@@ -21,6 +21,14 @@ bool IsValidUtf8(const std::string& text);
 // `text` with each byte outside a well-formed UTF-8 sequence replaced by "\xNN".
 std::string EscapeInvalidUtf8(const std::string& text);
 
+// EscapeInvalidUtf8, and also every control character written as its bytes in \xNN: NUL, tab,
+// newline, ESC and the rest of C0, DEL, and C1 (U+0080..U+009F, "\xc2\x9b" for the
+// one-character CSI). For text that must stay on one line and never drive a terminal: every
+// InputError and UsageError message is made of it (Errors.h), so a path holding a newline does
+// not split a one-line error, and one holding a NUL does not cut it short. Idempotent: the
+// backslash itself is not escaped.
+std::string PrintableText(const std::string& text);
+
 } // namespace cloudvis
 
 #endif

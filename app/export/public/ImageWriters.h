@@ -1,5 +1,5 @@
 // The image formats cloudvis exports (docs/export.md), each a function from a RenderedImage to
-// one file, called by WriteImage below on the temporary path that WriteFileAtomically hands it:
+// one file, called by WriteImage below on the checked stream that WriteStreamAtomically hands it:
 //   PNG, 8-bit RGB (default): the window's pixels as they were shown;
 //   PNG, 16-bit and/or transparent: the mapper's float image composited by the same "over" the
 //     window applies (cloud + (1 - alpha) * background, in the window's display values), or with
@@ -14,6 +14,7 @@
 
 #include "RenderedImage.h"
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -39,12 +40,12 @@ std::string CloudvisVersion();
 // Auxiliary, BackgroundRGB): EXR, 16-bit PNG and transparent PNG do.
 bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options);
 
-// The writers of the format table. `path` is the file to create, `target` names the output in
-// errors (InputError).
+// The writers of the format table. They write onto `out` (the checked stream of the atomic
+// write, AtomicFile.h); `target` names the output in errors (InputError).
 void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,
-  const std::string& path, const std::string& target);
+  std::ostream& out, const std::string& target);
 void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options,
-  const std::string& path, const std::string& target);
+  std::ostream& out, const std::string& target);
 
 // The image formats cloudvis writes, as lower-case extensions with the dot (".png").
 std::vector<std::string> SupportedImageExtensions();
@@ -53,7 +54,7 @@ std::vector<std::string> SupportedImageExtensions();
 // be written (CheckOutputTarget). Called before any rendering.
 void CheckImageOutput(const std::string& path);
 
-// Writes the image in the format its extension names, atomically (WriteFileAtomically), with
+// Writes the image in the format its extension names, atomically (WriteStreamAtomically), with
 // default or given export options and metadata.
 void WriteImage(const RenderedImage& image, const std::string& path);
 void WriteImage(

@@ -159,6 +159,12 @@ ValueType IntegerOrIntegersIn(size_t count, long long min, long long max, std::s
 ValueType PointsIn(size_t count, const Range& allowed, std::string form);
 ValueType CustomValue(std::string typeText);
 
+// Fails through `c` naming `key` when the string `text` holds a NUL character: JSON allows
+// "\u0000", but a path or a name holding one is cut short there by every system call (and was
+// read as its first part). Every Text value is checked, and so is each custom key that takes a
+// path (field.cloud.coverage_map).
+void RefuseNul(const Context& c, const std::string& key, const std::string& text);
+
 // Checks `value` against `type` (its Outdated first, its Refuse last) and returns it in the form
 // members are assigned from: a choice as its integer value, one integer that fills an array as the
 // array, a path resolved against the context's base directory. Fails through `c` naming `key`.

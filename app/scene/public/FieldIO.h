@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <utility>
@@ -170,10 +171,18 @@ void CheckFieldOutput(const std::string& path);
 // (FieldPieces.h writes several). Throws InputError when the target cannot be written.
 void WriteField(vtkImageData* field, const std::string& path, const FieldMetadata& metadata = {});
 
-// Writes `field` as VTK XML image data (.vti) at exactly `path`, not atomically: WriteField and
-// the pieces of a .pvti (FieldPieces.h) call it inside their own atomic write. Errors name
-// `target`, the file the user asked for. `run`, when not empty, is recorded as the generation
-// run of a piece (PieceRunAttribute, FieldPieces.h).
+// Writes `field` as VTK XML image data (.vti) onto `out` (seekable): WriteField calls it on the
+// stream of its atomic write (AtomicFile.h). Errors name `target`, the file the user asked for.
+// `run`, when not empty, is recorded as the generation run of a piece (PieceRunAttribute,
+// FieldPieces.h).
+void WriteVtkXmlImage(vtkImageData* field,
+  std::ostream& out,
+  const std::string& target,
+  const std::string& run = {});
+
+// WriteVtkXmlImage onto a file created (or truncated) at exactly `path`, not atomically, every
+// write checked (WriteNewFileChecked, AtomicFile.h): the pieces of a .pvti (FieldPieces.h), which
+// their owner renames into place.
 void WriteVtkXmlImageFile(vtkImageData* field,
   const std::string& path,
   const std::string& target,

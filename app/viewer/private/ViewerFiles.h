@@ -2,7 +2,7 @@
 // (DIR/PREFIX-NNN.EXT, the first NNN free), the window's pixels as an image, screenshots (PNG and
 // EXR through the export writers), transfer-function presets (written in cloudvis's preset format,
 // read through the scene's own reader so a preset is checked exactly as transfer_function.preset)
-// and text files such as saved scenes. Every write is atomic (WriteFileAtomically).
+// and text files such as saved scenes. Every write is atomic and checked (WriteStreamAtomically).
 #ifndef cloudvis_ViewerFiles_h
 #define cloudvis_ViewerFiles_h
 
