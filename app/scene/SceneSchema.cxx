@@ -357,6 +357,7 @@ const Keys<FieldSpec>& CloudKeys()
         }
         const std::string text = v.get<std::string>();
         f.CoverageMapFile.clear();
+        f.Description.Layer.Map.reset(); // a map read before is another file's
         if (text == "shapes" || text == "noise")
         {
           f.Description.Layer.Source =
