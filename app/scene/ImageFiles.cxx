@@ -96,8 +96,8 @@ void CheckSize(const std::string& path,
   const double pixels = d[0] * d[1] * d[2];
   if (pixels > double(maximumPixels))
   {
-    throw InputError(prefix + Dimensions(d) + " pixels (" + Count(pixels) +
-      ") is more than " + limit);
+    throw InputError(
+      prefix + Dimensions(d) + " pixels (" + Count(pixels) + ") is more than " + limit);
   }
   const double needed = pixels * bytesPerPixel;
   const std::uint64_t available = AvailableMemoryBytes();
@@ -134,7 +134,8 @@ struct Sniffed
 
 Sniffed Sniff(const std::string& head)
 {
-  const auto starts = [&head](const std::string& magic) { return head.compare(0, magic.size(), magic) == 0; };
+  const auto starts = [&head](const std::string& magic)
+  { return head.compare(0, magic.size(), magic) == 0; };
   if (starts(std::string("\x89PNG\r\n\x1a\n", 8)))
   {
     return { Kind::Png, "VTK's PNG reader" };
@@ -159,7 +160,9 @@ Sniffed Sniff(const std::string& head)
 }
 
 // PNG: the signature, then the IHDR chunk (length 13, type, width, height, 5 bytes, CRC).
-std::array<double, 3> PngSize(const std::string& path, const std::string& what, const std::string& head)
+std::array<double, 3> PngSize(const std::string& path,
+  const std::string& what,
+  const std::string& head)
 {
   const std::string prefix = path + ": " + what + ": ";
   if (head.size() < 33)
@@ -171,8 +174,8 @@ std::array<double, 3> PngSize(const std::string& path, const std::string& what, 
   {
     throw InputError(prefix + "the PNG header is damaged: its first chunk is not a 13-byte IHDR");
   }
-  const std::uint32_t crc = std::uint32_t(
-    ::crc32(0L, reinterpret_cast<const Bytef*>(head.data() + 12), 17));
+  const std::uint32_t crc =
+    std::uint32_t(::crc32(0L, reinterpret_cast<const Bytef*>(head.data() + 12), 17));
   if (crc != BigEndian32(head, 29))
   {
     throw InputError(prefix + "the PNG header is damaged: the IHDR chunk's CRC does not match");
@@ -236,10 +239,14 @@ double PnmNumber(const std::string& token, double lowest, double highest)
 }
 
 // PNM: "P1" to "P6", width, height and (but for the bitmaps P1 and P4) the maximum value.
-std::array<double, 3> PnmSize(const std::string& path, const std::string& what, const std::string& head)
+std::array<double, 3> PnmSize(const std::string& path,
+  const std::string& what,
+  const std::string& head)
 {
   const char magic = head[1];
-  const std::string kind = std::string(magic == '1' || magic == '4' ? "PBM" : magic == '2' || magic == '5' ? "PGM" : "PPM") +
+  const std::string kind = std::string(magic == '1' || magic == '4' ? "PBM"
+                               : magic == '2' || magic == '5'       ? "PGM"
+                                                                    : "PPM") +
     " header (P" + magic + ")";
   const std::string prefix = path + ": " + what + ": the " + kind;
   std::size_t at = 2;
@@ -248,7 +255,8 @@ std::array<double, 3> PnmSize(const std::string& path, const std::string& what, 
   {
     throw InputError(prefix + " ends before its width and height");
   }
-  const double w = PnmNumber(width, 1.0, LargestDimension), h = PnmNumber(height, 1.0, LargestDimension);
+  const double w = PnmNumber(width, 1.0, LargestDimension),
+               h = PnmNumber(height, 1.0, LargestDimension);
   if (w < 0.0 || h < 0.0)
   {
     throw InputError(prefix + " gives a size of " + Shown(width) + " x " + Shown(height) +
@@ -259,9 +267,10 @@ std::array<double, 3> PnmSize(const std::string& path, const std::string& what, 
     const std::string maximum = PnmToken(head, at);
     if (PnmNumber(maximum, 1.0, 65535.0) < 0.0)
     {
-      throw InputError(prefix + (maximum.empty() ? std::string(" ends before its maximum value")
-                                                : " gives a maximum value of " + Shown(maximum) +
-                                   "; it must be a whole number from 1 to 65535"));
+      throw InputError(prefix +
+        (maximum.empty() ? std::string(" ends before its maximum value")
+                         : " gives a maximum value of " + Shown(maximum) +
+              "; it must be a whole number from 1 to 65535"));
     }
   }
   return { { w, h, 1.0 } };
@@ -340,7 +349,8 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path,
     }
     information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
     const std::array<double, 3> d{ { double(extent[1]) - extent[0] + 1.0,
-      double(extent[3]) - extent[2] + 1.0, double(extent[5]) - extent[4] + 1.0 } };
+      double(extent[3]) - extent[2] + 1.0,
+      double(extent[5]) - extent[4] + 1.0 } };
     if (!(d[0] >= 1.0 && d[1] >= 1.0 && d[2] >= 1.0))
     {
       const char* name = reader->GetDescriptiveName();
@@ -350,8 +360,12 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path,
     // Held per pixel: the decoded image here and its copy in the parent, then the caller's own.
     const double decoded = double(reader->GetNumberOfScalarComponents()) *
       double(vtkDataArray::GetDataTypeSize(reader->GetDataScalarType()));
-    CheckSize(path, what, d, decoded * (InIsolatedRead() ? 2.0 : 1.0) + bytesPerPixelAfter,
-      maximumPixels, limit);
+    CheckSize(path,
+      what,
+      d,
+      decoded * (InIsolatedRead() ? 2.0 : 1.0) + bytesPerPixelAfter,
+      maximumPixels,
+      limit);
     reader->Update();
     vtkImageData* image = reader->GetOutput();
     if (!messages.Messages().empty() || !image || image->GetNumberOfPoints() == 0)

@@ -2,12 +2,15 @@
 // the field description and come back from the resolved scene unchanged, and a coverage map
 // given as an image file (a PNG written here by VTK's own writer) is read and stretched over the
 // field as vtkCloudDensitySource::SetCoverageMap does. The refusals (bad values naming their
-// dotted key, a missing or 3-D map file) are command-line cases in CMakeLists.txt.
+// dotted key, a missing or 3-D map file) are command-line cases in CMakeLists.txt. Maps read
+// safely (issue 36): damaged, huge and impossible image headers are refused without a crash (the
+// PNGs are made here by hand, with zlib), a map is read once and only by the cloud model, and
+// integer maps mean the same in every container.
+#include "Errors.h"
 #include "ExportRender.h"
 #include "Scene.h"
 #include "SceneField.h"
 #include "SceneJson.h"
-#include "Errors.h"
 #include "SupportRun.h"
 #include "vtkCloudDensitySource.h"
 
@@ -228,7 +231,8 @@ std::string PngChunk(const std::string& type, const std::string& data)
   const std::string covered = type + data;
   PutBigEndian32(chunk,
     chunk.size() - 4,
-    std::uint32_t(::crc32(0L, reinterpret_cast<const Bytef*>(covered.data()), uInt(covered.size()))));
+    std::uint32_t(
+      ::crc32(0L, reinterpret_cast<const Bytef*>(covered.data()), uInt(covered.size()))));
   return chunk;
 }
 
@@ -420,8 +424,8 @@ TEST(CloudScene, IntegerMapsAreDividedByTheirTypesMaximumInEveryContainer)
     const char* Nrrd;
     double Maximum;
   };
-  for (const Case& c : { Case{ VTK_UNSIGNED_CHAR, "uint8", 255.0 },
-         Case{ VTK_UNSIGNED_SHORT, "uint16", 65535.0 } })
+  for (const Case& c :
+    { Case{ VTK_UNSIGNED_CHAR, "uint8", 255.0 }, Case{ VTK_UNSIGNED_SHORT, "uint16", 65535.0 } })
   {
     for (const double value : { 1.0, c.Maximum / 3.0, c.Maximum })
     {
