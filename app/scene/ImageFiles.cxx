@@ -1,7 +1,7 @@
 // Images read as field files are (ImageFiles.h says why): the header checked here, the decoding
 // isolated. The header parsers read only what they check: PNG's signature and IHDR chunk (its
-// CRC, and a width and height from 1 to 2^31 - 1, as the PNG specification allows), and a PNM
-// header's magic number, width, height and maximum value.
+// CRC, and a width and height from 1 to 2^31 - 1, as the PNG specification allows), a PNM
+// header's magic number, width, height and maximum value, and a BMP's width and height.
 #include "ImageFiles.h"
 
 #include "Errors.h"
@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <fcntl.h>
 #include <limits>
@@ -123,6 +124,7 @@ enum class Kind
 {
   Png,
   Pnm,
+  Bmp,
   Other
 };
 
@@ -154,7 +156,7 @@ Sniffed Sniff(const std::string& head)
   }
   if (starts("BM"))
   {
-    return { Kind::Other, "VTK's BMP reader" };
+    return { Kind::Bmp, "VTK's BMP reader" };
   }
   return {};
 }
@@ -276,6 +278,42 @@ std::array<double, 3> PnmSize(const std::string& path,
   return { { w, h, 1.0 } };
 }
 
+// BMP: the file header (14 bytes), then the size of the info header and the width and height:
+// 16-bit unsigned in an OS/2 header of 12 bytes, else 32-bit signed, a negative height meaning
+// rows stored top down (VTK's reader takes the width's sign off too).
+std::array<double, 3> BmpSize(const std::string& path,
+  const std::string& what,
+  const std::string& head)
+{
+  const std::string prefix = path + ": " + what + ": ";
+  if (head.size() < 26)
+  {
+    throw InputError(
+      prefix + "the file ends inside its BMP header (" + std::to_string(head.size()) + " bytes)");
+  }
+  const auto little = [&head](std::size_t at, int bytes)
+  {
+    std::uint32_t value = 0;
+    for (int i = bytes - 1; i >= 0; --i)
+    {
+      value = value << 8 | static_cast<unsigned char>(head[at + i]);
+    }
+    return value;
+  };
+  const bool os2 = little(14, 4) == 12;
+  const double width = os2 ? double(little(18, 2)) : double(std::int32_t(little(18, 4)));
+  const double height = os2 ? double(little(20, 2)) : double(std::int32_t(little(22, 4)));
+  if (width < 1.0 || height == 0.0)
+  {
+    std::ostringstream text;
+    text << prefix << "the BMP header gives a size of " << width << " x " << height
+         << " pixels; the width must be from 1 to 2147483647, the height not 0 (negative: rows "
+            "stored top down)";
+    throw InputError(text.str());
+  }
+  return { { width, std::fabs(height), 1.0 } };
+}
+
 } // namespace
 
 void CheckImageSize(const std::string& path,
@@ -307,6 +345,11 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path,
   else if (sniffed.Format == Kind::Pnm)
   {
     const std::array<double, 3> d = PnmSize(path, what, head);
+    CheckSize(path, what, d, 0.0, maximumPixels, limit);
+  }
+  else if (sniffed.Format == Kind::Bmp)
+  {
+    const std::array<double, 3> d = BmpSize(path, what, head);
     CheckSize(path, what, d, 0.0, maximumPixels, limit);
   }
   const auto read = [&]() -> FieldFileContents

@@ -380,8 +380,9 @@ TEST(CloudScene, AHugeValidPngMapIsRefusedFromItsHeader)
 }
 
 // A PNM header's size was read with its signs dropped (-5 x -5 as 5 x 5); it must be two
-// positive whole numbers now, and the maximum value one from 1 to 65535.
-TEST(CloudScene, PnmHeadersMustStateAPositiveSize)
+// positive whole numbers now, and the maximum value one from 1 to 65535. A BMP's width alike (its
+// height may be negative: rows stored top down).
+TEST(CloudScene, PnmAndBmpHeadersMustStateAPositiveSize)
 {
   TemporaryDirectory dir;
   const std::string pixels(25, '\x80');
@@ -404,6 +405,19 @@ TEST(CloudScene, PnmHeadersMustStateAPositiveSize)
       "from 1 to 65535");
   EXPECT_EQ(RefusalOf(dir, "short.ppm"),
     dir.File("short.ppm") + ": coverage map: the PPM header (P6) ends before its width and height");
+  // A 24-bit BMP of 4 x 4 white pixels, its width then made -4.
+  std::string bmp = std::string("BM") + std::string(12, '\0') + std::string(1, char(40)) +
+    std::string(3, '\0') + std::string("\x04\0\0\0\x04\0\0\0\x01\0\x18\0", 12) +
+    std::string(24, '\0') + std::string(48, '\xff');
+  bmp[10] = 54; // the pixels' offset
+  WriteBytes(dir.File("good.bmp"), bmp);
+  PutBigEndian32(bmp, 18, 0xfcffffffu); // -4, little-endian
+  WriteBytes(dir.File("negative.bmp"), bmp);
+  EXPECT_EQ(RefusalOf(dir, "negative.bmp"),
+    dir.File("negative.bmp") +
+      ": coverage map: the BMP header gives a size of -4 x 4 pixels; the width must be from 1 to "
+      "2147483647, the height not 0 (negative: rows stored top down)");
+  EXPECT_EQ(RefusalOf(dir, "good.bmp"), "(read)");
   const cloudvis::Scene scene =
     cloudvis::SceneFromDocument(CloudWithMap("good.pgm"), "scene", dir.Path);
   ASSERT_NE(scene.Field.Description.Layer.Map, nullptr);

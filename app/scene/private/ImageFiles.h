@@ -3,9 +3,9 @@
 // VTK's own BMP and PNM code) trust the file, and a damaged PNG crashes libpng's caller in VTK,
 // so they run in the forked child under its memory and time limits, never in the cloudvis
 // process. Before anything is decoded the image's size is checked against a limit and the memory
-// available: for PNG and PNM from the header, parsed here (PNG's IHDR with its CRC; a PNM header
-// whose size is not two positive whole numbers, which VTK's reader reads "-5" as 5, is refused),
-// for the other formats from what VTK's reader makes of the header, in the child.
+// available: for PNG, PNM and BMP from the header, parsed here (PNG's IHDR with its CRC; a PNM
+// or BMP header whose size is not positive, which VTK's readers read "-5" as 5, is refused), for
+// JPEG and TIFF from what VTK's reader makes of the header, in the child.
 #ifndef cloudvis_ImageFiles_h
 #define cloudvis_ImageFiles_h
 
