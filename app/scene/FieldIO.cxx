@@ -373,6 +373,13 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
   {
     *report = contents.Report;
     report->Format = format.Name;
+    // Readers that hand VTK's arrays on (.vti, .pvti) leave the stored type to the array.
+    vtkDataArray* stored =
+      report->StoredType == 0 ? DensityArray(path, contents.Image, contents.Array) : nullptr;
+    if (stored && stored->GetDataType() != VTK_FLOAT)
+    {
+      report->StoredType = stored->GetDataType();
+    }
   }
   return field;
 }

@@ -4,56 +4,112 @@
 
 #include "Errors.h"
 #include "FieldIO.h"
+#include "ImageFiles.h"
 #include "InputFiles.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudDensitySource.h"
 
 #include <vtkCallbackCommand.h>
+#include <vtkDataArray.h>
 #include <vtkImageData.h>
-#include <vtkImageReader2.h>
-#include <vtkImageReader2Factory.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
+
+#include <vector>
 
 namespace cloudvis
 {
 
 namespace
 {
-// field.cloud.coverage_map's file: a field file of any format cloudvis reads (by its extension,
-// as field.file is read), else an image VTK's image readers know (PNG, JPEG, TIFF, BMP, PNM).
-// The field readers go first because VTK's image factory picks a reader by probing contents, and
-// its HDR reader claims some .vti files (XML with a comment), then fails with "Read error". The
-// file is checked first, so a missing file, a directory or a FIFO is reported as such, not as
-// an unsupported format.
-vtkSmartPointer<vtkImageData> ReadCoverageMap(const std::string& path)
+// The stored values of a field file read as a map, in the type the file stores them (ReadField
+// made them float), so that CoverageMapOfImage divides integers by their type's maximum as it
+// does an image's: an 8-bit .vti or NRRD map of 255 is full coverage, as an 8-bit PNG's is.
+vtkSmartPointer<vtkImageData> AsStored(vtkImageData* field, int storedType)
 {
+  vtkDataArray* values = field->GetPointData()->GetScalars();
+  if (storedType == 0 || storedType == VTK_FLOAT || storedType == VTK_DOUBLE || !values)
+  {
+    return field;
+  }
+  vtkSmartPointer<vtkDataArray> stored;
+  stored.TakeReference(vtkDataArray::CreateDataArray(storedType));
+  stored->SetNumberOfTuples(values->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    stored->SetTuple1(i, values->GetTuple1(i)); // integers, exact in float up to 2^24
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->CopyStructure(field);
+  image->GetPointData()->SetScalars(stored);
+  return image;
+}
+
+// field.cloud.coverage_map's file: a field file of any format cloudvis reads (by its extension,
+// as field.file is read), else an image VTK's image readers know (PNG, JPEG, TIFF, BMP, PNM),
+// read in isolation with its size checked first (ImageFiles.h). The field readers go first
+// because VTK's image factory picks a reader by probing contents, and its HDR reader claims some
+// .vti files (XML with a comment), then fails with "Read error". The file is checked first, so a
+// missing file, a directory or a FIFO is reported as such, not as an unsupported format. Either
+// way the map may have at most MaximumCoverageMapPixels points.
+std::shared_ptr<const CoverageMap> ReadCoverageMap(const std::string& path)
+{
+  static const std::string limit = "a coverage map may have (16384 x 16384, 268 M)";
+  static_assert(MaximumCoverageMapPixels == 16384u * 16384u, "the limit's words");
   CheckRegularInputFile(path, "coverage map");
+  vtkSmartPointer<vtkImageData> image;
   if (IsFieldFile(path))
   {
-    return ReadField(path, FieldReadOptions{});
+    // Read as field.file is, within the field files' limits; the map's own limit then applies
+    // to what was read.
+    FieldReport report;
+    const vtkSmartPointer<vtkImageData> field = ReadField(path, FieldReadOptions{}, &report);
+    image = AsStored(field, report.StoredType);
+    int d[3];
+    image->GetDimensions(d);
+    std::vector<double> axes;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (d[a] > 1)
+      {
+        axes.push_back(d[a]);
+      }
+    }
+    if (axes.size() <= 2)
+    {
+      axes.resize(2, 1.0);
+      CheckImageSize(path, "coverage map", axes[0], axes[1], 4.0, MaximumCoverageMapPixels, limit);
+    }
   }
-  VtkMessageCapture messages;
-  vtkSmartPointer<vtkImageReader2> reader;
-  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
-  if (!reader)
+  else
   {
-    throw InputError(path +
-      ": coverage map: not an image VTK can read (PNG, JPEG, TIFF, BMP, "
-      "PNM) nor a field file (" +
-      FieldFileExtensions() + ")");
+    // Each pixel becomes one float of the map.
+    image = ReadImageFile(path, "coverage map", MaximumCoverageMapPixels, limit, 4.0);
   }
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
-  if (!messages.Messages().empty() || !image || image->GetNumberOfPoints() == 0)
+  std::string problem;
+  std::shared_ptr<const CoverageMap> map = CoverageMapOfImage(image, problem);
+  if (!map)
   {
-    throw InputError(path + ": coverage map: the image cannot be read" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    throw InputError(path + ": coverage map: " + problem);
   }
-  vtkSmartPointer<vtkImageData> copy = vtkSmartPointer<vtkImageData>::New();
-  copy->ShallowCopy(image);
-  return copy;
+  return map;
 }
+
+// Whether the field takes its coverage from the map in CoverageMapFile: only the cloud model
+// reads one.
+bool UsesCoverageMapFile(const FieldSpec& field)
+{
+  return field.Description.Model == DensityModel::Cloud &&
+    field.Description.Layer.Source == CoverageSource::Map && !field.CoverageMapFile.empty();
+}
+}
+
+void LoadCoverageMap(FieldSpec& field)
+{
+  if (UsesCoverageMapFile(field) && !field.Description.Layer.Map)
+  {
+    field.Description.Layer.Map = ReadCoverageMap(field.CoverageMapFile);
+  }
 }
 
 vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field)
@@ -65,20 +121,17 @@ vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field)
   auto source = vtkSmartPointer<vtkCloudDensitySource>::New();
   source->SetDimensions(field.Dimensions.data());
   source->SetBounds(field.Bounds.data());
-  source->SetField(field.Description);
   source->SetTime(field.Time);
-  if (!field.CoverageMapFile.empty())
+  if (UsesCoverageMapFile(field) && !field.Description.Layer.Map)
   {
-    std::string problem;
-    std::shared_ptr<const CoverageMap> map =
-      CoverageMapOfImage(ReadCoverageMap(field.CoverageMapFile), problem);
-    if (!map)
-    {
-      throw InputError(field.CoverageMapFile + ": coverage map: " + problem);
-    }
-    FieldDescription description = field.Description;
-    description.Layer.Map = map;
-    source->SetField(description);
+    // A FieldSpec not made by the scene's reader (which loads the map once, LoadCoverageMap).
+    FieldSpec loaded = field;
+    LoadCoverageMap(loaded);
+    source->SetField(loaded.Description);
+  }
+  else
+  {
+    source->SetField(field.Description);
   }
   return source;
 }

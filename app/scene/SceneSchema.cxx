@@ -358,6 +358,7 @@ const Keys<FieldSpec>& CloudKeys()
         const std::string text = v.get<std::string>();
         RefuseNul(c, k, text);
         f.CoverageMapFile.clear();
+        f.Description.Layer.Map.reset(); // a map read before is another file's
         if (text == "shapes" || text == "noise")
         {
           f.Description.Layer.Source =
@@ -383,9 +384,10 @@ const Keys<FieldSpec>& CloudKeys()
       },
       "`shapes`: the field's shapes, softened over `falloff_width`, are one cloud; `noise`: a "
       "procedural weather map of many clouds (`map_scale`, `map_octaves`, `map_gain`); a path "
-      "(relative to the scene file's folder): a 2-D image (PNG, its first channel) or a 2-D "
-      "field file stretched over the field's x and z bounds, 8-bit 255 or float 1 meaning full "
-      "coverage" },
+      "(relative to the scene file's folder): a 2-D image (PNG, JPEG, TIFF, BMP, PNM: its first "
+      "channel) or a 2-D field file of at most 16384 x 16384 points, stretched over the field's x "
+      "and z bounds; integers are divided by their type's maximum in every format (8-bit 255 and "
+      "16-bit 65535 are full coverage), floating-point values are taken as they are" },
     { "map_scale",
       NumberIn(Positive).In("world units"),
       Nested(&F::Description, &D::Layer, &L::MapScale),

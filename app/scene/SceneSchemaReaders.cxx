@@ -219,8 +219,10 @@ void ReadField(const Context& c, const json& v, const std::string& key, Scene& s
     }
     return;
   }
-  // The source's own checks, for what only a combination of keys can get wrong (a lacunarity
-  // that turns negative after some octaves, noise coordinates beyond the lattice's range).
+  // The coverage map's file, read once here when the cloud model will use it; then the source's
+  // own checks, for what only a combination of keys can get wrong (a lacunarity that turns
+  // negative after some octaves, noise coordinates beyond the lattice's range).
+  LoadCoverageMap(scene.Field);
   const std::string problem = ValidateProceduralField(scene.Field);
   if (!problem.empty())
   {

@@ -697,6 +697,7 @@ FieldFileContents ReadHeaderedImage(const std::string& path,
     voxels,
     "an image of " + std::to_string(voxels) + " " + header.TypeName + " values"));
   FieldFileContents contents{ field, "", {} };
+  contents.Report.StoredType = stored.Type->VtkType;
   contents.Report.Add("values",
     header.TypeName + (stored.Type->VtkType == VTK_FLOAT ? "" : ", converted to float") +
       (stored.Encoding == ValueEncoding::Zlib      ? " (compressed)"
@@ -774,6 +775,7 @@ FieldFileContents ReadRawFile(const std::string& path, const FieldReadOptions& o
   image->SetOrigin(layout.Origin.data());
   image->GetPointData()->SetScalars(density);
   FieldFileContents contents{ image, "", {} };
+  contents.Report.StoredType = type.VtkType;
   contents.Report.Add("layout",
     described +
       (layout.HeaderBytes ? " after " + std::to_string(layout.HeaderBytes) + " header bytes" : "") +

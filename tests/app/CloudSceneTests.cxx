@@ -2,7 +2,11 @@
 // the field description and come back from the resolved scene unchanged, and a coverage map
 // given as an image file (a PNG written here by VTK's own writer) is read and stretched over the
 // field as vtkCloudDensitySource::SetCoverageMap does. The refusals (bad values naming their
-// dotted key, a missing or 3-D map file) are command-line cases in CMakeLists.txt.
+// dotted key, a missing or 3-D map file) are command-line cases in CMakeLists.txt. Maps read
+// safely (issue 36): damaged, huge and impossible image headers are refused without a crash (the
+// PNGs are made here by hand, with zlib), a map is read once and only by the cloud model, and
+// integer maps mean the same in every container.
+#include "Errors.h"
 #include "ExportRender.h"
 #include "Scene.h"
 #include "SceneField.h"
@@ -16,12 +20,20 @@
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkXMLImageDataWriter.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <utility>
+#include <zlib.h>
 
 namespace
 {
@@ -160,6 +172,8 @@ TEST(CloudScene, ACoverageMapPngIsReadAsTheSourceReadsTheImage)
   WriteText(dir.File("scene.json"), scene.dump());
   const cloudvis::Scene loaded = cloudvis::LoadScene(dir.File("scene.json"), {});
   EXPECT_EQ(loaded.Field.CoverageMapFile, dir.File("map.png"));
+  // The map was read once, with the scene: generating needs the file no more.
+  ASSERT_EQ(std::remove(dir.File("map.png").c_str()), 0);
   vtkSmartPointer<vtkImageData> field = cloudvis::ProduceField(loaded);
 
   vtkNew<vtkCloudDensitySource> source;
@@ -183,6 +197,295 @@ TEST(CloudScene, ACoverageMapPngIsReadAsTheSourceReadsTheImage)
   }
   EXPECT_EQ(emptyHalf, 0u);
   EXPECT_GT(fullHalf, 500u);
+}
+
+// ---- coverage maps read safely (issue 36) -------------------------------------------------
+
+std::string Bytes(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes)
+{
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+void PutBigEndian32(std::string& bytes, std::size_t at, std::uint32_t value)
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    bytes[at + i] = char((value >> (24 - 8 * i)) & 0xff);
+  }
+}
+
+// A PNG chunk: length, type, data, CRC.
+std::string PngChunk(const std::string& type, const std::string& data)
+{
+  std::string chunk(4, '\0');
+  PutBigEndian32(chunk, 0, std::uint32_t(data.size()));
+  chunk += type + data + std::string(4, '\0');
+  const std::string covered = type + data;
+  PutBigEndian32(chunk,
+    chunk.size() - 4,
+    std::uint32_t(
+      ::crc32(0L, reinterpret_cast<const Bytef*>(covered.data()), uInt(covered.size()))));
+  return chunk;
+}
+
+// A 16 x 16 8-bit map written by VTK's PNG writer: 0 in its left half, 255 in its right.
+std::string HalfMapPng(const TemporaryDirectory& dir)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(16, 16, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+  auto* pixels = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int i = 0; i < 256; ++i)
+  {
+    pixels[i] = i % 16 < 8 ? 0 : 255;
+  }
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(dir.File("written.png").c_str());
+  writer->Write();
+  return Bytes(dir.File("written.png"));
+}
+
+json CloudWithMap(const std::string& map, const char* model = "cloud")
+{
+  return { { "field",
+    { { "dimensions", 8 },
+      { "density_model", model },
+      { "cloud", { { "coverage", 1.0 }, { "coverage_map", map } } } } } };
+}
+
+// The message reading a scene whose coverage map is `name` in `dir` is refused with.
+std::string RefusalOf(const TemporaryDirectory& dir, const std::string& name)
+{
+  try
+  {
+    cloudvis::SceneFromDocument(CloudWithMap(name), "scene", dir.Path);
+  }
+  catch (const cloudvis::InputError& error)
+  {
+    return error.what();
+  }
+  return "(read)";
+}
+
+// A damaged PNG crashed VTK's PNG reader (libpng's error handler returns into it) in the cloudvis
+// process: SIGSEGV. It is read in the isolated child now, and a header that is damaged or claims
+// a size beyond the map limit is refused before any decoder sees the file.
+TEST(CloudScene, DamagedPngMapsAreRefusedWithoutCrashing)
+{
+  TemporaryDirectory dir;
+  const std::string png = HalfMapPng(dir);
+  ASSERT_GT(png.size(), 60u);
+  ASSERT_EQ(png.compare(12, 4, "IHDR"), 0);
+  WriteBytes(dir.File("truncated.png"), png.substr(0, png.size() / 2));
+  std::string flipped = png;
+  for (std::size_t i = 41; i + 12 < flipped.size(); ++i)
+  {
+    flipped[i] = char(flipped[i] ^ 0x5a); // the image data and its CRC
+  }
+  WriteBytes(dir.File("flipped.png"), flipped);
+  std::string wide = png;
+  PutBigEndian32(wide, 16, 0x7fffffffu);
+  WriteBytes(dir.File("wide_bad_crc.png"), wide);
+  wide.replace(8, 25, PngChunk("IHDR", wide.substr(16, 13)));
+  WriteBytes(dir.File("wide.png"), wide);
+  WriteBytes(dir.File("header_only.png"), png.substr(0, 20));
+
+  const std::regex malformed(
+    "^.*/(truncated|flipped)\\.png: coverage map: VTK's PNG reader (crashed|failed) on this file "
+    "\\([^)]*\\): it is malformed$");
+  EXPECT_TRUE(std::regex_match(RefusalOf(dir, "truncated.png"), malformed))
+    << RefusalOf(dir, "truncated.png");
+  EXPECT_TRUE(std::regex_match(RefusalOf(dir, "flipped.png"), malformed))
+    << RefusalOf(dir, "flipped.png");
+  EXPECT_EQ(RefusalOf(dir, "wide.png"),
+    dir.File("wide.png") +
+      ": coverage map: 2147483647 x 16 pixels (34.4 G) is more than a coverage map may have "
+      "(16384 x 16384, 268 M)");
+  EXPECT_EQ(RefusalOf(dir, "wide_bad_crc.png"),
+    dir.File("wide_bad_crc.png") +
+      ": coverage map: the PNG header is damaged: the IHDR chunk's CRC does not match");
+  EXPECT_EQ(RefusalOf(dir, "header_only.png"),
+    dir.File("header_only.png") +
+      ": coverage map: the file ends inside its PNG header (20 bytes; the signature and IHDR "
+      "chunk take 33)");
+  // The undamaged file reads.
+  WriteBytes(dir.File("map.png"), png);
+  EXPECT_EQ(RefusalOf(dir, "map.png"), "(read)");
+}
+
+// A map is read only by the model that uses it: under another density model the damaged file is
+// never opened, by the scene's reader (LoadCoverageMap) or by the source.
+TEST(CloudScene, AMapIsNotReadUnderAnotherDensityModel)
+{
+  TemporaryDirectory dir;
+  WriteBytes(dir.File("truncated.png"), HalfMapPng(dir).substr(0, 40));
+  cloudvis::FieldSpec field;
+  field.Dimensions = { { 8, 8, 8 } };
+  field.Description.Model = cloudvis::DensityModel::Constant;
+  field.Description.Layer.Source = cloudvis::CoverageSource::Map;
+  field.CoverageMapFile = dir.File("truncated.png");
+  EXPECT_NO_THROW(cloudvis::LoadCoverageMap(field));
+  EXPECT_EQ(field.Description.Layer.Map, nullptr);
+  EXPECT_EQ(cloudvis::ValidateProceduralField(field), "");
+  EXPECT_NO_THROW(cloudvis::MakeDensitySource(field));
+  // The cloud model reads it, and refuses it.
+  field.Description.Model = cloudvis::DensityModel::Cloud;
+  EXPECT_THROW(cloudvis::LoadCoverageMap(field), cloudvis::InputError);
+}
+
+// A valid 30000 x 30000 PNG (875 KB of zlib, 900 M pixels) was decoded whole, past 1.8 GB, to a
+// bare "out of memory"; its header is checked against the map limit before decoding now.
+TEST(CloudScene, AHugeValidPngMapIsRefusedFromItsHeader)
+{
+  TemporaryDirectory dir;
+  const std::uint32_t n = 30000;
+  std::string header(13, '\0');
+  PutBigEndian32(header, 0, n);
+  PutBigEndian32(header, 4, n);
+  header[8] = 8; // bit depth; colour type 0 (grey), deflate, no filter, no interlace
+  z_stream stream{};
+  ASSERT_EQ(deflateInit(&stream, 1), Z_OK);
+  std::string row(n + 1, '\x80'), data, buffer(1 << 16, '\0');
+  row[0] = 0; // filter type None
+  for (std::uint32_t y = 0; y <= n; ++y)
+  {
+    stream.next_in = reinterpret_cast<Bytef*>(&row[0]);
+    stream.avail_in = y < n ? uInt(row.size()) : 0;
+    do
+    {
+      stream.next_out = reinterpret_cast<Bytef*>(&buffer[0]);
+      stream.avail_out = uInt(buffer.size());
+      deflate(&stream, y < n ? Z_NO_FLUSH : Z_FINISH);
+      data.append(buffer, 0, buffer.size() - stream.avail_out);
+    } while (stream.avail_out == 0);
+  }
+  deflateEnd(&stream);
+  WriteBytes(dir.File("huge.png"),
+    std::string("\x89PNG\r\n\x1a\n", 8) + PngChunk("IHDR", header) + PngChunk("IDAT", data) +
+      PngChunk("IEND", ""));
+  EXPECT_LT(data.size(), 8u << 20);
+  EXPECT_EQ(RefusalOf(dir, "huge.png"),
+    dir.File("huge.png") +
+      ": coverage map: 30000 x 30000 pixels (900 M) is more than a coverage map may have "
+      "(16384 x 16384, 268 M)");
+}
+
+// A PNM header's size was read with its signs dropped (-5 x -5 as 5 x 5); it must be two
+// positive whole numbers now, and the maximum value one from 1 to 65535. A BMP's width alike (its
+// height may be negative: rows stored top down).
+TEST(CloudScene, PnmAndBmpHeadersMustStateAPositiveSize)
+{
+  TemporaryDirectory dir;
+  const std::string pixels(25, '\x80');
+  WriteBytes(dir.File("negative.pgm"), "P5\n-5 -5\n255\n" + pixels);
+  WriteBytes(dir.File("zero.pgm"), "P5 # a comment\n0 5\n255\n" + pixels);
+  WriteBytes(dir.File("maximum.pgm"), "P5\n5 5\n0\n" + pixels);
+  WriteBytes(dir.File("short.ppm"), "P6\n5");
+  WriteBytes(dir.File("good.pgm"), "P5\n# a comment\n5 5\n255\n" + pixels);
+  EXPECT_EQ(RefusalOf(dir, "negative.pgm"),
+    dir.File("negative.pgm") +
+      ": coverage map: the PGM header (P5) gives a size of -5 x -5 pixels; each must be a whole "
+      "number from 1 to 2147483647");
+  EXPECT_EQ(RefusalOf(dir, "zero.pgm"),
+    dir.File("zero.pgm") +
+      ": coverage map: the PGM header (P5) gives a size of 0 x 5 pixels; each must be a whole "
+      "number from 1 to 2147483647");
+  EXPECT_EQ(RefusalOf(dir, "maximum.pgm"),
+    dir.File("maximum.pgm") +
+      ": coverage map: the PGM header (P5) gives a maximum value of 0; it must be a whole number "
+      "from 1 to 65535");
+  EXPECT_EQ(RefusalOf(dir, "short.ppm"),
+    dir.File("short.ppm") + ": coverage map: the PPM header (P6) ends before its width and height");
+  // A 24-bit BMP of 4 x 4 white pixels, its width then made -4.
+  std::string bmp = std::string("BM") + std::string(12, '\0') + std::string(1, char(40)) +
+    std::string(3, '\0') + std::string("\x04\0\0\0\x04\0\0\0\x01\0\x18\0", 12) +
+    std::string(24, '\0') + std::string(48, '\xff');
+  bmp[10] = 54; // the pixels' offset
+  WriteBytes(dir.File("good.bmp"), bmp);
+  PutBigEndian32(bmp, 18, 0xfcffffffu); // -4, little-endian
+  WriteBytes(dir.File("negative.bmp"), bmp);
+  EXPECT_EQ(RefusalOf(dir, "negative.bmp"),
+    dir.File("negative.bmp") +
+      ": coverage map: the BMP header gives a size of -4 x 4 pixels; the width must be from 1 to "
+      "2147483647, the height not 0 (negative: rows stored top down)");
+  EXPECT_EQ(RefusalOf(dir, "good.bmp"), "(read)");
+  const cloudvis::Scene scene =
+    cloudvis::SceneFromDocument(CloudWithMap("good.pgm"), "scene", dir.Path);
+  ASSERT_NE(scene.Field.Description.Layer.Map, nullptr);
+  EXPECT_EQ(scene.Field.Description.Layer.Map->Width, 5);
+  EXPECT_EQ(scene.Field.Description.Layer.Map->Height, 5);
+  EXPECT_EQ(scene.Field.Description.Layer.Map->Values[0], float(128.0 / 255.0));
+}
+
+// An integer map means n / (its type's maximum) in every container: an 8-bit .vti or NRRD map of
+// 1 gave full coverage (ReadField had made it float 1.0) where the same bytes as a PNG gave
+// 1/255, and one of 255 was refused as "outside [0, 1]". 16-bit maps alike, over 65535.
+TEST(CloudScene, IntegerMapsAreDividedByTheirTypesMaximumInEveryContainer)
+{
+  TemporaryDirectory dir;
+  struct Case
+  {
+    int Type;
+    const char* Nrrd;
+    double Maximum;
+  };
+  for (const Case& c :
+    { Case{ VTK_UNSIGNED_CHAR, "uint8", 255.0 }, Case{ VTK_UNSIGNED_SHORT, "uint16", 65535.0 } })
+  {
+    for (const double value : { 1.0, c.Maximum / 3.0, c.Maximum })
+    {
+      vtkNew<vtkImageData> image;
+      image->SetDimensions(4, 3, 1);
+      image->AllocateScalars(c.Type, 1);
+      for (vtkIdType i = 0; i < 12; ++i)
+      {
+        image->GetPointData()->GetScalars()->SetTuple1(i, value);
+      }
+      const std::string stem = std::string(c.Nrrd) + "_" + std::to_string(int(value));
+      vtkNew<vtkPNGWriter> png;
+      png->SetInputData(image);
+      png->SetFileName(dir.File(stem + ".png").c_str());
+      png->Write();
+      vtkNew<vtkXMLImageDataWriter> vti;
+      vti->SetInputData(image);
+      vti->SetFileName(dir.File(stem + ".vti").c_str());
+      vti->Write();
+      std::string raw;
+      for (int i = 0; i < 12; ++i)
+      {
+        const unsigned v = unsigned(value);
+        raw += char(v & 0xff);
+        if (c.Type == VTK_UNSIGNED_SHORT)
+        {
+          raw += char(v >> 8);
+        }
+      }
+      WriteBytes(dir.File(stem + ".nrrd"),
+        std::string("NRRD0004\ntype: ") + c.Nrrd +
+          "\ndimension: 2\nsizes: 4 3\nendian: little\nencoding: raw\n\n" + raw);
+      for (const char* extension : { ".png", ".vti", ".nrrd" })
+      {
+        const cloudvis::Scene scene =
+          cloudvis::SceneFromDocument(CloudWithMap(stem + extension), "scene", dir.Path);
+        const auto& map = scene.Field.Description.Layer.Map;
+        ASSERT_NE(map, nullptr) << stem << extension;
+        ASSERT_EQ(map->Values.size(), 12u) << stem << extension;
+        for (float v : map->Values)
+        {
+          EXPECT_EQ(v, float(std::floor(value) / c.Maximum)) << stem << extension;
+        }
+      }
+    }
+  }
 }
 
 } // namespace

@@ -76,6 +76,11 @@ struct FieldReport
   // The physical units the file declares (a NetCDF variable's `units`, OpenVDB grid metadata);
   // the scene's field keys win over them (FieldUnits.h).
   FieldUnits Units;
+  // The VTK type of the values as the file stores them, before ReadField made them float
+  // (VTK_UNSIGNED_CHAR for an 8-bit .vti, NRRD, MetaImage or raw file); 0 where the format's
+  // values are physical numbers already (NetCDF's after unpacking, OpenVDB's). A coverage map
+  // divides stored integers by their type's maximum, as it does an image's.
+  int StoredType = 0;
 
   void Add(const std::string& label, const std::string& text)
   {

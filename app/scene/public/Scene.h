@@ -41,7 +41,8 @@ struct FieldSpec
   std::array<double, 6> Bounds{ { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 } };
   FieldDescription Description;
   // field.cloud.coverage_map when it names a file (resolved like File); read into
-  // Description.Layer.Map when the field is generated.
+  // Description.Layer.Map once, when the scene is read, if the cloud model uses it
+  // (LoadCoverageMap, SceneField.h).
   std::string CoverageMapFile;
   double Time = 0.0;
   // field.quantity, field.length_unit, field.up, field.effective_radius: what the values and

@@ -8,6 +8,7 @@
 
 #include <vtkSmartPointer.h>
 
+#include <cstdint>
 #include <functional>
 
 class vtkCloudDensitySource;
@@ -16,8 +17,19 @@ class vtkImageData;
 namespace cloudvis
 {
 
+// The most points a coverage map (field.cloud.coverage_map) may have: 16384 x 16384, the
+// largest 2-D texture today's GPUs take, 1 GiB as the map's floats. The map spans the field's x
+// and z bounds, whose voxels (at most field.max_voxels' default of 1024^3 in all) sample it far
+// more coarsely. An image's header, or a field file once read, that claims more is refused.
+constexpr std::uint64_t MaximumCoverageMapPixels = std::uint64_t(16384) * 16384;
+
+// Reads field.cloud.coverage_map's file into field.Description.Layer.Map when the field will use
+// it (the cloud model, its coverage from a map) and it is not read yet: the scene's reader calls
+// it once, so that validation and generation share one read. Throws InputError naming the file.
+void LoadCoverageMap(FieldSpec& field);
+
 // A source set up with the field's dimensions, bounds, description and time. The field must be
-// procedural (not FromFile()).
+// procedural (not FromFile()). A coverage map LoadCoverageMap has not read yet is read here.
 vtkSmartPointer<vtkCloudDensitySource> MakeDensitySource(const FieldSpec& field);
 
 // Empty when the source would accept the field, else the problem in the filters' words (the
