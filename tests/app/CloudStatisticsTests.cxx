@@ -9,6 +9,7 @@
 #include "FieldTestFiles.h"  // RunTool
 #include "OffscreenRender.h" // MakeVolumeProperty
 #include "Scene.h"
+#include "SceneField.h"
 #include "SupportFixtures.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
@@ -587,6 +588,179 @@ TEST(Droplets, GpuRenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
   ASSERT_EQ(result.Status, 0) << result.Err;
   const cloudvis::support::Exr exr = cloudvis::support::ReadExr(dir.File("slab.exr"));
   EXPECT_NEAR(exr.At("A", 16, 16), 1.0 - std::exp(-3.0), 5e-3);
+}
+
+// ---- droplets of a field file's own effective radius ----------------------------------------
+
+// A cube of 50 m of 0.4 g/m^3, 9^3 voxels 6.25 m apart from the origin, that declares itself an
+// lwc field in metres with the droplets' effective radius `radius`: as an OpenVDB grid's metadata
+// (the file "cube-<radius>.vdb") and as a NetCDF variable's attributes ("cube-<radius>.nc", made
+// by ncgen).
+std::string VdbCube(const cloudvis::support::TemporaryDirectory& dir, double radius)
+{
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("ql");
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(6.25));
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(8)), 0.4f);
+  grid->insertMeta("quantity", openvdb::StringMetadata("lwc"));
+  grid->insertMeta("length_unit", openvdb::StringMetadata("m"));
+  grid->insertMeta("effective_radius", openvdb::DoubleMetadata(radius));
+  const std::string path = dir.File("cube-" + std::to_string(int(radius)) + ".vdb");
+  openvdb::io::File file(path);
+  file.write({ grid });
+  file.close();
+  return path;
+}
+
+std::string NetCdfCube(const cloudvis::support::TemporaryDirectory& dir, double radius)
+{
+  std::string axis, values;
+  for (int i = 0; i < 9; ++i)
+  {
+    axis += (i ? ", " : "") + std::to_string(6.25 * i);
+  }
+  for (int i = 0; i < 729; ++i)
+  {
+    values += i ? ", 0.4" : "0.4";
+  }
+  const std::string name = "cube-" + std::to_string(int(radius));
+  cloudvis::support::WriteText(dir.File(name + ".cdl"),
+    "netcdf cube {\ndimensions: z = 9 ; y = 9 ; x = 9 ;\nvariables:\n"
+    "  double z(z) ; z:axis = \"Z\" ; z:units = \"m\" ; z:positive = \"up\" ;\n"
+    "  double y(y) ; y:units = \"m\" ;\n  double x(x) ; x:units = \"m\" ;\n"
+    "  float ql(z, y, x) ; ql:units = \"g m-3\" ; ql:effective_radius = " +
+      std::to_string(radius) + " ;\ndata:\n  z = " + axis + " ;\n  y = " + axis + " ;\n  x = " +
+      axis + " ;\n  ql = " + values + " ;\n}\n");
+  cloudvis::test::RunTool("ncgen -k 1 -o '" + dir.File(name + ".nc") + "' '" +
+    dir.File(name + ".cdl") + "'");
+  return dir.File(name + ".nc");
+}
+
+// The opacity through the middle of the cube as `cloudvis render` draws it with the droplets'
+// extinction and the scene's `sets`, read from the EXR's alpha: 1 - exp(-sigma 50 m).
+double RenderedCubeAlpha(const cloudvis::support::TemporaryDirectory& dir,
+  const std::string& path,
+  const std::vector<std::string>& sets = {})
+{
+  std::vector<std::string> arguments = { "render", path, "--lighting", "none", "--size", "32x32",
+    "--set", "transfer_function.extinction=droplets", "--set", "transfer_function.lwc_max=1",
+    "--set", "camera.position=[25,25,2000]", "--set", "camera.focal_point=[25,25,25]", "--set",
+    "camera.view_angle=1", "-o", dir.File("cube.exr"), "-q" };
+  for (const std::string& set : sets)
+  {
+    arguments.insert(arguments.end(), { "--set", set });
+  }
+  const auto result = cloudvis::support::RunCloudvis(arguments);
+  EXPECT_EQ(result.Status, 0) << result.Err;
+  return cloudvis::support::ReadExr(dir.File("cube.exr")).At("A", 16, 16);
+}
+
+// The case: a file declaring r_e = 20 um rendered like r_e = 10 um (twice the
+// extinction), because the transfer function was built before the file was read. sigma =
+// 3 LWC / (2 rho_w r_e): 0.06 / m at 10 um, tau = 3 across 50 m; 0.03 / m at 20 um, tau = 1.5.
+TEST(Droplets, FileEffectiveRadiusSetsTheRenderedExtinction)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const double thick = 1.0 - std::exp(-3.0), thin = 1.0 - std::exp(-1.5);
+  for (const auto& cube : { std::make_pair(VdbCube(dir, 10), VdbCube(dir, 20)),
+         std::make_pair(NetCdfCube(dir, 10), NetCdfCube(dir, 20)) })
+  {
+    SCOPED_TRACE(cube.second);
+    EXPECT_NEAR(RenderedCubeAlpha(dir, cube.first), thick, 5e-3);
+    EXPECT_NEAR(RenderedCubeAlpha(dir, cube.second), thin, 5e-3);
+    // The scene's key wins over the file's.
+    EXPECT_NEAR(RenderedCubeAlpha(dir, cube.second, { "field.effective_radius=10" }), thick, 5e-3);
+    // info reports the file's radius and its extinction, and the scene's when it wins.
+    const std::string text = cloudvis::support::RunCloudvis({ "info", cube.second }).Out;
+    EXPECT_NE(text.find("droplets     effective radius 20 um (file): extinction 0.075 /m per g/m^3"),
+      std::string::npos)
+      << text;
+    const std::string overridden = cloudvis::support::RunCloudvis(
+      { "info", cube.second, "--set", "field.effective_radius=10" })
+                                     .Out;
+    EXPECT_NE(overridden.find("droplets     effective radius 10 um (scene): extinction 0.15 /m"),
+      std::string::npos)
+      << overridden;
+    EXPECT_NE(overridden.find("effective radius 20 um"), std::string::npos) << overridden;
+  }
+}
+
+// The scene of a field file, finished with its field (ProduceField).
+cloudvis::Scene FinishedScene(const std::string& path, const std::vector<std::string>& sets)
+{
+  cloudvis::Scene scene = cloudvis::LoadFieldFileScene(path, sets);
+  cloudvis::ProduceField(scene);
+  return scene;
+}
+
+TEST(Droplets, FileEffectiveRadiusIsThePhasesUnlessTheSceneGivesOne)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = VdbCube(dir, 20);
+  const std::string phase = "render.march.phase=droplets";
+  const cloudvis::Scene fromFile = FinishedScene(path, { phase });
+  EXPECT_EQ(fromFile.Render.Lighting.DropletEffectiveRadius, 20.0f);
+  ASSERT_TRUE(fromFile.Field.Resolved.has_value());
+  EXPECT_EQ(fromFile.Field.Resolved->EffectiveRadiusFrom, "file");
+  EXPECT_EQ(FinishedScene(path, { phase, "field.effective_radius=12" })
+              .Render.Lighting.DropletEffectiveRadius,
+    12.0f);
+  EXPECT_EQ(FinishedScene(path, { phase, "field.effective_radius=12",
+                                  "render.march.effective_radius=8" })
+              .Render.Lighting.DropletEffectiveRadius,
+    8.0f);
+  // The extinction keeps the field's radius when the phase has its own.
+  const cloudvis::Scene both = FinishedScene(path,
+    { phase, "render.march.effective_radius=8", "transfer_function.extinction=droplets" });
+  EXPECT_NEAR(both.TransferFunction.DropletExtinctionPerLwc, 0.075, 1e-12);
+  // A radius beyond the phase table's is refused for the phase, naming where it came from.
+  const std::string large = VdbCube(dir, 50);
+  try
+  {
+    FinishedScene(large, { phase });
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    EXPECT_EQ(std::string(e.what()),
+      large + ": render.march.effective_radius: the droplets' phase takes the field's effective "
+              "radius, 50 um (" +
+        large + "), outside the [2, 30] micrometres its table covers: give "
+                "render.march.effective_radius");
+  }
+  EXPECT_EQ(FinishedScene(large, { phase, "render.march.effective_radius=10" })
+              .Render.Lighting.DropletEffectiveRadius,
+    10.0f);
+}
+
+TEST(Droplets, FileWithoutLwcIsRefusedOnceRead)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = dir.File("slab.vti");
+  cloudvis::WriteField(LayeredField(2, { 4, 4, 4 }, 100.0, 50.0, 0.0, Slab), path);
+  const auto refused = cloudvis::support::RunCloudvis({ "render", path, "--set",
+    "transfer_function.extinction=droplets", "-o", dir.File("x.png"), "-q" });
+  EXPECT_EQ(refused.Status, 1);
+  EXPECT_NE(refused.Err.find(path + ": transfer_function.extinction: \"droplets\" derives the "
+                                    "extinction from liquid water content: it needs "
+                                    "field.quantity \"lwc\" (neither the scene nor " +
+              path + " declares it)"),
+    std::string::npos)
+    << refused.Err;
+  // An OpenVDB grid's own declaration is enough; a scene that says "density" is refused before
+  // the file is read.
+  const std::string cube = VdbCube(dir, 10);
+  cloudvis::Scene scene = FinishedScene(cube, { "transfer_function.extinction=droplets" });
+  EXPECT_NEAR(scene.TransferFunction.DropletExtinctionPerLwc, 0.15, 1e-12);
+  EXPECT_THROW(cloudvis::LoadFieldFileScene(
+                 cube, { "transfer_function.extinction=droplets", "field.quantity=density" }),
+    cloudvis::InputError);
+  // Tabulating a file's droplets before the file is read would use the default radius.
+  const cloudvis::Scene unread =
+    cloudvis::LoadFieldFileScene(cube, { "transfer_function.extinction=droplets" });
+  EXPECT_THROW(cloudvis::MakeVolumeProperty(unread.TransferFunction), std::logic_error);
 }
 
 // ---- units a NetCDF file declares ---------------------------------------------------------------
