@@ -215,8 +215,8 @@ std::vector<double> File::CheckedNumbers(const Variable& variable,
   {
     const std::string text = type == NC_CHAR ? this->Text(variable, attribute) : "";
     cloudvis::Fail(this->Name,
-      where + " is " + WithArticle(TypeName(type)) +
-        (type == NC_CHAR ? " (\"" + text.substr(0, 64) + "\")" : std::string()) +
+      where + " is " +
+        (type == NC_CHAR ? "text (\"" + text.substr(0, 64) + "\")" : WithArticle(TypeName(type))) +
         ", not a number: as " + meaning + " it must be numeric (CF), and read as text it would "
         "be ignored");
   }

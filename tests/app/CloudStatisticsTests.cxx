@@ -6,7 +6,7 @@
 #include "CloudStatistics.h"
 #include "Errors.h"
 #include "FieldIO.h"
-#include "FieldTestFiles.h"  // RunTool
+#include "FieldTestFiles.h"  // RunTool, Detail, ErrorOf
 #include "OffscreenRender.h" // MakeVolumeProperty
 #include "Scene.h"
 #include "SceneField.h"
@@ -770,7 +770,8 @@ TEST(Droplets, FileWithoutLwcIsRefusedOnceRead)
 std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir,
   const std::string& units,
   const std::string& axisUnits,
-  const std::string& positive = "up")
+  const std::string& positive = "up",
+  const std::string& values = "0, 0.0005, 0.001, 0, 0, 0, 0, 0, 0, 0, 0, 0.002")
 {
   const std::string cdl = "netcdf lwc {\ndimensions: z = 2 ; y = 2 ; x = 3 ;\nvariables:\n"
                           "  double z(z) ; z:axis = \"Z\" ; z:units = \"" +
@@ -778,7 +779,7 @@ std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir,
     axisUnits + "\" ;\n  double x(x) ; x:units = \"" + axisUnits +
     "\" ;\n  float ql(z, y, x) ; ql:units = \"" + units +
     "\" ;\ndata:\n  z = 0, 1 ; y = 0, 1 ; x = 0, 1, 2 ;\n"
-    "  ql = 0, 0.0005, 0.001, 0, 0, 0, 0, 0, 0, 0, 0, 0.002 ;\n}\n";
+    "  ql = " + values + " ;\n}\n";
   cloudvis::support::WriteText(dir.File("lwc.cdl"), cdl);
   cloudvis::test::RunTool(
     "ncgen -k 1 -o '" + dir.File("lwc.nc") + "' '" + dir.File("lwc.cdl") + "'");
@@ -806,6 +807,76 @@ TEST(NetCdfUnits, KilogramsPerCubicMetreOnKilometresWithAZAxis)
   EXPECT_EQ(info["units"]["up"], "y");
   EXPECT_EQ(info["units"]["from"]["up"], "scene");
   EXPECT_EQ(info["units"]["overridden_file_values"]["up"], "z");
+}
+
+// field.quantity "density" reads the values as stored: before, a kg m-3 file was still
+// multiplied by 1000 into g/m^3.
+TEST(NetCdfUnits, DensityFromTheSceneKeepsKilogramsAsStored)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = NetCdfFile(dir, "kg m-3", "km");
+  cloudvis::FieldReadOptions options;
+  options.Units.Quantity = FieldQuantity::Density;
+  cloudvis::FieldReport report;
+  auto field = cloudvis::ReadField(path, options, &report);
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range);
+  EXPECT_FLOAT_EQ(float(range[1]), 0.002f);
+  EXPECT_EQ(report.Resolved.Quantity, FieldQuantity::Density);
+  EXPECT_EQ(cloudvis::test::Detail(report, "converted"),
+    "no: the scene's field.quantity \"density\" keeps the values as stored, in kg m-3");
+  const std::string text = cloudvis::support::RunCloudvis(
+    { "info", path, "--set", "field.quantity=density" })
+                             .Out;
+  EXPECT_NE(text.find("range        [0, 0.002]\n"), std::string::npos) << text;
+  cloudvis::FieldReport converted;
+  cloudvis::ReadField(path, {}, &converted);
+  EXPECT_EQ(cloudvis::test::Detail(converted, "converted"), "from kg m-3 to g/m^3 (x 1000)");
+}
+
+// The conversion is cloudvis's: a value it takes beyond float's range is said to be so, where
+// before the message blamed "NaN or infinite values" on the file.
+TEST(NetCdfUnits, ConversionBeyondFloatIsRefusedAsSuch)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = NetCdfFile(dir, "kg m-3", "m", "up", "0, 1e36, 3e36, 0, 0, 0, 0, 0, 0, 0, 0, 0");
+  const std::string message = cloudvis::test::ErrorOf([&] { cloudvis::ReadField(path); });
+  EXPECT_EQ(message,
+    path + ": 2 values in kg m-3 (up to 3e+36) are beyond float's range (3.40282e+38) once "
+           "converted to g/m^3 (x 1000): not a liquid water content; field.quantity \"density\" "
+           "reads them as stored");
+}
+
+// LES output holds tiny negative contents from advection: read as 0 and said so. A clearly
+// negative content is refused with its count and the most negative value; before, both were
+// integrated into a negative liquid water path.
+TEST(NetCdfUnits, NegativeLiquidWaterIsZeroWhenTinyAndRefusedOtherwise)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string tiny =
+    NetCdfFile(dir, "g m-3", "m", "up", "0, -1e-12, 0.5, -4e-4, 0, 0, 0, 0, 0, 0, 0, 0.5");
+  cloudvis::FieldReport report;
+  auto field = cloudvis::ReadField(tiny, {}, &report);
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range);
+  EXPECT_EQ(range[0], 0.0);
+  EXPECT_EQ(cloudvis::test::Detail(report, "negative"),
+    "2 values down to -0.0004 g/m^3 read as 0 (at most 0.001 g/m^3 below 0: numerical noise, "
+    "not water)");
+  const std::string info = cloudvis::support::RunCloudvis({ "info", tiny }).Out;
+  EXPECT_NE(info.find("2 values down to -0.0004 g/m^3 read as 0"), std::string::npos) << info;
+  const std::string clear =
+    NetCdfFile(dir, "g m-3", "m", "up", "0, -999, 0.5, -0.002, 0, 0, 0, 0, 0, 0, 0, 0.5");
+  const auto refused = cloudvis::support::RunCloudvis({ "info", clear });
+  EXPECT_EQ(refused.Status, 1);
+  EXPECT_NE(refused.Err.find(clear + ": 2 liquid water contents are negative beyond -0.001 g/m^3 "
+                                     "(the most negative: -999 g/m^3)"),
+    std::string::npos)
+    << refused.Err;
+  // The same values read as a density are the file's.
+  EXPECT_EQ(cloudvis::support::RunCloudvis({ "info", clear, "--set", "field.quantity=density" })
+              .Status,
+    0);
 }
 
 TEST(NetCdfUnits, MixingRatioIsNotALiquidWaterContent)
@@ -880,6 +951,13 @@ TEST(VdbUnits, UnknownDeclarationsAreRefused)
   EXPECT_NE(cloudvis::support::RunCloudvis({ "info", radius })
               .Err.find("metadata \"effective_radius\" must be a number of micrometres"),
     std::string::npos);
+  // "got an int32" (it said "a int32").
+  const std::string up = VdbFile(
+    dir, [](openvdb::GridBase& grid) { grid.insertMeta("up", openvdb::Int32Metadata(2)); });
+  const std::string err = cloudvis::support::RunCloudvis({ "info", up }).Err;
+  EXPECT_NE(err.find("metadata \"up\" must be one of the strings \"x\", \"y\", \"z\", got an int32"),
+    std::string::npos)
+    << err;
 }
 
 // ---- cloudvis info ----------------------------------------------------------------------------
