@@ -415,11 +415,13 @@ ResolvedFieldUnits ResolveFieldValues(const std::string& name,
           std::to_string(overflowing) + (overflowing == 1 ? " value" : " values") + " in " +
             report.LwcScaleFrom + " (up to " + Number(largest) + ") are beyond float's range (" +
             Number(double(std::numeric_limits<float>::max())) + ") once converted to g/m^3 (x " +
-            Number(scale) + "): not a liquid water content; field.quantity \"density\" reads "
+            Number(scale) +
+            "): not a liquid water content; field.quantity \"density\" reads "
             "them as stored");
       }
       values->Modified();
-      report.Add("converted", "from " + report.LwcScaleFrom + " to g/m^3 (x " + Number(scale) + ")");
+      report.Add(
+        "converted", "from " + report.LwcScaleFrom + " to g/m^3 (x " + Number(scale) + ")");
     }
   }
   if (values && lwc)
@@ -450,8 +452,9 @@ ResolvedFieldUnits ResolveFieldValues(const std::string& name,
     {
       Fail(name,
         std::to_string(negative) + " liquid water content" + (negative == 1 ? " is" : "s are") +
-          " negative beyond -" + Number(NegligibleNegativeLwc) + " g/m^3 (the most negative: " +
-          Number(lowest) + " g/m^3): a negative content is no water; mark such values missing "
+          " negative beyond -" + Number(NegligibleNegativeLwc) +
+          " g/m^3 (the most negative: " + Number(lowest) +
+          " g/m^3): a negative content is no water; mark such values missing "
           "(_FillValue) or read the field as a density (field.quantity \"density\")");
     }
     if (negligible > 0)

@@ -447,10 +447,10 @@ FieldFileContents ReadInIsolation(const std::string& path,
   try
   {
     complete = in.Value(kind) &&
-      (kind == FieldRecord ? ReadFieldRecord(in, contents)
+      (kind == FieldRecord        ? ReadFieldRecord(in, contents)
           : kind == RefusalRecord ? in.Text(refusal)
                                   : kind == MemoryRecord && in.Value(neededBytes) &&
-              in.Value(childBytes) && in.Text(needed));
+            in.Value(childBytes) && in.Text(needed));
   }
   catch (const std::bad_alloc&)
   {
@@ -501,8 +501,9 @@ FieldFileContents ReadInIsolation(const std::string& path,
                 " it may use"));
     }
     Fail(path,
-      parser + " ran out of memory on this file before its size was known: what its header "
-               "claims is more than the " +
+      parser +
+        " ran out of memory on this file before its size was known: what its header "
+        "claims is more than the " +
         available + " the read may use");
   }
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)

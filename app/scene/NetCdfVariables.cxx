@@ -217,15 +217,16 @@ std::vector<double> File::CheckedNumbers(const Variable& variable,
     cloudvis::Fail(this->Name,
       where + " is " +
         (type == NC_CHAR ? "text (\"" + text.substr(0, 64) + "\")" : WithArticle(TypeName(type))) +
-        ", not a number: as " + meaning + " it must be numeric (CF), and read as text it would "
+        ", not a number: as " + meaning +
+        " it must be numeric (CF), and read as text it would "
         "be ignored");
   }
   if (length < least || length > most)
   {
     cloudvis::Fail(this->Name,
       where + " has " + std::to_string(length) + (length == 1 ? " value" : " values") + ", " +
-        (least == most ? std::to_string(least) : std::to_string(least) + " to " +
-            std::to_string(most)) +
+        (least == most ? std::to_string(least)
+                       : std::to_string(least) + " to " + std::to_string(most)) +
         " expected: as " + meaning + " (CF) " +
         (least == most && least == 1 ? "it is one number" : "it holds that many"));
   }

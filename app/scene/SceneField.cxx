@@ -91,8 +91,8 @@ std::string ValidateProceduralField(const FieldSpec& field)
 namespace
 {
 // The scene's procedural field, generated whole.
-vtkSmartPointer<vtkImageData> GenerateField(
-  const Scene& scene, const std::function<void(double fraction)>& progress)
+vtkSmartPointer<vtkImageData> GenerateField(const Scene& scene,
+  const std::function<void(double fraction)>& progress)
 {
   vtkSmartPointer<vtkCloudDensitySource> source = MakeDensitySource(scene.Field);
   VtkMessageCapture messages;

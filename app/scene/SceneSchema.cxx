@@ -791,7 +791,8 @@ const Keys<LightingParameters>& MarchKeys()
         return t;
       }(),
       &P::Phase,
-      "the phase function of the march and the path tracer: `two_lobe`, Henyey-Greenstein with `g1`, `g2` and `lobe_weight`, or "
+      "the phase function of the march and the path tracer: `two_lobe`, Henyey-Greenstein with "
+      "`g1`, `g2` and `lobe_weight`, or "
       "`droplets`, the Mie phase of liquid water droplets computed by cloudvis for "
       "`effective_radius` and `effective_variance` at 680, 550 and 440 nm, with its forward "
       "peak, cloudbow and glory ([lighting.md](lighting.md#droplet-optics))" },

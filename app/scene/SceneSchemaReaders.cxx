@@ -569,8 +569,10 @@ std::string UnitOrigin(const std::string& file, const std::string& from, const s
 }
 }
 
-void ResolveFieldOptics(
-  const Context& c, Scene& s, const ResolvedFieldUnits& u, const std::string& file)
+void ResolveFieldOptics(const Context& c,
+  Scene& s,
+  const ResolvedFieldUnits& u,
+  const std::string& file)
 {
   s.Field.Resolved = u;
   TransferFunctionSpec& t = s.TransferFunction;
@@ -600,9 +602,10 @@ void ResolveFieldOptics(
           u.EffectiveRadius <= DropletEffectiveRadiusMaxUm))
     {
       c.Fail("render.march.effective_radius",
-        "the droplets' phase takes the field's effective radius, " + FormatNumber(u.EffectiveRadius) +
-          " um (" + (u.EffectiveRadiusFrom == "file" ? file : "field.effective_radius") +
-          "), outside the [" + FormatNumber(DropletEffectiveRadiusMinUm) + ", " +
+        "the droplets' phase takes the field's effective radius, " +
+          FormatNumber(u.EffectiveRadius) + " um (" +
+          (u.EffectiveRadiusFrom == "file" ? file : "field.effective_radius") + "), outside the [" +
+          FormatNumber(DropletEffectiveRadiusMinUm) + ", " +
           FormatNumber(DropletEffectiveRadiusMaxUm) +
           "] micrometres its table covers: give render.march.effective_radius");
     }

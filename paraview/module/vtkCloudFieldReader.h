@@ -125,7 +125,7 @@ private:
   bool ReadFile();
 
   vtkSmartPointer<vtkImageData> Field; // the whole file, as cloudvis read it
-  cloudvis::ResolvedFieldUnits Units;   // its units (ResolveFieldValues), as field data
+  cloudvis::ResolvedFieldUnits Units;  // its units (ResolveFieldValues), as field data
   vtkMTimeType FieldTime = 0;          // this->GetMTime() when Field was read
   std::string LastError;
 

@@ -6,7 +6,7 @@
 #include "CloudStatistics.h"
 #include "Errors.h"
 #include "FieldIO.h"
-#include "FieldTestFiles.h"  // RunTool, Detail, ErrorOf
+#include "FieldTestFiles.h" // RunTool, Detail, ErrorOf
 #include "OffscreenRender.h" // MakeVolumeProperty
 #include "Scene.h"
 #include "SceneField.h"
@@ -631,10 +631,10 @@ std::string NetCdfCube(const cloudvis::support::TemporaryDirectory& dir, double 
     "  double z(z) ; z:axis = \"Z\" ; z:units = \"m\" ; z:positive = \"up\" ;\n"
     "  double y(y) ; y:units = \"m\" ;\n  double x(x) ; x:units = \"m\" ;\n"
     "  float ql(z, y, x) ; ql:units = \"g m-3\" ; ql:effective_radius = " +
-      std::to_string(radius) + " ;\ndata:\n  z = " + axis + " ;\n  y = " + axis + " ;\n  x = " +
-      axis + " ;\n  ql = " + values + " ;\n}\n");
-  cloudvis::test::RunTool("ncgen -k 1 -o '" + dir.File(name + ".nc") + "' '" +
-    dir.File(name + ".cdl") + "'");
+      std::to_string(radius) + " ;\ndata:\n  z = " + axis + " ;\n  y = " + axis +
+      " ;\n  x = " + axis + " ;\n  ql = " + values + " ;\n}\n");
+  cloudvis::test::RunTool(
+    "ncgen -k 1 -o '" + dir.File(name + ".nc") + "' '" + dir.File(name + ".cdl") + "'");
   return dir.File(name + ".nc");
 }
 
@@ -644,10 +644,25 @@ double RenderedCubeAlpha(const cloudvis::support::TemporaryDirectory& dir,
   const std::string& path,
   const std::vector<std::string>& sets = {})
 {
-  std::vector<std::string> arguments = { "render", path, "--lighting", "none", "--size", "32x32",
-    "--set", "transfer_function.extinction=droplets", "--set", "transfer_function.lwc_max=1",
-    "--set", "camera.position=[25,25,2000]", "--set", "camera.focal_point=[25,25,25]", "--set",
-    "camera.view_angle=1", "-o", dir.File("cube.exr"), "-q" };
+  std::vector<std::string> arguments = { "render",
+    path,
+    "--lighting",
+    "none",
+    "--size",
+    "32x32",
+    "--set",
+    "transfer_function.extinction=droplets",
+    "--set",
+    "transfer_function.lwc_max=1",
+    "--set",
+    "camera.position=[25,25,2000]",
+    "--set",
+    "camera.focal_point=[25,25,25]",
+    "--set",
+    "camera.view_angle=1",
+    "-o",
+    dir.File("cube.exr"),
+    "-q" };
   for (const std::string& set : sets)
   {
     arguments.insert(arguments.end(), { "--set", set });
@@ -674,12 +689,13 @@ TEST(Droplets, FileEffectiveRadiusSetsTheRenderedExtinction)
     EXPECT_NEAR(RenderedCubeAlpha(dir, cube.second, { "field.effective_radius=10" }), thick, 5e-3);
     // info reports the file's radius and its extinction, and the scene's when it wins.
     const std::string text = cloudvis::support::RunCloudvis({ "info", cube.second }).Out;
-    EXPECT_NE(text.find("droplets     effective radius 20 um (file): extinction 0.075 /m per g/m^3"),
+    EXPECT_NE(
+      text.find("droplets     effective radius 20 um (file): extinction 0.075 /m per g/m^3"),
       std::string::npos)
       << text;
-    const std::string overridden = cloudvis::support::RunCloudvis(
-      { "info", cube.second, "--set", "field.effective_radius=10" })
-                                     .Out;
+    const std::string overridden =
+      cloudvis::support::RunCloudvis({ "info", cube.second, "--set", "field.effective_radius=10" })
+        .Out;
     EXPECT_NE(overridden.find("droplets     effective radius 10 um (scene): extinction 0.15 /m"),
       std::string::npos)
       << overridden;
@@ -707,13 +723,13 @@ TEST(Droplets, FileEffectiveRadiusIsThePhasesUnlessTheSceneGivesOne)
   EXPECT_EQ(FinishedScene(path, { phase, "field.effective_radius=12" })
               .Render.Lighting.DropletEffectiveRadius,
     12.0f);
-  EXPECT_EQ(FinishedScene(path, { phase, "field.effective_radius=12",
-                                  "render.march.effective_radius=8" })
-              .Render.Lighting.DropletEffectiveRadius,
+  EXPECT_EQ(
+    FinishedScene(path, { phase, "field.effective_radius=12", "render.march.effective_radius=8" })
+      .Render.Lighting.DropletEffectiveRadius,
     8.0f);
   // The extinction keeps the field's radius when the phase has its own.
-  const cloudvis::Scene both = FinishedScene(path,
-    { phase, "render.march.effective_radius=8", "transfer_function.extinction=droplets" });
+  const cloudvis::Scene both = FinishedScene(
+    path, { phase, "render.march.effective_radius=8", "transfer_function.extinction=droplets" });
   EXPECT_NEAR(both.TransferFunction.DropletExtinctionPerLwc, 0.075, 1e-12);
   // A radius beyond the phase table's is refused for the phase, naming where it came from.
   const std::string large = VdbCube(dir, 50);
@@ -725,10 +741,12 @@ TEST(Droplets, FileEffectiveRadiusIsThePhasesUnlessTheSceneGivesOne)
   catch (const cloudvis::InputError& e)
   {
     EXPECT_EQ(std::string(e.what()),
-      large + ": render.march.effective_radius: the droplets' phase takes the field's effective "
-              "radius, 50 um (" +
-        large + "), outside the [2, 30] micrometres its table covers: give "
-                "render.march.effective_radius");
+      large +
+        ": render.march.effective_radius: the droplets' phase takes the field's effective "
+        "radius, 50 um (" +
+        large +
+        "), outside the [2, 30] micrometres its table covers: give "
+        "render.march.effective_radius");
   }
   EXPECT_EQ(FinishedScene(large, { phase, "render.march.effective_radius=10" })
               .Render.Lighting.DropletEffectiveRadius,
@@ -740,12 +758,18 @@ TEST(Droplets, FileWithoutLwcIsRefusedOnceRead)
   cloudvis::support::TemporaryDirectory dir;
   const std::string path = dir.File("slab.vti");
   cloudvis::WriteField(LayeredField(2, { 4, 4, 4 }, 100.0, 50.0, 0.0, Slab), path);
-  const auto refused = cloudvis::support::RunCloudvis({ "render", path, "--set",
-    "transfer_function.extinction=droplets", "-o", dir.File("x.png"), "-q" });
+  const auto refused = cloudvis::support::RunCloudvis({ "render",
+    path,
+    "--set",
+    "transfer_function.extinction=droplets",
+    "-o",
+    dir.File("x.png"),
+    "-q" });
   EXPECT_EQ(refused.Status, 1);
-  EXPECT_NE(refused.Err.find(path + ": transfer_function.extinction: \"droplets\" derives the "
-                                    "extinction from liquid water content: it needs "
-                                    "field.quantity \"lwc\" (neither the scene nor " +
+  EXPECT_NE(refused.Err.find(path +
+              ": transfer_function.extinction: \"droplets\" derives the "
+              "extinction from liquid water content: it needs "
+              "field.quantity \"lwc\" (neither the scene nor " +
               path + " declares it)"),
     std::string::npos)
     << refused.Err;
@@ -779,7 +803,8 @@ std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir,
     axisUnits + "\" ;\n  double x(x) ; x:units = \"" + axisUnits +
     "\" ;\n  float ql(z, y, x) ; ql:units = \"" + units +
     "\" ;\ndata:\n  z = 0, 1 ; y = 0, 1 ; x = 0, 1, 2 ;\n"
-    "  ql = " + values + " ;\n}\n";
+    "  ql = " +
+    values + " ;\n}\n";
   cloudvis::support::WriteText(dir.File("lwc.cdl"), cdl);
   cloudvis::test::RunTool(
     "ncgen -k 1 -o '" + dir.File("lwc.nc") + "' '" + dir.File("lwc.cdl") + "'");
@@ -825,9 +850,8 @@ TEST(NetCdfUnits, DensityFromTheSceneKeepsKilogramsAsStored)
   EXPECT_EQ(report.Resolved.Quantity, FieldQuantity::Density);
   EXPECT_EQ(cloudvis::test::Detail(report, "converted"),
     "no: the scene's field.quantity \"density\" keeps the values as stored, in kg m-3");
-  const std::string text = cloudvis::support::RunCloudvis(
-    { "info", path, "--set", "field.quantity=density" })
-                             .Out;
+  const std::string text =
+    cloudvis::support::RunCloudvis({ "info", path, "--set", "field.quantity=density" }).Out;
   EXPECT_NE(text.find("range        [0, 0.002]\n"), std::string::npos) << text;
   cloudvis::FieldReport converted;
   cloudvis::ReadField(path, {}, &converted);
@@ -839,12 +863,14 @@ TEST(NetCdfUnits, DensityFromTheSceneKeepsKilogramsAsStored)
 TEST(NetCdfUnits, ConversionBeyondFloatIsRefusedAsSuch)
 {
   cloudvis::support::TemporaryDirectory dir;
-  const std::string path = NetCdfFile(dir, "kg m-3", "m", "up", "0, 1e36, 3e36, 0, 0, 0, 0, 0, 0, 0, 0, 0");
+  const std::string path =
+    NetCdfFile(dir, "kg m-3", "m", "up", "0, 1e36, 3e36, 0, 0, 0, 0, 0, 0, 0, 0, 0");
   const std::string message = cloudvis::test::ErrorOf([&] { cloudvis::ReadField(path); });
   EXPECT_EQ(message,
-    path + ": 2 values in kg m-3 (up to 3e+36) are beyond float's range (3.40282e+38) once "
-           "converted to g/m^3 (x 1000): not a liquid water content; field.quantity \"density\" "
-           "reads them as stored");
+    path +
+      ": 2 values in kg m-3 (up to 3e+36) are beyond float's range (3.40282e+38) once "
+      "converted to g/m^3 (x 1000): not a liquid water content; field.quantity \"density\" "
+      "reads them as stored");
 }
 
 // LES output holds tiny negative contents from advection: read as 0 and said so. A clearly
@@ -869,14 +895,14 @@ TEST(NetCdfUnits, NegativeLiquidWaterIsZeroWhenTinyAndRefusedOtherwise)
     NetCdfFile(dir, "g m-3", "m", "up", "0, -999, 0.5, -0.002, 0, 0, 0, 0, 0, 0, 0, 0.5");
   const auto refused = cloudvis::support::RunCloudvis({ "info", clear });
   EXPECT_EQ(refused.Status, 1);
-  EXPECT_NE(refused.Err.find(clear + ": 2 liquid water contents are negative beyond -0.001 g/m^3 "
-                                     "(the most negative: -999 g/m^3)"),
+  EXPECT_NE(refused.Err.find(clear +
+              ": 2 liquid water contents are negative beyond -0.001 g/m^3 "
+              "(the most negative: -999 g/m^3)"),
     std::string::npos)
     << refused.Err;
   // The same values read as a density are the file's.
-  EXPECT_EQ(cloudvis::support::RunCloudvis({ "info", clear, "--set", "field.quantity=density" })
-              .Status,
-    0);
+  EXPECT_EQ(
+    cloudvis::support::RunCloudvis({ "info", clear, "--set", "field.quantity=density" }).Status, 0);
 }
 
 TEST(NetCdfUnits, MixingRatioIsNotALiquidWaterContent)
@@ -952,10 +978,11 @@ TEST(VdbUnits, UnknownDeclarationsAreRefused)
               .Err.find("metadata \"effective_radius\" must be a number of micrometres"),
     std::string::npos);
   // "got an int32" (it said "a int32").
-  const std::string up = VdbFile(
-    dir, [](openvdb::GridBase& grid) { grid.insertMeta("up", openvdb::Int32Metadata(2)); });
+  const std::string up =
+    VdbFile(dir, [](openvdb::GridBase& grid) { grid.insertMeta("up", openvdb::Int32Metadata(2)); });
   const std::string err = cloudvis::support::RunCloudvis({ "info", up }).Err;
-  EXPECT_NE(err.find("metadata \"up\" must be one of the strings \"x\", \"y\", \"z\", got an int32"),
+  EXPECT_NE(
+    err.find("metadata \"up\" must be one of the strings \"x\", \"y\", \"z\", got an int32"),
     std::string::npos)
     << err;
 }

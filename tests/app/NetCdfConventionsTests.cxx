@@ -229,9 +229,11 @@ TEST(NetCdfConventions, AttributesOfTheWrongTypeOrShapeAreRefused)
     { "float qc(z, y, x) ; qc:valid_range = 0.f ;",
       "attribute valid_range has 1 value, 2 expected: as the range of valid values (CF) it holds "
       "that many" },
-    { "float qc(z, y, x) ; qc:valid_min = 0.f, 1.f ;", "attribute valid_min has 2 values, 1 expected" },
+    { "float qc(z, y, x) ; qc:valid_min = 0.f, 1.f ;",
+      "attribute valid_min has 2 values, 1 expected" },
     { "float qc(z, y, x) ; string qc:missing_value = \"-999\" ;",
-      "attribute missing_value is a string, not a number", 3 },
+      "attribute missing_value is a string, not a number",
+      3 },
     { "float qc(z, y, x) ; qc:effective_radius = \"ten\" ;",
       "attribute effective_radius is text (\"ten\"), not a number" },
     { "float qc(z, y, x) ; qc:effective_radius = 0.f ;",
@@ -240,15 +242,18 @@ TEST(NetCdfConventions, AttributesOfTheWrongTypeOrShapeAreRefused)
   for (std::size_t c = 0; c < cases.size(); ++c)
   {
     SCOPED_TRACE(cases[c].Declaration);
-    const std::string path = Ncgen(dir, "attribute-" + std::to_string(c) + ".nc",
-      Grid(cases[c].Declaration, std::string("qc = ") + KnownZyx + " ;"), cases[c].Kind);
+    const std::string path = Ncgen(dir,
+      "attribute-" + std::to_string(c) + ".nc",
+      Grid(cases[c].Declaration, std::string("qc = ") + KnownZyx + " ;"),
+      cases[c].Kind);
     const std::string message = ErrorOf([&] { cloudvis::ReadField(path); });
     EXPECT_NE(message.find(path + ": variable \"qc\": " + cases[c].Expected), std::string::npos)
       << message;
   }
   // CF allows several missing values: each marks values missing (checked above), and a packed
   // variable's one-number scale and offset are applied.
-  const std::string packed = Ncgen(dir, "packed-ok.nc",
+  const std::string packed = Ncgen(dir,
+    "packed-ok.nc",
     Grid("short qc(z, y, x) ; qc:scale_factor = 0.5 ; qc:add_offset = 1.0 ; "
          "qc:missing_value = -1s, -2s ;",
       std::string("qc = ") + KnownZyx + " ;"));
@@ -266,7 +271,8 @@ TEST(NetCdfConventions, RunningOutOfMemorySaysWhatTheFileNeeds)
   TemporaryDirectory dir;
   // 800^3 floats, never written: a compressed netCDF-4 file of a few KiB that needs about
   // 6 GiB to read, read under an address-space limit of about 1 GB.
-  const std::string path = Ncgen(dir, "big.nc",
+  const std::string path = Ncgen(dir,
+    "big.nc",
     "netcdf big {\ndimensions: z = 800 ; y = 800 ; x = 800 ;\nvariables:\n"
     "  float ql(z, y, x) ; ql:_DeflateLevel = 1 ; ql:_ChunkSizes = 20, 800, 800 ;\n}\n",
     3);
@@ -274,8 +280,9 @@ TEST(NetCdfConventions, RunningOutOfMemorySaysWhatTheFileNeeds)
     "' --set field.missing=empty 2>'" + dir.File("err.txt") + "'";
   EXPECT_NE(std::system(command.c_str()), 0);
   const std::string message = ReadText(dir.File("err.txt"));
-  EXPECT_NE(message.find(path + ": the netCDF library ran out of memory on this file: a field of "
-                                "800 x 800 x 800 voxels needs about 5."),
+  EXPECT_NE(message.find(path +
+              ": the netCDF library ran out of memory on this file: a field of "
+              "800 x 800 x 800 voxels needs about 5."),
     std::string::npos)
     << message;
   EXPECT_NE(message.find("GiB to read (by its dimensions), more than the "), std::string::npos)

@@ -51,8 +51,10 @@ void ResolveSkySun(const json& document, Scene& scene);
 
 // The optics that follow from the field's units (ResolveFieldOptics in Scene.h), refusals
 // naming the key through `context`.
-void ResolveFieldOptics(
-  const Context& context, Scene& scene, const ResolvedFieldUnits& units, const std::string& file);
+void ResolveFieldOptics(const Context& context,
+  Scene& scene,
+  const ResolvedFieldUnits& units,
+  const std::string& file);
 // Once the whole scene is read: whether it gives render.march.effective_radius; for a generated
 // field, ResolveFieldOptics with the scene's units; for a field file, what the scene's own keys
 // already contradict (the rest waits for the file).
