@@ -529,7 +529,7 @@ int Info(const Arguments& arguments, std::ostream& out)
   FieldReport source;
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &source);
   const FieldStatistics statistics = ComputeFieldStatistics(field);
-  const ResolvedFieldUnits units = ResolveFieldUnits(scene.Field.Units, source.Units);
+  const ResolvedFieldUnits& units = source.Resolved;
   const CloudStatistics clouds = ComputeCloudStatistics(field, units, threshold);
   if (arguments.Has("json"))
   {

@@ -134,7 +134,7 @@ int View(const Arguments& arguments, std::ostream& out)
   FieldReport report;
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &report);
   options.FieldFile = fieldFile;
-  options.Units = ResolveFieldUnits(scene.Field.Units, report.Units);
+  options.Units = report.Resolved;
   Viewer viewer(scene, field, options);
   if (!play.empty())
   {

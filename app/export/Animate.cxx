@@ -126,6 +126,8 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
     }
   };
   vtkSmartPointer<vtkImageData> field;
+  // A turntable's scene, finished with the field it shows (the droplets' optics) once produced.
+  Scene turning = scene;
   ResolvedCamera start;
   // An automatic exposure is metered on the first frame and kept: a sequence must not flicker.
   std::optional<double> exposureEV;
@@ -137,7 +139,7 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
       // Generation counts for the first half of a frame that needs it, accumulation the rest.
       const bool generate = !field || !request.Turntable;
       const double generationShare = generate && !scene.Field.FromFile() ? 0.5 : 0.0;
-      Scene frame = request.Turntable ? scene : FrameScene(scene, request, index, start);
+      Scene frame = request.Turntable ? turning : FrameScene(scene, request, index, start);
       if (generate)
       {
         field = ProduceField(frame, [&](double f) { report(index, "generating", generationShare * f); });
@@ -146,9 +148,10 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
       {
         if (index == 0)
         {
-          start = ResolveCamera(scene, field->GetBounds());
+          turning = frame; // finished with its field (ProduceField), for every frame
+          start = ResolveCamera(turning, field->GetBounds());
         }
-        frame = FrameScene(scene, request, index, start);
+        frame = FrameScene(turning, request, index, start);
       }
       if (exposureEV)
       {

@@ -13,6 +13,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -49,6 +50,15 @@ std::string Number(double value)
   text.precision(6);
   text << value;
   return text.str();
+}
+
+std::string WithArticle(const std::string& name)
+{
+  // By sound: "an int32", "an array", but "a uint8", "a ubyte", "a ushort" (you-).
+  const char first = char(std::tolower(static_cast<unsigned char>(name.empty() ? 'x' : name[0])));
+  const bool you = name.rfind("ui", 0) == 0 || name.rfind("ub", 0) == 0 || name.rfind("us", 0) == 0;
+  const bool vowel = std::string("aeio").find(first) != std::string::npos || (first == 'u' && !you);
+  return (vowel ? "an " : "a ") + name;
 }
 
 const std::vector<RawType>& RawTypes()
@@ -113,6 +123,7 @@ void CheckFieldSize(const std::string& path,
   // the same time.
   const double copies = InIsolatedRead() ? 2.0 : 1.0;
   const double needed = voxels * (copies * bytesPerVoxel + 4.0) + extraBytes;
+  NoteReadNeeds("a field of " + Dimensions(dimensions) + " voxels", needed);
   const std::uint64_t available = AvailableMemoryBytes();
   if (available > 0 && needed > double(available))
   {

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace cloudvis
 {
@@ -366,13 +367,14 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
   {
     Fail(path, "field." + problem->Key + ": " + problem->Problem);
   }
-  const FieldFileContents contents = format.Read(path, options);
+  FieldFileContents contents = format.Read(path, options);
   vtkSmartPointer<vtkImageData> field =
     DensityFieldOf(path, contents.Image, contents.Array, options.MaximumVoxels);
+  contents.Report.Format = format.Name;
+  ResolveFieldValues(path, field, options.Units, contents.Report);
   if (report)
   {
     *report = contents.Report;
-    report->Format = format.Name;
     // Readers that hand VTK's arrays on (.vti, .pvti) leave the stored type to the array.
     vtkDataArray* stored =
       report->StoredType == 0 ? DensityArray(path, contents.Image, contents.Array) : nullptr;
@@ -382,6 +384,101 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
     }
   }
   return field;
+}
+
+ResolvedFieldUnits ResolveFieldValues(const std::string& name,
+  vtkImageData* field,
+  const FieldUnits& scene,
+  FieldReport& report)
+{
+  const ResolvedFieldUnits units = ResolveFieldUnits(scene, report.Units);
+  vtkFloatArray* values = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
+  const bool lwc = units.Quantity == FieldQuantity::Lwc;
+  if (values && report.LwcScale != 1.0)
+  {
+    if (!lwc)
+    {
+      report.Add("converted",
+        "no: the scene's field.quantity \"density\" keeps the values as stored, in " +
+          report.LwcScaleFrom);
+    }
+    else
+    {
+      // Converted in double and checked: the product of a float the file holds and the scale
+      // may be beyond float's range, which is cloudvis's doing, not the file's.
+      const double scale = report.LwcScale;
+      float* v = values->GetPointer(0);
+      vtkIdType overflowing = 0;
+      double largest = 0.0;
+      for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
+      {
+        const double converted = double(v[i]) * scale;
+        if (!(std::fabs(converted) <= double(std::numeric_limits<float>::max())))
+        {
+          ++overflowing;
+          largest = std::max(largest, std::fabs(double(v[i])));
+        }
+        v[i] = float(converted);
+      }
+      if (overflowing > 0)
+      {
+        Fail(name,
+          std::to_string(overflowing) + (overflowing == 1 ? " value" : " values") + " in " +
+            report.LwcScaleFrom + " (up to " + Number(largest) + ") are beyond float's range (" +
+            Number(double(std::numeric_limits<float>::max())) + ") once converted to g/m^3 (x " +
+            Number(scale) +
+            "): not a liquid water content; field.quantity \"density\" reads "
+            "them as stored");
+      }
+      values->Modified();
+      report.Add(
+        "converted", "from " + report.LwcScaleFrom + " to g/m^3 (x " + Number(scale) + ")");
+    }
+  }
+  if (values && lwc)
+  {
+    // LES output holds tiny negative contents (-1e-12 and the like) from its advection schemes:
+    // they are no water, and read as none. A clearly negative content is not a content at all
+    // (an unmarked fill value, a wrong variable) and is refused rather than integrated.
+    float* v = values->GetPointer(0);
+    vtkIdType negligible = 0, negative = 0;
+    double lowest = 0.0;
+    for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
+    {
+      if (v[i] < 0.0f)
+      {
+        lowest = std::min(lowest, double(v[i]));
+        if (double(v[i]) >= -NegligibleNegativeLwc)
+        {
+          ++negligible;
+          v[i] = 0.0f;
+        }
+        else
+        {
+          ++negative;
+        }
+      }
+    }
+    if (negative > 0)
+    {
+      Fail(name,
+        std::to_string(negative) + " liquid water content" + (negative == 1 ? " is" : "s are") +
+          " negative beyond -" + Number(NegligibleNegativeLwc) +
+          " g/m^3 (the most negative: " + Number(lowest) +
+          " g/m^3): a negative content is no water; mark such values missing "
+          "(_FillValue) or read the field as a density (field.quantity \"density\")");
+    }
+    if (negligible > 0)
+    {
+      values->Modified();
+      report.Add("negative",
+        std::to_string(negligible) + (negligible == 1 ? " value" : " values") + " down to " +
+          Number(lowest) + " g/m^3 read as 0 (at most " + Number(NegligibleNegativeLwc) +
+          " g/m^3 below 0: numerical noise, not water)");
+    }
+  }
+  report.Resolved = units;
+  return units;
 }
 
 std::string FieldOutputExtensions()

@@ -20,6 +20,7 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -42,8 +43,15 @@ constexpr int ChildOutOfMemory = 4;
 // The first word of a record.
 constexpr std::uint64_t FieldRecord = 0x31444c4549465643;   // "CVFIELD1"
 constexpr std::uint64_t RefusalRecord = 0x3146455246565643; // "CVREFUS1"
+constexpr std::uint64_t MemoryRecord = 0x3159524d454d5643;  // "CVMEMRY1": what it needed
 
 bool InChild = false;
+// NoteReadNeeds: the largest need a reader noted, and what it is.
+double NeededBytes = 0.0;
+std::string Needed;
+// The memory the child may take: its address-space limit less what it mapped at the start
+// (0: unknown, no limit).
+double ChildMemoryBytes = 0.0;
 
 [[noreturn]] void Fail(const std::string& path, const std::string& problem)
 {
@@ -148,6 +156,8 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
   out.Value(std::int32_t(units.Up.value_or(1)));
   out.Value(std::uint8_t(units.EffectiveRadius.has_value()));
   out.Value(units.EffectiveRadius.value_or(0.0));
+  out.Value(contents.Report.LwcScale);
+  out.Text(contents.Report.LwcScaleFrom);
   out.Value(FieldRecord); // complete
 }
 
@@ -185,6 +195,13 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
     const rlimit memory{ rlim_t(mapped + available), rlim_t(mapped + available) };
     ::setrlimit(RLIMIT_AS, &memory);
   }
+  // What the limit is now: a lower one the process was started under (ulimit -v) stays.
+  rlimit limit{};
+  if (mapped > 0 && ::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+    limit.rlim_cur > mapped)
+  {
+    ChildMemoryBytes = double(limit.rlim_cur - mapped);
+  }
 #endif
   // The time limit must end the child even when cloudvis was started with SIGALRM ignored or
   // blocked (both are inherited through exec and fork).
@@ -203,6 +220,11 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
   catch (const std::bad_alloc&)
   {
     code = ChildOutOfMemory;
+    // The record needs no allocation: the parent reads what the file needs from it.
+    out.Value(MemoryRecord);
+    out.Value(NeededBytes);
+    out.Value(ChildMemoryBytes);
+    out.Text(Needed);
   }
   catch (const std::exception& e)
   {
@@ -355,7 +377,8 @@ bool ReadFieldRecord(RecordReader& in, FieldFileContents& contents)
   units.EffectiveRadius = has[3] ? std::optional<double>(radius) : std::nullopt;
   std::uint64_t end = 0;
   contents.Image = image;
-  return in.Value(end) && end == FieldRecord;
+  return in.Value(contents.Report.LwcScale) && std::isfinite(contents.Report.LwcScale) &&
+    in.Text(contents.Report.LwcScaleFrom) && in.Value(end) && end == FieldRecord;
 }
 
 unsigned TimeLimitSeconds(std::uint64_t fileBytes)
@@ -370,6 +393,15 @@ unsigned TimeLimitSeconds(std::uint64_t fileBytes)
 bool InIsolatedRead()
 {
   return InChild;
+}
+
+void NoteReadNeeds(const std::string& what, double bytes)
+{
+  if (InChild && bytes > NeededBytes)
+  {
+    NeededBytes = bytes;
+    Needed = what;
+  }
 }
 
 FieldFileContents ReadInIsolation(const std::string& path,
@@ -409,12 +441,16 @@ FieldFileContents ReadInIsolation(const std::string& path,
   std::uint64_t kind = 0;
   FieldFileContents contents;
   std::string refusal;
+  double neededBytes = 0.0, childBytes = 0.0;
+  std::string needed;
   bool complete = false;
   try
   {
     complete = in.Value(kind) &&
-      (kind == FieldRecord ? ReadFieldRecord(in, contents)
-                           : kind == RefusalRecord && in.Text(refusal));
+      (kind == FieldRecord        ? ReadFieldRecord(in, contents)
+          : kind == RefusalRecord ? in.Text(refusal)
+                                  : kind == MemoryRecord && in.Value(neededBytes) &&
+            in.Value(childBytes) && in.Text(needed));
   }
   catch (const std::bad_alloc&)
   {
@@ -450,9 +486,25 @@ FieldFileContents ReadInIsolation(const std::string& path,
   }
   if (code == ChildOutOfMemory)
   {
+    // The memory the read could take: the child's limit where it had one, else what the system
+    // has available.
+    const std::string available =
+      FormatBytes(childBytes > 0.0 ? childBytes : double(AvailableMemoryBytes()));
+    if (complete && kind == MemoryRecord && neededBytes > 0.0 && !needed.empty())
+    {
+      Fail(path,
+        parser + " ran out of memory on this file: " + needed + " needs about " +
+          FormatBytes(neededBytes) + " to read (by its dimensions)" +
+          (childBytes > 0.0 && neededBytes > childBytes
+              ? ", more than the " + available + " the read may use (the address-space limit)"
+              : "; with the library's own buffers the read took more than the " + available +
+                " it may use"));
+    }
     Fail(path,
-      parser + " ran out of memory on this file: it claims more than the " +
-        FormatBytes(double(AvailableMemoryBytes())) + " available");
+      parser +
+        " ran out of memory on this file before its size was known: what its header "
+        "claims is more than the " +
+        available + " the read may use");
   }
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
   {

@@ -714,7 +714,8 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
             : type == "float" ? ""
                               : ", converted to float"));
     contents.Report.Add("units", units.empty() ? "not stated" : units);
-    netcdf::DeclareQuantity(units, *density, contents.Report);
+    netcdf::DeclareQuantity(units, contents.Report);
+    netcdf::DeclareEffectiveRadius(file, chosen, contents.Report);
     if (!step.empty())
     {
       contents.Report.Add("time step", step);

@@ -198,6 +198,46 @@ std::vector<double> File::Numbers(const Variable& variable, const char* attribut
     : std::vector<double>{};
 }
 
+std::vector<double> File::CheckedNumbers(const Variable& variable,
+  const char* attribute,
+  std::size_t least,
+  std::size_t most,
+  const std::string& meaning) const
+{
+  nc_type type = NC_NAT;
+  std::size_t length = 0;
+  if (nc_inq_att(this->Id, variable.Id, attribute, &type, &length) != NC_NOERR)
+  {
+    return {};
+  }
+  const std::string where = "variable \"" + variable.Name + "\": attribute " + attribute;
+  if (!IsNumeric(type))
+  {
+    const std::string text = type == NC_CHAR ? this->Text(variable, attribute) : "";
+    cloudvis::Fail(this->Name,
+      where + " is " +
+        (type == NC_CHAR ? "text (\"" + text.substr(0, 64) + "\")" : WithArticle(TypeName(type))) +
+        ", not a number: as " + meaning +
+        " it must be numeric (CF), and read as text it would "
+        "be ignored");
+  }
+  if (length < least || length > most)
+  {
+    cloudvis::Fail(this->Name,
+      where + " has " + std::to_string(length) + (length == 1 ? " value" : " values") + ", " +
+        (least == most ? std::to_string(least)
+                       : std::to_string(least) + " to " + std::to_string(most)) +
+        " expected: as " + meaning + " (CF) " +
+        (least == most && least == 1 ? "it is one number" : "it holds that many"));
+  }
+  std::vector<double> values(length);
+  if (nc_get_att_double(this->Id, variable.Id, attribute, values.data()) != NC_NOERR)
+  {
+    cloudvis::Fail(this->Name, "cannot read " + where);
+  }
+  return values;
+}
+
 bool File::Has(const Variable& variable, const char* attribute) const
 {
   return nc_inq_attid(this->Id, variable.Id, attribute, nullptr) == NC_NOERR;
@@ -608,7 +648,11 @@ MissingValues::MissingValues(const File& file, const Variable& variable)
   const auto equal = [this](const std::string& text, double value) {
     this->Markers.push_back({ text + " " + Number(value), value });
   };
-  const std::vector<double> fill = file.Numbers(variable, "_FillValue");
+  // CF: _FillValue, valid_min and valid_max are single numbers, valid_range two, and
+  // missing_value one or several (each marks values missing), all numbers compared with the
+  // stored values; of any other type or length they would mark nothing, so they are refused.
+  const char* marker = "a missing-value marker";
+  const std::vector<double> fill = file.CheckedNumbers(variable, "_FillValue", 1, 1, marker);
   if (!fill.empty())
   {
     equal("_FillValue", fill[0]);
@@ -629,7 +673,7 @@ MissingValues::MissingValues(const File& file, const Variable& variable)
       double(NC_FILL_UINT64) };
     equal("the default fill value", defaults[variable.Type]);
   }
-  for (const double value : file.Numbers(variable, "missing_value"))
+  for (const double value : file.CheckedNumbers(variable, "missing_value", 1, 4096, marker))
   {
     equal("missing_value", value);
   }
@@ -642,9 +686,12 @@ MissingValues::MissingValues(const File& file, const Variable& variable)
     m.Range = true;
     this->Markers.push_back(m);
   };
-  const std::vector<double> validRange = file.Numbers(variable, "valid_range");
-  const std::vector<double> low = file.Numbers(variable, "valid_min");
-  const std::vector<double> high = file.Numbers(variable, "valid_max");
+  const std::vector<double> validRange =
+    file.CheckedNumbers(variable, "valid_range", 2, 2, "the range of valid values");
+  const std::vector<double> low =
+    file.CheckedNumbers(variable, "valid_min", 1, 1, "the smallest valid value");
+  const std::vector<double> high =
+    file.CheckedNumbers(variable, "valid_max", 1, 1, "the largest valid value");
   if (validRange.size() == 2)
   {
     range("outside valid_range [" + Number(validRange[0]) + ", " + Number(validRange[1]) + "]",
@@ -722,35 +769,67 @@ std::string MissingValues::Describe() const
 Packing PackingOf(const File& file, const Variable& variable)
 {
   Packing packing;
-  const std::vector<double> scale = file.Numbers(variable, "scale_factor");
-  const std::vector<double> offset = file.Numbers(variable, "add_offset");
+  // CF: each one number (of the unpacked type); a scale of 0 (or not finite) would turn every
+  // value into add_offset.
+  const std::vector<double> scale =
+    file.CheckedNumbers(variable, "scale_factor", 1, 1, "the packing's scale");
+  const std::vector<double> offset =
+    file.CheckedNumbers(variable, "add_offset", 1, 1, "the packing's offset");
+  const std::string where = "variable \"" + variable.Name + "\": attribute ";
+  if (!scale.empty() && !(std::isfinite(scale[0]) && scale[0] != 0.0))
+  {
+    cloudvis::Fail(file.Path(),
+      where + "scale_factor is " + Number(scale[0]) +
+        ": unpacked, every value would be add_offset (or not a number); a packing's scale is a "
+        "finite number other than 0");
+  }
+  if (!offset.empty() && !std::isfinite(offset[0]))
+  {
+    cloudvis::Fail(file.Path(),
+      where + "add_offset is " + Number(offset[0]) + ": a packing's offset is a finite number");
+  }
   packing.Scale = scale.empty() ? 1.0 : scale[0];
   packing.Offset = offset.empty() ? 0.0 : offset[0];
   packing.Packed = !scale.empty() || !offset.empty();
   return packing;
 }
 
+void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldReport& report)
+{
+  const std::vector<double> radius = file.CheckedNumbers(
+    variable, "effective_radius", 1, 1, "the droplets' effective radius in micrometres");
+  if (radius.empty())
+  {
+    return;
+  }
+  if (!(radius[0] >= 1e-3 && radius[0] <= 1e6))
+  {
+    cloudvis::Fail(file.Path(),
+      "variable \"" + variable.Name +
+        "\": attribute effective_radius must be a number of micrometres in [0.001, 1000000], "
+        "got " +
+        Number(radius[0]));
+  }
+  report.Units.EffectiveRadius = radius[0];
+  report.Add("effective radius", Number(radius[0]) + " um (the variable's effective_radius)");
+}
+
 // The physical quantity a variable's `units` declare (FieldUnits.h): a liquid water content in
-// g/m^3 as it is, in kg/m^3 converted to g/m^3 (the values multiplied by 1000, and said so). A
-// mixing ratio (kg/kg, g/kg) is not a content: turning it into one needs the air's density,
-// which cloudvis does not guess, so the field stays a density and the report says why.
-void DeclareQuantity(const std::string& units, vtkFloatArray& values, FieldReport& report)
+// g/m^3, or in kg/m^3 with the factor 1000 to g/m^3 in report.LwcScale (applied once the scene's
+// field.quantity is known, by ResolveFieldValues). A mixing ratio (kg/kg, g/kg) is not a content:
+// turning it into one needs the air's density, which cloudvis does not guess, so the field stays
+// a density and the report says why.
+void DeclareQuantity(const std::string& units, FieldReport& report)
 {
   if (const auto declared = QuantityFromUnits(units))
   {
     report.Units.Quantity = declared->Quantity;
     if (declared->Scale != 1.0)
     {
-      const float scale = float(declared->Scale);
-      float* v = values.GetPointer(0);
-      for (vtkIdType i = 0; i < values.GetNumberOfValues(); ++i)
-      {
-        v[i] *= scale;
-      }
+      report.LwcScale = declared->Scale;
+      report.LwcScaleFrom = units;
     }
-    report.Add("quantity",
-      "lwc (liquid water content)" +
-        (declared->Scale != 1.0 ? ", converted from " + units + " to g/m^3" : std::string()));
+    report.Add("quantity", "lwc (liquid water content, by the variable's units)");
     return;
   }
   std::string compact;

@@ -209,7 +209,7 @@ void DeclareUnits(const std::string& path, const openvdb::GridBase& grid, FieldR
       }
       Fail(path,
         "grid \"" + grid.getName() + "\": metadata \"" + name + "\" must be one of the strings " +
-          names + ", got " + (string ? "\"" + value + "\"" : "a " + meta->typeName()));
+          names + ", got " + (string ? "\"" + value + "\"" : WithArticle(meta->typeName())));
     }
     report.Add(name, value + " (grid metadata)");
     return int(found - allowed.begin());
@@ -243,7 +243,7 @@ void DeclareUnits(const std::string& path, const openvdb::GridBase& grid, FieldR
         "grid \"" + grid.getName() +
           "\": metadata \"effective_radius\" must be a number of micrometres in [0.001, "
           "1000000], got " +
-          (std::isnan(radius) ? "a " + meta->typeName() : Number(radius)));
+          (std::isnan(radius) ? WithArticle(meta->typeName()) : Number(radius)));
     }
     report.Units.EffectiveRadius = radius;
     report.Add("effective radius", Number(radius) + " um (grid metadata)");

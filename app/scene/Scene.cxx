@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 namespace cloudvis
 {
@@ -308,7 +309,7 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   scene.Source = source;
   schema::ReadObject(context, document, "", schema::SceneSections(), scene);
   schema::ResolveSkySun(document, scene);
-  schema::ResolveDroplets(context, scene);
+  schema::ResolveDroplets(context, document, scene);
   scene.Document = document;
   return scene;
 }
@@ -373,12 +374,25 @@ Scene LoadFieldFileScene(const std::string& path,
   return SceneWithOverrides(json::object(), path, "", assignments, all);
 }
 
+void ResolveFieldOptics(Scene& scene, const ResolvedFieldUnits& units, const std::string& file)
+{
+  const schema::Context context{ scene.Source, "", {} };
+  schema::ResolveFieldOptics(context, scene, units, file);
+}
+
 TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& transferFunction)
 {
   TransferFunctionSpec t = transferFunction;
   if (t.Extinction != TransferFunctionSpec::ExtinctionRule::Droplets)
   {
     return t;
+  }
+  if (!(t.DropletExtinctionPerLwc > 0.0))
+  {
+    // A scene over a field file resolves its droplets once the file is read (ProduceField): a
+    // caller that tabulates before that would render the default effective radius.
+    throw std::logic_error("transfer_function.extinction \"droplets\": the extinction is not "
+                           "resolved yet: the scene's field has not been produced (ProduceField)");
   }
   // The table spans the opacity points and the color points together (TransferFunctionRange):
   // the opacity points span [0, LwcMax] widened to the color's span, so that the table's

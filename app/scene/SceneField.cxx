@@ -141,18 +141,12 @@ std::string ValidateProceduralField(const FieldSpec& field)
   return MakeDensitySource(field)->Validate();
 }
 
-vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
-  const std::function<void(double fraction)>& progress,
-  FieldReport* report)
+namespace
 {
-  if (scene.Field.FromFile())
-  {
-    return ReadField(scene.Field.File, scene.Field.Read, report);
-  }
-  if (report)
-  {
-    *report = FieldReport{ "procedural (generated from the scene's field section)", {}, {} };
-  }
+// The scene's procedural field, generated whole.
+vtkSmartPointer<vtkImageData> GenerateField(const Scene& scene,
+  const std::function<void(double fraction)>& progress)
+{
   vtkSmartPointer<vtkCloudDensitySource> source = MakeDensitySource(scene.Field);
   VtkMessageCapture messages;
   // The scene was validated with the same checks the source applies; what it could not check is
@@ -183,6 +177,42 @@ vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
   }
   vtkSmartPointer<vtkImageData> field = vtkSmartPointer<vtkImageData>::New();
   field->ShallowCopy(output);
+  return field;
+}
+
+} // namespace
+
+vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
+  const std::function<void(double fraction)>& progress,
+  FieldReport* report)
+{
+  Scene finished = scene;
+  return ProduceField(finished, progress, report);
+}
+
+vtkSmartPointer<vtkImageData> ProduceField(Scene& scene,
+  const std::function<void(double fraction)>& progress,
+  FieldReport* report)
+{
+  FieldReport read;
+  vtkSmartPointer<vtkImageData> field;
+  if (scene.Field.FromFile())
+  {
+    FieldReadOptions options = scene.Field.Read;
+    options.Units = scene.Field.Units;
+    field = ReadField(scene.Field.File, options, &read);
+  }
+  else
+  {
+    read.Format = "procedural (generated from the scene's field section)";
+    field = GenerateField(scene, progress);
+    ResolveFieldValues(scene.Source, field, scene.Field.Units, read);
+  }
+  ResolveFieldOptics(scene, read.Resolved, scene.Field.FromFile() ? scene.Field.File : "");
+  if (report)
+  {
+    *report = read;
+  }
   return field;
 }
 

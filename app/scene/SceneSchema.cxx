@@ -106,7 +106,8 @@ const Keys<FieldSpec>& FieldUnitKeys()
     { "effective_radius",
       NumberIn(Range{ 1e-3, 1e6 }).In("micrometres").DefaultIs("the file's, else `10`"),
       Nested(&F::Units, &U::EffectiveRadius),
-      "the droplets' effective radius r_e of an lwc field: extinction = 3 lwc / (2 rho_w r_e)" },
+      "the droplets' effective radius r_e of an lwc field: extinction = 3 lwc / (2 rho_w r_e); "
+      "also the droplets' phase's unless `render.march.effective_radius` is given" },
   };
   return keys;
 }
@@ -501,9 +502,10 @@ const Keys<TransferFunctionSpec>& TransferFunctionKeys()
           { "droplets",
             int(T::ExtinctionRule::Droplets),
             "the extinction of cloud droplets, 3 lwc / (2 rho_w r_e) per metre (rho_w = 10^6 "
-            "g/m^3, r_e = `field.effective_radius`), converted to world units; needs "
-            "`field.quantity` `\"lwc\"` and `field.length_unit` `\"m\"` or `\"km\"`; "
-            "`opacity` and `unit_distance` are then unused" } }),
+            "g/m^3, r_e = `field.effective_radius`, else the field file's), converted to world "
+            "units; needs `field.quantity` `\"lwc\"` and `field.length_unit` `\"m\"` or "
+            "`\"km\"`, from the scene or the field file; `opacity` and `unit_distance` are "
+            "then unused" } }),
       &T::Extinction,
       "where the extinction comes from; `color` gives the albedo either way" },
     { "lwc_max",
@@ -792,16 +794,19 @@ const Keys<LightingParameters>& MarchKeys()
         return t;
       }(),
       &P::Phase,
-      "the phase function of the march and the path tracer: `two_lobe`, Henyey-Greenstein with `g1`, `g2` and `lobe_weight`, or "
+      "the phase function of the march and the path tracer: `two_lobe`, Henyey-Greenstein with "
+      "`g1`, `g2` and `lobe_weight`, or "
       "`droplets`, the Mie phase of liquid water droplets computed by cloudvis for "
       "`effective_radius` and `effective_variance` at 680, 550 and 440 nm, with its forward "
       "peak, cloudbow and glory ([lighting.md](lighting.md#droplet-optics))" },
     { "effective_radius",
       NumberIn(Range{ DropletEffectiveRadiusMinUm, DropletEffectiveRadiusMaxUm })
-        .In("micrometres"),
+        .In("micrometres")
+        .DefaultIs("the field's r_e (`field.effective_radius`, else the file's, else `10`)"),
       &P::DropletEffectiveRadius,
       "`phase: \"droplets\"`: the droplets' effective radius r_e (the ratio of the third to the "
-      "second moment of their radii)" },
+      "second moment of their radii); without it the phase takes the field's, one r_e for "
+      "extinction and phase, refused when beyond this range" },
     { "effective_variance",
       NumberIn(Range{ DropletEffectiveVarianceMin, DropletEffectiveVarianceMax }),
       &P::DropletEffectiveVariance,

@@ -556,29 +556,84 @@ json WriteLights(const Scene& s)
 
 // ---- resolved once the whole scene is read ---------------------------------------------------
 
-void ResolveDroplets(const Context& c, Scene& s)
+namespace
 {
-  TransferFunctionSpec& t = s.TransferFunction;
-  if (t.Extinction != TransferFunctionSpec::ExtinctionRule::Droplets)
+// " (neither the scene nor rico.nc declares it)", " (rico.nc declares \"density\")": where a
+// refused unit of a field file's came from; empty for a generated field, whose scene says all.
+std::string UnitOrigin(const std::string& file, const std::string& from, const std::string& value)
+{
+  if (file.empty() || from == "scene")
   {
+    return "";
+  }
+  return from == "file" ? " (" + file + " declares " + value + ")"
+                        : " (neither the scene nor " + file + " declares it)";
+}
+}
+
+void ResolveFieldOptics(const Context& c,
+  Scene& s,
+  const ResolvedFieldUnits& u,
+  const std::string& file)
+{
+  s.Field.Resolved = u;
+  TransferFunctionSpec& t = s.TransferFunction;
+  if (t.Extinction == TransferFunctionSpec::ExtinctionRule::Droplets)
+  {
+    if (u.Quantity != FieldQuantity::Lwc)
+    {
+      c.Fail("transfer_function.extinction",
+        "\"droplets\" derives the extinction from liquid water content: it needs field.quantity "
+        "\"lwc\"" +
+          UnitOrigin(file, u.QuantityFrom, "\"" + QuantityName(u.Quantity) + "\""));
+    }
+    if (u.Length == LengthUnit::None)
+    {
+      c.Fail("transfer_function.extinction",
+        "\"droplets\" gives an extinction per metre: it needs field.length_unit \"m\" or "
+        "\"km\" to convert it to world units" +
+          UnitOrigin(file, u.LengthFrom, "\"" + LengthUnitName(u.Length) + "\""));
+    }
+    t.DropletExtinctionPerLwc =
+      DropletExtinctionPerMetre(1.0, u.EffectiveRadius) * MetresPerUnit(u.Length);
+  }
+  LightingParameters& lighting = s.Render.Lighting;
+  if (lighting.Phase == PhaseModel::Droplets && !s.Render.DropletRadiusGiven)
+  {
+    if (!(u.EffectiveRadius >= DropletEffectiveRadiusMinUm &&
+          u.EffectiveRadius <= DropletEffectiveRadiusMaxUm))
+    {
+      c.Fail("render.march.effective_radius",
+        "the droplets' phase takes the field's effective radius, " +
+          FormatNumber(u.EffectiveRadius) + " um (" +
+          (u.EffectiveRadiusFrom == "file" ? file : "field.effective_radius") + "), outside the [" +
+          FormatNumber(DropletEffectiveRadiusMinUm) + ", " +
+          FormatNumber(DropletEffectiveRadiusMaxUm) +
+          "] micrometres its table covers: give render.march.effective_radius");
+    }
+    lighting.DropletEffectiveRadius = float(u.EffectiveRadius);
+  }
+}
+
+void ResolveDroplets(const Context& c, const json& document, Scene& s)
+{
+  const json* render = document.contains("render") ? &document["render"] : nullptr;
+  s.Render.DropletRadiusGiven = render && render->is_object() && render->contains("march") &&
+    (*render)["march"].is_object() && (*render)["march"].contains("effective_radius");
+  if (!s.Field.FromFile())
+  {
+    ResolveFieldOptics(c, s, ResolveFieldUnits(s.Field.Units, {}), "");
     return;
   }
-  const FieldUnits& units = s.Field.Units;
-  if (units.Quantity != FieldQuantity::Lwc)
-  {
-    c.Fail("transfer_function.extinction",
-      "\"droplets\" derives the extinction from liquid water content: it needs field.quantity "
-      "\"lwc\"");
-  }
-  if (!units.Length || *units.Length == LengthUnit::None)
-  {
-    c.Fail("transfer_function.extinction",
-      "\"droplets\" gives an extinction per metre: it needs field.length_unit \"m\" or "
-      "\"km\" to convert it to world units");
-  }
-  t.DropletExtinctionPerLwc =
-    DropletExtinctionPerMetre(1.0, units.EffectiveRadius.value_or(DefaultEffectiveRadius)) *
-    MetresPerUnit(*units.Length);
+  // A field file may declare what the scene does not: what the scene's own keys contradict is
+  // refused now, before the file is read (as if the file declared an lwc field in metres), the
+  // rest once it is read (ProduceField).
+  s.Field.Resolved.reset();
+  FieldUnits hoped;
+  hoped.Quantity = FieldQuantity::Lwc;
+  hoped.Length = LengthUnit::Metre;
+  Scene probe = s;
+  ResolveFieldOptics(c, probe, ResolveFieldUnits(s.Field.Units, hoped), "");
 }
 
 void ResolveSkySun(const json& document, Scene& s)

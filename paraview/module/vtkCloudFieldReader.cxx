@@ -5,12 +5,15 @@
 #include "Errors.h"
 #include "FieldIO.h"
 
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMatrix3x3.h>
 #include <vtkObjectFactory.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStringArray.h>
 
 #include <exception>
 
@@ -59,8 +62,11 @@ bool vtkCloudFieldReader::ReadFile()
       throw cloudvis::InputError(std::string(this->FileName) + ": MaximumVoxels must be >= 1");
     }
     options.MaximumVoxels = static_cast<std::uint64_t>(this->MaximumVoxels);
-    // ReadField checks the options against the format, as it checks a scene's field keys.
-    this->Field = cloudvis::ReadField(this->FileName, options);
+    // ReadField checks the options against the format, as it checks a scene's field keys, and
+    // decides the field's units (ResolveFieldValues: what the file declares, no scene here).
+    cloudvis::FieldReport report;
+    this->Field = cloudvis::ReadField(this->FileName, options, &report);
+    this->Units = report.Resolved;
   }
   catch (const std::exception& error)
   {
@@ -109,6 +115,23 @@ int vtkCloudFieldReader::RequestData(vtkInformation*,
   output->ShallowCopy(this->Field);
   // Crop copies the requested sub-extent's voxels (a rank's piece) and keeps the whole otherwise.
   output->Crop(extent);
+  // The units the field has, as `cloudvis info` reports them, for ParaView's Information panel
+  // and scripts: field data, one value each.
+  const cloudvis::ResolvedFieldUnits& u = this->Units;
+  const auto text = [output](const char* name, const std::string& value)
+  {
+    vtkNew<vtkStringArray> array;
+    array->SetName(name);
+    array->InsertNextValue(value);
+    output->GetFieldData()->AddArray(array);
+  };
+  text("quantity", cloudvis::QuantityName(u.Quantity));
+  text("length_unit", cloudvis::LengthUnitName(u.Length));
+  text("up", cloudvis::AxisName(u.Up));
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("effective_radius");
+  radius->InsertNextValue(u.EffectiveRadius);
+  output->GetFieldData()->AddArray(radius);
   return 1;
 }
 

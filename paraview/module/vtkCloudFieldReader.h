@@ -11,6 +11,12 @@
  * by name (CloudFieldReader in Python) when what cloudvis reads is wanted rather than ParaView's
  * reader.
  *
+ * The output's field data holds the units the field has, as `cloudvis info` reports them
+ * (decided by cloudvis's one place for them, ResolveFieldValues in FieldIO.h, from what the file
+ * declares): the strings "quantity" ("density" or "lwc"), "length_unit" ("none", "m", "km") and
+ * "up" ("x", "y", "z"), and the number "effective_radius" (micrometres). A NetCDF liquid water
+ * content in kg/m^3 is converted to g/m^3 and small negative contents read as 0, as everywhere.
+ *
  * A file that cannot be read (missing, truncated, corrupt, too large, an option it does not
  * take) gives one vtkErrorMacro naming the file and the problem and an empty output: a bad file
  * never ends the process (parsing that can crash runs in a forked child, IsolatedRead.h).
@@ -26,6 +32,8 @@
 
 #include <vtkImageAlgorithm.h>
 #include <vtkSmartPointer.h> // for the field read
+
+#include "FieldUnits.h" // for the field's units
 
 #include <string> // for the file name and options
 
@@ -117,6 +125,7 @@ private:
   bool ReadFile();
 
   vtkSmartPointer<vtkImageData> Field; // the whole file, as cloudvis read it
+  cloudvis::ResolvedFieldUnits Units;  // its units (ResolveFieldValues), as field data
   vtkMTimeType FieldTime = 0;          // this->GetMTime() when Field was read
   std::string LastError;
 

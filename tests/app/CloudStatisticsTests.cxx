@@ -6,9 +6,10 @@
 #include "CloudStatistics.h"
 #include "Errors.h"
 #include "FieldIO.h"
-#include "FieldTestFiles.h"  // RunTool
+#include "FieldTestFiles.h" // RunTool, Detail, ErrorOf
 #include "OffscreenRender.h" // MakeVolumeProperty
 #include "Scene.h"
+#include "SceneField.h"
 #include "SupportFixtures.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
@@ -589,6 +590,203 @@ TEST(Droplets, GpuRenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
   EXPECT_NEAR(exr.At("A", 16, 16), 1.0 - std::exp(-3.0), 5e-3);
 }
 
+// ---- droplets of a field file's own effective radius ----------------------------------------
+
+// A cube of 50 m of 0.4 g/m^3, 9^3 voxels 6.25 m apart from the origin, that declares itself an
+// lwc field in metres with the droplets' effective radius `radius`: as an OpenVDB grid's metadata
+// (the file "cube-<radius>.vdb") and as a NetCDF variable's attributes ("cube-<radius>.nc", made
+// by ncgen).
+std::string VdbCube(const cloudvis::support::TemporaryDirectory& dir, double radius)
+{
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("ql");
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(6.25));
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(8)), 0.4f);
+  grid->insertMeta("quantity", openvdb::StringMetadata("lwc"));
+  grid->insertMeta("length_unit", openvdb::StringMetadata("m"));
+  grid->insertMeta("effective_radius", openvdb::DoubleMetadata(radius));
+  const std::string path = dir.File("cube-" + std::to_string(int(radius)) + ".vdb");
+  openvdb::io::File file(path);
+  file.write({ grid });
+  file.close();
+  return path;
+}
+
+std::string NetCdfCube(const cloudvis::support::TemporaryDirectory& dir, double radius)
+{
+  std::string axis, values;
+  for (int i = 0; i < 9; ++i)
+  {
+    axis += (i ? ", " : "") + std::to_string(6.25 * i);
+  }
+  for (int i = 0; i < 729; ++i)
+  {
+    values += i ? ", 0.4" : "0.4";
+  }
+  const std::string name = "cube-" + std::to_string(int(radius));
+  cloudvis::support::WriteText(dir.File(name + ".cdl"),
+    "netcdf cube {\ndimensions: z = 9 ; y = 9 ; x = 9 ;\nvariables:\n"
+    "  double z(z) ; z:axis = \"Z\" ; z:units = \"m\" ; z:positive = \"up\" ;\n"
+    "  double y(y) ; y:units = \"m\" ;\n  double x(x) ; x:units = \"m\" ;\n"
+    "  float ql(z, y, x) ; ql:units = \"g m-3\" ; ql:effective_radius = " +
+      std::to_string(radius) + " ;\ndata:\n  z = " + axis + " ;\n  y = " + axis +
+      " ;\n  x = " + axis + " ;\n  ql = " + values + " ;\n}\n");
+  cloudvis::test::RunTool(
+    "ncgen -k 1 -o '" + dir.File(name + ".nc") + "' '" + dir.File(name + ".cdl") + "'");
+  return dir.File(name + ".nc");
+}
+
+// The opacity through the middle of the cube as `cloudvis render` draws it with the droplets'
+// extinction and the scene's `sets`, read from the EXR's alpha: 1 - exp(-sigma 50 m).
+double RenderedCubeAlpha(const cloudvis::support::TemporaryDirectory& dir,
+  const std::string& path,
+  const std::vector<std::string>& sets = {})
+{
+  std::vector<std::string> arguments = { "render",
+    path,
+    "--lighting",
+    "none",
+    "--size",
+    "32x32",
+    "--set",
+    "transfer_function.extinction=droplets",
+    "--set",
+    "transfer_function.lwc_max=1",
+    "--set",
+    "camera.position=[25,25,2000]",
+    "--set",
+    "camera.focal_point=[25,25,25]",
+    "--set",
+    "camera.view_angle=1",
+    "-o",
+    dir.File("cube.exr"),
+    "-q" };
+  for (const std::string& set : sets)
+  {
+    arguments.insert(arguments.end(), { "--set", set });
+  }
+  const auto result = cloudvis::support::RunCloudvis(arguments);
+  EXPECT_EQ(result.Status, 0) << result.Err;
+  return cloudvis::support::ReadExr(dir.File("cube.exr")).At("A", 16, 16);
+}
+
+// The issue's case: a file declaring r_e = 20 um rendered like r_e = 10 um (twice the
+// extinction), because the transfer function was built before the file was read. sigma =
+// 3 LWC / (2 rho_w r_e): 0.06 / m at 10 um, tau = 3 across 50 m; 0.03 / m at 20 um, tau = 1.5.
+TEST(Droplets, FileEffectiveRadiusSetsTheRenderedExtinction)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const double thick = 1.0 - std::exp(-3.0), thin = 1.0 - std::exp(-1.5);
+  for (const auto& cube : { std::make_pair(VdbCube(dir, 10), VdbCube(dir, 20)),
+         std::make_pair(NetCdfCube(dir, 10), NetCdfCube(dir, 20)) })
+  {
+    SCOPED_TRACE(cube.second);
+    EXPECT_NEAR(RenderedCubeAlpha(dir, cube.first), thick, 5e-3);
+    EXPECT_NEAR(RenderedCubeAlpha(dir, cube.second), thin, 5e-3);
+    // The scene's key wins over the file's.
+    EXPECT_NEAR(RenderedCubeAlpha(dir, cube.second, { "field.effective_radius=10" }), thick, 5e-3);
+    // info reports the file's radius and its extinction, and the scene's when it wins.
+    const std::string text = cloudvis::support::RunCloudvis({ "info", cube.second }).Out;
+    EXPECT_NE(
+      text.find("droplets     effective radius 20 um (file): extinction 0.075 /m per g/m^3"),
+      std::string::npos)
+      << text;
+    const std::string overridden =
+      cloudvis::support::RunCloudvis({ "info", cube.second, "--set", "field.effective_radius=10" })
+        .Out;
+    EXPECT_NE(overridden.find("droplets     effective radius 10 um (scene): extinction 0.15 /m"),
+      std::string::npos)
+      << overridden;
+    EXPECT_NE(overridden.find("effective radius 20 um"), std::string::npos) << overridden;
+  }
+}
+
+// The scene of a field file, finished with its field (ProduceField).
+cloudvis::Scene FinishedScene(const std::string& path, const std::vector<std::string>& sets)
+{
+  cloudvis::Scene scene = cloudvis::LoadFieldFileScene(path, sets);
+  cloudvis::ProduceField(scene);
+  return scene;
+}
+
+TEST(Droplets, FileEffectiveRadiusIsThePhasesUnlessTheSceneGivesOne)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = VdbCube(dir, 20);
+  const std::string phase = "render.march.phase=droplets";
+  const cloudvis::Scene fromFile = FinishedScene(path, { phase });
+  EXPECT_EQ(fromFile.Render.Lighting.DropletEffectiveRadius, 20.0f);
+  ASSERT_TRUE(fromFile.Field.Resolved.has_value());
+  EXPECT_EQ(fromFile.Field.Resolved->EffectiveRadiusFrom, "file");
+  EXPECT_EQ(FinishedScene(path, { phase, "field.effective_radius=12" })
+              .Render.Lighting.DropletEffectiveRadius,
+    12.0f);
+  EXPECT_EQ(
+    FinishedScene(path, { phase, "field.effective_radius=12", "render.march.effective_radius=8" })
+      .Render.Lighting.DropletEffectiveRadius,
+    8.0f);
+  // The extinction keeps the field's radius when the phase has its own.
+  const cloudvis::Scene both = FinishedScene(
+    path, { phase, "render.march.effective_radius=8", "transfer_function.extinction=droplets" });
+  EXPECT_NEAR(both.TransferFunction.DropletExtinctionPerLwc, 0.075, 1e-12);
+  // A radius beyond the phase table's is refused for the phase, naming where it came from.
+  const std::string large = VdbCube(dir, 50);
+  try
+  {
+    FinishedScene(large, { phase });
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    EXPECT_EQ(std::string(e.what()),
+      large +
+        ": render.march.effective_radius: the droplets' phase takes the field's effective "
+        "radius, 50 um (" +
+        large +
+        "), outside the [2, 30] micrometres its table covers: give "
+        "render.march.effective_radius");
+  }
+  EXPECT_EQ(FinishedScene(large, { phase, "render.march.effective_radius=10" })
+              .Render.Lighting.DropletEffectiveRadius,
+    10.0f);
+}
+
+TEST(Droplets, FileWithoutLwcIsRefusedOnceRead)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = dir.File("slab.vti");
+  cloudvis::WriteField(LayeredField(2, { 4, 4, 4 }, 100.0, 50.0, 0.0, Slab), path);
+  const auto refused = cloudvis::support::RunCloudvis({ "render",
+    path,
+    "--set",
+    "transfer_function.extinction=droplets",
+    "-o",
+    dir.File("x.png"),
+    "-q" });
+  EXPECT_EQ(refused.Status, 1);
+  EXPECT_NE(refused.Err.find(path +
+              ": transfer_function.extinction: \"droplets\" derives the "
+              "extinction from liquid water content: it needs "
+              "field.quantity \"lwc\" (neither the scene nor " +
+              path + " declares it)"),
+    std::string::npos)
+    << refused.Err;
+  // An OpenVDB grid's own declaration is enough; a scene that says "density" is refused before
+  // the file is read.
+  const std::string cube = VdbCube(dir, 10);
+  cloudvis::Scene scene = FinishedScene(cube, { "transfer_function.extinction=droplets" });
+  EXPECT_NEAR(scene.TransferFunction.DropletExtinctionPerLwc, 0.15, 1e-12);
+  EXPECT_THROW(cloudvis::LoadFieldFileScene(
+                 cube, { "transfer_function.extinction=droplets", "field.quantity=density" }),
+    cloudvis::InputError);
+  // Tabulating a file's droplets before the file is read would use the default radius.
+  const cloudvis::Scene unread =
+    cloudvis::LoadFieldFileScene(cube, { "transfer_function.extinction=droplets" });
+  EXPECT_THROW(cloudvis::MakeVolumeProperty(unread.TransferFunction), std::logic_error);
+}
+
 // ---- units a NetCDF file declares ---------------------------------------------------------------
 
 // A 2 x 2 x 3 NetCDF file (z, y, x) made by ncgen: the variable `ql` with `units`, coordinates in
@@ -596,7 +794,8 @@ TEST(Droplets, GpuRenderedSlabHasAlphaOneMinusExpOfMinusSigmaL)
 std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir,
   const std::string& units,
   const std::string& axisUnits,
-  const std::string& positive = "up")
+  const std::string& positive = "up",
+  const std::string& values = "0, 0.0005, 0.001, 0, 0, 0, 0, 0, 0, 0, 0, 0.002")
 {
   const std::string cdl = "netcdf lwc {\ndimensions: z = 2 ; y = 2 ; x = 3 ;\nvariables:\n"
                           "  double z(z) ; z:axis = \"Z\" ; z:units = \"" +
@@ -604,7 +803,8 @@ std::string NetCdfFile(const cloudvis::support::TemporaryDirectory& dir,
     axisUnits + "\" ;\n  double x(x) ; x:units = \"" + axisUnits +
     "\" ;\n  float ql(z, y, x) ; ql:units = \"" + units +
     "\" ;\ndata:\n  z = 0, 1 ; y = 0, 1 ; x = 0, 1, 2 ;\n"
-    "  ql = 0, 0.0005, 0.001, 0, 0, 0, 0, 0, 0, 0, 0, 0.002 ;\n}\n";
+    "  ql = " +
+    values + " ;\n}\n";
   cloudvis::support::WriteText(dir.File("lwc.cdl"), cdl);
   cloudvis::test::RunTool(
     "ncgen -k 1 -o '" + dir.File("lwc.nc") + "' '" + dir.File("lwc.cdl") + "'");
@@ -632,6 +832,77 @@ TEST(NetCdfUnits, KilogramsPerCubicMetreOnKilometresWithAZAxis)
   EXPECT_EQ(info["units"]["up"], "y");
   EXPECT_EQ(info["units"]["from"]["up"], "scene");
   EXPECT_EQ(info["units"]["overridden_file_values"]["up"], "z");
+}
+
+// field.quantity "density" reads the values as stored: before, a kg m-3 file was still
+// multiplied by 1000 into g/m^3.
+TEST(NetCdfUnits, DensityFromTheSceneKeepsKilogramsAsStored)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = NetCdfFile(dir, "kg m-3", "km");
+  cloudvis::FieldReadOptions options;
+  options.Units.Quantity = FieldQuantity::Density;
+  cloudvis::FieldReport report;
+  auto field = cloudvis::ReadField(path, options, &report);
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range);
+  EXPECT_FLOAT_EQ(float(range[1]), 0.002f);
+  EXPECT_EQ(report.Resolved.Quantity, FieldQuantity::Density);
+  EXPECT_EQ(cloudvis::test::Detail(report, "converted"),
+    "no: the scene's field.quantity \"density\" keeps the values as stored, in kg m-3");
+  const std::string text =
+    cloudvis::support::RunCloudvis({ "info", path, "--set", "field.quantity=density" }).Out;
+  EXPECT_NE(text.find("range        [0, 0.002]\n"), std::string::npos) << text;
+  cloudvis::FieldReport converted;
+  cloudvis::ReadField(path, {}, &converted);
+  EXPECT_EQ(cloudvis::test::Detail(converted, "converted"), "from kg m-3 to g/m^3 (x 1000)");
+}
+
+// The conversion is cloudvis's: a value it takes beyond float's range is said to be so, where
+// before the message blamed "NaN or infinite values" on the file.
+TEST(NetCdfUnits, ConversionBeyondFloatIsRefusedAsSuch)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path =
+    NetCdfFile(dir, "kg m-3", "m", "up", "0, 1e36, 3e36, 0, 0, 0, 0, 0, 0, 0, 0, 0");
+  const std::string message = cloudvis::test::ErrorOf([&] { cloudvis::ReadField(path); });
+  EXPECT_EQ(message,
+    path +
+      ": 2 values in kg m-3 (up to 3e+36) are beyond float's range (3.40282e+38) once "
+      "converted to g/m^3 (x 1000): not a liquid water content; field.quantity \"density\" "
+      "reads them as stored");
+}
+
+// LES output holds tiny negative contents from advection: read as 0 and said so. A clearly
+// negative content is refused with its count and the most negative value; before, both were
+// integrated into a negative liquid water path.
+TEST(NetCdfUnits, NegativeLiquidWaterIsZeroWhenTinyAndRefusedOtherwise)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string tiny =
+    NetCdfFile(dir, "g m-3", "m", "up", "0, -1e-12, 0.5, -4e-4, 0, 0, 0, 0, 0, 0, 0, 0.5");
+  cloudvis::FieldReport report;
+  auto field = cloudvis::ReadField(tiny, {}, &report);
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range);
+  EXPECT_EQ(range[0], 0.0);
+  EXPECT_EQ(cloudvis::test::Detail(report, "negative"),
+    "2 values down to -0.0004 g/m^3 read as 0 (at most 0.001 g/m^3 below 0: numerical noise, "
+    "not water)");
+  const std::string info = cloudvis::support::RunCloudvis({ "info", tiny }).Out;
+  EXPECT_NE(info.find("2 values down to -0.0004 g/m^3 read as 0"), std::string::npos) << info;
+  const std::string clear =
+    NetCdfFile(dir, "g m-3", "m", "up", "0, -999, 0.5, -0.002, 0, 0, 0, 0, 0, 0, 0, 0.5");
+  const auto refused = cloudvis::support::RunCloudvis({ "info", clear });
+  EXPECT_EQ(refused.Status, 1);
+  EXPECT_NE(refused.Err.find(clear +
+              ": 2 liquid water contents are negative beyond -0.001 g/m^3 "
+              "(the most negative: -999 g/m^3)"),
+    std::string::npos)
+    << refused.Err;
+  // The same values read as a density are the file's.
+  EXPECT_EQ(
+    cloudvis::support::RunCloudvis({ "info", clear, "--set", "field.quantity=density" }).Status, 0);
 }
 
 TEST(NetCdfUnits, MixingRatioIsNotALiquidWaterContent)
@@ -706,6 +977,14 @@ TEST(VdbUnits, UnknownDeclarationsAreRefused)
   EXPECT_NE(cloudvis::support::RunCloudvis({ "info", radius })
               .Err.find("metadata \"effective_radius\" must be a number of micrometres"),
     std::string::npos);
+  // "got an int32" (it said "a int32").
+  const std::string up =
+    VdbFile(dir, [](openvdb::GridBase& grid) { grid.insertMeta("up", openvdb::Int32Metadata(2)); });
+  const std::string err = cloudvis::support::RunCloudvis({ "info", up }).Err;
+  EXPECT_NE(
+    err.find("metadata \"up\" must be one of the strings \"x\", \"y\", \"z\", got an int32"),
+    std::string::npos)
+    << err;
 }
 
 // ---- cloudvis info ----------------------------------------------------------------------------

@@ -200,6 +200,98 @@ TEST(NetCdfConventions, MissingValuesInEveryMarkingAreRefusedWithTheirCountAndMa
   EXPECT_EQ(Density(cloudvis::ReadField(bytes), 0, 0, 0), -127.0);
 }
 
+// CF makes scale_factor and add_offset one number each, _FillValue, valid_min and valid_max one
+// number, valid_range two, and missing_value one or several, all numbers. Before, an attribute
+// of another type was skipped (a text missing_value "-999" left -999 to be read as water, a text
+// scale_factor left the values 100 times too large), a second scale_factor value was dropped and
+// a scale of 0 made every value add_offset, all without a word.
+TEST(NetCdfConventions, AttributesOfTheWrongTypeOrShapeAreRefused)
+{
+  TemporaryDirectory dir;
+  struct Case
+  {
+    std::string Declaration, Expected;
+    int Kind = 1;
+  };
+  const std::vector<Case> cases = {
+    { "float qc(z, y, x) ; qc:missing_value = \"-999\" ;",
+      "attribute missing_value is text (\"-999\"), not a number: as a missing-value marker it "
+      "must be numeric (CF), and read as text it would be ignored" },
+    { "short qc(z, y, x) ; qc:scale_factor = \"0.01\" ;",
+      "attribute scale_factor is text (\"0.01\"), not a number: as the packing's scale it must "
+      "be numeric (CF)" },
+    { "short qc(z, y, x) ; qc:scale_factor = 0.5, 2.0 ;",
+      "attribute scale_factor has 2 values, 1 expected: as the packing's scale (CF) it is one "
+      "number" },
+    { "short qc(z, y, x) ; qc:scale_factor = 0. ;",
+      "attribute scale_factor is 0: unpacked, every value would be add_offset" },
+    { "short qc(z, y, x) ; qc:add_offset = 1.0, 2.0 ;", "attribute add_offset has 2 values" },
+    { "float qc(z, y, x) ; qc:valid_range = 0.f ;",
+      "attribute valid_range has 1 value, 2 expected: as the range of valid values (CF) it holds "
+      "that many" },
+    { "float qc(z, y, x) ; qc:valid_min = 0.f, 1.f ;",
+      "attribute valid_min has 2 values, 1 expected" },
+    { "float qc(z, y, x) ; string qc:missing_value = \"-999\" ;",
+      "attribute missing_value is a string, not a number",
+      3 },
+    { "float qc(z, y, x) ; qc:effective_radius = \"ten\" ;",
+      "attribute effective_radius is text (\"ten\"), not a number" },
+    { "float qc(z, y, x) ; qc:effective_radius = 0.f ;",
+      "attribute effective_radius must be a number of micrometres in [0.001, 1000000], got 0" },
+  };
+  for (std::size_t c = 0; c < cases.size(); ++c)
+  {
+    SCOPED_TRACE(cases[c].Declaration);
+    const std::string path = Ncgen(dir,
+      "attribute-" + std::to_string(c) + ".nc",
+      Grid(cases[c].Declaration, std::string("qc = ") + KnownZyx + " ;"),
+      cases[c].Kind);
+    const std::string message = ErrorOf([&] { cloudvis::ReadField(path); });
+    EXPECT_NE(message.find(path + ": variable \"qc\": " + cases[c].Expected), std::string::npos)
+      << message;
+  }
+  // CF allows several missing values: each marks values missing (checked above), and a packed
+  // variable's one-number scale and offset are applied.
+  const std::string packed = Ncgen(dir,
+    "packed-ok.nc",
+    Grid("short qc(z, y, x) ; qc:scale_factor = 0.5 ; qc:add_offset = 1.0 ; "
+         "qc:missing_value = -1s, -2s ;",
+      std::string("qc = ") + KnownZyx + " ;"));
+  ExpectKnownGrid(cloudvis::ReadField(packed), 0.5, 1.0);
+}
+
+// The netCDF library's (or the reader's) allocation beyond the memory the read may use: the
+// message says what the file needs by its dimensions and what the read could use. Before, it
+// said "it claims more than the 22.5 GiB available" for a file that needed 12 GiB.
+TEST(NetCdfConventions, RunningOutOfMemorySaysWhatTheFileNeeds)
+{
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's shadow memory needs more address space than ulimit -v";
+#else
+  TemporaryDirectory dir;
+  // 800^3 floats, never written: a compressed netCDF-4 file of a few KiB that needs about
+  // 6 GiB to read, read under an address-space limit of about 1 GB.
+  const std::string path = Ncgen(dir,
+    "big.nc",
+    "netcdf big {\ndimensions: z = 800 ; y = 800 ; x = 800 ;\nvariables:\n"
+    "  float ql(z, y, x) ; ql:_DeflateLevel = 1 ; ql:_ChunkSizes = 20, 800, 800 ;\n}\n",
+    3);
+  const std::string command = "ulimit -v 1000000 && '" + CloudvisBinary() + "' info '" + path +
+    "' --set field.missing=empty 2>'" + dir.File("err.txt") + "'";
+  EXPECT_NE(std::system(command.c_str()), 0);
+  const std::string message = ReadText(dir.File("err.txt"));
+  EXPECT_NE(message.find(path +
+              ": the netCDF library ran out of memory on this file: a field of "
+              "800 x 800 x 800 voxels needs about 5."),
+    std::string::npos)
+    << message;
+  EXPECT_NE(message.find("GiB to read (by its dimensions), more than the "), std::string::npos)
+    << message;
+  EXPECT_NE(message.find("MiB the read may use (the address-space limit)"), std::string::npos)
+    << message;
+#endif
+}
+
 TEST(NetCdfConventions, FieldMissingEmptyReadsMissingValuesAsEmptySpace)
 {
   TemporaryDirectory dir;

@@ -42,6 +42,9 @@ void WriteOpenVdbFile(vtkImageData* field, const std::string& path, const FieldM
 // A number in six significant digits, as reports and messages print them.
 std::string Number(double value);
 
+// A type's name after its indefinite article, for "got an int32", "a uint64", "a float".
+std::string WithArticle(const std::string& name);
+
 // The scalar types of raw files (field.raw.type), as VTK types.
 struct RawType
 {

@@ -37,6 +37,12 @@ FieldFileContents ReadInIsolation(const std::string& path,
 // count the copy the parent receives.
 bool InIsolatedRead();
 
+// In the child: what the file needs to be read, as a reader computed it from the file's
+// dimensions before allocating ("a field of 1024 x 1024 x 3072 voxels", in bytes; the largest
+// noted counts). When the child then runs out of memory, the parent's message says it, beside
+// what was available. Nothing outside the child.
+void NoteReadNeeds(const std::string& what, double bytes);
+
 } // namespace cloudvis
 
 #endif

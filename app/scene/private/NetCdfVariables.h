@@ -63,6 +63,15 @@ public:
   std::string Text(const Variable& variable, const char* attribute) const;
   // A numeric attribute's values; empty when absent or not numeric.
   std::vector<double> Numbers(const Variable& variable, const char* attribute) const;
+  // A numeric attribute's values, which the CF rules read as numbers: empty when absent; an
+  // attribute of another type (text, a string), or with fewer than `least` or more than `most`
+  // values, is refused naming the file, the variable, the attribute, its type and length
+  // (`meaning` says what the attribute is for: "a missing-value marker").
+  std::vector<double> CheckedNumbers(const Variable& variable,
+    const char* attribute,
+    std::size_t least,
+    std::size_t most,
+    const std::string& meaning) const;
   bool Has(const Variable& variable, const char* attribute) const;
 
   // The values of `variable` in the box `start`, `count` (one entry per dimension), whatever the
@@ -170,11 +179,16 @@ struct Packing
 };
 Packing PackingOf(const File& file, const Variable& variable);
 
+// The droplets' effective radius a variable declares: the numeric attribute `effective_radius`,
+// one value in micrometres in [0.001, 1000000] (else refused), into FieldReport::Units.
+void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldReport& report);
+
 // What the file declares of its physical units (FieldReport::Units), each with a line in the
-// report: the quantity from the variable's `units` (values in kg/m^3 scaled to g/m^3 in place;
-// a mixing ratio is said not to be a content), and the length unit the spatial axes' coordinates
-// share and the vertical axis (z, where the file identifies a height axis).
-void DeclareQuantity(const std::string& units, vtkFloatArray& values, FieldReport& report);
+// report: the quantity from the variable's `units` (for kg/m^3, the factor to g/m^3 in
+// FieldReport::LwcScale; a mixing ratio is said not to be a content), and the length unit the
+// spatial axes' coordinates share and the vertical axis (z, where the file identifies a height
+// axis).
+void DeclareQuantity(const std::string& units, FieldReport& report);
 void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& report);
 
 } // namespace netcdf

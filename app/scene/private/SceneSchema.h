@@ -49,9 +49,16 @@ const std::vector<Name>& LightingModels();
 // background in the document: resolved once the whole scene is read.
 void ResolveSkySun(const json& document, Scene& scene);
 
-// transfer_function.extinction "droplets" takes its law from the field section's units:
-// checked and resolved (DropletExtinctionPerLwc) once the whole scene is read.
-void ResolveDroplets(const Context& context, Scene& scene);
+// The optics that follow from the field's units (ResolveFieldOptics in Scene.h), refusals
+// naming the key through `context`.
+void ResolveFieldOptics(const Context& context,
+  Scene& scene,
+  const ResolvedFieldUnits& units,
+  const std::string& file);
+// Once the whole scene is read: whether it gives render.march.effective_radius; for a generated
+// field, ResolveFieldOptics with the scene's units; for a field file, what the scene's own keys
+// already contradict (the rest waits for the file).
+void ResolveDroplets(const Context& context, const nlohmann::json& document, Scene& scene);
 
 } // namespace schema
 } // namespace cloudvis

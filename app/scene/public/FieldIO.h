@@ -65,6 +65,9 @@ struct FieldReadOptions
   std::optional<MissingValueRule> Missing; // empty: Refuse
   std::uint64_t MaximumVoxels = DefaultMaximumFieldVoxels;
   RawLayout Raw;
+  // What the scene declares of the field's units (field.quantity, field.length_unit, field.up,
+  // field.effective_radius): it wins over what the file declares (ResolveFieldValues).
+  FieldUnits Units;
 };
 
 // What a reader found and did, for `cloudvis info`: the format's name, then labelled lines in
@@ -81,6 +84,16 @@ struct FieldReport
   // values are physical numbers already (NetCDF's after unpacking, OpenVDB's). A coverage map
   // divides stored integers by their type's maximum, as it does an image's.
   int StoredType = 0;
+  // The factor that turns the file's values into g/m^3 when they are read as a liquid water
+  // content (1000 for a NetCDF variable in kg m-3), and the units it converts from ("kg m-3");
+  // 1 and "" when the values need none. Applied by ResolveFieldValues, not by the reader, so that
+  // field.quantity "density" keeps the values as stored.
+  double LwcScale = 1.0;
+  std::string LwcScaleFrom;
+  // The units the field has once the scene's declaration and the file's are combined
+  // (ResolveFieldValues): what every consumer of the field (the droplets' extinction and phase,
+  // info's statistics) takes.
+  ResolvedFieldUnits Resolved;
 
   void Add(const std::string& label, const std::string& text)
   {
@@ -152,11 +165,29 @@ std::optional<FieldOptionProblem> CheckFieldReadOptions(const std::string& path,
 // Loads a density field in any format of FieldFormats(), chosen by options.Format or else the
 // extension. The density must have one component and only finite values; it becomes a float
 // array "density", the active scalars, on an image with the file's extent, origin, spacing and
-// direction. Throws InputError otherwise, and for an extension no format has. `report`, when
-// given, receives what the reader found.
+// direction. Throws InputError otherwise, and for an extension no format has. The field's units
+// are then decided and its values made to agree with them (ResolveFieldValues, with
+// options.Units as the scene's declaration). `report`, when given, receives what the reader
+// found and the resolved units (FieldReport::Resolved).
 vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
   const FieldReadOptions& options = {},
   FieldReport* report = nullptr);
+
+// The one place the quantity, length unit, up axis and effective radius of a field are decided
+// (FieldUnits.h): the scene's declaration `scene`, else what the file declared (report.Units),
+// else the defaults; stored in report.Resolved and returned. The values of `field` (its float
+// scalars) are made to agree: a liquid water content the file stores in kg/m^3 is converted to
+// g/m^3 (report.LwcScale; a value that overflows float there is refused), and not when the scene
+// reads the field as a density; for a liquid water content, negative values down to
+// -NegligibleNegativeLwc (the noise of advection schemes in LES output) are read as 0 and said
+// so in the report, more negative ones are refused with their count and the most negative.
+// `name` (the file, or the scene of a generated field) starts every message. ReadField calls it
+// for a file, ProduceField (SceneField.h) for a generated field.
+constexpr double NegligibleNegativeLwc = 1e-3; // g/m^3: a tenth of info's cloud threshold
+ResolvedFieldUnits ResolveFieldValues(const std::string& name,
+  vtkImageData* field,
+  const FieldUnits& scene,
+  FieldReport& report);
 
 // What is recorded in a field file cloudvis writes, where the format has room for it (.vdb).
 struct FieldMetadata

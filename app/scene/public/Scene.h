@@ -49,6 +49,10 @@ struct FieldSpec
   // world units mean, for a generated field and a file alike (absent: the file's, else the
   // defaults; FieldUnits.h).
   FieldUnits Units;
+  // The units the field has, Units combined with what a field file declares
+  // (ResolveFieldValues, FieldIO.h): set when the scene is read for a generated field, and by
+  // ProduceField (SceneField.h) once a field file is read; empty until then.
+  std::optional<ResolvedFieldUnits> Resolved;
 
   bool FromFile() const { return !this->File.empty(); }
 };
@@ -77,8 +81,10 @@ struct TransferFunctionSpec
   };
   ExtinctionRule Extinction = ExtinctionRule::Opacity;
   double LwcMax = 5.0;
-  // Droplets: the extinction per world unit of 1 g/m^3, set when the scene is read from
-  // field.effective_radius and field.length_unit.
+  // Droplets: the extinction per world unit of 1 g/m^3, from the field's resolved effective
+  // radius and length unit (ResolveFieldOptics): set when the scene is read for a generated
+  // field, once the file is read for a field file (0 until then: TabulatedTransferFunction
+  // refuses to tabulate it).
   double DropletExtinctionPerLwc = 0.0;
 };
 
@@ -137,6 +143,9 @@ struct RenderSpec
   int SamplesPerPixel = 256; // pathtrace: paths averaged per pixel of a still
   bool SkipEmptySpace = true;
   std::array<int, 2> Size{ { 800, 600 } }; // pixels, width and height
+  // Whether the scene gives render.march.effective_radius: then the droplets' phase uses it;
+  // else the field's effective radius (ResolveFieldOptics), one r_e for extinction and phase.
+  bool DropletRadiusGiven = false;
   int PngBits = 8;      // 8 or 16 bits per PNG channel (docs/export.md)
   bool ExrHalf = false; // EXR channels as 16-bit half floats instead of 32-bit floats
   // The display transform of PNG, compare panels and the viewer (filters/CloudDisplayTransform.h):
@@ -240,6 +249,16 @@ struct SceneOverride
   nlohmann::json Value;
   std::string Option; // "--lighting", for messages
 };
+
+// The one place the optics of a scene follow from its field's units `units` (Field.Resolved,
+// from ResolveFieldValues: the scene's field keys, else the file's declaration, else the
+// defaults): stores them in Field.Resolved; for transfer_function.extinction "droplets" sets
+// DropletExtinctionPerLwc from their effective radius and length unit (refused, naming the key
+// and the field file `file` when not empty, unless they are an lwc field in m or km); for
+// render.march.phase "droplets" without render.march.effective_radius, makes the phase's r_e the
+// field's (refused outside the phase table's [2, 30] micrometres). SceneFromDocument calls it for
+// a generated field, ProduceField once a field file is read.
+void ResolveFieldOptics(Scene& scene, const ResolvedFieldUnits& units, const std::string& file);
 
 // The scene used when none is given: the article's cloud (a unit sphere plus 6 octaves of value
 // noise on 128^3 voxels over [-2, 2]^3).

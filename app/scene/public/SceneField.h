@@ -40,7 +40,17 @@ std::string ValidateProceduralField(const FieldSpec& field);
 
 // The field of a scene: read from field.file (with field.format, array, time_step, ...), or
 // generated. Throws InputError on failure. `progress`, when given, is called with the
-// generation's fraction done, 0 .. 1; `report`, when given, receives what was read (FieldIO.h).
+// generation's fraction done, 0 .. 1; `report`, when given, receives what was read (FieldIO.h),
+// with the units the field has (FieldReport::Resolved). The scene is finished with the field:
+// its units decided, from the scene's keys and what a field file declares (ResolveFieldValues),
+// and what depends on them set (ResolveFieldOptics, Scene.h: the droplets' extinction and phase).
+// Render with the scene as this leaves it.
+vtkSmartPointer<vtkImageData> ProduceField(Scene& scene,
+  const std::function<void(double fraction)>& progress = {},
+  FieldReport* report = nullptr);
+// The same field for a caller that only needs its values (generate, statistics, tests): the
+// scene's copy is finished and dropped. A scene over a field file with droplets tabulated
+// without ProduceField(Scene&) is refused (TabulatedTransferFunction).
 vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
   const std::function<void(double fraction)>& progress = {},
   FieldReport* report = nullptr);
