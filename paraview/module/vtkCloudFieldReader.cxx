@@ -4,6 +4,7 @@
 
 #include "Errors.h"
 #include "FieldIO.h"
+#include "FieldUnits.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -66,7 +67,24 @@ bool vtkCloudFieldReader::ReadFile()
     // decides the field's units (ResolveFieldValues: what the file declares, no scene here).
     cloudvis::FieldReport report;
     this->Field = cloudvis::ReadField(this->FileName, options, &report);
-    this->Units = report.Resolved;
+    // The units the field has, as `cloudvis info` reports them, for ParaView's Information panel
+    // and scripts: field data, one value each, which every piece cropped from the field keeps.
+    const cloudvis::ResolvedFieldUnits& u = report.Resolved;
+    vtkFieldData* data = this->Field->GetFieldData();
+    const auto text = [data](const char* name, const std::string& value)
+    {
+      vtkNew<vtkStringArray> array;
+      array->SetName(name);
+      array->InsertNextValue(value);
+      data->AddArray(array);
+    };
+    text("quantity", cloudvis::QuantityName(u.Quantity));
+    text("length_unit", cloudvis::LengthUnitName(u.Length));
+    text("up", cloudvis::AxisName(u.Up));
+    vtkNew<vtkDoubleArray> radius;
+    radius->SetName("effective_radius");
+    radius->InsertNextValue(u.EffectiveRadius);
+    data->AddArray(radius);
   }
   catch (const std::exception& error)
   {
@@ -115,23 +133,6 @@ int vtkCloudFieldReader::RequestData(vtkInformation*,
   output->ShallowCopy(this->Field);
   // Crop copies the requested sub-extent's voxels (a rank's piece) and keeps the whole otherwise.
   output->Crop(extent);
-  // The units the field has, as `cloudvis info` reports them, for ParaView's Information panel
-  // and scripts: field data, one value each.
-  const cloudvis::ResolvedFieldUnits& u = this->Units;
-  const auto text = [output](const char* name, const std::string& value)
-  {
-    vtkNew<vtkStringArray> array;
-    array->SetName(name);
-    array->InsertNextValue(value);
-    output->GetFieldData()->AddArray(array);
-  };
-  text("quantity", cloudvis::QuantityName(u.Quantity));
-  text("length_unit", cloudvis::LengthUnitName(u.Length));
-  text("up", cloudvis::AxisName(u.Up));
-  vtkNew<vtkDoubleArray> radius;
-  radius->SetName("effective_radius");
-  radius->InsertNextValue(u.EffectiveRadius);
-  output->GetFieldData()->AddArray(radius);
   return 1;
 }
 

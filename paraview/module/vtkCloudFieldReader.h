@@ -33,8 +33,6 @@
 #include <vtkImageAlgorithm.h>
 #include <vtkSmartPointer.h> // for the field read
 
-#include "FieldUnits.h" // for the field's units
-
 #include <string> // for the file name and options
 
 class vtkImageData;
@@ -124,8 +122,8 @@ private:
   // when it cannot be read.
   bool ReadFile();
 
-  vtkSmartPointer<vtkImageData> Field; // the whole file, as cloudvis read it
-  cloudvis::ResolvedFieldUnits Units;  // its units (ResolveFieldValues), as field data
+  // The whole file, as cloudvis read it, with its units (ResolveFieldValues) as field data.
+  vtkSmartPointer<vtkImageData> Field;
   vtkMTimeType FieldTime = 0;          // this->GetMTime() when Field was read
   std::string LastError;
 
