@@ -53,8 +53,8 @@ struct AutoExposure
 CLOUDVISFILTERS_EXPORT AutoExposure ComputeAutoExposure(const float* rgba, size_t pixels);
 
 // The premultiplied display value of one pixel's premultiplied radiance and opacity under
-// `exposureEV` and `curve` (the shared source's DisplayValue): at most `alpha` in each channel
-// (the cloud's own colour, value / alpha, is in [0, 1]).
+// `exposureEV` and `curve` (the shared source's DisplayValue), unclamped above for the linear
+// curve (the caller quantizes).
 CLOUDVISFILTERS_EXPORT glm::vec3 DisplayValueOf(
   const glm::vec3& radiance, float alpha, double exposureEV, DisplayCurve curve);
 

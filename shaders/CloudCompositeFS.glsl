@@ -43,6 +43,7 @@ uniform float DepthTolerance;          // local units a reprojected depth may di
 uniform float FadeAngle;               // radians of turn that leave no history
 uniform float ExposureScale;           // 2^EV
 uniform int DisplayCurve;              // DisplayLinear or DisplayFilmic
+uniform int ColorWithinAlpha;          // clamp the display colour to its alpha (for compositors)
 
 //VTK::Output::Dec
 
@@ -214,7 +215,8 @@ void main()
   }
   if (ResolveHistory == 0)
   {
-    gl_FragData[0] = vec4(DisplayValue(current.rgb, current.a, ExposureScale, DisplayCurve), current.a);
+    vec3 shown = DisplayValue(current.rgb, current.a, ExposureScale, DisplayCurve);
+    gl_FragData[0] = vec4(ColorWithinAlpha != 0 ? min(shown, vec3(current.a)) : shown, current.a);
     return;
   }
   float age = 0.0;

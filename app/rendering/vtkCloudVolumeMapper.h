@@ -469,6 +469,20 @@ public:
 
   ///@{
   /**
+   * Clamp each channel of the display colour the composite pass writes to its alpha (default
+   * off), so the window holds a valid premultiplied colour: the cloud's own colour clipped to
+   * white before the "over" blend. For a window whose image a compositor blends again in 8 bits
+   * without saturating, as ParaView's IceT blends the ranks' images (a colour above its alpha,
+   * radiance above 1 at partial opacity, wrapped around there into a cyan scar: issue 36). Off,
+   * as in cloudvis's own windows, the blend adds the background to the clamped radiance itself,
+   * as a camera's sensor would.
+   */
+  void SetColorWithinAlpha(bool within) { this->ColorWithinAlpha = within; }
+  bool GetColorWithinAlpha() const { return this->ColorWithinAlpha; }
+  ///@}
+
+  ///@{
+  /**
    * Read back the per-pixel sample counts after each frame to fill the statistics below. Costs
    * a read-back per frame. Default off.
    */
@@ -583,6 +597,7 @@ protected:
   int DisplayMode = Radiance;
   double ExposureEV = 0.0;
   int DisplayCurve = 0;
+  bool ColorWithinAlpha = false;
   bool CollectStatistics = false;
   bool HalfFloatDensity = false;
   vtkTypeInt64 MaximumGPUMemory = 0;

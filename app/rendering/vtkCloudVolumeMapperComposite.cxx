@@ -75,6 +75,7 @@ bool vtkCloudVolumeMapper::CompositePass(vtkRenderer* renderer)
   program->SetUniformf("SampleCountScale", float(1.0 / view.MostSamplesPerRay));
   program->SetUniformf("ExposureScale", float(std::exp2(this->ExposureEV)));
   program->SetUniformi("DisplayCurve", this->DisplayCurve);
+  program->SetUniformi("ColorWithinAlpha", this->ColorWithinAlpha ? 1 : 0);
   // The samplers the pass does not read must still name units of their type.
   program->SetUniformi("HistoryColorTexture", color->GetTextureUnit());
   program->SetUniformi("HistoryDepthTexture", counts->GetTextureUnit());

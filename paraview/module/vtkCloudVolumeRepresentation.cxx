@@ -42,6 +42,9 @@ vtkCloudVolumeRepresentation::vtkCloudVolumeRepresentation()
   // mapper's own lowering of the resolution, keyed to the window's desired update rate, would
   // blur ParaView's still renders, whose update rate ParaView does not keep below 1.
   mapper->SetInteractiveFrameRate(0.0);
+  // Across ranks IceT composites the ranks' 8-bit images without saturating: each must hold
+  // valid premultiplied colours, and one rank draws the same for the pictures to agree.
+  mapper->SetColorWithinAlpha(true);
   this->UpdateSun();
 }
 

@@ -12,7 +12,7 @@
 // the curve's steep start and draws a white rim around a cloud in front of a bright sky.)
 
 // The curves render.display names (DisplayCurve in filters/CloudDisplayTransform.h).
-const int DisplayLinear = 0; // the radiance as it is, the cloud's own colour clamped to [0, 1]
+const int DisplayLinear = 0; // the radiance as it is, clamped to [0, 1] by the 8-bit target
 const int DisplayFilmic = 1; // the filmic curve, then sRGB's encoding
 
 // sRGB's encoding (IEC 61966-2-1) of a display-linear value in [0, 1].
@@ -30,10 +30,7 @@ float FilmicCurve(float x)
 }
 
 // The premultiplied display value of premultiplied linear radiance `radiance` of opacity `alpha`
-// under exposure scale 2^EV. Either curve maps the cloud's own colour into [0, 1], so the value
-// is at most `alpha`: a valid premultiplied colour, which any compositor can blend "over" without
-// leaving [0, 1] (ParaView's IceT adds the ranks' 8-bit images without saturating, so a colour
-// above its alpha wrapped around there: issue 36).
+// under exposure scale 2^EV.
 vec3 DisplayValue(vec3 radiance, float alpha, float exposureScale, int curve)
 {
   vec3 x = max(radiance * exposureScale, vec3(0.0f));
@@ -44,5 +41,5 @@ vec3 DisplayValue(vec3 radiance, float alpha, float exposureScale, int curve)
     return a * vec3(SrgbEncode(FilmicCurve(c.x)), SrgbEncode(FilmicCurve(c.y)),
       SrgbEncode(FilmicCurve(c.z)));
   }
-  return min(x, vec3(alpha));
+  return x;
 }

@@ -34,16 +34,14 @@ struct OffscreenRenderResult
   int AccumulatedFrames = 0;             // frames the mapper averaged into Image
   int AccumulatedSamples = 0;            // samples per pixel in them (pathtrace: paths)
   std::vector<double> FrameMilliseconds; // wall clock of each benchmark frame, in order
-  // Of the cloud's pixels (at least AutoExposureMinimumAlpha opaque), the share whose own
-  // colour the display shows white in some channel: what the display transform failed to keep
-  // (0 without cloud).
+  // Of the cloud's pixels (at least AutoExposureMinimumAlpha opaque), the share that Image
+  // shows white in some channel: what the display transform failed to keep (0 without cloud).
   double ClippedCloudShare = 0.0;
   std::optional<NoiseReport> Noise;      // with RenderOptions::TargetNoise: how it went
 };
 
 // The share of the cloud's pixels (premultiplied RGBA `rgba`, at least AutoExposureMinimumAlpha
-// opaque) whose own colour `image`'s exposure and curve take to 255 in some channel; 0 when
-// there is no such pixel.
+// opaque) that `image` shows at 255 in some channel; 0 when there is no such pixel.
 double ClippedCloudShare(const RenderedImage& image, const std::vector<float>& rgba);
 
 // The volume property of a transfer function: piecewise-linear opacity per unit distance and
