@@ -6,7 +6,6 @@
 
 #include "AtomicFile.h"
 #include "Background.h"
-#include "CloudDisplayTransform.h"
 #include "CpuReference.h"
 #include "Display.h"
 #include "Errors.h"
@@ -37,6 +36,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <cstdlib>
 #include <cstring>
 
@@ -100,21 +100,15 @@ PathTraceFrames PathTraceFramesOf(int samplesPerPixel)
 
 double ClippedCloudShare(const RenderedImage& image, const std::vector<float>& rgba)
 {
-  const size_t pixels = rgba.size() / 4;
+  const size_t pixels = std::min(rgba.size() / 4, image.RGB.size() / 3);
   size_t cloud = 0, clipped = 0;
   for (size_t p = 0; p < pixels; ++p)
   {
-    const float* pixel = rgba.data() + 4 * p;
-    const float alpha = pixel[3];
-    if (alpha >= AutoExposureMinimumAlpha)
+    if (rgba[4 * p + 3] >= AutoExposureMinimumAlpha)
     {
       ++cloud;
-      // Clipped where the cloud's own display colour (the display value over alpha) rounds to
-      // white: the composite over the background may still be below 255 where alpha < 1.
-      const glm::vec3 shown = DisplayValueOf(
-        glm::vec3(pixel[0], pixel[1], pixel[2]), alpha, image.ExposureEV, image.Display);
-      const float white = alpha * (254.5f / 255.0f);
-      clipped += shown.x >= white || shown.y >= white || shown.z >= white;
+      const unsigned char* c = image.RGB.data() + 3 * p;
+      clipped += c[0] == 255 || c[1] == 255 || c[2] == 255;
     }
   }
   return cloud > 0 ? double(clipped) / double(cloud) : 0.0;
@@ -189,7 +183,19 @@ void ApplyCamera(
   }
   const double d[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
   const double* u = camera.ViewUp.data();
-  const double dLength = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  const double dLength = std::hypot(d[0], d[1], d[2]);
+  // VTK's camera squares its distance in double (vtkCamera::ComputeDistance, its view
+  // transform), which overflows beyond about 1e154: the view it would make has no direction.
+  constexpr double MaxCameraDistance = 1e150;
+  if (!(dLength <= MaxCameraDistance))
+  {
+    std::ostringstream words;
+    words << source << ": camera.position: " << dLength
+          << " world units from the focal point (the field's centre when camera.focal_point is "
+          << "absent); a camera may be at most " << MaxCameraDistance
+          << " from it, as VTK's camera squares that distance in double";
+    throw InputError(words.str());
+  }
   if (dLength == 0.0)
   {
     throw InputError(source + ": camera.position: the camera position equals the focal point (" +

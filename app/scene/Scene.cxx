@@ -16,6 +16,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -73,16 +74,63 @@ bool IsNumberToken(const std::string& token, double& value)
 // in the first message that quotes the value.
 constexpr int MaxJsonDepth = 64;
 
-// json::parse, refusing deeper nesting with an InputError prefixed by `where`.
+// One object or array the parser is inside: the keys an object has had so far, and its last.
+struct OpenJsonValue
+{
+  bool Array = false;
+  std::set<std::string> Keys;
+  std::string LastKey;
+};
+
+// The key path of `key` inside the open values ("field.cloud.type", "lights[].type").
+std::string JsonKeyPath(const std::vector<OpenJsonValue>& open, const std::string& key)
+{
+  std::string path;
+  for (size_t i = 0; i + 1 < open.size(); ++i)
+  {
+    path += open[i].Array ? "[]" : (path.empty() ? "" : ".") + open[i].LastKey;
+  }
+  return path + (path.empty() ? "" : ".") + key;
+}
+
+// json::parse, refusing deeper nesting and a key given twice in one object (JSON parsers keep
+// one of the two silently: a second "field" section replaced the first) with an InputError
+// prefixed by `where`.
 json ParseJsonText(const std::string& text, const std::string& where)
 {
+  std::vector<OpenJsonValue> open;
   return json::parse(text,
-    [&where](int depth, json::parse_event_t, json&)
+    [&where, &open](int depth, json::parse_event_t event, json& parsed)
     {
       if (depth > MaxJsonDepth)
       {
         throw InputError(where + ": JSON nested deeper than " + std::to_string(MaxJsonDepth) +
           " levels");
+      }
+      switch (event)
+      {
+        case json::parse_event_t::object_start:
+        case json::parse_event_t::array_start:
+          open.push_back(OpenJsonValue{ event == json::parse_event_t::array_start, {}, {} });
+          break;
+        case json::parse_event_t::object_end:
+        case json::parse_event_t::array_end:
+          open.pop_back();
+          break;
+        case json::parse_event_t::key:
+        {
+          const std::string key = parsed.get<std::string>();
+          if (!open.back().Keys.insert(key).second)
+          {
+            throw InputError(where + ": " + JsonKeyPath(open, key) +
+              ": the key is given twice in one object; JSON keeps only one of them, so give it "
+              "once");
+          }
+          open.back().LastKey = key;
+          break;
+        }
+        case json::parse_event_t::value:
+          break;
       }
       return true;
     });

@@ -209,6 +209,12 @@ void ReadField(const Context& c, const json& v, const std::string& key, Scene& s
 {
   CheckFieldKind(c, v, key);
   ReadObject(c, v, key, FieldKeys(), scene.Field);
+  if (v.is_object() && v.contains("cloud") && scene.Field.Description.Model != DensityModel::Cloud)
+  {
+    c.Fail(key + ".cloud",
+      "applies to the density model \"cloud\" only, and this field's " + key +
+        ".density_model is another: set it to \"cloud\", or leave " + key + ".cloud out");
+  }
   if (scene.Field.FromFile())
   {
     // What the file's format decides, once every key is read (format may follow file): an
