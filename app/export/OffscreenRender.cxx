@@ -36,9 +36,9 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <cstdlib>
 #include <cstring>
+#include <sstream>
 
 namespace cloudvis
 {
