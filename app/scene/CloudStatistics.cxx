@@ -3,6 +3,8 @@
 // the clouds. Sums are accumulated in double.
 #include "CloudStatistics.h"
 
+#include "CloudMarchUniforms.h" // GeometryOf
+
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -271,6 +273,73 @@ double PathScale(const ResolvedFieldUnits& u)
   return u.Length == LengthUnit::None ? 1.0 : MetresPerUnit(u.Length);
 }
 
+// The lattice's vertical: the index axis whose world direction is the field's up, and the world
+// heights of its levels from the lowest. Any lattice whose axes are world axes, reversed or
+// permuted by its direction matrix, has one; a tilted lattice has no vertical columns.
+struct VerticalAxis
+{
+  int Index = 2;                // the index axis along up
+  int Horizontal[2] = { 0, 1 }; // the other two, in order
+  double Lowest = 0.0;          // world height of the lowest level
+  double Step = 1.0;            // world units between levels (positive)
+  bool Downward = false;        // index 0 is the highest level
+  double PixelSize = 1.0;       // sqrt of a column's world area
+  std::string Problem;
+};
+
+VerticalAxis VerticalAxisOf(vtkImageData* field, int up)
+{
+  VerticalAxis v;
+  const VolumeGeometry geometry = GeometryOf(field, nullptr);
+  const glm::dmat4& m = geometry.IndexToWorld;
+  for (int i = 0; i < 3; ++i)
+  {
+    if (std::abs(m[i][up]) > std::abs(m[v.Index][up]))
+    {
+      v.Index = i;
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    const glm::dvec3 axis(m[i]);
+    const double along = std::abs(axis[up]);
+    const double across =
+      i == v.Index ? std::sqrt(std::max(0.0, glm::dot(axis, axis) - along * along)) : along;
+    if (!(across <= 1e-6 * glm::length(axis)))
+    {
+      v.Problem = "the lattice is tilted against up (" + AxisName(up) +
+        ") by its direction matrix, so it has no vertical columns; the cloud statistics need "
+        "one lattice axis along up";
+      return v;
+    }
+  }
+  v.Horizontal[0] = v.Index == 0 ? 1 : 0;
+  v.Horizontal[1] = v.Index == 2 ? 1 : 2;
+  const double step = m[v.Index][up];
+  const int levels = geometry.Dimensions[v.Index];
+  v.Step = std::abs(step);
+  v.Downward = step < 0.0;
+  v.Lowest = m[3][up] + (v.Downward ? step * (levels - 1) : 0.0);
+  // Each square root first: a pixel of 1e200 x 1e200 has a size, though not an area, in double.
+  v.PixelSize = std::sqrt(glm::length(glm::dvec3(m[v.Horizontal[0]]))) *
+    std::sqrt(glm::length(glm::dvec3(m[v.Horizontal[1]])));
+  const double top = v.Lowest + v.Step * (levels - 1);
+  // The whole mask's area, the largest any cloud can have.
+  const double area = v.PixelSize * v.PixelSize * double(geometry.Dimensions[v.Horizontal[0]]) *
+    double(geometry.Dimensions[v.Horizontal[1]]);
+  if (!std::isfinite(top) || !std::isfinite(area) ||
+    !(v.PixelSize * v.PixelSize >= std::numeric_limits<double>::min()))
+  {
+    std::ostringstream problem;
+    problem << std::setprecision(6) << "the lattice's voxels (" << v.Step
+            << " world units along up, " << v.PixelSize
+            << " across) give heights or areas beyond the range of a double, so no statistics in "
+               "world units can be given";
+    v.Problem = problem.str();
+  }
+  return v;
+}
+
 } // namespace
 
 CloudStatistics ComputeCloudStatistics(vtkImageData* field,
@@ -280,26 +349,27 @@ CloudStatistics ComputeCloudStatistics(vtkImageData* field,
   CloudStatistics s;
   s.Units = units;
   s.Threshold = std::isnan(threshold) ? DefaultCloudThreshold(units.Quantity) : threshold;
-  int dims[3], extent[6];
-  double spacing[3], origin[3];
+  int dims[3];
   field->GetDimensions(dims);
-  field->GetExtent(extent);
-  field->GetSpacing(spacing);
-  field->GetOrigin(origin);
   vtkDataArray* array = field->GetPointData()->GetScalars();
   const std::int64_t voxels = std::int64_t(dims[0]) * dims[1] * dims[2];
   if (!array || array->GetNumberOfTuples() != voxels || voxels == 0)
   {
     return s;
   }
+  const VerticalAxis vertical = VerticalAxisOf(field, std::clamp(units.Up, 0, 2));
+  if (!vertical.Problem.empty())
+  {
+    s.Problem = vertical.Problem;
+    return s;
+  }
   const FloatValues values = ValuesOf(array);
-  const int up = std::clamp(units.Up, 0, 2);
-  const int a = up == 0 ? 1 : 0, b = up == 2 ? 1 : 2; // the horizontal axes, in order
+  const int up = vertical.Index, a = vertical.Horizontal[0], b = vertical.Horizontal[1];
   const int width = dims[a], height = dims[b], levels = dims[up];
   s.Columns = std::uint64_t(width) * std::uint64_t(height);
   std::vector<double> path(s.Columns, 0.0);
   std::vector<std::uint8_t> mask(s.Columns, 0);
-  std::vector<std::uint64_t> cloudyPerLevel(std::size_t(levels), 0);
+  std::vector<std::uint64_t> cloudyPerLevel(std::size_t(levels), 0); // from the lowest
   std::int64_t v = 0;
   int ijk[3];
   for (ijk[2] = 0; ijk[2] < dims[2]; ++ijk[2])
@@ -314,7 +384,7 @@ CloudStatistics ComputeCloudStatistics(vtkImageData* field,
         if (value > s.Threshold)
         {
           mask[column] = 1;
-          ++cloudyPerLevel[std::size_t(ijk[up])];
+          ++cloudyPerLevel[std::size_t(vertical.Downward ? levels - 1 - ijk[up] : ijk[up])];
         }
       }
     }
@@ -322,7 +392,7 @@ CloudStatistics ComputeCloudStatistics(vtkImageData* field,
   const double levelVoxels = double(s.Columns);
   for (int k = 0; k < levels; ++k)
   {
-    const double h = origin[up] + spacing[up] * (extent[2 * up] + k);
+    const double h = vertical.Lowest + vertical.Step * k;
     s.LevelHeights.push_back(h);
     s.CloudFractionPerLevel.push_back(double(cloudyPerLevel[std::size_t(k)]) / levelVoxels);
     if (cloudyPerLevel[std::size_t(k)] > 0)
@@ -334,7 +404,7 @@ CloudStatistics ComputeCloudStatistics(vtkImageData* field,
   }
   // Each voxel stands for a cell of its spacing along up: a slab of n cloudy voxels of value c
   // integrates to n c dz.
-  const double pathScale = std::abs(spacing[up]) * PathScale(units);
+  const double pathScale = vertical.Step * PathScale(units);
   double sum = 0.0, cloudySum = 0.0;
   for (std::size_t c = 0; c < s.Columns; ++c)
   {
@@ -348,10 +418,18 @@ CloudStatistics ComputeCloudStatistics(vtkImageData* field,
   s.ProjectedCloudFraction = double(s.CloudyColumns) / double(s.Columns);
   s.MeanPath = sum * pathScale / double(s.Columns);
   s.MeanCloudyPath = s.CloudyColumns ? cloudySum * pathScale / double(s.CloudyColumns) : 0.0;
+  if (!std::isfinite(s.MeanPath))
+  {
+    CloudStatistics refused;
+    refused.Units = s.Units;
+    refused.Threshold = s.Threshold;
+    refused.Problem = "the vertical integral of the values exceeds the range of a double";
+    return refused;
+  }
 
   const std::vector<Cloud> clouds = CloudsOfMask(mask, width, height);
   s.Clouds = clouds.size();
-  s.PixelSize = std::sqrt(std::abs(spacing[a] * spacing[b]));
+  s.PixelSize = vertical.PixelSize;
   std::vector<double> sizes, fitSizes;
   for (const Cloud& cloud : clouds)
   {
@@ -445,6 +523,11 @@ void PrintCloudStatistics(std::ostream& out, const CloudStatistics& s)
     if (o.EffectiveRadius)
       out << "effective radius " << *o.EffectiveRadius << " um ";
     out << "(the scene's keys win)\n";
+  }
+  if (!s.Problem.empty())
+  {
+    out << "clouds       no statistics: " << s.Problem << "\n";
+    return;
   }
   const std::string unit = QuantityUnit(u.Quantity);
   out << "cloud mask   value > " << s.Threshold << (unit.empty() ? "" : " " + unit) << "\n";
@@ -540,6 +623,10 @@ nlohmann::json FitToJson(const PowerLawFit& fit, const char* value)
 
 nlohmann::json CloudStatisticsToJson(const CloudStatistics& s)
 {
+  if (!s.Problem.empty())
+  {
+    return { { "threshold", s.Threshold }, { "problem", s.Problem } };
+  }
   nlohmann::json json = {
     { "threshold", s.Threshold },
     { "connectivity", s.Connectivity },

@@ -28,6 +28,7 @@
 
 #include <cmath>
 #include <random>
+#include <sstream>
 #include <vtkDataArray.h>
 
 namespace
@@ -127,6 +128,74 @@ TEST(CloudStatistics, SlabInKilometresGivesTheSameMetres)
   const auto s = cloudvis::ComputeCloudStatistics(field, Lwc(LengthUnit::Kilometre, 2), NAN);
   ExpectSlab(s, 1000.0);
   EXPECT_NEAR(s.CloudBase, 1.1, 1e-12);
+}
+
+// The same slab stored with its levels numbered downwards (a direction matrix that reverses the
+// vertical axis) or with its vertical on another index axis (a direction matrix that swaps axes)
+// has the same heights: base below top, levels from the lowest.
+TEST(CloudStatistics, ReversedOrSwappedVerticalGivesTheSameHeights)
+{
+  auto reversed = LayeredField(2,
+    { 10, 8, 6 },
+    100.0,
+    50.0,
+    1000.0 + 5 * 50.0,
+    [](int ia, int ib, int level) { return Slab(ia, ib, 5 - level); });
+  const double down[9] = { 1, 0, 0, 0, 1, 0, 0, 0, -1 };
+  reversed->SetDirectionMatrix(down);
+  ExpectSlab(cloudvis::ComputeCloudStatistics(reversed, Lwc(LengthUnit::Metre, 2), NAN), 1.0);
+
+  // Index axis 0 holds the levels; the direction matrix turns it onto world z (and z onto x).
+  auto swapped = LayeredField(0, { 10, 8, 6 }, 100.0, 50.0, 0.0, Slab);
+  const double swap[9] = { 0, 0, 1, 0, 1, 0, 1, 0, 0 };
+  swapped->SetDirectionMatrix(swap);
+  swapped->SetOrigin(0.0, 0.0, 1000.0);
+  ExpectSlab(cloudvis::ComputeCloudStatistics(swapped, Lwc(LengthUnit::Metre, 2), NAN), 1.0);
+}
+
+// A lattice tilted against up has no vertical columns, and voxels too large or too small for
+// their heights and areas to be doubles have no statistics in world units: both say why instead
+// of printing slanted or infinite figures.
+TEST(CloudStatistics, TiltedOrUnrepresentableLatticesSayWhy)
+{
+  auto tilted = LayeredField(2, { 10, 8, 6 }, 100.0, 50.0, 1000.0, Slab);
+  const double c = std::cos(0.5), sn = std::sin(0.5);
+  const double tilt[9] = { 1, 0, 0, 0, c, -sn, 0, sn, c };
+  tilted->SetDirectionMatrix(tilt);
+  const auto t = cloudvis::ComputeCloudStatistics(tilted, Lwc(LengthUnit::Metre, 2), NAN);
+  EXPECT_NE(t.Problem.find("tilted against up (z)"), std::string::npos) << t.Problem;
+  EXPECT_FALSE(t.HasCloud);
+  EXPECT_TRUE(t.LevelHeights.empty());
+  std::ostringstream text;
+  cloudvis::PrintCloudStatistics(text, t);
+  EXPECT_NE(text.str().find("clouds       no statistics: the lattice is tilted"), std::string::npos)
+    << text.str();
+  EXPECT_EQ(cloudvis::CloudStatisticsToJson(t)["problem"], t.Problem);
+
+  // A quarter turn about x puts y up: aligned, so the statistics are there.
+  const double quarter[9] = { 1, 0, 0, 0, 0, -1, 0, 1, 0 };
+  tilted->SetDirectionMatrix(quarter);
+  EXPECT_TRUE(
+    cloudvis::ComputeCloudStatistics(tilted, Lwc(LengthUnit::Metre, 1), NAN).Problem.empty());
+
+  for (const double size : { 1e200, 1e-300 })
+  {
+    auto extreme = LayeredField(2, { 10, 8, 6 }, size, size, 0.0, Slab);
+    const auto e = cloudvis::ComputeCloudStatistics(extreme, Lwc(LengthUnit::Metre, 2), NAN);
+    EXPECT_NE(e.Problem.find("beyond the range of a double"), std::string::npos)
+      << size << ": " << e.Problem;
+    EXPECT_TRUE(e.SizeBinEdges.empty());
+  }
+  // 1e100 is large but representable: sizes and areas in world units, all finite.
+  auto large = LayeredField(2, { 10, 8, 6 }, 1e100, 1e100, 0.0, Slab);
+  const auto l = cloudvis::ComputeCloudStatistics(large, Lwc(LengthUnit::Metre, 2), NAN);
+  EXPECT_TRUE(l.Problem.empty()) << l.Problem;
+  ASSERT_FALSE(l.SizeBinEdges.empty());
+  for (const double edge : l.SizeBinEdges)
+  {
+    EXPECT_TRUE(std::isfinite(edge) && edge > 0.0) << edge;
+  }
+  EXPECT_NEAR(l.CloudTop / l.CloudBase, 3.0 / 2.0, 1e-12);
 }
 
 TEST(CloudStatistics, ThresholdDecidesWhatIsCloud)
@@ -1042,6 +1111,47 @@ TEST(Info, ReportsUnitsAndCloudStatistics)
   {
     EXPECT_TRUE(clouds.contains(key)) << key;
   }
+}
+
+// A .vti numbered downwards (negative spacing along z) is read as the same voxels with a positive
+// spacing and the direction reversed: info's heights are those of the slab, base below top.
+TEST(Info, NegativeSpacingInAFileIsTheSameFieldTurned)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = dir.File("down.vti");
+  auto down = LayeredField(2,
+    { 10, 8, 6 },
+    100.0,
+    -50.0,
+    1000.0 + 5 * 50.0,
+    [](int ia, int ib, int level) { return Slab(ia, ib, 5 - level); });
+  cloudvis::WriteField(down, path);
+  const json info = json::parse(cloudvis::support::RunCloudvis({ "info",
+                                                                 path,
+                                                                 "--json",
+                                                                 "--set",
+                                                                 "field.quantity=lwc",
+                                                                 "--set",
+                                                                 "field.length_unit=m",
+                                                                 "--set",
+                                                                 "field.up=z" })
+                                  .Out);
+  EXPECT_EQ(info["spacing"], json::parse("[100.0, 100.0, 50.0]"));
+  EXPECT_EQ(info["direction"][8], -1.0);
+  EXPECT_EQ(info["clouds"]["cloud_base_m"], 1100.0);
+  EXPECT_EQ(info["clouds"]["cloud_top_m"], 1150.0);
+  EXPECT_EQ(info["clouds"]["level_heights"][0], 1000.0);
+
+  auto flat = LayeredField(2, { 10, 8, 6 }, 100.0, 0.0, 1000.0, Slab);
+  const std::string flatPath = dir.File("flat.vti");
+  cloudvis::WriteField(flat, flatPath);
+  const auto refused = cloudvis::support::RunCloudvis({ "info", flatPath });
+  EXPECT_EQ(refused.Status, 1);
+  EXPECT_NE(
+    refused.Err.find(
+      "flat.vti: the image's spacing along axis 2 is 0: spacings must be finite and not zero"),
+    std::string::npos)
+    << refused.Err;
 }
 
 TEST(Info, RefusesABadCloudThreshold)

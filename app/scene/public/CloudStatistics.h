@@ -3,9 +3,10 @@
 // cloud base and top, the vertical integral of the field (liquid water path for an lwc field),
 // and the projected mask's clouds: their size distribution with a power-law fit, and the
 // area-perimeter fractal dimension (Lovejoy, Science 216, 1982). Everything is computed on the
-// plain float array with the lattice's index axes: `up` is an index axis, heights are positions
-// along it (the lattice's direction matrix is not applied; cloudvis's generated fields have
-// none). The mask analysis (CloudsOfMask, FitAreaPerimeter, FitPowerLaw) takes any 2-D mask so
+// plain float array in the lattice's index axes; `up` is a world axis, and the index axis the
+// direction matrix turns onto it (reversed or not) is the vertical, with heights in world units.
+// A lattice tilted against up has no vertical columns and gets no statistics, only the Problem.
+// The mask analysis (CloudsOfMask, FitAreaPerimeter, FitPowerLaw) takes any 2-D mask so
 // that tests can give it shapes with known answers.
 #ifndef cloudvis_CloudStatistics_h
 #define cloudvis_CloudStatistics_h
@@ -84,6 +85,9 @@ struct CloudStatistics
 {
   ResolvedFieldUnits Units;
   double Threshold = 0.0; // cloudy: value > Threshold
+  // Why there are no statistics (the rest is empty): a lattice tilted against up, or voxels whose
+  // heights or areas a double cannot hold.
+  std::string Problem;
   int Connectivity = 4;
   // The horizontal lattice: columns along Units.Up.
   std::uint64_t Columns = 0, CloudyColumns = 0;
