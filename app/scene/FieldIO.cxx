@@ -139,13 +139,43 @@ vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path,
     }
   }
 
+  // The spacing must be finite and not zero. A negative spacing (a lattice numbered downwards, as
+  // a .vti or a NetCDF coordinate may be) is the same geometry as its positive value with that
+  // axis of the direction matrix reversed: stored so, every consumer sees positive spacings and
+  // finds a reversal in one place, the direction matrix.
+  double spacing[3], direction[9];
+  image->GetSpacing(spacing);
+  std::copy(d, d + 9, direction);
+  const double* origin = image->GetOrigin();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(std::isfinite(spacing[a]) && spacing[a] != 0.0))
+    {
+      Fail(path,
+        "the image's spacing along axis " + std::to_string(a) + " is " + Number(spacing[a]) +
+          ": spacings must be finite and not zero");
+    }
+    if (!std::isfinite(origin[a]))
+    {
+      Fail(path, "the image's origin holds " + Number(origin[a]) + ": it must be finite");
+    }
+    if (spacing[a] < 0.0)
+    {
+      spacing[a] = -spacing[a];
+      for (int r = 0; r < 3; ++r)
+      {
+        direction[3 * r + a] = -direction[3 * r + a];
+      }
+    }
+  }
+
   // A new image with just the geometry and the density, so arrays of other meanings in the file
   // do not travel on as if they were ours.
   vtkSmartPointer<vtkImageData> field = vtkSmartPointer<vtkImageData>::New();
   field->SetExtent(image->GetExtent());
   field->SetOrigin(image->GetOrigin());
-  field->SetSpacing(image->GetSpacing());
-  field->SetDirectionMatrix(image->GetDirectionMatrix());
+  field->SetSpacing(spacing);
+  field->SetDirectionMatrix(direction);
   field->GetPointData()->SetScalars(density);
   return field;
 }
