@@ -3,7 +3,10 @@
 // and "--" ends the options.
 #include "CommandLine.h"
 
+#include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
+
 #include "Errors.h"
+#include "OutOfMemory.h"
 #include "ProcessGroup.h"
 #include "Utf8.h"
 
@@ -14,10 +17,35 @@
 #include <sstream>
 #include <streambuf>
 
+#include <sys/resource.h>
+
 namespace cloudvis
 {
+
 namespace
 {
+// "out of memory while generating a field of 2048 x 2048 x 512 voxels (big.json), which needs
+// about 8 GiB; 20.1 GiB of memory is available, and the address-space limit (ulimit -v) is
+// 5.72 GiB": the step that ran out (OutOfMemory.h) and what this process could have had.
+std::string OutOfMemoryReport()
+{
+  std::string text = "out of memory";
+  if (const std::optional<FailedMemoryUse> use = TakeFailedMemoryUse())
+  {
+    text += " while " + use->What +
+      (use->Bytes > 0.0 ? ", which needs about " + FormatBytes(use->Bytes) : std::string());
+  }
+  if (const std::uint64_t available = AvailableMemoryBytes())
+  {
+    text += "; " + FormatBytes(double(available)) + " of memory is available";
+  }
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+  {
+    text += ", and the address-space limit (ulimit -v) is " + FormatBytes(double(limit.rlim_cur));
+  }
+  return text;
+}
 
 const OptionSpec* FindOption(const CommandSpec& command, const std::string& argument)
 {
@@ -337,7 +365,7 @@ int RunCommandLine(const std::vector<std::string>& arguments,
   }
   catch (const std::bad_alloc&)
   {
-    err << "cloudvis: error: out of memory\n";
+    err << "cloudvis: error: " << OutOfMemoryReport() << "\n";
     return ExitFailure;
   }
   catch (const std::exception& e)

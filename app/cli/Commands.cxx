@@ -19,6 +19,7 @@
 #include "FileNames.h"
 #include "ImageWriters.h"
 #include "OffscreenRender.h"
+#include "OutOfMemory.h"
 #include "ProcessGroup.h"
 #include "Progress.h"
 #include "Scene.h"
@@ -275,8 +276,7 @@ PieceProducer ProceduralPieces(const Scene& scene, FieldLattice& lattice)
     vtkImageData* output = source->GetOutput();
     if (!messages.Messages().empty() || !output || output->GetNumberOfPoints() == 0)
     {
-      throw InputError(name + ": field: generation failed" +
-        (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+      throw InputError(messages.WithVtkReason(name + ": field: generation failed"));
     }
     auto piece = vtkSmartPointer<vtkImageData>::New();
     piece->ShallowCopy(output);
@@ -528,6 +528,9 @@ int Info(const Arguments& arguments, std::ostream& out)
   const Scene scene = LoadOperandScene("info", input, arguments, {}, true);
   FieldReport source;
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &source);
+  const MemoryUse memory(
+    "computing the statistics of " + input + " (" + DescribeDimensions(field) + " voxels)",
+    4.0 * double(field->GetNumberOfPoints()));
   const FieldStatistics statistics = ComputeFieldStatistics(field);
   const ResolvedFieldUnits& units = source.Resolved;
   const CloudStatistics clouds = ComputeCloudStatistics(field, units, threshold);

@@ -102,4 +102,17 @@ std::string VtkMessageCapture::Summary() const
   return summary;
 }
 
+std::string VtkMessageCapture::WithVtkReason(const std::string& problem) const
+{
+  std::string unsaid;
+  for (const std::string& message : this->Messages())
+  {
+    if (problem.find(message) == std::string::npos)
+    {
+      unsaid += (unsaid.empty() ? "" : "; ") + message;
+    }
+  }
+  return unsaid.empty() ? problem : problem + " (VTK: " + unsaid + ")";
+}
+
 } // namespace cloudvis

@@ -368,8 +368,7 @@ ComparisonResult RenderComparison(const Scene& scene,
   result.AccumulatedFrames = panels[0]->Mapper->GetNumberOfAccumulatedFrames(panels[0]->Renderer);
   if (result.AccumulatedFrames == 0)
   {
-    throw InputError(input + ": nothing was rendered" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    throw InputError(messages.WithVtkReason(input + ": nothing was rendered"));
   }
   window->MakeCurrent();
   std::vector<std::vector<float>> images;

@@ -293,8 +293,7 @@ void WritePngImage(const RenderedImage& image, const ImageExportOptions& options
   vtkUnsignedCharArray* encoded = writer->GetResult();
   if (writer->GetErrorCode() != 0 || !messages.Messages().empty() || !encoded)
   {
-    throw InputError(target + ": cannot write the PNG image" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    throw InputError(messages.WithVtkReason(target + ": cannot write the PNG image"));
   }
   out.write(reinterpret_cast<const char*>(encoded->GetPointer(0)),
     std::streamsize(encoded->GetNumberOfValues()));

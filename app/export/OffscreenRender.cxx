@@ -11,6 +11,7 @@
 #include "Errors.h"
 #include "ExportRender.h"
 #include "ImageWriters.h"
+#include "OutOfMemory.h"
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudPathTracer.h"
@@ -54,8 +55,7 @@ void CheckMapper(
   if (!mapper->GetLastError().empty())
   {
     // VTK's own words (a shader's compile log, say) were captured, not printed: pass them on.
-    throw InputError(input + ": " + mapper->GetLastError() +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    throw InputError(messages.WithVtkReason(input + ": " + mapper->GetLastError()));
   }
 }
 
@@ -234,8 +234,8 @@ RenderedImage CaptureWindow(vtkRenderWindow* window, const std::string& input,
   if (!data || data->GetNumberOfComponents() != 3 || dimensions[0] != size[0] ||
     dimensions[1] != size[1])
   {
-    throw InputError(input + ": could not read the rendered image back from the window" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    throw InputError(
+      messages.WithVtkReason(input + ": could not read the rendered image back from the window"));
   }
   RenderedImage image;
   image.Width = dimensions[0];
@@ -248,6 +248,10 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const std::string& input, int benchmarkFrames, const RenderOptions& options)
 {
   CheckSceneRenderable(scene, field, input);
+  const MemoryUse memory("rendering " + input + " at " + std::to_string(scene.Render.Size[0]) +
+      " x " + std::to_string(scene.Render.Size[1]) + " pixels",
+    double(scene.Render.Size[0]) * double(scene.Render.Size[1]) * RenderBytesPerPixel +
+      4.0 * double(field->GetNumberOfPoints()));
   // One connection, opened (and retried) here and handed to the window: VTK opening its own
   // aborts the process when the server refuses it.
   const DisplayConnection display("cloudvis ...");
@@ -320,8 +324,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   result.AccumulatedSamples = mapper->GetNumberOfAccumulatedSamples(renderer);
   if (result.AccumulatedFrames == 0)
   {
-    throw InputError(input + ": nothing was rendered" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    throw InputError(messages.WithVtkReason(input + ": nothing was rendered"));
   }
 
   // Checked for NaN and infinity before anything is made of it.

@@ -9,6 +9,7 @@
 #include "FieldFormatReaders.h"
 #include "FieldPieces.h"
 #include "FileNames.h"
+#include "OutOfMemory.h"
 #include "Schema.h" // Join
 #include "VtkMessageCapture.h"
 
@@ -397,6 +398,7 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
   {
     Fail(path, "field." + problem->Key + ": " + problem->Problem);
   }
+  const MemoryUse memory("reading " + path, 0.0);
   FieldFileContents contents = format.Read(path, options);
   vtkSmartPointer<vtkImageData> field =
     DensityFieldOf(path, contents.Image, contents.Array, options.MaximumVoxels);
@@ -540,6 +542,9 @@ void CheckFieldOutput(const std::string& path)
 void WriteField(vtkImageData* field, const std::string& path, const FieldMetadata& metadata)
 {
   CheckFieldOutput(path);
+  const MemoryUse memory(
+    "writing " + path + " (" + std::to_string(field->GetNumberOfPoints()) + " voxels)",
+    4.0 * double(field->GetNumberOfPoints()));
   const std::string extension = LowerCaseExtension(path);
   for (const FieldWriter& writer : FieldWriters())
   {
@@ -568,8 +573,7 @@ void WriteVtkXmlImage(vtkImageData* field,
   writer->SetCompressorTypeToZLib();
   if (writer->Write() != 1 || writer->GetErrorCode() != 0)
   {
-    const std::string summary = messages.Summary();
-    Fail(target, "cannot write the field" + (summary.empty() ? "" : " (VTK: " + summary + ")"));
+    Fail(target, messages.WithVtkReason("cannot write the field"));
   }
 }
 

@@ -376,10 +376,8 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path,
         ": not an image VTK can read (PNG, JPEG, TIFF, BMP, PNM) nor a field file (" +
         FieldFileExtensions() + ")");
     }
-    const auto refuse = [&]()
-    {
-      throw InputError(path + ": " + what + ": the image cannot be read" +
-        (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    const auto refuse = [&]() {
+      throw InputError(messages.WithVtkReason(path + ": " + what + ": the image cannot be read"));
     };
     reader->SetFileName(path.c_str());
     reader->UpdateInformation();

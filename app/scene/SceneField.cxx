@@ -6,6 +6,7 @@
 #include "FieldIO.h"
 #include "ImageFiles.h"
 #include "InputFiles.h"
+#include "OutOfMemory.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudDensitySource.h"
 
@@ -160,6 +161,9 @@ vtkSmartPointer<vtkImageData> GenerateField(const Scene& scene,
   {
     throw InputError(scene.Source + ": field: " + problem);
   }
+  const MemoryUse memory("generating a field of " + std::to_string(d[0]) + " x " +
+      std::to_string(d[1]) + " x " + std::to_string(d[2]) + " voxels (" + scene.Source + ")",
+    4.0 * double(d[0]) * double(d[1]) * double(d[2]));
   vtkNew<vtkCallbackCommand> onProgress;
   if (progress)
   {
@@ -172,8 +176,7 @@ vtkSmartPointer<vtkImageData> GenerateField(const Scene& scene,
   vtkImageData* output = source->GetOutput();
   if (!output || output->GetNumberOfPoints() == 0 || !messages.Messages().empty())
   {
-    throw InputError(scene.Source + ": field: generation failed" +
-      (messages.Summary().empty() ? "" : " (VTK: " + messages.Summary() + ")"));
+    throw InputError(messages.WithVtkReason(scene.Source + ": field: generation failed"));
   }
   vtkSmartPointer<vtkImageData> field = vtkSmartPointer<vtkImageData>::New();
   field->ShallowCopy(output);

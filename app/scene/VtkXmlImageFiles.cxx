@@ -56,12 +56,6 @@ namespace cloudvis
 namespace
 {
 
-std::string WithVtkReason(const std::string& problem, const VtkMessageCapture& messages)
-{
-  const std::string summary = messages.Summary();
-  return summary.empty() ? problem : problem + " (VTK: " + summary + ")";
-}
-
 using Extent = std::array<int, 6>;
 
 std::string Shorten(const std::string& text, std::size_t length)
@@ -436,7 +430,7 @@ vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
   // that would otherwise fill the output window with errors.
   if (!reader->CanReadFile(path.c_str()))
   {
-    Fail(path, WithVtkReason("not a " + formatName + " file", messages));
+    Fail(path, messages.WithVtkReason("not a " + formatName + " file"));
   }
   reader->SetFileName(path.c_str());
   // The header states the extent; VTK allocates every point array for it before reading a value,
@@ -444,7 +438,7 @@ vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
   reader->UpdateInformation();
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty())
   {
-    Fail(path, WithVtkReason("cannot read " + formatName, messages));
+    Fail(path, messages.WithVtkReason("cannot read " + formatName));
   }
   CheckExtentFitsInMemory(path, reader, maximumVoxels, extraBytes);
   const std::optional<std::array<double, 9>> direction = firstPiece.empty()
@@ -454,7 +448,7 @@ vtkSmartPointer<vtkImageData> ReadChecked(const std::string& path,
   vtkSmartPointer<vtkImageData> image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
   {
-    Fail(path, WithVtkReason("cannot read " + formatName, messages));
+    Fail(path, messages.WithVtkReason("cannot read " + formatName));
   }
   if (direction)
   {
@@ -542,8 +536,8 @@ vtkSmartPointer<vtkImageData> ReadPieceRegion(const std::string& path,
   vtkImageData* image = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !messages.Messages().empty() || !image)
   {
-    Fail(path,
-      WithVtkReason(number + ": cannot read the part it shares with another piece", messages));
+    Fail(
+      path, messages.WithVtkReason(number + ": cannot read the part it shares with another piece"));
   }
   return image;
 }

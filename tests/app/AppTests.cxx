@@ -33,6 +33,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -337,7 +338,53 @@ TEST(Scene, EveryShippedSceneHasADescription)
   }
 }
 
+// ---- out of memory --------------------------------------------------------------------------
+
+// A std::bad_alloc ends a command with the step that ran out of memory, its size and what the
+// process could have had, not a bare "out of memory" (issue 36): here generation under an
+// address-space limit of about 3 GB for a field of 8 GiB.
+TEST(OutOfMemory, NamesTheStepItsSizeAndTheLimit)
+{
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's shadow memory needs more address space than ulimit -v";
+#else
+  TemporaryDirectory dir;
+  const std::string command = "cd '" + dir.Path + "' && ulimit -v 3000000 && '" +
+    cloudvis::support::CloudvisBinary() +
+    "' generate --set field.dimensions=2048,2048,512 -o big.vti 2> err.txt";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string message = ReadText(dir.File("err.txt"));
+  EXPECT_NE(message.find("cloudvis: error: out of memory while generating a field of 2048 x 2048 x "
+                         "512 voxels (default scene), which needs about 8 GiB; "),
+    std::string::npos)
+    << message;
+  EXPECT_NE(
+    message.find("of memory is available, and the address-space limit (ulimit -v) is 2.86 GiB"),
+    std::string::npos)
+    << message;
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << "one line: " << message;
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{ "err.txt" });
+#endif
+}
+
 // ---- atomic writes --------------------------------------------------------------------------
+
+// The temporary a write in progress has made in `dir`: its one hidden file.
+std::string TemporaryIn(const TemporaryDirectory& dir)
+{
+  std::string temporary;
+  for (const std::string& name : dir.Files())
+  {
+    if (name[0] == '.')
+    {
+      EXPECT_TRUE(temporary.empty()) << "a second temporary " << name;
+      temporary = dir.File(name);
+    }
+  }
+  return temporary;
+}
 
 TEST(AtomicFile, FailureLeavesTargetUntouchedAndNoTemporary)
 {
@@ -345,16 +392,17 @@ TEST(AtomicFile, FailureLeavesTargetUntouchedAndNoTemporary)
   const std::string target = dir.File("f.vti");
   WriteText(target, "previous");
   std::string temporary;
-  EXPECT_THROW(cloudvis::WriteFileAtomically(target,
-                 [&temporary](const std::string& path)
+  EXPECT_THROW(cloudvis::WriteStreamAtomically(target,
+                 "the test's text",
+                 [&](std::ostream& out)
                  {
-                   temporary = path;
-                   WriteText(path, "half a fi");
+                   out << "half a fi" << std::flush;
+                   temporary = TemporaryIn(dir);
                    throw cloudvis::InputError("disk full");
                  }),
     cloudvis::InputError);
   EXPECT_EQ(temporary.rfind(dir.Path + "/", 0), 0u) << "temporary not in the target's directory";
-  EXPECT_EQ(temporary.substr(temporary.size() - 4), ".vti");
+  EXPECT_EQ(ReadText(temporary), "") << "the temporary is still there";
   EXPECT_EQ(ReadText(target), "previous");
   EXPECT_EQ(dir.Files(), std::vector<std::string>{ "f.vti" });
 }
@@ -365,7 +413,9 @@ TEST(AtomicFile, SuccessReplacesTargetWithOrdinaryPermissions)
   const std::string target = dir.File("f.vti");
   WriteText(target, "previous");
   ::chmod(target.c_str(), 0640);
-  cloudvis::WriteFileAtomically(target, [](const std::string& path) { WriteText(path, "new"); });
+  const auto writeText = [](const char* text)
+  { return [text](std::ostream& out) { out << text; }; };
+  cloudvis::WriteStreamAtomically(target, "the test's text", writeText("new"));
   EXPECT_EQ(ReadText(target), "new");
   EXPECT_EQ(dir.Files(), std::vector<std::string>{ "f.vti" });
   struct stat info;
@@ -373,7 +423,7 @@ TEST(AtomicFile, SuccessReplacesTargetWithOrdinaryPermissions)
   EXPECT_EQ(info.st_mode & 0777, 0640u) << "a replaced file keeps its permissions";
 
   const std::string fresh = dir.File("g.vti");
-  cloudvis::WriteFileAtomically(fresh, [](const std::string& path) { WriteText(path, "x"); });
+  cloudvis::WriteStreamAtomically(fresh, "the test's text", writeText("x"));
   ASSERT_EQ(::stat(fresh.c_str(), &info), 0);
   const mode_t mask = ::umask(0);
   ::umask(mask);
@@ -383,8 +433,9 @@ TEST(AtomicFile, SuccessReplacesTargetWithOrdinaryPermissions)
 TEST(AtomicFile, RefusesMissingDirectoryBeforeWriting)
 {
   bool called = false;
-  EXPECT_THROW(cloudvis::WriteFileAtomically("/nonexistent-dir/f.vti",
-                 [&called](const std::string&) { called = true; }),
+  EXPECT_THROW(
+    cloudvis::WriteStreamAtomically(
+      "/nonexistent-dir/f.vti", "the test's text", [&called](std::ostream&) { called = true; }),
     cloudvis::InputError);
   EXPECT_FALSE(called);
 }
@@ -972,11 +1023,12 @@ TEST(AtomicFile, TemporaryNamesStayWithinTheFileNameLimit)
   {
     SCOPED_TRACE(name.size());
     std::string temporary;
-    cloudvis::WriteFileAtomically(dir.File(name),
-      [&temporary](const std::string& path)
+    cloudvis::WriteStreamAtomically(dir.File(name),
+      "the test's text",
+      [&](std::ostream& out)
       {
-        temporary = path;
-        WriteText(path, "x");
+        out << "x";
+        temporary = TemporaryIn(dir);
       });
     const std::string temporaryName = cloudvis::FileNameOf(temporary);
     EXPECT_LE(temporaryName.size(), 255u);

@@ -30,6 +30,11 @@ public:
   // The messages joined by "; ", or empty.
   std::string Summary() const;
 
+  // `problem` followed by " (VTK: SUMMARY)", or `problem` alone when VTK said nothing or nothing
+  // the problem does not already say (a message cloudvis itself passed through VTK's error
+  // macro). The one way a refusal quotes VTK.
+  std::string WithVtkReason(const std::string& problem) const;
+
 private:
   vtkSmartPointer<vtkOutputWindow> Previous;
   vtkSmartPointer<vtkOutputWindow> Collector;
