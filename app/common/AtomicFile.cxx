@@ -811,34 +811,6 @@ std::string OutputFileBehindLinks(const std::string& target)
   return FileBehindLinks(target);
 }
 
-void WriteFileAtomically(const std::string& target,
-  const std::function<void(const std::string& temporaryPath)>& write)
-{
-  CheckOutputTarget(target);
-  const std::string file = FileBehindLinks(target);
-  int fd = -1;
-  const std::unique_ptr<TemporaryFile> temporary = CreateTemporary(target, file, fd);
-  ::close(fd);
-
-  write(temporary->GetPath());
-
-  // The writer wrote by name; what it did not check can still be: a write-back error reported
-  // late (fsync), or no file at all.
-  fd = ::open(temporary->GetPath().c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0)
-  {
-    throw InputError(target + ": the writer left no file behind (" + SystemReason() + ")");
-  }
-  const bool synced = ::fsync(fd) == 0 || errno == EINVAL || errno == EROFS;
-  const std::string reason = SystemReason();
-  ::close(fd);
-  if (!synced)
-  {
-    throw InputError(target + ": cannot write: " + reason + " (fsync)");
-  }
-  Replace(*temporary, target, file);
-}
-
 void WriteStreamAtomically(const std::string& target,
   const std::string& what,
   const std::function<void(std::ostream& out)>& write)

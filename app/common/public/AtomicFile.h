@@ -4,9 +4,8 @@
 // Complete means checked: every write(2), the final flush, fsync, the file's size against the
 // bytes written, and close; any failure (a full disk) refuses the output with the OS reason
 // ("x.vdb: cannot write the field as OpenVDB: No space left on device") and leaves the target
-// as it was. Writers that can only write by name (WriteFileAtomically) get what can be checked
-// after them (fsync); every writer in cloudvis writes to the stream instead, because a library
-// writing by name may not check its own writes (OpenVDB's io::File does not).
+// as it was. There is no way to write by name: a library writing by name may not check its own
+// writes (OpenVDB's io::File does not), so every writer writes to the stream.
 // A target that is a symbolic link is written through: the file at the end of the link's chain
 // is replaced (in its own directory), the link stays a link. A new file gets the mode an
 // ordinary new file would (0666 less the umask), a replaced one keeps its own. A
@@ -57,14 +56,6 @@ void WriteNewFileChecked(const std::string& path,
   const std::string& what,
   const std::function<void(std::ostream& out)>& write);
 
-// For a writer that can only write by name. Calls write(temporaryPath), which must create the
-// complete file at that path and throw on
-// failure, then renames the temporary over `target`. On any failure the temporary is removed,
-// the target is left as it was, and the exception propagates (OS failures as InputError naming
-// the target). The temporary keeps the target's extension, for writers that look at it.
-void WriteFileAtomically(
-  const std::string& target, const std::function<void(const std::string& temporaryPath)>& write);
-
 // Holds back the asynchronous terminating signals (SIGINT, SIGTERM, SIGHUP, ..., not the fault
 // signals) of the whole process while it lives, whichever thread the kernel delivers them to: a
 // signal arriving meanwhile is recorded, not acted on, and when the last hold ends it is acted
@@ -114,7 +105,7 @@ private:
 };
 
 // Installs the signal handler that removes registered temporaries (see above); called by
-// WriteFileAtomically, idempotent, and safe to call earlier (at start-up).
+// WriteStreamAtomically, idempotent, and safe to call earlier (at start-up).
 void InstallInterruptCleanup();
 
 // For a child made by fork(): its copy of the table of temporaries names its parent's files,
