@@ -13,6 +13,7 @@
 #include "Display.h"
 #include "Errors.h"
 #include "ExportCommands.h"
+#include "ExportRender.h" // FitTransferFunctionNote
 #include "FieldIO.h"
 #include "FieldPieces.h"
 #include "FieldStatistics.h"
@@ -198,7 +199,7 @@ SceneInput LoadSceneInput(const std::string& command,
 {
   const std::string& input = arguments.Operands[0];
   CheckImageOutput(output);
-  SceneInput loaded{ LoadOperandScene(command, input, arguments, options), nullptr };
+  SceneInput loaded{ LoadOperandScene(command, input, arguments, options), nullptr, "" };
   if (checkScene)
   {
     checkScene(loaded.Loaded);
@@ -208,6 +209,8 @@ SceneInput LoadSceneInput(const std::string& command,
     RequireDisplay("cloudvis " + command + " ...");
   }
   loaded.Field = ProduceField(loaded.Loaded, generationProgress);
+  loaded.Note =
+    FitTransferFunctionNote(loaded.Loaded, loaded.Field, IsFieldOperand(input, arguments));
   return loaded;
 }
 
@@ -456,6 +459,7 @@ int Render(const Arguments& arguments, std::ostream& out)
     [&](double fraction) { progress.Update("generating", fraction); }, checkLighting);
   const Scene& scene = loaded.Loaded;
   const vtkSmartPointer<vtkImageData>& field = loaded.Field;
+  out << loaded.Note;
   // Format details and metadata (docs/export.md).
   ImageExportOptions exportOptions = MakeExportOptions(arguments, scene, output);
   exportOptions.SceneJson = ResolvedSceneJson(scene, field);

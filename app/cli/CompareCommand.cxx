@@ -262,6 +262,7 @@ int Compare(const Arguments& arguments, std::ostream& out)
       NumericOverride("render.exposure", arguments.Value("exposure"), "--exposure"));
   }
   const SceneInput loaded = LoadSceneInput("compare", arguments, options, output, true);
+  out << loaded.Note;
   if (reference && !reference->Target && reference->SamplesPerPixel == 0)
   {
     reference->SamplesPerPixel = loaded.Loaded.Render.SamplesPerPixel;

@@ -125,10 +125,15 @@ int Animate(const Arguments& arguments, std::ostream& out)
   RequireDisplay("cloudvis animate ...");
 
   Progress progress(std::cerr, ShowProgress(arguments));
-  const int written = RenderAnimation(scene, input, request,
-    [&](const std::string& label, double fraction) { progress.Update(label, fraction); });
+  std::string note;
+  const int written = RenderAnimation(
+    scene,
+    input,
+    request,
+    [&](const std::string& label, double fraction) { progress.Update(label, fraction); },
+    &note);
   progress.Finish();
-  out << "wrote " << written << " frame" << (written == 1 ? "" : "s") << " to "
+  out << note << "wrote " << written << " frame" << (written == 1 ? "" : "s") << " to "
       << PrintableText(request.Directory) << "/ ("
       << FrameFileName(request, 0).substr(request.Directory.size() + 1) << " .. "
       << FrameFileName(request, written - 1).substr(request.Directory.size() + 1) << ", "

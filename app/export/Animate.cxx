@@ -114,7 +114,8 @@ void CheckAnimationDirectory(const std::string& directory)
 }
 
 int RenderAnimation(const Scene& scene, const std::string& input, const AnimationRequest& request,
-  const std::function<void(const std::string& label, double fraction)>& progress)
+  const std::function<void(const std::string& label, double fraction)>& progress,
+  std::string* transferFunctionNote)
 {
   const int n = request.Frames;
   auto report = [&](int index, const char* stage, double within)
@@ -129,8 +130,10 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
   // A turntable's scene, finished with the field it shows (the droplets' optics) once produced.
   Scene turning = scene;
   ResolvedCamera start;
-  // An automatic exposure is metered on the first frame and kept: a sequence must not flicker.
+  // An automatic exposure is metered on the first frame and kept, and so is the transfer
+  // function fitted to the first frame's field: a sequence must not flicker.
   std::optional<double> exposureEV;
+  std::optional<TransferFunctionSpec> fitted;
   int written = 0;
   for (int index = 0; index < n; ++index)
   {
@@ -144,6 +147,16 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
       {
         field = ProduceField(frame, [&](double f) { report(index, "generating", generationShare * f); });
       }
+      if (!fitted)
+      {
+        const std::string note = FitTransferFunctionNote(frame, field, false);
+        fitted = frame.TransferFunction;
+        if (transferFunctionNote)
+        {
+          *transferFunctionNote = note;
+        }
+      }
+      frame.TransferFunction = *fitted;
       if (request.Turntable)
       {
         if (index == 0)

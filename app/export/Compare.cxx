@@ -368,7 +368,8 @@ ComparisonResult RenderComparison(const Scene& scene,
   result.AccumulatedFrames = panels[0]->Mapper->GetNumberOfAccumulatedFrames(panels[0]->Renderer);
   if (result.AccumulatedFrames == 0)
   {
-    throw InputError(messages.WithVtkReason(input + ": nothing was rendered"));
+    throw InputError(
+      NothingRenderedProblem(panels[0]->Renderer, panels[0]->Volume, messages, input));
   }
   window->MakeCurrent();
   std::vector<std::vector<float>> images;
@@ -383,6 +384,7 @@ ComparisonResult RenderComparison(const Scene& scene,
   {
     metered.insert(metered.end(), image.begin(), image.end());
   }
+  CheckFieldShows(metered.data(), metered.size() / 4, field, scene, input);
   const double exposureEV = ResolveExposureEV(scene.Render, metered.data(), metered.size() / 4);
   const bool exposed = exposureEV != panels[0]->Mapper->GetExposureEV();
   for (const auto& panel : panels)

@@ -138,6 +138,7 @@ RenderedImage RenderCpuReference(const Scene& scene, vtkImageData* field, const 
 
   const float* pixels = rgba->GetPointer(0);
   CheckFiniteImage(pixels, size_t(width) * size_t(height), input);
+  CheckFieldShows(pixels, size_t(width) * size_t(height), field, scene, input);
   RenderedImage image;
   image.Width = width;
   image.Height = height;

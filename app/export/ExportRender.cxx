@@ -7,9 +7,11 @@
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
 #include "Errors.h"
+#include "VtkMessageCapture.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkCamera.h>
+#include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
@@ -23,6 +25,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace cloudvis
@@ -143,6 +146,177 @@ void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input
       "extinction (unit distance) or a density beyond what float arithmetic holds "
       "(docs/reliability.md)");
   }
+}
+
+bool FieldIsEmpty(vtkImageData* field)
+{
+  vtkDataArray* values = field->GetPointData()->GetScalars();
+  return !values || values->GetNumberOfTuples() == 0 || !(values->GetRange(0)[1] > 0.0);
+}
+
+std::string FitTransferFunctionNote(Scene& scene, vtkImageData* field, bool fieldFileAlone)
+{
+  if (FieldIsEmpty(field))
+  {
+    return "the field is empty (no value above 0): the picture shows the background alone\n";
+  }
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range, 0);
+  const std::array<double, 2> span = TransferFunctionSpan(scene.TransferFunction);
+  char text[320];
+  switch (FitTransferFunctionToField(scene, { { range[0], range[1] } }, fieldFileAlone))
+  {
+    case TransferFunctionFit::Kept:
+      return "";
+    case TransferFunctionFit::FittedToValues:
+      std::snprintf(text,
+        sizeof(text),
+        "transfer function: the default fitted to the field's values [%.4g, %.4g] (%s)\n",
+        range[0],
+        range[1],
+        fieldFileAlone ? "a field file has none of its own"
+                       : "the default's opacity is 0 over all of them");
+      return text;
+    case TransferFunctionFit::GrownToValues:
+      std::snprintf(text,
+        sizeof(text),
+        "transfer function: the default grown to take in the field's values [%.4g, %.4g]\n",
+        range[0],
+        range[1]);
+      return text;
+    case TransferFunctionFit::ValuesBeyondItsPoints:
+      std::snprintf(text,
+        sizeof(text),
+        "transfer function: the scene's, kept; the field's values [%.4g, %.4g] lie beyond its "
+        "points [%.4g, %.4g]\n",
+        range[0],
+        range[1],
+        span[0],
+        span[1]);
+      return text;
+  }
+  return "";
+}
+
+namespace
+{
+// The opacity the transfer function's points give `density` (piecewise linear, held beyond the
+// ends, as vtkPiecewiseFunction does).
+double OpacityAt(const TransferFunctionSpec& function, double density)
+{
+  const auto& points = function.Opacity;
+  if (density <= points.front()[0])
+  {
+    return points.front()[1];
+  }
+  for (size_t i = 1; i < points.size(); ++i)
+  {
+    if (density <= points[i][0])
+    {
+      const double span = points[i][0] - points[i - 1][0];
+      const double t = span > 0.0 ? (density - points[i - 1][0]) / span : 1.0;
+      return points[i - 1][1] + t * (points[i][1] - points[i - 1][1]);
+    }
+  }
+  return points.back()[1];
+}
+
+std::string Number(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4g", value);
+  return text;
+}
+} // namespace
+
+void CheckFieldShows(const float* rgba,
+  size_t pixels,
+  vtkImageData* field,
+  const Scene& scene,
+  const std::string& input)
+{
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    if (rgba[4 * p + 3] >= VisibleAlpha)
+    {
+      return;
+    }
+  }
+  if (FieldIsEmpty(field))
+  {
+    return;
+  }
+  double range[2];
+  field->GetPointData()->GetScalars()->GetRange(range, 0);
+  const std::string values = "its values [" + Number(range[0]) + ", " + Number(range[1]) + "]";
+  const TransferFunctionSpec& function = scene.TransferFunction;
+  if (function.Extinction == TransferFunctionSpec::ExtinctionRule::Opacity)
+  {
+    double most = 0.0;
+    for (const auto& point : function.Opacity)
+    {
+      if (point[0] >= range[0] && point[0] <= range[1])
+      {
+        most = std::max(most, point[1]);
+      }
+    }
+    most = std::max({ most, OpacityAt(function, range[0]), OpacityAt(function, range[1]) });
+    if (!(most > 0.0))
+    {
+      throw InputError(input + ": no pixel shows the field: the scene's transfer function gives " +
+        values + " no opacity (its opacity is 0 up to density " +
+        Number(OpacityRisesAbove(function)) +
+        "), so the picture would be blank: move transfer_function.opacity's points into [" +
+        Number(range[0]) + ", " + Number(range[1]) +
+        "], or leave transfer_function out of the scene to have the default fitted to them");
+    }
+  }
+  throw InputError(input + ": no pixel shows the field (" + values +
+    "), so the picture would be blank: the camera may not look at it (camera.position, " +
+    "camera.focal_point), or it is too thin to show at this transfer function (raise " +
+    "transfer_function.opacity or lower transfer_function.unit_distance)");
+}
+
+std::string NothingRenderedProblem(vtkRenderer* renderer,
+  vtkVolume* volume,
+  const VtkMessageCapture& messages,
+  const std::string& input)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  double planes[24];
+  camera->GetFrustumPlanes(renderer->GetTiledAspectRatio(), planes);
+  const double* b = volume->GetBounds();
+  bool outside = false;
+  for (int p = 0; p < 6 && !outside; ++p)
+  {
+    // Inside is where a x + b y + c z + d >= 0 for every plane: outside one, the box is unseen.
+    outside = true;
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const double x = b[corner & 1], y = b[2 + ((corner >> 1) & 1)];
+      const double z = b[4 + ((corner >> 2) & 1)];
+      outside = outside &&
+        planes[4 * p] * x + planes[4 * p + 1] * y + planes[4 * p + 2] * z + planes[4 * p + 3] < 0.0;
+    }
+  }
+  if (outside && messages.Messages().empty())
+  {
+    const double* position = camera->GetPosition();
+    const double* focal = camera->GetFocalPoint();
+    char text[256];
+    std::snprintf(text,
+      sizeof(text),
+      "no pixel shows the field: it lies wholly outside the camera's view (camera.position "
+      "%.6g, %.6g, %.6g looking at camera.focal_point %.6g, %.6g, %.6g)",
+      position[0],
+      position[1],
+      position[2],
+      focal[0],
+      focal[1],
+      focal[2]);
+    return input + ": " + text;
+  }
+  return messages.WithVtkReason(input + ": nothing was rendered");
 }
 
 std::vector<float> ReadCheckedMapperImage(

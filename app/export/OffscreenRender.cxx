@@ -324,11 +324,12 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   result.AccumulatedSamples = mapper->GetNumberOfAccumulatedSamples(renderer);
   if (result.AccumulatedFrames == 0)
   {
-    throw InputError(messages.WithVtkReason(input + ": nothing was rendered"));
+    throw InputError(NothingRenderedProblem(renderer, volume, messages, input));
   }
 
   // Checked for NaN and infinity before anything is made of it.
   const std::vector<float> rgba = ReadCheckedMapperImage(mapper, renderer, input);
+  CheckFieldShows(rgba.data(), rgba.size() / 4, field, scene, input);
   const double exposureEV = ResolveExposureEV(scene.Render, rgba.data(), rgba.size() / 4);
   if (exposureEV != mapper->GetExposureEV())
   {

@@ -466,4 +466,77 @@ TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& trans
   return t;
 }
 
+double OpacityRisesAbove(const TransferFunctionSpec& spec)
+{
+  double rises = spec.Opacity.front()[0];
+  for (const auto& point : spec.Opacity)
+  {
+    if (point[1] > 0.0)
+    {
+      return rises;
+    }
+    rises = point[0];
+  }
+  return rises;
+}
+
+std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec)
+{
+  return { { std::min(spec.Opacity.front()[0], spec.Color.front()[0]),
+    std::max(spec.Opacity.back()[0], spec.Color.back()[0]) } };
+}
+
+TransferFunctionSpec StretchTransferFunction(const TransferFunctionSpec& spec,
+  const std::array<double, 2>& target)
+{
+  TransferFunctionSpec stretched = spec;
+  const auto [lo, hi] = TransferFunctionSpan(spec);
+  if (!(hi > lo) || !(target[1] > target[0]))
+  {
+    return stretched;
+  }
+  const auto map = [&](double x)
+  { return target[0] + (x - lo) / (hi - lo) * (target[1] - target[0]); };
+  for (auto& p : stretched.Opacity)
+  {
+    p[0] = map(p[0]);
+  }
+  for (auto& p : stretched.Color)
+  {
+    p[0] = map(p[0]);
+  }
+  return stretched;
+}
+
+TransferFunctionFit FitTransferFunctionToField(Scene& scene,
+  const std::array<double, 2>& range,
+  bool fieldFileAlone)
+{
+  TransferFunctionSpec& function = scene.TransferFunction;
+  if (function.Extinction == TransferFunctionSpec::ExtinctionRule::Droplets ||
+    !(range[1] > range[0]))
+  {
+    return TransferFunctionFit::Kept;
+  }
+  const std::array<double, 2> span = TransferFunctionSpan(function);
+  const double slack = 1e-6 * std::max(span[1] - span[0], range[1] - range[0]);
+  const bool covered = range[0] >= span[0] - slack && range[1] <= span[1] + slack;
+  if (scene.Document.contains("transfer_function"))
+  {
+    return covered ? TransferFunctionFit::Kept : TransferFunctionFit::ValuesBeyondItsPoints;
+  }
+  if (fieldFileAlone || range[1] <= OpacityRisesAbove(function))
+  {
+    function = StretchTransferFunction(function, range);
+    return TransferFunctionFit::FittedToValues;
+  }
+  if (covered)
+  {
+    return TransferFunctionFit::Kept;
+  }
+  function = StretchTransferFunction(
+    function, { { std::min(span[0], range[0]), std::max(span[1], range[1]) } });
+  return TransferFunctionFit::GrownToValues;
+}
+
 } // namespace cloudvis

@@ -447,34 +447,6 @@ void TransferFunctionEditor::Apply(const TransferFunctionSpec& spec)
   this->Restore(spec);
 }
 
-std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec)
-{
-  return { { std::min(spec.Opacity.front()[0], spec.Color.front()[0]),
-    std::max(spec.Opacity.back()[0], spec.Color.back()[0]) } };
-}
-
-TransferFunctionSpec StretchTransferFunction(const TransferFunctionSpec& spec,
-  const std::array<double, 2>& target)
-{
-  TransferFunctionSpec stretched = spec;
-  const auto [lo, hi] = TransferFunctionSpan(spec);
-  if (!(hi > lo) || !(target[1] > target[0]))
-  {
-    return stretched;
-  }
-  const auto map = [&](double x)
-  { return target[0] + (x - lo) / (hi - lo) * (target[1] - target[0]); };
-  for (auto& p : stretched.Opacity)
-  {
-    p[0] = map(p[0]);
-  }
-  for (auto& p : stretched.Color)
-  {
-    p[0] = map(p[0]);
-  }
-  return stretched;
-}
-
 void TransferFunctionEditor::FitToData()
 {
   this->Apply(StretchTransferFunction(TransferFunctionOf(this->Property), this->DataRange));

@@ -69,61 +69,43 @@ void Viewer::Internals::ApplyLighting()
   ConfigureLighting(this->Current, this->Mapper);
 }
 
-// ParaView sets a new dataset's colour map to the data range when it is first shown, and later
-// only grows it to take in values beyond it (its default "Grow and update on 'Apply'"), but loads
-// a saved state's colour maps as they were saved. The same here: a field file opened directly has
-// no transfer function of its own, so the default one is fitted to the field's range; a scene
-// without a function of its own has the default one grown to take in values beyond it (it would
-// otherwise show a field reaching 4.58 as an opaque block); a scene's own function (one a user
-// wrote, or `w` saved) is kept as it is, and the message only says that `f` fits it when the
-// field's values lie beyond it. The shape is kept: the points are stretched, as `f` stretches
-// them. The droplet extinction is physical (g/m^3 to extinction per metre) and is never
-// stretched. The slices' window starts at the field's range (SliceColors) unless a saved scene's
-// view section says otherwise.
+// The function a session starts with is the one `render` starts with (FitTransferFunctionToField
+// in Scene.h says how it meets the field's values); the message line says what happened, and
+// that `f` fits the scene's own function when the values lie beyond it. The slices' window starts
+// at the field's range (SliceColors) unless a saved scene's view section says otherwise.
 std::string Viewer::Internals::FitTransferFunctionOnOpening(const std::array<double, 2>& range)
 {
-  TransferFunctionSpec& function = this->Current.TransferFunction;
-  if (function.Extinction == TransferFunctionSpec::ExtinctionRule::Droplets ||
-    !(range[1] > range[0]))
-  {
-    return "";
-  }
-  const std::array<double, 2> span = TransferFunctionSpan(function);
-  const bool chosen = this->Current.Document.contains("transfer_function");
-  const double slack = 1e-6 * std::max(span[1] - span[0], range[1] - range[0]);
-  const bool covered = range[0] >= span[0] - slack && range[1] <= span[1] + slack;
+  const std::array<double, 2> span = TransferFunctionSpan(this->Current.TransferFunction);
   char text[256];
-  if (chosen)
+  const TransferFunctionFit fit =
+    FitTransferFunctionToField(this->Current, range, this->Options.FieldFile);
+  switch (fit)
   {
-    if (covered)
-    {
+    case TransferFunctionFit::Kept:
       return "";
-    }
-    std::snprintf(text,
-      sizeof(text),
-      "the field's values [%.4g, %.4g] lie beyond the scene's transfer function [%.4g, %.4g]: "
-      "f fits it to them",
-      range[0],
-      range[1],
-      span[0],
-      span[1]);
-    return text;
+    case TransferFunctionFit::ValuesBeyondItsPoints:
+      std::snprintf(text,
+        sizeof(text),
+        "the field's values [%.4g, %.4g] lie beyond the scene's transfer function [%.4g, %.4g]: "
+        "f fits it to them",
+        range[0],
+        range[1],
+        span[0],
+        span[1]);
+      return text;
+    case TransferFunctionFit::FittedToValues:
+    case TransferFunctionFit::GrownToValues:
+      break;
   }
-  if (!this->Options.FieldFile && covered)
-  {
-    return "";
-  }
-  const std::array<double, 2> target = this->Options.FieldFile
-    ? range
-    : std::array<double, 2>{ { std::min(span[0], range[0]), std::max(span[1], range[1]) } };
-  function = StretchTransferFunction(function, target);
   std::snprintf(text,
     sizeof(text),
     "transfer function fitted to the field's values [%.4g, %.4g], as the slices' window%s; "
     "f fits again",
     range[0],
     range[1],
-    this->Options.FieldFile ? "" : " (they lie beyond the default function)");
+    this->Options.FieldFile                       ? ""
+      : fit == TransferFunctionFit::GrownToValues ? " (they lie beyond the default function)"
+                                                  : " (the default function shows none of them)");
   return text;
 }
 

@@ -6,6 +6,7 @@
 
 #include "Errors.h"
 #include "FieldIO.h"
+#include "SupportRun.h"
 
 #include <gtest/gtest.h>
 #include <vtkDataArray.h>
@@ -94,6 +95,19 @@ inline std::string Detail(const FieldReport& report, const std::string& label)
 inline void RunTool(const std::string& command)
 {
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+// Writes `cdl` as the NetCDF file `name` in `dir` with ncgen, of ncgen's kind `kind` (1 classic,
+// 2 64-bit offset, 3 netCDF-4, 4 netCDF-4 classic model, 5 CDF-5); returns its path.
+inline std::string Ncgen(const support::TemporaryDirectory& dir,
+  const std::string& name,
+  const std::string& cdl,
+  int kind = 1)
+{
+  support::WriteText(dir.File(name + ".cdl"), cdl);
+  RunTool("ncgen -k " + std::to_string(kind) + " -o '" + dir.File(name) + "' '" +
+    dir.File(name + ".cdl") + "'");
+  return dir.File(name);
 }
 
 } // namespace test

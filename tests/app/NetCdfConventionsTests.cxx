@@ -25,19 +25,6 @@ using cloudvis::MissingValueRule;
 using namespace cloudvis::support;
 using namespace cloudvis::test;
 
-// Writes `cdl` as the NetCDF file `name` in `dir` with ncgen, of ncgen's kind `kind` (1 classic,
-// 2 64-bit offset, 3 netCDF-4, 4 netCDF-4 classic model, 5 CDF-5); returns its path.
-std::string Ncgen(const TemporaryDirectory& dir,
-  const std::string& name,
-  const std::string& cdl,
-  int kind = 1)
-{
-  WriteText(dir.File(name + ".cdl"), cdl);
-  RunTool("ncgen -k " + std::to_string(kind) + " -o '" + dir.File(name) + "' '" +
-    dir.File(name + ".cdl") + "'");
-  return dir.File(name);
-}
-
 // The value at world point (x, y, z) = (i, 10 j, 100 k) of the fixtures below.
 double Known(int i, int j, int k)
 {

@@ -68,10 +68,14 @@ Scene LoadOperandScene(const std::string& command,
 // assignments and option overrides and turned into its field. The cheap checks come first (field
 // keys set for a field file, a bad -o, scene values, `checkScene` on the scene, the display when
 // `needsDisplay`): none of them should cost a field's generation.
+// The transfer function is fitted to the field's values as the viewer fits it
+// (FitTransferFunctionToField); Note says what was done ("" when nothing), for the command's
+// output.
 struct SceneInput
 {
   Scene Loaded;
   vtkSmartPointer<vtkImageData> Field;
+  std::string Note;
 };
 SceneInput LoadSceneInput(const std::string& command,
   const Arguments& arguments,

@@ -44,11 +44,13 @@ void CheckAnimationDirectory(const std::string& directory);
 
 // Renders and writes the frames of `scene` (a procedural field is generated; field.file is read
 // once and allowed for the turntable only). `input` names the scene in errors. `progress` is told
-// the label and overall fraction as the work advances. Returns the number of frames written.
-// On failure throws the InputError of the failing step; after frame 0 it adds
-// " (frame i; frames 0 .. i-1 were written)".
+// the label and overall fraction as the work advances. The transfer function is fitted to the
+// first frame's field (FitTransferFunctionNote, said in `transferFunctionNote`) and kept for
+// every frame. Returns the number of frames written. On failure throws the InputError of the
+// failing step; after frame 0 it adds " (frame i; frames 0 .. i-1 were written)".
 int RenderAnimation(const Scene& scene, const std::string& input, const AnimationRequest& request,
-  const std::function<void(const std::string& label, double fraction)>& progress = {});
+  const std::function<void(const std::string& label, double fraction)>& progress = {},
+  std::string* transferFunctionNote = nullptr);
 
 } // namespace cloudvis
 

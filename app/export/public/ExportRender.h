@@ -21,6 +21,8 @@ class vtkVolume;
 namespace cloudvis
 {
 
+class VtkMessageCapture;
+
 // The largest image the GPU can render into in one piece: the smallest of GL_MAX_TEXTURE_SIZE
 // (the mapper's float targets), GL_MAX_RENDERBUFFER_SIZE (the window's off-screen framebuffer)
 // and GL_MAX_VIEWPORT_DIMS, per axis.
@@ -60,6 +62,38 @@ void ReadFloatImage(vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, Rendere
 // that writes a picture checks its float image with it first: a non-finite pixel would reach
 // the file as a silently wrong color.
 void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input);
+
+// A pixel shows the field when it is at least this opaque: one 8-bit level of the cloud over the
+// background.
+constexpr double VisibleAlpha = 1.0 / 255.0;
+
+// Whether the field holds no value above 0: its picture is the background alone, which is
+// right, and the commands say so in words.
+bool FieldIsEmpty(vtkImageData* field);
+
+// Fits `scene`'s transfer function to `field`'s values (FitTransferFunctionToField in Scene.h)
+// and says what was done, or that the field is empty, as a line for a command's output ("" when
+// nothing was done). render, compare and animate call it once the field is produced.
+std::string FitTransferFunctionNote(Scene& scene, vtkImageData* field, bool fieldFileAlone);
+
+// Throws InputError naming `input` when no pixel of the premultiplied RGBA floats (`pixels` of
+// them) is VisibleAlpha opaque although the field holds values above 0: a blank picture of a
+// field that is there is refused, never written. The message says why and what to set: a
+// transfer function whose opacity is 0 over all the field's values (with the values and where
+// the opacity starts), or else the camera or a cloud too thin to show.
+void CheckFieldShows(const float* rgba,
+  size_t pixels,
+  vtkImageData* field,
+  const Scene& scene,
+  const std::string& input);
+
+// What a render that drew no frame says: "INPUT: nothing was rendered", with VTK's words when it
+// said any, or, when the volume's box lies wholly outside the camera's view frustum (the mapper
+// then draws nothing at all), that no pixel shows the field and where the camera looks.
+std::string NothingRenderedProblem(vtkRenderer* renderer,
+  vtkVolume* volume,
+  const VtkMessageCapture& messages,
+  const std::string& input);
 
 // The mapper's float image of `renderer` (premultiplied RGBA), checked with CheckFiniteImage;
 // throws InputError naming `input` when the mapper kept none.

@@ -95,6 +95,19 @@ struct TransferFunctionSpec
 // then holds sigma(d) = DropletExtinctionPerLwc * d at every entry, to float precision.
 TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& transferFunction);
 
+// The density above which the function's opacity rises from 0: the last point of opacity 0
+// before the first that is not (the first point's density when it is not 0; the last's when none
+// rises). Values at or below it are transparent.
+double OpacityRisesAbove(const TransferFunctionSpec& spec);
+
+// The densities a function's points span, opacity and color points together.
+std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec);
+// The function with its points' densities mapped linearly from TransferFunctionSpan(spec) onto
+// `target` (values unchanged): the viewer's `f` and FitTransferFunctionToField. Unchanged when
+// either span is empty.
+TransferFunctionSpec StretchTransferFunction(const TransferFunctionSpec& spec,
+  const std::array<double, 2>& target);
+
 // The "camera" section. Absent keys are filled when the field is known (see ApplyCamera in
 // export/OffscreenRender.h): the focal point is the field's centre, the position looks at it
 // along -z from the distance vtkRenderer::ResetCamera picks to fit the field's bounds.
@@ -239,6 +252,28 @@ struct Scene
   // resolved one is SceneToJson's, written from the members above).
   nlohmann::json Document;
 };
+
+// How a scene's transfer function met its field's values (FitTransferFunctionToField).
+enum class TransferFunctionFit
+{
+  Kept,                  // nothing to do
+  FittedToValues,        // a field file given alone: the default stretched over [min, max]
+  GrownToValues,         // no transfer_function: the default widened to take the values in
+  ValuesBeyondItsPoints, // the scene's own function, kept, does not cover the values
+};
+
+// The transfer function a render or a session starts with, as ParaView meets a new dataset's
+// colour map (its data range when first shown, grown afterwards, a saved state's as saved): a
+// field file given alone (`fieldFileAlone`: no scene, so no function of its own) has the default
+// function stretched over the field's values [min, max]; a scene without a transfer_function has
+// the default kept where its points cover the values, stretched to take them in where they lie
+// beyond it, and stretched over them where all of them lie where the default is transparent (a
+// field of mixing ratios below 1e-3 under a default that starts at 0.02); a scene's own function
+// is kept as it is. The droplet extinction is physical and never
+// stretched. The shape is kept: only the points' densities move.
+TransferFunctionFit FitTransferFunctionToField(Scene& scene,
+  const std::array<double, 2>& range,
+  bool fieldFileAlone);
 
 // A scene value given on the command line by an option that stands for a scene key (--lighting M
 // is render.lighting = "M"). It is applied to the document like --set, after the --set

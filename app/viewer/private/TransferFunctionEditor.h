@@ -59,13 +59,6 @@ TransferFunctionSpec TransferFunctionOf(vtkVolumeProperty* property);
 void SetTransferFunction(vtkVolumeProperty* property, const TransferFunctionSpec& spec);
 bool SameTransferFunction(const TransferFunctionSpec& a, const TransferFunctionSpec& b);
 
-// The densities the points of a function span, opacity and color points together.
-std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec);
-// The function with its points' densities mapped linearly from TransferFunctionSpan(spec) onto
-// `target` (values unchanged): `f` and the fit on opening. Unchanged when either span is empty.
-TransferFunctionSpec StretchTransferFunction(const TransferFunctionSpec& spec,
-  const std::array<double, 2>& target);
-
 // Numbers typed by the user, separated by spaces or commas; empty when a word is not a finite
 // number.
 std::vector<double> ParseTypedNumbers(const std::string& text);
