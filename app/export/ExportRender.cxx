@@ -154,17 +154,31 @@ bool FieldIsEmpty(vtkImageData* field)
   return !values || values->GetNumberOfTuples() == 0 || !(values->GetRange(0)[1] > 0.0);
 }
 
+bool HidesEveryValue(const TransferFunctionSpec& function)
+{
+  return function.Extinction == TransferFunctionSpec::ExtinctionRule::Opacity &&
+    std::all_of(function.Opacity.begin(),
+      function.Opacity.end(),
+      [](const std::array<double, 2>& point) { return point[1] == 0.0; });
+}
+
 std::string FitTransferFunctionNote(Scene& scene, vtkImageData* field, bool fieldFileAlone)
 {
   if (FieldIsEmpty(field))
   {
     return "the field is empty (no value above 0): the picture shows the background alone\n";
   }
+  if (HidesEveryValue(scene.TransferFunction))
+  {
+    return "transfer function: its opacity is 0 everywhere, so the picture shows the background "
+           "alone\n";
+  }
   double range[2];
   field->GetPointData()->GetScalars()->GetRange(range, 0);
   const std::array<double, 2> span = TransferFunctionSpan(scene.TransferFunction);
   char text[320];
-  switch (FitTransferFunctionToField(scene, { { range[0], range[1] } }, fieldFileAlone))
+  switch (FitTransferFunctionToField(
+    scene, { { range[0], range[1] } }, fieldFileAlone, field->GetBounds()))
   {
     case TransferFunctionFit::Kept:
       return "";
@@ -242,7 +256,7 @@ void CheckFieldShows(const float* rgba,
       return;
     }
   }
-  if (FieldIsEmpty(field))
+  if (FieldIsEmpty(field) || HidesEveryValue(scene.TransferFunction))
   {
     return;
   }

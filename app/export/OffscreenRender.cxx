@@ -164,9 +164,10 @@ void ApplyCamera(
   {
     std::copy(camera.FocalPoint->begin(), camera.FocalPoint->end(), focal);
   }
-  position[0] = focal[0];
-  position[1] = focal[1];
-  position[2] = focal[2] + distance;
+  for (int a = 0; a < 3; ++a)
+  {
+    position[a] = focal[a] + distance * camera.DefaultDirection[size_t(a)];
+  }
   if (camera.Position)
   {
     std::copy(camera.Position->begin(), camera.Position->end(), position);

@@ -508,9 +508,18 @@ TransferFunctionSpec StretchTransferFunction(const TransferFunctionSpec& spec,
   return stretched;
 }
 
+namespace
+{
+double Diagonal(const double b[6])
+{
+  return std::hypot(b[1] - b[0], b[3] - b[2], b[5] - b[4]);
+}
+} // namespace
+
 TransferFunctionFit FitTransferFunctionToField(Scene& scene,
   const std::array<double, 2>& range,
-  bool fieldFileAlone)
+  bool fieldFileAlone,
+  const double bounds[6])
 {
   TransferFunctionSpec& function = scene.TransferFunction;
   if (function.Extinction == TransferFunctionSpec::ExtinctionRule::Droplets ||
@@ -525,18 +534,51 @@ TransferFunctionFit FitTransferFunctionToField(Scene& scene,
   {
     return covered ? TransferFunctionFit::Kept : TransferFunctionFit::ValuesBeyondItsPoints;
   }
-  if (fieldFileAlone || range[1] <= OpacityRisesAbove(function))
-  {
-    function = StretchTransferFunction(function, range);
-    return TransferFunctionFit::FittedToValues;
-  }
-  if (covered)
+  const bool fit = fieldFileAlone || range[1] <= OpacityRisesAbove(function);
+  if (!fit && covered)
   {
     return TransferFunctionFit::Kept;
   }
-  function = StretchTransferFunction(
-    function, { { std::min(span[0], range[0]), std::max(span[1], range[1]) } });
-  return TransferFunctionFit::GrownToValues;
+  function = StretchTransferFunction(function,
+    fit ? range
+        : std::array<double, 2>{ { std::min(span[0], range[0]), std::max(span[1], range[1]) } });
+  const double diagonal = Diagonal(bounds), defaultDiagonal = Diagonal(FieldSpec{}.Bounds.data());
+  if (diagonal > 0.0 && std::isfinite(diagonal))
+  {
+    function.UnitDistance *= diagonal / defaultDiagonal;
+  }
+  return fit ? TransferFunctionFit::FittedToValues : TransferFunctionFit::GrownToValues;
+}
+
+void TurnDefaultViewToUp(Scene& scene, int up)
+{
+  if (up != 0 && up != 2)
+  {
+    return;
+  }
+  // The rotation that takes y to the up axis: z up turns (x, y, z) into (x, -z, y); x up turns it
+  // into (y, -x, z).
+  const auto turn = [up](const glm::dvec3& v)
+  { return up == 2 ? glm::dvec3(v.x, -v.z, v.y) : glm::dvec3(v.y, -v.x, v.z); };
+  const auto turnArray = [&](std::array<double, 3>& a)
+  {
+    const glm::dvec3 t = turn(glm::dvec3(a[0], a[1], a[2]));
+    a = { { t.x, t.y, t.z } };
+  };
+  const json& camera = scene.Document.contains("camera") ? scene.Document["camera"] : json();
+  if (!camera.contains("position") && !camera.contains("orbit") && !camera.contains("view_up"))
+  {
+    turnArray(scene.Camera.ViewUp);
+    turnArray(scene.Camera.DefaultDirection);
+  }
+  if (!scene.Document.contains("lights"))
+  {
+    for (Light& light : scene.Lights)
+    {
+      light.Position = turn(light.Position);
+      light.FocalPoint = turn(light.FocalPoint);
+    }
+  }
 }
 
 } // namespace cloudvis

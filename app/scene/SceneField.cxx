@@ -212,6 +212,7 @@ vtkSmartPointer<vtkImageData> ProduceField(Scene& scene,
     ResolveFieldValues(scene.Source, field, scene.Field.Units, read);
   }
   ResolveFieldOptics(scene, read.Resolved, scene.Field.FromFile() ? scene.Field.File : "");
+  TurnDefaultViewToUp(scene, read.Resolved.Up);
   if (report)
   {
     *report = read;

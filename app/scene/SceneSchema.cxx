@@ -102,7 +102,9 @@ const Keys<FieldSpec>& FieldUnitKeys()
         .DefaultIs("the file's, else `y`"),
       Nested(&F::Units, &U::Up),
       "the vertical axis of the lattice, for `info`'s cloud fraction per height, base, top and "
-      "liquid water path; cloudvis's generated fields and cameras have y up" },
+      "liquid water path; cloudvis's generated fields have y up, and the default camera and lights "
+      "turn to "
+      "the field's up" },
     { "effective_radius",
       NumberIn(Range{ 1e-3, 1e6 }).In("micrometres").DefaultIs("the file's, else `10`"),
       Nested(&F::Units, &U::EffectiveRadius),
@@ -531,7 +533,9 @@ const Keys<CameraSpec>& CameraKeys()
   using C = CameraSpec;
   static const Keys<C> keys = {
     { "position",
-      NumbersIn(3, AnyNumber).DefaultIs("`focal_point + (0, 0, d)`: looking along -z"),
+      NumbersIn(3, AnyNumber)
+        .DefaultIs("`focal_point + (0, 0, d)`: looking along -z; for a field whose up is z, "
+                   "`focal_point + (0, -d, 0)` (looking across it, along +y), for x up as for y"),
       &C::Position,
       "not equal to `focal_point`" },
     { "focal_point",
@@ -539,7 +543,9 @@ const Keys<CameraSpec>& CameraKeys()
       &C::FocalPoint,
       "" },
     { "view_up",
-      NumbersIn(3, AnyNumber),
+      NumbersIn(3, AnyNumber)
+        .DefaultIs(
+          "`[0, 1, 0]`; the field's up axis (`field.up`, or the file's) when it is x or z"),
       &C::ViewUp,
       "not zero, not parallel to the view direction",
       ~0u,

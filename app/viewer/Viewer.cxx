@@ -73,12 +73,13 @@ void Viewer::Internals::ApplyLighting()
 // in Scene.h says how it meets the field's values); the message line says what happened, and
 // that `f` fits the scene's own function when the values lie beyond it. The slices' window starts
 // at the field's range (SliceColors) unless a saved scene's view section says otherwise.
-std::string Viewer::Internals::FitTransferFunctionOnOpening(const std::array<double, 2>& range)
+std::string Viewer::Internals::FitTransferFunctionOnOpening(const std::array<double, 2>& range,
+  const double bounds[6])
 {
   const std::array<double, 2> span = TransferFunctionSpan(this->Current.TransferFunction);
   char text[256];
   const TransferFunctionFit fit =
-    FitTransferFunctionToField(this->Current, range, this->Options.FieldFile);
+    FitTransferFunctionToField(this->Current, range, this->Options.FieldFile, bounds);
   switch (fit)
   {
     case TransferFunctionFit::Kept:
@@ -510,7 +511,8 @@ Viewer::Viewer(const Scene& scene,
   in.ApplyLighting();
   double range[2];
   field->GetScalarRange(range);
-  const std::string fitted = in.FitTransferFunctionOnOpening({ { range[0], range[1] } });
+  const std::string fitted =
+    in.FitTransferFunctionOnOpening({ { range[0], range[1] } }, field->GetBounds());
   in.SceneTransferFunction = in.Current.TransferFunction; // what Shift+r goes back to
   in.Property = MakeVolumeProperty(in.Current.TransferFunction);
   in.Volume->SetMapper(in.Mapper);

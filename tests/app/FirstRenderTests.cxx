@@ -107,9 +107,14 @@ TEST(FirstRender, AnLesFileGivenAloneShowsItsCloud)
   const CloudPixels cloud = CountCloud(image);
   EXPECT_GT(cloud.Cloud, 400u) << "the two clouds cover a good part of the picture";
   EXPECT_EQ(cloud.Clipped, 0u);
-  // The picture's scene is the fitted one: its opacity points end at the field's maximum.
+  // The picture's scene is the fitted one: its opacity points end at the field's maximum, and
+  // the default's unit distance (0.1 for the default field's 4-unit box) grows with the box:
+  // 1150 x 1150 x 375 m between the first and last voxels' centres.
   const json scene = json::parse(image.Text.at("cloudvis.scene"));
   EXPECT_LT(scene["transfer_function"]["opacity"].back()[0].get<double>(), 1.2e-3);
+  EXPECT_NEAR(scene["transfer_function"]["unit_distance"].get<double>(),
+    0.1 * std::sqrt(2 * 1150.0 * 1150.0 + 375.0 * 375.0) / std::sqrt(48.0),
+    1e-6);
 }
 
 TEST(FirstRender, ASceneWithoutATransferFunctionIsFittedWhereTheDefaultShowsNothing)
@@ -191,6 +196,48 @@ TEST(FirstRender, APictureThatWouldNotShowTheFieldIsRefusedWithWhatToSet)
     << past.Err;
   EXPECT_EQ(dir.Files(),
     (std::vector<std::string>{ "fielddump.001.nc", "fielddump.001.nc.cdl", "own.json" }));
+}
+
+// A z-up domain is seen from the side, z up, with the sun above, not from straight above with
+// the sun at its side: the default camera and lights turn with the file's up axis, and a scene's
+// own camera is kept.
+TEST(FirstRender, AZUpFileIsSeenFromTheSideWithTheSunAbove)
+{
+  TemporaryDirectory dir;
+  const std::string file = DalesDump(dir, "fielddump.001.nc", 1.1e-3);
+  const CommandResult run = RunCloudvis(
+    { "render", file, "-o", dir.File("les.png"), "--size", "160x120", "--lighting", "march" });
+  ASSERT_EQ(run.Status, 0) << run.Err;
+  const Image image = ReadPng(dir.File("les.png"));
+  const json scene = json::parse(image.Text.at("cloudvis.scene"));
+  EXPECT_EQ(scene["camera"]["view_up"], json({ 0.0, 0.0, 1.0 }));
+  const json& position = scene["camera"]["position"];
+  const json& focal = scene["camera"]["focal_point"];
+  EXPECT_LT(position[1].get<double>(), focal[1].get<double>() - 1000.0) << scene["camera"];
+  EXPECT_NEAR(position[2].get<double>(), focal[2].get<double>(), 1e-6) << scene["camera"];
+  EXPECT_EQ(scene["lights"][0]["position"], json({ 6.0, -4.0, 8.0 }));
+  // Lit from above: the cloud's upper half is brighter than its lower half.
+  double upper = 0.0, lower = 0.0;
+  for (int y = 0; y < image.Height; ++y)
+  {
+    for (int x = 0; x < image.Width; ++x)
+    {
+      (y >= image.Height / 2 ? upper : lower) += image.Radiance(x, y) - image.Radiance(0, 0);
+    }
+  }
+  EXPECT_GT(upper, 1.2 * lower) << "rows count from the bottom";
+
+  const CommandResult own = RunCloudvis({ "render",
+    file,
+    "-o",
+    dir.File("own.png"),
+    "--size",
+    "40x30",
+    "--set",
+    "camera.position=600,600,5000" });
+  ASSERT_EQ(own.Status, 0) << own.Err;
+  const json ownScene = json::parse(ReadPng(dir.File("own.png")).Text.at("cloudvis.scene"));
+  EXPECT_EQ(ownScene["camera"]["view_up"], json({ 0.0, 1.0, 0.0 }));
 }
 
 TEST(FirstRender, AnEmptyFieldIsRenderedAndSaidToBeEmpty)

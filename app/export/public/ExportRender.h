@@ -67,9 +67,11 @@ void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input
 // background.
 constexpr double VisibleAlpha = 1.0 / 255.0;
 
-// Whether the field holds no value above 0: its picture is the background alone, which is
-// right, and the commands say so in words.
+// Whether the field holds no value above 0, and whether the transfer function's opacity is 0 at
+// every point (a scene that hides the cloud on purpose, to render the background): either way
+// the picture is the background alone, which is right, and the commands say so in words.
 bool FieldIsEmpty(vtkImageData* field);
+bool HidesEveryValue(const TransferFunctionSpec& function);
 
 // Fits `scene`'s transfer function to `field`'s values (FitTransferFunctionToField in Scene.h)
 // and says what was done, or that the field is empty, as a line for a command's output ("" when
@@ -77,8 +79,9 @@ bool FieldIsEmpty(vtkImageData* field);
 std::string FitTransferFunctionNote(Scene& scene, vtkImageData* field, bool fieldFileAlone);
 
 // Throws InputError naming `input` when no pixel of the premultiplied RGBA floats (`pixels` of
-// them) is VisibleAlpha opaque although the field holds values above 0: a blank picture of a
-// field that is there is refused, never written. The message says why and what to set: a
+// them) is VisibleAlpha opaque although the field holds values above 0 and the transfer function
+// means to show some (HidesEveryValue is false): a blank picture of a field that is there is
+// refused, never written. The message says why and what to set: a
 // transfer function whose opacity is 0 over all the field's values (with the values and where
 // the opacity starts), or else the camera or a cloud too thin to show.
 void CheckFieldShows(const float* rgba,

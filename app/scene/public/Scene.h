@@ -128,6 +128,10 @@ struct CameraSpec
   std::optional<std::array<double, 3>> FocalPoint;
   std::array<double, 3> ViewUp{ { 0.0, 1.0, 0.0 } };
   double ViewAngle = 30.0; // degrees, vertical
+  // Not a key: where the camera sits, seen from the focal point, when camera.position and
+  // camera.orbit are absent: +z for a field whose up is y; TurnDefaultViewToUp turns it with the
+  // view-up for a field whose up is another axis.
+  std::array<double, 3> DefaultDirection{ { 0.0, 0.0, 1.0 } };
 };
 
 // A scene's lighting before its keys are read: LightingParameters' defaults, with the ambient
@@ -253,6 +257,15 @@ struct Scene
   nlohmann::json Document;
 };
 
+// The default view and lights are made for a field whose up is y: the camera looks along -z with
+// y up, the sun shines from above (+y). For a field whose up (ResolvedFieldUnits::Up, from the
+// file or field.up) is another axis, turns what the scene leaves to the defaults by the rotation
+// that takes y to that axis (z up: y to z, z to -y, so the camera looks across the domain from
+// -y, z up, and the sun shines from above): the camera's view-up and direction when the scene
+// gives none of camera.position, camera.orbit and camera.view_up, and the lights when it has no
+// lights section. A scene's own camera and lights are kept.
+void TurnDefaultViewToUp(Scene& scene, int up);
+
 // How a scene's transfer function met its field's values (FitTransferFunctionToField).
 enum class TransferFunctionFit
 {
@@ -269,11 +282,14 @@ enum class TransferFunctionFit
 // the default kept where its points cover the values, stretched to take them in where they lie
 // beyond it, and stretched over them where all of them lie where the default is transparent (a
 // field of mixing ratios below 1e-3 under a default that starts at 0.02); a scene's own function
-// is kept as it is. The droplet extinction is physical and never
-// stretched. The shape is kept: only the points' densities move.
+// is kept as it is. The droplet extinction is physical and never stretched. The shape is kept:
+// only the points' densities move, and the default's unit distance, made for the default field's
+// box (`field.bounds` [-2, 2]^3), is scaled with the field's box (`bounds`, its diagonal), so a
+// field in metres looks as the same field in kilometres does.
 TransferFunctionFit FitTransferFunctionToField(Scene& scene,
   const std::array<double, 2>& range,
-  bool fieldFileAlone);
+  bool fieldFileAlone,
+  const double bounds[6]);
 
 // A scene value given on the command line by an option that stands for a scene key (--lighting M
 // is render.lighting = "M"). It is applied to the document like --set, after the --set

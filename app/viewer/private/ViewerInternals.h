@@ -131,7 +131,8 @@ struct Viewer::Internals
   void ApplyLighting();
   // Before the window opens: fits Current's transfer function to the field's value range where
   // ParaView would (Viewer.cxx says when). Returns the message that says so, or "".
-  std::string FitTransferFunctionOnOpening(const std::array<double, 2>& range);
+  std::string FitTransferFunctionOnOpening(const std::array<double, 2>& range,
+    const double bounds[6]);
 
   // Renders the window. A preview (asked for by a key that changes the cloud, in the live loop)
   // renders at the interactor's DesiredUpdateRate, so the mapper marches at a resolution that
