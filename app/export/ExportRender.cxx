@@ -154,14 +154,6 @@ bool FieldIsEmpty(vtkImageData* field)
   return !values || values->GetNumberOfTuples() == 0 || !(values->GetRange(0)[1] > 0.0);
 }
 
-bool HidesEveryValue(const TransferFunctionSpec& function)
-{
-  return function.Extinction == TransferFunctionSpec::ExtinctionRule::Opacity &&
-    std::all_of(function.Opacity.begin(),
-      function.Opacity.end(),
-      [](const std::array<double, 2>& point) { return point[1] == 0.0; });
-}
-
 std::string FitTransferFunctionNote(Scene& scene, vtkImageData* field, bool fieldFileAlone)
 {
   if (FieldIsEmpty(field))

@@ -480,6 +480,14 @@ double OpacityRisesAbove(const TransferFunctionSpec& spec)
   return rises;
 }
 
+bool HidesEveryValue(const TransferFunctionSpec& spec)
+{
+  return spec.Extinction == TransferFunctionSpec::ExtinctionRule::Opacity &&
+    std::all_of(spec.Opacity.begin(),
+      spec.Opacity.end(),
+      [](const std::array<double, 2>& point) { return point[1] == 0.0; });
+}
+
 std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec)
 {
   return { { std::min(spec.Opacity.front()[0], spec.Color.front()[0]),

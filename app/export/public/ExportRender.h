@@ -67,11 +67,9 @@ void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input
 // background.
 constexpr double VisibleAlpha = 1.0 / 255.0;
 
-// Whether the field holds no value above 0, and whether the transfer function's opacity is 0 at
-// every point (a scene that hides the cloud on purpose, to render the background): either way
-// the picture is the background alone, which is right, and the commands say so in words.
+// Whether the field holds no value above 0: its picture is the background alone, which is
+// right, and the commands say so in words (as for a function that HidesEveryValue, Scene.h).
 bool FieldIsEmpty(vtkImageData* field);
-bool HidesEveryValue(const TransferFunctionSpec& function);
 
 // Fits `scene`'s transfer function to `field`'s values (FitTransferFunctionToField in Scene.h)
 // and says what was done, or that the field is empty, as a line for a command's output ("" when

@@ -100,6 +100,10 @@ TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& trans
 // rises). Values at or below it are transparent.
 double OpacityRisesAbove(const TransferFunctionSpec& spec);
 
+// Whether the function's opacity is 0 at every point (extinction from the opacity points): a
+// scene that hides the cloud on purpose, to render the background alone.
+bool HidesEveryValue(const TransferFunctionSpec& spec);
+
 // The densities a function's points span, opacity and color points together.
 std::array<double, 2> TransferFunctionSpan(const TransferFunctionSpec& spec);
 // The function with its points' densities mapped linearly from TransferFunctionSpan(spec) onto
