@@ -271,7 +271,7 @@ const std::vector<FieldFormat>& FieldFormats()
     { "netcdf",
       "NetCDF (CF conventions)",
       { ".nc", ".nc4", ".cdf" },
-      TakesArray | TakesTimeStep | TakesMissing,
+      TakesArray | TakesTimeStep | TakesMissing | TakesAirDensity,
       ReadNetCdfFile },
     { "nrrd", "NRRD", { ".nrrd", ".nhdr" }, 0, ReadNrrdFile },
     { "metaimage", "MetaImage", { ".mha", ".mhd" }, 0, ReadMetaImageFile },
@@ -370,6 +370,13 @@ std::optional<FieldOptionProblem> CheckFieldReadOptions(const std::string& path,
     return FieldOptionProblem{ "missing",
       "applies to NetCDF files only; a " + format->Id + " file" + of +
         " marks no values as missing" };
+  }
+  if (options.AirDensity.From != AirDensitySource::Kind::Auto &&
+    !(format->Options & TakesAirDensity))
+  {
+    return FieldOptionProblem{ "air_density",
+      "applies to NetCDF files only, whose mixing ratios it turns into liquid water contents; a " +
+        format->Id + " file" + of + " declares no mixing ratio" };
   }
   const bool rawGiven = options.Raw.Dimensions[0] > 0;
   if (format->Options & TakesRawLayout)

@@ -3,7 +3,9 @@
 #include "FieldUnits.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cmath>
 
 namespace cloudvis
 {
@@ -36,8 +38,9 @@ void Pick(const std::optional<T>& scene,
   }
 }
 
-// Lower case, without spaces, '^', '*' and '.', so "g m-3", "g/m^3", "g.m**-3" compare.
-std::string Compact(const std::string& text)
+} // namespace
+
+std::string CompactUnits(const std::string& text)
 {
   std::string compact;
   for (const char c : text)
@@ -49,8 +52,6 @@ std::string Compact(const std::string& text)
   }
   return compact;
 }
-
-} // namespace
 
 ResolvedFieldUnits ResolveFieldUnits(const FieldUnits& scene, const FieldUnits& file)
 {
@@ -116,7 +117,7 @@ std::string QuantityUnit(FieldQuantity quantity)
 
 std::optional<DeclaredQuantity> QuantityFromUnits(const std::string& units)
 {
-  const std::string u = Compact(units);
+  const std::string u = CompactUnits(units);
   for (const char* gram : { "gm-3", "g/m3" })
   {
     if (u == gram)
@@ -136,7 +137,7 @@ std::optional<DeclaredQuantity> QuantityFromUnits(const std::string& units)
 
 std::optional<LengthUnit> LengthUnitFromText(const std::string& units)
 {
-  const std::string u = Compact(units);
+  const std::string u = CompactUnits(units);
   for (const char* metre : { "m", "metre", "metres", "meter", "meters" })
   {
     if (u == metre)
@@ -152,6 +153,78 @@ std::optional<LengthUnit> LengthUnitFromText(const std::string& units)
     }
   }
   return std::nullopt;
+}
+
+std::optional<double> MixingRatioGramsPerKilogram(const std::string& units,
+  const std::string& standardName)
+{
+  const std::string u = CompactUnits(units);
+  for (const char* kilogram : { "kg/kg", "kgkg-1" })
+  {
+    if (u == kilogram)
+    {
+      return 1000.0;
+    }
+  }
+  for (const char* gram : { "g/kg", "gkg-1" })
+  {
+    if (u == gram)
+    {
+      return 1.0;
+    }
+  }
+  const bool ratioByName = standardName == "cloud_liquid_water_mixing_ratio" ||
+    standardName == "mass_fraction_of_cloud_liquid_water_in_air";
+  if (ratioByName && (u.empty() || u == "1" || u == "kg/kg"))
+  {
+    return 1000.0;
+  }
+  return std::nullopt;
+}
+
+std::optional<AirState> StandardAtmosphere(double heightMetres)
+{
+  if (!(heightMetres >= StandardAtmosphereBottom && heightMetres <= StandardAtmosphereTop))
+  {
+    return std::nullopt;
+  }
+  // The layers: geopotential base height (m) and lapse rate (K/m); the base temperature and
+  // pressure of each follow from the sea-level values.
+  struct Layer
+  {
+    double Base, Lapse;
+  };
+  static constexpr std::array<Layer, 7> layers{ { { 0.0, -0.0065 },
+    { 11000.0, 0.0 },
+    { 20000.0, 0.001 },
+    { 32000.0, 0.0028 },
+    { 47000.0, 0.0 },
+    { 51000.0, -0.0028 },
+    { 71000.0, -0.002 } } };
+  constexpr double earthRadius = 6356766.0; // m, the standard's for geopotential height
+  const double geopotential = earthRadius * heightMetres / (earthRadius + heightMetres);
+  // Pressure across a layer from its base, at temperature t0 there, over geopotential dh.
+  const auto across = [](double p0, double t0, double lapse, double dh)
+  {
+    const double g = StandardGravity / DryAirGasConstant;
+    return lapse == 0.0 ? p0 * std::exp(-g * dh / t0)
+                        : p0 * std::pow((t0 + lapse * dh) / t0, -g / lapse);
+  };
+  double temperature = 288.15, pressure = 101325.0;
+  std::size_t l = 0;
+  while (l + 1 < layers.size() && geopotential >= layers[l + 1].Base)
+  {
+    const double dh = layers[l + 1].Base - layers[l].Base;
+    pressure = across(pressure, temperature, layers[l].Lapse, dh);
+    temperature += layers[l].Lapse * dh;
+    ++l;
+  }
+  const double dh = geopotential - layers[l].Base; // below 0 m: the troposphere's, continued
+  AirState air;
+  air.Pressure = across(pressure, temperature, layers[l].Lapse, dh);
+  air.Temperature = temperature + layers[l].Lapse * dh;
+  air.Density = air.Pressure / (DryAirGasConstant * air.Temperature);
+  return air;
 }
 
 } // namespace cloudvis

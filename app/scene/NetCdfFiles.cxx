@@ -23,6 +23,7 @@
 #include "Errors.h"
 #include "InputFiles.h"
 #include "IsolatedRead.h"
+#include "NetCdfAirDensity.h"
 #include "NetCdfVariables.h"
 
 #include <vtkFloatArray.h>
@@ -715,6 +716,30 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
                               : ", converted to float"));
     contents.Report.Add("units", units.empty() ? "not stated" : units);
     netcdf::DeclareQuantity(units, contents.Report);
+    const netcdf::FieldLattice lattice{ file,
+      chosen,
+      layout,
+      source.Step,
+      { { axes[0].Coordinates, axes[1].Coordinates, axes[2].Coordinates } },
+      axes[2].Reversed,
+      [&](const netcdf::Variable& other)
+      {
+        // Another variable on the field's dimensions, read as the field's values were.
+        const netcdf::Layout otherLayout = netcdf::LayoutOf(file, other);
+        for (std::size_t a = 0; a < 3; ++a)
+        {
+          if (otherLayout.Space[a].Dimension != layout.Space[a].Dimension)
+          {
+            Fail(path,
+              "variable \"" + other.Name + "\" is on the dimensions of \"" + chosen.Name +
+                "\" but they do not stand for the same axes");
+          }
+        }
+        netcdf::MissingValues otherMissing(file, other);
+        const ValueSource values{ file, other, otherLayout, source.Step, false, slabSlices };
+        return ReadValues(values, axes, otherMissing);
+      } };
+    netcdf::ConvertMixingRatio(lattice, options, density, contents.Report);
     netcdf::DeclareEffectiveRadius(file, chosen, contents.Report);
     if (!step.empty())
     {

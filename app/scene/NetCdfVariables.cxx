@@ -816,9 +816,8 @@ void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldRep
 
 // The physical quantity a variable's `units` declare (FieldUnits.h): a liquid water content in
 // g/m^3, or in kg/m^3 with the factor 1000 to g/m^3 in report.LwcScale (applied once the scene's
-// field.quantity is known, by ResolveFieldValues). A mixing ratio (kg/kg, g/kg) is not a content:
-// turning it into one needs the air's density, which cloudvis does not guess, so the field stays
-// a density and the report says why.
+// field.quantity is known, by ResolveFieldValues). A mixing ratio (kg/kg, g/kg) is not a content
+// until the air's density multiplies it: ConvertMixingRatio (NetCdfAirDensity.h) does that.
 void DeclareQuantity(const std::string& units, FieldReport& report)
 {
   if (const auto declared = QuantityFromUnits(units))
@@ -830,24 +829,31 @@ void DeclareQuantity(const std::string& units, FieldReport& report)
       report.LwcScaleFrom = units;
     }
     report.Add("quantity", "lwc (liquid water content, by the variable's units)");
-    return;
   }
-  std::string compact;
-  for (const char c : units)
+}
+
+std::string WhyZIsNotAHeight(const File& file, const Layout& layout)
+{
+  const Layout::Axis& z = layout.Space[2];
+  if (z.Position < 0)
   {
-    compact += c == ' ' ? '/' : char(std::tolower(static_cast<unsigned char>(c)));
+    return "the variable has no vertical dimension";
   }
-  for (const char* ratio : { "kg/kg", "g/kg", "kg/kg-1", "g/kg-1", "1" })
+  const std::string name = file.DimensionOf(z.Dimension).Name;
+  if (z.How.find("position") != std::string::npos)
   {
-    if (compact == ratio)
-    {
-      report.Add("quantity",
-        "density: \"" + units +
-          "\" is a mixing ratio, not a liquid water content (it needs the air's density); "
-          "field.quantity \"lwc\" reads the values as g/m^3 if they are");
-      return;
-    }
+    return "no dimension is identified as vertical (z is \"" + name + "\" by its position)";
   }
+  const Variable* coordinate = file.CoordinateOf(z.Dimension);
+  const std::string units = coordinate ? file.Text(*coordinate, "units") : "";
+  const std::string positive = coordinate ? file.Text(*coordinate, "positive") : "";
+  const bool height = !coordinate || LengthUnitFromText(units) || units.empty();
+  if (positive == "down" || !height)
+  {
+    return "the vertical axis is not a height (units \"" + units + "\", positive \"" + positive +
+      "\")";
+  }
+  return "";
 }
 
 // The length unit the spatial axes' coordinates share (m or km), and the vertical axis: z, where
@@ -878,16 +884,10 @@ void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& rep
   {
     return;
   }
-  const Variable* coordinate = file.CoordinateOf(z.Dimension);
-  const std::string positive = coordinate ? file.Text(*coordinate, "positive") : "";
-  const bool height = !coordinate || LengthUnitFromText(file.Text(*coordinate, "units")) ||
-    file.Text(*coordinate, "units").empty();
-  if (positive == "down" || !height)
+  const std::string why = WhyZIsNotAHeight(file, layout);
+  if (!why.empty())
   {
-    report.Add("up",
-      "not declared: the vertical axis is not a height (units \"" +
-        (coordinate ? file.Text(*coordinate, "units") : std::string()) + "\", positive \"" +
-        positive + "\"); field.up says which axis is up");
+    report.Add("up", "not declared: " + why + "; field.up says which axis is up");
     return;
   }
   report.Units.Up = 2;

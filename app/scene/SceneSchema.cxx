@@ -154,6 +154,61 @@ const Keys<FieldSpec>& FieldFileKeys()
       "density is, so the file is refused unless this says to read them as empty space; `info` "
       "then reports their count. NetCDF only: refused for a format that marks no values as "
       "missing" },
+    { "air_density",
+      CustomValue("`\"auto\"`, `\"standard\"`, a number (kg/m^3) or `\"variable:NAME\"`")
+        .DefaultIs("`\"auto\"`"),
+      [](const Context& c, const json& v, const std::string& k, F& f)
+      {
+        AirDensitySource& a = f.Read.AirDensity;
+        const std::string prefix = "variable:";
+        if (v.is_number() && v.get<double>() >= AirDensityMin && v.get<double>() <= AirDensityMax)
+        {
+          a = { AirDensitySource::Kind::Number, v.get<double>(), "" };
+          return;
+        }
+        const std::string text = v.is_string() ? v.get<std::string>() : "";
+        if (text == "auto" || text == "standard")
+        {
+          a = { text == "auto" ? AirDensitySource::Kind::Auto : AirDensitySource::Kind::Standard,
+            0.0,
+            "" };
+          return;
+        }
+        if (text.size() > prefix.size() && text.compare(0, prefix.size(), prefix) == 0)
+        {
+          RefuseNul(c, k, text);
+          a = { AirDensitySource::Kind::Variable, 0.0, text.substr(prefix.size()) };
+          return;
+        }
+        c.Fail(k,
+          "expected \"auto\", \"standard\", a number of kg/m^3 in [" + ShowValue(AirDensityMin) +
+            ", " + ShowValue(AirDensityMax) + "] or \"variable:NAME\", got " + Describe(v));
+      },
+      [](const F& f) -> json
+      {
+        const AirDensitySource& a = f.Read.AirDensity;
+        switch (a.From)
+        {
+          case AirDensitySource::Kind::Auto:
+            break;
+          case AirDensitySource::Kind::Standard:
+            return "standard";
+          case AirDensitySource::Kind::Number:
+            return a.KilogramsPerCubicMetre;
+          case AirDensitySource::Kind::Variable:
+            return "variable:" + a.Variable;
+        }
+        return json();
+      },
+      "where the air's density comes from when a NetCDF variable holds a mixing ratio (`kg/kg`, "
+      "`g/kg`): times the density it becomes a liquid water content in g/m^3. `\"auto\"` takes "
+      "the file's air density variable (standard_name `air_density`, or a name such as `rho`, "
+      "`rhof`, `rhobf`, `rhoref`; 3-D or a profile along the vertical), else its pressure and "
+      "temperature (ideal gas, with the virtual temperature where it holds the humidity), else "
+      "the ICAO standard atmosphere at the heights of the vertical axis; `\"standard\"` the "
+      "standard atmosphere; a number, one density everywhere; `\"variable:NAME\"` the file's "
+      "variable NAME. `info` names the source and the densities used "
+      "([data.md](data.md#mixing-ratios-and-the-airs-density)); NetCDF only" },
     { "max_voxels",
       IntegerIn(1, 1LL << 62),
       Nested(&F::Read, &R::MaximumVoxels),

@@ -106,7 +106,7 @@ void WriteNetCdf(const std::string& path,
   {
     int variable = 0;
     NC_OK(nc_def_var(file, name.c_str(), NC_FLOAT, int(dims.size()), dims.data(), &variable));
-    const std::string units = "g kg-1";
+    const std::string units = "g m-3";
     NC_OK(nc_put_att_text(file, variable, "units", units.size(), units.c_str()));
     if (define)
     {
@@ -187,7 +187,7 @@ TEST(NetCdf, ReadsTheChosenVariableAndTimeStepVoxelForVoxel)
     EXPECT_EQ(report.Format, "NetCDF (CF conventions)");
     EXPECT_NE(
       Detail(report, "variable").find("\"qc\" on (time, z, y, x), float"), std::string::npos);
-    EXPECT_EQ(Detail(report, "units"), "g kg-1");
+    EXPECT_EQ(Detail(report, "units"), "g m-3");
     EXPECT_EQ(
       Detail(report, "time step"), "1 of 0 .. 1: t = 3600 seconds since 2020-06-01 00:00:00");
     EXPECT_EQ(Detail(report, "axis z"), "\"z\" (z by its name): 100 .. 200 m, 3 points");

@@ -2,9 +2,11 @@
 // transfer function fitted to its values, a scene without one has it fitted when the default
 // would show none of them, and a picture that would not show a field that is there is refused
 // with what to set, while an empty field is rendered and said to be empty. The file is laid out
-// as DALES writes a field dump (ql in kg/kg on time, zt, yt, xt, coordinates in metres): its
-// values are below 1.2e-3, where the default function, made for densities 0 .. 1, is
-// transparent. Part of cloudvis-field-format-tests.
+// as DALES writes a field dump (ql in kg/kg on time, zt, yt, xt, coordinates in metres). Given
+// alone, its mixing ratios become liquid water contents with the standard atmosphere (up to
+// 1.1 g/m^3); read as stored (field.quantity "density"), they are below 1.2e-3, where the
+// default function, made for densities 0 .. 1, is transparent. Part of
+// cloudvis-field-format-tests.
 #include "FieldTestFiles.h" // Ncgen
 #include "SupportImages.h"
 #include "SupportRun.h"
@@ -98,8 +100,7 @@ TEST(FirstRender, AnLesFileGivenAloneShowsItsCloud)
   const CommandResult run =
     RunCloudvis({ "render", file, "-o", dir.File("les.png"), "--size", "160x120" });
   ASSERT_EQ(run.Status, 0) << run.Err;
-  EXPECT_NE(
-    run.Out.find("transfer function: the default fitted to the field's values [0, 0.0009228"),
+  EXPECT_NE(run.Out.find("transfer function: the default fitted to the field's values [0, 1.097]"),
     std::string::npos)
     << run.Out;
   const Image image = ReadPng(dir.File("les.png"));
@@ -111,7 +112,7 @@ TEST(FirstRender, AnLesFileGivenAloneShowsItsCloud)
   // the default's unit distance (0.1 for the default field's 4-unit box) grows with the box:
   // 1150 x 1150 x 375 m between the first and last voxels' centres.
   const json scene = json::parse(image.Text.at("cloudvis.scene"));
-  EXPECT_LT(scene["transfer_function"]["opacity"].back()[0].get<double>(), 1.2e-3);
+  EXPECT_NEAR(scene["transfer_function"]["opacity"].back()[0].get<double>(), 1.097, 1e-3);
   EXPECT_NEAR(scene["transfer_function"]["unit_distance"].get<double>(),
     0.1 * std::sqrt(2 * 1150.0 * 1150.0 + 375.0 * 375.0) / std::sqrt(48.0),
     1e-6);
@@ -121,8 +122,9 @@ TEST(FirstRender, ASceneWithoutATransferFunctionIsFittedWhereTheDefaultShowsNoth
 {
   TemporaryDirectory dir;
   const std::string file = DalesDump(dir, "fielddump.001.nc", 1.1e-3);
-  const std::string scene =
-    dir.Write("les.json", json({ { "field", { { "file", file } } } }).dump());
+  // Its mixing ratios read as stored, not as the liquid water content they make with the air.
+  const std::string scene = dir.Write(
+    "les.json", json({ { "field", { { "file", file }, { "quantity", "density" } } } }).dump());
   const CommandResult run =
     RunCloudvis({ "render", scene, "-o", dir.File("les.png"), "--size", "160x120" });
   ASSERT_EQ(run.Status, 0) << run.Err;
@@ -136,7 +138,7 @@ TEST(FirstRender, APictureThatWouldNotShowTheFieldIsRefusedWithWhatToSet)
   TemporaryDirectory dir;
   const std::string file = DalesDump(dir, "fielddump.001.nc", 1.1e-3);
   // The scene's own function, over [0, 1]: kept, and transparent below 0.02.
-  const json own = { { "field", { { "file", file } } },
+  const json own = { { "field", { { "file", file }, { "quantity", "density" } } },
     { "transfer_function", { { "opacity", { { 0.0, 0.0 }, { 0.02, 0.0 }, { 1.0, 0.8 } } } } } };
   const std::string scene = dir.Write("own.json", own.dump());
   for (const char* command : { "render", "compare" })
@@ -169,6 +171,8 @@ TEST(FirstRender, APictureThatWouldNotShowTheFieldIsRefusedWithWhatToSet)
     "--size",
     "160x120",
     "--set",
+    "field.quantity=density",
+    "--set",
     "camera.position=600,600,5000",
     "--set",
     "camera.focal_point=600,600,15000" });
@@ -184,6 +188,8 @@ TEST(FirstRender, APictureThatWouldNotShowTheFieldIsRefusedWithWhatToSet)
     dir.File("out.png"),
     "--size",
     "160x120",
+    "--set",
+    "field.quantity=density",
     "--set",
     "camera.position=600,-3000,1500",
     "--set",

@@ -185,11 +185,16 @@ void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldRep
 
 // What the file declares of its physical units (FieldReport::Units), each with a line in the
 // report: the quantity from the variable's `units` (for kg/m^3, the factor to g/m^3 in
-// FieldReport::LwcScale; a mixing ratio is said not to be a content), and the length unit the
-// spatial axes' coordinates share and the vertical axis (z, where the file identifies a height
-// axis).
+// FieldReport::LwcScale; a mixing ratio is ConvertMixingRatio's, NetCdfAirDensity.h), and the
+// length unit the spatial axes' coordinates share and the vertical axis (z, where the file
+// identifies a height axis).
 void DeclareQuantity(const std::string& units, FieldReport& report);
 void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& report);
+
+// Why the z axis of a variable's layout is not a height (empty when it is): the variable has none,
+// no dimension is identified as vertical (z is its third by position), or its coordinate is a
+// pressure, or positive down.
+std::string WhyZIsNotAHeight(const File& file, const Layout& layout);
 
 } // namespace netcdf
 } // namespace cloudvis

@@ -68,6 +68,9 @@ struct FieldReadOptions
   // What the scene declares of the field's units (field.quantity, field.length_unit, field.up,
   // field.effective_radius): it wins over what the file declares (ResolveFieldValues).
   FieldUnits Units;
+  // field.air_density: where the air's density comes from when a NetCDF file's mixing ratios
+  // become a liquid water content (NetCdfAirDensity.h).
+  AirDensitySource AirDensity;
 };
 
 // What a reader found and did, for `cloudvis info`: the format's name, then labelled lines in
@@ -113,10 +116,11 @@ struct FieldFileContents
 // The read options a format takes beyond the path (bits of FieldFormat::Options).
 enum FieldReadOption : unsigned
 {
-  TakesArray = 1u,     // field.array
-  TakesTimeStep = 2u,  // field.time_step
-  TakesRawLayout = 4u, // field.raw (and requires its dimensions)
-  TakesMissing = 8u    // field.missing: the format marks missing values
+  TakesArray = 1u,      // field.array
+  TakesTimeStep = 2u,   // field.time_step
+  TakesRawLayout = 4u,  // field.raw (and requires its dimensions)
+  TakesMissing = 8u,    // field.missing: the format marks missing values
+  TakesAirDensity = 16u // field.air_density: the format holds mixing ratios and the air
 };
 
 struct FieldFormat

@@ -92,6 +92,61 @@ std::optional<DeclaredQuantity> QuantityFromUnits(const std::string& units);
 // A length unit from a `units` text ("m", "metre", "meters", "km", "kilometres"...).
 std::optional<LengthUnit> LengthUnitFromText(const std::string& units);
 
+// A `units` text as the parsers above compare it: lower case, without spaces, '^', '*' and '.',
+// so that "g m-3", "g/m^3" and "g.m**-3" read "gm-3", "g/m3" and "gm-3".
+std::string CompactUnits(const std::string& units);
+
+// ---- mixing ratios and the air's density ----------------------------------------------------
+
+// The grams of water per kilogram of air that one unit of a mixing ratio is: 1000 for "kg/kg"
+// ("kg kg-1", "kg kg**-1"), 1 for "g/kg" ("g kg-1"), and 1000 for "1" or no units where the CF
+// standard_name says the variable is a mixing ratio or mass fraction of cloud liquid water.
+// Empty for any other units. LES codes write liquid water as such a ratio; times the air's
+// density in kg/m^3 it is a liquid water content in g/m^3.
+std::optional<double> MixingRatioGramsPerKilogram(const std::string& units,
+  const std::string& standardName);
+
+// Where the air's density comes from when a field of mixing ratios becomes a liquid water content
+// (the scene's field.air_density): found in the file or else the standard atmosphere ("auto"),
+// the standard atmosphere from the heights, one number, or the file's variable of that name.
+struct AirDensitySource
+{
+  enum class Kind
+  {
+    Auto,
+    Standard,
+    Number,
+    Variable,
+  };
+  Kind From = Kind::Auto;
+  double KilogramsPerCubicMetre = 0.0; // Number
+  std::string Variable;                // Variable
+  bool operator==(const AirDensitySource& o) const
+  {
+    return this->From == o.From && this->KilogramsPerCubicMetre == o.KilogramsPerCubicMetre &&
+      this->Variable == o.Variable;
+  }
+};
+
+// The densities a number of field.air_density, or an air density a file holds, may have, kg/m^3:
+// from thin stratospheric air to well beyond the densest air at the surface.
+constexpr double AirDensityMin = 1e-6, AirDensityMax = 10.0;
+
+// The gas constant of dry air, J/(kg K), and standard gravity, m/s^2 (US Standard Atmosphere 1976).
+constexpr double DryAirGasConstant = 287.05287;
+constexpr double StandardGravity = 9.80665;
+
+// The air at a height, of the ICAO standard atmosphere (identical to the US Standard Atmosphere
+// 1976 up to 86 km): temperature in K, pressure in Pa, density in kg/m^3. The height is geometric,
+// in metres above sea level, turned into geopotential height for the layers' lapse rates; the
+// pressure is hydrostatic. Empty outside [StandardAtmosphereBottom, StandardAtmosphereTop].
+struct AirState
+{
+  double Temperature = 0.0, Pressure = 0.0, Density = 0.0;
+};
+constexpr double StandardAtmosphereBottom = -5000.0, StandardAtmosphereTop = 86000.0;
+std::optional<AirState> StandardAtmosphere(double heightMetres);
+
 } // namespace cloudvis
 
 #endif
