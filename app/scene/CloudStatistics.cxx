@@ -504,14 +504,26 @@ void PrintCloudStatistics(std::ostream& out, const CloudStatistics& s)
       << From(u.QuantityFrom) << "\n";
   out << "length unit  " << LengthUnitName(u.Length) << From(u.LengthFrom) << "\n";
   out << "up           " << AxisName(u.Up) << From(u.UpFrom) << "\n";
-  if (u.Quantity == FieldQuantity::Lwc)
+  if (u.Quantity == FieldQuantity::Lwc && u.DropletNumber > 0.0)
+  {
+    const double radius = EffectiveRadiusOfDroplets(1.0, u.DropletNumber);
+    out << "droplets     " << u.DropletNumber << " per cm^3" << From(u.DropletNumberFrom)
+        << ": r_e = (3 LWC / (4 pi rho_w k N))^(1/3), " << radius << " um at 1 g/m^3; extinction "
+        << DropletExtinctionPerMetre(1.0, radius) << " /m at 1 g/m^3, as LWC^(2/3)\n";
+    if (u.CloudMeanLwc > 0.0)
+    {
+      out << "             r_e " << u.EffectiveRadius << " um at the cloud's mean "
+          << u.CloudMeanLwc << " g/m^3 (the droplets' phase's)\n";
+    }
+  }
+  else if (u.Quantity == FieldQuantity::Lwc)
   {
     out << "droplets     effective radius " << u.EffectiveRadius << " um"
         << From(u.EffectiveRadiusFrom) << ": extinction "
         << DropletExtinctionPerMetre(1.0, u.EffectiveRadius) << " /m per g/m^3\n";
   }
   const FieldUnits& o = u.Overridden;
-  if (o.Quantity || o.Length || o.Up || o.EffectiveRadius)
+  if (o.Quantity || o.Length || o.Up || o.EffectiveRadius || o.DropletNumber)
   {
     out << "file says    ";
     if (o.Quantity)
@@ -522,6 +534,8 @@ void PrintCloudStatistics(std::ostream& out, const CloudStatistics& s)
       out << "up " << AxisName(*o.Up) << " ";
     if (o.EffectiveRadius)
       out << "effective radius " << *o.EffectiveRadius << " um ";
+    if (o.DropletNumber)
+      out << "droplet number " << *o.DropletNumber << " per cm^3 ";
     out << "(the scene's keys win)\n";
   }
   if (!s.Problem.empty())
@@ -577,11 +591,14 @@ nlohmann::json UnitsToJson(const ResolvedFieldUnits& u)
     { "length_unit", LengthUnitName(u.Length) },
     { "up", AxisName(u.Up) },
     { "effective_radius", u.EffectiveRadius },
+    { "droplet_number", u.DropletNumber },
+    { "cloud_mean_lwc", u.CloudMeanLwc },
     { "from",
       { { "quantity", u.QuantityFrom },
         { "length_unit", u.LengthFrom },
         { "up", u.UpFrom },
-        { "effective_radius", u.EffectiveRadiusFrom } } },
+        { "effective_radius", u.EffectiveRadiusFrom },
+        { "droplet_number", u.DropletNumberFrom } } },
   };
   nlohmann::json file = nlohmann::json::object();
   const FieldUnits& o = u.Overridden;
@@ -593,6 +610,8 @@ nlohmann::json UnitsToJson(const ResolvedFieldUnits& u)
     file["up"] = AxisName(*o.Up);
   if (o.EffectiveRadius)
     file["effective_radius"] = *o.EffectiveRadius;
+  if (o.DropletNumber)
+    file["droplet_number"] = *o.DropletNumber;
   json["overridden_file_values"] = file;
   return json;
 }

@@ -5,6 +5,7 @@
 #include "FieldIO.h"
 
 #include "AtomicFile.h"
+#include "CloudStatistics.h" // DefaultCloudThreshold
 #include "Errors.h"
 #include "FieldFormatReaders.h"
 #include "FieldPieces.h"
@@ -430,7 +431,7 @@ ResolvedFieldUnits ResolveFieldValues(const std::string& name,
   const FieldUnits& scene,
   FieldReport& report)
 {
-  const ResolvedFieldUnits units = ResolveFieldUnits(scene, report.Units);
+  ResolvedFieldUnits units = ResolveFieldUnits(scene, report.Units);
   vtkFloatArray* values = vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars());
   const bool lwc = units.Quantity == FieldQuantity::Lwc;
   if (values && report.LwcScale != 1.0)
@@ -514,6 +515,28 @@ ResolvedFieldUnits ResolveFieldValues(const std::string& name,
         std::to_string(negligible) + (negligible == 1 ? " value" : " values") + " down to " +
           Number(lowest) + " g/m^3 read as 0 (at most " + Number(NegligibleNegativeLwc) +
           " g/m^3 below 0: numerical noise, not water)");
+    }
+  }
+  if (values && lwc && units.DropletNumber > 0.0)
+  {
+    // One r_e for the droplets' phase: that of the cloud's mean content.
+    const double threshold = DefaultCloudThreshold(FieldQuantity::Lwc);
+    const float* v = values->GetPointer(0);
+    double sum = 0.0;
+    vtkIdType cloudy = 0;
+    for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
+    {
+      if (double(v[i]) > threshold)
+      {
+        sum += double(v[i]);
+        ++cloudy;
+      }
+    }
+    units.CloudMeanLwc = cloudy > 0 ? sum / double(cloudy) : 0.0;
+    if (cloudy > 0)
+    {
+      units.EffectiveRadius = EffectiveRadiusOfDroplets(units.CloudMeanLwc, units.DropletNumber);
+      units.EffectiveRadiusFrom = "droplet number";
     }
   }
   report.Resolved = units;

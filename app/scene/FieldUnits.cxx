@@ -64,6 +64,26 @@ ResolvedFieldUnits ResolveFieldUnits(const FieldUnits& scene, const FieldUnits& 
     r.EffectiveRadius,
     r.EffectiveRadiusFrom,
     r.Overridden.EffectiveRadius);
+  // The scene's droplet number, else the file's; the scene's effective radius wins over the
+  // file's number as over its radius.
+  if (scene.DropletNumber)
+  {
+    r.DropletNumber = *scene.DropletNumber;
+    r.DropletNumberFrom = "scene";
+    if (file.DropletNumber && *file.DropletNumber != *scene.DropletNumber)
+    {
+      r.Overridden.DropletNumber = file.DropletNumber;
+    }
+  }
+  else if (file.DropletNumber && !scene.EffectiveRadius)
+  {
+    r.DropletNumber = *file.DropletNumber;
+    r.DropletNumberFrom = "file";
+  }
+  else
+  {
+    r.Overridden.DropletNumber = file.DropletNumber;
+  }
   return r;
 }
 
@@ -84,6 +104,14 @@ double MetresPerUnit(LengthUnit unit)
 double DropletExtinctionPerMetre(double lwc, double effectiveRadiusMicrometres)
 {
   return 3.0 * lwc / (2.0 * WaterDensity * effectiveRadiusMicrometres * 1e-6);
+}
+
+double EffectiveRadiusOfDroplets(double lwc, double numberPerCubicCentimetre)
+{
+  const double perCubicMetre = numberPerCubicCentimetre * 1e6;
+  const double pi = std::acos(-1.0);
+  const double cubed = 3.0 * lwc / (4.0 * pi * WaterDensity * DropletSpectrumK * perCubicMetre);
+  return std::cbrt(cubed) * 1e6;
 }
 
 std::string QuantityName(FieldQuantity quantity)

@@ -156,6 +156,8 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
   out.Value(std::int32_t(units.Up.value_or(1)));
   out.Value(std::uint8_t(units.EffectiveRadius.has_value()));
   out.Value(units.EffectiveRadius.value_or(0.0));
+  out.Value(std::uint8_t(units.DropletNumber.has_value()));
+  out.Value(units.DropletNumber.value_or(0.0));
   out.Value(contents.Report.LwcScale);
   out.Text(contents.Report.LwcScaleFrom);
   out.Value(FieldRecord); // complete
@@ -361,12 +363,13 @@ bool ReadFieldRecord(RecordReader& in, FieldFileContents& contents)
     }
     contents.Report.Add(label, text);
   }
-  std::uint8_t has[4] = {};
+  std::uint8_t has[5] = {};
   std::int32_t quantity = 0, length = 0, up = 0;
-  double radius = 0.0;
+  double radius = 0.0, droplets = 0.0;
   if (!in.Value(has[0]) || !in.Value(quantity) || !in.Value(has[1]) || !in.Value(length) ||
-    !in.Value(has[2]) || !in.Value(up) || !in.Value(has[3]) || !in.Value(radius) || quantity < 0 ||
-    quantity > 1 || length < 0 || length > 2 || up < 0 || up > 2)
+    !in.Value(has[2]) || !in.Value(up) || !in.Value(has[3]) || !in.Value(radius) ||
+    !in.Value(has[4]) || !in.Value(droplets) || quantity < 0 || quantity > 1 || length < 0 ||
+    length > 2 || up < 0 || up > 2)
   {
     return false;
   }
@@ -375,6 +378,7 @@ bool ReadFieldRecord(RecordReader& in, FieldFileContents& contents)
   units.Length = has[1] ? std::optional<LengthUnit>(LengthUnit(length)) : std::nullopt;
   units.Up = has[2] ? std::optional<int>(up) : std::nullopt;
   units.EffectiveRadius = has[3] ? std::optional<double>(radius) : std::nullopt;
+  units.DropletNumber = has[4] ? std::optional<double>(droplets) : std::nullopt;
   std::uint64_t end = 0;
   contents.Image = image;
   return in.Value(contents.Report.LwcScale) && std::isfinite(contents.Report.LwcScale) &&

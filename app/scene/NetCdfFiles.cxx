@@ -741,6 +741,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
       } };
     netcdf::ConvertMixingRatio(lattice, options, density, contents.Report);
     netcdf::DeclareEffectiveRadius(file, chosen, contents.Report);
+    netcdf::DeclareDropletNumber(file, chosen, contents.Report);
     if (!step.empty())
     {
       contents.Report.Add("time step", step);

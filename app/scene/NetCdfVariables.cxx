@@ -814,6 +814,26 @@ void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldRep
   report.Add("effective radius", Number(radius[0]) + " um (the variable's effective_radius)");
 }
 
+void DeclareDropletNumber(const File& file, const Variable& variable, FieldReport& report)
+{
+  const std::vector<double> number = file.CheckedNumbers(
+    variable, "droplet_number", 1, 1, "the droplets' number concentration per cm^3");
+  if (number.empty())
+  {
+    return;
+  }
+  if (!(number[0] >= DropletNumberMin && number[0] <= DropletNumberMax))
+  {
+    cloudvis::Fail(file.Path(),
+      "variable \"" + variable.Name +
+        "\": attribute droplet_number must be a number of droplets "
+        "per cm^3 in [" +
+        Number(DropletNumberMin) + ", " + Number(DropletNumberMax) + "], got " + Number(number[0]));
+  }
+  report.Units.DropletNumber = number[0];
+  report.Add("droplet number", Number(number[0]) + " per cm^3 (the variable's droplet_number)");
+}
+
 // The physical quantity a variable's `units` declare (FieldUnits.h): a liquid water content in
 // g/m^3, or in kg/m^3 with the factor 1000 to g/m^3 in report.LwcScale (applied once the scene's
 // field.quantity is known, by ResolveFieldValues). A mixing ratio (kg/kg, g/kg) is not a content

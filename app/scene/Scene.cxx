@@ -451,7 +451,9 @@ TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& trans
     lo = std::min(lo, t.Color.front()[0]);
     hi = std::max(hi, t.Color.back()[0]);
   }
-  const double sigmaMax = t.DropletExtinctionPerLwc * hi;
+  const auto extinction = [&t](double lwc)
+  { return t.DropletExtinctionPerLwc * std::pow(std::max(lwc, 0.0), t.DropletLwcPower); };
+  const double sigmaMax = extinction(hi);
   // Opacity 1 - 1/e at the densest entry: far from the clamp at 1 - 1e-4, and every opacity
   // keeps double's relative precision through -log1p(-a) / u.
   t.UnitDistance = sigmaMax > 0.0 ? 1.0 / sigmaMax : 1.0;
@@ -460,7 +462,7 @@ TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& trans
   for (int i = 0; i < entries; ++i)
   {
     const double density = lo + (hi - lo) * (double(i) / (entries - 1));
-    const double sigma = t.DropletExtinctionPerLwc * std::max(density, 0.0);
+    const double sigma = extinction(density);
     t.Opacity.push_back({ { density, -std::expm1(-sigma * t.UnitDistance) } });
   }
   return t;

@@ -110,6 +110,15 @@ const Keys<FieldSpec>& FieldUnitKeys()
       Nested(&F::Units, &U::EffectiveRadius),
       "the droplets' effective radius r_e of an lwc field: extinction = 3 lwc / (2 rho_w r_e); "
       "also the droplets' phase's unless `render.march.effective_radius` is given" },
+    { "droplet_number",
+      NumberIn(Range{ DropletNumberMin, DropletNumberMax })
+        .In("droplets per cm^3")
+        .DefaultIs("the file's, else none"),
+      Nested(&F::Units, &U::DropletNumber),
+      "the droplets' number concentration N of an lwc field: their effective radius grows with "
+      "the liquid water, r_e = (3 lwc / (4 pi rho_w k N))^(1/3) with k = 0.8 (Martin et al. "
+      "1994), so the extinction grows as lwc^(2/3); the droplets' phase takes r_e at the cloud's "
+      "mean lwc. Refused with `effective_radius`" },
   };
   return keys;
 }

@@ -600,8 +600,11 @@ void ResolveFieldOptics(const Context& c,
         "\"km\" to convert it to world units" +
           UnitOrigin(file, u.LengthFrom, "\"" + LengthUnitName(u.Length) + "\""));
     }
-    t.DropletExtinctionPerLwc =
-      DropletExtinctionPerMetre(1.0, u.EffectiveRadius) * MetresPerUnit(u.Length);
+    // With a droplet number, r_e at 1 g/m^3, and sigma grows as LWC^(2/3) from there.
+    const double radius =
+      u.DropletNumber > 0.0 ? EffectiveRadiusOfDroplets(1.0, u.DropletNumber) : u.EffectiveRadius;
+    t.DropletExtinctionPerLwc = DropletExtinctionPerMetre(1.0, radius) * MetresPerUnit(u.Length);
+    t.DropletLwcPower = u.DropletNumber > 0.0 ? 2.0 / 3.0 : 1.0;
   }
   LightingParameters& lighting = s.Render.Lighting;
   if (lighting.Phase == PhaseModel::Droplets && !s.Render.DropletRadiusGiven)
@@ -612,8 +615,11 @@ void ResolveFieldOptics(const Context& c,
       c.Fail("render.march.effective_radius",
         "the droplets' phase takes the field's effective radius, " +
           FormatNumber(u.EffectiveRadius) + " um (" +
-          (u.EffectiveRadiusFrom == "file" ? file : "field.effective_radius") + "), outside the [" +
-          FormatNumber(DropletEffectiveRadiusMinUm) + ", " +
+          (u.EffectiveRadiusFrom == "file"                ? file
+              : u.EffectiveRadiusFrom == "droplet number" ? "field.droplet_number's at the "
+                                                            "cloud's mean liquid water"
+                                                          : "field.effective_radius") +
+          "), outside the [" + FormatNumber(DropletEffectiveRadiusMinUm) + ", " +
           FormatNumber(DropletEffectiveRadiusMaxUm) +
           "] micrometres its table covers: give render.march.effective_radius");
     }
@@ -623,6 +629,12 @@ void ResolveFieldOptics(const Context& c,
 
 void ResolveDroplets(const Context& c, const json& document, Scene& s)
 {
+  if (s.Field.Units.DropletNumber && s.Field.Units.EffectiveRadius)
+  {
+    c.Fail("field.droplet_number",
+      "gives the droplets' effective radius from their liquid water, and field.effective_radius "
+      "gives one radius for all: give one of them");
+  }
   const json* render = document.contains("render") ? &document["render"] : nullptr;
   s.Render.DropletRadiusGiven = render && render->is_object() && render->contains("march") &&
     (*render)["march"].is_object() && (*render)["march"].contains("effective_radius");

@@ -85,6 +85,10 @@ bool vtkCloudFieldReader::ReadFile()
     radius->SetName("effective_radius");
     radius->InsertNextValue(u.EffectiveRadius);
     data->AddArray(radius);
+    vtkNew<vtkDoubleArray> droplets;
+    droplets->SetName("droplet_number");
+    droplets->InsertNextValue(u.DropletNumber);
+    data->AddArray(droplets);
   }
   catch (const std::exception& error)
   {

@@ -14,8 +14,10 @@
  * The output's field data holds the units the field has, as `cloudvis info` reports them
  * (decided by cloudvis's one place for them, ResolveFieldValues in FieldIO.h, from what the file
  * declares): the strings "quantity" ("density" or "lwc"), "length_unit" ("none", "m", "km") and
- * "up" ("x", "y", "z"), and the number "effective_radius" (micrometres). A NetCDF liquid water
- * content in kg/m^3 is converted to g/m^3 and small negative contents read as 0, as everywhere.
+ * "up" ("x", "y", "z"), and the numbers "effective_radius" (micrometres) and "droplet_number"
+ * (per cm^3, 0 when none is declared). A NetCDF liquid water content in kg/m^3 is converted to
+ * g/m^3, a mixing ratio made one with the air's density (NetCdfAirDensity.h, "auto"), and small
+ * negative contents read as 0, as everywhere.
  *
  * A file that cannot be read (missing, truncated, corrupt, too large, an option it does not
  * take) gives one vtkErrorMacro naming the file and the problem and an empty output: a bad file

@@ -683,7 +683,21 @@ std::string VdbCube(const cloudvis::support::TemporaryDirectory& dir, double rad
   return path;
 }
 
+std::string NetCdfCubeDeclaring(const cloudvis::support::TemporaryDirectory& dir,
+  const std::string& name,
+  const std::string& attributes);
+
 std::string NetCdfCube(const cloudvis::support::TemporaryDirectory& dir, double radius)
+{
+  return NetCdfCubeDeclaring(dir,
+    "cube-" + std::to_string(int(radius)),
+    "ql:effective_radius = " + std::to_string(radius) + " ;");
+}
+
+// The cube as a NetCDF file `name`.nc whose variable has the CDL `attributes` beside its units.
+std::string NetCdfCubeDeclaring(const cloudvis::support::TemporaryDirectory& dir,
+  const std::string& name,
+  const std::string& attributes)
 {
   std::string axis, values;
   for (int i = 0; i < 9; ++i)
@@ -694,14 +708,13 @@ std::string NetCdfCube(const cloudvis::support::TemporaryDirectory& dir, double 
   {
     values += i ? ", 0.4" : "0.4";
   }
-  const std::string name = "cube-" + std::to_string(int(radius));
   cloudvis::support::WriteText(dir.File(name + ".cdl"),
     "netcdf cube {\ndimensions: z = 9 ; y = 9 ; x = 9 ;\nvariables:\n"
     "  double z(z) ; z:axis = \"Z\" ; z:units = \"m\" ; z:positive = \"up\" ;\n"
     "  double y(y) ; y:units = \"m\" ;\n  double x(x) ; x:units = \"m\" ;\n"
-    "  float ql(z, y, x) ; ql:units = \"g m-3\" ; ql:effective_radius = " +
-      std::to_string(radius) + " ;\ndata:\n  z = " + axis + " ;\n  y = " + axis +
-      " ;\n  x = " + axis + " ;\n  ql = " + values + " ;\n}\n");
+    "  float ql(z, y, x) ; ql:units = \"g m-3\" ; " +
+      attributes + "\ndata:\n  z = " + axis + " ;\n  y = " + axis + " ;\n  x = " + axis +
+      " ;\n  ql = " + values + " ;\n}\n");
   cloudvis::test::RunTool(
     "ncgen -k 1 -o '" + dir.File(name + ".nc") + "' '" + dir.File(name + ".cdl") + "'");
   return dir.File(name + ".nc");
@@ -820,6 +833,90 @@ TEST(Droplets, FileEffectiveRadiusIsThePhasesUnlessTheSceneGivesOne)
   EXPECT_EQ(FinishedScene(large, { phase, "render.march.effective_radius=10" })
               .Render.Lighting.DropletEffectiveRadius,
     10.0f);
+}
+
+// ---- droplets of a given number ------------------------------------------------------------
+
+TEST(Droplets, EffectiveRadiusOfANumberGrowsAsTheCubeRootOfTheWater)
+{
+  // 1 g/m^3 in 100 droplets per cm^3 with k = 0.8: r_e^3 = 3 x 1 / (4 pi x 1e6 x 0.8 x 1e8) m^3.
+  const double pi = std::acos(-1.0);
+  const double byHand = std::cbrt(3.0 / (4.0 * pi * 1e6 * 0.8 * 1e8)) * 1e6;
+  EXPECT_NEAR(byHand, 14.397, 1e-3);
+  EXPECT_NEAR(cloudvis::EffectiveRadiusOfDroplets(1.0, 100.0), byHand, 1e-9);
+  EXPECT_NEAR(cloudvis::EffectiveRadiusOfDroplets(0.125, 100.0), byHand / 2, 1e-9);
+  EXPECT_NEAR(cloudvis::EffectiveRadiusOfDroplets(1.0, 800.0), byHand / 2, 1e-9);
+}
+
+TEST(Droplets, ADropletNumberMakesTheTableGrowAsLwcToTheTwoThirds)
+{
+  const cloudvis::TransferTable table = TableOf(
+    DropletScene({ { "quantity", "lwc" }, { "length_unit", "m" }, { "droplet_number", 100 } }));
+  ASSERT_EQ(table.Size, cloudvis::TransferTableSize);
+  for (int i = 1; i < table.Size; ++i)
+  {
+    const double lwc = 2.0 * i / (table.Size - 1);
+    const double radius = cloudvis::EffectiveRadiusOfDroplets(lwc, 100.0) * 1e-6;
+    const double sigma = 3.0 * lwc / (2.0 * 1e6 * radius);
+    EXPECT_NEAR(table.RGBA[size_t(i) * 4 + 3], sigma, 1e-6 * sigma) << lwc;
+  }
+  EXPECT_EQ(table.RGBA[3], 0.0f);
+  try
+  {
+    DropletScene({ { "quantity", "lwc" },
+      { "length_unit", "m" },
+      { "droplet_number", 100 },
+      { "effective_radius", 10 } });
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const cloudvis::InputError& e)
+  {
+    EXPECT_EQ(std::string(e.what()),
+      "droplets.json: field.droplet_number: gives the droplets' effective radius from their "
+      "liquid water, and field.effective_radius gives one radius for all: give one of them");
+  }
+}
+
+TEST(Droplets, AFilesDropletNumberSetsTheExtinctionAndThePhasesRadius)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  // 0.4 g/m^3 in 25 droplets per cm^3: r_e = 16.84 um, sigma = 0.0356 / m, tau = 1.78 across
+  // the cube's 50 m (10 um would give 3).
+  const std::string path = NetCdfCubeDeclaring(dir, "few", "ql:droplet_number = 25. ;");
+  const double radius = cloudvis::EffectiveRadiusOfDroplets(0.4, 25.0);
+  EXPECT_NEAR(radius, 16.84, 1e-2);
+  const double tau = 3.0 * 0.4 / (2.0 * 1e6 * radius * 1e-6) * 50.0;
+  EXPECT_NEAR(RenderedCubeAlpha(dir, path), 1.0 - std::exp(-tau), 5e-3);
+  const cloudvis::Scene scene = FinishedScene(path, { "render.march.phase=droplets" });
+  EXPECT_NEAR(scene.Render.Lighting.DropletEffectiveRadius, radius, 1e-4);
+  EXPECT_EQ(scene.Field.Resolved->EffectiveRadiusFrom, "droplet number");
+  // The scene's number wins over the file's, and the scene's radius over both.
+  EXPECT_NEAR(FinishedScene(path, { "render.march.phase=droplets", "field.droplet_number=200" })
+                .Render.Lighting.DropletEffectiveRadius,
+    radius / 2,
+    1e-4);
+  EXPECT_EQ(FinishedScene(path, { "render.march.phase=droplets", "field.effective_radius=12" })
+              .Render.Lighting.DropletEffectiveRadius,
+    12.0f);
+  const std::string text = cloudvis::support::RunCloudvis({ "info", path }).Out;
+  EXPECT_NE(text.find("droplets     25 per cm^3 (file): r_e = (3 LWC / (4 pi rho_w k N))^(1/3), "
+                      "22.8539 um at 1 g/m^3; extinction 0.0656343 /m at 1 g/m^3, as LWC^(2/3)\n"
+                      "             r_e 16.8389 um at the cloud's mean 0.4 g/m^3"),
+    std::string::npos)
+    << text;
+  const std::string overridden =
+    cloudvis::support::RunCloudvis({ "info", path, "--set", "field.effective_radius=12" }).Out;
+  EXPECT_NE(overridden.find("file says    droplet number 25 per cm^3 (the scene's keys win)"),
+    std::string::npos)
+    << overridden;
+  // A number beyond droplets' is refused, naming the attribute.
+  const std::string wrong = NetCdfCubeDeclaring(dir, "wrong", "ql:droplet_number = 0. ;");
+  const auto refused = cloudvis::support::RunCloudvis({ "info", wrong });
+  EXPECT_NE(refused.Err.find(wrong +
+              ": variable \"ql\": attribute droplet_number must be a "
+              "number of droplets per cm^3 in [1, 100000], got 0"),
+    std::string::npos)
+    << refused.Err;
 }
 
 TEST(Droplets, FileWithoutLwcIsRefusedOnceRead)

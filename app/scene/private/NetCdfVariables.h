@@ -182,6 +182,9 @@ Packing PackingOf(const File& file, const Variable& variable);
 // The droplets' effective radius a variable declares: the numeric attribute `effective_radius`,
 // one value in micrometres in [0.001, 1000000] (else refused), into FieldReport::Units.
 void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldReport& report);
+// The droplets' number concentration a variable declares: the numeric attribute
+// `droplet_number`, one value per cm^3 in [DropletNumberMin, DropletNumberMax] (else refused).
+void DeclareDropletNumber(const File& file, const Variable& variable, FieldReport& report);
 
 // What the file declares of its physical units (FieldReport::Units), each with a line in the
 // report: the quantity from the variable's `units` (for kg/m^3, the factor to g/m^3 in

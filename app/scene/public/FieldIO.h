@@ -184,7 +184,9 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
 // g/m^3 (report.LwcScale; a value that overflows float there is refused), and not when the scene
 // reads the field as a density; for a liquid water content, negative values down to
 // -NegligibleNegativeLwc (the noise of advection schemes in LES output) are read as 0 and said
-// so in the report, more negative ones are refused with their count and the most negative.
+// so in the report, more negative ones are refused with their count and the most negative; with
+// a droplet number, the cloud's mean content and the effective radius there are set
+// (ResolvedFieldUnits::CloudMeanLwc).
 // `name` (the file, or the scene of a generated field) starts every message. ReadField calls it
 // for a file, ProduceField (SceneField.h) for a generated field.
 constexpr double NegligibleNegativeLwc = 1e-3; // g/m^3: a tenth of info's cloud threshold

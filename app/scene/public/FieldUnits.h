@@ -2,11 +2,12 @@
 // dimensionless densities on a lattice in world units; a scientist's field (LES output, say) is
 // liquid water content in g/m^3 on a grid in metres or kilometres, with one vertical axis. The
 // scene's field section may say so (field.quantity, field.length_unit, field.up,
-// field.effective_radius) and so may a field file (a NetCDF variable's and axes' `units`, a CF
-// vertical axis, OpenVDB grid metadata): ResolveFieldUnits combines the two, the scene winning,
-// and remembers where each value came from so that `cloudvis info` can report both. The droplet
-// law that turns liquid water into extinction lives here too, so the transfer function and the
-// statistics use one copy of it.
+// field.effective_radius, field.droplet_number) and so may a field file (a NetCDF variable's and
+// axes' `units`, a CF vertical axis, OpenVDB grid metadata): ResolveFieldUnits combines the two,
+// the scene winning, and remembers where each value came from so that `cloudvis info` can report
+// both. The droplet laws that turn liquid water into effective radius and extinction live here
+// too, so the transfer function and the statistics use one copy of them, and so do the mixing
+// ratios LES codes write and the standard atmosphere that makes them liquid water contents.
 #ifndef cloudvis_FieldUnits_h
 #define cloudvis_FieldUnits_h
 
@@ -38,6 +39,7 @@ struct FieldUnits
   std::optional<LengthUnit> Length;
   std::optional<int> Up;                 // the vertical axis: 0 = x, 1 = y, 2 = z
   std::optional<double> EffectiveRadius; // micrometres, of the droplets of an lwc field
+  std::optional<double> DropletNumber;   // droplets per cm^3 of an lwc field
 };
 
 // The units a field has once scene and file are combined, and where each came from: "scene",
@@ -48,8 +50,14 @@ struct ResolvedFieldUnits
   LengthUnit Length = LengthUnit::None;
   int Up = 1; // y: cloudvis's generated fields and cameras have y up
   double EffectiveRadius = 10.0;
+  // Droplets per cm^3; 0 when none is given, and then every droplet has EffectiveRadius. Given,
+  // the effective radius grows with the liquid water, r_e = EffectiveRadiusOfDroplets(LWC, N),
+  // and EffectiveRadius is r_e at CloudMeanLwc, the mean content of the cloud's voxels (those
+  // above info's cloud threshold): the one r_e the droplets' phase takes.
+  double DropletNumber = 0.0;
+  double CloudMeanLwc = 0.0;
   std::string QuantityFrom = "default", LengthFrom = "default", UpFrom = "default",
-              EffectiveRadiusFrom = "default";
+              EffectiveRadiusFrom = "default", DropletNumberFrom = "default";
   // What the file declared, where the scene overrode it with something else (for the report).
   FieldUnits Overridden;
 };
@@ -59,6 +67,20 @@ constexpr double DefaultEffectiveRadius = 10.0; // micrometres, a typical cumulu
 
 // The density of liquid water, g/m^3.
 constexpr double WaterDensity = 1e6;
+
+// The droplet numbers field.droplet_number and a file may give, per cm^3 (clean maritime air
+// holds 10 to 100, polluted continental air up to a few thousand).
+constexpr double DropletNumberMin = 1.0, DropletNumberMax = 1e5;
+
+// The ratio k = (r_v / r_e)^3 of the volume-mean radius to the effective radius cubed, of
+// maritime stratocumulus (Martin, Johnson and Spice 1994, J. Atmos. Sci. 51, 1823; continental
+// clouds have about 0.67).
+constexpr double DropletSpectrumK = 0.8;
+
+// The effective radius in micrometres of `numberPerCubicCentimetre` droplets holding `lwc` g/m^3:
+// r_e = (3 LWC / (4 pi rho_w k N))^(1/3) (Martin et al. 1994). 1 g/m^3 in 100 droplets per cm^3
+// gives 14.4 um.
+double EffectiveRadiusOfDroplets(double lwc, double numberPerCubicCentimetre);
 
 // The scene's units where given, else the file's, else the defaults.
 ResolvedFieldUnits ResolveFieldUnits(const FieldUnits& scene, const FieldUnits& file);

@@ -86,13 +86,18 @@ struct TransferFunctionSpec
   // field, once the file is read for a field file (0 until then: TabulatedTransferFunction
   // refuses to tabulate it).
   double DropletExtinctionPerLwc = 0.0;
+  // Droplets: sigma(LWC) = DropletExtinctionPerLwc * LWC^DropletLwcPower, LWC in g/m^3. 1 for
+  // droplets of one effective radius; 2/3 for a given droplet number, whose r_e grows as
+  // LWC^(1/3) (field.droplet_number).
+  double DropletLwcPower = 1.0;
 };
 
 // What the renderers tabulate (MakeVolumeProperty): the spec itself, or for "droplets" the spec
 // with Opacity and UnitDistance replaced by points at each of the TransferTableSize densities the
 // table samples (the union of [0, LwcMax] and the color points' span), opacity
 // 1 - exp(-sigma(d) u), with u chosen so the densest stays well below VTK's opacity 1: the table
-// then holds sigma(d) = DropletExtinctionPerLwc * d at every entry, to float precision.
+// then holds sigma(d) = DropletExtinctionPerLwc * d^DropletLwcPower at every entry, to float
+// precision.
 TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& transferFunction);
 
 // The density above which the function's opacity rises from 0: the last point of opacity 0
