@@ -597,6 +597,8 @@ const Variable& ChooseVariable(const File& file, const std::string& wanted)
   }
   std::string candidates, problems;
   const Variable* first = nullptr;
+  const Variable* cloudWater = nullptr;
+  int cloudWaterRank = 0; // a lower rank is the likelier cloud water: standard names, then names
   for (const Variable& v : file.Variables())
   {
     if (std::find(describing.begin(), describing.end(), v.Name) != describing.end())
@@ -608,6 +610,19 @@ const Variable& ChooseVariable(const File& file, const std::string& wanted)
     {
       candidates += (candidates.empty() ? "" : ", ") + v.Name;
       first = first ? first : &v;
+      const std::string standard = file.Text(v, "standard_name");
+      const auto& standards = CloudWaterStandardNames();
+      const auto& names = CloudWaterNames();
+      const auto byStandard = std::find(standards.begin(), standards.end(), standard);
+      const auto byName = std::find(names.begin(), names.end(), v.Name);
+      const int rank = byStandard != standards.end() ? int(byStandard - standards.begin()) + 1
+        : byName != names.end() ? int(standards.size() + (byName - names.begin())) + 1
+                                : 0;
+      if (rank > 0 && (!cloudWater || rank < cloudWaterRank))
+      {
+        cloudWater = &v;
+        cloudWaterRank = rank;
+      }
     }
     else if (v.Dimensions.size() >= 2)
     {
@@ -637,7 +652,25 @@ const Variable& ChooseVariable(const File& file, const std::string& wanted)
     cloudvis::Fail(file.Path(),
       "no variable can be read as a density (numbers on 2 or 3 spatial dimensions)" + problems);
   }
-  return *first;
+  return cloudWater ? *cloudWater : *first;
+}
+
+const std::vector<std::string>& CloudWaterStandardNames()
+{
+  static const std::vector<std::string> names = { "mass_fraction_of_cloud_liquid_water_in_air",
+    "cloud_liquid_water_mixing_ratio",
+    "mass_concentration_of_cloud_liquid_water_in_air" };
+  return names;
+}
+
+const std::vector<std::string>& CloudWaterNames()
+{
+  // DALES, MicroHH, PALM: ql; many codes: qc, qcl; SAM: QN (liquid and ice); WRF: QCLOUD;
+  // UCLA-LES: l; and liquid water contents.
+  static const std::vector<std::string> names = {
+    "ql", "qc", "qcl", "QN", "QCLOUD", "QC", "l", "lwc", "LWC"
+  };
+  return names;
 }
 
 // ---- missing values and packing ---------------------------------------------------------------

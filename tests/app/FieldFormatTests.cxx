@@ -215,6 +215,27 @@ TEST(NetCdf, DefaultVariableIsDensityElseTheFirstOnThreeDimensions)
   EXPECT_NE(ErrorOf([&] { cloudvis::ReadField(without, WithArray("qc", 1)); })
               .find("field.time_step: 1 is out of range: the file holds no time axis"),
     std::string::npos);
+  // An LES file's cloud water is chosen over the wind and temperature before it: by its name,
+  // and by its standard_name before any name.
+  const std::string les = dir.File("les.nc");
+  WriteNetCdf(les, 0, 0, EvenAxes, { "u", "thl", "ql", "qc" }, byVariable);
+  ExpectKnownValues(cloudvis::ReadField(les), 2000.0);
+  const std::string standard = dir.File("standard.nc");
+  WriteNetCdf(standard,
+    0,
+    0,
+    EvenAxes,
+    { "u", "ql", "cloud" },
+    byVariable,
+    [](int file, int variable)
+    {
+      if (variable == 5) // the third data variable, after the three coordinates and two others
+      {
+        const std::string name = "mass_fraction_of_cloud_liquid_water_in_air";
+        NC_OK(nc_put_att_text(file, variable, "standard_name", name.size(), name.c_str()));
+      }
+    });
+  ExpectKnownValues(cloudvis::ReadField(standard), 2000.0);
 }
 
 TEST(NetCdf, TimeStepOutOfRangeNamesTheSteps)
