@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <optional>
 
 namespace cloudvis
@@ -30,23 +31,55 @@ struct AirValues
   {
     return this->Volume ? std::size_t(this->Volume->GetNumberOfValues()) : this->Profile.size();
   }
-  // Each value v becomes f(v, other's value at the same place); other has this one's shape.
-  template<typename F>
-  void Combine(const AirValues& other, F f)
+  // The value at voxel `index` of a lattice of `points`, x fastest.
+  double At(std::size_t index, const std::array<std::size_t, 3>& points) const
   {
-    for (std::size_t i = 0; i < this->Size(); ++i)
+    if (this->Volume)
     {
-      if (this->Volume)
-      {
-        this->Volume->SetValue(vtkIdType(i),
-          float(f(double(this->Volume->GetValue(vtkIdType(i))),
-            double(other.Volume->GetValue(vtkIdType(i))))));
-      }
-      else
+      return double(this->Volume->GetValue(vtkIdType(index)));
+    }
+    if (this->Profile.size() == 1)
+    {
+      return this->Profile[0];
+    }
+    const std::size_t stride = this->Axis == 0 ? 1
+      : this->Axis == 1                        ? points[0]
+                                               : points[0] * points[1];
+    return this->Profile[(index / stride) % points[std::size_t(this->Axis)]];
+  }
+  // Each value v becomes f(v, other's value at the same place). When one of the two is a volume
+  // (SAM's pressure profile and its 3-D temperature), so is the result.
+  template<typename F>
+  void Combine(const AirValues& other, const std::array<std::size_t, 3>& points, F f)
+  {
+    const bool alike = bool(this->Volume) == bool(other.Volume) &&
+      (this->Volume || (this->Axis == other.Axis && this->Profile.size() == other.Profile.size()));
+    if (alike && !this->Volume)
+    {
+      for (std::size_t i = 0; i < this->Profile.size(); ++i)
       {
         this->Profile[i] = f(this->Profile[i], other.Profile[i]);
       }
+      return;
     }
+    vtkSmartPointer<vtkFloatArray> result = this->Volume;
+    if (!result)
+    {
+      result = vtkSmartPointer<vtkFloatArray>::New();
+      const std::size_t voxels = points[0] * points[1] * points[2];
+      result->SetNumberOfValues(vtkIdType(voxels));
+      if (std::size_t(result->GetNumberOfValues()) != voxels)
+      {
+        throw std::bad_alloc(); // VTK reports a failed allocation only on its error stream
+      }
+    }
+    for (std::size_t i = 0; i < std::size_t(result->GetNumberOfValues()); ++i)
+    {
+      result->SetValue(vtkIdType(i), float(f(this->At(i, points), other.At(i, points))));
+    }
+    this->Volume = result;
+    this->Profile.clear();
+    this->Shape = "3-D";
   }
   std::array<double, 2> Range() const
   {
@@ -377,22 +410,21 @@ std::optional<AirValues> DensityFromPressureAndTemperature(const FieldLattice& l
   {
     problem = "temperature \"" + t->Name + "\": " + problem;
   }
-  else if (pressure->Shape != temperature->Shape)
-  {
-    problem = "pressure \"" + p->Name + "\" is " + pressure->Shape + ", temperature \"" + t->Name +
-      "\" " + temperature->Shape;
-  }
   if (!problem.empty())
   {
     why = "pressure and temperature not used (" + problem + ")";
     return std::nullopt;
   }
+  const std::array<std::size_t, 3> points{
+    { lattice.Coordinates[0].size(), lattice.Coordinates[1].size(), lattice.Coordinates[2].size() }
+  };
+  source = "ideal gas from pressure \"" + p->Name + "\" (" + pressure->Shape +
+    ") and temperature \"" + t->Name + "\" (" + temperature->Shape + ")";
   AirValues density = *pressure;
-  density.Combine(*temperature, [](double pa, double k) { return pa / (DryAirGasConstant * k); });
-  temperature.reset();
-  source = "ideal gas from pressure \"" + p->Name + "\" and temperature \"" + t->Name + "\" (" +
-    pressure->Shape + ")";
   pressure.reset();
+  density.Combine(
+    *temperature, points, [](double pa, double k) { return pa / (DryAirGasConstant * k); });
+  temperature.reset();
   const Variable* q = FindAirVariable(
     file, { "specific_humidity", "humidity_mixing_ratio" }, { "qv", "QV", "QVAPOR", "q", "sphum" });
   if (!q)
@@ -406,10 +438,9 @@ std::optional<AirValues> DensityFromPressureAndTemperature(const FieldLattice& l
   {
     problem = "its units \"" + file.Text(*q, "units") + "\" are not a mixing ratio";
   }
-  else if ((humidity = ReadAirValues(lattice, *q, *humidityUnits, problem)) &&
-    Within(*humidity, -1e-3, 0.1, "kg/kg", problem) && humidity->Shape != density.Shape)
+  else if ((humidity = ReadAirValues(lattice, *q, *humidityUnits, problem)))
   {
-    problem = "it is " + humidity->Shape + ", the temperature " + density.Shape;
+    Within(*humidity, -1e-3, 0.1, "kg/kg", problem);
   }
   if (!problem.empty())
   {
@@ -417,8 +448,9 @@ std::optional<AirValues> DensityFromPressureAndTemperature(const FieldLattice& l
       ", not the virtual temperature: humidity \"" + q->Name + "\" not used (" + problem + ")";
     return density;
   }
-  density.Combine(
-    *humidity, [](double rho, double qv) { return rho / (1.0 + 0.608 * std::max(qv, 0.0)); });
+  density.Combine(*humidity,
+    points,
+    [](double rho, double qv) { return rho / (1.0 + 0.608 * std::max(qv, 0.0)); });
   source += ", virtual temperature with humidity \"" + q->Name + "\"";
   return density;
 }

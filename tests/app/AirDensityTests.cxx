@@ -182,7 +182,8 @@ TEST(AirDensity, TheFilesProfileComesBeforeTheStandardAtmosphere)
 TEST(AirDensity, PressureAndTemperatureGiveTheIdealGasWithTheVirtualTemperature)
 {
   TemporaryDirectory dir;
-  // SAM's 3-D output has p (hPa, a profile), TABS (K) and QV (g/kg).
+  // SAM's 3-D output has p (hPa, a profile), TABS (K) and QV (g/kg): the profile and the
+  // volumes combine into a volume of densities.
   const std::string path = Dump(dir,
     "pt.nc",
     "g/kg",
@@ -196,15 +197,12 @@ TEST(AirDensity, PressureAndTemperatureGiveTheIdealGasWithTheVirtualTemperature)
   FieldReport report;
   auto field = cloudvis::ReadField(path, {}, &report);
   const double R = cloudvis::DryAirGasConstant;
-  // A profile of pressure with a volume of temperature is two shapes: not used together.
   EXPECT_EQ(report.Resolved.Quantity, FieldQuantity::Lwc);
-  EXPECT_NE(Detail(report, "air density").find("standard atmosphere"), std::string::npos)
-    << Detail(report, "air density");
-  EXPECT_NE(Detail(report, "air density")
-              .find("pressure \"p\" is a profile along \"z\", "
-                    "temperature \"TABS\" 3-D"),
-    std::string::npos)
-    << Detail(report, "air density");
+  EXPECT_NEAR(LwcAt(field, 1, 1, 0), 90000.0 / (R * 280.0 * (1.0 + 0.608 * 0.01)), 1e-5);
+  EXPECT_NEAR(LwcAt(field, 1, 1, 1), 80000.0 / (R * 270.0), 1e-5);
+  EXPECT_EQ(Detail(report, "air density"),
+    "1.0322 .. 1.11299 kg/m^3: ideal gas from pressure \"p\" (a profile along \"z\") and "
+    "temperature \"TABS\" (3-D), virtual temperature with humidity \"QV\"");
 
   const std::string volumes = Dump(dir,
     "pt3.nc",
@@ -221,8 +219,23 @@ TEST(AirDensity, PressureAndTemperatureGiveTheIdealGasWithTheVirtualTemperature)
   EXPECT_NEAR(LwcAt(field, 1, 1, 0), 90000.0 / (R * 280.0 * (1.0 + 0.608 * 0.01)), 1e-5);
   EXPECT_NEAR(LwcAt(field, 1, 1, 1), 80000.0 / (R * 270.0), 1e-5);
   EXPECT_EQ(Detail(report, "air density"),
-    "1.0322 .. 1.11299 kg/m^3: ideal gas from pressure \"p\" and temperature \"TABS\" (3-D), "
-    "virtual temperature with humidity \"QV\"");
+    "1.0322 .. 1.11299 kg/m^3: ideal gas from pressure \"p\" (3-D) and temperature \"TABS\" "
+    "(3-D), virtual temperature with humidity \"QV\"");
+  // Without the humidity, the temperature itself.
+  const std::string dry = Dump(dir,
+    "dry.nc",
+    "g/kg",
+    1.0,
+    "  float p(z) ; p:units = \"Pa\" ;\n  float T(z) ; T:units = \"degC\" ;",
+    "  p = 90000, 80000 ;\n  T = 6.85, -3.15 ;",
+    1000.0,
+    2);
+  field = cloudvis::ReadField(dry, {}, &report);
+  EXPECT_NEAR(LwcAt(field, 0, 0, 0), 90000.0 / (R * 280.0), 1e-5);
+  EXPECT_NE(Detail(report, "air density")
+              .find("not the virtual temperature: the file holds no "
+                    "humidity"),
+    std::string::npos);
 }
 
 TEST(AirDensity, ANumberOrANamedVariable)
