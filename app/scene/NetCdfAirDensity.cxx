@@ -479,9 +479,7 @@ std::optional<std::pair<int, double>> HeightAxis(const FieldLattice& lattice,
   }
   else if (const Layout::Axis& axis = lattice.Axes.Space[std::size_t(up)]; axis.Position >= 0)
   {
-    const Variable* coordinate = file.CoordinateOf(axis.Dimension);
-    const auto unit = coordinate ? LengthUnitFromText(file.Text(*coordinate, "units"))
-                                 : std::optional<LengthUnit>();
+    const auto unit = LengthUnitFromText(CoordinateUnits(file, axis.Dimension));
     metres = unit ? MetresPerUnit(*unit) : 0.0;
   }
   if (!(metres > 0.0))

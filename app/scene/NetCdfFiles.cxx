@@ -633,6 +633,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     std::array<AxisSampling, 3> axes;
     std::array<double, 3> fileDimensions{ { 1.0, 1.0, 1.0 } };
     std::array<std::string, 3> axisNames;
+    std::array<std::string, 3> implied; // how the coordinates a file implies came about
     for (std::size_t a = 0; a < 3; ++a)
     {
       const netcdf::Layout::Axis& axis = layout.Space[a];
@@ -650,6 +651,19 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
         fileDimensions[a] = double(dimension.Length);
         const netcdf::Variable* c = file.CoordinateOf(axis.Dimension);
         if (!c)
+        {
+          CheckFieldSize(path, fileDimensions, 4.0, options.MaximumVoxels);
+        }
+        const auto impliedAxis = c
+          ? std::nullopt
+          : netcdf::ImpliedCoordinates(
+              file, axis.Dimension, std::size_t(options.TimeStep.value_or(0)));
+        if (impliedAxis)
+        {
+          coordinates = impliedAxis->Coordinates;
+          implied[a] = impliedAxis->How;
+        }
+        else if (!c)
         {
           coordinates.resize(dimension.Length);
           for (std::size_t i = 0; i < coordinates.size(); ++i)
@@ -806,14 +820,18 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
       const netcdf::Layout::Axis& identified = layout.Space[std::size_t(a)];
       const netcdf::Variable* coordinate =
         identified.Position >= 0 ? file.CoordinateOf(identified.Dimension) : nullptr;
-      const std::string coordinateUnits = coordinate ? file.Text(*coordinate, "units") : "";
+      const std::string coordinateUnits =
+        identified.Position >= 0 ? netcdf::CoordinateUnits(file, identified.Dimension) : "";
       std::string text = (identified.Position < 0 ? std::string("(none)")
                                                   : "\"" + axisNames[std::size_t(a)] + "\" (" +
                                "xyz"[a] + " by " + identified.How + ")") +
         ": " + Number(axis.Coordinates.front()) + " .. " + Number(axis.Coordinates.back()) +
         (coordinateUnits.empty() ? "" : " " + coordinateUnits) + ", " +
         std::to_string(axis.Coordinates.size()) + " points" +
-        (identified.Position >= 0 && !coordinate ? " (no coordinate variable: its indices)" : "");
+        (identified.Position < 0 || coordinate ? ""
+            : implied[std::size_t(a)].empty()
+            ? " (no coordinate variable: its indices)"
+            : " (no coordinate variable: " + implied[std::size_t(a)] + ")");
       if (axis.Reversed)
       {
         text += ", decreasing in the file (turned around)";

@@ -434,8 +434,9 @@ Role RoleOfName(const std::string& dimension)
           "plev",
           "sigma",
           "depth" }) ||
-    StartsWith(n, "z_") || StartsWith(n, "lev") || StartsWith(n, "height") ||
-    StartsWith(n, "altitude") || StartsWith(n, "pressure") || StartsWith(n, "bottom_top"))
+    StartsWith(n, "z_") || StartsWith(n, "zu_") || StartsWith(n, "zw_") || // PALM: zu_3d, zw_3d
+    StartsWith(n, "lev") || StartsWith(n, "height") || StartsWith(n, "altitude") ||
+    StartsWith(n, "pressure") || StartsWith(n, "bottom_top"))
   {
     return Role::Z;
   }
@@ -885,6 +886,103 @@ void DeclareQuantity(const std::string& units, FieldReport& report)
   }
 }
 
+std::optional<ImpliedAxis> ImpliedCoordinates(const File& file,
+  int dimension,
+  std::size_t step,
+  bool read)
+{
+  const Dimension& d = file.DimensionOf(dimension);
+  const Variable global; // Id NC_GLOBAL: the file's own attributes
+  if (d.Name == "west_east" || d.Name == "south_north")
+  {
+    const char* attribute = d.Name == "west_east" ? "DX" : "DY";
+    const std::vector<double> spacing = file.Numbers(global, attribute);
+    if (spacing.size() != 1 || !(spacing[0] > 0.0) || !std::isfinite(spacing[0]))
+    {
+      return std::nullopt;
+    }
+    ImpliedAxis axis{
+      {}, "m", std::string("WRF's ") + attribute + " " + Number(spacing[0]) + " m"
+    };
+    for (std::size_t i = 0; read && i < d.Length; ++i)
+    {
+      axis.Coordinates.push_back(spacing[0] * double(i));
+    }
+    return axis;
+  }
+  const Variable* ph = file.Find("PH");
+  const Variable* phb = file.Find("PHB");
+  if (d.Name != "bottom_top" || !ph || !phb || ph->Dimensions != phb->Dimensions)
+  {
+    return std::nullopt;
+  }
+  // PH and PHB on (Time, bottom_top_stag, south_north, west_east), one level more than d.
+  int stag = -1;
+  std::vector<std::size_t> start(ph->Dimensions.size(), 0), count(ph->Dimensions.size(), 1);
+  std::size_t columns = 1;
+  for (std::size_t p = 0; p < ph->Dimensions.size(); ++p)
+  {
+    const Dimension& pd = file.DimensionOf(ph->Dimensions[p]);
+    if (pd.Name == "bottom_top_stag" && pd.Length == d.Length + 1)
+    {
+      stag = int(p);
+    }
+    else if (pd.Name == "Time" || pd.Name == "time")
+    {
+      start[p] = step;
+      if (step >= pd.Length)
+      {
+        return std::nullopt;
+      }
+    }
+    else
+    {
+      count[p] = pd.Length;
+      columns *= pd.Length;
+    }
+  }
+  if (stag < 0 || columns == 0)
+  {
+    return std::nullopt;
+  }
+  ImpliedAxis axis{ {},
+    "m",
+    "WRF's (PH + PHB) / g, the domain's mean at each level, halfway between the staggered "
+    "levels" };
+  if (!read)
+  {
+    return axis;
+  }
+  std::vector<double> staggered, perturbation(columns), base(columns);
+  for (std::size_t k = 0; k <= d.Length; ++k)
+  {
+    start[std::size_t(stag)] = k;
+    file.Read(*ph, start, count, perturbation.data());
+    file.Read(*phb, start, count, base.data());
+    double sum = 0.0;
+    for (std::size_t c = 0; c < columns; ++c)
+    {
+      sum += perturbation[c] + base[c];
+    }
+    staggered.push_back(sum / double(columns) / StandardGravity);
+  }
+  for (std::size_t k = 0; k < d.Length; ++k)
+  {
+    axis.Coordinates.push_back(0.5 * (staggered[k] + staggered[k + 1]));
+  }
+  return axis;
+}
+
+std::string CoordinateUnits(const File& file, int dimension)
+{
+  if (const Variable* coordinate = file.CoordinateOf(dimension))
+  {
+    return file.Text(*coordinate, "units");
+  }
+  const auto implied = ImpliedCoordinates(file, dimension, 0, false);
+  return implied ? implied->Units : "";
+}
+
 std::string WhyZIsNotAHeight(const File& file, const Layout& layout)
 {
   const Layout::Axis& z = layout.Space[2];
@@ -898,9 +996,9 @@ std::string WhyZIsNotAHeight(const File& file, const Layout& layout)
     return "no dimension is identified as vertical (z is \"" + name + "\" by its position)";
   }
   const Variable* coordinate = file.CoordinateOf(z.Dimension);
-  const std::string units = coordinate ? file.Text(*coordinate, "units") : "";
+  const std::string units = CoordinateUnits(file, z.Dimension);
   const std::string positive = coordinate ? file.Text(*coordinate, "positive") : "";
-  const bool height = !coordinate || LengthUnitFromText(units) || units.empty();
+  const bool height = LengthUnitFromText(units) || units.empty();
   if (positive == "down" || !height)
   {
     return "the vertical axis is not a height (units \"" + units + "\", positive \"" + positive +
@@ -921,9 +1019,7 @@ void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& rep
     {
       continue;
     }
-    const Variable* coordinate = file.CoordinateOf(axis.Dimension);
-    const auto unit = coordinate ? LengthUnitFromText(file.Text(*coordinate, "units"))
-                                 : std::optional<LengthUnit>();
+    const auto unit = LengthUnitFromText(CoordinateUnits(file, axis.Dimension));
     agree = agree && unit && (!shared || *shared == *unit);
     shared = unit;
   }

@@ -1,11 +1,13 @@
 // What the tests of the field formats share (FieldFormatTests.cxx, OpenVdbTests.cxx) beyond
 // tests/support (temporary folders, whole files): a field's values, a field compared with the one
-// read back, a read's report and its failure message, and the formats' own tools.
+// read back, a read's report and its failure message, the formats' own tools, and the cloud's
+// pixels in a render.
 #ifndef cloudvis_FieldTestFiles_h
 #define cloudvis_FieldTestFiles_h
 
 #include "Errors.h"
 #include "FieldIO.h"
+#include "SupportImages.h"
 #include "SupportRun.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +16,8 @@
 #include <vtkMatrix3x3.h>
 #include <vtkPointData.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <string>
@@ -108,6 +112,32 @@ inline std::string Ncgen(const support::TemporaryDirectory& dir,
   RunTool("ncgen -k " + std::to_string(kind) + " -o '" + dir.File(name) + "' '" +
     dir.File(name + ".cdl") + "'");
   return dir.File(name);
+}
+
+// Pixels of `image` more than 8 levels from its corner (the background), and those at 255.
+struct CloudPixels
+{
+  size_t Cloud = 0, Clipped = 0;
+};
+inline CloudPixels CountCloud(const support::Image& image)
+{
+  CloudPixels count;
+  for (int y = 0; y < image.Height; ++y)
+  {
+    for (int x = 0; x < image.Width; ++x)
+    {
+      double difference = 0.0;
+      bool white = false;
+      for (int c = 0; c < 3; ++c)
+      {
+        difference = std::max(difference, std::abs(image.Level(x, y, c) - image.Level(0, 0, c)));
+        white = white || image.Level(x, y, c) >= 254.5;
+      }
+      count.Cloud += difference > 8.0 ? 1 : 0;
+      count.Clipped += white ? 1 : 0;
+    }
+  }
+  return count;
 }
 
 } // namespace test

@@ -7,7 +7,7 @@
 // 1.1 g/m^3); read as stored (field.quantity "density"), they are below 1.2e-3, where the
 // default function, made for densities 0 .. 1, is transparent. Part of
 // cloudvis-field-format-tests.
-#include "FieldTestFiles.h" // Ncgen
+#include "FieldTestFiles.h" // Ncgen, CountCloud
 #include "SupportImages.h"
 #include "SupportRun.h"
 
@@ -22,6 +22,7 @@ namespace
 {
 
 using namespace cloudvis::support;
+using cloudvis::test::CountCloud;
 using cloudvis::test::Ncgen;
 using json = nlohmann::json;
 
@@ -67,32 +68,6 @@ std::string DalesDump(const TemporaryDirectory& dir, const std::string& name, do
   return Ncgen(dir, name, cdl.str(), 3);
 }
 
-// Pixels of `image` more than 8 levels from its corner (the background), and those at 255.
-struct CloudPixels
-{
-  size_t Cloud = 0, Clipped = 0;
-};
-CloudPixels CountCloud(const Image& image)
-{
-  CloudPixels count;
-  for (int y = 0; y < image.Height; ++y)
-  {
-    for (int x = 0; x < image.Width; ++x)
-    {
-      double difference = 0.0;
-      bool white = false;
-      for (int c = 0; c < 3; ++c)
-      {
-        difference = std::max(difference, std::abs(image.Level(x, y, c) - image.Level(0, 0, c)));
-        white = white || image.Level(x, y, c) >= 254.5;
-      }
-      count.Cloud += difference > 8.0 ? 1 : 0;
-      count.Clipped += white ? 1 : 0;
-    }
-  }
-  return count;
-}
-
 TEST(FirstRender, AnLesFileGivenAloneShowsItsCloud)
 {
   TemporaryDirectory dir;
@@ -105,7 +80,7 @@ TEST(FirstRender, AnLesFileGivenAloneShowsItsCloud)
     << run.Out;
   const Image image = ReadPng(dir.File("les.png"));
   ASSERT_EQ(image.Width, 160);
-  const CloudPixels cloud = CountCloud(image);
+  const cloudvis::test::CloudPixels cloud = CountCloud(image);
   EXPECT_GT(cloud.Cloud, 400u) << "the two clouds cover a good part of the picture";
   EXPECT_EQ(cloud.Clipped, 0u);
   // The picture's scene is the fitted one: its opacity points end at the field's maximum, and

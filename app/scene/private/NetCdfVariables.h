@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -200,6 +201,27 @@ void DeclareDropletNumber(const File& file, const Variable& variable, FieldRepor
 // identifies a height axis).
 void DeclareQuantity(const std::string& units, FieldReport& report);
 void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& report);
+
+// Coordinates a file implies for a dimension without a coordinate variable, as WRF writes its
+// grid: west_east and south_north at the global attributes DX and DY (metres) apart from 0, and
+// bottom_top at the heights of its mass levels, halfway between the staggered levels'
+// geopotential heights (PH + PHB) / g averaged over the domain at time step `step` (terrain-
+// following levels are read as flat). Empty when the file implies none; with `read` false, only
+// whether it would (Coordinates left empty).
+struct ImpliedAxis
+{
+  std::vector<double> Coordinates;
+  std::string Units; // "m"
+  std::string How;   // "WRF's DX", for the report
+};
+std::optional<ImpliedAxis> ImpliedCoordinates(const File& file,
+  int dimension,
+  std::size_t step,
+  bool read = true);
+
+// The units of a dimension's coordinates: its coordinate variable's `units`, else those of the
+// coordinates the file implies, else "".
+std::string CoordinateUnits(const File& file, int dimension);
 
 // Why the z axis of a variable's layout is not a height (empty when it is): the variable has none,
 // no dimension is identified as vertical (z is its third by position), or its coordinate is a
