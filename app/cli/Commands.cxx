@@ -122,6 +122,28 @@ int ParseCount(const std::string& command,
   return std::stoi(text);
 }
 
+std::vector<int> ParseTimeSteps(const std::string& command, const std::string& text)
+{
+  static const std::regex form("([0-9]{1,9}):([0-9]{1,9})(:([0-9]{1,9}))?");
+  std::smatch parts;
+  const bool matched = std::regex_match(text, parts, form);
+  const int first = matched ? std::stoi(parts[1]) : 0, last = matched ? std::stoi(parts[2]) : 0;
+  const int stride = matched && parts[4].matched ? std::stoi(parts[4]) : 1;
+  if (!matched || first > last || stride < 1)
+  {
+    throw UsageError(command +
+      ": --time-steps expects A:B or A:B:STRIDE, time steps from 0 with A <= B and STRIDE >= 1 "
+      "(for example 0:19 or 0:99:10), got \"" +
+      text + "\"");
+  }
+  std::vector<int> steps;
+  for (long long step = first; step <= last; step += stride)
+  {
+    steps.push_back(int(step));
+  }
+  return steps;
+}
+
 bool IsFieldOperand(const std::string& input, const Arguments& arguments)
 {
   return IsFieldFile(input) || arguments.Has("field-format");
@@ -517,6 +539,109 @@ int Render(const Arguments& arguments, std::ostream& out)
   return ExitSuccess;
 }
 
+// A number for CSV: empty when it is not finite (a step without cloud has no base).
+std::string CsvNumber(double value)
+{
+  if (!std::isfinite(value))
+  {
+    return "";
+  }
+  std::ostringstream text;
+  text << std::setprecision(9) << value;
+  return text.str();
+}
+
+// info --time-series: the cloud statistics of each time step of a field file, one field in
+// memory at a time, as CSV (a header with the units, then a row per step) or JSON.
+int InfoTimeSeries(const Arguments& arguments,
+  std::ostream& out,
+  const Scene& scene,
+  double threshold)
+{
+  if (!scene.Field.FromFile())
+  {
+    throw InputError(scene.Source +
+      ": --time-series reads the time steps of a field file; this scene's field is generated");
+  }
+  if (arguments.Has("time-step"))
+  {
+    throw UsageError("info: --time-series reads every time step (--time-steps A:B[:STRIDE] "
+                     "chooses them), not one --time-step");
+  }
+  std::vector<int> steps = arguments.Has("time-steps")
+    ? ParseTimeSteps("info", arguments.Value("time-steps"))
+    : std::vector<int>{ 0 };
+  struct Row
+  {
+    int Step;
+    double Time;
+    CloudStatistics Clouds;
+  };
+  std::vector<Row> rows;
+  FieldReport first;
+  for (std::size_t i = 0; i < steps.size(); ++i)
+  {
+    Scene at = scene;
+    at.Field.Read.TimeStep = steps[i];
+    FieldReport read;
+    const vtkSmartPointer<vtkImageData> field = ProduceField(at, {}, &read);
+    if (i == 0)
+    {
+      first = read;
+      if (!arguments.Has("time-steps"))
+      {
+        for (int step = 1; step < int(read.TimeSteps); ++step)
+        {
+          steps.push_back(step);
+        }
+      }
+      CheckTimeSteps(scene, steps, read, "--time-steps");
+    }
+    rows.push_back(
+      { steps[i], read.Time, ComputeCloudStatistics(field, read.Resolved, threshold) });
+  }
+  const ResolvedFieldUnits& units = first.Resolved;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto base = [nan](const CloudStatistics& c) { return c.HasCloud ? c.CloudBase : nan; };
+  const auto top = [nan](const CloudStatistics& c) { return c.HasCloud ? c.CloudTop : nan; };
+  if (arguments.Has("json"))
+  {
+    nlohmann::json json = { { "field", scene.Field.File },
+      { "units", UnitsToJson(units) },
+      { "time_units", first.TimeUnits },
+      { "path_unit", CloudStatisticsToJson(rows.front().Clouds).value("path_unit", "") },
+      { "steps", nlohmann::json::array() } };
+    const auto number = [](double v)
+    { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+    for (const Row& row : rows)
+    {
+      json["steps"].push_back({ { "step", row.Step },
+        { "time", number(row.Time) },
+        { "cloud_cover", row.Clouds.ProjectedCloudFraction },
+        { "mean_path", row.Clouds.MeanPath },
+        { "mean_cloudy_path", row.Clouds.MeanCloudyPath },
+        { "cloud_base", number(base(row.Clouds)) },
+        { "cloud_top", number(top(row.Clouds)) } });
+    }
+    out << json.dump(2) << "\n";
+    return ExitSuccess;
+  }
+  const auto unit = [](const std::string& u) { return u.empty() ? "" : " (" + u + ")"; };
+  const std::string path = CloudStatisticsToJson(rows.front().Clouds).value("path_unit", "");
+  const std::string length = units.Length == LengthUnit::None ? "" : LengthUnitName(units.Length);
+  out << "step,time" << unit(first.TimeUnits) << ",cloud_cover,mean_path" << unit(path)
+      << ",mean_cloudy_path" << unit(path) << ",cloud_base" << unit(length) << ",cloud_top"
+      << unit(length) << "\n";
+  for (const Row& row : rows)
+  {
+    out << row.Step << "," << CsvNumber(row.Time) << ","
+        << CsvNumber(row.Clouds.ProjectedCloudFraction) << "," << CsvNumber(row.Clouds.MeanPath)
+        << "," << CsvNumber(row.Clouds.MeanCloudyPath) << "," << CsvNumber(base(row.Clouds)) << ","
+        << CsvNumber(top(row.Clouds)) << "\n";
+  }
+  return ExitSuccess;
+}
+
 int Info(const Arguments& arguments, std::ostream& out)
 {
   const std::string& input = arguments.Operands[0];
@@ -529,7 +654,15 @@ int Info(const Arguments& arguments, std::ostream& out)
                      "got \"" +
       arguments.Value("cloud-threshold") + "\"");
   }
+  if (arguments.Has("time-steps") && !arguments.Has("time-series"))
+  {
+    throw UsageError("info: --time-steps chooses the steps of --time-series");
+  }
   const Scene scene = LoadOperandScene("info", input, arguments, {}, true);
+  if (arguments.Has("time-series"))
+  {
+    return InfoTimeSeries(arguments, out, scene, threshold);
+  }
   FieldReport source;
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &source);
   const MemoryUse memory(
@@ -650,13 +783,22 @@ const std::vector<CommandSpec>& Commands()
         "integral (liquid water path for lwc), the projected clouds' size law and\n"
         "area-perimeter fractal dimension (docs/user-guide.md). With a field file, --set takes\n"
         "only the keys that say how it is read (field.format, field.array, field.time_step,\n"
-        "field.missing, field.max_voxels, field.raw) and what it holds (field.quantity,\n"
-        "field.length_unit, field.up, field.effective_radius).",
+        "field.missing, field.max_voxels, field.raw, field.air_density) and what it holds\n"
+        "(field.quantity, field.length_unit, field.up, field.effective_radius,\n"
+        "field.droplet_number). --time-series prints the cloud statistics of each time step\n"
+        "of a field file instead (docs/data.md).",
       { JsonOption,
         { "cloud-threshold",
           0,
           "V",
           "the cloud mask is value > V (default 0 for density, 0.01 g/m^3 for lwc)" },
+        { "time-series",
+          0,
+          "",
+          "a field file's cloud statistics at each time step, one row per step: cloud cover, "
+          "mean and cloudy-column path (LWP), base and top; CSV with the units in the header, "
+          "or JSON with --json" },
+        { "time-steps", 0, "A:B[:STRIDE]", "the steps of --time-series (default: every one)" },
         SetOption,
         FieldFileOptions[0],
         FieldFileOptions[1],

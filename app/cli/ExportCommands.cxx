@@ -41,13 +41,16 @@ const OptionSpec DirectoryOption{ "output", 'o', "DIR/",
   "write the frames into this directory as frame_0000.png, frame_0001.png, ... (created if "
   "missing); required",
   false, true };
-const OptionSpec FramesOption{ "frames", 0, "N", "number of frames, in [1, 999999]; required",
-  false, true };
+const OptionSpec FramesOption{ "frames", 0, "N",
+  "number of frames, in [1, 999999]; required, except with --time-steps (one frame per step)" };
 const OptionSpec TurntableOption{ "turntable", 0, "",
   "orbit the camera 360 degrees about the focal point, around the view-up, over the frames" };
 const OptionSpec TimeOption{ "time", 0, "T0:T1",
   "generate the field again for each frame i at time T0 + i (T1 - T0) / (N - 1) (seconds: "
   "wind and morph)" };
+const OptionSpec TimeStepsOption{ "time-steps", 0, "A:B[:STRIDE]",
+  "one frame for each time step A, A + STRIDE, ... B of the field file (its field.time_step, "
+  "from 0)" };
 const OptionSpec FormatOption{ "format", 0, "png|exr", "frame format (default png)" };
 const OptionSpec AnimateSizeOption{ "size", 0, "WxH",
   "frame size in pixels, e.g. 800x600; overrides render.size" };
@@ -69,18 +72,34 @@ int Animate(const Arguments& arguments, std::ostream& out)
   {
     throw UsageError("animate: missing the output directory: -o DIR/");
   }
-  if (!arguments.Has("frames"))
+  const int motions = int(arguments.Has("turntable")) + int(arguments.Has("time")) +
+    int(arguments.Has("time-steps"));
+  if (motions != 1)
+  {
+    throw UsageError("animate: give exactly one motion: --turntable, --time T0:T1 or "
+                     "--time-steps A:B[:STRIDE]");
+  }
+  AnimationRequest request;
+  if (arguments.Has("time-steps"))
+  {
+    if (arguments.Has("frames"))
+    {
+      throw UsageError("animate: --time-steps makes one frame per step: --frames is not given "
+                       "with it");
+    }
+    request.TimeSteps = ParseTimeSteps("animate", arguments.Value("time-steps"));
+    request.Frames = int(request.TimeSteps.size());
+  }
+  else if (!arguments.Has("frames"))
   {
     throw UsageError("animate: missing the number of frames: --frames N");
   }
-  AnimationRequest request;
-  request.Frames = ParseCount("animate", "frames", arguments.Value("frames"), "frames");
-  if (arguments.Has("turntable") == arguments.Has("time"))
+  else
   {
-    throw UsageError("animate: give exactly one motion: --turntable or --time T0:T1");
+    request.Frames = ParseCount("animate", "frames", arguments.Value("frames"), "frames");
   }
   request.Turntable = arguments.Has("turntable");
-  if (!request.Turntable)
+  if (arguments.Has("time"))
   {
     ParseTimeRange(arguments.Value("time"), request);
   }
@@ -91,17 +110,13 @@ int Animate(const Arguments& arguments, std::ostream& out)
   }
   request.Extension = "." + format;
   const std::string& input = arguments.Operands[0];
-  if (IsFieldFile(input))
-  {
-    throw UsageError("animate: " + input + " is a field file; animate takes a scene (a field " +
-      "file can be named in the scene's field.file)");
-  }
   std::string directory = arguments.Value("output");
   while (directory.size() > 1 && directory.back() == '/')
   {
     directory.pop_back();
   }
   request.Directory = directory;
+  request.FieldFileAlone = IsFieldOperand(input, arguments);
 
   std::vector<SceneOverride> overrides;
   if (arguments.Has("lighting"))
@@ -115,11 +130,16 @@ int Animate(const Arguments& arguments, std::ostream& out)
   }
   AddExportOverrides(arguments, overrides);
   CheckAnimationDirectory(request.Directory);
-  const Scene scene = LoadScene(input, arguments.Values("set"), overrides);
-  if (!request.Turntable && scene.Field.FromFile())
+  const Scene scene = LoadOperandScene("animate", input, arguments, overrides);
+  if (arguments.Has("time") && scene.Field.FromFile())
   {
     throw InputError(scene.Source + ": field.file: --time generates the field again at each " +
-      "time; a field read from a file has no time");
+      "time; a field file's own time steps are --time-steps A:B[:STRIDE]");
+  }
+  if (!request.TimeSteps.empty() && !scene.Field.FromFile())
+  {
+    throw InputError(scene.Source + ": --time-steps steps through a field file's time axis; " +
+      "this scene's field is generated (--time T0:T1 animates it)");
   }
   request.Export = MakeExportOptions(arguments, scene, FrameFileName(request, 0));
   RequireDisplay("cloudvis animate ...");
@@ -225,17 +245,22 @@ std::string QuoteCommandLine(const std::vector<std::string>& arguments)
 
 CommandSpec AnimateCommand()
 {
-  return { "animate", "SCENE", 1, 1,
-    "render a numbered sequence of frames: a turntable or the field over time",
+  return { "animate", "SCENE|FIELD", 1, 1,
+    "render a numbered sequence of frames: a turntable, the field over time, or a field file's "
+    "time steps",
     "Each frame is the still `cloudvis render` makes of the scene with that frame's camera or\n"
     "time (render.size pixels, render.accumulate frames averaged), written atomically as\n"
     "DIR/frame_0000.png, frame_0001.png, ... (more digits when N needs them) and carrying its own\n"
     "scene as metadata. --turntable orbits the camera about the focal point around the view-up,\n"
     "frame i at 360 i / N degrees (the sequence loops). --time T0:T1 generates the field at\n"
-    "t_i = T0 + i (T1 - T0) / (N - 1) for each frame. DIR is created when the first frame is\n"
-    "written; a failure part-way keeps the frames written before it. Needs an X display\n"
-    "(xvfb-run -a cloudvis animate ...).",
-    { DirectoryOption, FramesOption, TurntableOption, TimeOption, AnimateSizeOption, FormatOption,
+    "t_i = T0 + i (T1 - T0) / (N - 1) for each frame. --time-steps A:B[:STRIDE] reads a field\n"
+    "file's (or a scene's field.file's) time steps A, A + STRIDE, ... B, one per frame: the\n"
+    "transfer function and an automatic exposure are those of the first frame, kept for all,\n"
+    "and a step beyond the file is refused before a frame is written. DIR is created when the\n"
+    "first frame is written; a failure part-way keeps the frames written before it. Needs an X\n"
+    "display (xvfb-run -a cloudvis animate ...).",
+    { DirectoryOption, FramesOption, TurntableOption, TimeOption, TimeStepsOption,
+      AnimateSizeOption, FormatOption, FieldFileOptions[0], FieldFileOptions[1],
       LightingOption(), PngBitsOption, ExrHalfOption, TransparentOption, ExposureOption, QuietOption, SetOption,
       HelpOption },
     Animate };

@@ -47,6 +47,11 @@ Scene FrameScene(const Scene& scene, const AnimationRequest& request, int index,
   const ResolvedCamera& start)
 {
   Scene frame = scene;
+  if (!request.TimeSteps.empty())
+  {
+    frame.Field.Read.TimeStep = request.TimeSteps[std::size_t(index)];
+    return frame;
+  }
   if (!request.Turntable)
   {
     frame.Field.Time = FrameTime(request, index);
@@ -145,11 +150,17 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
       Scene frame = request.Turntable ? turning : FrameScene(scene, request, index, start);
       if (generate)
       {
-        field = ProduceField(frame, [&](double f) { report(index, "generating", generationShare * f); });
+        FieldReport read;
+        field = ProduceField(
+          frame, [&](double f) { report(index, "generating", generationShare * f); }, &read);
+        if (index == 0)
+        {
+          CheckTimeSteps(scene, request.TimeSteps, read, "--time-steps");
+        }
       }
       if (!fitted)
       {
-        const std::string note = FitTransferFunctionNote(frame, field, false);
+        const std::string note = FitTransferFunctionNote(frame, field, request.FieldFileAlone);
         fitted = frame.TransferFunction;
         if (transferFunctionNote)
         {

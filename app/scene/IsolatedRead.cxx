@@ -160,6 +160,9 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
   out.Value(units.DropletNumber.value_or(0.0));
   out.Value(contents.Report.LwcScale);
   out.Text(contents.Report.LwcScaleFrom);
+  out.Value(std::uint64_t(contents.Report.TimeSteps));
+  out.Value(contents.Report.Time);
+  out.Text(contents.Report.TimeUnits);
   out.Value(FieldRecord); // complete
 }
 
@@ -379,10 +382,17 @@ bool ReadFieldRecord(RecordReader& in, FieldFileContents& contents)
   units.Up = has[2] ? std::optional<int>(up) : std::nullopt;
   units.EffectiveRadius = has[3] ? std::optional<double>(radius) : std::nullopt;
   units.DropletNumber = has[4] ? std::optional<double>(droplets) : std::nullopt;
-  std::uint64_t end = 0;
+  std::uint64_t end = 0, steps = 0;
   contents.Image = image;
-  return in.Value(contents.Report.LwcScale) && std::isfinite(contents.Report.LwcScale) &&
-    in.Text(contents.Report.LwcScaleFrom) && in.Value(end) && end == FieldRecord;
+  if (!(in.Value(contents.Report.LwcScale) && std::isfinite(contents.Report.LwcScale) &&
+        in.Text(contents.Report.LwcScaleFrom) && in.Value(steps) && steps >= 1 &&
+        in.Value(contents.Report.Time) && in.Text(contents.Report.TimeUnits) && in.Value(end) &&
+        end == FieldRecord))
+  {
+    return false;
+  }
+  contents.Report.TimeSteps = std::size_t(steps);
+  return true;
 }
 
 unsigned TimeLimitSeconds(std::uint64_t fileBytes)

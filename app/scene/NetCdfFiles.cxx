@@ -531,12 +531,14 @@ vtkSmartPointer<vtkFloatArray> ReadValues(const ValueSource& source,
   return read;
 }
 
-// "1 of 0 .. 3: t = 3600 seconds since 2020-06-01" for the report, and the refusals of a time
-// axis without records and of a step beyond it.
+// "1 of 0 .. 3: t = 3600 seconds since 2020-06-01" for the report, with the number of steps and
+// the step's time in `report`, and the refusals of a time axis without records and of a step
+// beyond it.
 std::string TimeStep(const netcdf::File& file,
   const netcdf::Variable& chosen,
   const netcdf::Layout& layout,
-  const FieldReadOptions& options)
+  const FieldReadOptions& options,
+  FieldReport& report)
 {
   const int step = options.TimeStep.value_or(0);
   if (layout.Time.Position < 0)
@@ -563,12 +565,14 @@ std::string TimeStep(const netcdf::File& file,
       "field.time_step: " + std::to_string(step) + " is out of range: the file holds " +
         std::to_string(steps) + " time steps (0 .. " + std::to_string(steps - 1) + ")");
   }
+  report.TimeSteps = steps;
   std::string text = std::to_string(step) + " of 0 .. " + std::to_string(steps - 1);
   if (const netcdf::Variable* times = file.CoordinateOf(layout.Time.Dimension))
   {
     const std::string units = file.Text(*times, "units");
-    text += ": t = " + Number(file.Coordinates(*times)[std::size_t(step)]) +
-      (units.empty() ? "" : " " + units);
+    report.Time = file.Coordinates(*times)[std::size_t(step)];
+    report.TimeUnits = units;
+    text += ": t = " + Number(report.Time) + (units.empty() ? "" : " " + units);
   }
   return text + (options.TimeStep ? "" : " (the first; field.time_step picks another)");
 }
@@ -615,7 +619,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
     const netcdf::Variable& chosen = netcdf::ChooseVariable(file, options.Array);
     const netcdf::Layout layout = netcdf::LayoutOf(file, chosen);
     FieldFileContents contents;
-    const std::string step = TimeStep(file, chosen, layout, options);
+    const std::string step = TimeStep(file, chosen, layout, options, contents.Report);
     if (classic)
     {
       const std::uint64_t end =

@@ -220,4 +220,17 @@ vtkSmartPointer<vtkImageData> ProduceField(Scene& scene,
   return field;
 }
 
+void CheckTimeSteps(const Scene& scene,
+  const std::vector<int>& steps,
+  const FieldReport& read,
+  const std::string& what)
+{
+  if (!steps.empty() && std::size_t(steps.back()) >= read.TimeSteps)
+  {
+    throw InputError(scene.Field.File + ": " + what + ": step " + std::to_string(steps.back()) +
+      " is out of range: the file holds " + std::to_string(read.TimeSteps) + " time step" +
+      (read.TimeSteps == 1 ? "" : "s") + " (0 .. " + std::to_string(read.TimeSteps - 1) + ")");
+  }
+}
+
 } // namespace cloudvis

@@ -43,6 +43,10 @@ int ParseCount(const std::string& command,
   const std::string& text,
   const std::string& unit);
 
+// --time-steps A:B[:STRIDE]: the time steps A, A + STRIDE, ... up to B, counted from 0 (A <= B,
+// STRIDE >= 1, 1 when not given). Throws UsageError naming `command` otherwise.
+std::vector<int> ParseTimeSteps(const std::string& command, const std::string& text);
+
 // The options that say how a field file operand is read: --field-format, --array, --time-step
 // (field.format, field.array, field.time_step). Every command that takes a field file lists them.
 extern const std::vector<OptionSpec> FieldFileOptions;

@@ -16,6 +16,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace cloudvis
 {
@@ -23,9 +24,14 @@ namespace cloudvis
 struct AnimationRequest
 {
   int Frames = 1;
-  bool Turntable = false; // else the time range below
+  bool Turntable = false; // else the time steps, else the time range below
+  // The field file's time steps, one per frame (field.time_step of each frame's scene).
+  std::vector<int> TimeSteps;
   double TimeBegin = 0.0;
   double TimeEnd = 0.0;
+  // The input is a field file given alone, without a scene: its transfer function is the
+  // default fitted to the first frame's field (FitTransferFunctionNote).
+  bool FieldFileAlone = false;
   std::string Directory;         // without a trailing slash
   std::string Extension = ".png"; // ".png" or ".exr"
   ImageExportOptions Export;     // format options and the command line; the scene is per frame

@@ -19,6 +19,7 @@
 #include <array>
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -93,6 +94,11 @@ struct FieldReport
   // field.quantity "density" keeps the values as stored.
   double LwcScale = 1.0;
   std::string LwcScaleFrom;
+  // The time steps the file holds (1 for a format or a variable without a time axis), and the
+  // time of the step read with the units of the file's time coordinate (NaN and "" without one).
+  std::size_t TimeSteps = 1;
+  double Time = std::numeric_limits<double>::quiet_NaN();
+  std::string TimeUnits;
   // The units the field has once the scene's declaration and the file's are combined
   // (ResolveFieldValues): what every consumer of the field (the droplets' extinction and phase,
   // info's statistics) takes.

@@ -55,6 +55,14 @@ vtkSmartPointer<vtkImageData> ProduceField(const Scene& scene,
   const std::function<void(double fraction)>& progress = {},
   FieldReport* report = nullptr);
 
+// Refuses time steps a field file does not hold, before any work on them: `read`, the report of
+// the first step read, says how many it holds. Throws InputError naming the file (`scene`'s
+// field.file) and the last step; `what` names what asked for them ("--time-steps").
+void CheckTimeSteps(const Scene& scene,
+  const std::vector<int>& steps,
+  const FieldReport& read,
+  const std::string& what);
+
 } // namespace cloudvis
 
 #endif
