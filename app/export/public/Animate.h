@@ -48,8 +48,10 @@ double FrameTime(const AnimationRequest& request, int index);
 // directory, or a missing one whose parent is a writable directory. Creates nothing.
 void CheckAnimationDirectory(const std::string& directory);
 
-// Renders and writes the frames of `scene` (a procedural field is generated; field.file is read
-// once and allowed for the turntable only). `input` names the scene in errors. `progress` is told
+// Renders and writes the frames of `scene` (a procedural field is generated for each time; a
+// field.file is read once for the turntable, and at each frame's step for request.TimeSteps,
+// whose last step is checked against the file's before frame 0 is written: CheckTimeSteps).
+// `input` names the scene in errors. `progress` is told
 // the label and overall fraction as the work advances. The transfer function is fitted to the
 // first frame's field (FitTransferFunctionNote, said in `transferFunctionNote`) and kept for
 // every frame. Returns the number of frames written. On failure throws the InputError of the
