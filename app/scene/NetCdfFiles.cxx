@@ -753,9 +753,20 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
                 "\" but they do not stand for the same axes");
           }
         }
+        // Its missing values are counted here, not read as empty space: field.missing is the
+        // field's, and the air is needed at every voxel.
         netcdf::MissingValues otherMissing(file, other);
-        const ValueSource values{ file, other, otherLayout, source.Step, false, slabSlices };
-        return ReadValues(values, axes, otherMissing);
+        const ValueSource values{ file, other, otherLayout, source.Step, true, slabSlices };
+        vtkSmartPointer<vtkFloatArray> air = ReadValues(values, axes, otherMissing);
+        if (otherMissing.Count() > 0)
+        {
+          Fail(path,
+            "variable \"" + other.Name + "\" holds " + Values(otherMissing.Count(), "missing ") +
+              " (" + otherMissing.Describe() +
+              "): the air's density is needed at every voxel of \"" + chosen.Name +
+              "\"; field.air_density \"standard\" or a number in kg/m^3 gives it another way");
+        }
+        return air;
       } };
     netcdf::ConvertMixingRatio(lattice, options, density, contents.Report);
     netcdf::DeclareEffectiveRadius(file, chosen, contents.Report);

@@ -343,6 +343,14 @@ TEST(AirDensity, SourcesThatCannotBeUsedAreRefused)
     "  rho = 1, -1 ;");
   EXPECT_NE(refusal(gaps, {}).find("it marks values as missing (_FillValue -1)"), std::string::npos)
     << refusal(gaps, {});
+  const std::string holes = withRho("holes.nc",
+    "  float rho(z, y, x) ; rho:units = \"kg m-3\" ; rho:_FillValue = -1.f ;",
+    "  rho = 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, -1 ;");
+  EXPECT_EQ(refusal(holes, {}),
+    holes +
+      ": variable \"rho\" holds 1 missing value (_FillValue -1): the air's density is "
+      "needed at every voxel of \"ql\"; field.air_density \"standard\" or a number in "
+      "kg/m^3 gives it another way");
 
   FieldReadOptions standard;
   standard.AirDensity = { AirDensitySource::Kind::Standard, 0.0, "" };
