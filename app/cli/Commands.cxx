@@ -129,11 +129,11 @@ std::vector<int> ParseTimeSteps(const std::string& command, const std::string& t
   const bool matched = std::regex_match(text, parts, form);
   const int first = matched ? std::stoi(parts[1]) : 0, last = matched ? std::stoi(parts[2]) : 0;
   const int stride = matched && parts[4].matched ? std::stoi(parts[4]) : 1;
-  if (!matched || first > last || stride < 1)
+  if (!matched || first > last || stride < 1 || (last - first) / stride >= 999999)
   {
     throw UsageError(command +
-      ": --time-steps expects A:B or A:B:STRIDE, time steps from 0 with A <= B and STRIDE >= 1 "
-      "(for example 0:19 or 0:99:10), got \"" +
+      ": --time-steps expects A:B or A:B:STRIDE, time steps from 0 with A <= B and STRIDE >= 1, "
+      "at most 999999 of them (for example 0:19 or 0:99:10), got \"" +
       text + "\"");
   }
   std::vector<int> steps;

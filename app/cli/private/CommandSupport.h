@@ -44,7 +44,8 @@ int ParseCount(const std::string& command,
   const std::string& unit);
 
 // --time-steps A:B[:STRIDE]: the time steps A, A + STRIDE, ... up to B, counted from 0 (A <= B,
-// STRIDE >= 1, 1 when not given). Throws UsageError naming `command` otherwise.
+// STRIDE >= 1, 1 when not given; at most 999999 steps, as many as --frames allows). Throws
+// UsageError naming `command` otherwise.
 std::vector<int> ParseTimeSteps(const std::string& command, const std::string& text);
 
 // The options that say how a field file operand is read: --field-format, --array, --time-step
