@@ -609,7 +609,7 @@ int InfoTimeSeries(const Arguments& arguments,
     nlohmann::json json = { { "field", scene.Field.File },
       { "units", UnitsToJson(units) },
       { "time_units", first.TimeUnits },
-      { "path_unit", CloudStatisticsToJson(rows.front().Clouds).value("path_unit", "") },
+      { "path_unit", PathUnit(units) },
       { "steps", nlohmann::json::array() } };
     const auto number = [](double v)
     { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
@@ -627,7 +627,7 @@ int InfoTimeSeries(const Arguments& arguments,
     return ExitSuccess;
   }
   const auto unit = [](const std::string& u) { return u.empty() ? "" : " (" + u + ")"; };
-  const std::string path = CloudStatisticsToJson(rows.front().Clouds).value("path_unit", "");
+  const std::string path = PathUnit(units);
   const std::string length = units.Length == LengthUnit::None ? "" : LengthUnitName(units.Length);
   out << "step,time" << unit(first.TimeUnits) << ",cloud_cover,mean_path" << unit(path)
       << ",mean_cloudy_path" << unit(path) << ",cloud_base" << unit(length) << ",cloud_top"

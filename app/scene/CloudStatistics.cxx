@@ -256,17 +256,6 @@ void SizeHistogram(const std::vector<double>& sizes, CloudStatistics& s)
   }
 }
 
-// The unit of the vertical integral.
-std::string PathUnit(const ResolvedFieldUnits& u)
-{
-  if (u.Quantity == FieldQuantity::Lwc)
-  {
-    return u.Length == LengthUnit::None ? "g/m^3 x world units" : "g/m^2";
-  }
-  return u.Length == LengthUnit::None ? "density x world units"
-                                      : "density x " + LengthUnitName(LengthUnit::Metre);
-}
-
 // The vertical integral in PathUnit's unit: metres when the length unit is known.
 double PathScale(const ResolvedFieldUnits& u)
 {
@@ -341,6 +330,16 @@ VerticalAxis VerticalAxisOf(vtkImageData* field, int up)
 }
 
 } // namespace
+
+std::string PathUnit(const ResolvedFieldUnits& u)
+{
+  if (u.Quantity == FieldQuantity::Lwc)
+  {
+    return u.Length == LengthUnit::None ? "g/m^3 x world units" : "g/m^2";
+  }
+  return u.Length == LengthUnit::None ? "density x world units"
+                                      : "density x " + LengthUnitName(LengthUnit::Metre);
+}
 
 CloudStatistics ComputeCloudStatistics(vtkImageData* field,
   const ResolvedFieldUnits& units,

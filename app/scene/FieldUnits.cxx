@@ -203,7 +203,7 @@ std::optional<double> MixingRatioGramsPerKilogram(const std::string& units,
   }
   const bool ratioByName = standardName == "cloud_liquid_water_mixing_ratio" ||
     standardName == "mass_fraction_of_cloud_liquid_water_in_air";
-  if (ratioByName && (u.empty() || u == "1" || u == "kg/kg"))
+  if (ratioByName && (u.empty() || u == "1"))
   {
     return 1000.0;
   }

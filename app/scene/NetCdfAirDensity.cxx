@@ -635,14 +635,6 @@ bool ConvertMixingRatio(const FieldLattice& lattice,
         missing + "); " + give);
     return true;
   }
-  for (double& rho : density->Profile)
-  {
-    if (!(rho >= AirDensityMin && rho <= AirDensityMax))
-    {
-      Fail(path, "the air density " + Number(rho) + " kg/m^3 (" + source + ") is not air's");
-    }
-  }
-
   const std::array<std::size_t, 3> points{
     { lattice.Coordinates[0].size(), lattice.Coordinates[1].size(), lattice.Coordinates[2].size() }
   };

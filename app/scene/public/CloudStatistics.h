@@ -123,6 +123,9 @@ CloudStatistics ComputeCloudStatistics(vtkImageData* field,
 void PrintCloudStatistics(std::ostream& out, const CloudStatistics& statistics);
 nlohmann::json UnitsToJson(const ResolvedFieldUnits& units);
 nlohmann::json CloudStatisticsToJson(const CloudStatistics& statistics);
+// The unit of the vertical integral (MeanPath): "g/m^2" for an lwc field in m or km, else the
+// value's unit times a length ("density x m", "g/m^3 x world units").
+std::string PathUnit(const ResolvedFieldUnits& units);
 
 } // namespace cloudvis
 
