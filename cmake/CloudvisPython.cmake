@@ -16,9 +16,14 @@ vtk_module_wrap_python(
   BUILD_STATIC OFF)
 set(CLOUDVIS_PYTHONPATH "${CMAKE_BINARY_DIR}/${cloudvis_python_destination}"
   CACHE INTERNAL "Where `import cloudvis` finds the package in the build tree")
-configure_file("${CMAKE_SOURCE_DIR}/app/python/__init__.py"
-  "${CLOUDVIS_PYTHONPATH}/cloudvis/__init__.py" COPYONLY)
+foreach(file IN ITEMS __init__.py fields.py render.py)
+  configure_file("${CMAKE_SOURCE_DIR}/app/python/${file}" "${CLOUDVIS_PYTHONPATH}/cloudvis/${file}"
+    COPYONLY)
+endforeach()
+# Where cloudvis.render finds the program it runs (render.py), in the build tree.
+file(GENERATE OUTPUT "${CLOUDVIS_PYTHONPATH}/cloudvis/_build.py"
+  CONTENT "# Written by cmake/CloudvisPython.cmake: the cloudvis program of this build.\nCLOUDVIS_EXECUTABLE = \"$<TARGET_FILE:cloudvis>\"\n")
 # One name for the whole package (`make python`): the demo builds the cloudvis binary alone, so
 # the wrapping, a few minutes of the first build, never stands between a new user and a picture.
 add_custom_target(cloudvis-python)
-add_dependencies(cloudvis-python cloudvisFiltersPython cloudvisRenderingPython)
+add_dependencies(cloudvis-python cloudvisFiltersPython cloudvisRenderingPython cloudvis)

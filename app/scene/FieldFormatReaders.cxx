@@ -13,6 +13,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -219,6 +220,120 @@ void ReportPointArrays(FieldReport& report, vtkImageData* image, const std::stri
     std::string("\"") + (used->GetName() ? used->GetName() : "(unnamed)") + "\" (" +
       TypeInWords(used->GetDataType()) + ")" +
       (others.empty() ? "" : "; other point arrays (field.array): " + others));
+}
+
+namespace
+{
+std::string EffectiveRadiusRange()
+{
+  return "a number of micrometres in [0.001, 1000000]";
+}
+
+std::string DropletNumberRange()
+{
+  return "a number of droplets per cm^3 in [" + Number(DropletNumberMin) + ", " +
+    Number(DropletNumberMax) + "]";
+}
+} // namespace
+
+void DeclareEffectiveRadius(const std::string& path,
+  const std::string& declaration,
+  const std::string& source,
+  double radius,
+  FieldReport& report)
+{
+  if (!(radius >= 1e-3 && radius <= 1e6))
+  {
+    Fail(path, declaration + " must be " + EffectiveRadiusRange() + ", got " + Number(radius));
+  }
+  report.Units.EffectiveRadius = radius;
+  report.Add("effective radius", Number(radius) + " um (" + source + ")");
+}
+
+void DeclareDropletNumber(const std::string& path,
+  const std::string& declaration,
+  const std::string& source,
+  double number,
+  FieldReport& report)
+{
+  if (!(number >= DropletNumberMin && number <= DropletNumberMax))
+  {
+    Fail(path, declaration + " must be " + DropletNumberRange() + ", got " + Number(number));
+  }
+  report.Units.DropletNumber = number;
+  report.Add("droplet number", Number(number) + " per cm^3 (" + source + ")");
+}
+
+void DeclareQuantityOfUnits(const std::string& units, const std::string& whose, FieldReport& report)
+{
+  if (const auto declared = QuantityFromUnits(units))
+  {
+    report.Units.Quantity = declared->Quantity;
+    if (declared->Scale != 1.0)
+    {
+      report.LwcScale = declared->Scale;
+      report.LwcScaleFrom = units;
+    }
+    report.Add("quantity", "lwc (liquid water content, by " + whose + " units)");
+  }
+}
+
+void DeclareNamedUnits(const std::string& path,
+  const std::string& owner,
+  const std::string& source,
+  const std::function<std::optional<MetadataEntry>(const std::string& name)>& lookup,
+  FieldReport& report)
+{
+  // The index of the entry's value among `allowed`; -1 when there is no such entry.
+  const auto text = [&](const std::string& name, const std::vector<std::string>& allowed)
+  {
+    const std::optional<MetadataEntry> entry = lookup(name);
+    if (!entry)
+    {
+      return -1;
+    }
+    const auto found =
+      entry->Text ? std::find(allowed.begin(), allowed.end(), *entry->Text) : allowed.end();
+    if (found == allowed.end())
+    {
+      std::string names;
+      for (const std::string& a : allowed)
+      {
+        names += (names.empty() ? "\"" : ", \"") + a + "\"";
+      }
+      Fail(path,
+        owner + " \"" + name + "\" must be one of the strings " + names + ", got " +
+          (entry->Text ? "\"" + *entry->Text + "\"" : WithArticle(entry->TypeName)));
+    }
+    report.Add(name, *entry->Text + " (" + source + ")");
+    return int(found - allowed.begin());
+  };
+  if (const int q = text("quantity", { "density", "lwc" }); q >= 0)
+  {
+    report.Units.Quantity = FieldQuantity(q);
+  }
+  if (const int l = text("length_unit", { "none", "m", "km" }); l >= 0)
+  {
+    report.Units.Length = LengthUnit(l);
+  }
+  if (const int u = text("up", { "x", "y", "z" }); u >= 0)
+  {
+    report.Units.Up = u;
+  }
+  const auto number = [&](const std::string& name, const std::string& range, auto declare)
+  {
+    if (const std::optional<MetadataEntry> entry = lookup(name))
+    {
+      const std::string declaration = owner + " \"" + name + "\"";
+      if (!entry->Number)
+      {
+        Fail(path, declaration + " must be " + range + ", got " + WithArticle(entry->TypeName));
+      }
+      declare(path, declaration, source, *entry->Number, report);
+    }
+  };
+  number("effective_radius", EffectiveRadiusRange(), DeclareEffectiveRadius);
+  number("droplet_number", DropletNumberRange(), DeclareDropletNumber);
 }
 
 void SetAxes(const std::string& path,

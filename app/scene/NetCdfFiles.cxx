@@ -733,7 +733,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
             : type == "float" ? ""
                               : ", converted to float"));
     contents.Report.Add("units", units.empty() ? "not stated" : units);
-    netcdf::DeclareQuantity(units, contents.Report);
+    DeclareQuantityOfUnits(units, "the variable's", contents.Report);
     const netcdf::FieldLattice lattice{ file,
       chosen,
       layout,

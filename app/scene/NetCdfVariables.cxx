@@ -832,57 +832,27 @@ void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldRep
 {
   const std::vector<double> radius = file.CheckedNumbers(
     variable, "effective_radius", 1, 1, "the droplets' effective radius in micrometres");
-  if (radius.empty())
+  if (!radius.empty())
   {
-    return;
+    cloudvis::DeclareEffectiveRadius(file.Path(),
+      "variable \"" + variable.Name + "\": attribute effective_radius",
+      "the variable's effective_radius",
+      radius[0],
+      report);
   }
-  if (!(radius[0] >= 1e-3 && radius[0] <= 1e6))
-  {
-    cloudvis::Fail(file.Path(),
-      "variable \"" + variable.Name +
-        "\": attribute effective_radius must be a number of micrometres in [0.001, 1000000], "
-        "got " +
-        Number(radius[0]));
-  }
-  report.Units.EffectiveRadius = radius[0];
-  report.Add("effective radius", Number(radius[0]) + " um (the variable's effective_radius)");
 }
 
 void DeclareDropletNumber(const File& file, const Variable& variable, FieldReport& report)
 {
   const std::vector<double> number = file.CheckedNumbers(
     variable, "droplet_number", 1, 1, "the droplets' number concentration per cm^3");
-  if (number.empty())
+  if (!number.empty())
   {
-    return;
-  }
-  if (!(number[0] >= DropletNumberMin && number[0] <= DropletNumberMax))
-  {
-    cloudvis::Fail(file.Path(),
-      "variable \"" + variable.Name +
-        "\": attribute droplet_number must be a number of droplets "
-        "per cm^3 in [" +
-        Number(DropletNumberMin) + ", " + Number(DropletNumberMax) + "], got " + Number(number[0]));
-  }
-  report.Units.DropletNumber = number[0];
-  report.Add("droplet number", Number(number[0]) + " per cm^3 (the variable's droplet_number)");
-}
-
-// The physical quantity a variable's `units` declare (FieldUnits.h): a liquid water content in
-// g/m^3, or in kg/m^3 with the factor 1000 to g/m^3 in report.LwcScale (applied once the scene's
-// field.quantity is known, by ResolveFieldValues). A mixing ratio (kg/kg, g/kg) is not a content
-// until the air's density multiplies it: ConvertMixingRatio (NetCdfAirDensity.h) does that.
-void DeclareQuantity(const std::string& units, FieldReport& report)
-{
-  if (const auto declared = QuantityFromUnits(units))
-  {
-    report.Units.Quantity = declared->Quantity;
-    if (declared->Scale != 1.0)
-    {
-      report.LwcScale = declared->Scale;
-      report.LwcScaleFrom = units;
-    }
-    report.Add("quantity", "lwc (liquid water content, by the variable's units)");
+    cloudvis::DeclareDropletNumber(file.Path(),
+      "variable \"" + variable.Name + "\": attribute droplet_number",
+      "the variable's droplet_number",
+      number[0],
+      report);
   }
 }
 

@@ -184,70 +184,44 @@ std::string Translated(const std::exception& e)
   return text.empty() ? "OpenVDB could not read it" : text;
 }
 
-// The physical units a grid's metadata declares (FieldUnits.h; docs/data.md): strings
-// "quantity" ("density" or "lwc"), "length_unit" ("none", "m" or "km"), "up" ("x", "y" or "z"),
-// and the number "effective_radius" (micrometres). A name with a value of another type, or a
-// value not among those, is refused: a declaration is read as declared or not at all.
+// The physical units a grid's metadata declares (DeclareNamedUnits; docs/data.md): what
+// `grid["quantity"] = "lwc"` writes in OpenVDB's Python module, insertMeta in C++. Strings are
+// StringMetadata; numbers float, double or integer metadata.
 void DeclareUnits(const std::string& path, const openvdb::GridBase& grid, FieldReport& report)
 {
-  const auto text = [&](const std::string& name, const std::vector<std::string>& allowed)
+  const auto lookup = [&grid](const std::string& name) -> std::optional<MetadataEntry>
   {
     const openvdb::Metadata::ConstPtr meta = grid[name];
     if (!meta)
     {
-      return -1;
+      return std::nullopt;
     }
-    const auto* string = dynamic_cast<const openvdb::StringMetadata*>(meta.get());
-    const std::string value = string ? string->value() : "";
-    const auto found = std::find(allowed.begin(), allowed.end(), value);
-    if (!string || found == allowed.end())
+    MetadataEntry entry;
+    entry.TypeName = meta->typeName();
+    if (const auto* s = dynamic_cast<const openvdb::StringMetadata*>(meta.get()))
     {
-      std::string names;
-      for (const std::string& a : allowed)
-      {
-        names += (names.empty() ? "\"" : ", \"") + a + "\"";
-      }
-      Fail(path,
-        "grid \"" + grid.getName() + "\": metadata \"" + name + "\" must be one of the strings " +
-          names + ", got " + (string ? "\"" + value + "\"" : WithArticle(meta->typeName())));
+      entry.Text = s->value();
     }
-    report.Add(name, value + " (grid metadata)");
-    return int(found - allowed.begin());
-  };
-  if (const int q = text("quantity", { "density", "lwc" }); q >= 0)
-  {
-    report.Units.Quantity = FieldQuantity(q);
-  }
-  if (const int l = text("length_unit", { "none", "m", "km" }); l >= 0)
-  {
-    report.Units.Length = LengthUnit(l);
-  }
-  if (const int u = text("up", { "x", "y", "z" }); u >= 0)
-  {
-    report.Units.Up = u;
-  }
-  if (const openvdb::Metadata::ConstPtr meta = grid["effective_radius"])
-  {
-    double radius = std::nan("");
-    if (const auto* f = dynamic_cast<const openvdb::FloatMetadata*>(meta.get()))
+    else if (const auto* f = dynamic_cast<const openvdb::FloatMetadata*>(meta.get()))
     {
-      radius = f->value();
+      entry.Number = f->value();
     }
     else if (const auto* d = dynamic_cast<const openvdb::DoubleMetadata*>(meta.get()))
     {
-      radius = d->value();
+      entry.Number = d->value();
     }
-    if (!(radius >= 1e-3 && radius <= 1e6))
+    else if (const auto* i = dynamic_cast<const openvdb::Int32Metadata*>(meta.get()))
     {
-      Fail(path,
-        "grid \"" + grid.getName() +
-          "\": metadata \"effective_radius\" must be a number of micrometres in [0.001, "
-          "1000000], got " +
-          (std::isnan(radius) ? WithArticle(meta->typeName()) : Number(radius)));
+      entry.Number = i->value();
     }
-    report.Units.EffectiveRadius = radius;
-    report.Add("effective radius", Number(radius) + " um (grid metadata)");
-  }
+    else if (const auto* l = dynamic_cast<const openvdb::Int64Metadata*>(meta.get()))
+    {
+      entry.Number = double(l->value());
+    }
+    return entry;
+  };
+  DeclareNamedUnits(
+    path, "grid \"" + grid.getName() + "\": metadata", "grid metadata", lookup, report);
 }
 
 } // namespace

@@ -21,17 +21,20 @@
 
 #include "Errors.h"
 #include "FieldPieces.h" // PieceRunAttribute
+#include "FieldUnits.h"
 #include "FileNames.h"
 #include "InputFiles.h"
 #include "IsolatedRead.h"
 #include "VtkMessageCapture.h"
 
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStringArray.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLImageDataReader.h>
@@ -647,12 +650,82 @@ void CheckPiecesOfOneRun(const std::string& path,
   }
 }
 
+// The units the image's field data declares (docs/data.md, "Physical units"): the names
+// DeclareNamedUnits reads, as ParaView's cloudvis reader and cloudvis.field_from_xarray write
+// them (a string array of one value, or a numeric array of one value), and "units", the values'
+// units as a file states them ("g m-3", "kg/kg"), where "quantity" is not given: a mixing ratio
+// becomes a liquid water content with the number "air_density" (kg/m^3). A "droplet_number" of
+// 0 declares none, as the ParaView reader's output says so, and a saved copy of it reads back.
+void DeclareFieldDataUnits(const std::string& path, vtkImageData* image, FieldReport& report)
+{
+  vtkFieldData* data = image->GetFieldData();
+  const auto lookup = [data](const std::string& name) -> std::optional<MetadataEntry>
+  {
+    vtkAbstractArray* array = data ? data->GetAbstractArray(name.c_str()) : nullptr;
+    if (!array)
+    {
+      return std::nullopt;
+    }
+    MetadataEntry entry;
+    const vtkIdType values = array->GetNumberOfValues();
+    entry.TypeName = std::string(array->GetDataTypeAsString()) + " array of " +
+      std::to_string(values) + (values == 1 ? " value" : " values");
+    if (values == 1 && vtkStringArray::SafeDownCast(array))
+    {
+      entry.Text = vtkStringArray::SafeDownCast(array)->GetValue(0);
+    }
+    else if (values == 1 && vtkDataArray::SafeDownCast(array))
+    {
+      entry.Number = vtkDataArray::SafeDownCast(array)->GetTuple1(0);
+      if (name == "droplet_number" && *entry.Number == 0.0)
+      {
+        return std::nullopt; // what ParaView's cloudvis reader writes when none is declared
+      }
+    }
+    return entry;
+  };
+  DeclareNamedUnits(path, "field data", "field data", lookup, report);
+  const std::optional<MetadataEntry> units = lookup("units");
+  if (units && units->Text && !report.Units.Quantity)
+  {
+    report.Add("units", *units->Text + " (field data)");
+    DeclareQuantityOfUnits(*units->Text, "the field data's", report);
+    const std::optional<double> ratio = MixingRatioGramsPerKilogram(*units->Text, "");
+    const std::optional<MetadataEntry> air = lookup("air_density");
+    if (!report.Units.Quantity && ratio && !air)
+    {
+      report.Add("quantity",
+        "density: a mixing ratio becomes a liquid water content with the air's density (the "
+        "field data's \"air_density\", kg/m^3); without it, read as stored");
+    }
+    else if (!report.Units.Quantity && ratio)
+    {
+      const double density = air->Number.value_or(std::nan(""));
+      if (!(density >= AirDensityMin && density <= AirDensityMax))
+      {
+        Fail(path,
+          "field data \"air_density\" must be a number of kg/m^3 in [" + Number(AirDensityMin) +
+            ", " + Number(AirDensityMax) + "], got " +
+            (air->Number ? Number(density) : WithArticle(air->TypeName)));
+      }
+      report.Units.Quantity = FieldQuantity::Lwc;
+      report.LwcScale = *ratio * density;
+      report.LwcScaleFrom =
+        *units->Text + " times the air's density " + Number(density) + " kg/m^3";
+      report.Add("quantity",
+        "lwc (liquid water content: the mixing ratio times the field data's air_density)");
+    }
+  }
+}
+
 // What both readers return: the image, the array field.array names (if any) and the report.
-FieldFileContents Contents(const vtkSmartPointer<vtkImageData>& image,
+FieldFileContents Contents(const std::string& path,
+  const vtkSmartPointer<vtkImageData>& image,
   const FieldReadOptions& options)
 {
   FieldFileContents contents{ image, options.Array, {} };
   ReportPointArrays(contents.Report, image, options.Array);
+  DeclareFieldDataUnits(path, image, contents.Report);
   return contents;
 }
 
@@ -668,7 +741,8 @@ FieldFileContents ReadVtkXmlImageFile(const std::string& path, const FieldReadOp
   }
   const auto read = [&path, &options]()
   { return ReadChecked<vtkXMLImageDataReader>(path, "VTK XML image data", options.MaximumVoxels); };
-  return ReadInIsolation(path, bytes, "VTK's reader", [&] { return Contents(read(), options); });
+  return ReadInIsolation(
+    path, bytes, "VTK's reader", [&] { return Contents(path, read(), options); });
 }
 
 FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
@@ -721,8 +795,8 @@ FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
     CheckOverlapsAgree(path, listed);
     return image;
   };
-  FieldFileContents contents =
-    ReadInIsolation(path, totalBytes, "VTK's reader", [&] { return Contents(read(), options); });
+  FieldFileContents contents = ReadInIsolation(
+    path, totalBytes, "VTK's reader", [&] { return Contents(path, read(), options); });
   contents.Report.Add("pieces", std::to_string(listed.size()));
   return contents;
 }

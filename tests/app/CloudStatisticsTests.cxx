@@ -16,11 +16,16 @@
 
 #include "vtkCloudReferenceRenderer.h"
 
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkStringArray.h>
+#include <vtkXMLImageDataWriter.h>
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <vtkImageData.h>
+#include <vtkNew.h>
 #include <vtkPointData.h>
 
 #include <gtest/gtest.h>
@@ -1154,6 +1159,120 @@ TEST(VdbUnits, UnknownDeclarationsAreRefused)
     err.find("metadata \"up\" must be one of the strings \"x\", \"y\", \"z\", got an int32"),
     std::string::npos)
     << err;
+}
+
+// ---- units a .vti's field data declares -------------------------------------------------------
+
+// A 3 x 3 x 3 image of 0.5 ("ql") with field data `entries` (a string or a number each), written
+// by VTK's XML writer as cloudvis.field_from_xarray writes one.
+std::string VtiFile(const cloudvis::support::TemporaryDirectory& dir,
+  const std::vector<std::pair<std::string, std::string>>& strings,
+  const std::vector<std::pair<std::string, double>>& numbers = {})
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(3, 3, 3);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("ql");
+  values->SetNumberOfValues(27);
+  values->Fill(0.5f);
+  image->GetPointData()->SetScalars(values);
+  for (const auto& [name, text] : strings)
+  {
+    vtkNew<vtkStringArray> entry;
+    entry->SetName(name.c_str());
+    entry->InsertNextValue(text);
+    image->GetFieldData()->AddArray(entry);
+  }
+  for (const auto& [name, number] : numbers)
+  {
+    vtkNew<vtkDoubleArray> entry;
+    entry->SetName(name.c_str());
+    entry->InsertNextValue(number);
+    image->GetFieldData()->AddArray(entry);
+  }
+  const std::string path = dir.File("lwc.vti");
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  EXPECT_EQ(writer->Write(), 1);
+  return path;
+}
+
+TEST(VtiUnits, FieldDataDeclaresTheUnits)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  const std::string path = VtiFile(dir,
+    { { "quantity", "lwc" }, { "length_unit", "km" }, { "up", "z" } },
+    { { "effective_radius", 8.0 }, { "droplet_number", 120.0 } });
+  cloudvis::FieldReport report;
+  cloudvis::ReadField(path, {}, &report);
+  EXPECT_EQ(report.Units.Quantity, FieldQuantity::Lwc);
+  EXPECT_EQ(report.Units.Length, LengthUnit::Kilometre);
+  EXPECT_EQ(report.Units.Up, 2);
+  EXPECT_EQ(report.Units.EffectiveRadius, 8.0);
+  EXPECT_EQ(report.Units.DropletNumber, 120.0);
+  // The ParaView reader's output, saved: droplet_number 0 is none declared.
+  cloudvis::ReadField(VtiFile(dir, {}, { { "droplet_number", 0.0 } }), {}, &report);
+  EXPECT_FALSE(report.Units.DropletNumber.has_value());
+}
+
+TEST(VtiUnits, CfUnitsOfTheValuesDeclareTheQuantity)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  // kg m-3: a content, converted to g/m^3 once read.
+  cloudvis::FieldReport report;
+  vtkSmartPointer<vtkImageData> field =
+    cloudvis::ReadField(VtiFile(dir, { { "units", "kg m-3" } }), {}, &report);
+  EXPECT_EQ(report.Resolved.Quantity, FieldQuantity::Lwc);
+  EXPECT_FLOAT_EQ(float(field->GetPointData()->GetScalars()->GetTuple1(0)), 500.0f);
+  // kg/kg with the air's density: 0.5 kg/kg x 1000 g/kg x 1.2 kg/m^3.
+  field = cloudvis::ReadField(
+    VtiFile(dir, { { "units", "kg/kg" } }, { { "air_density", 1.2 } }), {}, &report);
+  EXPECT_EQ(report.Resolved.Quantity, FieldQuantity::Lwc);
+  EXPECT_FLOAT_EQ(float(field->GetPointData()->GetScalars()->GetTuple1(0)), 600.0f);
+  // Without it, a mixing ratio stays as stored, and info says why.
+  const std::string path = VtiFile(dir, { { "units", "kg/kg" } });
+  field = cloudvis::ReadField(path, {}, &report);
+  EXPECT_EQ(report.Resolved.Quantity, FieldQuantity::Density);
+  EXPECT_FLOAT_EQ(float(field->GetPointData()->GetScalars()->GetTuple1(0)), 0.5f);
+  const std::string text = cloudvis::support::RunCloudvis({ "info", path }).Out;
+  EXPECT_NE(text.find("a mixing ratio becomes a liquid water content with the air's density (the "
+                      "field data's \"air_density\", kg/m^3)"),
+    std::string::npos)
+    << text;
+}
+
+TEST(VtiUnits, UnknownDeclarationsAreRefused)
+{
+  cloudvis::support::TemporaryDirectory dir;
+  std::string path = VtiFile(dir, { { "up", "sideways" } });
+  auto result = cloudvis::support::RunCloudvis({ "info", path });
+  EXPECT_NE(result.Status, 0);
+  EXPECT_NE(result.Err.find(path +
+              ": field data \"up\" must be one of the strings \"x\", \"y\", \"z\", got "
+              "\"sideways\""),
+    std::string::npos)
+    << result.Err;
+  path = VtiFile(dir, {}, { { "droplet_number", 0.5 } });
+  result = cloudvis::support::RunCloudvis({ "info", path });
+  EXPECT_NE(result.Err.find(path +
+              ": field data \"droplet_number\" must be a number of droplets per cm^3 in [1, "
+              "100000], got 0.5"),
+    std::string::npos)
+    << result.Err;
+  path = VtiFile(dir, { { "effective_radius", "ten" } });
+  result = cloudvis::support::RunCloudvis({ "info", path });
+  EXPECT_NE(result.Err.find(path +
+              ": field data \"effective_radius\" must be a number of micrometres in [0.001, "
+              "1000000], got a string array of 1 value"),
+    std::string::npos)
+    << result.Err;
+  path = VtiFile(dir, { { "units", "g/kg" } }, { { "air_density", -1.0 } });
+  result = cloudvis::support::RunCloudvis({ "info", path });
+  EXPECT_NE(result.Err.find(path +
+              ": field data \"air_density\" must be a number of kg/m^3 in [1e-06, 10], got -1"),
+    std::string::npos)
+    << result.Err;
 }
 
 // ---- cloudvis info ----------------------------------------------------------------------------

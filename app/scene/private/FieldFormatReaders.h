@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -124,6 +125,54 @@ std::string TypeInWords(int vtkType);
 
 // The report line "array": the point array used and the others the image holds.
 void ReportPointArrays(FieldReport& report, vtkImageData* image, const std::string& chosen);
+
+// ---- units a file declares (docs/data.md, "Physical units") ----------------------------------
+
+// A droplets' effective radius (micrometres, in [0.001, 1000000]) or number concentration (per
+// cm^3, in [DropletNumberMin, DropletNumberMax]) a file declares, into report.Units with a report
+// line saying `source` ("the variable's effective_radius", "grid metadata"); refused, naming
+// `path` and `declaration` ("variable \"ql\": attribute effective_radius"), when out of range.
+// NetCDF attributes, OpenVDB grid metadata and VTK XML field data share these checks.
+void DeclareEffectiveRadius(const std::string& path,
+  const std::string& declaration,
+  const std::string& source,
+  double radius,
+  FieldReport& report);
+void DeclareDropletNumber(const std::string& path,
+  const std::string& declaration,
+  const std::string& source,
+  double number,
+  FieldReport& report);
+
+// The quantity a `units` text declares (QuantityFromUnits): a liquid water content into
+// report.Units, with the factor to g/m^3 in report.LwcScale (applied by ResolveFieldValues once
+// the scene's field.quantity is known) and a report line naming `whose` ("the variable's");
+// nothing for any other units.
+void DeclareQuantityOfUnits(const std::string& units,
+  const std::string& whose,
+  FieldReport& report);
+
+// A named declaration of a unit in a file's metadata, as NamedUnits reads it: a string, a number
+// or another type (named for messages: "a float", "an int32").
+struct MetadataEntry
+{
+  std::optional<std::string> Text;
+  std::optional<double> Number;
+  std::string TypeName;
+};
+
+// The units a file declares by name in its metadata (OpenVDB grid metadata, VTK XML field data):
+// the strings "quantity" ("density" or "lwc"), "length_unit" ("none", "m", "km"), "up" ("x",
+// "y", "z"), and the numbers "effective_radius" (micrometres) and "droplet_number" (per cm^3).
+// `lookup` finds an entry by name (nothing when absent); `owner` names the metadata in messages
+// (`grid "ql": metadata`, `field data`) and `source` in the report ("grid metadata"). An entry of
+// another type, or a value not among those allowed, is refused naming the file, the owner and the
+// name: a declaration is read as declared or not at all.
+void DeclareNamedUnits(const std::string& path,
+  const std::string& owner,
+  const std::string& source,
+  const std::function<std::optional<MetadataEntry>(const std::string& name)>& lookup,
+  FieldReport& report);
 
 // Sets the image's spacing and direction from three axis vectors (world length and direction of
 // one step along i, j, k), as NRRD's space directions and MetaImage's TransformMatrix with

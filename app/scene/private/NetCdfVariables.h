@@ -195,11 +195,10 @@ void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldRep
 void DeclareDropletNumber(const File& file, const Variable& variable, FieldReport& report);
 
 // What the file declares of its physical units (FieldReport::Units), each with a line in the
-// report: the quantity from the variable's `units` (for kg/m^3, the factor to g/m^3 in
-// FieldReport::LwcScale; a mixing ratio is ConvertMixingRatio's, NetCdfAirDensity.h), and the
-// length unit the spatial axes' coordinates share and the vertical axis (z, where the file
-// identifies a height axis).
-void DeclareQuantity(const std::string& units, FieldReport& report);
+// report, beyond the quantity of the variable's `units` (DeclareQuantityOfUnits,
+// FieldFormatReaders.h; a mixing ratio is ConvertMixingRatio's, NetCdfAirDensity.h): the length
+// unit the spatial axes' coordinates share and the vertical axis (z, where the file identifies a
+// height axis).
 void DeclareLengthAndUp(const File& file, const Layout& layout, FieldReport& report);
 
 // Coordinates a file implies for a dimension without a coordinate variable, as WRF writes its
