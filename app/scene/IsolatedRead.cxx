@@ -163,6 +163,8 @@ void WriteFieldRecord(RecordWriter& out, const FieldFileContents& contents)
   out.Value(std::uint64_t(contents.Report.TimeSteps));
   out.Value(contents.Report.Time);
   out.Text(contents.Report.TimeUnits);
+  out.Value(std::uint64_t(contents.Report.Times.size()));
+  out.Bytes(contents.Report.Times.data(), contents.Report.Times.size() * sizeof(double));
   out.Value(FieldRecord); // complete
 }
 
@@ -382,12 +384,18 @@ bool ReadFieldRecord(RecordReader& in, FieldFileContents& contents)
   units.Up = has[2] ? std::optional<int>(up) : std::nullopt;
   units.EffectiveRadius = has[3] ? std::optional<double>(radius) : std::nullopt;
   units.DropletNumber = has[4] ? std::optional<double>(droplets) : std::nullopt;
-  std::uint64_t end = 0, steps = 0;
+  std::uint64_t end = 0, steps = 0, times = 0;
   contents.Image = image;
   if (!(in.Value(contents.Report.LwcScale) && std::isfinite(contents.Report.LwcScale) &&
         in.Text(contents.Report.LwcScaleFrom) && in.Value(steps) && steps >= 1 &&
-        in.Value(contents.Report.Time) && in.Text(contents.Report.TimeUnits) && in.Value(end) &&
-        end == FieldRecord))
+        in.Value(contents.Report.Time) && in.Text(contents.Report.TimeUnits) && in.Value(times) &&
+        (times == 0 || times == steps) && times <= (std::uint64_t(1) << 26)))
+  {
+    return false;
+  }
+  contents.Report.Times.resize(std::size_t(times));
+  if (!(in.Bytes(contents.Report.Times.data(), std::size_t(times) * sizeof(double)) &&
+        in.Value(end) && end == FieldRecord))
   {
     return false;
   }

@@ -570,7 +570,8 @@ std::string TimeStep(const netcdf::File& file,
   if (const netcdf::Variable* times = file.CoordinateOf(layout.Time.Dimension))
   {
     const std::string units = file.Text(*times, "units");
-    report.Time = file.Coordinates(*times)[std::size_t(step)];
+    report.Times = file.Coordinates(*times);
+    report.Time = report.Times[std::size_t(step)];
     report.TimeUnits = units;
     text += ": t = " + Number(report.Time) + (units.empty() ? "" : " " + units);
   }

@@ -34,12 +34,16 @@ vtkCloudFieldReader::~vtkCloudFieldReader()
 
 bool vtkCloudFieldReader::ReadFile()
 {
-  if (this->FieldTime == this->GetMTime())
+  // The step the pipeline's time chose, else the TimeStep property's.
+  const int step = this->PipelineStep >= 0 ? this->PipelineStep : this->TimeStep;
+  if (this->FieldTime == this->GetMTime() && this->FieldStep == step)
   {
     return this->Field != nullptr;
   }
   this->FieldTime = this->GetMTime();
+  this->FieldStep = step;
   this->Field = nullptr;
+  this->TimeValues.clear();
   this->LastError.clear();
   try
   {
@@ -50,9 +54,9 @@ bool vtkCloudFieldReader::ReadFile()
     cloudvis::FieldReadOptions options;
     options.Format = this->Format ? this->Format : "";
     options.Array = this->ArrayName ? this->ArrayName : "";
-    if (this->TimeStep >= 0)
+    if (step >= 0)
     {
-      options.TimeStep = this->TimeStep;
+      options.TimeStep = step;
     }
     if (this->MissingAsEmpty)
     {
@@ -67,6 +71,20 @@ bool vtkCloudFieldReader::ReadFile()
     // decides the field's units (ResolveFieldValues: what the file declares, no scene here).
     cloudvis::FieldReport report;
     this->Field = cloudvis::ReadField(this->FileName, options, &report);
+    // The steps ParaView's animation goes through: the time coordinate's values, else the
+    // steps' numbers.
+    if (report.TimeSteps > 1)
+    {
+      this->TimeValues = report.Times;
+      if (this->TimeValues.size() != report.TimeSteps)
+      {
+        this->TimeValues.resize(report.TimeSteps);
+        for (std::size_t i = 0; i < report.TimeSteps; ++i)
+        {
+          this->TimeValues[i] = double(i);
+        }
+      }
+    }
     // The units the field has, as `cloudvis info` reports them, for ParaView's Information panel
     // and scripts: field data, one value each, which every piece cropped from the field keeps.
     const cloudvis::ResolvedFieldUnits& u = report.Resolved;
@@ -103,6 +121,12 @@ int vtkCloudFieldReader::RequestInformation(vtkInformation*,
   vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  // A new file or new options: the step a time chose in the last file need not exist in this
+  // one, which is read at TimeStep until the pipeline asks for a time of its own.
+  if (this->FieldTime != this->GetMTime())
+  {
+    this->PipelineStep = -1;
+  }
   // A file that cannot be read is reported once, by name (ReadFile), and yields an empty image:
   // failing the request would add the executive's own message, which names no file.
   if (!this->ReadFile())
@@ -117,7 +141,36 @@ int vtkCloudFieldReader::RequestInformation(vtkInformation*,
   outInfo->Set(vtkDataObject::DIRECTION(), this->Field->GetDirectionMatrix()->GetData(), 9);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  if (this->TimeValues.empty())
+  {
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  }
+  else
+  {
+    const std::vector<double>& times = this->TimeValues;
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), int(times.size()));
+    const double range[2] = { times.front(), times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
   return 1;
+}
+
+int vtkCloudFieldReader::StepAt(double time) const
+{
+  // The last step at or before `time` (ParaView's snap to time steps), the first before them
+  // all; a time coordinate need not increase (NetCDF does not require it), so the nearest
+  // below is searched in order.
+  int best = -1;
+  for (std::size_t i = 0; i < this->TimeValues.size(); ++i)
+  {
+    if (this->TimeValues[i] <= time &&
+      (best < 0 || this->TimeValues[i] > this->TimeValues[std::size_t(best)]))
+    {
+      best = int(i);
+    }
+  }
+  return best >= 0 ? best : 0;
 }
 
 int vtkCloudFieldReader::RequestData(vtkInformation*,
@@ -127,6 +180,12 @@ int vtkCloudFieldReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
   output->Initialize();
+  // A time asked by the pipeline (ParaView's animation) chooses the step of a file with a time
+  // axis; without one, the TimeStep property does.
+  const bool timed =
+    !this->TimeValues.empty() && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  this->PipelineStep =
+    timed ? this->StepAt(outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())) : -1;
   // A file that cannot be read leaves the output empty (its problem has been reported).
   if (!this->ReadFile())
   {
@@ -137,6 +196,12 @@ int vtkCloudFieldReader::RequestData(vtkInformation*,
   output->ShallowCopy(this->Field);
   // Crop copies the requested sub-extent's voxels (a rank's piece) and keeps the whole otherwise.
   output->Crop(extent);
+  if (!this->TimeValues.empty())
+  {
+    const int step = this->FieldStep >= 0 ? this->FieldStep : 0;
+    output->GetInformation()->Set(
+      vtkDataObject::DATA_TIME_STEP(), this->TimeValues[std::size_t(step)]);
+  }
   return 1;
 }
 

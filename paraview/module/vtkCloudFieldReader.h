@@ -36,6 +36,7 @@
 #include <vtkSmartPointer.h> // for the field read
 
 #include <string> // for the file name and options
+#include <vector> // for the time steps
 
 class vtkImageData;
 
@@ -76,6 +77,10 @@ public:
   ///@{
   /**
    * The NetCDF time step to read, from 0 (field.time_step); -1: not given, the first. Default -1.
+   * A file with a time axis of more than one step offers its steps to the pipeline (TIME_STEPS:
+   * the time coordinate's values, else 0, 1, 2...), and a time the pipeline asks for (ParaView's
+   * animation, UpdatePipeline(time)) chooses the step instead: the last at or before it. The
+   * output's DATA_TIME_STEP is the time of the step read.
    */
   vtkSetMacro(TimeStep, int);
   vtkGetMacro(TimeStep, int);
@@ -124,9 +129,15 @@ private:
   // when it cannot be read.
   bool ReadFile();
 
+  // The step of TimeValues at or before `time`.
+  int StepAt(double time) const;
+
   // The whole file, as cloudvis read it, with its units (ResolveFieldValues) as field data.
   vtkSmartPointer<vtkImageData> Field;
   vtkMTimeType FieldTime = 0;          // this->GetMTime() when Field was read
+  int FieldStep = -2;                  // the step Field holds (-1: the first, not given)
+  int PipelineStep = -1;               // the step the pipeline's time chose; -1: none asked
+  std::vector<double> TimeValues;      // the file's steps' times; empty: one step
   std::string LastError;
 
   vtkCloudFieldReader(const vtkCloudFieldReader&) = delete;

@@ -99,6 +99,9 @@ struct FieldReport
   std::size_t TimeSteps = 1;
   double Time = std::numeric_limits<double>::quiet_NaN();
   std::string TimeUnits;
+  // The time of every step, in TimeUnits, where the file's time axis has a coordinate (empty
+  // otherwise): what ParaView's animation steps through.
+  std::vector<double> Times;
   // The units the field has once the scene's declaration and the file's are combined
   // (ResolveFieldValues): what every consumer of the field (the droplets' extinction and phase,
   // info's statistics) takes.
