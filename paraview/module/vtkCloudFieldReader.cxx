@@ -16,6 +16,7 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
+#include <algorithm>
 #include <exception>
 
 vtkStandardNewMacro(vtkCloudFieldReader);
@@ -150,7 +151,8 @@ int vtkCloudFieldReader::RequestInformation(vtkInformation*,
   {
     const std::vector<double>& times = this->TimeValues;
     outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), int(times.size()));
-    const double range[2] = { times.front(), times.back() };
+    const auto [first, last] = std::minmax_element(times.begin(), times.end());
+    const double range[2] = { *first, *last };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   }
   return 1;
