@@ -24,8 +24,6 @@ _ALLOWED_TEXT = {
     "length_unit": ("none", "m", "km"),
     "up": ("x", "y", "z"),
 }
-# Keyword arguments of field_from_numpy that become field data of these names.
-_DECLARED_NUMBERS = ("effective_radius", "droplet_number", "air_density")
 
 # Coordinate units that are lengths, and the length unit each is (as LengthUnitFromText in
 # app/scene/FieldUnits.cxx reads a NetCDF coordinate's units; other units declare none).
@@ -40,7 +38,8 @@ _UNIFORM_TOLERANCE = 1e-4
 
 def field_from_numpy(values, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), *,
                      name="density", order="zyx", missing="refuse", units=None,
-                     quantity=None, length_unit=None, up=None, attributes=None, **declared):
+                     quantity=None, length_unit=None, up=None, effective_radius=None,
+                     droplet_number=None, air_density=None, attributes=None):
     """A vtkImageData of the 3-D array `values`.
 
     `order` says how the array is indexed: "zyx" (values[k, j, i], as NetCDF and xarray hold
@@ -109,9 +108,8 @@ def field_from_numpy(values, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), *,
             _add_field_data(fields, key, value)
     if units is not None:
         _add_field_data(fields, "units", str(units))
-    for key, value in declared.items():
-        if key not in _DECLARED_NUMBERS:
-            raise TypeError(f"field_from_numpy() got an unexpected keyword argument {key!r}")
+    for key, value in (("effective_radius", effective_radius),
+                       ("droplet_number", droplet_number), ("air_density", air_density)):
         if value is not None:
             if not isinstance(value, numbers.Real) or not math.isfinite(value):
                 raise ValueError(f"{key}: a finite number, got {value!r}")

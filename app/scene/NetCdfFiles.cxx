@@ -770,8 +770,7 @@ FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions
         return air;
       } };
     netcdf::ConvertMixingRatio(lattice, options, density, contents.Report);
-    netcdf::DeclareEffectiveRadius(file, chosen, contents.Report);
-    netcdf::DeclareDropletNumber(file, chosen, contents.Report);
+    netcdf::DeclareDroplets(file, chosen, contents.Report);
     if (!step.empty())
     {
       contents.Report.Add("time step", step);

@@ -828,31 +828,34 @@ Packing PackingOf(const File& file, const Variable& variable)
   return packing;
 }
 
-void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldReport& report)
+void DeclareDroplets(const File& file, const Variable& variable, FieldReport& report)
 {
-  const std::vector<double> radius = file.CheckedNumbers(
-    variable, "effective_radius", 1, 1, "the droplets' effective radius in micrometres");
-  if (!radius.empty())
+  using Declare =
+    void (*)(const std::string&, const std::string&, const std::string&, double, FieldReport&);
+  const struct
   {
-    cloudvis::DeclareEffectiveRadius(file.Path(),
-      "variable \"" + variable.Name + "\": attribute effective_radius",
-      "the variable's effective_radius",
-      radius[0],
-      report);
-  }
-}
-
-void DeclareDropletNumber(const File& file, const Variable& variable, FieldReport& report)
-{
-  const std::vector<double> number = file.CheckedNumbers(
-    variable, "droplet_number", 1, 1, "the droplets' number concentration per cm^3");
-  if (!number.empty())
+    const char* Attribute;
+    const char* Meaning;
+    Declare Check;
+  } attributes[] = {
+    { "effective_radius",
+      "the droplets' effective radius in micrometres",
+      cloudvis::DeclareEffectiveRadius },
+    { "droplet_number",
+      "the droplets' number concentration per cm^3",
+      cloudvis::DeclareDropletNumber },
+  };
+  for (const auto& a : attributes)
   {
-    cloudvis::DeclareDropletNumber(file.Path(),
-      "variable \"" + variable.Name + "\": attribute droplet_number",
-      "the variable's droplet_number",
-      number[0],
-      report);
+    const std::vector<double> value = file.CheckedNumbers(variable, a.Attribute, 1, 1, a.Meaning);
+    if (!value.empty())
+    {
+      a.Check(file.Path(),
+        "variable \"" + variable.Name + "\": attribute " + a.Attribute,
+        std::string("the variable's ") + a.Attribute,
+        value[0],
+        report);
+    }
   }
 }
 

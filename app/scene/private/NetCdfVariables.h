@@ -187,12 +187,10 @@ struct Packing
 };
 Packing PackingOf(const File& file, const Variable& variable);
 
-// The droplets' effective radius a variable declares: the numeric attribute `effective_radius`,
-// one value in micrometres in [0.001, 1000000] (else refused), into FieldReport::Units.
-void DeclareEffectiveRadius(const File& file, const Variable& variable, FieldReport& report);
-// The droplets' number concentration a variable declares: the numeric attribute
-// `droplet_number`, one value per cm^3 in [DropletNumberMin, DropletNumberMax] (else refused).
-void DeclareDropletNumber(const File& file, const Variable& variable, FieldReport& report);
+// The droplets a variable declares, into FieldReport::Units: the numeric attributes
+// `effective_radius` (one value in micrometres in [0.001, 1000000]) and `droplet_number` (one
+// value per cm^3 in [DropletNumberMin, DropletNumberMax]), each refused out of range.
+void DeclareDroplets(const File& file, const Variable& variable, FieldReport& report);
 
 // What the file declares of its physical units (FieldReport::Units), each with a line in the
 // report, beyond the quantity of the variable's `units` (DeclareQuantityOfUnits,
