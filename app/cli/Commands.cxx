@@ -16,6 +16,7 @@
 #include "ExportRender.h" // FitTransferFunctionNote
 #include "FieldIO.h"
 #include "FieldPieces.h"
+#include "FieldSeries.h"
 #include "FieldStatistics.h"
 #include "FileNames.h"
 #include "ImageWriters.h"
@@ -31,6 +32,7 @@
 
 #include <vtkImageData.h>
 #include <vtkInformation.h>
+#include <vtkNew.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
@@ -579,14 +581,20 @@ int InfoTimeSeries(const Arguments& arguments,
   };
   std::vector<Row> rows;
   FieldReport first;
+  vtkNew<vtkImageData> grid; // the first step's lattice, which every other step must have
   for (std::size_t i = 0; i < steps.size(); ++i)
   {
     Scene at = scene;
     at.Field.Read.TimeStep = steps[i];
     FieldReport read;
     const vtkSmartPointer<vtkImageData> field = ProduceField(at, {}, &read);
-    if (i == 0)
+    if (i > 0)
     {
+      CheckSameGrid(TimeStepName(scene.Field.File, steps[i], read), grid, field);
+    }
+    else
+    {
+      grid->CopyStructure(field);
       first = read;
       if (!arguments.Has("time-steps"))
       {

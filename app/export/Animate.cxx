@@ -7,10 +7,12 @@
 #include "AtomicFile.h"
 #include "Errors.h"
 #include "ExportRender.h"
+#include "FieldSeries.h"
 #include "OffscreenRender.h"
 #include "SceneField.h"
 
 #include <vtkImageData.h>
+#include <vtkNew.h>
 
 #include <cerrno>
 #include <cmath>
@@ -139,6 +141,7 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
   // function fitted to the first frame's field: a sequence must not flicker.
   std::optional<double> exposureEV;
   std::optional<TransferFunctionSpec> fitted;
+  vtkNew<vtkImageData> grid; // frame 0's lattice, which every time step must have
   int written = 0;
   for (int index = 0; index < n; ++index)
   {
@@ -156,6 +159,13 @@ int RenderAnimation(const Scene& scene, const std::string& input, const Animatio
         if (index == 0)
         {
           CheckTimeSteps(scene, request.TimeSteps, read, "--time-steps");
+          grid->CopyStructure(field);
+        }
+        else if (!request.TimeSteps.empty())
+        {
+          CheckSameGrid(TimeStepName(scene.Field.File, frame.Field.Read.TimeStep.value_or(0), read),
+            grid,
+            field);
         }
       }
       if (!fitted)

@@ -9,6 +9,7 @@
 #include "Errors.h"
 #include "FieldFormatReaders.h"
 #include "FieldPieces.h"
+#include "FieldSeries.h"
 #include "FileNames.h"
 #include "OutOfMemory.h"
 #include "Schema.h" // Join
@@ -361,10 +362,17 @@ std::optional<FieldOptionProblem> CheckFieldReadOptions(const std::string& path,
   {
     return FieldOptionProblem{ "array", "a " + format->Id + " file" + of + " holds one array" };
   }
-  if (options.TimeStep && !(format->Options & TakesTimeStep))
+  const bool series = IsFileSeriesPattern(path);
+  if (options.TimeStep && !series && !(format->Options & TakesTimeStep))
   {
     return FieldOptionProblem{ "time_step",
       "a " + format->Id + " file" + of + " holds one time step" };
+  }
+  if (options.SeriesGaps && !series)
+  {
+    return FieldOptionProblem{ "series_gaps",
+      "applies to a file series only (a field.file with * where the files' numbers are, "
+      "run/les_*.nc)" };
   }
   if (options.Missing && !(format->Options & TakesMissing))
   {
@@ -401,11 +409,15 @@ vtkSmartPointer<vtkImageData> ReadField(const std::string& path,
   const FieldReadOptions& options,
   FieldReport* report)
 {
-  const FieldFormat& format = FormatFor(path, options);
   if (const std::optional<FieldOptionProblem> problem = CheckFieldReadOptions(path, options))
   {
     Fail(path, "field." + problem->Key + ": " + problem->Problem);
   }
+  if (IsFileSeriesPattern(path))
+  {
+    return ReadFileSeriesStep(path, options, report);
+  }
+  const FieldFormat& format = FormatFor(path, options);
   const MemoryUse memory("reading " + path, 0.0);
   FieldFileContents contents = format.Read(path, options);
   vtkSmartPointer<vtkImageData> field =

@@ -135,7 +135,8 @@ const Keys<FieldSpec>& FieldFileKeys()
       "path of a field file: " + FieldFormatsInWords() +
         " ([data.md](data.md)); the extension in any case (`.VTI`), or any name with `format`; a "
         "relative path is relative to the folder of the scene file (to the current directory for "
-        "the default scene)" },
+        "the default scene). A `*` in the file name opens a numbered series (`run/les_*.nc`: "
+        "`les_0001.nc`, `les_0002.nc`, ...) as one field with a time step per file" },
     NameKey<F>("format",
       ChoiceOf(FieldFormatNames()).DefaultIs("by the extension"),
       Nested(&F::Read, &R::Format),
@@ -149,7 +150,8 @@ const Keys<FieldSpec>& FieldFileKeys()
     { "time_step",
       IntegerIn(0, std::numeric_limits<int>::max()).DefaultIs("`0`, the first"),
       Nested(&F::Read, &R::TimeStep),
-      "the time step of a NetCDF file, from 0; refused for a format that holds one time step" },
+      "the time step of a NetCDF file, or the file of a series, from 0; refused for a format "
+      "that holds one time step" },
     { "missing",
       ChoiceOf(
         { { "refuse",
@@ -163,6 +165,18 @@ const Keys<FieldSpec>& FieldFileKeys()
       "density is, so the file is refused unless this says to read them as empty space; `info` "
       "then reports their count. NetCDF only: refused for a format that marks no values as "
       "missing" },
+    { "series_gaps",
+      ChoiceOf({ { "refuse",
+                   int(SeriesGapRule::Refuse),
+                   "a number missing from the series' progression is refused, naming the file" },
+                 { "skip",
+                   int(SeriesGapRule::Skip),
+                   "the files there are are read as consecutive steps, and `info` names the "
+                   "missing ones" } })
+        .DefaultIs("`refuse`"),
+      Nested(&F::Read, &R::SeriesGaps),
+      "what a gap in a file series (`les_0003.nc` missing between `les_0002.nc` and "
+      "`les_0004.nc`) becomes; refused for a field.file that is not a series" },
     { "air_density",
       CustomValue("`\"auto\"`, `\"standard\"`, a number (kg/m^3) or `\"variable:NAME\"`")
         .DefaultIs("`\"auto\"`"),

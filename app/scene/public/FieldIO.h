@@ -55,6 +55,13 @@ enum class MissingValueRule
   Empty // density 0
 };
 
+// What the gaps of a numbered file series (FieldSeries.h) become: field.series_gaps.
+enum class SeriesGapRule
+{
+  Refuse, // a missing number is refused, naming the file the progression expects
+  Skip    // the files there are are read as consecutive steps; the report says what is missing
+};
+
 // How a field file is read beyond its path: the scene's field.format, field.array,
 // field.time_step, field.missing, field.max_voxels and field.raw (or --format, --array,
 // --time-step).
@@ -62,8 +69,9 @@ struct FieldReadOptions
 {
   std::string Format;          // a FieldFormat's Id; empty: chosen by the extension
   std::string Array;           // grid, variable or point array; empty: the format's default
-  std::optional<int> TimeStep; // index from 0; empty: the first
+  std::optional<int> TimeStep; // index from 0; empty: the first (a series' file, FieldSeries.h)
   std::optional<MissingValueRule> Missing; // empty: Refuse
+  std::optional<SeriesGapRule> SeriesGaps; // empty: Refuse; only for a series
   std::uint64_t MaximumVoxels = DefaultMaximumFieldVoxels;
   RawLayout Raw;
   // What the scene declares of the field's units (field.quantity, field.length_unit, field.up,
@@ -102,6 +110,8 @@ struct FieldReport
   // The time of every step, in TimeUnits, where the file's time axis has a coordinate (empty
   // otherwise): what ParaView's animation steps through.
   std::vector<double> Times;
+  // The file a series' step was read from (FieldSeries.h); empty for a single file.
+  std::string StepFile;
   // The units the field has once the scene's declaration and the file's are combined
   // (ResolveFieldValues): what every consumer of the field (the droplets' extinction and phase,
   // info's statistics) takes.
