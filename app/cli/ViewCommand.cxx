@@ -131,10 +131,23 @@ int View(const Arguments& arguments, std::ostream& out)
     // Absolute, so that a saved scene finds the field wherever the scene is kept.
     scene.Field.File = Absolute(input);
   }
+  // Each time step is read as the scene opened was: from the scene as loaded, before ProduceField
+  // finished it with the first step's units.
+  const Scene opened = scene;
   FieldReport report;
   const vtkSmartPointer<vtkImageData> field = ProduceField(scene, {}, &report);
   options.FieldFile = fieldFile;
   options.Units = report.Resolved;
+  if (scene.Field.FromFile())
+  {
+    options.Opened = report;
+    options.ReadTimeStep = [opened](int step, FieldReport& read)
+    {
+      Scene at = opened;
+      at.Field.Read.TimeStep = step;
+      return ProduceField(at, {}, &read);
+    };
+  }
   Viewer viewer(scene, field, options);
   if (!play.empty())
   {

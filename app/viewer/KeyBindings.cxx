@@ -29,6 +29,7 @@ const std::vector<const char*>& Groups()
 const std::map<char, std::string>& CharacterNames()
 {
   static const std::map<char, std::string> names = { { '+', "plus" },
+    { ',', "comma" },
     { '-', "minus" },
     { '=', "equal" },
     { '[', "bracketleft" },
@@ -62,6 +63,7 @@ const std::vector<KeyBinding>& KeyBindings()
     { { "o" }, {}, false, A::ToggleOblique, Slices, "oblique slice in 3D", true },
     { { "c" }, {}, false, A::CycleSliceColors, Slices, "next slice colormap", true },
     { { "Prior", "Next" }, {}, false, A::StepSlice, Slices, "step the pointer's slice", true },
+    { { "comma", "period" }, {}, false, A::StepTime, View, "previous / next time step", true },
     { { "a" }, {}, false, A::AutoWindowLevel, Slices, "auto window/level", true },
     { { "A" }, {}, false, A::ResetWindowLevel, Slices, "reset window/level", true },
     { { "L" }, {}, false, A::TypeWindowLevel, Slices, "type the window and level" },

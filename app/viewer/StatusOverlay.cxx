@@ -272,14 +272,28 @@ std::string StatusOverlay::GetReadout() const
 
 void StatusOverlay::SetProgress(const std::string& text)
 {
-  this->Progress->SetInput(text.c_str());
-  this->Progress->SetVisibility(!text.empty());
+  this->ProgressText = text;
+  this->ShowCorner();
 }
 
 std::string StatusOverlay::GetProgress() const
 {
-  const char* text = this->Progress->GetInput();
-  return this->Progress->GetVisibility() && text ? text : "";
+  return this->Progress->GetVisibility() ? this->ProgressText : "";
+}
+
+void StatusOverlay::SetTime(const std::string& text)
+{
+  this->TimeText = text;
+  this->ShowCorner();
+}
+
+void StatusOverlay::ShowCorner()
+{
+  const std::string text = this->TimeText +
+    (this->TimeText.empty() || this->ProgressText.empty() ? "" : "\n") + this->ProgressText;
+  this->Progress->SetInput(text.c_str());
+  this->Progress->SetVisibility(!text.empty());
+  this->LayOut();
 }
 
 StatusOverlay::Visibility StatusOverlay::HideAll()
@@ -326,7 +340,11 @@ void StatusOverlay::LayOut()
   int size[2];
   this->Renderer->GetTiledSize(&size[0], &size[1]);
   const int dpi = this->Renderer->GetRenderWindow()->GetDPI();
-  const int width = int((this->View[2] - this->View[0]) * size[0]);
+  // The message wraps short of the time line at the top right, which stays.
+  const int time = this->TimeText.empty()
+    ? 0
+    : TextWidth(this->Progress->GetTextProperty(), this->TimeText, dpi) + 16;
+  const int width = int((this->View[2] - this->View[0]) * size[0]) - time;
   const std::string wrapped = this->MessageText.empty()
     ? ""
     : Wrap(this->Message->GetTextProperty(), this->MessageText, std::max(40, width - 24), dpi);

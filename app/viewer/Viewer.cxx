@@ -31,8 +31,10 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
+#include <vtkDataArray.h>
 #include <vtkOutlineFilter.h>
 #include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkScalarBarActor.h>
@@ -542,6 +544,15 @@ Viewer::Viewer(const Scene& scene,
   in.Overlay->InteractiveOff();
   window->AddRenderer(in.Overlay);
   in.Status = std::make_unique<StatusOverlay>(in.Overlay);
+  in.Time = std::make_unique<ViewerTimeSteps>(
+    options.ReadTimeStep, scene.Field.Read.TimeStep.value_or(0), options.Opened);
+  if (in.Time->Steps())
+  {
+    in.Status->SetTime(in.Time->Label());
+    // The next step is read while the first is looked at: the first . shows it at once.
+    in.Time->Prefetch(in.Time->Current() + 1,
+      double(field->GetPointData()->GetScalars()->GetActualMemorySize()) * 1024.0);
+  }
   if (!fitted.empty())
   {
     in.Show(fitted, false);

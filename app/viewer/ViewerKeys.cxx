@@ -2,6 +2,8 @@
 // a transfer-function point, and the record of handled keys the state file reports.
 #include "ViewerInternals.h"
 
+#include "Errors.h"
+#include "FieldSeries.h"
 #include "ImageWriters.h" // ShowExposure
 #include "OffscreenRender.h"
 #include "Presets.h"
@@ -11,6 +13,8 @@
 #include "CloudMarchUniforms.h" // EffectiveSampleDistance
 
 #include <vtkCamera.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
 
 #include <algorithm>
 #include <cmath>
@@ -331,6 +335,57 @@ void Viewer::Internals::StepSlice(int step)
   this->SlicesChanged();
 }
 
+void Viewer::Internals::StepTime(int direction)
+{
+  ViewerTimeSteps& time = *this->Time;
+  if (!time.Steps())
+  {
+    this->Show("the field has one time step; , and . step through a NetCDF file's time axis or a "
+               "numbered file series (cloudvis view 'run/les_*.nc')",
+      false);
+    return;
+  }
+  const int step = time.Current() + direction;
+  // A series may have grown since it was listed: a step past its last is asked of the folder.
+  if (step < 0 || (step >= time.Count() && !time.Series()))
+  {
+    this->Show(time.Label() + (step < 0 ? " is the first" : " is the last"), false);
+    return;
+  }
+  FieldStep next;
+  try
+  {
+    if (step >= time.Count() &&
+      FindFileSeries(
+        this->Current.Field.File, this->Current.Field.Read.SeriesGaps == SeriesGapRule::Skip)
+          .Files.size() <= std::size_t(step))
+    {
+      this->Show(time.Label() + " is the last: the folder holds no later file yet", false);
+      return;
+    }
+    next = time.Take(step);
+    CheckSameGrid(
+      TimeStepName(this->Current.Field.File, step, next.Report), this->Field, next.Field);
+  }
+  catch (const InputError& error)
+  {
+    this->Show(error.what(), true);
+    return;
+  }
+  // The new values in the shown image: the mapper, the slices and their views follow its MTime,
+  // and keep their places, the camera and the function.
+  this->Field->GetPointData()->SetScalars(next.Field->GetPointData()->GetScalars());
+  this->Field->Modified();
+  this->Current.Field.Read.TimeStep = step;
+  time.SetShown(step, next.Report);
+  this->Editing->SetField(this->Field);
+  this->Status->SetTime(time.Label());
+  this->Show(time.Label(), false);
+  this->SlicesChanged();
+  time.Prefetch(step + direction,
+    double(this->Field->GetPointData()->GetScalars()->GetActualMemorySize()) * 1024.0);
+}
+
 void Viewer::Internals::ToggleSlice(int axis)
 {
   const bool visible = !this->Slices->GetSliceVisible(axis);
@@ -389,6 +444,9 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       break;
     case A::StepSlice:
       this->StepSlice(variant == 0 ? 1 : -1);
+      break;
+    case A::StepTime:
+      this->StepTime(variant == 0 ? -1 : 1);
       break;
     case A::AutoWindowLevel:
       this->AutoWindowLevel();

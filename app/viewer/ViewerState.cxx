@@ -87,6 +87,10 @@ json ViewerStateJson(const ViewerState& state)
     { "message", state.Message },
     { "readout", state.Readout },
     { "progress", state.Progress },
+    { "time_step", state.TimeStep },
+    { "time_steps", state.TimeSteps },
+    { "time", state.Time },
+    { "prefetching", state.Prefetching },
     { "slices",
       { { "visible", state.SliceVisible },
         { "index", state.SliceIndex },
@@ -193,6 +197,10 @@ ViewerState Viewer::State() const
   state.Message = in.Status->GetMessage();
   state.Readout = in.Status->GetReadout();
   state.Progress = in.Status->GetProgress();
+  state.TimeStep = in.Time->Current();
+  state.TimeSteps = in.Time->Count();
+  state.Time = in.Status->GetTime();
+  state.Prefetching = in.Time->Prefetching();
   state.WindowId = static_cast<unsigned long>(reinterpret_cast<uintptr_t>(
     const_cast<vtkRenderWindow*>(in.Window.Get())->GetGenericWindowId()));
   const int* size = const_cast<vtkRenderWindow*>(in.Window.Get())->GetSize();

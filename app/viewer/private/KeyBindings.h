@@ -23,6 +23,7 @@ enum class ViewerAction
   ToggleOblique,
   CycleSliceColors,
   StepSlice, // variant 0: up (PageUp), 1: down
+  StepTime,  // variant 0: back (,), 1: forward (.)
   AutoWindowLevel,
   ResetWindowLevel,
   TypeWindowLevel,

@@ -75,6 +75,10 @@ public:
 
   vtkContextScene* GetScene() const;
 
+  // The histogram is of `field`'s scalars now (the viewer's next time step); the functions stay,
+  // the charts' range takes in the new values.
+  void SetField(vtkImageData* field);
+
   // Histogram heights as log10(1 + count) (true, the default) or counts, both scaled to [0, 1].
   void SetLogHistogram(bool logScale);
   bool GetLogHistogram() const { return this->LogHistogram; }
@@ -141,6 +145,7 @@ public:
   bool GetPaletteVisible() const;
 
 private:
+  void CountHistogram(vtkImageData* field); // Counts and DataRange
   void FillHistogram();
   void LayOut();
   void UpdateRange();

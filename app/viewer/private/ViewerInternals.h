@@ -16,6 +16,7 @@
 #include "Viewer.h"
 #include "ViewerFiles.h"
 #include "ViewerHistory.h"
+#include "ViewerTimeSteps.h"
 #include "vtkCloudViewerInteractorStyle.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -77,6 +78,7 @@ struct Viewer::Internals
   std::unique_ptr<SlicePlanes> Slices;
   std::unique_ptr<SliceViews> Views2D;
   std::unique_ptr<LiveLoop> Loop;
+  std::unique_ptr<ViewerTimeSteps> Time;
 
   bool FourViews = false;
   bool LegendsVisible = true; // b: the color legends (the cloud's, and the slices' when shown)
@@ -231,6 +233,11 @@ struct Viewer::Internals
   // PageUp / PageDown: the slice under the pointer (a slice view, or a slice in the 3D view),
   // else the last one shown, one voxel up (+1) or down (-1).
   void StepSlice(int step);
+  // , and .: the field's previous (-1) or next (+1) time step, its values in place of the shown
+  // step's (the grid, camera, slices and transfer function stay), and the read of the one after
+  // it started in the background. A step that cannot be read is an error message, and the step
+  // shown stays.
+  void StepTime(int direction);
   int ActiveAxis = 2; // the slice across z until another is shown
   // The edits a user would lose by quitting, as text to compare: the scene `w` saves, its view
   // section included (its size aside: resizing the window is no edit).

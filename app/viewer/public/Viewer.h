@@ -6,20 +6,23 @@
 // export/OffscreenRender.h, SceneLighting.h and Background.h), with the slice widgets of
 // SlicePlanes.h, an outline of the field and an orientation marker. Keys (KeyBindings.h; docs/
 // viewer.md lists them) change the layout, slices, lighting, step, resolution and transfer
-// function and save screenshots, scenes and presets (ViewerFiles.h). The event loop (LiveLoop.h)
-// renders only when something changed or the image is still refining. Sessions can be recorded
-// and replayed with vtkInteractorEventRecorder.
+// function, step through the field's time steps (ViewerTimeSteps.h) and save screenshots, scenes
+// and presets (ViewerFiles.h). The event loop (LiveLoop.h) renders only when something changed or
+// the image is still refining. Sessions can be recorded and replayed with
+// vtkInteractorEventRecorder.
 //
 // Everything the user can change is kept in the Scene the viewer was opened with, so the scene
 // it saves (SceneToJson) re-renders with `cloudvis render` to the image the window showed.
 #ifndef cloudvis_Viewer_h
 #define cloudvis_Viewer_h
 
+#include "FieldIO.h"
 #include "Scene.h"
 
 #include <vtkSmartPointer.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -52,6 +55,12 @@ struct ViewerOptions
   // What the field's values and lengths mean, for the readouts and the legends' titles
   // (FieldUnits.h).
   ResolvedFieldUnits Units;
+  // The field's time steps (a NetCDF file's time axis, a numbered file series): reads step N as
+  // `render --time-step N` reads it, filling `report`; throws InputError. Empty for a field
+  // without them (a generated one). `Opened` is what the read of the field shown first said: its
+  // step, time and the number of steps.
+  std::function<vtkSmartPointer<vtkImageData>(int step, FieldReport& report)> ReadTimeStep;
+  FieldReport Opened;
 };
 
 // A key press the viewer handled, with when (MonotonicSeconds: CLOCK_MONOTONIC) it was handled
@@ -121,6 +130,13 @@ struct ViewerState
   std::string Message;        // the message on screen, as wrapped; empty once faded
   std::string Readout;        // the probe readout line
   std::string Progress;       // the progress line ("multiple scattering: converging (k/n)")
+  // The field's time steps: the one shown, how many there are (1 without a time axis), the time
+  // line ("time step 3 of 0 .. 19: t = 180 s"; empty without), and whether the next one is being
+  // read in the background.
+  int TimeStep = 0;
+  int TimeSteps = 1;
+  std::string Time;
+  bool Prefetching = false;
   unsigned long WindowId = 0; // the X window
   std::array<int, 2> WindowSize{ { 0, 0 } };
   // Viewports in window pixels x0, y0, x1, y1 from the bottom left: "3d", "editor", and in the
