@@ -527,6 +527,10 @@ int Render(const Arguments& arguments, std::ostream& out)
         << " averaged";
   }
   out << DescribeDisplay(result.Image, scene.Render, result.ClippedCloudShare) << ")\n";
+  if (!result.Image.Coarsened.empty())
+  {
+    out << result.Image.Coarsened << "\n";
+  }
   if (result.Noise)
   {
     out << "noise target: " << DescribeNoiseReport(SamplesNoiseNames, *result.Noise) << "\n";

@@ -172,6 +172,10 @@ void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& opt
   header.insert("cloudvis.display", Imf::StringAttribute(DisplayCurveName(image.Display)));
   header.insert("cloudvis.scene", Imf::StringAttribute(options.SceneJson));
   header.insert("cloudvis.command", Imf::StringAttribute(options.CommandLine));
+  if (!image.Coarsened.empty())
+  {
+    header.insert("cloudvis.coarsened", Imf::StringAttribute(image.Coarsened));
+  }
   ExrStream stream(out);
   Imf::OutputFile file(stream, header);
   file.setFrameBuffer(frame);
@@ -286,6 +290,10 @@ void WritePngImage(const RenderedImage& image, const ImageExportOptions& options
   if (!options.CommandLine.empty())
   {
     writer->AddText("cloudvis.command", options.CommandLine.c_str());
+  }
+  if (!image.Coarsened.empty())
+  {
+    writer->AddText("cloudvis.coarsened", image.Coarsened.c_str());
   }
   writer->AddText("cloudvis.display",
     (DisplayCurveName(image.Display) + ", exposure " + ShowExposure(image.ExposureEV)).c_str());

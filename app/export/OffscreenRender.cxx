@@ -10,6 +10,7 @@
 #include "Display.h"
 #include "Errors.h"
 #include "ExportRender.h"
+#include "FieldCoarsening.h"
 #include "ImageWriters.h"
 #include "OutOfMemory.h"
 #include "SceneLighting.h"
@@ -132,6 +133,8 @@ void ConfigureMapper(vtkCloudVolumeMapper* mapper, const RenderSpec& render)
   mapper->SetResolutionScale(render.ResolutionScale);
   mapper->SetMaximumAccumulatedFrames(render.Accumulate);
   mapper->SetEmptySpaceSkipping(render.SkipEmptySpace);
+  mapper->SetMaximumGPUMemory(
+    render.GpuMemoryMiB ? vtkTypeInt64(*render.GpuMemoryMiB * 1048576.0) : vtkTypeInt64(0));
   if (render.Lighting.Model == LightingModel::PathTrace)
   {
     const PathTraceFrames frames = PathTraceFramesOf(render.SamplesPerPixel);
@@ -285,9 +288,17 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   CheckRenderSize(scene.Render.Size, QueryRenderLimits(window), scene.Source);
 
   OffscreenRenderResult result;
+  int coarsening = 1; // the field drawn averaged over this many voxels along each axis
+  std::string coarsened;
   const auto renderChecked = [&]()
   {
-    window->Render();
+    coarsening = RenderCoarsenedToFit(
+      mapper, field, coarsening, [&] { window->Render(); }, coarsened);
+    if (coarsening > 1 && mapper->GetLastErrorIsGpuMemory())
+    {
+      throw InputError(input + ": " + mapper->GetLastError() + " (with the field coarsened " +
+        std::to_string(coarsening) + "x, the most cloudvis coarsens it)");
+    }
     CheckMapper(mapper, input, messages);
   };
   if (options.TargetNoise)
@@ -341,6 +352,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   result.Image = CaptureWindow(window, input, messages);
   result.Image.ExposureEV = exposureEV;
   result.Image.Display = scene.Render.Display;
+  result.Image.Coarsened = coarsened;
   if (rgba.size() / 4 == result.Image.RGB.size() / 3)
   {
     result.ClippedCloudShare = ClippedCloudShare(result.Image, rgba);

@@ -59,6 +59,7 @@ std::string GpuMemoryBudget::Allocate(const std::string& what,
   const long long others = this->Held - released; // what the mapper keeps besides
   if (this->Limit > 0 && others + bytes > this->Limit)
   {
+    this->OutOfMemory = true;
     return what + " needs " + FormatBytes(double(bytes)) +
       (others > 0 ? "; with the " + FormatBytes(double(others)) + " the mapper holds, that is"
                   : ",") +
@@ -68,6 +69,7 @@ std::string GpuMemoryBudget::Allocate(const std::string& what,
   const long long free = FreeGpuMemory(this->Window);
   if (free >= 0 && bytes - released > free)
   {
+    this->OutOfMemory = true;
     return what + " needs " + FormatBytes(double(bytes)) + " of GPU memory; the GPU reports " +
       FormatBytes(double(free)) + " free";
   }
@@ -76,6 +78,7 @@ std::string GpuMemoryBudget::Allocate(const std::string& what,
   const GLenum error = TakeError();
   if (error == GL_OUT_OF_MEMORY)
   {
+    this->OutOfMemory = true;
     return "the GPU could not allocate " + FormatBytes(double(bytes)) + " for " + what +
       " (GL_OUT_OF_MEMORY)";
   }

@@ -39,10 +39,15 @@ public:
   // held, so that the allocations after it are not checked against them.
   void Release(long long bytes) { this->Held -= bytes; }
 
+  // An allocation was refused for want of memory (beyond the limit, beyond what the GPU reports
+  // free, or GL_OUT_OF_MEMORY), not for another reason.
+  bool Refused() const { return this->OutOfMemory; }
+
 private:
   vtkOpenGLRenderWindow* Window;
   long long Limit;
   long long Held;
+  bool OutOfMemory = false;
 };
 
 // The bytes the GL allocated for level 0 of a texture, from the sizes of its internal format's

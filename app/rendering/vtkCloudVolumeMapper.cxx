@@ -303,9 +303,10 @@ vtkTypeInt64 vtkCloudVolumeMapper::GetDensityTextureBytes() const
   return this->Internal->Density.GetBytes();
 }
 
-bool vtkCloudVolumeMapper::Fail(const std::string& message)
+bool vtkCloudVolumeMapper::Fail(const std::string& message, bool outOfGpuMemory)
 {
   this->LastError = message;
+  this->LastErrorIsGpuMemory = outOfGpuMemory;
   if (message != this->Internal->ReportedError)
   {
     vtkErrorMacro(<< message);
@@ -334,6 +335,7 @@ int vtkCloudVolumeMapper::GetNumberOfAccumulatedSamples(vtkRenderer* renderer) c
 void vtkCloudVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   this->LastError.clear();
+  this->LastErrorIsGpuMemory = false;
   // The march clips its rays at the scene's depth, copied from the framebuffer VTK draws into.
   // GL cannot copy from a multisampled one (vtkRenderWindow's default, 8 samples where the driver
   // has them): the copy would fail and the cloud vanish without a word, so such a window is
@@ -421,7 +423,7 @@ bool vtkCloudVolumeMapper::UpdateTextures(vtkRenderer* renderer,
       budget,
       problem) &&
     in.Jitter.Update(window, budget, problem);
-  return ready || this->Fail(problem);
+  return ready || this->Fail(problem, budget.Refused());
 }
 
 bool vtkCloudVolumeMapper::IsInteracting(vtkRenderer* renderer) const
@@ -487,7 +489,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   std::string problem;
   if (!view.Resize(window, viewport[2], viewport[3], marchWidth, marchHeight, budget, problem))
   {
-    return this->Fail(problem);
+    return this->Fail(problem, budget.Refused());
   }
   view.CopyDepth(viewport); // the opaque scene's depth ends the rays
 
@@ -516,7 +518,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   // Every program that holds the transport reads the droplets' table (or its placeholder).
   if (!in.DropletPhase.Update(window, uniforms.Lighting, budget, problem))
   {
-    return this->Fail(problem);
+    return this->Fail(problem, budget.Refused());
   }
 
   view.MostSamplesPerRay = std::max(1.0, double(uniforms.LongestRaySamples));
@@ -534,7 +536,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
       cloudvis::ValidateOpticalDepthGrid(in.External.GetGrid(), int(uniforms.Lights.size()));
     if (!problem.empty() || !in.External.Update(window, budget, problem))
     {
-      return this->Fail(problem);
+      return this->Fail(problem, budget.Refused());
     }
     cloudvis::SetExternalOpticalDepths(uniforms, localFrame, &in.External.GetGrid());
   }
@@ -572,7 +574,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     if (!in.LightVolumes.Update(window, uniforms, lightInputs, budget, problem))
     {
-      return this->Fail(problem);
+      return this->Fail(problem, budget.Refused());
     }
   }
   else if (!nestedWhileInteracting && in.LightVolumes.GetBytes() > 0)
@@ -590,7 +592,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     if (!in.ExternalScattering.Update(window, budget, problem))
     {
-      return this->Fail(problem);
+      return this->Fail(problem, budget.Refused());
     }
     cloudvis::SetExternalScatteringVolume(uniforms, localFrame, &in.ExternalScattering.GetVolume());
   }

@@ -556,6 +556,15 @@ public:
    * The last error, or an empty string when the last render succeeded.
    */
   const std::string& GetLastError() const { return this->LastError; }
+  /**
+   * The last error is an allocation the GPU's memory refused (beyond MaximumGPUMemory, beyond
+   * what the driver reports free, or GL_OUT_OF_MEMORY): a coarser field may fit where this one
+   * did not (cloudvis's renders then coarsen it, docs/performance.md).
+   */
+  bool GetLastErrorIsGpuMemory() const
+  {
+    return this->LastErrorIsGpuMemory;
+  }
 
   void Render(vtkRenderer* renderer, vtkVolume* volume) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
@@ -614,7 +623,8 @@ private:
   vtkCloudVolumeMapper(const vtkCloudVolumeMapper&) = delete;
   void operator=(const vtkCloudVolumeMapper&) = delete;
 
-  bool Fail(const std::string& message);
+  // Records `message` as the last error (outOfGpuMemory: GetLastErrorIsGpuMemory); returns false.
+  bool Fail(const std::string& message, bool outOfGpuMemory = false);
 #ifndef __VTK_WRAP__
   // Builds the MarchSetup of this mapper's input as `volume` draws it and runs `compute` on it,
   // `what` naming the caller in the refusal of a missing volume.
@@ -638,6 +648,7 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Internal;
   std::string LastError;
+  bool LastErrorIsGpuMemory = false;
 #ifndef __VTK_WRAP__
   FrameStatistics LastStatistics;
 #endif

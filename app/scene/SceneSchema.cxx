@@ -723,6 +723,15 @@ const Keys<RenderSpec>& RenderKeys()
       &R::ResolutionScale,
       "the march runs at this fraction of the image's width and height and is upsampled "
       "(Catmull-Rom)" },
+    { "gpu_memory",
+      NumberIn(Range{ 16.0, 16777216.0 })
+        .In("MiB")
+        .DefaultIs("what the GPU's driver reports free (no limit where it reports nothing)"),
+      &R::GpuMemoryMiB,
+      "the GPU memory the renderer may take (the mapper's MaximumGPUMemory); a field whose "
+      "textures do not fit is averaged over "
+      "2 x 2 x 2 voxels (and again, up to 16 x 16 x 16) until they do, which the render and the "
+      "viewer say and the image's metadata records (`cloudvis.coarsened`)" },
     { "accumulate",
       IntegerIn(1, 65536),
       &R::Accumulate,
@@ -786,8 +795,7 @@ const Keys<RenderSpec>& RenderKeys()
       "EV so that the " +
         ShowValue(100.0 * AutoExposurePercentile) +
         "th percentile of the cloud's luminance (pixels at least " +
-        ShowValue(AutoExposureMinimumAlpha) + " opaque) lands at " +
-        ShowValue(AutoExposureTarget) +
+        ShowValue(AutoExposureMinimumAlpha) + " opaque) lands at " + ShowValue(AutoExposureTarget) +
         " ([export.md](export.md#exposure-and-the-display-curve)); PNG, `compare` and the "
         "viewer; EXR stays linear and records it; `--exposure` overrides it" },
     { "display",

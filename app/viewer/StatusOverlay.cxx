@@ -281,16 +281,16 @@ std::string StatusOverlay::GetProgress() const
   return this->Progress->GetVisibility() ? this->ProgressText : "";
 }
 
-void StatusOverlay::SetTime(const std::string& text)
+void StatusOverlay::SetCorner(const std::string& text)
 {
-  this->TimeText = text;
+  this->CornerText = text;
   this->ShowCorner();
 }
 
 void StatusOverlay::ShowCorner()
 {
-  const std::string text = this->TimeText +
-    (this->TimeText.empty() || this->ProgressText.empty() ? "" : "\n") + this->ProgressText;
+  const std::string text = this->CornerText +
+    (this->CornerText.empty() || this->ProgressText.empty() ? "" : "\n") + this->ProgressText;
   this->Progress->SetInput(text.c_str());
   this->Progress->SetVisibility(!text.empty());
   this->LayOut();
@@ -340,11 +340,11 @@ void StatusOverlay::LayOut()
   int size[2];
   this->Renderer->GetTiledSize(&size[0], &size[1]);
   const int dpi = this->Renderer->GetRenderWindow()->GetDPI();
-  // The message wraps short of the time line at the top right, which stays.
-  const int time = this->TimeText.empty()
+  // The message wraps short of the corner's lines at the top right, which stay.
+  const int corner = this->CornerText.empty()
     ? 0
-    : TextWidth(this->Progress->GetTextProperty(), this->TimeText, dpi) + 16;
-  const int width = int((this->View[2] - this->View[0]) * size[0]) - time;
+    : TextWidth(this->Progress->GetTextProperty(), this->CornerText, dpi) + 16;
+  const int width = int((this->View[2] - this->View[0]) * size[0]) - corner;
   const std::string wrapped = this->MessageText.empty()
     ? ""
     : Wrap(this->Message->GetTextProperty(), this->MessageText, std::max(40, width - 24), dpi);

@@ -20,6 +20,7 @@
 #include "Background.h"
 #include "Errors.h"
 #include "ExportRender.h"
+#include "FieldCoarsening.h"
 #include "ImageWriters.h"
 #include "InputFiles.h"
 #include "OffscreenRender.h"
@@ -112,6 +113,15 @@ std::string Viewer::Internals::FitTransferFunctionOnOpening(const std::array<dou
   return text;
 }
 
+std::string Viewer::Internals::CornerText() const
+{
+  const std::string time = this->Time->Steps() ? this->Time->Label() : "";
+  const std::string coarse = this->Coarsening > 1
+    ? "3D view: the field coarsened " + std::to_string(this->Coarsening) + "x to fit the GPU"
+    : "";
+  return time + (time.empty() || coarse.empty() ? "" : "\n") + coarse;
+}
+
 void Viewer::Internals::RenderFrame()
 {
   const double start = MonotonicSeconds();
@@ -128,7 +138,16 @@ void Viewer::Internals::RenderFrame()
     this->Window->Render();
     this->MarchedFrames += this->Mapper->GetNumberOfAccumulatedFrames(this->View) != before ? 1 : 0;
   };
-  render();
+  // A field whose textures the GPU's memory refuses is drawn coarser (FieldCoarsening.h); the
+  // slices and readouts keep it as it is.
+  const int coarsening =
+    RenderCoarsenedToFit(this->Mapper, this->Field, this->Coarsening, render, this->Coarsened);
+  if (coarsening != this->Coarsening)
+  {
+    this->Coarsening = coarsening;
+    this->Show(this->Coarsened, false);
+    this->Status->SetCorner(this->CornerText());
+  }
   if (preview)
   {
     this->Window->SetDesiredUpdateRate(this->Interactor->GetStillUpdateRate());
@@ -548,7 +567,7 @@ Viewer::Viewer(const Scene& scene,
     options.ReadTimeStep, scene.Field.Read.TimeStep.value_or(0), options.Opened);
   if (in.Time->Steps())
   {
-    in.Status->SetTime(in.Time->Label());
+    in.Status->SetCorner(in.CornerText());
     // The next step is read while the first is looked at: the first . shows it at once.
     in.Time->Prefetch(in.Time->Current() + 1,
       double(field->GetPointData()->GetScalars()->GetActualMemorySize()) * 1024.0);

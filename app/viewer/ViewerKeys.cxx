@@ -3,6 +3,7 @@
 #include "ViewerInternals.h"
 
 #include "Errors.h"
+#include "FieldCoarsening.h"
 #include "FieldSeries.h"
 #include "ImageWriters.h" // ShowExposure
 #include "OffscreenRender.h"
@@ -376,10 +377,14 @@ void Viewer::Internals::StepTime(int direction)
   // and keep their places, the camera and the function.
   this->Field->GetPointData()->SetScalars(next.Field->GetPointData()->GetScalars());
   this->Field->Modified();
+  if (this->Coarsening > 1)
+  {
+    this->Mapper->SetInputData(CoarsenField(this->Field, this->Coarsening));
+  }
   this->Current.Field.Read.TimeStep = step;
   time.SetShown(step, next.Report);
   this->Editing->SetField(this->Field);
-  this->Status->SetTime(time.Label());
+  this->Status->SetCorner(this->CornerText());
   this->Show(time.Label(), false);
   this->SlicesChanged();
   time.Prefetch(step + direction,

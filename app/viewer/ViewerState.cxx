@@ -91,6 +91,7 @@ json ViewerStateJson(const ViewerState& state)
     { "time_steps", state.TimeSteps },
     { "time", state.Time },
     { "prefetching", state.Prefetching },
+    { "coarsened", state.Coarsened },
     { "slices",
       { { "visible", state.SliceVisible },
         { "index", state.SliceIndex },
@@ -199,7 +200,8 @@ ViewerState Viewer::State() const
   state.Progress = in.Status->GetProgress();
   state.TimeStep = in.Time->Current();
   state.TimeSteps = in.Time->Count();
-  state.Time = in.Status->GetTime();
+  state.Time = in.Time->Steps() ? in.Time->Label() : "";
+  state.Coarsened = in.Coarsened;
   state.Prefetching = in.Time->Prefetching();
   state.WindowId = static_cast<unsigned long>(reinterpret_cast<uintptr_t>(
     const_cast<vtkRenderWindow*>(in.Window.Get())->GetGenericWindowId()));

@@ -178,6 +178,35 @@ TEST(LiveTimeSteps, AStepOnAnotherGridIsRefusedAndAFieldWithoutTimeSaysSo)
     [](const json& s) { return Said(s, "the field has one time step"); }, "no time to step");
 }
 
+// A series beyond the GPU memory the viewer may take: its 3D view draws each step coarsened
+// (FieldCoarsening.h) and says so in the corner, and the slices keep the field as it is.
+TEST(LiveTimeSteps, AFieldBeyondTheGpuMemoryIsDrawnCoarserAtEveryStep)
+{
+  support::TemporaryDirectory run;
+  WriteBall(run.File("big_1.vti"), 40.0, 192);
+  WriteBall(run.File("big_2.vti"), 60.0, 192);
+  LiveSession session(Cloudvis,
+    { run.File("big_*.vti"),
+      "--set",
+      "render.gpu_memory=16",
+      "--set",
+      "render.accumulate=4",
+      "--size",
+      "480x400" });
+  const json start = WaitForStep(session, 0, "big_1.vti");
+  EXPECT_NE(start["coarsened"].get<std::string>().find(
+              "coarsened 2x (96 x 96 x 96 voxels drawn for 192 x 192 x 192)"),
+    std::string::npos)
+    << start["coarsened"];
+  EXPECT_TRUE(Logged(start, "the field was coarsened 2x")) << "said in the message line";
+  const size_t small = CloudPixels(session);
+  EXPECT_GT(small, 1000u);
+  session.Key("period");
+  const json next = WaitForStep(session, 1, "big_2.vti");
+  EXPECT_EQ(next["coarsened"], start["coarsened"]);
+  EXPECT_GT(CloudPixels(session), small * 3 / 2) << "the next step is drawn, coarsened too";
+}
+
 } // namespace
 } // namespace live
 } // namespace cloudvis

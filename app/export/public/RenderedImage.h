@@ -6,6 +6,7 @@
 #include "CloudDisplayTransform.h" // DisplayCurve
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace cloudvis
@@ -22,6 +23,9 @@ struct RenderedImage
   // records it.
   double ExposureEV = 0.0;
   DisplayCurve Display = DisplayCurve::Linear;
+  // The field was drawn coarser than it is to fit the GPU's memory (FieldCoarsening.h): what was
+  // done, which the writers record as "cloudvis.coarsened"; empty when it was drawn as it is.
+  std::string Coarsened;
 
   // Kept only when RenderOptions::FloatImage asks for them (exports: ImageWriters.h), same size
   // and row order: the mapper's premultiplied linear RGBA (alpha = 1 - transmittance); per pixel

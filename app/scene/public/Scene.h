@@ -164,6 +164,9 @@ struct RenderSpec
   double Step = 0.0; // world units; 0: one voxel (the smallest spacing of the field)
   bool Jitter = true;
   double ResolutionScale = 1.0;
+  // render.gpu_memory: the GPU memory the renderer may take, MiB; absent: what the driver reports
+  // free (no limit where it reports nothing). A field whose textures do not fit is coarsened.
+  std::optional<double> GpuMemoryMiB;
   int Accumulate = 16; // frames averaged into a still
   bool Reprojection = false; // `cloudvis view`: interactive frames blend the last one, reprojected
   int SamplesPerPixel = 256; // pathtrace: paths averaged per pixel of a still

@@ -6,8 +6,9 @@
 // ("h: keys ...") until the help has been shown once; the readout at the bottom left: the
 // voxel under the pointer over the last probe (the viewer clears it when no slice is shown); and
 // the progress line at the top right, while work spread over frames goes on ("multiple
-// scattering: converging (k/n)"), gone when it is done; above it, for a field with time steps, the
-// step shown and its time ("time step 3 of 0 .. 19: t = 180 s").
+// scattering: converging (k/n)"), gone when it is done; above it, the lines that stay: for a field
+// with time steps the step shown and its time ("time step 3 of 0 .. 19: t = 180 s"), and that the
+// 3D view draws the field coarsened to fit the GPU.
 #ifndef cloudvis_StatusOverlay_h
 #define cloudvis_StatusOverlay_h
 
@@ -63,9 +64,9 @@ public:
   // The progress line; empty hides it.
   void SetProgress(const std::string& text);
   std::string GetProgress() const;
-  // The time line; empty hides it.
-  void SetTime(const std::string& text);
-  std::string GetTime() const { return this->TimeText; }
+  // The lines above the progress (the time step shown, the 3D view coarsened); empty: none.
+  void SetCorner(const std::string& text);
+  std::string GetCorner() const { return this->CornerText; }
 
   // Hides or shows every text (for screenshots of the 3D view alone); returns what was visible.
   using Visibility = std::array<bool, 6>;
@@ -91,8 +92,8 @@ private:
   vtkNew<vtkTextActor> Hint;
   vtkNew<vtkTextActor> Readout;
   vtkNew<vtkTextActor> Progress;
-  void ShowCorner(); // Progress shows TimeText over ProgressText
-  std::string TimeText;
+  void ShowCorner(); // Progress shows CornerText over ProgressText
+  std::string CornerText;
   std::string ProgressText;
   std::string MessageText; // unwrapped
   bool Error = false;

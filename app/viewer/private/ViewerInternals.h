@@ -79,6 +79,12 @@ struct Viewer::Internals
   std::unique_ptr<SliceViews> Views2D;
   std::unique_ptr<LiveLoop> Loop;
   std::unique_ptr<ViewerTimeSteps> Time;
+  // The 3D view draws the field averaged over this many voxels along each axis, to fit the GPU's
+  // memory (FieldCoarsening.h), and what was said of it; 1 and "": as it is.
+  int Coarsening = 1;
+  std::string Coarsened;
+  // The top right corner: the time step shown, and that the 3D view is coarsened.
+  std::string CornerText() const;
 
   bool FourViews = false;
   bool LegendsVisible = true; // b: the color legends (the cloud's, and the slices' when shown)

@@ -137,6 +137,8 @@ struct ViewerState
   int TimeSteps = 1;
   std::string Time;
   bool Prefetching = false;
+  // The 3D view draws the field coarsened to fit the GPU's memory: what was said (empty: no).
+  std::string Coarsened;
   unsigned long WindowId = 0; // the X window
   std::array<int, 2> WindowSize{ { 0, 0 } };
   // Viewports in window pixels x0, y0, x1, y1 from the bottom left: "3d", "editor", and in the

@@ -1,0 +1,50 @@
+// A field that fits in the host's memory but not in the GPU's, drawn rather than refused: averaged
+// over 2 x 2 x 2 voxel blocks, and again (up to MaximumCoarsening per axis), until the mapper's
+// textures fit the GPU memory it may take (render.gpu_memory, else what the driver reports
+// free). `render`, `animate` and the viewer's 3D view coarsen so; each says so (the render's
+// output line and the image's metadata "cloudvis.coarsened", the viewer's top-right corner),
+// while statistics, slices and readouts keep the field as it is. docs/performance.md, "A field
+// of 1 GiB", says what it costs.
+#ifndef cloudvis_FieldCoarsening_h
+#define cloudvis_FieldCoarsening_h
+
+#include <vtkSmartPointer.h>
+
+#include <functional>
+#include <string>
+
+class vtkCloudVolumeMapper;
+class vtkImageData;
+
+namespace cloudvis
+{
+
+// The coarsest a field is drawn: 16 x 16 x 16 voxels averaged into one, 4096 times fewer.
+constexpr int MaximumCoarsening = 16;
+
+// `field` averaged over `factor` x `factor` x `factor` voxel blocks (the last, partial blocks of
+// each axis dropped): the spacing `factor` times the field's, each voxel at the centre of its
+// block, the direction kept. `factor` 1 returns `field` itself.
+vtkSmartPointer<vtkImageData> CoarsenField(vtkImageData* field, int factor);
+
+// "the field was coarsened 2x (512 x 512 x 128 voxels drawn for 1024 x 1024 x 256) to fit the
+// GPU's memory: PROBLEM", PROBLEM the mapper's refusal of the field as it was drawn before.
+std::string CoarseningNote(vtkImageData* field,
+  vtkImageData* coarse,
+  int factor,
+  const std::string& problem);
+
+// Renders once with `render` (which draws the window and leaves the mapper's error, if any);
+// while the mapper refused an allocation for want of GPU memory, draws `field` coarsened 2x more
+// (the mapper's input set to CoarsenField) and renders again. Returns the factor drawn, from
+// `factor` up (1: the field as it is), and sets `note` when it grew (CoarseningNote). Once
+// MaximumCoarsening does not fit either, the mapper's error is left for the caller to report.
+int RenderCoarsenedToFit(vtkCloudVolumeMapper* mapper,
+  vtkImageData* field,
+  int factor,
+  const std::function<void()>& render,
+  std::string& note);
+
+} // namespace cloudvis
+
+#endif
