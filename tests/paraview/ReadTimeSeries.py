@@ -7,6 +7,8 @@ The file (made here by ncgen, with the netCDF library's own dimension order (tim
 holds three steps at t = 0, 60 and 120 s of a blob whose density is 0.25, 0.5 and 0.75: each
 step's maximum says which was read.
 
+A numbered series of one-step files (step_*.nc4) is one dataset the same way, a step per file.
+
 Usage: pvbatch ReadTimeSeries.py"""
 import os
 import subprocess
@@ -95,4 +97,24 @@ testing.check(result.returncode == 0, "ncgen failed: %s" % result.stderr)
 reader.FileName = single
 reader.UpdatePipelineInformation()
 testing.check(list(reader.TimestepValues) == [], "a file of one step offers %s" % list(reader.TimestepValues))
+
+# A numbered file series (field.file with a *, docs/data.md) is one dataset with a step per file,
+# as ParaView groups such files: step_1.nc4 .. step_3.nc4, one step each, at steps 0, 1, 2.
+single_cdl = open("single.cdl").read()
+for number, peak in enumerate(PEAKS, start=1):
+    with open("step_%d.cdl" % number, "w") as f:
+        f.write(single_cdl.replace(", ".join("%g" % v for v in (blob * 0.5).ravel()),
+                                   ", ".join("%g" % v for v in (blob * peak).ravel())))
+    result = subprocess.run(["ncgen", "-k", "3", "-o", "step_%d.nc4" % number, "step_%d.cdl" % number],
+                            capture_output=True, text=True)
+    testing.check(result.returncode == 0, "ncgen failed: %s" % result.stderr)
+reader.FileName = os.path.abspath("step_*.nc4")
+reader.UpdatePipelineInformation()
+times = list(reader.TimestepValues)
+testing.check(times == [0.0, 1.0, 2.0], "the series offers the steps %s, not 0, 1, 2" % times)
+for time, step in ((0.0, 0), (1.0, 1), (2.0, 2), (1.5, 1)):
+    peak, data_time = peak_at(time)
+    testing.check(abs(peak - PEAKS[step]) < 1e-6,
+                  "t = %g of the series read a peak of %g, file %d holds %g" % (
+                      time, peak, step + 1, PEAKS[step]))
 print("OK")
