@@ -6,6 +6,8 @@
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
 #include "Errors.h"
+#include "FieldIO.h"
+#include "FieldSeries.h"
 #include "OutOfMemory.h"
 #include "ProcessGroup.h"
 #include "Utf8.h"
@@ -205,8 +207,16 @@ Arguments ParseArguments(const CommandSpec& command, const std::vector<std::stri
   }
   if (parsed.Operands.size() > command.MaxOperands)
   {
+    // `cloudvis view les_*.nc` unquoted: the shell handed over the files of a series.
+    const std::string series = command.MaxOperands == 1 && IsFieldFile(parsed.Operands[0])
+      ? SeriesPatternOf(parsed.Operands[0], parsed.Operands[1])
+      : "";
     throw UsageError(command.Name + ": unexpected argument \"" +
-      parsed.Operands[command.MaxOperands] + "\"");
+      parsed.Operands[command.MaxOperands] + "\"" +
+      (series.empty() ? ""
+                      : "; to open numbered files as one time series, quote their pattern so "
+                        "that the shell leaves it to cloudvis: '" +
+            series + "'"));
   }
   return parsed;
 }

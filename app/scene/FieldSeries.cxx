@@ -75,6 +75,42 @@ bool IsFileSeriesPattern(const std::string& path)
   return FileNameOf(path).find('*') != std::string::npos;
 }
 
+std::string SeriesPatternOf(const std::string& first, const std::string& second)
+{
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  std::size_t begin = 0;
+  while (begin < first.size() && begin < second.size() && first[begin] == second[begin])
+  {
+    ++begin;
+  }
+  std::size_t end = 0; // characters shared at the end
+  while (end < first.size() - begin && end < second.size() - begin &&
+    first[first.size() - 1 - end] == second[second.size() - 1 - end])
+  {
+    ++end;
+  }
+  // Widened to the whole run of digits the difference lies in.
+  while (begin > 0 && digit(first[begin - 1]))
+  {
+    --begin;
+  }
+  while (end > 0 && digit(first[first.size() - end]))
+  {
+    --end;
+  }
+  const auto digits = [&](const std::string& name)
+  {
+    const std::string middle = name.substr(begin, name.size() - begin - end);
+    return AllDigits(middle);
+  };
+  if (first == second || !digits(first) || !digits(second) ||
+    first.find('/', begin) != std::string::npos)
+  {
+    return "";
+  }
+  return first.substr(0, begin) + "*" + first.substr(first.size() - end);
+}
+
 FileSeries FindFileSeries(const std::string& pattern, bool skipGaps)
 {
   const Pattern p = Split(pattern);

@@ -112,6 +112,16 @@ TEST(FileSeries, IsOneFieldWithAStepPerFileInTheOrderOfTheirNumbers)
   EXPECT_NE(text.Out.find("time step    1 of 0 .. 2: les_0002.nc, t = 120 s"), std::string::npos)
     << text.Out;
 
+  // The pattern left unquoted, the shell hands over the files: the usage error says to quote it.
+  const auto expanded = RunCloudvis(
+    { "info", dir.File("les_0001.nc"), dir.File("les_0002.nc"), dir.File("les_0003.nc") });
+  EXPECT_EQ(expanded.Status, 2);
+  EXPECT_NE(expanded.Err.find("to open numbered files as one time series, quote their pattern so "
+                              "that the shell leaves it to cloudvis: '" +
+              pattern + "'"),
+    std::string::npos)
+    << expanded.Err;
+
   // Numbers without leading zeros are ordered as numbers, not as text: 9 before 10.
   TemporaryDirectory unpadded;
   CloudStep(unpadded, "run10.nc", 600.0, 200.0);

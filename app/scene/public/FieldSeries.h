@@ -23,6 +23,11 @@ namespace cloudvis
 // Whether `path` names a series: a `*` in its last component.
 bool IsFileSeriesPattern(const std::string& path);
 
+// The pattern of a series two of its files belong to: "run/les_*.nc" of "run/les_0001.nc" and
+// "run/les_0002.nc" (the run of digits where they differ, and around it what they share); empty
+// when they do not differ in one run of digits.
+std::string SeriesPatternOf(const std::string& first, const std::string& second);
+
 struct FileSeries
 {
   std::vector<std::string> Files;   // the paths, ordered by their numbers
