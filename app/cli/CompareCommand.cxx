@@ -285,6 +285,10 @@ int Compare(const Arguments& arguments, std::ostream& out)
         << (loaded.Loaded.Render.AutoExposure ? " (auto)" : "");
   }
   out << ")\n";
+  if (!result.Image.Coarsened.empty())
+  {
+    out << result.Image.Coarsened << "\n";
+  }
   for (size_t i = 0; i < panels.size(); ++i)
   {
     out << result.Names[i] << ": " << std::fixed << std::setprecision(2) << result.Milliseconds[i]

@@ -9,6 +9,7 @@
 #include "Display.h"
 #include "Errors.h"
 #include "ExportRender.h"
+#include "FieldCoarsening.h"
 #include "SceneLighting.h"
 #include "VtkMessageCapture.h"
 #include "vtkCloudVolumeMapper.h"
@@ -306,8 +307,18 @@ ComparisonResult RenderComparison(const Scene& scene,
     window->AddRenderer(differencePanel);
   }
 
-  const auto renderChecked = [&]() {
-    window->Render();
+  // Every panel draws one field: coarsened for all when one panel's textures do not fit.
+  std::vector<vtkCloudVolumeMapper*> mappers;
+  for (const auto& panel : panels)
+  {
+    mappers.push_back(panel->Mapper);
+  }
+  int coarsening = 1;
+  std::string coarsened;
+  const auto renderChecked = [&]()
+  {
+    coarsening = RenderCoarsenedToFit(
+      mappers, field, coarsening, [&] { window->Render(); }, coarsened);
     for (const auto& panel : panels)
     {
       CheckMapper(panel->Mapper, input, messages);
@@ -446,6 +457,7 @@ ComparisonResult RenderComparison(const Scene& scene,
   result.Image = CaptureWindow(window, input, messages);
   result.Image.ExposureEV = exposureEV;
   result.Image.Display = scene.Render.Display;
+  result.Image.Coarsened = coarsened;
   return result;
 }
 

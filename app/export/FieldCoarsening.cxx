@@ -68,13 +68,24 @@ std::string CoarseningNote(vtkImageData* field,
     " voxels drawn for " + Voxels(field) + ") to fit the GPU's memory: " + problem;
 }
 
-int RenderCoarsenedToFit(vtkCloudVolumeMapper* mapper,
+int RenderCoarsenedToFit(const std::vector<vtkCloudVolumeMapper*>& mappers,
   vtkImageData* field,
   int factor,
   const std::function<void()>& render,
   std::string& note)
 {
   const int* d = field->GetDimensions();
+  const auto refused = [&]() -> vtkCloudVolumeMapper*
+  {
+    for (vtkCloudVolumeMapper* mapper : mappers)
+    {
+      if (mapper->GetLastErrorIsGpuMemory())
+      {
+        return mapper;
+      }
+    }
+    return nullptr;
+  };
   const auto coarserFits = [&]
   {
     return factor < MaximumCoarsening && d[0] >= 4 * factor && d[1] >= 4 * factor &&
@@ -95,7 +106,7 @@ int RenderCoarsenedToFit(vtkCloudVolumeMapper* mapper,
       render();
       held = quiet.Messages();
     }
-    if (!mapper->GetLastErrorIsGpuMemory())
+    if (!refused())
     {
       for (const std::string& message : held)
       {
@@ -104,12 +115,15 @@ int RenderCoarsenedToFit(vtkCloudVolumeMapper* mapper,
     }
   };
   attempt();
-  while (mapper->GetLastErrorIsGpuMemory() && coarserFits())
+  while (refused() && coarserFits())
   {
-    const std::string problem = mapper->GetLastError();
+    const std::string problem = refused()->GetLastError();
     factor *= 2;
     const vtkSmartPointer<vtkImageData> coarse = CoarsenField(field, factor);
-    mapper->SetInputData(coarse);
+    for (vtkCloudVolumeMapper* mapper : mappers)
+    {
+      mapper->SetInputData(coarse);
+    }
     note = CoarseningNote(field, coarse, factor, problem);
     attempt();
   }

@@ -293,7 +293,7 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
   const auto renderChecked = [&]()
   {
     coarsening = RenderCoarsenedToFit(
-      mapper, field, coarsening, [&] { window->Render(); }, coarsened);
+      { mapper.Get() }, field, coarsening, [&] { window->Render(); }, coarsened);
     if (coarsening > 1 && mapper->GetLastErrorIsGpuMemory())
     {
       throw InputError(input + ": " + mapper->GetLastError() + " (with the field coarsened " +

@@ -140,8 +140,8 @@ void Viewer::Internals::RenderFrame()
   };
   // A field whose textures the GPU's memory refuses is drawn coarser (FieldCoarsening.h); the
   // slices and readouts keep it as it is.
-  const int coarsening =
-    RenderCoarsenedToFit(this->Mapper, this->Field, this->Coarsening, render, this->Coarsened);
+  const int coarsening = RenderCoarsenedToFit(
+    { this->Mapper.Get() }, this->Field, this->Coarsening, render, this->Coarsened);
   if (coarsening != this->Coarsening)
   {
     this->Coarsening = coarsening;

@@ -1,5 +1,5 @@
 // A field that fits in the host's memory but not in the GPU's (issue 34, part 4) is drawn, not
-// refused: `render` averages it over 2 x 2 x 2 voxels (and again) until the mapper's textures fit
+// refused: `render` (and `compare`, for all its panels) averages it over 2 x 2 x 2 voxels (and again) until the mapper's textures fit
 // render.gpu_memory, says so on its output and in the PNG's metadata, and draws the same cloud.
 // What no coarsening fits is refused with the mapper's reason. The field is a ball written as a
 // .vti, as users bring theirs. Part of cloudvis-field-format-tests.
@@ -83,6 +83,21 @@ TEST(Coarsening, AFieldBeyondTheGpuMemoryIsDrawnCoarserAndSaysSo)
   EXPECT_GT(CountCloud(b).Cloud, 1000u);
   EXPECT_LT(RmsDifference(a, b), 1.0) << "0.1 levels observed";
 
+  // compare's panels draw one field: coarsened for all of them alike.
+  const auto compared = RunCloudvis({ "compare",
+    field,
+    "--lighting",
+    "none,derivative",
+    "--size",
+    "160x120",
+    "-o",
+    dir.File("compare.png"),
+    "--set",
+    "render.gpu_memory=16" });
+  ASSERT_EQ(compared.Status, 0) << compared.Err;
+  EXPECT_NE(compared.Out.find(said), std::string::npos) << compared.Out;
+  EXPECT_EQ(ReadPng(dir.File("compare.png")).Text.count("cloudvis.coarsened"), 1u);
+
   // A picture whose targets alone exceed the memory: no coarsening helps, and it is refused.
   const std::vector<std::string> huge = { "render",
     field,
@@ -99,7 +114,8 @@ TEST(Coarsening, AFieldBeyondTheGpuMemoryIsDrawnCoarserAndSaysSo)
   EXPECT_NE(refused.Err.find("with the field coarsened 16x, the most cloudvis coarsens it"),
     std::string::npos)
     << refused.Err;
-  EXPECT_EQ(dir.Files(), (std::vector<std::string>{ "ball.vti", "coarse.png", "full.png" }));
+  EXPECT_EQ(dir.Files(),
+    (std::vector<std::string>{ "ball.vti", "coarse.png", "compare.png", "full.png" }));
 }
 
 } // namespace

@@ -1,7 +1,7 @@
 // A field that fits in the host's memory but not in the GPU's, drawn rather than refused: averaged
 // over 2 x 2 x 2 voxel blocks, and again (up to MaximumCoarsening per axis), until the mapper's
 // textures fit the GPU memory it may take (render.gpu_memory, else what the driver reports
-// free). `render`, `animate` and the viewer's 3D view coarsen so; each says so (the render's
+// free). `render`, `animate`, `compare` and the viewer's 3D view coarsen so; each says so (the render's
 // output line and the image's metadata "cloudvis.coarsened", the viewer's top-right corner),
 // while statistics, slices and readouts keep the field as it is. docs/performance.md, "A field
 // of 1 GiB", says what it costs.
@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 class vtkCloudVolumeMapper;
 class vtkImageData;
@@ -34,12 +35,13 @@ std::string CoarseningNote(vtkImageData* field,
   int factor,
   const std::string& problem);
 
-// Renders once with `render` (which draws the window and leaves the mapper's error, if any);
-// while the mapper refused an allocation for want of GPU memory, draws `field` coarsened 2x more
-// (the mapper's input set to CoarsenField) and renders again. Returns the factor drawn, from
-// `factor` up (1: the field as it is), and sets `note` when it grew (CoarseningNote). Once
-// MaximumCoarsening does not fit either, the mapper's error is left for the caller to report.
-int RenderCoarsenedToFit(vtkCloudVolumeMapper* mapper,
+// Renders once with `render` (which draws the window and leaves the mappers' errors, if any);
+// while a mapper refused an allocation for want of GPU memory, draws `field` coarsened 2x more
+// (every mapper's input set to CoarsenField: `compare`'s panels draw one field) and renders
+// again. Returns the factor drawn, from `factor` up (1: the field as it is), and sets `note` when
+// it grew (CoarseningNote). Once MaximumCoarsening does not fit either, the mappers' errors are
+// left for the caller to report.
+int RenderCoarsenedToFit(const std::vector<vtkCloudVolumeMapper*>& mappers,
   vtkImageData* field,
   int factor,
   const std::function<void()>& render,
