@@ -5,18 +5,11 @@
 // .vti, as users bring theirs. Part of cloudvis-field-format-tests.
 #include "FieldTestFiles.h"
 
+#include "SupportFixtures.h"
 #include "SupportImages.h"
 #include "SupportRun.h"
 
 #include <gtest/gtest.h>
-
-#include <vtkFloatArray.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkXMLImageDataWriter.h>
-
-#include <cmath>
 
 namespace
 {
@@ -24,37 +17,12 @@ namespace
 using namespace cloudvis::support;
 using namespace cloudvis::test;
 
-// A soft ball of density up to 1 on `side`^3 voxels of the unit cube: 27 MiB of floats at 192.
-std::string WriteBall(const TemporaryDirectory& dir, int side)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(side, side, side);
-  image->SetSpacing(1.0 / side, 1.0 / side, 1.0 / side);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(vtkIdType(side) * side * side);
-  const double c = 0.5 * (side - 1), radius = 0.35 * side;
-  vtkIdType id = 0;
-  for (int k = 0; k < side; ++k)
-    for (int j = 0; j < side; ++j)
-      for (int i = 0; i < side; ++i)
-      {
-        const double r = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c));
-        density->SetValue(id++, float(std::max(0.0, 1.0 - r / radius)));
-      }
-  image->GetPointData()->SetScalars(density);
-  vtkNew<vtkXMLImageDataWriter> writer;
-  const std::string path = dir.File("ball.vti");
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  EXPECT_EQ(writer->Write(), 1);
-  return path;
-}
-
 TEST(Coarsening, AFieldBeyondTheGpuMemoryIsDrawnCoarserAndSaysSo)
 {
   TemporaryDirectory dir;
-  const std::string field = WriteBall(dir, 192);
+  // 27 MiB of floats: a ball of 67 voxels' radius in 192^3.
+  const std::string field = dir.File("ball.vti");
+  WriteImageData(LinearBall(192, 67.0), field);
   const std::vector<std::string> common = { "render",
     field,
     "--size",

@@ -6,19 +6,12 @@
 // binary on its own Xvfb, real X input (LiveSession.h); checks read the state file and the pixels.
 #include "LiveHelpers.h"
 #include "LiveSession.h"
+#include "SupportFixtures.h"
 
 #include <gtest/gtest.h>
 
-#include <vtkFloatArray.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkXMLImageDataWriter.h>
-
-#include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <stdexcept>
 
 namespace cloudvis
 {
@@ -30,34 +23,10 @@ using json = nlohmann::json;
 
 const std::string Cloudvis = support::CloudvisBinary();
 
-// A ball of density up to 1 and of `radius` voxels at the centre of `side`^3 voxels, as
-// `path` (.vti), written as a model writes each step: to a temporary name, then renamed.
+// A ball of `radius` voxels in `side`^3 as `path` (.vti), written as a model writes each step.
 void WriteBall(const std::string& path, double radius, int side = 32)
 {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(side, side, side);
-  image->SetSpacing(1.0 / side, 1.0 / side, 1.0 / side);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(vtkIdType(side) * side * side);
-  const double c = 0.5 * (side - 1);
-  vtkIdType id = 0;
-  for (int k = 0; k < side; ++k)
-    for (int j = 0; j < side; ++j)
-      for (int i = 0; i < side; ++i)
-      {
-        const double r = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c));
-        density->SetValue(id++, float(std::max(0.0, 1.0 - r / radius)));
-      }
-  image->GetPointData()->SetScalars(density);
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName((path + ".part").c_str());
-  writer->SetInputData(image);
-  if (writer->Write() != 1)
-  {
-    throw std::runtime_error("could not write " + path);
-  }
-  std::filesystem::rename(path + ".part", path);
+  support::WriteImageData(support::LinearBall(side, radius), path);
 }
 
 // Pixels of the 3D view's centre block more than 24 levels from the background (taken at the

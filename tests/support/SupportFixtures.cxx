@@ -15,9 +15,12 @@
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkRenderer.h>
+#include <vtkXMLImageDataWriter.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <stdexcept>
 
 namespace cloudvis
 {
@@ -60,6 +63,30 @@ vtkSmartPointer<vtkImageData> MakeBoxField(glm::ivec3 dims,
           v++, float(density(lo.x + i * spacing.x, lo.y + j * spacing.y, lo.z + k * spacing.z)));
   image->GetPointData()->SetScalars(scalars);
   return image;
+}
+
+vtkSmartPointer<vtkImageData> LinearBall(int side, double radius)
+{
+  const double voxel = double(side - 1);
+  return MakeBoxField({ side, side, side },
+    glm::dvec3(0.0),
+    glm::dvec3(1.0),
+    [=](double x, double y, double z)
+    {
+      const double r = voxel * glm::length(glm::dvec3(x, y, z) - glm::dvec3(0.5));
+      return std::max(0.0, 1.0 - r / radius);
+    });
+}
+
+void WriteImageData(vtkImageData* image, const std::string& path)
+{
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName((path + ".part").c_str());
+  writer->SetInputData(image);
+  if (writer->Write() != 1 || std::rename((path + ".part").c_str(), path.c_str()) != 0)
+  {
+    throw std::runtime_error("could not write " + path);
+  }
 }
 
 vtkSmartPointer<vtkImageData> SoftSphere(int n)

@@ -46,6 +46,12 @@ vtkSmartPointer<vtkImageData> SoftSphere(int n = 32);
 // 0 outside, on a size^3 lattice over [-extent, extent]^3 (vtkCloudDensitySource).
 vtkSmartPointer<vtkImageData> ConstantSphere(double radius, int size = 64);
 vtkSmartPointer<vtkImageData> ConstantBox(double halfSize, int size = 64, double extent = 2.0);
+// A ball whose density falls linearly from 1 at its centre to 0 at `radius` voxels, centred in
+// `side`^3 voxels spanning the unit cube: a field file's stand-in of known shape and size.
+vtkSmartPointer<vtkImageData> LinearBall(int side, double radius);
+// Writes `image` to `path` as VTK XML image data (.vti), as a model writes a step: to PATH.part,
+// renamed into place once complete. Throws std::runtime_error when it cannot.
+void WriteImageData(vtkImageData* image, const std::string& path);
 // The article's cloud (unit sphere + fBm) and a dense fBm box, over [-2, 2]^3.
 vtkSmartPointer<vtkImageData> SparseCloud(int size = 64);
 vtkSmartPointer<vtkImageData> DenseCloud(int size = 64);
