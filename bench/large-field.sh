@@ -4,8 +4,9 @@
 # statistics, drawn by `cloudvis render` and opened by `cloudvis view` until its first picture has
 # converged. Prints each one's wall time and peak resident memory (bench/peak-memory.py: all its
 # processes summed, since the isolated read's child holds the file's values while the parent
-# receives them), and the ratio of the peak to the field's 1 GiB. Its peer is ParaView's NetCDF reader on the same file
-# (pvbatch, reading and drawing it as a volume), where pvbatch is installed.
+# receives them), and the ratio of the peak to the field's 1 GiB. Its peer is ParaView's NetCDF
+# reader on the same file (pvbatch, reading and drawing it as a volume), where pvbatch is
+# installed.
 # Usage: bench/large-field.sh [BUILD_DIR] [FIELD.nc]   (run under Xvfb: xvfb-run -a -s ...)
 set -euo pipefail
 build=${1:-build}

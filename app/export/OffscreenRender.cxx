@@ -296,8 +296,8 @@ OffscreenRenderResult RenderOffscreen(const Scene& scene, vtkImageData* field,
       { mapper.Get() }, field, coarsening, [&] { window->Render(); }, coarsened);
     if (coarsening > 1 && mapper->GetLastErrorIsGpuMemory())
     {
-      throw InputError(input + ": " + mapper->GetLastError() + " (with the field coarsened " +
-        std::to_string(coarsening) + "x, the most cloudvis coarsens it)");
+      throw InputError(input + ": " + mapper->GetLastError() + " (even with the field coarsened " +
+        std::to_string(coarsening) + "x)");
     }
     CheckMapper(mapper, input, messages);
   };

@@ -1,7 +1,8 @@
 """ParaView's side of cloudvis-bench-viewer --time-steps: pvbatch opens FIELD.nc with ParaView's
 own NetCDF (CF) reader as image data, draws its first variable `ql` as a volume (ParaView's
-default volume mapper) in an 800 x 800 view, the size of `cloudvis view`'s 3D view, and prints, for each of STEPS steps, the milliseconds
-of GoToNext() and the render after it: the time from asking for the next step to seeing it.
+default volume mapper) in an 800 x 800 view, the size of `cloudvis view`'s 3D view, and prints,
+for each of STEPS steps, the milliseconds of GoToNext() and the render after it: the time from
+asking for the next step to seeing it.
 
 Usage: pvbatch --force-offscreen-rendering time_steps.py FIELD.nc STEPS [LAST.png]
 (LAST.png: the last step's picture, to look at)"""

@@ -1,10 +1,10 @@
 // A field that fits in the host's memory but not in the GPU's, drawn rather than refused: averaged
 // over 2 x 2 x 2 voxel blocks, and again (up to MaximumCoarsening per axis), until the mapper's
 // textures fit the GPU memory it may take (render.gpu_memory, else what the driver reports
-// free). `render`, `animate`, `compare` and the viewer's 3D view coarsen so; each says so (the render's
-// output line and the image's metadata "cloudvis.coarsened", the viewer's top-right corner),
-// while statistics, slices and readouts keep the field as it is. docs/performance.md, "A field
-// of 1 GiB", says what it costs.
+// free). `render`, `animate`, `compare` and the viewer's 3D view coarsen so, and say so (the
+// commands' output line and the image's metadata "cloudvis.coarsened", the viewer's top-right
+// corner), while statistics, slices and readouts keep the field as it is. docs/performance.md,
+// "A field of 1 GiB", says what it costs.
 #ifndef cloudvis_FieldCoarsening_h
 #define cloudvis_FieldCoarsening_h
 
