@@ -9,7 +9,6 @@
 
 #include "AtomicFile.h"
 #include "Errors.h"
-#include "ForkLock.h"
 
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes, FormatBytes
 
@@ -439,7 +438,7 @@ FieldFileContents ReadInIsolation(const std::string& path,
   const std::function<FieldFileContents()>& read)
 {
   const unsigned seconds = TimeLimitSeconds(fileBytes);
-  // No other thread runs TBB's loops from here to the fork (ForkLock.h). A child, whose
+  // No other thread runs TBB's loops from here to the fork (FieldIO.h, ForkLock). A child, whose
   // copy of the lock is held, is alone.
   std::unique_lock<std::mutex> noParallelWork(ForkLock(), std::defer_lock);
   if (!InChild)

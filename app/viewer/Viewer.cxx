@@ -21,7 +21,6 @@
 #include "Errors.h"
 #include "ExportRender.h"
 #include "FieldCoarsening.h"
-#include "ForkLock.h"
 #include "ImageWriters.h"
 #include "InputFiles.h"
 #include "OffscreenRender.h"
@@ -136,7 +135,7 @@ void Viewer::Internals::RenderFrame()
   const auto render = [this]
   {
     const int before = this->Mapper->GetNumberOfAccumulatedFrames(this->View);
-    // The next time step's read forks between frames, not during one (ForkLock.h).
+    // The next time step's read forks between frames, not during one (FieldIO.h, ForkLock).
     const std::lock_guard<std::mutex> noFork(ForkLock());
     this->Window->Render();
     this->MarchedFrames += this->Mapper->GetNumberOfAccumulatedFrames(this->View) != before ? 1 : 0;

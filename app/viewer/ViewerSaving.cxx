@@ -15,7 +15,6 @@
 #include "AtomicFile.h"
 #include "Errors.h"
 #include "ExportRender.h"
-#include "ForkLock.h"
 #include "ImageWriters.h"
 #include "SceneJson.h"
 #include "ViewerFiles.h"
@@ -78,7 +77,7 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
   // in the capture's first frame: the picture saved is the converged one.
   this->Mapper->SetScatteringVolumeSecondsPerFrame(0.0);
 
-  // The next time step's read forks before or after the capture, not during it (ForkLock.h).
+  // The next time step's read forks before or after the capture, not during it (FieldIO.h).
   const std::lock_guard<std::mutex> noFork(ForkLock());
   this->Exporting = true;
   window->SetUseOffScreenBuffers(true);
