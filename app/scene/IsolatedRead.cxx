@@ -426,25 +426,12 @@ void NoteReadNeeds(const std::string& what, double bytes)
   }
 }
 
-std::mutex& ForkLock()
-{
-  static std::mutex lock;
-  return lock;
-}
-
 FieldFileContents ReadInIsolation(const std::string& path,
   std::uint64_t fileBytes,
   const std::string& parser,
   const std::function<FieldFileContents()>& read)
 {
   const unsigned seconds = TimeLimitSeconds(fileBytes);
-  // No other thread runs TBB's loops from here to the fork (FieldIO.h, ForkLock). A child, whose
-  // copy of the lock is held, is alone.
-  std::unique_lock<std::mutex> noParallelWork(ForkLock(), std::defer_lock);
-  if (!InChild)
-  {
-    noParallelWork.lock();
-  }
   // A child inherits TBB's thread pool without its threads, and the first parallel loop it runs
   // (OpenVDB frees a tree with one) waits for them forever. So the pool's threads are ended
   // first; TBB starts new ones when this process next needs them.
@@ -457,14 +444,9 @@ FieldFileContents ReadInIsolation(const std::string& path,
   int channel[2];
   if (::pipe2(channel, O_CLOEXEC) != 0)
   {
-    noParallelWork = {};
     return read(); // no isolation to be had: read here, behind the other checks alone
   }
   const pid_t child = ::fork();
-  if (child != 0)
-  {
-    noParallelWork = {};
-  }
   if (child < 0)
   {
     ::close(channel[0]);

@@ -135,8 +135,6 @@ void Viewer::Internals::RenderFrame()
   const auto render = [this]
   {
     const int before = this->Mapper->GetNumberOfAccumulatedFrames(this->View);
-    // The next time step's read forks between frames, not during one (FieldIO.h, ForkLock).
-    const std::lock_guard<std::mutex> noFork(ForkLock());
     this->Window->Render();
     this->MarchedFrames += this->Mapper->GetNumberOfAccumulatedFrames(this->View) != before ? 1 : 0;
   };

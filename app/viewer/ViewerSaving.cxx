@@ -77,8 +77,6 @@ ScreenshotImages Viewer::Internals::CaptureLayout(const std::array<int, 2>& size
   // in the capture's first frame: the picture saved is the converged one.
   this->Mapper->SetScatteringVolumeSecondsPerFrame(0.0);
 
-  // The next time step's read forks before or after the capture, not during it (FieldIO.h).
-  const std::lock_guard<std::mutex> noFork(ForkLock());
   this->Exporting = true;
   window->SetUseOffScreenBuffers(true);
   window->SwapBuffersOff();

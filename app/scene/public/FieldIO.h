@@ -20,7 +20,6 @@
 #include <cstdint>
 #include <iosfwd>
 #include <limits>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -185,14 +184,6 @@ struct FieldOptionProblem
 };
 std::optional<FieldOptionProblem> CheckFieldReadOptions(const std::string& path,
   const FieldReadOptions& options);
-
-// Every read of a file through a parsing library forks a child, after ending TBB's worker threads
-// (IsolatedRead.cxx): a child forked while another thread runs TBB's parallel loops would wait
-// forever for workers it does not have, and TBB's threads cannot be ended while a loop runs. A
-// process that reads fields on one thread while another thread runs such loops (the viewer,
-// which reads the next time step in the background while its window renders) holds this lock
-// around those loops; the read takes it around its fork.
-std::mutex& ForkLock();
 
 // Loads a density field in any format of FieldFormats(), chosen by options.Format or else the
 // extension. The density must have one component and only finite values; it becomes a float
