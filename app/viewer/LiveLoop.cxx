@@ -76,6 +76,11 @@ void LiveLoop::Run()
       }
       continue;
     }
+    if (this->Callbacks.Idle && XPending(display) == 0 && this->Callbacks.Idle())
+    {
+      this->Callbacks.AfterWork();
+      continue;
+    }
     // Idle: sleep until the X server has something for us or a timed change is due. XPending
     // above has flushed our output and emptied the connection into Xlib's queue, which is empty.
     fd_set readable;

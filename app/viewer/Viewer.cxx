@@ -569,7 +569,7 @@ Viewer::Viewer(const Scene& scene,
   {
     in.Status->SetCorner(in.CornerText());
     // The next step is read while the first is looked at: the first . shows it at once.
-    in.Time->Prefetch(in.Time->Current() + 1,
+    in.Time->ReadAheadLater(in.Time->Current() + 1,
       double(field->GetPointData()->GetScalars()->GetActualMemorySize()) * 1024.0);
   }
   if (!fitted.empty())
@@ -601,7 +601,8 @@ Viewer::Viewer(const Scene& scene,
       {
         this->Internal->SettleGesture();
         this->WriteStateFile();
-      } });
+      },
+      [&in] { return in.Time->ReadAhead(); } });
   vtkNew<vtkCallbackCommand> requested;
   requested->SetClientData(&in);
   requested->SetCallback(

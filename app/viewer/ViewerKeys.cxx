@@ -387,7 +387,7 @@ void Viewer::Internals::StepTime(int direction)
   this->Status->SetCorner(this->CornerText());
   this->Show(time.Label(), false);
   this->SlicesChanged();
-  time.Prefetch(step + direction,
+  time.ReadAheadLater(step + direction,
     double(this->Field->GetPointData()->GetScalars()->GetActualMemorySize()) * 1024.0);
 }
 

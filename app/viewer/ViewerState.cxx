@@ -90,7 +90,7 @@ json ViewerStateJson(const ViewerState& state)
     { "time_step", state.TimeStep },
     { "time_steps", state.TimeSteps },
     { "time", state.Time },
-    { "prefetching", state.Prefetching },
+    { "read_ahead", state.ReadAhead },
     { "coarsened", state.Coarsened },
     { "slices",
       { { "visible", state.SliceVisible },
@@ -202,7 +202,7 @@ ViewerState Viewer::State() const
   state.TimeSteps = in.Time->Count();
   state.Time = in.Time->Steps() ? in.Time->Label() : "";
   state.Coarsened = in.Coarsened;
-  state.Prefetching = in.Time->Prefetching();
+  state.ReadAhead = in.Time->ReadAheadStep();
   state.WindowId = static_cast<unsigned long>(reinterpret_cast<uintptr_t>(
     const_cast<vtkRenderWindow*>(in.Window.Get())->GetGenericWindowId()));
   const int* size = const_cast<vtkRenderWindow*>(in.Window.Get())->GetSize();

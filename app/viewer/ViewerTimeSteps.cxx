@@ -1,7 +1,8 @@
-// The viewer's time steps and their background read (ViewerTimeSteps.h).
+// The viewer's time steps and the read ahead of the next one (ViewerTimeSteps.h).
 #include "ViewerTimeSteps.h"
 
 #include "CloudFieldGeometry.h" // AvailableMemoryBytes
+#include "Errors.h"
 #include "FileNames.h"
 
 #include <cmath>
@@ -28,37 +29,42 @@ ViewerTimeSteps::ViewerTimeSteps(Reader reader, int step, const FieldReport& sho
 {
 }
 
-ViewerTimeSteps::~ViewerTimeSteps()
+void ViewerTimeSteps::ReadAheadLater(int step, double fieldBytes)
 {
-  if (this->Pending.valid())
-  {
-    this->Pending.wait();
-  }
+  const bool fits =
+    fieldBytes <= MaximumReadAheadBytes && 4.0 * fieldBytes <= double(AvailableMemoryBytes());
+  this->WantedStep =
+    this->Read && fits && step >= 0 && step < this->Count() && step != this->Step ? step : -1;
 }
 
-void ViewerTimeSteps::Prefetch(int step, double fieldBytes)
+bool ViewerTimeSteps::ReadAhead()
 {
-  if (!this->Read || step < 0 || step >= this->Count() || step == this->PendingStep ||
-    step == this->Step || 4.0 * fieldBytes > double(AvailableMemoryBytes()))
+  if (this->WantedStep < 0 || (this->Ahead.Field && this->AheadStep == this->WantedStep))
   {
-    return;
+    return false;
   }
-  if (this->Pending.valid())
+  const int step = this->WantedStep;
+  this->WantedStep = -1;
+  this->Ahead = {};
+  try
   {
-    // One read at a time: the one in flight is of a step the user has turned away from.
-    this->Pending.wait();
+    this->Ahead = ReadStep(this->Read, step);
+    this->AheadStep = step;
   }
-  this->PendingStep = step;
-  this->Pending =
-    std::async(std::launch::async, [read = this->Read, step] { return ReadStep(read, step); });
+  catch (const InputError&)
+  {
+    // Said when the step is asked for: Take reads it again.
+  }
+  return true;
 }
 
 FieldStep ViewerTimeSteps::Take(int step)
 {
-  if (this->PendingStep == step && this->Pending.valid())
+  if (this->Ahead.Field && this->AheadStep == step)
   {
-    this->PendingStep = -1;
-    return this->Pending.get(); // rethrows the read's InputError
+    FieldStep taken = std::move(this->Ahead);
+    this->Ahead = {};
+    return taken;
   }
   return ReadStep(this->Read, step);
 }

@@ -1,8 +1,8 @@
 // Live tests of stepping through time (issue 34, part 3): `cloudvis view 'run/step_*.vti'` opens a
 // numbered file series with its first step, names it in the window's top right, reads the next
-// one in the background, and . and , step forward and back with the camera, slices and transfer
-// function kept. A series being written is followed: a file that appears later is the next step,
-// and a half-written one is an error message with the step shown kept, not a crash. The real
+// one ahead while the window is idle, and . and , step forward and back with the camera, slices and
+// transfer function kept. A series being written is followed: a file that appears later is the next
+// step, and a half-written one is an error message with the step shown kept, not a crash. The real
 // binary on its own Xvfb, real X input (LiveSession.h); checks read the state file and the pixels.
 #include "LiveHelpers.h"
 #include "LiveSession.h"
@@ -73,14 +73,15 @@ TEST(LiveTimeSteps, PeriodAndCommaStepThroughAGrowingFileSeries)
   const json start = WaitForStep(session, 0, "step_1.vti");
   EXPECT_EQ(start["time_steps"], 3);
   EXPECT_EQ(start["time"], "time step 0 of 0 .. 2: step_1.vti");
-  EXPECT_TRUE(start["prefetching"].get<bool>()) << "the next step is read in the background";
+  session.WaitFor([](const json& s) { return s["read_ahead"] == 1; },
+    "the next step to be read ahead while the window is idle");
   const size_t small = CloudPixels(session);
 
   session.Key("period");
   const json second = WaitForStep(session, 1, "step_2.vti");
   EXPECT_EQ(second["camera"], start["camera"]) << "the camera stays";
   EXPECT_EQ(second["transfer_function"], start["transfer_function"]) << "the function stays";
-  EXPECT_TRUE(second["prefetching"].get<bool>());
+  session.WaitFor([](const json& s) { return s["read_ahead"] == 2; }, "step 2 read ahead");
   EXPECT_GT(small, 1000u) << "the ball of step 1 is seen";
   // Radius 12 against 8 voxels: 2.25 times the area, about 2.2 times the pixels here.
   EXPECT_GT(CloudPixels(session), small * 3 / 2) << "the ball of step 2 is larger";

@@ -9,7 +9,9 @@
 //   2. renders one frame if one was asked for;
 //   3. else renders one step of progressive refinement if the image has not converged, but only
 //      when no X event is waiting: a refinement frame yields to input;
-//   4. else sleeps in select() on the X connection until an event arrives or a timed change
+//   4. else does the idle work there is (the next time step's read ahead), one piece at a time
+//      and only when no X event is waiting;
+//   5. else sleeps in select() on the X connection until an event arrives or a timed change
 //      (a message fading) is due. A converged, idle viewer therefore uses no CPU.
 // VTK's interactor timers are not run: nothing in the viewer moves by time, so a held mouse
 // button can only move the camera by the motion it reports.
@@ -38,6 +40,9 @@ public:
     // returns the seconds until the next one, or a negative number when none is due.
     std::function<double()> Tick;
     std::function<void()> AfterWork; // after input was handled or a frame rendered
+    // Work for an idle window; returns whether it did some (then the loop looks at input again
+    // before doing more). May be empty.
+    std::function<bool()> Idle;
   };
 
   LiveLoop(vtkRenderWindowInteractor* interactor, Hooks hooks);

@@ -240,9 +240,9 @@ struct Viewer::Internals
   // else the last one shown, one voxel up (+1) or down (-1).
   void StepSlice(int step);
   // , and .: the field's previous (-1) or next (+1) time step, its values in place of the shown
-  // step's (the grid, camera, slices and transfer function stay), and the read of the one after
-  // it started in the background. A step that cannot be read is an error message, and the step
-  // shown stays.
+  // step's (the grid, camera, slices and transfer function stay), and the one after it asked to
+  // be read ahead (ViewerTimeSteps::ReadAheadLater). A step that cannot be read is an error
+  // message, and the step shown stays.
   void StepTime(int direction);
   int ActiveAxis = 2; // the slice across z until another is shown
   // The edits a user would lose by quitting, as text to compare: the scene `w` saves, its view

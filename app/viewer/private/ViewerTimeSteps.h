@@ -1,9 +1,12 @@
 // The time steps of the field the viewer shows: a NetCDF file's time axis or a numbered file
 // series (FieldSeries.h). Which step is shown, how the window names it ("time step 3 of 0 .. 19:
-// t = 180 s"), and the read of the step after it in the background, so that stepping with , and .
-// costs the upload and the first frame, not the read. Reads go through the command line's own
-// path (ProduceField: the isolated, checked read of the format, the units resolved as `render`
-// resolves them), so a step the viewer shows is the field `render --time-step N` renders.
+// t = 180 s"), and the read ahead of the step after it while the window is idle, so that stepping
+// with , and . costs the upload and the first frame, not the read. Reads go through the command
+// line's own path (ProduceField: the isolated, checked read of the format, the units resolved as
+// `render` resolves them), so a step the viewer shows is the field `render --time-step N` renders.
+// The read ahead runs on the viewer's own thread, in the live loop's idle time (LiveLoop.h), not
+// on a thread of its own: an isolated read forks, and a child forked while another thread of the
+// process is inside the allocator or TBB's loops (the window rendering) can wait forever.
 #ifndef cloudvis_ViewerTimeSteps_h
 #define cloudvis_ViewerTimeSteps_h
 
@@ -13,7 +16,6 @@
 #include <vtkSmartPointer.h>
 
 #include <functional>
-#include <future>
 #include <string>
 
 namespace cloudvis
@@ -36,10 +38,6 @@ public:
   // `shown` is the report of step `step`, the one the window opened with. Without a reader the
   // field has no time steps to go to (a generated field).
   ViewerTimeSteps(Reader reader, int step, const FieldReport& shown);
-  // Waits for a read in flight: its thread must not outlive what it reads into.
-  ~ViewerTimeSteps();
-  ViewerTimeSteps(const ViewerTimeSteps&) = delete;
-  ViewerTimeSteps& operator=(const ViewerTimeSteps&) = delete;
 
   int Current() const { return this->Step; }
   // The steps the field held at the last read (a series being written grows).
@@ -48,27 +46,33 @@ public:
   bool Steps() const { return bool(this->Read) && (this->Count() > 1 || this->Series()); }
   bool Series() const { return !this->Shown.StepFile.empty(); }
 
-  // Starts reading `step` in the background unless it is outside 0 .. Count() - 1, is being read
-  // or was read already, or a second field of `fieldBytes` would take more than a quarter of the
-  // memory available (the step is then read when it is asked for).
-  void Prefetch(int step, double fieldBytes);
-  // Step `step`: the background read's when it is of that step (waiting for it to finish), else
-  // read now. Throws InputError; nothing changes then.
+  // The largest step read ahead: a bigger one would hold up the window's input for seconds.
+  static constexpr double MaximumReadAheadBytes = 256.0 * 1048576.0;
+  // Asks for `step` to be read ahead, unless it is outside 0 .. Count() - 1 or is the step shown,
+  // or a step of `fieldBytes` is above MaximumReadAheadBytes or two would take more than a
+  // quarter of the memory available (the step is then read when it is asked for).
+  void ReadAheadLater(int step, double fieldBytes);
+  // Reads the step asked for, if it is not read yet: the live loop's idle work. Returns whether
+  // it read. A step that cannot be read is not kept: Take reads it again and says why.
+  bool ReadAhead();
+  // Step `step`: the one read ahead when it is that step, else read now. Throws InputError;
+  // nothing changes then.
   FieldStep Take(int step);
   // The window now shows `step`, read with `report`.
   void SetShown(int step, const FieldReport& report);
 
   // "time step 3 of 0 .. 19: t = 180 s", with the series' file: "..., les_0004.nc".
   std::string Label() const;
-  // Whether a step is being read in the background (for tests: the prefetch happened).
-  bool Prefetching() const { return this->PendingStep >= 0; }
+  // The step read ahead and waiting to be shown, -1 for none (the state file's "read_ahead").
+  int ReadAheadStep() const { return this->Ahead.Field ? this->AheadStep : -1; }
 
 private:
   Reader Read;
   int Step = 0;
   FieldReport Shown;
-  int PendingStep = -1;
-  std::future<FieldStep> Pending;
+  int WantedStep = -1; // asked for by ReadAheadLater
+  int AheadStep = -1;  // of Ahead
+  FieldStep Ahead;
 };
 
 } // namespace cloudvis

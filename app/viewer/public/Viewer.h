@@ -131,12 +131,12 @@ struct ViewerState
   std::string Readout;        // the probe readout line
   std::string Progress;       // the progress line ("multiple scattering: converging (k/n)")
   // The field's time steps: the one shown, how many there are (1 without a time axis), the time
-  // line ("time step 3 of 0 .. 19: t = 180 s"; empty without), and whether the next one is being
-  // read in the background.
+  // line ("time step 3 of 0 .. 19: t = 180 s"; empty without), and the step read ahead, waiting
+  // to be shown (-1: none).
   int TimeStep = 0;
   int TimeSteps = 1;
   std::string Time;
-  bool Prefetching = false;
+  int ReadAhead = -1;
   // The 3D view draws the field coarsened to fit the GPU's memory: what was said (empty: no).
   std::string Coarsened;
   unsigned long WindowId = 0; // the X window
