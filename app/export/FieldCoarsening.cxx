@@ -24,6 +24,16 @@ std::string Voxels(vtkImageData* image)
   return std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " + std::to_string(d[2]);
 }
 
+// RenderCoarsenedToFit's note: what was done, and the refusal of the field as drawn before.
+std::string CoarseningNote(vtkImageData* field,
+  vtkImageData* coarse,
+  int factor,
+  const std::string& problem)
+{
+  return "the field was coarsened " + std::to_string(factor) + "x (" + Voxels(coarse) +
+    " voxels drawn for " + Voxels(field) + ") to fit the GPU's memory: " + problem;
+}
+
 } // namespace
 
 vtkSmartPointer<vtkImageData> CoarsenField(vtkImageData* field, int factor)
@@ -57,15 +67,6 @@ vtkSmartPointer<vtkImageData> CoarsenField(vtkImageData* field, int factor)
   coarse->SetSpacing(spacing[0] * factor, spacing[1] * factor, spacing[2] * factor);
   coarse->SetDirectionMatrix(field->GetDirectionMatrix());
   return coarse;
-}
-
-std::string CoarseningNote(vtkImageData* field,
-  vtkImageData* coarse,
-  int factor,
-  const std::string& problem)
-{
-  return "the field was coarsened " + std::to_string(factor) + "x (" + Voxels(coarse) +
-    " voxels drawn for " + Voxels(field) + ") to fit the GPU's memory: " + problem;
 }
 
 int RenderCoarsenedToFit(const std::vector<vtkCloudVolumeMapper*>& mappers,

@@ -285,6 +285,7 @@ void StatusOverlay::SetCorner(const std::string& text)
 {
   this->CornerText = text;
   this->ShowCorner();
+  this->LayOut(); // the message wraps short of the corner's lines
 }
 
 void StatusOverlay::ShowCorner()
@@ -293,7 +294,6 @@ void StatusOverlay::ShowCorner()
     (this->CornerText.empty() || this->ProgressText.empty() ? "" : "\n") + this->ProgressText;
   this->Progress->SetInput(text.c_str());
   this->Progress->SetVisibility(!text.empty());
-  this->LayOut();
 }
 
 StatusOverlay::Visibility StatusOverlay::HideAll()

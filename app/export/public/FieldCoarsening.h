@@ -28,19 +28,13 @@ constexpr int MaximumCoarsening = 16;
 // block, the direction kept. `factor` 1 returns `field` itself.
 vtkSmartPointer<vtkImageData> CoarsenField(vtkImageData* field, int factor);
 
-// "the field was coarsened 2x (512 x 512 x 128 voxels drawn for 1024 x 1024 x 256) to fit the
-// GPU's memory: PROBLEM", PROBLEM the mapper's refusal of the field as it was drawn before.
-std::string CoarseningNote(vtkImageData* field,
-  vtkImageData* coarse,
-  int factor,
-  const std::string& problem);
-
 // Renders once with `render` (which draws the window and leaves the mappers' errors, if any);
 // while a mapper refused an allocation for want of GPU memory, draws `field` coarsened 2x more
 // (every mapper's input set to CoarsenField: `compare`'s panels draw one field) and renders
 // again. Returns the factor drawn, from `factor` up (1: the field as it is), and sets `note` when
-// it grew (CoarseningNote). Once MaximumCoarsening does not fit either, the mappers' errors are
-// left for the caller to report.
+// it grew: "the field was coarsened 2x (512 x 512 x 128 voxels drawn for 1024 x 1024 x 256) to
+// fit the GPU's memory: PROBLEM", PROBLEM the mappers' refusal. Once MaximumCoarsening does not
+// fit either, the mappers' errors are left for the caller to report.
 int RenderCoarsenedToFit(const std::vector<vtkCloudVolumeMapper*>& mappers,
   vtkImageData* field,
   int factor,
