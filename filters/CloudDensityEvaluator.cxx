@@ -1,5 +1,7 @@
 #include "CloudDensityEvaluator.h"
 
+#include "CloudTowerPlan.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -131,7 +133,8 @@ std::string ValidateNoiseRange(const FieldDescription& field, const double bound
   {
     // Shear moves what lies above the base sideways, by up to |shear| x the layer's depth.
     const CloudLayer& l = field.Layer;
-    farthest += std::max(std::abs(l.Shear[0]), std::abs(l.Shear[1])) * std::abs(l.Top - l.Base);
+    farthest += std::max(std::abs(l.Shear[0]), std::abs(l.Shear[1])) *
+      (std::abs(l.Top - l.Base) + l.Overshoot);
     highest = CloudLatticeDensity(l);
   }
   const double limit = 1073741824.0; // 2^30
@@ -152,6 +155,21 @@ std::string ValidateNoiseRange(const FieldDescription& field, const double bound
     return error.str();
   }
   return {};
+}
+
+std::string ValidateCloudBounds(const FieldDescription& field, const double bounds[6])
+{
+  const CloudLayer& l = field.Layer;
+  if (field.Model != DensityModel::Cloud || !(l.Overshoot > 0.0) ||
+    l.Top + l.Overshoot <= bounds[3])
+  {
+    return {};
+  }
+  std::ostringstream error;
+  error << "cloud overshoot " << l.Overshoot << " puts the dome's top at " << l.Top + l.Overshoot
+        << ", above the field's top " << bounds[3]
+        << " (field.bounds): lower it or raise the bounds";
+  return error.str();
 }
 
 namespace
@@ -268,6 +286,21 @@ DensityEvaluator::DensityEvaluator(const FieldDescription& field, double time)
   if (field.Model == DensityModel::Cloud)
   {
     this->CloudNoise = BakeCloudNoise(field.Noise.Seed);
+    const CloudLayer& l = field.Layer;
+    if (l.Type == CloudType::Cumulonimbus && l.Source == CoverageSource::Shapes &&
+      !this->Shapes.empty())
+    {
+      glm::dvec3 low(std::numeric_limits<double>::max()), high(-low);
+      for (const Shape& s : shapes)
+      {
+        glm::dvec3 a, b;
+        ShapeBounds(s, a, b);
+        low = glm::min(low, a);
+        high = glm::max(high, b);
+      }
+      this->TowerPlan = std::make_shared<const CloudTowerPlan>(
+        [this](glm::vec3 p) { return this->SignedDistance(p); }, low, high, l);
+    }
   }
   switch (field.Model)
   {
@@ -362,11 +395,48 @@ float DensityEvaluator::Combine(float signedDistance, float fbm) const
 namespace
 {
 using noise::Saturate;
+// A cumulonimbus's anvil is this fraction of the layer's depth thick at the tower, its underside
+// rises by the second fraction over the third out from the tower, and its overshooting dome is
+// this fraction of the tower's radius wide.
+constexpr float AnvilThickness = 0.3f;
+constexpr float AnvilFlareRise = 0.08f;
+constexpr float AnvilFlareLength = 0.25f;
+constexpr double DomeWidth = 0.8;
+// The break-up of a weather map's columns reaches its full strength this far up the layer, and
+// its noise is the shape noise at this fraction of its scale.
+constexpr float BreakupHeight = 0.2f;
+constexpr double BreakupScale = 0.25;
 }
 
 float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
 {
   const CloudLayer& l = this->Field.Layer;
+  if (this->TowerPlan)
+  {
+    // A cumulonimbus on the shapes: the tower's footprint at every height, and the anvil, a
+    // layer under the top that thins downwind, from AnvilThickness of the depth at the tower to
+    // half that at its far end, its underside flaring up by AnvilFlareRise of the depth over the
+    // first AnvilFlareLength out from the tower.
+    const float width = static_cast<float>(this->Field.FalloffWidth);
+    const CloudTowerPlan& plan = *this->TowerPlan;
+    // The tower's sides bulge in and out with height: its footprint moves by up to a falloff
+    // width, by the shape noise at twice its scale.
+    const glm::dvec3 q = (leaned + this->NoiseOffset) / (2.0 * l.ShapeScale);
+    const float bulge = width * (2.0f * this->CloudNoise->Shape.Sample(q) - 1.0f);
+    float c = Saturate(-(plan.TowerDistance(leaned.x, leaned.z) - bulge) / width);
+    if (l.Anvil > 0.0)
+    {
+      const float outward = plan.TowerDistance(leaned.x, leaned.z) /
+        (AnvilFlareLength * static_cast<float>(l.Top - l.Base));
+      const float bottom = 1.0f -
+        AnvilThickness * (1.0f - 0.5f * plan.AnvilFraction(leaned.x, leaned.z)) +
+        AnvilFlareRise * glm::smoothstep(0.0f, 1.0f, outward);
+      c = std::max(c,
+        Saturate(-plan.AnvilDistance(leaned.x, leaned.z) / width) *
+          glm::smoothstep(bottom, bottom + 0.1f, h));
+    }
+    return static_cast<float>(l.Coverage) * c;
+  }
   // The cumulonimbus's anvil: from 60% of the layer up, the cloud spreads sideways.
   const float anvil = l.Type == CloudType::Cumulonimbus
     ? static_cast<float>(l.Anvil) * glm::smoothstep(0.6f, 0.95f, h)
@@ -388,34 +458,75 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
   const float map = l.Source == CoverageSource::Noise
     ? WeatherNoise(l, this->Field.Noise.Seed, q.x, q.z)
     : l.Map->Sample(q.x, q.z);
+  // Break-up: above the base a 3-D noise moves the map's value, by more the higher up (up to
+  // `breakup` from BreakupHeight of the layer on), so that the clouds' sides are not the map's
+  // outlines drawn straight up; at the base the map holds, and the bases stay flat.
+  float lifted = map;
+  if (l.Breakup > 0.0)
+  {
+    const glm::dvec3 u = q / (BreakupScale * l.ShapeScale) + glm::dvec3(0.37, 0.11, 0.73);
+    const float lift = this->CloudNoise->Shape.Sample(u);
+    lifted -= static_cast<float>(l.Breakup) * Saturate(h / BreakupHeight) * lift;
+  }
   const float coverage =
-    Saturate(noise::Remap(map, 1.0f - static_cast<float>(l.Coverage), 1.0f, 0.0f, 1.0f));
+    Saturate(noise::Remap(lifted, 1.0f - static_cast<float>(l.Coverage), 1.0f, 0.0f, 1.0f));
   // A map spreads by lifting every coverage towards 1 (a power below 1).
   return anvil > 0.0f && coverage > 0.0f ? std::pow(coverage, 1.0f - 0.8f * anvil) : coverage;
+}
+
+float DensityEvaluator::DomeCoverage(glm::dvec3 leaned) const
+{
+  // The overshooting dome: the upper half of an ellipsoid on the tower's axis at the top, its
+  // half-width DomeWidth of the tower's radius and its height the overshoot, softened over the
+  // falloff width like the shapes.
+  const CloudLayer& l = this->Field.Layer;
+  const glm::dvec2 axis = this->TowerPlan->Axis();
+  const double across = DomeWidth * this->TowerPlan->Radius();
+  const glm::dvec3 u(
+    (leaned.x - axis.x) / across, (leaned.y - l.Top) / l.Overshoot, (leaned.z - axis.y) / across);
+  const double distance = (glm::length(u) - 1.0) * std::min(across, l.Overshoot);
+  return static_cast<float>(l.Coverage) *
+    Saturate(static_cast<float>(-distance / this->Field.FalloffWidth));
+}
+
+bool DensityEvaluator::CloudLevelMayHoldCloud(double y) const
+{
+  const CloudLayer& l = this->Field.Layer;
+  return HeightProfile(l.Type, static_cast<float>((y - l.Base) / (l.Top - l.Base))) > 0.0f ||
+    (this->TowerPlan && l.Overshoot > 0.0 && y > l.Top - l.Overshoot && y < l.Top + l.Overshoot);
 }
 
 float DensityEvaluator::CloudDensity(glm::dvec3 p) const
 {
   const CloudLayer& l = this->Field.Layer;
-  const double height = p.y - l.Base;
-  const float h = static_cast<float>(height / (l.Top - l.Base));
-  const float profile = HeightProfile(l.Type, h);
-  if (profile <= 0.0f)
+  if (!this->CloudLevelMayHoldCloud(p.y))
   {
     return 0.0f;
   }
+  const double height = p.y - l.Base;
+  const float h = static_cast<float>(height / (l.Top - l.Base));
+  const float profile = HeightProfile(l.Type, h);
   // Shear leans the cloud: what is at height `height` above the base comes from straight below.
   const glm::dvec3 leaned = p - glm::dvec3(l.Shear[0] * height, 0.0, l.Shear[1] * height);
-  const float coverage = this->CloudCoverage(leaned, h);
-  if (coverage <= 0.0f)
+  const float coverage = profile > 0.0f ? this->CloudCoverage(leaned, h) : 0.0f;
+  const bool dome = this->TowerPlan && l.Overshoot > 0.0 && p.y > l.Top - l.Overshoot;
+  const float domeCoverage = dome ? this->DomeCoverage(leaned) : 0.0f;
+  if (coverage <= 0.0f && domeCoverage <= 0.0f)
   {
     return 0.0f;
   }
   const glm::dvec3 q = leaned + this->NoiseOffset;
   const CloudNoiseVolumes& volumes = *this->CloudNoise;
   const float shape = volumes.Shape.Sample(q / l.ShapeScale);
-  const float base =
-    Saturate(noise::Remap(shape * profile, 1.0f - coverage, 1.0f, 0.0f, 1.0f)) * coverage;
+  float base = coverage > 0.0f
+    ? Saturate(noise::Remap(shape * profile, 1.0f - coverage, 1.0f, 0.0f, 1.0f)) * coverage
+    : 0.0f;
+  if (domeCoverage > 0.0f)
+  {
+    // The dome has the tower's full profile.
+    base = std::max(
+      base, Saturate(noise::Remap(shape, 1.0f - domeCoverage, 1.0f, 0.0f, 1.0f)) * domeCoverage);
+  }
   if (base <= 0.0f)
   {
     return 0.0f;
@@ -426,7 +537,7 @@ float DensityEvaluator::CloudDensity(glm::dvec3 p) const
     // Turbulence under the cloud, fading with height: the detail is read at displaced points.
     const glm::dvec3 curl(
       volumes.Curl[0].Sample(u), volumes.Curl[1].Sample(u), volumes.Curl[2].Sample(u));
-    u += curl * (0.25 * l.Curl * (1.0 - h));
+    u += curl * (0.25 * l.Curl * std::max(1.0 - double(h), 0.0));
   }
   const float detail = volumes.Detail.Sample(u);
   const float modifier = detail + (1.0f - 2.0f * detail) * Saturate(10.0f * h);
@@ -450,10 +561,8 @@ void DensityEvaluator::EvaluateRow(int firstIndex, int count, double originX, do
 {
   if (this->Field.Model == DensityModel::Cloud)
   {
-    // A row has one height: outside the cloud type's profile it is empty.
-    const CloudLayer& l = this->Field.Layer;
-    const bool inLayer =
-      HeightProfile(l.Type, static_cast<float>((y - l.Base) / (l.Top - l.Base))) > 0.0f;
+    // A row has one height: outside the cloud type's profile (and the dome) it is empty.
+    const bool inLayer = this->CloudLevelMayHoldCloud(y);
     for (int j = 0; j < count; ++j)
     {
       const double x = originX + static_cast<double>(firstIndex + j) * spacingX;

@@ -32,6 +32,8 @@
 namespace cloudvis
 {
 
+class CloudTowerPlan;
+
 enum class DensityModel
 {
   SdfPlusFbm,
@@ -74,6 +76,11 @@ CLOUDVISFILTERS_EXPORT std::string ValidateNoiseRange(
 CLOUDVISFILTERS_EXPORT std::string ValidateDensityRange(
   const FieldDescription& field, const double bounds[6]);
 
+// Empty when the cloud model's layer fits the bounds, else the problem: a cumulonimbus's
+// overshooting dome (top + overshoot) must not rise above the field's top (its y bound).
+CLOUDVISFILTERS_EXPORT std::string ValidateCloudBounds(const FieldDescription& field,
+  const double bounds[6]);
+
 // Scratch memory of one thread for EvaluateRow; reused from row to row.
 struct RowScratch
 {
@@ -108,6 +115,8 @@ private:
   float Combine(float signedDistance, float fbm) const;
   float CloudDensity(glm::dvec3 p) const;
   float CloudCoverage(glm::dvec3 leaned, float h) const;
+  float DomeCoverage(glm::dvec3 leaned) const;
+  bool CloudLevelMayHoldCloud(double y) const;
   bool NeedsNoise(float signedDistance) const;
   void AccumulateOctaveAlongRow(const noise::Octave& octave, int count, const double* noiseX,
     double y, double z, float* sum, RowScratch& scratch) const;
@@ -119,6 +128,8 @@ private:
   std::vector<noise::Octave> Octaves;
   double Bound = 0.0;
   std::shared_ptr<const CloudNoiseVolumes> CloudNoise; // the Cloud model's baked noises
+  // A cumulonimbus on the shapes: its tower's footprint and its anvil (CloudTowerPlan.h).
+  std::shared_ptr<const CloudTowerPlan> TowerPlan;
 };
 
 } // namespace cloudvis

@@ -46,7 +46,7 @@ float HeightProfile(CloudType type, float h)
     case CloudType::Cumulus:
       return SmoothStep(0.0f, 0.04f, h) * (1.0f - SmoothStep(0.5f, 1.0f, h));
     case CloudType::Cumulonimbus:
-      return SmoothStep(0.0f, 0.03f, h) * (1.0f - SmoothStep(0.9f, 1.0f, h));
+      return SmoothStep(0.0f, 0.03f, h) * (1.0f - SmoothStep(0.96f, 1.0f, h));
   }
   return 0.0f;
 }
@@ -76,6 +76,7 @@ std::string ValidateCloudLayer(const CloudLayer& l)
   require(unit(l.Erosion), "erosion", l.Erosion, "in [0, 1]");
   require(unit(l.Curl), "curl", l.Curl, "in [0, 1]");
   require(unit(l.Anvil), "anvil", l.Anvil, "in [0, 1]");
+  require(unit(l.Breakup), "breakup", l.Breakup, "in [0, 1]");
   require(positive(l.MapScale), "map scale", l.MapScale, "a positive number");
   require(positive(l.ShapeScale), "shape scale", l.ShapeScale, "a positive number");
   require(positive(l.DetailScale), "detail scale", l.DetailScale, "a positive number");
@@ -86,6 +87,33 @@ std::string ValidateCloudLayer(const CloudLayer& l)
   require(unit(l.MapGain), "map gain", l.MapGain, "in [0, 1]");
   require(std::isfinite(l.Shear[0]), "shear x", l.Shear[0], "a finite number");
   require(std::isfinite(l.Shear[1]), "shear z", l.Shear[1], "a finite number");
+  require(std::isfinite(l.AnvilDirection[0]),
+    "anvil direction x",
+    l.AnvilDirection[0],
+    "a finite number");
+  require(std::isfinite(l.AnvilDirection[1]),
+    "anvil direction z",
+    l.AnvilDirection[1],
+    "a finite number");
+  if (error.str().empty() && l.AnvilDirection[0] == 0.0 && l.AnvilDirection[1] == 0.0)
+  {
+    error << "cloud anvil direction must not be [0, 0]: it is the direction the anvil streams in";
+  }
+  require(std::isfinite(l.AnvilReach) && l.AnvilReach >= 0.0,
+    "anvil reach",
+    l.AnvilReach,
+    "a finite number >= 0");
+  require(std::isfinite(l.Overshoot) && l.Overshoot >= 0.0,
+    "overshoot",
+    l.Overshoot,
+    "a finite number >= 0");
+  const bool tower = l.Type == CloudType::Cumulonimbus && l.Source == CoverageSource::Shapes;
+  if (error.str().empty() && !tower && (l.AnvilReach > 0.0 || l.Overshoot > 0.0))
+  {
+    error << "cloud " << (l.Overshoot > 0.0 ? "overshoot" : "anvil reach")
+          << " needs a tower to stand on: the cumulonimbus type with its coverage from the shapes "
+             "(coverage_map \"shapes\")";
+  }
   if (!error.str().empty() || l.Source != CoverageSource::Map)
   {
     return error.str();

@@ -100,7 +100,17 @@ struct CloudLayer
   // Curl-noise turbulence of the detail noise, 0 .. 1: the detail is read at points displaced by
   // 0.25 * Curl * (1 - h) detail tiles times the curl noise (whose components are of order 1 to 3).
   double Curl = 0.0;
-  double Anvil = 0.0;                          // cumulonimbus: how far the top spreads, 0 .. 1
+  // The cumulonimbus's anvil (CloudTowerPlan.h): its strength, 0 .. 1 (0: no anvil); the
+  // direction [x, z] of the upper wind it streams along (any length but 0); how far it reaches
+  // downwind from the tower (world units, >= 0; times Anvil); and the height of the overshooting
+  // dome above Top on the tower's axis (world units, >= 0; 0: none).
+  double Anvil = 0.0;
+  // How far a 3-D noise moves a weather map's value above the base, 0 .. 1 (a noise or map
+  // coverage only): the clouds' sides break up instead of rising as the map's outlines.
+  double Breakup = 0.0;
+  std::array<double, 2> AnvilDirection{ { 1.0, 0.0 } };
+  double AnvilReach = 0.0;
+  double Overshoot = 0.0;
   std::array<double, 2> Shear{ { 0.0, 0.0 } }; // x and z displacement per unit of height above base
 };
 

@@ -360,9 +360,29 @@ void vtkCloudDensitySource::SetCloudCurl(double curl)
   this->SetFieldValue(this->Field.Layer.Curl, curl);
 }
 
+void vtkCloudDensitySource::SetCloudBreakup(double breakup)
+{
+  this->SetFieldValue(this->Field.Layer.Breakup, breakup);
+}
+
 void vtkCloudDensitySource::SetCloudAnvil(double anvil)
 {
   this->SetFieldValue(this->Field.Layer.Anvil, anvil);
+}
+
+void vtkCloudDensitySource::SetCloudAnvilDirection(double x, double z)
+{
+  this->SetFieldValue(this->Field.Layer.AnvilDirection, std::array<double, 2>{ { x, z } });
+}
+
+void vtkCloudDensitySource::SetCloudAnvilReach(double reach)
+{
+  this->SetFieldValue(this->Field.Layer.AnvilReach, reach);
+}
+
+void vtkCloudDensitySource::SetCloudOvershoot(double overshoot)
+{
+  this->SetFieldValue(this->Field.Layer.Overshoot, overshoot);
 }
 
 void vtkCloudDensitySource::SetCloudShear(double x, double z)
@@ -413,6 +433,10 @@ std::string vtkCloudDensitySource::Validate() const
   if (error.empty())
   {
     error = cloudvis::ValidateDensityRange(this->Field, this->Bounds);
+  }
+  if (error.empty())
+  {
+    error = cloudvis::ValidateCloudBounds(this->Field, this->Bounds);
   }
   if (error.empty() && (this->NumberOfTimeSteps < 0 || !(this->TimeRange[0] <= this->TimeRange[1])))
   {

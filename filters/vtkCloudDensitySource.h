@@ -308,13 +308,21 @@ public:
   /**
    * The CloudModel's noises: the world lengths over which the shape and the detail noise repeat
    * (defaults 2 and 0.5), the erosion of the edges by the detail, in [0, 1] (default 0.4), the
-   * curl-noise turbulence under the cloud, in [0, 1] (default 0), the cumulonimbus anvil's spread,
-   * in [0, 1] (default 0), and the shear: x and z displacement per unit of height (default 0).
+   * curl-noise turbulence under the cloud, in [0, 1] (default 0), the break-up of a weather
+   * map's columns above the base, in [0, 1] (default 0), the cumulonimbus anvil's
+   * strength, in [0, 1] (default 0), the direction [x, z] of the upper wind it streams along
+   * (default [1, 0]), how far it reaches downwind in world units (default 0), the height of the
+   * overshooting dome above the top in world units (default 0; the last two need CoverageSource
+   * ShapesCoverage), and the shear: x and z displacement per unit of height (default 0).
    */
   void SetCloudNoiseScales(double shape, double detail);
   void SetCloudErosion(double erosion);
   void SetCloudCurl(double curl);
+  void SetCloudBreakup(double breakup);
   void SetCloudAnvil(double anvil);
+  void SetCloudAnvilDirection(double x, double z);
+  void SetCloudAnvilReach(double reach);
+  void SetCloudOvershoot(double overshoot);
   void SetCloudShear(double x, double z);
   ///@}
 

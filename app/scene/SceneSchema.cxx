@@ -499,10 +499,31 @@ const Keys<FieldSpec>& CloudKeys()
       NumberIn(UnitInterval),
       Nested(&F::Description, &D::Layer, &L::Curl),
       "curl-noise turbulence of the detail, strongest at the base" },
+    { "breakup",
+      NumberIn(UnitInterval),
+      Nested(&F::Description, &D::Layer, &L::Breakup),
+      "how far a 3-D noise moves the weather map above the base (`noise` or a map): the clouds' "
+      "sides break up instead of rising straight as the map's outlines; see "
+      "[Cloud layers](#cloud-layers)" },
     { "anvil",
       NumberIn(UnitInterval),
       Nested(&F::Description, &D::Layer, &L::Anvil),
-      "how far a cumulonimbus spreads at its top" },
+      "the cumulonimbus's anvil, 0 (none) to 1: it overhangs the tower by `anvil` x a tenth of "
+      "the layer's depth all round, and streams `anvil` x `anvil_reach` downwind; see "
+      "[Cumulonimbus](#cumulonimbus)" },
+    { "anvil_direction",
+      NumbersIn(2, AnyNumber, "[x, z]"),
+      Nested(&F::Description, &D::Layer, &L::AnvilDirection),
+      "the direction of the upper wind the anvil streams along (any length but 0)" },
+    { "anvil_reach",
+      NumberIn(NonNegative).In("world units"),
+      Nested(&F::Description, &D::Layer, &L::AnvilReach),
+      "how far the anvil streams downwind of the tower; needs the shapes' coverage" },
+    { "overshoot",
+      NumberIn(NonNegative).In("world units"),
+      Nested(&F::Description, &D::Layer, &L::Overshoot),
+      "the height of the overshooting dome above `top` on the tower's axis (0: none); `top` plus "
+      "it must stay inside the field; needs the shapes' coverage" },
     { "shear",
       NumbersIn(2, AnyNumber, "[x, z]"),
       Nested(&F::Description, &D::Layer, &L::Shear),

@@ -56,8 +56,21 @@ json EveryCloudKey()
     { "detail_scale", 0.25 },
     { "erosion", 0.3 },
     { "curl", 0.6 },
+    { "breakup", 0.35 },
     { "anvil", 0.7 },
+    { "anvil_direction", { -0.5, 2.0 } },
     { "shear", { 0.125, -0.25 } } };
+}
+
+// The keys of a cumulonimbus on the shapes (the tower's plan) away from their defaults.
+json TowerKeys()
+{
+  return { { "type", "cumulonimbus" },
+    { "base", -1.5 },
+    { "top", 1.0 },
+    { "anvil", 0.5 },
+    { "anvil_reach", 1.5 },
+    { "overshoot", 0.25 } };
 }
 
 const float* DensityOf(vtkImageData* image)
@@ -95,6 +108,7 @@ TEST(CloudScene, EveryCloudKeyReachesTheLayerAndRoundTrips)
     { "detail_scale", l.DetailScale },
     { "erosion", l.Erosion },
     { "curl", l.Curl },
+    { "breakup", l.Breakup },
     { "anvil", l.Anvil } };
   for (const auto& [key, value] : numbers)
   {
@@ -102,15 +116,39 @@ TEST(CloudScene, EveryCloudKeyReachesTheLayerAndRoundTrips)
   }
   EXPECT_EQ(l.Shear[0], keys["shear"][0].get<double>());
   EXPECT_EQ(l.Shear[1], keys["shear"][1].get<double>());
+  EXPECT_EQ(l.AnvilDirection[0], keys["anvil_direction"][0].get<double>());
+  EXPECT_EQ(l.AnvilDirection[1], keys["anvil_direction"][1].get<double>());
 
   // The resolved scene writes the same keys back, and reads back to the same scene.
   const double bounds[6] = { -2, 2, -2, 2, -2, 2 };
   const json written = cloudvis::SceneToJson(scene, cloudvis::ResolveCamera(scene, bounds));
-  EXPECT_EQ(written["field"]["cloud"], EveryCloudKey()) << written["field"].dump();
+  // Every key, the tower's two at their defaults (they need the shapes' coverage; see
+  // TowerKeysReachTheLayerAndRoundTrip).
+  json expected = EveryCloudKey();
+  expected["anvil_reach"] = 0.0;
+  expected["overshoot"] = 0.0;
+  EXPECT_EQ(written["field"]["cloud"], expected) << written["field"].dump();
   EXPECT_EQ(written["field"]["noise"], "perlin_worley");
   EXPECT_EQ(written["field"]["noise_period"], 4);
   const cloudvis::Scene again = cloudvis::SceneFromDocument(written, "d", "");
   EXPECT_EQ(cloudvis::SceneToJson(again, cloudvis::ResolveCamera(again, bounds)), written);
+}
+
+// The anvil's reach and the overshooting dome need the shapes' tower; they read and write back
+// like the other keys.
+TEST(CloudScene, TowerKeysReachTheLayerAndRoundTrip)
+{
+  const json document = { { "field", { { "density_model", "cloud" }, { "cloud", TowerKeys() } } } };
+  const cloudvis::Scene scene = cloudvis::SceneFromDocument(document, "d", "");
+  const cloudvis::CloudLayer& l = scene.Field.Description.Layer;
+  EXPECT_EQ(l.AnvilReach, 1.5);
+  EXPECT_EQ(l.Overshoot, 0.25);
+  const double bounds[6] = { -2, 2, -2, 2, -2, 2 };
+  const json written = cloudvis::SceneToJson(scene, cloudvis::ResolveCamera(scene, bounds));
+  for (const char* key : { "anvil_reach", "overshoot" })
+  {
+    EXPECT_EQ(written["field"]["cloud"][key], TowerKeys()[key]) << written["field"].dump();
+  }
 }
 
 TEST(CloudScene, EveryNameReadsBackToItsValue)

@@ -19,7 +19,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <iterator>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -83,6 +85,20 @@ FieldDescription Cumulus()
   field.Layer = Layer(-0.8, 1.6, 1.0, 1.5, 1.0);
   field.Layer.Type = CloudType::Cumulus;
   field.Layer.Erosion = 0.7;
+  return field;
+}
+
+// cumulus.json's spheres as a cumulonimbus's tower: an anvil streaming along +z from the
+// footprint, and an overshooting dome above the top.
+FieldDescription Tower()
+{
+  FieldDescription field = Cumulus();
+  field.Layer.Type = CloudType::Cumulonimbus;
+  field.Layer.Anvil = 1.0;
+  field.Layer.AnvilDirection = { { 0.3, 1.0 } };
+  field.Layer.AnvilReach = 1.5;
+  field.Layer.Overshoot = 0.3;
+  field.Layer.Shear = { { 0.1, 0.0 } };
   return field;
 }
 
@@ -162,6 +178,10 @@ TEST(CloudRows, RowsOfTheNewNoisesAreBitIdenticalToPointEvaluation)
   }
   fields.push_back(Cumulus());
   fields.push_back(Cloudscape());
+  fields.push_back(Tower());
+  FieldDescription broken = Cloudscape();
+  broken.Layer.Breakup = 0.3;
+  fields.push_back(broken);
   FieldDescription anvil = Cloudscape();
   anvil.Layer.Type = CloudType::Cumulonimbus;
   anvil.Layer.Anvil = 0.8;
@@ -185,7 +205,7 @@ TEST(CloudRows, RowsOfTheNewNoisesAreBitIdenticalToPointEvaluation)
     std::vector<float> row(70);
     const double originX = -2.0, dx = 4.0 / 79.0;
     int cloudy = 0;
-    for (double y : { -0.45, 0.1, 0.35, 0.9 })
+    for (double y : { -0.45, 0.1, 0.35, 0.9, 1.5, 1.7 })
     {
       for (double z : { -0.7, 0.05, 0.6 })
       {
@@ -397,6 +417,36 @@ TEST(CloudLayer, AnInvalidLayerIsRefusedWithWords)
   EXPECT_NE(problemOf([](CloudLayer& l) { l.Erosion = 2.0; })
               .find("cloud erosion must be in [0, 1], got 2"),
     std::string::npos);
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.Breakup = -0.5; })
+              .find("cloud breakup must be in [0, 1], got -0.5"),
+    std::string::npos);
+  EXPECT_NE(problemOf(
+              [](CloudLayer& l) {
+                l.AnvilDirection = { { 0.0, 0.0 } };
+              })
+              .find("cloud anvil direction must not be [0, 0]"),
+    std::string::npos);
+  EXPECT_NE(problemOf(
+              [](CloudLayer& l) {
+                l.AnvilDirection = { { NAN, 1.0 } };
+              })
+              .find("cloud anvil direction x must be a finite number"),
+    std::string::npos);
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.AnvilReach = INFINITY; })
+              .find("cloud anvil reach must be a finite number >= 0, got inf"),
+    std::string::npos);
+  EXPECT_NE(problemOf([](CloudLayer& l) { l.Overshoot = -1.0; })
+              .find("cloud overshoot must be a finite number >= 0, got -1"),
+    std::string::npos);
+  // A dome and a streaming anvil stand on a tower: not over a weather map.
+  EXPECT_NE(problemOf(
+              [](CloudLayer& l)
+              {
+                l.Type = CloudType::Cumulonimbus;
+                l.AnvilReach = 1.0;
+              })
+              .find("cloud anvil reach needs a tower to stand on"),
+    std::string::npos);
   EXPECT_NE(problemOf([](CloudLayer& l) { l.Anvil = 1.5; }).find("cloud anvil must be in [0, 1]"),
     std::string::npos);
   EXPECT_NE(problemOf([](CloudLayer& l) { l.DetailScale = 0.0; })
@@ -488,16 +538,20 @@ TEST(CloudLayer, CoordinatesBeyondTheNoiseLatticesAreRefusedAndOnlyThem)
 // whole field, bit for bit: the baked noises and the weather map depend on nothing but the seed.
 TEST(CloudLayer, PiecesEqualTheWhole)
 {
-  for (CoverageSource from : { CoverageSource::Noise, CoverageSource::Shapes })
+  FieldDescription broken = Cloudscape();
+  broken.Layer.Breakup = 0.15;
+  broken.Layer.Coverage = 0.8;
+  const FieldDescription fields[] = { Cloudscape(), Cumulus(), Tower(), broken };
+  for (size_t from = 0; from < std::size(fields); ++from)
   {
     vtkNew<vtkCloudDensitySource> source;
-    FieldDescription field = from == CoverageSource::Noise ? Cloudscape() : Cumulus();
+    const FieldDescription& field = fields[from];
     source->SetField(field);
     source->SetTime(0.7);
     source->SetBounds(-2.0, 2.0, -1.0, 2.0, -2.0, 2.0);
     source->SetDimensions(test::PieceTestDimensions);
     const std::vector<float> whole = Densities(source);
-    ASSERT_GT(CloudyVoxels(whole), 1000u);
-    EXPECT_TRUE(SameBits(whole, test::FieldFromOctants(source))) << "coverage source " << int(from);
+    ASSERT_GT(CloudyVoxels(whole), 1000u) << "field " << from;
+    EXPECT_TRUE(SameBits(whole, test::FieldFromOctants(source))) << "field " << from;
   }
 }

@@ -1,0 +1,280 @@
+// The shapes of the shipped cloud types, measured on the fields `cloudvis generate` writes from
+// the shipped scenes, as a meteorologist would judge them (docs/user-guide.md, "Cloud types"). A
+// voxel is cloudy above 1% of the field's maximum; up is y, the scenes' vertical.
+//
+// - A cumulonimbus's anvil streams downwind: on the projected mask of the top fifth of the cloud,
+//   the reach from the tower's axis (the centroid of the cloudy level at a quarter of the height)
+//   in its longest direction is at least 3x the reach in the opposite direction.
+// - Its tower holds its width: sqrt(cloudy area) at 3/8 and 5/8 of the height is at least 85% of
+//   that at 1/8 (no waist).
+// - A cumulus cloudscape's clouds have flat bases: for at least 90% of its clouds (the projected
+//   mask's 4-connected parts of at least 10 columns), the lowest tenth of the cloud's columns
+//   start within one voxel of the lowest cloudy level.
+// - And its clouds are not the weather map drawn straight up: the correlation between the cloud
+//   masks one voxel above the base and 500 m above it is below 0.8.
+#include "SupportRun.h"
+
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace
+{
+using cloudvis::support::RunCloudvis;
+using cloudvis::support::TemporaryDirectory;
+
+// A generated field's cloud mask, [x + nx * (y + ny * z)].
+struct CloudMask
+{
+  int Nx = 0, Ny = 0, Nz = 0;
+  double Spacing[3] = { 1.0, 1.0, 1.0 };
+  std::vector<std::uint8_t> Cloudy;
+
+  bool At(int i, int j, int k) const
+  {
+    return this->Cloudy[(static_cast<size_t>(k) * this->Ny + j) * this->Nx + i] != 0;
+  }
+  // The levels (y indices) holding cloud: the lowest and the highest.
+  void Levels(int& lowest, int& highest) const
+  {
+    lowest = this->Ny;
+    highest = -1;
+    for (int k = 0; k < this->Nz; ++k)
+      for (int j = 0; j < this->Ny; ++j)
+        for (int i = 0; i < this->Nx; ++i)
+          if (this->At(i, j, k))
+          {
+            lowest = std::min(lowest, j);
+            highest = std::max(highest, j);
+          }
+  }
+};
+
+// Generates a shipped scene's field with the cloudvis binary and reads its mask back.
+CloudMask GenerateMask(const std::string& scene, const TemporaryDirectory& folder)
+{
+  const std::string file = folder.File("field.vti");
+  const auto run =
+    RunCloudvis({ "generate", std::string(CLOUDVIS_SCENES) + "/" + scene, "-o", file });
+  EXPECT_EQ(run.Status, 0) << run.Err;
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  auto* density = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("density"));
+  CloudMask mask;
+  if (!density)
+  {
+    ADD_FAILURE() << scene << ": no density array";
+    return mask;
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  mask.Nx = dims[0];
+  mask.Ny = dims[1];
+  mask.Nz = dims[2];
+  image->GetSpacing(mask.Spacing);
+  const float* v = density->GetPointer(0);
+  const vtkIdType n = density->GetNumberOfValues();
+  const float threshold = 0.01f * *std::max_element(v, v + n);
+  mask.Cloudy.resize(static_cast<size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    mask.Cloudy[static_cast<size_t>(i)] = v[i] > threshold;
+  }
+  return mask;
+}
+
+// The 4-connected parts of a projected nx x nz mask: a label per column (0: clear), and the count.
+int LabelClouds(const std::vector<std::uint8_t>& projected, int nx, int nz, std::vector<int>& label)
+{
+  label.assign(projected.size(), 0);
+  int clouds = 0;
+  std::vector<int> stack;
+  for (int start = 0; start < nx * nz; ++start)
+  {
+    if (!projected[start] || label[start])
+    {
+      continue;
+    }
+    label[start] = ++clouds;
+    stack.assign(1, start);
+    while (!stack.empty())
+    {
+      const int c = stack.back();
+      stack.pop_back();
+      const int i = c % nx, k = c / nx;
+      const int next[4][2] = { { i - 1, k }, { i + 1, k }, { i, k - 1 }, { i, k + 1 } };
+      for (const auto& n : next)
+      {
+        const int at = n[1] * nx + n[0];
+        if (n[0] >= 0 && n[0] < nx && n[1] >= 0 && n[1] < nz && projected[at] && !label[at])
+        {
+          label[at] = clouds;
+          stack.push_back(at);
+        }
+      }
+    }
+  }
+  return clouds;
+}
+
+// The Pearson correlation of two 0/1 masks.
+double Correlation(const std::vector<double>& a, const std::vector<double>& b)
+{
+  const double n = static_cast<double>(a.size());
+  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    sa += a[i];
+    sb += b[i];
+    saa += a[i] * a[i];
+    sbb += b[i] * b[i];
+    sab += a[i] * b[i];
+  }
+  const double cov = sab / n - sa / n * sb / n;
+  return cov / std::sqrt((saa / n - sa * sa / n / n) * (sbb / n - sb * sb / n / n));
+}
+}
+
+TEST(CloudShapes, CumulonimbusAnvilStreamsDownwindAboveATowerWithoutAWaist)
+{
+  TemporaryDirectory folder;
+  const CloudMask m = GenerateMask("cumulonimbus.json", folder);
+  ASSERT_FALSE(m.Cloudy.empty());
+  int lowest, highest;
+  m.Levels(lowest, highest);
+  ASSERT_LT(lowest, highest);
+  const double height = highest - lowest;
+  const auto level = [&](double fraction)
+  { return static_cast<int>(std::lround(lowest + fraction * height)); };
+  const auto width = [&](double fraction)
+  {
+    size_t area = 0;
+    for (int k = 0; k < m.Nz; ++k)
+      for (int i = 0; i < m.Nx; ++i)
+        area += m.At(i, level(fraction), k);
+    return std::sqrt(static_cast<double>(area));
+  };
+  const double w1 = width(1.0 / 8.0), w3 = width(3.0 / 8.0), w5 = width(5.0 / 8.0);
+  std::printf(
+    "tower width at 3/8 and 5/8 of the height: %.3f and %.3f of that at 1/8\n", w3 / w1, w5 / w1);
+  EXPECT_GE(w3 / w1, 0.85);
+  EXPECT_GE(w5 / w1, 0.85);
+
+  // The axis: the centroid of the level at a quarter of the height.
+  double cx = 0, cz = 0, count = 0;
+  for (int k = 0; k < m.Nz; ++k)
+    for (int i = 0; i < m.Nx; ++i)
+      if (m.At(i, level(0.25), k))
+      {
+        cx += i;
+        cz += k;
+        count += 1;
+      }
+  ASSERT_GT(count, 0);
+  cx /= count;
+  cz /= count;
+  // The top fifth, projected: the farthest reach from the axis per direction.
+  std::vector<std::pair<double, double>> top;
+  const int from = static_cast<int>(std::lround(highest - 0.2 * height));
+  for (int k = 0; k < m.Nz; ++k)
+    for (int i = 0; i < m.Nx; ++i)
+      for (int j = from; j <= highest; ++j)
+        if (m.At(i, j, k))
+        {
+          top.emplace_back((i - cx) * m.Spacing[0], (k - cz) * m.Spacing[2]);
+          break;
+        }
+  ASSERT_FALSE(top.empty());
+  const auto reach = [&](double angle)
+  {
+    double farthest = 0.0;
+    for (const auto& p : top)
+      farthest = std::max(farthest, p.first * std::cos(angle) + p.second * std::sin(angle));
+    return farthest;
+  };
+  double longest = 0.0, direction = 0.0;
+  for (int degree = 0; degree < 360; ++degree)
+  {
+    const double angle = degree * 3.14159265358979323846 / 180.0;
+    const double r = reach(angle);
+    if (r > longest)
+    {
+      longest = r;
+      direction = angle;
+    }
+  }
+  const double opposite = reach(direction + 3.14159265358979323846);
+  std::printf(
+    "anvil reach %.0f downwind, %.0f upwind: %.2fx\n", longest, opposite, longest / opposite);
+  EXPECT_GE(longest / opposite, 3.0);
+}
+
+TEST(CloudShapes, CumulusCloudscapeHasFlatBasesAndNoExtrudedColumns)
+{
+  TemporaryDirectory folder;
+  const CloudMask m = GenerateMask("cloudscape-above.json", folder);
+  ASSERT_FALSE(m.Cloudy.empty());
+  int lowest, highest;
+  m.Levels(lowest, highest);
+  // Each column's first cloudy level, and the projected mask's clouds.
+  std::vector<int> first(static_cast<size_t>(m.Nx) * m.Nz, -1);
+  std::vector<std::uint8_t> projected(first.size(), 0);
+  for (int k = 0; k < m.Nz; ++k)
+    for (int i = 0; i < m.Nx; ++i)
+      for (int j = 0; j < m.Ny; ++j)
+        if (m.At(i, j, k))
+        {
+          first[static_cast<size_t>(k) * m.Nx + i] = j;
+          projected[static_cast<size_t>(k) * m.Nx + i] = 1;
+          break;
+        }
+  std::vector<int> label;
+  const int clouds = LabelClouds(projected, m.Nx, m.Nz, label);
+  std::vector<std::vector<int>> starts(static_cast<size_t>(clouds) + 1);
+  for (size_t c = 0; c < label.size(); ++c)
+    if (label[c])
+      starts[static_cast<size_t>(label[c])].push_back(first[c]);
+  int counted = 0, flat = 0;
+  for (auto& s : starts)
+  {
+    if (s.size() < 10)
+    {
+      continue;
+    }
+    ++counted;
+    // The lowest tenth of the columns: the 10th percentile of their first levels.
+    std::nth_element(s.begin(), s.begin() + s.size() / 10, s.end());
+    flat += s[s.size() / 10] <= lowest + 1;
+  }
+  ASSERT_GE(counted, 20);
+  std::printf("%d of %d clouds start within one voxel of the base (%.1f%%)\n",
+    flat,
+    counted,
+    100.0 * flat / counted);
+  EXPECT_GE(static_cast<double>(flat) / counted, 0.9);
+
+  const int up = static_cast<int>(std::lround(500.0 / m.Spacing[1]));
+  ASSERT_LT(lowest + 1 + up, m.Ny);
+  std::vector<double> near, far;
+  for (int k = 0; k < m.Nz; ++k)
+    for (int i = 0; i < m.Nx; ++i)
+    {
+      near.push_back(m.At(i, lowest + 1, k));
+      far.push_back(m.At(i, lowest + 1 + up, k));
+    }
+  const double r = Correlation(near, far);
+  std::printf("cloud mask correlation between one voxel and 500 m above the base: %.3f\n", r);
+  EXPECT_LT(r, 0.8);
+}
