@@ -402,10 +402,13 @@ constexpr float AnvilThickness = 0.3f;
 constexpr float AnvilFlareRise = 0.08f;
 constexpr float AnvilFlareLength = 0.25f;
 constexpr double DomeWidth = 0.8;
+constexpr float TowerInset = 0.5f;
 // The break-up of a weather map's columns reaches its full strength this far up the layer, and
 // its noise is the shape noise at this fraction of its scale.
 constexpr float BreakupHeight = 0.2f;
 constexpr double BreakupScale = 0.25;
+// Altocumulus cloudlets per shape_scale.
+constexpr double AltocumulusCells = 4.0;
 }
 
 float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
@@ -419,21 +422,25 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
     // first AnvilFlareLength out from the tower.
     const float width = static_cast<float>(this->Field.FalloffWidth);
     const CloudTowerPlan& plan = *this->TowerPlan;
-    // The tower's sides bulge in and out with height: its footprint moves by up to a falloff
-    // width, by the shape noise at twice its scale.
+    // The tower's sides bulge in and out with height: its footprint moves by up to 1.25 falloff
+    // widths, by the shape noise at twice its scale.
     const glm::dvec3 q = (leaned + this->NoiseOffset) / (2.0 * l.ShapeScale);
-    const float bulge = width * (2.0f * this->CloudNoise->Shape.Sample(q) - 1.0f);
-    float c = Saturate(-(plan.TowerDistance(leaned.x, leaned.z) - bulge) / width);
+    const float bulge = 1.25f * width * (2.0f * this->CloudNoise->Shape.Sample(q) - 1.0f);
+    // The shapes' own masses bulge out of a footprint set in by TowerInset falloff widths.
+    const float tower = std::min(plan.TowerDistance(leaned.x, leaned.z) + TowerInset * width,
+      this->SignedDistance(glm::vec3(leaned)));
+    float c = Saturate(-(tower - bulge) / width);
     if (l.Anvil > 0.0)
     {
+      const float along = plan.AnvilFraction(leaned.x, leaned.z);
       const float outward = plan.TowerDistance(leaned.x, leaned.z) /
         (AnvilFlareLength * static_cast<float>(l.Top - l.Base));
-      const float bottom = 1.0f -
-        AnvilThickness * (1.0f - 0.5f * plan.AnvilFraction(leaned.x, leaned.z)) +
+      const float bottom = 1.0f - AnvilThickness * (1.0f - 0.5f * along) +
         AnvilFlareRise * glm::smoothstep(0.0f, 1.0f, outward);
+      // (Its far end fades out rather than breaking into flecks.)
       c = std::max(c,
         Saturate(-plan.AnvilDistance(leaned.x, leaned.z) / width) *
-          glm::smoothstep(bottom, bottom + 0.1f, h));
+          glm::smoothstep(bottom, bottom + 0.1f, h) * (1.0f - glm::smoothstep(0.9f, 1.0f, along)));
     }
     return static_cast<float>(l.Coverage) * c;
   }
@@ -508,7 +515,17 @@ float DensityEvaluator::CloudDensity(glm::dvec3 p) const
   const float profile = HeightProfile(l.Type, h);
   // Shear leans the cloud: what is at height `height` above the base comes from straight below.
   const glm::dvec3 leaned = p - glm::dvec3(l.Shear[0] * height, 0.0, l.Shear[1] * height);
-  const float coverage = profile > 0.0f ? this->CloudCoverage(leaned, h) : 0.0f;
+  float coverage = profile > 0.0f ? this->CloudCoverage(leaned, h) : 0.0f;
+  if (l.Type == CloudType::Altocumulus && coverage > 0.0f)
+  {
+    // Altocumulus: cloudlets on a cellular lattice of AltocumulusCells per shape tile, dense at
+    // their feature points and clear along the cells' borders (Worley's F1, read on a slice
+    // that turns slowly with height).
+    const glm::dvec3 c =
+      (leaned + this->NoiseOffset) * (AltocumulusCells / l.ShapeScale) * glm::dvec3(1.0, 0.5, 1.0);
+    const float f1 = noise::WorleyF1(c.x, c.y, c.z, this->Field.Noise.Seed + 0x2545F491u);
+    coverage *= Saturate(noise::Remap(f1, 0.75f, 0.3f, 0.0f, 1.0f));
+  }
   const bool dome = this->TowerPlan && l.Overshoot > 0.0 && p.y > l.Top - l.Overshoot;
   const float domeCoverage = dome ? this->DomeCoverage(leaned) : 0.0f;
   if (coverage <= 0.0f && domeCoverage <= 0.0f)

@@ -36,7 +36,8 @@ float HeightProfile(CloudType type, float h)
     return 0.0f;
   }
   // (base ramp end, top ramp start) per type: a thin sheet, rolls, a flat base under a rounded
-  // top, and a tower that holds its width up to the anvil.
+  // top, a tower that holds its width up to the anvil, rounded cloudlets, and a tall tower that
+  // narrows over its top third.
   switch (type)
   {
     case CloudType::Stratus:
@@ -47,6 +48,10 @@ float HeightProfile(CloudType type, float h)
       return SmoothStep(0.0f, 0.04f, h) * (1.0f - SmoothStep(0.5f, 1.0f, h));
     case CloudType::Cumulonimbus:
       return SmoothStep(0.0f, 0.03f, h) * (1.0f - SmoothStep(0.96f, 1.0f, h));
+    case CloudType::Altocumulus:
+      return SmoothStep(0.0f, 0.25f, h) * (1.0f - SmoothStep(0.4f, 1.0f, h));
+    case CloudType::Congestus:
+      return SmoothStep(0.0f, 0.03f, h) * (1.0f - SmoothStep(0.7f, 1.0f, h));
   }
   return 0.0f;
 }

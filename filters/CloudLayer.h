@@ -48,6 +48,8 @@ enum class CloudType
   Stratocumulus,
   Cumulus,
   Cumulonimbus,
+  Altocumulus, // a thin mid-level sheet of cloudlets on a cellular lattice
+  Congestus,   // a towering cumulus: a flat base under a tall, narrowing tower
 };
 
 enum class CoverageSource

@@ -39,8 +39,7 @@ static_assert(static_cast<int>(cloudvis::noise::NoiseType::PerlinWorley) ==
   "vtkCloudDensitySource::NoiseTypes follows cloudvis::noise::NoiseType");
 static_assert(static_cast<int>(cloudvis::DensityModel::Cloud) == vtkCloudDensitySource::CloudModel,
   "vtkCloudDensitySource::DensityModels follows cloudvis::DensityModel");
-static_assert(
-  static_cast<int>(cloudvis::CloudType::Cumulonimbus) == vtkCloudDensitySource::Cumulonimbus,
+static_assert(static_cast<int>(cloudvis::CloudType::Congestus) == vtkCloudDensitySource::Congestus,
   "vtkCloudDensitySource::CloudTypes follows cloudvis::CloudType");
 static_assert(static_cast<int>(cloudvis::CoverageSource::Map) == vtkCloudDensitySource::MapCoverage,
   "vtkCloudDensitySource::CoverageSources follows cloudvis::CoverageSource");

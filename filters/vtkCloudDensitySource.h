@@ -252,6 +252,8 @@ public:
     Stratocumulus = 1,
     Cumulus = 2,
     Cumulonimbus = 3,
+    Altocumulus = 4,
+    Congestus = 5,
   };
   enum CoverageSources
   {

@@ -3,20 +3,22 @@
 # program really draws. Every command here is one the guide prints; rerun this script after a
 # change to the renderer, look at the images, and commit them.
 #
-#   docs/scripts/make-guide-images.sh [-s WxH] [-a FRAMES] [-d VOXELS] [CLOUDVIS [OUTPUT_DIR]]
+#   docs/scripts/make-guide-images.sh [-s WxH] [-g WxH] [-a FRAMES] [-d VOXELS] [CLOUDVIS [OUTPUT_DIR]]
 #
 # CLOUDVIS defaults to ./build/bin/cloudvis, OUTPUT_DIR to docs/images (both relative to the
 # current directory). -s sets the image size (default 480x360; compare panels are half as wide
-# and high), -a the frames accumulated (default 8), -d overrides field.dimensions (default: the
-# scenes' own, 128). The tests run it at a tiny size into a scratch folder. Without $DISPLAY it
-# runs itself again under xvfb-run.
+# and high), -g the size of the cloud-type gallery (default 1280x720; each of its pictures prints
+# the seconds it took), -a the frames accumulated (default 8), -d overrides field.dimensions
+# (default: the scenes' own). The tests run it at a tiny size into a scratch folder. Without
+# $DISPLAY it runs itself again under xvfb-run.
 set -euo pipefail
 . "$(dirname "$0")/ImageScripts.sh"
 
 size=480x360
 accumulate=8
 dimensions=""
-read_options "s=size a=accumulate d=dimensions" 6,13 "$@"
+gallery=1280x720
+read_options "s=size g=gallery a=accumulate d=dimensions" 6,14 "$@"
 cloudvis=${operands[0]:-./build/bin/cloudvis}
 out=${operands[1]:-docs/images}
 on_a_display "$@"
@@ -50,10 +52,17 @@ render clouds-fbm-sphere fbm-sphere.json --lighting march \
   --set 'lights=[{"type": "directional", "position": [0.5, 0.8, 0.3], "intensity": 1.2}]' \
   --set 'camera.orbit={"azimuth": 20, "elevation": 2, "distance": 6.5}' \
   --set render.display=filmic --exposure auto
-render clouds-stratocumulus stratocumulus.json
-render clouds-cumulonimbus cumulonimbus.json
+
+# The gallery of cloud types (docs/user-guide.md), each from its scene's own camera, a viewpoint
+# a photographer would choose, at the gallery's size.
+for scene in cumulus congestus cumulonimbus altocumulus stratocumulus cloudscape-ground; do
+  started=$SECONDS
+  "$cloudvis" render "$scenes/$scene.json" -o "$out/gallery-$scene.png" --size "$gallery" \
+    "${common[@]}"
+  echo "gallery-$scene.png: $((SECONDS - started)) s"
+done
+# And the cloudscape straight from above, beside the statistics it is measured by.
 render clouds-cloudscape-above cloudscape-above.json
-render clouds-cloudscape-ground cloudscape-ground.json
 
 # Droplet optics (docs/lighting.md): the cloudbow and the glory, path traced.
 # Square, as the ring is round; 64 paths per pixel for every frame the other pictures accumulate.
@@ -89,10 +98,14 @@ render background-sky fbm-sphere.json \
 render camera-orbit fbm-sphere.json \
   --set 'camera.orbit={"azimuth": 60, "elevation": 35, "distance": 6}'
 
-# Pictures are committed: keep them small.
+# Pictures are committed: keep them small (the gallery's, at 1280 x 720, under 600 KB).
 for image in "$out"/*.png; do
   bytes=$(stat -c %s "$image")
-  if ((bytes > 150 * 1024)); then
-    echo "make-guide-images.sh: warning: $image is $((bytes / 1024)) KB (keep guide images under 150 KB)" >&2
+  limit=150
+  if [[ "$(basename "$image")" == gallery-* ]]; then
+    limit=600
+  fi
+  if ((bytes > limit * 1024)); then
+    echo "make-guide-images.sh: warning: $image is $((bytes / 1024)) KB (keep it under $limit KB)" >&2
   fi
 done

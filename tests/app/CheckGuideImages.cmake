@@ -1,14 +1,14 @@
 # Runs a picture script of docs/scripts with the built cloudvis at a small size into a scratch
 # folder and checks that every picture its document refers to (images/NAME.png) was made: a
 # document and its script cannot drift apart unnoticed. By default the script is
-# make-guide-images.sh (-s 64x48 -a 1 -d 24) and the document docs/user-guide.md.
+# make-guide-images.sh (-s 64x48 -g 64x36 -a 1 -d 24) and the document docs/user-guide.md.
 #
 # Called as: cmake -DCLOUDVIS=<binary> -DSOURCE_DIR=<repository> -DWORK_DIR=<dir>
 #   [-DSCRIPT=make-viewer-images.sh -DSCRIPT_ARGS=-s|320x280 -DDOC=viewer.md -DMINIMUM=4]
 #   -P CheckGuideImages.cmake
 if(NOT DEFINED SCRIPT)
   set(SCRIPT make-guide-images.sh)
-  set(SCRIPT_ARGS -s 64x48 -a 1 -d 24)
+  set(SCRIPT_ARGS -s 64x48 -g 64x36 -a 1 -d 24)
   set(DOC user-guide.md)
   set(MINIMUM 5)
 endif()

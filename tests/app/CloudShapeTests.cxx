@@ -12,6 +12,11 @@
 //   start within one voxel of the lowest cloudy level.
 // - And its clouds are not the weather map drawn straight up: the correlation between the cloud
 //   masks one voxel above the base and 500 m above it is below 0.8.
+// - An altocumulus is a thin sheet of cloudlets: at most 500 m deep, and its projected mask at
+//   least 100 clouds of 10 columns or more whose median size sqrt(area) is of the lattice's
+//   300 m (between 100 and 500 m), where a weather map alone makes a few large clouds.
+// - A congestus is a tower: at least 1.5 times as tall as it is wide at a quarter of its height,
+//   and narrowing into turrets (at 7/8 of its height at most 70% of that width).
 #include "SupportRun.h"
 
 #include <vtkFloatArray.h>
@@ -145,6 +150,27 @@ double Correlation(const std::vector<double>& a, const std::vector<double>& b)
   const double cov = sab / n - sa / n * sb / n;
   return cov / std::sqrt((saa / n - sa * sa / n / n) * (sbb / n - sb * sb / n / n));
 }
+
+// sqrt(cloudy area) of a level, in world units.
+double LevelWidth(const CloudMask& m, int level)
+{
+  size_t area = 0;
+  for (int k = 0; k < m.Nz; ++k)
+    for (int i = 0; i < m.Nx; ++i)
+      area += m.At(i, level, k);
+  return std::sqrt(static_cast<double>(area) * m.Spacing[0] * m.Spacing[2]);
+}
+
+// The projected mask (along y) of a field's cloud.
+std::vector<std::uint8_t> Projected(const CloudMask& m)
+{
+  std::vector<std::uint8_t> projected(static_cast<size_t>(m.Nx) * m.Nz, 0);
+  for (int k = 0; k < m.Nz; ++k)
+    for (int j = 0; j < m.Ny; ++j)
+      for (int i = 0; i < m.Nx; ++i)
+        projected[static_cast<size_t>(k) * m.Nx + i] |= m.At(i, j, k) ? 1 : 0;
+  return projected;
+}
 }
 
 TEST(CloudShapes, CumulonimbusAnvilStreamsDownwindAboveATowerWithoutAWaist)
@@ -277,4 +303,55 @@ TEST(CloudShapes, CumulusCloudscapeHasFlatBasesAndNoExtrudedColumns)
   const double r = Correlation(near, far);
   std::printf("cloud mask correlation between one voxel and 500 m above the base: %.3f\n", r);
   EXPECT_LT(r, 0.8);
+}
+
+TEST(CloudShapes, AltocumulusIsAThinSheetOfCloudlets)
+{
+  TemporaryDirectory folder;
+  const CloudMask m = GenerateMask("altocumulus.json", folder);
+  ASSERT_FALSE(m.Cloudy.empty());
+  int lowest, highest;
+  m.Levels(lowest, highest);
+  const double depth = (highest - lowest + 1) * m.Spacing[1];
+  std::vector<int> label;
+  const int clouds = LabelClouds(Projected(m), m.Nx, m.Nz, label);
+  std::vector<size_t> area(static_cast<size_t>(clouds) + 1, 0);
+  for (int l : label)
+    area[static_cast<size_t>(l)] += l > 0;
+  std::vector<double> sizes;
+  for (size_t c = 1; c < area.size(); ++c)
+    if (area[c] >= 10)
+      sizes.push_back(std::sqrt(static_cast<double>(area[c]) * m.Spacing[0] * m.Spacing[2]));
+  ASSERT_FALSE(sizes.empty());
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  const double median = sizes[sizes.size() / 2];
+  std::printf("altocumulus: %.0f m deep, %zu cloudlets of 10 columns or more, median size %.0f m\n",
+    depth,
+    sizes.size(),
+    median);
+  EXPECT_LE(depth, 500.0);
+  EXPECT_GE(sizes.size(), 100u);
+  EXPECT_GE(median, 100.0);
+  EXPECT_LE(median, 500.0);
+}
+
+TEST(CloudShapes, CongestusIsATowerThatNarrowsIntoTurrets)
+{
+  TemporaryDirectory folder;
+  const CloudMask m = GenerateMask("congestus.json", folder);
+  ASSERT_FALSE(m.Cloudy.empty());
+  int lowest, highest;
+  m.Levels(lowest, highest);
+  const double height = (highest - lowest) * m.Spacing[1];
+  const auto level = [&](double f)
+  { return static_cast<int>(std::lround(lowest + f * (highest - lowest))); };
+  const double quarter = LevelWidth(m, level(0.25)), top = LevelWidth(m, level(0.875));
+  std::printf(
+    "congestus: %.0f m tall, %.0f m wide at 1/4 of its height (%.2fx), %.2f of that at 7/8\n",
+    height,
+    quarter,
+    height / quarter,
+    top / quarter);
+  EXPECT_GE(height / quarter, 1.5);
+  EXPECT_LE(top / quarter, 0.7);
 }

@@ -228,8 +228,12 @@ TEST(CloudRows, RowsOfTheNewNoisesAreBitIdenticalToPointEvaluation)
 
 TEST(CloudLayer, HeightProfilesVanishOutsideTheLayerAndPeakAtOne)
 {
-  for (CloudType type :
-    { CloudType::Stratus, CloudType::Stratocumulus, CloudType::Cumulus, CloudType::Cumulonimbus })
+  for (CloudType type : { CloudType::Stratus,
+         CloudType::Stratocumulus,
+         CloudType::Cumulus,
+         CloudType::Cumulonimbus,
+         CloudType::Altocumulus,
+         CloudType::Congestus })
   {
     for (float h : { -1.0f, -1e-6f, 0.0f, 1.0f, 1.0f + 1e-6f, 2.0f })
     {
@@ -250,6 +254,11 @@ TEST(CloudLayer, HeightProfilesVanishOutsideTheLayerAndPeakAtOne)
   EXPECT_EQ(HeightProfile(CloudType::Cumulonimbus, 0.85f), 1.0f);
   EXPECT_LT(HeightProfile(CloudType::Cumulus, 0.85f), 0.3f);
   EXPECT_LT(HeightProfile(CloudType::Stratus, 0.9f), HeightProfile(CloudType::Stratus, 0.3f));
+  // A congestus holds its width higher than a cumulus, and an altocumulus's cloudlets are rounded
+  // below as well as above.
+  EXPECT_EQ(HeightProfile(CloudType::Congestus, 0.65f), 1.0f);
+  EXPECT_LT(HeightProfile(CloudType::Cumulus, 0.65f), 0.9f);
+  EXPECT_LT(HeightProfile(CloudType::Altocumulus, 0.1f), 0.5f);
 }
 
 // Density is exactly 0 below the base and above the top (voxels that lie on them to rounding
@@ -257,8 +266,12 @@ TEST(CloudLayer, HeightProfilesVanishOutsideTheLayerAndPeakAtOne)
 // every cloud type at full coverage without erosion.
 TEST(CloudLayer, DensityIsZeroOutsideTheLayerAndNeverAboveTheScale)
 {
-  for (CloudType type :
-    { CloudType::Stratus, CloudType::Stratocumulus, CloudType::Cumulus, CloudType::Cumulonimbus })
+  for (CloudType type : { CloudType::Stratus,
+         CloudType::Stratocumulus,
+         CloudType::Cumulus,
+         CloudType::Cumulonimbus,
+         CloudType::Altocumulus,
+         CloudType::Congestus })
   {
     FieldDescription field = Cloudscape();
     field.Layer.Type = type;
