@@ -444,7 +444,8 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
     }
     return static_cast<float>(l.Coverage) * c;
   }
-  // The cumulonimbus's anvil: from 60% of the layer up, the cloud spreads sideways.
+  // Elsewhere (a weather map's cumulonimbus, or no plan) the anvil spreads the cloud sideways from
+  // 60% of the layer up.
   const float anvil = l.Type == CloudType::Cumulonimbus
     ? static_cast<float>(l.Anvil) * glm::smoothstep(0.6f, 0.95f, h)
     : 0.0f;
@@ -483,9 +484,9 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
 
 float DensityEvaluator::DomeCoverage(glm::dvec3 leaned) const
 {
-  // The overshooting dome: the upper half of an ellipsoid on the tower's axis at the top, its
-  // half-width DomeWidth of the tower's radius and its height the overshoot, softened over the
-  // falloff width like the shapes.
+  // The overshooting dome: an ellipsoid centred on the tower's axis at the top (its lower half
+  // lies in the tower), its half-width DomeWidth of the tower's radius and its half-height the
+  // overshoot, softened over the falloff width like the shapes.
   const CloudLayer& l = this->Field.Layer;
   const glm::dvec2 axis = this->TowerPlan->Axis();
   const double across = DomeWidth * this->TowerPlan->Radius();

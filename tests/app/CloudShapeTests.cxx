@@ -44,30 +44,23 @@ struct CloudMask
   int Nx = 0, Ny = 0, Nz = 0;
   double Spacing[3] = { 1.0, 1.0, 1.0 };
   std::vector<std::uint8_t> Cloudy;
+  int Lowest = 0, Highest = -1; // the levels (y indices) holding cloud
 
   bool At(int i, int j, int k) const
   {
     return this->Cloudy[(static_cast<size_t>(k) * this->Ny + j) * this->Nx + i] != 0;
   }
-  // The levels (y indices) holding cloud: the lowest and the highest.
-  void Levels(int& lowest, int& highest) const
+  // The level at a fraction of the cloud's height.
+  int Level(double fraction) const
   {
-    lowest = this->Ny;
-    highest = -1;
-    for (int k = 0; k < this->Nz; ++k)
-      for (int j = 0; j < this->Ny; ++j)
-        for (int i = 0; i < this->Nx; ++i)
-          if (this->At(i, j, k))
-          {
-            lowest = std::min(lowest, j);
-            highest = std::max(highest, j);
-          }
+    return static_cast<int>(std::lround(this->Lowest + fraction * (this->Highest - this->Lowest)));
   }
 };
 
 // Generates a shipped scene's field with the cloudvis binary and reads its mask back.
-CloudMask GenerateMask(const std::string& scene, const TemporaryDirectory& folder)
+CloudMask GenerateMask(const std::string& scene)
 {
+  const TemporaryDirectory folder;
   const std::string file = folder.File("field.vti");
   const auto run =
     RunCloudvis({ "generate", std::string(CLOUDVIS_SCENES) + "/" + scene, "-o", file });
@@ -93,10 +86,18 @@ CloudMask GenerateMask(const std::string& scene, const TemporaryDirectory& folde
   const vtkIdType n = density->GetNumberOfValues();
   const float threshold = 0.01f * *std::max_element(v, v + n);
   mask.Cloudy.resize(static_cast<size_t>(n));
+  mask.Lowest = mask.Ny;
   for (vtkIdType i = 0; i < n; ++i)
   {
     mask.Cloudy[static_cast<size_t>(i)] = v[i] > threshold;
+    if (v[i] > threshold)
+    {
+      const int level = static_cast<int>((i / mask.Nx) % mask.Ny);
+      mask.Lowest = std::min(mask.Lowest, level);
+      mask.Highest = std::max(mask.Highest, level);
+    }
   }
+  EXPECT_LT(mask.Lowest, mask.Highest) << scene << ": no cloud over two levels or more";
   return mask;
 }
 
@@ -175,24 +176,11 @@ std::vector<std::uint8_t> Projected(const CloudMask& m)
 
 TEST(CloudShapes, CumulonimbusAnvilStreamsDownwindAboveATowerWithoutAWaist)
 {
-  TemporaryDirectory folder;
-  const CloudMask m = GenerateMask("cumulonimbus.json", folder);
-  ASSERT_FALSE(m.Cloudy.empty());
-  int lowest, highest;
-  m.Levels(lowest, highest);
-  ASSERT_LT(lowest, highest);
-  const double height = highest - lowest;
-  const auto level = [&](double fraction)
-  { return static_cast<int>(std::lround(lowest + fraction * height)); };
-  const auto width = [&](double fraction)
-  {
-    size_t area = 0;
-    for (int k = 0; k < m.Nz; ++k)
-      for (int i = 0; i < m.Nx; ++i)
-        area += m.At(i, level(fraction), k);
-    return std::sqrt(static_cast<double>(area));
-  };
-  const double w1 = width(1.0 / 8.0), w3 = width(3.0 / 8.0), w5 = width(5.0 / 8.0);
+  const CloudMask m = GenerateMask("cumulonimbus.json");
+  ASSERT_LT(m.Lowest, m.Highest);
+  const double height = m.Highest - m.Lowest;
+  const double w1 = LevelWidth(m, m.Level(1.0 / 8.0)), w3 = LevelWidth(m, m.Level(3.0 / 8.0)),
+               w5 = LevelWidth(m, m.Level(5.0 / 8.0));
   std::printf(
     "tower width at 3/8 and 5/8 of the height: %.3f and %.3f of that at 1/8\n", w3 / w1, w5 / w1);
   EXPECT_GE(w3 / w1, 0.85);
@@ -202,7 +190,7 @@ TEST(CloudShapes, CumulonimbusAnvilStreamsDownwindAboveATowerWithoutAWaist)
   double cx = 0, cz = 0, count = 0;
   for (int k = 0; k < m.Nz; ++k)
     for (int i = 0; i < m.Nx; ++i)
-      if (m.At(i, level(0.25), k))
+      if (m.At(i, m.Level(0.25), k))
       {
         cx += i;
         cz += k;
@@ -213,10 +201,10 @@ TEST(CloudShapes, CumulonimbusAnvilStreamsDownwindAboveATowerWithoutAWaist)
   cz /= count;
   // The top fifth, projected: the farthest reach from the axis per direction.
   std::vector<std::pair<double, double>> top;
-  const int from = static_cast<int>(std::lround(highest - 0.2 * height));
+  const int from = static_cast<int>(std::lround(m.Highest - 0.2 * height));
   for (int k = 0; k < m.Nz; ++k)
     for (int i = 0; i < m.Nx; ++i)
-      for (int j = from; j <= highest; ++j)
+      for (int j = from; j <= m.Highest; ++j)
         if (m.At(i, j, k))
         {
           top.emplace_back((i - cx) * m.Spacing[0], (k - cz) * m.Spacing[2]);
@@ -249,11 +237,8 @@ TEST(CloudShapes, CumulonimbusAnvilStreamsDownwindAboveATowerWithoutAWaist)
 
 TEST(CloudShapes, CumulusCloudscapeHasFlatBasesAndNoExtrudedColumns)
 {
-  TemporaryDirectory folder;
-  const CloudMask m = GenerateMask("cloudscape-above.json", folder);
-  ASSERT_FALSE(m.Cloudy.empty());
-  int lowest, highest;
-  m.Levels(lowest, highest);
+  const CloudMask m = GenerateMask("cloudscape-above.json");
+  ASSERT_LT(m.Lowest, m.Highest);
   // Each column's first cloudy level, and the projected mask's clouds.
   std::vector<int> first(static_cast<size_t>(m.Nx) * m.Nz, -1);
   std::vector<std::uint8_t> projected(first.size(), 0);
@@ -282,7 +267,7 @@ TEST(CloudShapes, CumulusCloudscapeHasFlatBasesAndNoExtrudedColumns)
     ++counted;
     // The lowest tenth of the columns: the 10th percentile of their first levels.
     std::nth_element(s.begin(), s.begin() + s.size() / 10, s.end());
-    flat += s[s.size() / 10] <= lowest + 1;
+    flat += s[s.size() / 10] <= m.Lowest + 1;
   }
   ASSERT_GE(counted, 20);
   std::printf("%d of %d clouds start within one voxel of the base (%.1f%%)\n",
@@ -292,13 +277,13 @@ TEST(CloudShapes, CumulusCloudscapeHasFlatBasesAndNoExtrudedColumns)
   EXPECT_GE(static_cast<double>(flat) / counted, 0.9);
 
   const int up = static_cast<int>(std::lround(500.0 / m.Spacing[1]));
-  ASSERT_LT(lowest + 1 + up, m.Ny);
+  ASSERT_LT(m.Lowest + 1 + up, m.Ny);
   std::vector<double> near, far;
   for (int k = 0; k < m.Nz; ++k)
     for (int i = 0; i < m.Nx; ++i)
     {
-      near.push_back(m.At(i, lowest + 1, k));
-      far.push_back(m.At(i, lowest + 1 + up, k));
+      near.push_back(m.At(i, m.Lowest + 1, k));
+      far.push_back(m.At(i, m.Lowest + 1 + up, k));
     }
   const double r = Correlation(near, far);
   std::printf("cloud mask correlation between one voxel and 500 m above the base: %.3f\n", r);
@@ -307,12 +292,9 @@ TEST(CloudShapes, CumulusCloudscapeHasFlatBasesAndNoExtrudedColumns)
 
 TEST(CloudShapes, AltocumulusIsAThinSheetOfCloudlets)
 {
-  TemporaryDirectory folder;
-  const CloudMask m = GenerateMask("altocumulus.json", folder);
-  ASSERT_FALSE(m.Cloudy.empty());
-  int lowest, highest;
-  m.Levels(lowest, highest);
-  const double depth = (highest - lowest + 1) * m.Spacing[1];
+  const CloudMask m = GenerateMask("altocumulus.json");
+  ASSERT_LT(m.Lowest, m.Highest);
+  const double depth = (m.Highest - m.Lowest + 1) * m.Spacing[1];
   std::vector<int> label;
   const int clouds = LabelClouds(Projected(m), m.Nx, m.Nz, label);
   std::vector<size_t> area(static_cast<size_t>(clouds) + 1, 0);
@@ -337,15 +319,10 @@ TEST(CloudShapes, AltocumulusIsAThinSheetOfCloudlets)
 
 TEST(CloudShapes, CongestusIsATowerThatNarrowsIntoTurrets)
 {
-  TemporaryDirectory folder;
-  const CloudMask m = GenerateMask("congestus.json", folder);
-  ASSERT_FALSE(m.Cloudy.empty());
-  int lowest, highest;
-  m.Levels(lowest, highest);
-  const double height = (highest - lowest) * m.Spacing[1];
-  const auto level = [&](double f)
-  { return static_cast<int>(std::lround(lowest + f * (highest - lowest))); };
-  const double quarter = LevelWidth(m, level(0.25)), top = LevelWidth(m, level(0.875));
+  const CloudMask m = GenerateMask("congestus.json");
+  ASSERT_LT(m.Lowest, m.Highest);
+  const double height = (m.Highest - m.Lowest) * m.Spacing[1];
+  const double quarter = LevelWidth(m, m.Level(0.25)), top = LevelWidth(m, m.Level(0.875));
   std::printf(
     "congestus: %.0f m tall, %.0f m wide at 1/4 of its height (%.2fx), %.2f of that at 7/8\n",
     height,
