@@ -499,6 +499,7 @@ float DensityEvaluator::DomeCoverage(glm::dvec3 leaned) const
 
 bool DensityEvaluator::CloudLevelMayHoldCloud(double y) const
 {
+  // As CloudDensity decides it.
   const CloudLayer& l = this->Field.Layer;
   return HeightProfile(l.Type, static_cast<float>((y - l.Base) / (l.Top - l.Base))) > 0.0f ||
     (this->TowerPlan && l.Overshoot > 0.0 && y > l.Top - l.Overshoot && y < l.Top + l.Overshoot);
@@ -507,13 +508,15 @@ bool DensityEvaluator::CloudLevelMayHoldCloud(double y) const
 float DensityEvaluator::CloudDensity(glm::dvec3 p) const
 {
   const CloudLayer& l = this->Field.Layer;
-  if (!this->CloudLevelMayHoldCloud(p.y))
-  {
-    return 0.0f;
-  }
   const double height = p.y - l.Base;
   const float h = static_cast<float>(height / (l.Top - l.Base));
   const float profile = HeightProfile(l.Type, h);
+  const bool dome =
+    this->TowerPlan && l.Overshoot > 0.0 && p.y > l.Top - l.Overshoot && p.y < l.Top + l.Overshoot;
+  if (profile <= 0.0f && !dome)
+  {
+    return 0.0f;
+  }
   // Shear leans the cloud: what is at height `height` above the base comes from straight below.
   const glm::dvec3 leaned = p - glm::dvec3(l.Shear[0] * height, 0.0, l.Shear[1] * height);
   float coverage = profile > 0.0f ? this->CloudCoverage(leaned, h) : 0.0f;
@@ -527,7 +530,6 @@ float DensityEvaluator::CloudDensity(glm::dvec3 p) const
     const float f1 = noise::WorleyF1(c.x, c.y, c.z, this->Field.Noise.Seed + 0x2545F491u);
     coverage *= Saturate(noise::Remap(f1, 0.75f, 0.3f, 0.0f, 1.0f));
   }
-  const bool dome = this->TowerPlan && l.Overshoot > 0.0 && p.y > l.Top - l.Overshoot;
   const float domeCoverage = dome ? this->DomeCoverage(leaned) : 0.0f;
   if (coverage <= 0.0f && domeCoverage <= 0.0f)
   {
