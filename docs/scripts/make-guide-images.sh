@@ -55,7 +55,7 @@ render clouds-fbm-sphere fbm-sphere.json --lighting march \
 
 # The gallery of cloud types (docs/user-guide.md), each from its scene's own camera, a viewpoint
 # a photographer would choose, at the gallery's size.
-for scene in cumulus congestus cumulonimbus altocumulus stratocumulus cloudscape-ground; do
+for scene in cumulus congestus cumulonimbus altocumulus stratocumulus stratus cloudscape-ground; do
   started=$SECONDS
   "$cloudvis" render "$scenes/$scene.json" -o "$out/gallery-$scene.png" --size "$gallery" \
     "${common[@]}"
