@@ -16,8 +16,10 @@
 //
 // Coverage comes from the field's shapes (one cloud: c = coverage * saturate(-sdf / falloff)),
 // from a procedural weather map (many clouds: a 2-D Perlin fBm thresholded at the coverage), or
-// from a 2-D map read from a file (thresholded the same way). The cumulonimbus widens its coverage
-// near the top into an anvil. Wind moves the noises and the weather map with time; shear leans
+// from a 2-D map read from a file (thresholded the same way); above the base a weather map may be
+// broken up in 3-D (Breakup). A cumulonimbus on the shapes stands on its footprint, with an anvil
+// streaming downwind and an overshooting dome (CloudTowerPlan.h); over a map it widens its
+// coverage near the top. An altocumulus's coverage is cut into cloudlets by a Worley lattice. Wind moves the noises and the weather map with time; shear leans
 // the clouds, displacing everything above the base by `shear` per unit of height.
 //
 // S and D are tileable noises baked once into small periodic volumes (64^3 texels each) and
@@ -102,14 +104,14 @@ struct CloudLayer
   // Curl-noise turbulence of the detail noise, 0 .. 1: the detail is read at points displaced by
   // 0.25 * Curl * (1 - h) detail tiles times the curl noise (whose components are of order 1 to 3).
   double Curl = 0.0;
+  // How far a 3-D noise moves a weather map's value above the base, 0 .. 1 (a noise or map
+  // coverage only): the clouds' sides break up instead of rising as the map's outlines.
+  double Breakup = 0.0;
   // The cumulonimbus's anvil (CloudTowerPlan.h): its strength, 0 .. 1 (0: no anvil); the
   // direction [x, z] of the upper wind it streams along (any length but 0); how far it reaches
   // downwind from the tower (world units, >= 0; times Anvil); and the height of the overshooting
   // dome above Top on the tower's axis (world units, >= 0; 0: none).
   double Anvil = 0.0;
-  // How far a 3-D noise moves a weather map's value above the base, 0 .. 1 (a noise or map
-  // coverage only): the clouds' sides break up instead of rising as the map's outlines.
-  double Breakup = 0.0;
   std::array<double, 2> AnvilDirection{ { 1.0, 0.0 } };
   double AnvilReach = 0.0;
   double Overshoot = 0.0;
