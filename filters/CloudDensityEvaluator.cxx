@@ -427,14 +427,14 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
     const glm::dvec3 q = (leaned + this->NoiseOffset) / (2.0 * l.ShapeScale);
     const float bulge = 1.25f * width * (2.0f * this->CloudNoise->Shape.Sample(q) - 1.0f);
     // The shapes' own masses bulge out of a footprint set in by TowerInset falloff widths.
-    const float tower = std::min(plan.TowerDistance(leaned.x, leaned.z) + TowerInset * width,
-      this->SignedDistance(glm::vec3(leaned)));
+    const float footprint = plan.TowerDistance(leaned.x, leaned.z);
+    const float tower =
+      std::min(footprint + TowerInset * width, this->SignedDistance(glm::vec3(leaned)));
     float c = Saturate(-(tower - bulge) / width);
     if (l.Anvil > 0.0)
     {
       const float along = plan.AnvilFraction(leaned.x, leaned.z);
-      const float outward = plan.TowerDistance(leaned.x, leaned.z) /
-        (AnvilFlareLength * static_cast<float>(l.Top - l.Base));
+      const float outward = footprint / (AnvilFlareLength * static_cast<float>(l.Top - l.Base));
       const float bottom = 1.0f - AnvilThickness * (1.0f - 0.5f * along) +
         AnvilFlareRise * glm::smoothstep(0.0f, 1.0f, outward);
       // (Its far end fades out rather than breaking into flecks.)
@@ -497,12 +497,18 @@ float DensityEvaluator::DomeCoverage(glm::dvec3 leaned) const
     Saturate(static_cast<float>(-distance / this->Field.FalloffWidth));
 }
 
+bool DensityEvaluator::InDomeLevels(double y) const
+{
+  const CloudLayer& l = this->Field.Layer;
+  return this->TowerPlan && l.Overshoot > 0.0 && y > l.Top - l.Overshoot && y < l.Top + l.Overshoot;
+}
+
 bool DensityEvaluator::CloudLevelMayHoldCloud(double y) const
 {
   // As CloudDensity decides it.
   const CloudLayer& l = this->Field.Layer;
   return HeightProfile(l.Type, static_cast<float>((y - l.Base) / (l.Top - l.Base))) > 0.0f ||
-    (this->TowerPlan && l.Overshoot > 0.0 && y > l.Top - l.Overshoot && y < l.Top + l.Overshoot);
+    this->InDomeLevels(y);
 }
 
 float DensityEvaluator::CloudDensity(glm::dvec3 p) const
@@ -511,8 +517,7 @@ float DensityEvaluator::CloudDensity(glm::dvec3 p) const
   const double height = p.y - l.Base;
   const float h = static_cast<float>(height / (l.Top - l.Base));
   const float profile = HeightProfile(l.Type, h);
-  const bool dome =
-    this->TowerPlan && l.Overshoot > 0.0 && p.y > l.Top - l.Overshoot && p.y < l.Top + l.Overshoot;
+  const bool dome = this->InDomeLevels(p.y);
   if (profile <= 0.0f && !dome)
   {
     return 0.0f;

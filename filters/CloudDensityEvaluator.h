@@ -116,6 +116,7 @@ private:
   float CloudDensity(glm::dvec3 p) const;
   float CloudCoverage(glm::dvec3 leaned, float h) const;
   float DomeCoverage(glm::dvec3 leaned) const;
+  bool InDomeLevels(double y) const; // within a cumulonimbus's overshooting dome's heights
   bool CloudLevelMayHoldCloud(double y) const;
   bool NeedsNoise(float signedDistance) const;
   void AccumulateOctaveAlongRow(const noise::Octave& octave, int count, const double* noiseX,
