@@ -178,12 +178,9 @@ void ApplyCamera(
   if (camera.Orbit)
   {
     // On the sphere of the fitting distance (or the orbit's own) around the focal point, y up.
-    const double azimuth = vtkMath::RadiansFromDegrees(camera.Orbit->Azimuth);
-    const double elevation = vtkMath::RadiansFromDegrees(camera.Orbit->Elevation);
-    const double radius = camera.Orbit->Distance.value_or(distance);
-    position[0] = focal[0] + radius * std::cos(elevation) * std::sin(azimuth);
-    position[1] = focal[1] + radius * std::sin(elevation);
-    position[2] = focal[2] + radius * std::cos(elevation) * std::cos(azimuth);
+    const std::array<double, 3> orbit =
+      OrbitPosition(*camera.Orbit, { { focal[0], focal[1], focal[2] } }, distance);
+    std::copy(orbit.begin(), orbit.end(), position);
   }
   const double d[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
   const double* u = camera.ViewUp.data();

@@ -358,6 +358,7 @@ Scene SceneFromDocument(const nlohmann::json& document, const std::string& sourc
   schema::ReadObject(context, document, "", schema::SceneSections(), scene);
   schema::ResolveSkySun(document, scene);
   schema::ResolveDroplets(context, document, scene);
+  schema::ResolveAutoDimensions(context, scene);
   scene.Document = document;
   return scene;
 }
@@ -426,6 +427,19 @@ void ResolveFieldOptics(Scene& scene, const ResolvedFieldUnits& units, const std
 {
   const schema::Context context{ scene.Source, "", {} };
   schema::ResolveFieldOptics(context, scene, units, file);
+}
+
+std::array<double, 3> OrbitPosition(const OrbitSpec& orbit,
+  const std::array<double, 3>& focal,
+  double distance)
+{
+  constexpr double degree = 3.14159265358979323846 / 180.0;
+  const double azimuth = orbit.Azimuth * degree;
+  const double elevation = orbit.Elevation * degree;
+  const double radius = orbit.Distance.value_or(distance);
+  return { { focal[0] + radius * std::cos(elevation) * std::sin(azimuth),
+    focal[1] + radius * std::sin(elevation),
+    focal[2] + radius * std::cos(elevation) * std::cos(azimuth) } };
 }
 
 TransferFunctionSpec TabulatedTransferFunction(const TransferFunctionSpec& transferFunction)

@@ -208,6 +208,15 @@ vtkSmartPointer<vtkImageData> ProduceField(Scene& scene,
   else
   {
     read.Format = "procedural (generated from the scene's field section)";
+    if (scene.Field.AutoDimensions)
+    {
+      const LengthUnit length = ResolveFieldUnits(scene.Field.Units, {}).Length;
+      read.Add("dimensions",
+        "auto, " +
+          DescribeCameraDetail(*scene.Field.AutoDimensions,
+            length == LengthUnit::None ? "world units" : LengthUnitName(length),
+            scene.Field.Read.MaximumVoxels));
+    }
     field = GenerateField(scene, progress);
     ResolveFieldValues(scene.Source, field, scene.Field.Units, read);
   }

@@ -236,7 +236,9 @@ const Keys<FieldSpec>& FieldFileKeys()
       IntegerIn(1, 1LL << 62),
       Nested(&F::Read, &R::MaximumVoxels),
       "the most voxels the field may have once read (1024^3, a 4 GiB float field, by default); "
-      "a file that needs more is refused, with its size, before anything is allocated" },
+      "a file that needs more is refused, with its size, before anything is allocated. Also "
+      "taken by a generated field, as the most `dimensions` `\"auto\"` may choose (at least "
+      "8)" },
     { "raw",
       CustomValue("object").DefaultIs("none"),
       [](const Context& c, const json& v, const std::string& k, F& f)
@@ -295,10 +297,30 @@ const Keys<FieldSpec>& GeneratedFieldKeys()
   using N = noise::FbmParameters;
   static const Keys<F> keys = {
     { "dimensions",
-      Dimensions(),
-      &F::Dimensions,
-      "the field (4 bytes per voxel) must fit in the memory available when it is generated "
-      "whole; generated in pieces (`generate -o FIELD.pvti`), each piece must" },
+      CustomValue("integer, or 3 integers `[nx, ny, nz]`, or `\"auto\"`")
+        .DefaultIs("`[128, 128, 128]`"),
+      [](const Context& c, const json& v, const std::string& k, F& f)
+      {
+        if (v.is_string())
+        {
+          if (v.get<std::string>() != "auto")
+          {
+            c.Fail(
+              k, "expected \"auto\", an integer or 3 integers [nx, ny, nz], got " + Describe(v));
+          }
+          f.AutoDimensions = CameraDetail{};
+          return;
+        }
+        f.AutoDimensions.reset();
+        Assign(Check(c, Dimensions(), v, k), f.Dimensions);
+      },
+      // The dimensions "auto" chose, when it did: a resolved scene generates the same lattice.
+      [](const F& f) { return ToJson(f.Dimensions); },
+      "each in [1, 2147483647]; the field (4 bytes per voxel) must fit in the memory available "
+      "when it is generated whole; generated in pieces (`generate -o FIELD.pvti`), each piece "
+      "must. `\"auto\"` chooses them from the camera: one isotropic spacing no wider than a "
+      "pixel's footprint on the nearest cloud the camera sees, within `max_voxels` "
+      "([Detail matched to the camera](#detail-matched-to-the-camera))" },
     { "bounds",
       NumbersIn(6, AnyNumber, "[xmin, xmax, ymin, ymax, zmin, zmax]"),
       &F::Bounds,

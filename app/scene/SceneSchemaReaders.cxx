@@ -15,6 +15,8 @@
 
 #include "CloudTransferTable.h" // MaxTransferDensity
 
+#include <glm/glm.hpp>
+
 #include <cmath>
 #include <limits>
 
@@ -177,7 +179,8 @@ json WriteShapes(const FieldSpec& f)
 
 namespace
 {
-// A field is read from a file or generated, never both: a section takes keys of one kind.
+// A field is read from a file or generated, never both: a section takes keys of one kind (and
+// the units, and max_voxels, which caps a generated field's "auto" dimensions).
 void CheckFieldKind(const Context& c, const json& v, const std::string& key)
 {
   if (!v.is_object())
@@ -187,7 +190,8 @@ void CheckFieldKind(const Context& c, const json& v, const std::string& key)
   const bool fromFile = v.contains("file");
   for (const auto& member : v.items())
   {
-    const bool fileKey = FindKey(FieldFileKeys(), member.key()) != nullptr;
+    const bool fileKey =
+      FindKey(FieldFileKeys(), member.key()) != nullptr && member.key() != "max_voxels";
     if (fromFile && !fileKey && FindKey(GeneratedFieldKeys(), member.key()))
     {
       c.Fail(key + ".file",
@@ -652,6 +656,76 @@ void ResolveDroplets(const Context& c, const json& document, Scene& s)
   hoped.Length = LengthUnit::Metre;
   Scene probe = s;
   ResolveFieldOptics(c, probe, ResolveFieldUnits(s.Field.Units, hoped), "");
+}
+
+void ResolveAutoDimensions(const Context& c, Scene& s)
+{
+  FieldSpec& f = s.Field;
+  if (!f.AutoDimensions)
+  {
+    return;
+  }
+  const CameraSpec& camera = s.Camera;
+  if (!camera.Position && !(camera.Orbit && camera.Orbit->Distance))
+  {
+    c.Fail("field.dimensions",
+      "\"auto\" chooses the voxels from where the camera is, and this scene places it to fit "
+      "the field: give camera.position, or camera.orbit with a distance");
+  }
+  if (f.Read.MaximumVoxels < 8)
+  {
+    c.Fail("field.max_voxels",
+      "dimensions \"auto\" need at least 8 voxels (2 along each axis), got " +
+        std::to_string(f.Read.MaximumVoxels));
+  }
+  const std::array<double, 6>& b = f.Bounds;
+  CameraView view;
+  view.FocalPoint = camera.FocalPoint.value_or(
+    std::array<double, 3>{ { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) } });
+  view.Position =
+    camera.Position ? *camera.Position : OrbitPosition(*camera.Orbit, view.FocalPoint, 0.0);
+  view.ViewUp = camera.ViewUp;
+  view.ViewAngle = camera.ViewAngle;
+  view.Width = s.Render.Size[0];
+  view.Height = s.Render.Size[1];
+  const glm::dvec3 direction(view.FocalPoint[0] - view.Position[0],
+    view.FocalPoint[1] - view.Position[1],
+    view.FocalPoint[2] - view.Position[2]);
+  const glm::dvec3 up(view.ViewUp[0], view.ViewUp[1], view.ViewUp[2]);
+  if (!(glm::length(glm::cross(direction, up)) > 1e-9 * glm::length(direction) * glm::length(up)))
+  {
+    c.Fail(glm::length(direction) > 0.0 ? "camera.view_up" : "camera.position",
+      glm::length(direction) > 0.0
+        ? "parallel to the view direction (from the position to the focal point); choose a "
+          "view-up across it"
+        : "the camera position equals the focal point; the view has no direction");
+  }
+  // What can hold cloud: the field; the cloud model's layer, from its base to its top and the
+  // cumulonimbus's overshooting dome.
+  std::array<double, 6> region = b;
+  if (f.Description.Model == DensityModel::Cloud)
+  {
+    const CloudLayer& layer = f.Description.Layer;
+    region[2] = std::max(b[2], layer.Base);
+    region[3] = std::min(b[3], layer.Top + layer.Overshoot);
+    if (!(region[2] < region[3]))
+    {
+      region = b;
+    }
+  }
+  const std::optional<CameraDetail> detail =
+    ChooseCameraDetail(view, region, b, f.Read.MaximumVoxels);
+  if (!detail)
+  {
+    c.Fail("field.dimensions",
+      "\"auto\" matches the voxels to the nearest cloud the camera sees, and this camera sees "
+      "none of the field's bounds" +
+        std::string(
+          f.Description.Model == DensityModel::Cloud ? " between the layer's base and top" : "") +
+        ": point it at the field, or give the dimensions");
+  }
+  f.AutoDimensions = detail;
+  f.Dimensions = detail->Dimensions;
 }
 
 void ResolveSkySun(const json& document, Scene& s)

@@ -5,7 +5,10 @@
 // dotted key, a missing or 3-D map file) are command-line cases in CMakeLists.txt. Maps read
 // safely (issue 36): damaged, huge and impossible image headers are refused without a crash (the
 // PNGs are made here by hand, with zlib), a map is read once and only by the cloud model, and
-// integer maps mean the same in every container.
+// integer maps mean the same in every container. Detail matched to the camera (issue 35):
+// field.dimensions "auto" gives voxels no wider than a pixel on the nearest cloud in view, within
+// field.max_voxels, and a resolved scene generates the same lattice again.
+#include "CameraDetail.h"
 #include "Errors.h"
 #include "ExportRender.h"
 #include "Scene.h"
@@ -524,6 +527,120 @@ TEST(CloudScene, IntegerMapsAreDividedByTheirTypesMaximumInEveryContainer)
       }
     }
   }
+}
+
+// ---- detail matched to the camera -----------------------------------------------------------
+
+// The width a pixel at the image's centre spans at `distance`: distance * 2 tan(angle / 2) / H.
+double CentralPixelAt(double distance, const cloudvis::CameraView& view)
+{
+  return distance * 2.0 * std::tan(0.5 * view.ViewAngle * M_PI / 180.0) / view.Height;
+}
+
+// A cube's face straight ahead: its nearest point is on the view's axis, and the voxels are the
+// fewest no wider than the pixel there (a lattice with one voxel less along an axis would be).
+TEST(CameraDetail, AFaceStraightAheadGetsVoxelsOfItsPixel)
+{
+  cloudvis::CameraView view;
+  view.Position = { { 0.0, 0.0, 10.0 } };
+  const std::array<double, 6> cube{ { -1, 1, -1, 1, -1, 1 } };
+  const auto detail = cloudvis::ChooseCameraDetail(view, cube, cube, std::uint64_t(1) << 40);
+  ASSERT_TRUE(detail);
+  EXPECT_DOUBLE_EQ(detail->NearestCloud, 9.0);
+  const double pixel = CentralPixelAt(9.0, view);
+  // Off the axis the face is farther, and a pixel narrower across its ray (cos^2): the corner of
+  // the face, 1.5 degrees further out, sees it 1% narrower.
+  EXPECT_LE(detail->PixelFootprint, pixel);
+  EXPECT_GT(detail->PixelFootprint, 0.98 * pixel);
+  EXPECT_FALSE(detail->Capped);
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = detail->Dimensions[size_t(a)];
+    EXPECT_LE(2.0 / (n - 1), detail->PixelFootprint) << a;
+    EXPECT_GT(2.0 / (n - 2), detail->PixelFootprint) << a;
+  }
+  EXPECT_DOUBLE_EQ(detail->Voxel, 2.0 / (detail->Dimensions[0] - 1));
+}
+
+// Under a cap the voxels grow together: the largest cubic lattice within it.
+TEST(CameraDetail, TheCapGrowsTheVoxels)
+{
+  cloudvis::CameraView view;
+  view.Position = { { 0.0, 0.0, 10.0 } };
+  const std::array<double, 6> cube{ { -1, 1, -1, 1, -1, 1 } };
+  const auto detail = cloudvis::ChooseCameraDetail(view, cube, cube, 1000);
+  ASSERT_TRUE(detail);
+  EXPECT_TRUE(detail->Capped);
+  EXPECT_EQ(detail->Dimensions, (std::array<int, 3>{ { 10, 10, 10 } }));
+  EXPECT_DOUBLE_EQ(detail->Voxel, 2.0 / 9.0);
+  // A flat field keeps its shape: 2 voxels where it is thin, the rest shared out.
+  const std::array<double, 6> slab{ { 0, 100, 0, 1e-3, 0, 100 } };
+  const auto flat = cloudvis::ChooseCameraDetail(view, slab, slab, 200);
+  ASSERT_TRUE(flat);
+  EXPECT_EQ(flat->Dimensions, (std::array<int, 3>{ { 10, 2, 10 } }));
+}
+
+// A layer overhead, seen looking along the ground: the nearest cloud in view is where the top of
+// the view meets the layer's underside, 10 / sin(15 degrees) away, not the point straight above,
+// which the camera does not see.
+TEST(CameraDetail, ALayerOverheadIsSeenAtTheTopOfTheView)
+{
+  cloudvis::CameraView view;
+  view.Position = { { 0.0, 0.0, 0.0 } };
+  view.FocalPoint = { { 0.0, 0.0, 1.0 } };
+  const std::array<double, 6> layer{ { -100, 100, 10, 11, -100, 100 } };
+  const std::array<double, 6> bounds{ { -100, 100, 0, 11, -100, 100 } };
+  const auto detail = cloudvis::ChooseCameraDetail(view, layer, bounds, std::uint64_t(1) << 40);
+  ASSERT_TRUE(detail);
+  const double nearest = 10.0 / std::sin(15.0 * M_PI / 180.0);
+  EXPECT_NEAR(detail->NearestCloud, nearest, 1e-12 * nearest);
+  // Looking away from it, the camera sees none of it.
+  view.FocalPoint = { { 0.0, -1.0, 1.0 } };
+  EXPECT_FALSE(cloudvis::ChooseCameraDetail(view, layer, bounds, 1000));
+}
+
+// In a scene: the lattice comes from the camera and render.size, only the cloud model's layer
+// counts as cloud, and the resolved scene writes the numbers, which generate the same field.
+TEST(CloudScene, AutoDimensionsFollowTheCameraAndWriteBackAsNumbers)
+{
+  const json document = { { "field",
+                            { { "dimensions", "auto" },
+                              { "max_voxels", 1 << 30 },
+                              { "bounds", { 0, 4, 0, 4, 0, 4 } },
+                              { "density_model", "cloud" },
+                              { "cloud", { { "base", 2 }, { "top", 3 } } } } },
+    { "camera", { { "position", { 2, 0.5, 10 } }, { "focal_point", { 2, 2.5, 2 } } } },
+    { "render", { { "size", { 64, 48 } } } } };
+  const cloudvis::Scene scene = cloudvis::SceneFromDocument(document, "d", "");
+  ASSERT_TRUE(scene.Field.AutoDimensions);
+  const cloudvis::CameraDetail& detail = *scene.Field.AutoDimensions;
+  EXPECT_EQ(scene.Field.Dimensions, detail.Dimensions);
+  EXPECT_FALSE(detail.Capped);
+  // The layer's face at z = 4 is 6 away straight ahead; the field's bottom, nearer, holds none.
+  EXPECT_GT(detail.NearestCloud, 6.0);
+  EXPECT_LT(detail.NearestCloud, 6.5);
+  EXPECT_LE(detail.Voxel, detail.PixelFootprint);
+
+  // Twice the pixels, about twice the voxels along each axis.
+  json larger = document;
+  larger["render"]["size"] = { 128, 96 };
+  const cloudvis::Scene finer = cloudvis::SceneFromDocument(larger, "d", "");
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_NEAR(
+      double(finer.Field.Dimensions[size_t(a)] - 1) / (detail.Dimensions[size_t(a)] - 1), 2.0, 0.1)
+      << a;
+  }
+
+  const double bounds[6] = { 0, 4, 0, 4, 0, 4 };
+  const json written = cloudvis::SceneToJson(scene, cloudvis::ResolveCamera(scene, bounds));
+  EXPECT_EQ(written["field"]["dimensions"], json(detail.Dimensions));
+  const cloudvis::Scene again = cloudvis::SceneFromDocument(written, "d", "");
+  EXPECT_FALSE(again.Field.AutoDimensions);
+  EXPECT_EQ(again.Field.Dimensions, detail.Dimensions);
+  const vtkSmartPointer<vtkImageData> field = cloudvis::ProduceField(scene);
+  EXPECT_EQ(std::vector<int>(field->GetDimensions(), field->GetDimensions() + 3),
+    std::vector<int>(detail.Dimensions.begin(), detail.Dimensions.end()));
 }
 
 } // namespace

@@ -68,6 +68,21 @@ foreach(piece 0 1)
   expect("${header}" "<ImageData [^>]*CloudvisRun=\"${run}\"")
 endforeach()
 
+# field.dimensions "auto" (chosen from the camera when the scene is read): every rank chooses the
+# same lattice, and the pieces are the serial run's.
+set(auto_field --set field.dimensions=auto --set camera.position=[0,0,9] --set field.max_voxels=9000
+  --set field.noise=perlin)
+run(0 ${mpirun} "${CLOUDVIS}" generate ${auto_field} -o ma.pvti)
+expect("${out}" "wrote ma\\.pvti \\(20 x 20 x 20 voxels in 2 pieces")
+run(0 "${CLOUDVIS}" generate ${auto_field} -o sa.pvti --pieces 2)
+foreach(piece 0 1)
+  bytes_without_run("${WORK_DIR}/ma_${piece}.vti" mpi)
+  bytes_without_run("${WORK_DIR}/sa_${piece}.vti" serial)
+  if(NOT mpi STREQUAL serial)
+    message(FATAL_ERROR "piece ${piece} of the MPI run with auto dimensions differs from the serial run's")
+  endif()
+endforeach()
+
 # What a failed run must leave: the previous output `stem` byte for byte, no temporary.
 function(expect_unchanged stem)
   foreach(file ${stem}.pvti ${stem}_0.vti ${stem}_1.vti)

@@ -59,6 +59,9 @@ void ResolveFieldOptics(const Context& context,
 // field, ResolveFieldOptics with the scene's units; for a field file, what the scene's own keys
 // already contradict (the rest waits for the file).
 void ResolveDroplets(const Context& context, const nlohmann::json& document, Scene& scene);
+// Once the whole scene is read: field.dimensions "auto" chosen from the camera and render.size
+// (ChooseCameraDetail); refused, naming the key, without a camera position to choose from.
+void ResolveAutoDimensions(const Context& context, Scene& scene);
 
 } // namespace schema
 } // namespace cloudvis

@@ -12,10 +12,11 @@
 #ifndef cloudvis_Scene_h
 #define cloudvis_Scene_h
 
+#include "CameraDetail.h"
 #include "CloudDensityEvaluator.h"
-#include "CloudLightingParameters.h" // LightingParameters, Light, the models' names
 #include "CloudDisplayTransform.h"   // DisplayCurve
-#include "FieldIO.h"       // FieldReadOptions
+#include "CloudLightingParameters.h" // LightingParameters, Light, the models' names
+#include "FieldIO.h"                 // FieldReadOptions
 
 #include <nlohmann/json.hpp>
 
@@ -35,9 +36,13 @@ struct FieldSpec
   // scene file's folder; empty for a procedural field (then the members below Read apply).
   std::string File;
   // How File is read: field.format, field.array, field.time_step, field.missing,
-  // field.max_voxels, field.raw.
+  // field.max_voxels, field.raw. A generated field takes MaximumVoxels too, as the cap of
+  // AutoDimensions.
   FieldReadOptions Read;
   std::array<int, 3> Dimensions{ { 128, 128, 128 } };
+  // field.dimensions "auto": present when it was given. Once the whole scene is read, Dimensions
+  // are chosen from the camera (ChooseCameraDetail, CameraDetail.h) and this says why.
+  std::optional<CameraDetail> AutoDimensions;
   std::array<double, 6> Bounds{ { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 } };
   FieldDescription Description;
   // field.cloud.coverage_map when it names a file (resolved like File); read into
@@ -129,6 +134,11 @@ struct OrbitSpec
   double Elevation = 0.0; // degrees, in (-90, 90)
   std::optional<double> Distance; // world units, > 0; absent: the distance that fits the field
 };
+
+// The orbit's position around `focal` at `distance` (the orbit's own when it has one).
+std::array<double, 3> OrbitPosition(const OrbitSpec& orbit,
+  const std::array<double, 3>& focal,
+  double distance);
 
 struct CameraSpec
 {
