@@ -145,6 +145,6 @@ INSTANTIATE_TEST_SUITE_P(HeldOut,
       0.9f,
       0.114,
       0.319 }),
-  [](const testing::TestParamInfo<HeldOutCase>& info) { return std::string(info.param.Name); });
+  [](const testing::TestParamInfo<HeldOutCase>& held) { return std::string(held.param.Name); });
 
 } // namespace
