@@ -16,7 +16,7 @@ CCACHE := $(shell command -v ccache 2> /dev/null)
 CCACHE_ARGS := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 CCACHE_ENV := CCACHE_BASEDIR=$(CURDIR) CCACHE_NOHASHDIR=1
 
-.PHONY: all deps configure build demo python test bench docs clean python-path
+.PHONY: all deps configure build demo python test bench bench-check docs clean python-path
 
 all: build
 
@@ -46,6 +46,12 @@ test: build
 
 bench: build
 	$(HEADLESS) $(BUILD_DIR)/bin/cloudvis-bench-generation
+
+# The ratios that matter on small sizes (about 30 s here) against bench/check-figures.json: prints
+# each, and every one worse by more than 15% (exit status 1 then). Never part of `make test`.
+# `python3 bench/check.py --record` writes a new record (docs/performance.md).
+bench-check: build
+	$(HEADLESS) python3 bench/check.py --build $(BUILD_DIR)
 
 # The reference tables of docs/scene-format.md, written from the scene schema (cloudvis schema).
 docs: build
