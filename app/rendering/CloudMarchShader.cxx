@@ -42,9 +42,18 @@ constexpr int MaxLights = LightingLimits::MaxLights;
 
 // The constants the GLSL shares with the C++, from their one definition, and the program's
 // variant of the march loop.
-std::string Constants(int samplesPerMapRead, PhaseModel phase)
+// The C++'s constants, the phase, and the switches when they are the program's constants (null:
+// they stay uniforms, which the volume passes set themselves).
+std::string Constants(int samplesPerMapRead, PhaseModel phase, const MarchSwitches* switches)
 {
   std::ostringstream glsl;
+  if (switches)
+  {
+    glsl << "#define LightTransmittanceVolumes " << int(switches->LightVolumes) << "\n"
+         << "#define ScatteringVolumeOn " << int(switches->ScatteringVolume) << "\n"
+         << "#define ExternalOpticalDepths " << int(switches->ExternalDepths) << "\n"
+         << "#define ExternalScatteringVolume " << int(switches->ExternalScattering) << "\n";
+  }
   glsl << "#define MAX_LIGHTS " << MaxLights << "\n"
        << "#define PhaseType " << int(phase) << "\n"
        << "#define SAMPLES_PER_MAP_READ " << samplesPerMapRead << "\n"
@@ -106,6 +115,20 @@ std::string LightingSource(LightingModel model, const std::vector<LocalLight>& l
   source << "  return albedo * light;\n}\n";
   return source.str();
 }
+
+std::string ShaderSource(LightingModel model,
+  const std::vector<LocalLight>& lights,
+  int samplesPerMapRead,
+  PhaseModel phase,
+  const MarchSwitches* switches)
+{
+  std::string source = CloudMarchFS;
+  vtkShaderProgram::Substitute(
+    source, "//CLOUD::Constants::Dec", Constants(samplesPerMapRead, phase, switches));
+  vtkShaderProgram::Substitute(source, "//CLOUD::Transport::Dec", TransportSource());
+  vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", LightingSource(model, lights));
+  return source;
+}
 }
 
 int SamplesPerMapRead(double occupiedBrickFraction)
@@ -113,23 +136,30 @@ int SamplesPerMapRead(double occupiedBrickFraction)
   return occupiedBrickFraction >= DenseOccupiedBrickFraction ? DenseSamplesPerMapRead : 1;
 }
 
+MarchSwitches MarchSwitchesOf(const MarchUniforms& uniforms, bool lightVolumes)
+{
+  const glsl::Transport t = TransportOf(uniforms);
+  MarchSwitches switches;
+  switches.Phase = uniforms.Lighting.Phase;
+  switches.LightVolumes = lightVolumes;
+  switches.ScatteringVolume = t.ScatteringVolumeOn != 0;
+  switches.ExternalDepths = t.ExternalOpticalDepths != 0;
+  switches.ExternalScattering = t.ExternalScatteringVolume != 0;
+  return switches;
+}
+
 std::string MarchShaderSource(LightingModel model,
   const std::vector<LocalLight>& lights,
   int samplesPerMapRead,
-  PhaseModel phase)
+  const MarchSwitches& switches)
 {
-  std::string source = CloudMarchFS;
-  vtkShaderProgram::Substitute(
-    source, "//CLOUD::Constants::Dec", Constants(samplesPerMapRead, phase));
-  vtkShaderProgram::Substitute(source, "//CLOUD::Transport::Dec", TransportSource());
-  vtkShaderProgram::Substitute(source, "//CLOUD::Lighting::Dec", LightingSource(model, lights));
-  return source;
+  return ShaderSource(model, lights, samplesPerMapRead, switches.Phase, &switches);
 }
 
 std::string PassShaderSource(
   const std::vector<LocalLight>& lights, PhaseModel phase, const std::string& passMain)
 {
-  std::string source = MarchShaderSource(LightingModel::March, lights, 1, phase);
+  std::string source = ShaderSource(LightingModel::March, lights, 1, phase, nullptr);
   const std::string marchMain = "#ifndef CLOUD_OWN_MAIN";
   const std::size_t at = source.rfind(marchMain);
   if (at == std::string::npos)
@@ -201,10 +231,12 @@ vtkShaderProgram* MarchPrograms::Ready(vtkOpenGLRenderWindow* window,
   LightingModel model,
   const std::vector<LocalLight>& lights,
   int samplesPerMapRead,
-  PhaseModel phase)
+  const MarchSwitches& switches)
 {
   std::string key = std::to_string(int(model)) + ":" + std::to_string(samplesPerMapRead) + ":" +
-    std::to_string(int(phase)) + ":";
+    std::to_string(int(switches.Phase)) + ":" + std::to_string(int(switches.LightVolumes)) +
+    std::to_string(int(switches.ScatteringVolume)) + std::to_string(int(switches.ExternalDepths)) +
+    std::to_string(int(switches.ExternalScattering)) + ":";
   if (model != LightingModel::None)
   {
     for (const LocalLight& light : lights)
@@ -216,7 +248,7 @@ vtkShaderProgram* MarchPrograms::Ready(vtkOpenGLRenderWindow* window,
   if (!quad)
   {
     quad = std::make_unique<vtkOpenGLQuadHelper>(
-      window, nullptr, MarchShaderSource(model, lights, samplesPerMapRead, phase).c_str(), "");
+      window, nullptr, MarchShaderSource(model, lights, samplesPerMapRead, switches).c_str(), "");
   }
   else
   {

@@ -43,15 +43,32 @@ constexpr int DenseSamplesPerMapRead = 4;
 // DenseSamplesPerMapRead.
 int SamplesPerMapRead(double occupiedBrickFraction);
 
+// The transport's switches that are constants of a march program rather than uniforms, as
+// PhaseType is: on SIMD rasterizers a branch on a uniform runs both of its arms under masks, so
+// the light volumes' read beside the nested march it stands for, the octaves beside the
+// multiple-scattering volume's beam and the outside depths' read made the march with one light
+// cost 4.4x `none` in instructions instead of 1.7x on llvmpipe (docs/performance.md, "Where the
+// march's per-sample cost went"). A program is built for each combination a view uses.
+struct MarchSwitches
+{
+  PhaseModel Phase = PhaseModel::TwoLobe;
+  bool LightVolumes = false;       // LightTransmittanceVolumes: the light volumes are read
+  bool ScatteringVolume = false;   // ScatteringVolumeOn: orders >= 2 from the volume
+  bool ExternalDepths = false;     // ExternalOpticalDepths: depths from outside the field added
+  bool ExternalScattering = false; // ExternalScatteringVolume: a whole field's volume is read
+};
+// The switches of a march with these uniforms (TransportOf's), the light volumes read or not
+// (on the GPU they are textures the mapper holds, not MarchUniforms::LightDepths).
+MarchSwitches MarchSwitchesOf(const MarchUniforms& uniforms, bool lightVolumes);
+
 // The fragment shader's source for a lighting model, the kinds of the lights (positional or
 // directional, in order), the samples the march takes per reading of the occupancy map and the
-// phase function: the transport's PhaseType is a constant of the program, so the two lobes'
-// programs hold none of the droplets' table code (a uniform choice cost the march 1.46x on
-// llvmpipe, docs/performance.md).
+// switches (the phase function's among them: the two lobes' programs hold none of the droplets'
+// table code).
 std::string MarchShaderSource(LightingModel model,
   const std::vector<LocalLight>& lights,
-  int samplesPerMapRead = 1,
-  PhaseModel phase = PhaseModel::TwoLobe);
+  int samplesPerMapRead,
+  const MarchSwitches& switches);
 
 // The fragment shader of a pass over a light-transport volume (the light volumes, the
 // multiple-scattering volume): the march's, with the march model's lighting for the lights'
@@ -65,8 +82,9 @@ std::string PassShaderSource(
 // multiple-scattering volume (MarchUniforms::ScatteringVolumeTextures) and its size.
 void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& uniforms);
 
-// One compiled march program per lighting model, samples per map read and kind of lights
-// ("2:1:DP": march, one sample per read, a directional and a point light), built on first use.
+// One compiled march program per lighting model, samples per map read, switches and kind of
+// lights ("2:1:0:1010:DP": march, one sample per read, the two lobes, light volumes and the
+// multiple-scattering volume, a directional and a point light), built on first use.
 class MarchPrograms
 {
 public:
@@ -77,7 +95,7 @@ public:
     LightingModel model,
     const std::vector<LocalLight>& lights,
     int samplesPerMapRead,
-    PhaseModel phase);
+    const MarchSwitches& switches);
   // The quad the last Ready() made current draws with.
   void Render();
   // The samples per map read of the program the last Ready() made current.

@@ -682,9 +682,11 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   {
     samplesPerMapRead = cloudvis::SamplesPerMapRead(in.Occupancy.GetOccupiedFraction());
   }
-  vtkShaderProgram* program =
-    in.March.Ready(window, uniforms.Lighting.Model, uniforms.Lights, samplesPerMapRead,
-      uniforms.Lighting.Phase);
+  vtkShaderProgram* program = in.March.Ready(window,
+    uniforms.Lighting.Model,
+    uniforms.Lights,
+    samplesPerMapRead,
+    cloudvis::MarchSwitchesOf(uniforms, lightVolumes));
   if (!program)
   {
     return this->Fail("the march shader failed to compile or link (the driver's log is in VTK's "
@@ -784,8 +786,7 @@ bool vtkCloudVolumeMapper::MarchPass(vtkRenderer* renderer, vtkVolume* volume, v
   }
   if (marchModel || pathTrace) // both programs hold the march's lighting code and its sampler
   {
-    program->SetUniformi("LightTransmittanceVolumes", lightVolumes ? 1 : 0);
-    if (lightVolumes)
+    if (lightVolumes) // (whether they are read is a constant of the program: MarchSwitches)
     {
       in.LightVolumes.Activate(program);
     }

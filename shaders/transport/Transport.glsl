@@ -271,8 +271,12 @@ float LightOpticalDepth(vec3 p, float sigmaHere, vec3 indexStep, float maxDistan
 // ---- The light volumes (issue 12): the optical depth toward each light on a grid ----
 
 // 1: the march model reads the optical depth from the light volumes (filters/CloudLightVolumes.h),
-// one block per light stacked along z; 0: it marches toward each light.
+// one block per light stacked along z; 0: it marches toward each light. A constant of the GPU's
+// march programs, as PhaseType is (MarchSwitches, app/rendering/CloudMarchShader.h); a uniform of
+// the volume passes and a member on the CPU, as are the other switches below.
+#ifndef LightTransmittanceVolumes
 UNIFORM int LightTransmittanceVolumes;
+#endif
 UNIFORM vec3 LightVolumeSize;    // texels per axis of one light's block
 UNIFORM float LightVolumeCount;  // blocks stacked along z
 
@@ -315,7 +319,9 @@ float LightVolumeDepth(int i, vec3 p)
 // Gauss-Seidel on the cells, coarse to fine: the solver's texel functions are in
 // shaders/transport/Scattering.glsl, its order of passes in filters/CloudScatteringVolume.h.
 
+#ifndef ScatteringVolumeOn
 UNIFORM int ScatteringVolumeOn;        // 1: the march's orders >= 2 are the volume's (no octaves)
+#endif
 UNIFORM vec3 ScatteringVolumeSize;     // texels per axis of the grid computed or read
 
 // The phase's first moment g and the delta-Eddington forward fraction f (its second moment, at
@@ -354,7 +360,9 @@ vec3 BeamFraction(float mu, float tau, vec3 albedo)
 // (an affine map: the grid is the same on every piece, so a point on a face two pieces share
 // reads the same depth in both, and no resampling blurs it twice).
 
+#ifndef ExternalOpticalDepths
 UNIFORM int ExternalOpticalDepths;  // 1: added; 0: nothing read (a field on its own)
+#endif
 UNIFORM vec3 ExternalDepthSize;     // grid points per axis of one light's block
 UNIFORM float ExternalDepthCount;   // blocks stacked along z
 UNIFORM mat4 IndexToExternal;       // an index point to the grid's texel coordinates
@@ -383,7 +391,9 @@ float OpticalDepthToLight(int i, vec3 p, float sigmaHere, vec3 l, float lightDis
 // field that this field is a piece of (filters/CloudScatteringVolume.h, SolveScatteringVolume):
 // then ScatteringVolumeSize is the whole field's finest grid and IndexToScattering (affine) maps
 // this piece's index points to its texel coordinates, so pieces read one volume where they meet.
+#ifndef ExternalScatteringVolume
 UNIFORM int ExternalScatteringVolume; // 1: read through IndexToScattering; 0: the field's own
+#endif
 UNIFORM mat4 IndexToScattering;
 
 // The light scattered toward the eye at index point p by the volume's diffuse light, per unit

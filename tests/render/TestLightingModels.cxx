@@ -135,6 +135,78 @@ INSTANTIATE_TEST_SUITE_P(Models, EveryLightModel,
     return parameter.param == LightingModel::March ? "March" : "Derivative";
   });
 
+// Which light volumes, multiple-scattering model and transmittance the march uses are constants
+// of its program (MarchSwitches), one program per combination: a mapper that goes from one to
+// another must render each as a fresh mapper does, never with the last one's program.
+TEST(LightMarch, OneMapperSwitchingModelsRendersEachAsAFreshMapperDoes)
+{
+  using Setting = std::pair<const char*, void (*)(LightingParameters&)>;
+  const std::vector<Setting> settings = {
+    { "multiple-scattering volume", [](LightingParameters&) {} },
+    { "octaves",
+      [](LightingParameters& p) { p.MultipleScattering = MultipleScatteringModel::Octaves; } },
+    { "octaves, nested march",
+      [](LightingParameters& p)
+      {
+        p.MultipleScattering = MultipleScatteringModel::Octaves;
+        p.Transmittance = LightTransmittance::Nested;
+      } },
+    { "multiple-scattering volume, nested march",
+      [](LightingParameters& p) { p.Transmittance = LightTransmittance::Nested; } },
+    { "multiple-scattering volume again", [](LightingParameters&) {} },
+  };
+  const auto show = [](GpuScene& scene)
+  {
+    scene.ShowSparseCloud(48);
+    AddLight(scene.Renderer, DirectionalLight(glm::dvec3(10.0, 5.0, 3.0), 1.0));
+  };
+  const auto apply = [](vtkCloudVolumeMapper* mapper, const Setting& setting)
+  {
+    LightingParameters lighting = mapper->GetLightingProperty()->GetParameters();
+    lighting.MultipleScattering = MultipleScatteringModel::Volume;
+    lighting.Transmittance = LightTransmittance::Volumes;
+    setting.second(lighting);
+    mapper->GetLightingProperty()->SetParameters(lighting);
+  };
+  const auto largestDifference = [](const Image& a, const Image& b)
+  {
+    double largest = 0.0;
+    for (size_t i = 0; i < a.Values.size(); ++i)
+    {
+      largest = std::max(largest, double(std::abs(a.Values[i] - b.Values[i])));
+    }
+    return largest;
+  };
+  auto switching = LitMapper(LightingModel::March);
+  GpuScene switchingScene(switching, 48, 48);
+  show(switchingScene);
+  Image previous;
+  for (const Setting& setting : settings)
+  {
+    apply(switching, setting);
+    const Image switched = switchingScene.RenderFloat();
+    auto freshMapper = LitMapper(LightingModel::March);
+    apply(freshMapper, setting);
+    GpuScene freshScene(freshMapper, 48, 48);
+    show(freshScene);
+    const Image fresh = freshScene.RenderFloat();
+    const double fromFresh = largestDifference(switched, fresh);
+    std::cout << setting.first << ": largest difference from a fresh mapper " << fromFresh;
+    if (!previous.Values.empty())
+    {
+      const double fromPrevious = largestDifference(switched, previous);
+      std::cout << ", from the setting before " << fromPrevious;
+      if (std::string(setting.first) != "multiple-scattering volume again")
+      {
+        EXPECT_GT(fromPrevious, 1e-3) << setting.first << " looks like the setting before it";
+      }
+    }
+    std::cout << "\n";
+    EXPECT_LE(fromFresh, 1e-6) << setting.first;
+    previous = switched;
+  }
+}
+
 TEST(LightMarch, HalvingBothStepsChangesTheMeanRadianceByUnderTwoPercent)
 {
   const auto mean = [](double step, double lightStep, int lightSteps) {
