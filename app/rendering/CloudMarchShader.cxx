@@ -40,10 +40,9 @@ namespace
 {
 constexpr int MaxLights = LightingLimits::MaxLights;
 
-// The constants the GLSL shares with the C++, from their one definition, and the program's
-// variant of the march loop.
-// The C++'s constants, the phase, and the switches when they are the program's constants (null:
-// they stay uniforms, which the volume passes set themselves).
+// The constants the GLSL shares with the C++, from their one definition, the program's variant of
+// the march loop, its phase, and its switches when they are constants of the program (null: they
+// stay uniforms, as the volume passes have them; SetMarchUniforms sets them for those).
 std::string Constants(int samplesPerMapRead, PhaseModel phase, const MarchSwitches* switches)
 {
   std::ostringstream glsl;
