@@ -168,15 +168,6 @@ TEST(LightMarch, OneMapperSwitchingModelsRendersEachAsAFreshMapperDoes)
     setting.second(lighting);
     mapper->GetLightingProperty()->SetParameters(lighting);
   };
-  const auto largestDifference = [](const Image& a, const Image& b)
-  {
-    double largest = 0.0;
-    for (size_t i = 0; i < a.Values.size(); ++i)
-    {
-      largest = std::max(largest, double(std::abs(a.Values[i] - b.Values[i])));
-    }
-    return largest;
-  };
   auto switching = LitMapper(LightingModel::March);
   GpuScene switchingScene(switching, 48, 48);
   show(switchingScene);
@@ -190,11 +181,11 @@ TEST(LightMarch, OneMapperSwitchingModelsRendersEachAsAFreshMapperDoes)
     GpuScene freshScene(freshMapper, 48, 48);
     show(freshScene);
     const Image fresh = freshScene.RenderFloat();
-    const double fromFresh = largestDifference(switched, fresh);
+    const double fromFresh = MaxDifference(switched, fresh);
     std::cout << setting.first << ": largest difference from a fresh mapper " << fromFresh;
     if (!previous.Values.empty())
     {
-      const double fromPrevious = largestDifference(switched, previous);
+      const double fromPrevious = MaxDifference(switched, previous);
       std::cout << ", from the setting before " << fromPrevious;
       if (std::string(setting.first) != "multiple-scattering volume again")
       {
