@@ -1,5 +1,6 @@
-// What vtkCloudVolumeMapper's sources share (the march, vtkCloudVolumeMapper.cxx; the composite,
-// vtkCloudVolumeMapperComposite.cxx; the read-backs, vtkCloudVolumeMapperReadBack.cxx): the
+// What vtkCloudVolumeMapper's sources share (its settings, vtkCloudVolumeMapper.cxx; the march,
+// vtkCloudVolumeMapperMarch.cxx; the composite, vtkCloudVolumeMapperComposite.cxx; the
+// read-backs, vtkCloudVolumeMapperReadBack.cxx): the
 // mapper's GPU resources (its Internals), the temporal reprojection's constants and two small
 // helpers. Private to the module.
 #ifndef CloudVolumeMapperInternals_h

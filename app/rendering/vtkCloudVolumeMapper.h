@@ -636,16 +636,10 @@ private:
   // The scalars the mapper draws of `input` (its scalar mode and array selection).
   vtkDataArray* InputScalars(vtkImageData* input, int& cellFlag);
   vtkImageData* ValidInput(vtkVolume* volume);
-  bool IsInteracting(vtkRenderer* renderer) const;
-  double ChooseResolutionScale(vtkRenderer* renderer);
-  bool ComputeUniforms(vtkRenderer* renderer,
-    vtkVolume* volume,
-    vtkImageData* input,
-    cloudvis::MarchUniforms& uniforms,
-    cloudvis::LocalFrame& frame);
   void ReadStatistics(vtkRenderer* renderer);
 
   struct Internals;
+  class MarchFrame; // one frame of MarchPass, phase by phase (vtkCloudVolumeMapperMarch.cxx)
   std::unique_ptr<Internals> Internal;
   std::string LastError;
   bool LastErrorIsGpuMemory = false;
