@@ -218,9 +218,13 @@ glm::dmat4 DeviceToLocal(const LocalFrame& frame,
   return glm::inverse(viewToDevice * localToView);
 }
 
-MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* frameOut)
+namespace
 {
-  // ---- the geometry and its frame
+// The sections of SetUpMarch, in its order; each fills its part of `u` or returns the problem.
+
+// The geometry and its local frame, and the density texels' scale.
+MarchProblem SetUpGeometry(const MarchSetup& setup, MarchUniforms& u, LocalFrame& frame)
+{
   const VolumeGeometry& geometry = setup.Geometry;
   if (glm::any(glm::lessThan(geometry.Dimensions, glm::ivec3(2))))
   {
@@ -233,7 +237,7 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
       "the volume's placement (origin, spacing, direction and volume matrix together) is not "
       "finite or flattens the volume");
   }
-  const LocalFrame frame = MakeLocalFrame(geometry);
+  frame = MakeLocalFrame(geometry);
   if (!std::isfinite(frame.Unit) || !(frame.Unit > 0.0) || !FitsFloat(frame.IndexToLocal) ||
     !FitsFloat(frame.LocalToIndex) || !(frame.LongestChord < FloatLimit))
   {
@@ -260,14 +264,21 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
       "the volume's voxels, " + Number(frame.SmallestVoxelEdge) +
         " world units, are beyond what float arithmetic holds");
   }
+  return {};
+}
 
-  // ---- the transfer table
+// The transfer table, and the width of its density range (the derivative's density unit).
+MarchProblem SetUpTransferTable(const MarchSetup& setup,
+  const LocalFrame& frame,
+  MarchUniforms& u,
+  double& densityUnit)
+{
   const TransferTable* table = setup.Table;
   if (!table || table->Size < 1 || table->RGBA.size() < std::size_t(table->Size) * 4)
   {
     return Problem(MarchInput::TransferFunction, "no transfer table");
   }
-  const double densityUnit = table->Range[1] - table->Range[0];
+  densityUnit = table->Range[1] - table->Range[0];
   if (!(densityUnit > 0.0))
   {
     // The GPU's lookup divides by the width (TransferFunctionRange never gives 0).
@@ -304,8 +315,13 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
         Number(frame.LongestChord * frame.Unit) +
         " world units long) is beyond float range: raise the unit distance");
   }
+  return {};
+}
 
-  // ---- the step
+// The step, the samples a ray may take and the termination transmittance.
+MarchProblem SetUpStep(const MarchSetup& setup, const LocalFrame& frame, MarchUniforms& u)
+{
+  const VolumeGeometry& geometry = setup.Geometry;
   if (!(setup.SampleDistance >= 0.0 && std::isfinite(setup.SampleDistance)))
   {
     return Problem(MarchInput::Step,
@@ -332,8 +348,15 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
     return Problem(MarchInput::Step, "the termination transmittance must be in [0, 1]");
   }
   u.TerminationTransmittance = float(setup.TerminationTransmittance);
+  return {};
+}
 
-  // ---- the lighting parameters, with the automatic distances (docs/lighting.md)
+// The lighting parameters, with the automatic distances (docs/lighting.md).
+MarchProblem SetUpLightingParameters(const MarchSetup& setup,
+  const LocalFrame& frame,
+  double densityUnit,
+  MarchUniforms& u)
+{
   const LightingParameters& p = setup.Lighting;
   const std::string lightingProblem = ValidateLightingParameters(p);
   if (!lightingProblem.empty())
@@ -368,8 +391,82 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
       "the ambient color x strength " + Triple(ambient) + " is beyond float range");
   }
   u.Ambient = glm::vec3(ambient);
+  return {};
+}
 
-  // ---- the lights
+// One light (its index `index`) in the local frame, and the largest falloff a sample inside the
+// volume can see of it (1 for directional lights). Needs u.LocalToIndex and u.Lighting.
+MarchProblem SetUpLight(const Light& light,
+  int index,
+  const LocalFrame& frame,
+  const MarchUniforms& u,
+  LocalLight& local,
+  double& falloff)
+{
+  const std::string name = "light " + std::to_string(index) + " (" +
+    (light.Positional ? "a point light at " : "a directional light from ") +
+    Triple(light.Position) + ")";
+  const glm::dvec3 radiance = glm::dvec3(light.Color) * double(light.Intensity);
+  const glm::dvec3 attenuation(light.Attenuation.x,
+    light.Attenuation.y * frame.Unit,
+    light.Attenuation.z * frame.Unit * frame.Unit);
+  if (!Finite(light.Position) || !Finite(light.FocalPoint) || !Finite(radiance) ||
+    !FitsFloat(radiance.x) || !FitsFloat(radiance.y) || !FitsFloat(radiance.z) ||
+    (light.Positional &&
+      !(FitsFloat(attenuation.x) && FitsFloat(attenuation.y) && FitsFloat(attenuation.z))))
+  {
+    return Problem(MarchInput::Light,
+      name +
+        ": its color, intensity, position, focal point and attenuation must be finite, "
+        "and color x intensity and the attenuation within float range",
+      index);
+  }
+  local.Positional = light.Positional;
+  local.Radiance = glm::vec3(radiance);
+  local.Attenuation = glm::vec3(attenuation);
+  falloff = 1.0;
+  if (light.Positional)
+  {
+    const glm::dvec3 position = frame.ToLocal(light.Position);
+    const double distance = glm::length(position);
+    if (!(distance <= MaxPointLightDistance))
+    {
+      return Problem(MarchInput::Light,
+        name + " is " + Number(distance * frame.Unit) +
+          " world units from the volume's centre, too far for float arithmetic (at most " +
+          Number(MaxPointLightDistance * frame.Unit) +
+          " for this volume): use a directional light for a light this far",
+        index);
+    }
+    local.Position = glm::vec3(position);
+    // The nearest a sample can be: inside the sphere around the volume, possibly 0.
+    const double r = std::max(0.0, distance - 0.5 * frame.LongestChord);
+    falloff = 1.0 /
+      std::max(double(local.Attenuation.x) + double(local.Attenuation.y) * r +
+          double(local.Attenuation.z) * r * r,
+        1e-20);
+  }
+  else
+  {
+    const glm::dvec3 direction = DirectionTowardLight(light);
+    if (direction == glm::dvec3(0.0))
+    {
+      return Problem(MarchInput::Light,
+        name + " is directional with its position on its focal point: it has no direction",
+        index);
+    }
+    local.Direction = glm::vec3(direction);
+    local.IndexDirection = u.LocalToIndex * local.Direction;
+    local.IndexOffset = u.LocalToIndex * (u.Lighting.DerivativeDistance * local.Direction);
+  }
+  return {};
+}
+
+// The lights, and the bound on the radiance they can make a sample send toward the eye.
+MarchProblem SetUpLights(const MarchSetup& setup, const LocalFrame& frame, MarchUniforms& u)
+{
+  const LightingParameters& p = setup.Lighting;
+  const glm::dvec3 ambient = glm::dvec3(p.AmbientColor) * double(p.AmbientStrength);
   if (setup.Lights.size() > std::size_t(LightingLimits::MaxLights))
   {
     return Problem(MarchInput::Light,
@@ -389,63 +486,13 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
   {
     const Light& light = setup.Lights[i];
     const int index = int(i);
-    const std::string name = "light " + std::to_string(i) + " (" +
-      (light.Positional ? "a point light at " : "a directional light from ") +
-      Triple(light.Position) + ")";
-    const glm::dvec3 radiance = glm::dvec3(light.Color) * double(light.Intensity);
-    const glm::dvec3 attenuation(light.Attenuation.x,
-      light.Attenuation.y * frame.Unit,
-      light.Attenuation.z * frame.Unit * frame.Unit);
-    if (!Finite(light.Position) || !Finite(light.FocalPoint) || !Finite(radiance) ||
-      !FitsFloat(radiance.x) || !FitsFloat(radiance.y) || !FitsFloat(radiance.z) ||
-      (light.Positional &&
-        !(FitsFloat(attenuation.x) && FitsFloat(attenuation.y) && FitsFloat(attenuation.z))))
-    {
-      return Problem(MarchInput::Light,
-        name +
-          ": its color, intensity, position, focal point and attenuation must be finite, "
-          "and color x intensity and the attenuation within float range",
-        index);
-    }
     LocalLight local;
-    local.Positional = light.Positional;
-    local.Radiance = glm::vec3(radiance);
-    local.Attenuation = glm::vec3(attenuation);
     double falloff = 1.0;
-    if (light.Positional)
+    if (MarchProblem problem = SetUpLight(light, index, frame, u, local, falloff))
     {
-      const glm::dvec3 position = frame.ToLocal(light.Position);
-      const double distance = glm::length(position);
-      if (!(distance <= MaxPointLightDistance))
-      {
-        return Problem(MarchInput::Light,
-          name + " is " + Number(distance * frame.Unit) +
-            " world units from the volume's centre, too far for float arithmetic (at most " +
-            Number(MaxPointLightDistance * frame.Unit) +
-            " for this volume): use a directional light for a light this far",
-          index);
-      }
-      local.Position = glm::vec3(position);
-      // The nearest a sample can be: inside the sphere around the volume, possibly 0.
-      const double r = std::max(0.0, distance - 0.5 * frame.LongestChord);
-      falloff = 1.0 /
-        std::max(double(local.Attenuation.x) + double(local.Attenuation.y) * r +
-            double(local.Attenuation.z) * r * r,
-          1e-20);
+      return problem;
     }
-    else
-    {
-      const glm::dvec3 direction = DirectionTowardLight(light);
-      if (direction == glm::dvec3(0.0))
-      {
-        return Problem(MarchInput::Light,
-          name + " is directional with its position on its focal point: it has no direction",
-          index);
-      }
-      local.Direction = glm::vec3(direction);
-      local.IndexDirection = u.LocalToIndex * local.Direction;
-      local.IndexOffset = u.LocalToIndex * (u.Lighting.DerivativeDistance * local.Direction);
-    }
+    const glm::dvec3 radiance = glm::dvec3(light.Color) * double(light.Intensity);
     const double peak =
       std::max({ std::abs(radiance.x), std::abs(radiance.y), std::abs(radiance.z) }) * falloff *
       perLight;
@@ -468,11 +515,36 @@ MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* f
         " toward the eye, beyond float range (" + Number(FloatLimit) + "): lower its intensity",
       brightestLight);
   }
-  if (frameOut)
+  return {};
+}
+}
+
+MarchProblem SetUpMarch(const MarchSetup& setup, MarchUniforms& u, LocalFrame* frameOut)
+{
+  LocalFrame frame;
+  double densityUnit = 0.0;
+  MarchProblem problem = SetUpGeometry(setup, u, frame);
+  if (!problem)
+  {
+    problem = SetUpTransferTable(setup, frame, u, densityUnit);
+  }
+  if (!problem)
+  {
+    problem = SetUpStep(setup, frame, u);
+  }
+  if (!problem)
+  {
+    problem = SetUpLightingParameters(setup, frame, densityUnit, u);
+  }
+  if (!problem)
+  {
+    problem = SetUpLights(setup, frame, u);
+  }
+  if (!problem && frameOut)
   {
     *frameOut = frame;
   }
-  return {};
+  return problem;
 }
 
 std::vector<Light> LightsOf(vtkLightCollection* collection)
