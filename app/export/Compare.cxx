@@ -210,23 +210,22 @@ std::array<double, 3> DifferenceColor(double t)
     stops[i][2] + f * (stops[i + 1][2] - stops[i][2]) };
 }
 
-ComparisonResult RenderComparison(const Scene& scene,
-  vtkImageData* field,
+namespace
+{
+// The panels' models: the compared ones, then the path tracer's when there is a reference (one
+// more panel); the refusals of a comparison that cannot be drawn.
+std::vector<ComparedLighting> PanelModels(const Scene& scene,
   const std::string& input,
   const std::vector<ComparedLighting>& comparedModels,
   const std::optional<std::pair<size_t, size_t>>& difference,
-  int timingFrames,
   const std::optional<ReferencePaths>& reference)
 {
-  const int width = scene.Render.Size[0];
-  const int height = scene.Render.Size[1];
-  // The reference is one more panel, the path tracer's, after the compared models.
   std::vector<ComparedLighting> models = comparedModels;
   if (reference)
   {
     models.push_back({ LightingModel::PathTrace, std::nullopt });
   }
-  const size_t referencePanel = comparedModels.size();
+  const int width = scene.Render.Size[0];
   const int panelCount = int(models.size()) + (difference ? 1 : 0);
   if (comparedModels.empty() ||
     (difference && (difference->first >= models.size() || difference->second >= models.size())))
@@ -240,93 +239,115 @@ ComparisonResult RenderComparison(const Scene& scene,
       " pixels wide; the most is " + std::to_string(MaximumComparisonWidth) +
       ": give a smaller --size");
   }
+  return models;
+}
 
-  ComparisonResult result;
-  Scene checked = scene;
-  for (const ComparedLighting& model : models)
+// The comparison's window: a panel per model side by side, each with the viewport of a `render`
+// of render.size, then the difference's panel when asked; every render is checked.
+struct ComparisonWindow
+{
+  ComparisonWindow(vtkImageData* field, const std::string& input, int panelCount, int height)
+    : Field(field)
+    , Input(input)
+    , PanelCount(panelCount)
+    , Height(height)
   {
-    checked.Render.Lighting = PanelLighting(scene.Render.Lighting, model);
-    CheckSceneRenderable(checked, field, input);
-    result.Names.push_back(PanelName(scene.Render.Lighting, model));
+    this->Window->SetDisplayId(this->Display.Get());
+    this->Window->AddObserver(vtkCommand::ExitEvent, this->OnExit); // as RenderOffscreen's
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
   }
-  const DisplayConnection display("cloudvis compare ...");
-  VtkMessageCapture messages;
-  vtkNew<vtkRenderWindow> window;
-  window->SetDisplayId(display.Get());
-  vtkNew<vtkCallbackCommand> onExit; // see RenderOffscreen: no abort() without a GL context
-  window->AddObserver(vtkCommand::ExitEvent, onExit);
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(panelCount * width, height);
 
+  // Renders the window, every panel drawing one field: coarsened for all when one panel's
+  // textures do not fit. Throws a mapper's error.
+  void RenderChecked()
+  {
+    std::vector<vtkCloudVolumeMapper*> mappers;
+    for (const auto& panel : this->Panels)
+    {
+      mappers.push_back(panel->Mapper);
+    }
+    this->Coarsening = RenderCoarsenedToFit(
+      mappers, this->Field, this->Coarsening, [&] { this->Window->Render(); }, this->Coarsened);
+    for (const auto& panel : this->Panels)
+    {
+      CheckMapper(panel->Mapper, this->Input, this->Messages);
+    }
+  }
+
+  vtkImageData* Field;
+  const std::string& Input;
+  const int PanelCount;
+  const int Height;
+  const DisplayConnection Display{ "cloudvis compare ..." };
+  VtkMessageCapture Messages;
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkCallbackCommand> OnExit; // no abort() without a GL context
+  std::vector<std::unique_ptr<Panel>> Panels;
+  vtkNew<vtkRenderer> DifferencePanel;
+  vtkNew<vtkImageActor> DifferenceActor;
+  vtkNew<vtkTextActor> DifferenceLabel;
+  int Coarsening = 1;
+  std::string Coarsened;
+};
+
+// A panel for each model, lit as the scene with the model's lighting and sharing one camera: the
+// reference's accumulates its paths (or a noise target's frames), the others render.accumulate
+// frames.
+void AddPanels(ComparisonWindow& w,
+  const Scene& scene,
+  const std::vector<ComparedLighting>& models,
+  const std::vector<std::string>& names,
+  const std::optional<ReferencePaths>& reference)
+{
   const vtkSmartPointer<vtkVolumeProperty> property = MakeVolumeProperty(scene.TransferFunction);
-  vtkNew<vtkCamera> camera; // one camera for every panel
+  vtkNew<vtkCamera> camera;
   const int frames = scene.Render.Jitter ? scene.Render.Accumulate : 1;
-  std::vector<std::unique_ptr<Panel>> panels;
   for (size_t i = 0; i < models.size(); ++i)
   {
-    panels.push_back(std::make_unique<Panel>());
-    Panel& panel = *panels.back();
-    panel.Renderer->SetViewport(double(i) / panelCount, 0.0, double(i + 1) / panelCount, 1.0);
+    w.Panels.push_back(std::make_unique<Panel>());
+    Panel& panel = *w.Panels.back();
+    panel.Renderer->SetViewport(double(i) / w.PanelCount, 0.0, double(i + 1) / w.PanelCount, 1.0);
     panel.Renderer->SetActiveCamera(camera);
-    window->AddRenderer(panel.Renderer);
+    w.Window->AddRenderer(panel.Renderer);
     Scene lit = scene;
     lit.Render.Lighting = PanelLighting(scene.Render.Lighting, models[i]);
     ConfigureLighting(lit, panel.Mapper);
     ApplyBackground(lit, panel.Renderer);
-    panel.Mapper->SetInputData(field);
-    if (reference && i == referencePanel)
+    panel.Mapper->SetInputData(w.Field);
+    const bool referencePanel = reference && i + 1 == models.size();
+    if (referencePanel)
     {
       // Its frames: the reference's paths, or frames of a noise target's paths each.
       lit.Render.SamplesPerPixel =
         reference->Target ? NoiseTargetSamplesPerFrame : reference->SamplesPerPixel;
-      ConfigureMapper(panel.Mapper, lit.Render);
-      if (reference->Target)
-      {
-        ConfigureNoiseTarget(panel.Mapper);
-      }
     }
-    else
+    ConfigureMapper(panel.Mapper, lit.Render);
+    if (referencePanel && reference->Target)
     {
-      ConfigureMapper(panel.Mapper, lit.Render);
+      ConfigureNoiseTarget(panel.Mapper);
+    }
+    else if (!referencePanel)
+    {
       panel.Mapper->SetMaximumAccumulatedFrames(frames);
     }
     panel.Volume->SetMapper(panel.Mapper);
     panel.Volume->SetProperty(property);
     panel.Renderer->AddVolume(panel.Volume);
-    PlaceLabel(panel.Label, panel.Renderer, height);
-    panel.Label->SetInput(result.Names[i].c_str());
+    PlaceLabel(panel.Label, panel.Renderer, w.Height);
+    panel.Label->SetInput(names[i].c_str());
   }
   // Every panel has the viewport of a `render` of render.size, so this is render's camera.
-  ApplyCamera(scene.Camera, field->GetBounds(), panels[0]->Renderer, scene.Source);
-  vtkNew<vtkRenderer> differencePanel;
-  if (difference)
-  {
-    differencePanel->SetViewport(double(models.size()) / panelCount, 0.0, 1.0, 1.0);
-    differencePanel->SetBackground(0.0, 0.0, 0.0);
-    window->AddRenderer(differencePanel);
-  }
+  ApplyCamera(scene.Camera, w.Field->GetBounds(), w.Panels[0]->Renderer, scene.Source);
+}
 
-  // Every panel draws one field: coarsened for all when one panel's textures do not fit.
-  std::vector<vtkCloudVolumeMapper*> mappers;
-  for (const auto& panel : panels)
-  {
-    mappers.push_back(panel->Mapper);
-  }
-  int coarsening = 1;
-  std::string coarsened;
-  const auto renderChecked = [&]()
-  {
-    coarsening = RenderCoarsenedToFit(
-      mappers, field, coarsening, [&] { window->Render(); }, coarsened);
-    for (const auto& panel : panels)
-    {
-      CheckMapper(panel->Mapper, input, messages);
-    }
-  };
-
-  // Untimed: shader compilation, texture uploads, occupancy.
-  renderChecked();
+// Each panel's frame time, its model alone in the full window (the others hidden), into
+// `result` and onto its label; after an untimed render (shader compilation, texture uploads,
+// occupancy).
+void TimePanels(ComparisonWindow& w, int timingFrames, ComparisonResult& result)
+{
+  w.RenderChecked();
+  std::vector<std::unique_ptr<Panel>>& panels = w.Panels;
   for (size_t i = 0; i < panels.size(); ++i)
   {
     for (size_t j = 0; j < panels.size(); ++j)
@@ -338,126 +359,181 @@ ComparisonResult RenderComparison(const Scene& scene,
     {
       panels[i]->Mapper->Modified(); // else the mapper shows its converged still without marching
       const auto start = std::chrono::steady_clock::now();
-      window->Render();
-      window->WaitForCompletion();
+      w.Window->Render();
+      w.Window->WaitForCompletion();
       total += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                  .count();
-      CheckMapper(panels[i]->Mapper, input, messages);
+      CheckMapper(panels[i]->Mapper, w.Input, w.Messages);
     }
     result.Milliseconds.push_back(timingFrames > 0 ? total / timingFrames : 0.0);
     panels[i]->Label->SetInput(
       (result.Names[i] + "  " + FormatMilliseconds(result.Milliseconds.back())).c_str());
   }
+}
 
-  // The picture: every panel, accumulated from the same first jitter frame.
-  for (const auto& panel : panels)
+// The picture: every panel accumulated from the same first jitter frame until the one with the
+// most frames (the reference's, usually) has them all. A noise target's reference accumulates
+// with the models' frames and goes on alone after them (the converged models only composite);
+// it then keeps the frames it reached.
+void AccumulatePanels(ComparisonWindow& w,
+  const std::optional<ReferencePaths>& reference,
+  ComparisonResult& result)
+{
+  for (const auto& panel : w.Panels)
   {
     panel->Volume->SetVisibility(true);
     panel->Mapper->Modified();
   }
-  // A noise target's reference accumulates with the models' frames and goes on alone after them
-  // (the converged models only composite); it then keeps the frames it reached.
   int rendered = 0;
   if (reference && reference->Target)
   {
-    Panel& traced = *panels[referencePanel];
+    Panel& traced = *w.Panels.back();
     result.ReferenceTarget = AccumulateToNoiseTarget(
-      *reference->Target, window, traced.Mapper, traced.Renderer, renderChecked, input);
+      *reference->Target,
+      w.Window,
+      traced.Mapper,
+      traced.Renderer,
+      [&w] { w.RenderChecked(); },
+      w.Input);
     rendered = result.ReferenceTarget->Frames;
   }
-  // A converged panel shows its image again without marching, so the window renders until the
-  // panel with the most frames (the reference's, usually) has them all.
   int mostFrames = 0;
-  for (const auto& panel : panels)
+  for (const auto& panel : w.Panels)
   {
     mostFrames = std::max(mostFrames, panel->Mapper->GetMaximumAccumulatedFrames());
   }
   for (int frame = rendered; frame < mostFrames; ++frame)
   {
-    renderChecked();
+    w.RenderChecked();
   }
-  result.AccumulatedFrames = panels[0]->Mapper->GetNumberOfAccumulatedFrames(panels[0]->Renderer);
+  Panel& first = *w.Panels[0];
+  result.AccumulatedFrames = first.Mapper->GetNumberOfAccumulatedFrames(first.Renderer);
   if (result.AccumulatedFrames == 0)
   {
-    throw InputError(
-      NothingRenderedProblem(panels[0]->Renderer, panels[0]->Volume, messages, input));
+    throw InputError(NothingRenderedProblem(first.Renderer, first.Volume, w.Messages, w.Input));
   }
-  window->MakeCurrent();
-  std::vector<std::vector<float>> images;
-  for (const auto& panel : panels)
-  {
-    images.push_back(ReadCheckedMapperImage(panel->Mapper, panel->Renderer, input));
-  }
-  // One exposure for every panel, so that their brightness compares: an automatic one is metered
-  // on all the panels' pixels together, so that the brightest model keeps its highlights too.
+}
+
+// One exposure for every panel, so that their brightness compares: an automatic one is metered
+// on all the panels' pixels together, so that the brightest model keeps its highlights too.
+// Returns it; `changed` when it differs from the one the panels were drawn with.
+double ExposePanels(ComparisonWindow& w, const Scene& scene, bool& changed)
+{
+  w.Window->MakeCurrent();
   std::vector<float> metered;
-  for (const std::vector<float>& image : images)
+  for (const auto& panel : w.Panels)
   {
+    const std::vector<float> image =
+      ReadCheckedMapperImage(panel->Mapper, panel->Renderer, w.Input);
     metered.insert(metered.end(), image.begin(), image.end());
   }
-  CheckFieldShows(metered.data(), metered.size() / 4, field, scene, input);
+  CheckFieldShows(metered.data(), metered.size() / 4, w.Field, scene, w.Input);
   const double exposureEV = ResolveExposureEV(scene.Render, metered.data(), metered.size() / 4);
-  const bool exposed = exposureEV != panels[0]->Mapper->GetExposureEV();
-  for (const auto& panel : panels)
+  changed = exposureEV != w.Panels[0]->Mapper->GetExposureEV();
+  for (const auto& panel : w.Panels)
   {
     ConfigureDisplay(panel->Mapper, scene.Render, exposureEV);
   }
+  return exposureEV;
+}
 
-  if (reference)
+// The difference panel: |A - B| of two panels' radiances, pixel for pixel when the march ran at
+// full resolution, labelled with its largest value (into `result`).
+void DrawDifference(ComparisonWindow& w,
+  const std::pair<size_t, size_t>& difference,
+  ComparisonResult& result)
+{
+  std::vector<float> a, b;
+  int widthA = 0, heightA = 0, widthB = 0, heightB = 0;
+  w.Window->MakeCurrent();
+  Panel& panelA = *w.Panels[difference.first];
+  Panel& panelB = *w.Panels[difference.second];
+  if (!panelA.Mapper->ReadImage(panelA.Renderer, a, widthA, heightA) ||
+    !panelB.Mapper->ReadImage(panelB.Renderer, b, widthB, heightB) || widthA != widthB ||
+    heightA != heightB)
   {
-    MeasureAgainstReference(panels, referencePanel, input, result);
+    throw InputError(w.Input + ": could not read the models' images back for the difference");
+  }
+  const vtkSmartPointer<vtkImageData> image =
+    DifferenceImage(a, b, widthA, heightA, result.MaxDifference);
+  w.DifferenceActor->GetMapper()->SetInputData(image);
+  w.DifferenceActor->InterpolateOff();
+  w.DifferencePanel->AddActor(w.DifferenceActor);
+  // The image's pixel centres are at 0 .. w - 1, so it spans [-0.5, w - 0.5]; a parallel scale
+  // of half its height fills the panel, whose aspect is the image's.
+  vtkCamera* flat = w.DifferencePanel->GetActiveCamera();
+  flat->ParallelProjectionOn();
+  flat->SetFocalPoint(0.5 * (widthA - 1), 0.5 * (heightA - 1), 0.0);
+  flat->SetPosition(0.5 * (widthA - 1), 0.5 * (heightA - 1), 1.0);
+  flat->SetViewUp(0.0, 1.0, 0.0);
+  flat->SetParallelScale(0.5 * heightA);
+  flat->SetClippingRange(0.5, 1.5);
+  PlaceLabel(w.DifferenceLabel, w.DifferencePanel, w.Height);
+  char text[96];
+  std::snprintf(text,
+    sizeof(text),
+    "|%s - %s|  max %.4g",
+    result.Names[difference.first].c_str(),
+    result.Names[difference.second].c_str(),
+    result.MaxDifference);
+  w.DifferenceLabel->SetInput(text);
+}
+} // namespace
+
+ComparisonResult RenderComparison(const Scene& scene,
+  vtkImageData* field,
+  const std::string& input,
+  const std::vector<ComparedLighting>& comparedModels,
+  const std::optional<std::pair<size_t, size_t>>& difference,
+  int timingFrames,
+  const std::optional<ReferencePaths>& reference)
+{
+  const std::vector<ComparedLighting> models =
+    PanelModels(scene, input, comparedModels, difference, reference);
+  ComparisonResult result;
+  Scene checked = scene;
+  for (const ComparedLighting& model : models)
+  {
+    checked.Render.Lighting = PanelLighting(scene.Render.Lighting, model);
+    CheckSceneRenderable(checked, field, input);
+    result.Names.push_back(PanelName(scene.Render.Lighting, model));
   }
 
-  vtkNew<vtkImageActor> differenceActor;
-  vtkNew<vtkTextActor> differenceLabel;
+  const int width = scene.Render.Size[0];
+  const int height = scene.Render.Size[1];
+  const int panelCount = int(models.size()) + (difference ? 1 : 0);
+  ComparisonWindow w(field, input, panelCount, height);
+  w.Window->SetSize(panelCount * width, height);
+  AddPanels(w, scene, models, result.Names, reference);
   if (difference)
   {
-    std::vector<float> a, b;
-    int widthA = 0, heightA = 0, widthB = 0, heightB = 0;
-    window->MakeCurrent();
-    Panel& panelA = *panels[difference->first];
-    Panel& panelB = *panels[difference->second];
-    if (!panelA.Mapper->ReadImage(panelA.Renderer, a, widthA, heightA) ||
-      !panelB.Mapper->ReadImage(panelB.Renderer, b, widthB, heightB) || widthA != widthB ||
-      heightA != heightB)
-    {
-      throw InputError(input + ": could not read the models' images back for the difference");
-    }
-    const vtkSmartPointer<vtkImageData> image =
-      DifferenceImage(a, b, widthA, heightA, result.MaxDifference);
-    differenceActor->GetMapper()->SetInputData(image);
-    differenceActor->InterpolateOff();
-    differencePanel->AddActor(differenceActor);
-    // Pixel for pixel when the march ran at full resolution: the image's pixel centres are at
-    // 0 .. w - 1, so it spans [-0.5, w - 0.5]; a parallel scale of half its height fills the
-    // panel, whose aspect is the image's.
-    vtkCamera* flat = differencePanel->GetActiveCamera();
-    flat->ParallelProjectionOn();
-    flat->SetFocalPoint(0.5 * (widthA - 1), 0.5 * (heightA - 1), 0.0);
-    flat->SetPosition(0.5 * (widthA - 1), 0.5 * (heightA - 1), 1.0);
-    flat->SetViewUp(0.0, 1.0, 0.0);
-    flat->SetParallelScale(0.5 * heightA);
-    flat->SetClippingRange(0.5, 1.5);
-    PlaceLabel(differenceLabel, differencePanel, height);
-    char text[96];
-    std::snprintf(text,
-      sizeof(text),
-      "|%s - %s|  max %.4g",
-      result.Names[difference->first].c_str(),
-      result.Names[difference->second].c_str(),
-      result.MaxDifference);
-    differenceLabel->SetInput(text);
+    w.DifferencePanel->SetViewport(double(models.size()) / panelCount, 0.0, 1.0, 1.0);
+    w.DifferencePanel->SetBackground(0.0, 0.0, 0.0);
+    w.Window->AddRenderer(w.DifferencePanel);
+  }
+
+  TimePanels(w, timingFrames, result);
+  AccumulatePanels(w, reference, result);
+  bool exposed = false;
+  const double exposureEV = ExposePanels(w, scene, exposed);
+  if (reference)
+  {
+    MeasureAgainstReference(w.Panels, comparedModels.size(), input, result);
+  }
+  if (difference)
+  {
+    DrawDifference(w, *difference, result);
   }
   if (difference || reference || exposed)
   {
     // The model panels are converged: this frame shows them again, with the new labels and the
     // chosen exposure.
-    renderChecked();
+    w.RenderChecked();
   }
-  result.Image = CaptureWindow(window, input, messages);
+  result.Image = CaptureWindow(w.Window, input, w.Messages);
   result.Image.ExposureEV = exposureEV;
   result.Image.Display = scene.Render.Display;
-  result.Image.Coarsened = coarsened;
+  result.Image.Coarsened = w.Coarsened;
   return result;
 }
 
