@@ -210,14 +210,14 @@ const RawType* NrrdType(const std::string& type)
   return TypeNamed(types, type);
 }
 
-ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
+// Where a NRRD header's lines end: after its first empty line, or (a detached header) at the
+// end of the file. Refuses text that is not a whole header.
+std::size_t NrrdHeaderEnd(const std::string& path, const std::string& text)
 {
   if (text.compare(0, 4, "NRRD") != 0)
   {
     Fail(path, "not a NRRD file (it does not start with \"NRRD\")");
   }
-  ImageHeader header;
-  header.DataFile = path;
   // A NRRD header is text that ends with an empty line (or, detached, with the file): a NUL byte
   // before that line, or a last line without its line break, means the file is not a whole
   // header (a binary file, or one cut short), so it is refused rather than read up to the NUL.
@@ -241,17 +241,27 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
       end = at + std::strlen(blank);
     }
   }
-  header.Stored.Offset = end;
-  std::istringstream lines(text.substr(0, end));
+  return end;
+}
+
+// The fields of a NRRD header that its encoding and axes are made of, as written.
+struct NrrdFields
+{
+  int Dimension = 0;
+  std::vector<double> Sizes;
+  std::vector<std::string> Directions;
+  std::vector<double> Spacings;
+  std::string Encoding = "raw";
+  std::string Endian;
+  long long ByteSkip = 0;
+};
+
+// Reads the header's fields: into `header` those it takes as they are (origin, type, line skip,
+// data file), into the result those the encoding and the axes are made of.
+NrrdFields ReadNrrdFields(const std::string& path, std::istringstream& lines, ImageHeader& header)
+{
+  NrrdFields fields;
   std::string line;
-  std::getline(lines, line); // the magic
-  std::vector<double> sizes;
-  std::vector<std::string> directions;
-  std::vector<double> spacings;
-  std::string encoding = "raw";
-  std::string endian;
-  long long byteSkip = 0;
-  int dimension = 0;
   while (std::getline(lines, line) && !Trim(line).empty())
   {
     const auto colon = line.find(": ");
@@ -263,28 +273,29 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     const std::string value = Trim(line.substr(colon + 2));
     if (field == "dimension")
     {
-      dimension = std::atoi(value.c_str());
+      fields.Dimension = std::atoi(value.c_str());
     }
     else if (field == "sizes")
     {
       // NRRD's format requires the dimension first: the number of sizes is checked against it.
-      if (dimension == 0)
+      if (fields.Dimension == 0)
       {
         Fail(path, "the NRRD header gives its sizes before its dimension");
       }
-      sizes = Numbers(value);
+      fields.Sizes = Numbers(value);
     }
     else if (field == "spacings")
     {
       std::istringstream in(value);
       for (std::string token; in >> token;)
       {
-        spacings.push_back(token == "nan" || token == "NaN" ? 0.0 : std::atof(token.c_str()));
+        fields.Spacings.push_back(
+          token == "nan" || token == "NaN" ? 0.0 : std::atof(token.c_str()));
       }
     }
     else if (field == "space directions")
     {
-      directions = DirectionVectors(path, value);
+      fields.Directions = DirectionVectors(path, value);
     }
     else if (field == "space origin")
     {
@@ -309,19 +320,19 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
     }
     else if (field == "encoding")
     {
-      encoding = value;
-      std::transform(encoding.begin(),
-        encoding.end(),
-        encoding.begin(),
+      fields.Encoding = value;
+      std::transform(fields.Encoding.begin(),
+        fields.Encoding.end(),
+        fields.Encoding.begin(),
         [](unsigned char c) { return char(std::tolower(c)); });
     }
     else if (field == "endian")
     {
-      endian = value;
+      fields.Endian = value;
     }
     else if (field == "byte skip" || field == "byteskip")
     {
-      byteSkip = HeaderInteger(path, "NRRD \"byte skip\"", value, -1);
+      fields.ByteSkip = HeaderInteger(path, "NRRD \"byte skip\"", value, -1);
     }
     else if (field == "line skip" || field == "lineskip")
     {
@@ -338,60 +349,72 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
       header.Stored.Offset = 0;
     }
   }
+  return fields;
+}
+
+// The header's value encoding: its type, encoding, byte order and skipped bytes.
+void SetNrrdEncoding(const std::string& path, const NrrdFields& fields, ImageHeader& header)
+{
   if (!header.Stored.Type)
   {
     Fail(path, "the NRRD header states no type");
   }
-  if (encoding == "raw")
+  if (fields.Encoding == "raw")
   {
     header.Stored.Encoding = ValueEncoding::Raw;
   }
-  else if (encoding == "gzip" || encoding == "gz")
+  else if (fields.Encoding == "gzip" || fields.Encoding == "gz")
   {
     header.Stored.Encoding = ValueEncoding::Zlib;
   }
-  else if (encoding == "ascii" || encoding == "text" || encoding == "txt")
+  else if (fields.Encoding == "ascii" || fields.Encoding == "text" || fields.Encoding == "txt")
   {
     header.Stored.Encoding = ValueEncoding::Text;
   }
   else
   {
     Fail(path,
-      "the NRRD encoding \"" + encoding +
+      "the NRRD encoding \"" + fields.Encoding +
         "\" is not supported (cloudvis reads raw, gzip and ascii; convert with "
         "`unu save -e gzip`)");
   }
   if (header.Stored.Type->Bytes > 1 && header.Stored.Encoding != ValueEncoding::Text &&
-    endian != "little" && endian != "big")
+    fields.Endian != "little" && fields.Endian != "big")
   {
     Fail(path,
-      "the NRRD header's endian is \"" + endian + "\"; values of " +
+      "the NRRD header's endian is \"" + fields.Endian + "\"; values of " +
         std::to_string(header.Stored.Type->Bytes) + " bytes need \"little\" or \"big\"");
   }
-  header.Stored.BigEndian = endian == "big";
+  header.Stored.BigEndian = fields.Endian == "big";
   // NRRD's byte skip: bytes of the file before the values (-1: the values end the file) for raw
   // data, bytes of the decompressed stream for gzip.
-  if (byteSkip != 0 && header.Stored.Encoding == ValueEncoding::Text)
+  if (fields.ByteSkip != 0 && header.Stored.Encoding == ValueEncoding::Text)
   {
     Fail(path, "a NRRD \"byte skip\" with ascii encoding is not supported");
   }
-  if (byteSkip == -1 && header.Stored.Encoding != ValueEncoding::Raw)
+  if (fields.ByteSkip == -1 && header.Stored.Encoding != ValueEncoding::Raw)
   {
     Fail(path, "the NRRD \"byte skip: -1\" (the values end the file) needs raw encoding");
   }
-  header.Stored.AtEnd = byteSkip == -1;
-  if (byteSkip > 0)
+  header.Stored.AtEnd = fields.ByteSkip == -1;
+  if (fields.ByteSkip > 0)
   {
     (header.Stored.Encoding == ValueEncoding::Raw ? header.ByteSkip : header.Stored.SkipDecoded) =
-      std::uint64_t(byteSkip);
+      std::uint64_t(fields.ByteSkip);
   }
-  if (dimension < 1 || dimension > 4 || int(sizes.size()) != dimension)
+}
+
+// The header's axes: the voxels along each spatial one and its vector (from the space directions
+// or the spacings), and the components of a leading non-spatial axis.
+void SetNrrdAxes(const std::string& path, const NrrdFields& fields, ImageHeader& header)
+{
+  if (fields.Dimension < 1 || fields.Dimension > 4 || int(fields.Sizes.size()) != fields.Dimension)
   {
     Fail(path,
-      "the NRRD header states " + std::to_string(dimension) + " dimensions and " +
-        std::to_string(sizes.size()) + " sizes; a field needs 2 or 3 spatial dimensions");
+      "the NRRD header states " + std::to_string(fields.Dimension) + " dimensions and " +
+        std::to_string(fields.Sizes.size()) + " sizes; a field needs 2 or 3 spatial dimensions");
   }
-  for (double size : sizes)
+  for (double size : fields.Sizes)
   {
     if (!(size >= 1.0) || size != std::floor(size))
     {
@@ -401,18 +424,18 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   // A leading non-spatial axis ("none" in space directions, or a fourth axis) holds the values
   // of one voxel.
   std::size_t first = 0;
-  if (dimension == 4 || (!directions.empty() && directions[0] == "none"))
+  if (fields.Dimension == 4 || (!fields.Directions.empty() && fields.Directions[0] == "none"))
   {
-    header.Components = sizes[0];
+    header.Components = fields.Sizes[0];
     first = 1;
   }
-  if (!directions.empty() && directions.size() != sizes.size())
+  if (!fields.Directions.empty() && fields.Directions.size() != fields.Sizes.size())
   {
     Fail(path,
-      "the NRRD \"space directions\" gives " + std::to_string(directions.size()) +
-        " vectors (or \"none\") for " + std::to_string(sizes.size()) + " axes");
+      "the NRRD \"space directions\" gives " + std::to_string(fields.Directions.size()) +
+        " vectors (or \"none\") for " + std::to_string(fields.Sizes.size()) + " axes");
   }
-  const std::size_t spatial = sizes.size() - first;
+  const std::size_t spatial = fields.Sizes.size() - first;
   if (spatial < 2 || spatial > 3)
   {
     Fail(path,
@@ -420,24 +443,37 @@ ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
   }
   for (std::size_t a = 0; a < spatial; ++a)
   {
-    header.Dimensions[a] = sizes[first + a];
-    if (!directions.empty())
+    header.Dimensions[a] = fields.Sizes[first + a];
+    if (!fields.Directions.empty())
     {
-      const std::vector<double> axis = Numbers(directions[first + a]);
+      const std::vector<double> axis = Numbers(fields.Directions[first + a]);
       if (axis.size() != 3)
       {
         Fail(path,
           "the NRRD \"space directions\" of axis " + std::to_string(a) +
-            " is not a vector of three numbers (\"" + directions[first + a] + "\")");
+            " is not a vector of three numbers (\"" + fields.Directions[first + a] + "\")");
       }
       std::copy(axis.begin(), axis.end(), header.Axes[a].begin());
     }
-    else if (spacings.size() == sizes.size() && spacings[first + a] != 0.0)
+    else if (fields.Spacings.size() == fields.Sizes.size() && fields.Spacings[first + a] != 0.0)
     {
       header.Axes[a] = { { 0.0, 0.0, 0.0 } };
-      header.Axes[a][a] = spacings[first + a];
+      header.Axes[a][a] = fields.Spacings[first + a];
     }
   }
+}
+
+ImageHeader ParseNrrdHeader(const std::string& path, const std::string& text)
+{
+  ImageHeader header;
+  header.DataFile = path;
+  header.Stored.Offset = NrrdHeaderEnd(path, text);
+  std::istringstream lines(text.substr(0, header.Stored.Offset));
+  std::string magic;
+  std::getline(lines, magic);
+  const NrrdFields fields = ReadNrrdFields(path, lines, header);
+  SetNrrdEncoding(path, fields, header);
+  SetNrrdAxes(path, fields, header);
   return header;
 }
 
@@ -461,18 +497,27 @@ const RawType* MetaImageType(const std::string& type)
   return TypeNamed(types, type);
 }
 
-ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& text)
+// The fields of a MetaImage header that its encoding and axes are made of, as written.
+struct MetaImageFields
 {
-  ImageHeader header;
-  std::vector<double> sizes, spacing, matrix;
-  int dimensions = 0;
-  bool dataFileSeen = false;
-  long long headerSize = 0;
-  bool compressed = false;
-  bool binary = true;
-  std::optional<std::uint64_t> compressedBytes;
+  int Dimensions = 0;
+  std::vector<double> Sizes, Spacing, Matrix;
+  bool DataFileSeen = false;
+  long long HeaderSize = 0;
+  bool Compressed = false;
+  bool Binary = true;
+  std::optional<std::uint64_t> CompressedBytes;
+};
+
+// Reads the header's fields up to ElementDataFile, its last: into `header` those it takes as
+// they are (origin, type, byte order, components, data file), into the result the others.
+MetaImageFields ReadMetaImageFields(const std::string& path,
+  const std::string& text,
+  ImageHeader& header)
+{
+  MetaImageFields fields;
   std::size_t at = 0;
-  while (at < text.size() && !dataFileSeen)
+  while (at < text.size() && !fields.DataFileSeen)
   {
     auto end = text.find('\n', at);
     end = end == std::string::npos ? text.size() : end;
@@ -487,15 +532,15 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     const std::string value = Trim(line.substr(equals + 1));
     if (key == "NDims")
     {
-      dimensions = std::atoi(value.c_str());
+      fields.Dimensions = std::atoi(value.c_str());
     }
     else if (key == "DimSize")
     {
-      sizes = Numbers(value);
+      fields.Sizes = Numbers(value);
     }
     else if (key == "ElementSpacing")
     {
-      spacing = Numbers(value);
+      fields.Spacing = Numbers(value);
     }
     else if (key == "Offset" || key == "Position" || key == "Origin")
     {
@@ -504,7 +549,7 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     }
     else if (key == "TransformMatrix" || key == "Rotation" || key == "Orientation")
     {
-      matrix = Numbers(value);
+      fields.Matrix = Numbers(value);
     }
     else if (key == "ElementType")
     {
@@ -523,7 +568,7 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     }
     else if (key == "BinaryData")
     {
-      binary = value == "True" || value == "true";
+      fields.Binary = value == "True" || value == "true";
     }
     else if (key == "BinaryDataByteOrderMSB" || key == "ElementByteOrderMSB")
     {
@@ -531,7 +576,7 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     }
     else if (key == "CompressedDataSize")
     {
-      compressedBytes = std::uint64_t(HeaderInteger(path, "CompressedDataSize", value, 1));
+      fields.CompressedBytes = std::uint64_t(HeaderInteger(path, "CompressedDataSize", value, 1));
     }
     else if (key == "ElementNumberOfChannels")
     {
@@ -539,16 +584,16 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
     }
     else if (key == "CompressedData")
     {
-      compressed = value == "True" || value == "true";
+      fields.Compressed = value == "True" || value == "true";
     }
     else if (key == "HeaderSize")
     {
-      headerSize = HeaderInteger(path, "HeaderSize", value, -1);
+      fields.HeaderSize = HeaderInteger(path, "HeaderSize", value, -1);
     }
     else if (key == "ElementDataFile")
     {
       // The last key of a header: the values follow it (LOCAL) or lie in the named file.
-      dataFileSeen = true;
+      fields.DataFileSeen = true;
       if (value == "LOCAL" || value == "Local" || value == "local")
       {
         header.DataFile = path;
@@ -563,12 +608,21 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
       else
       {
         header.DataFile = Beside(path, value);
-        header.Stored.Offset = headerSize > 0 ? std::uint64_t(headerSize) : 0;
-        header.Stored.AtEnd = headerSize == -1;
+        header.Stored.Offset = fields.HeaderSize > 0 ? std::uint64_t(fields.HeaderSize) : 0;
+        header.Stored.AtEnd = fields.HeaderSize == -1;
       }
     }
   }
-  if (!dataFileSeen)
+  return fields;
+}
+
+// The header's value encoding: binary, text or compressed, and where the values end.
+void SetMetaImageEncoding(const std::string& path,
+  const std::string& text,
+  const MetaImageFields& fields,
+  ImageHeader& header)
+{
+  if (!fields.DataFileSeen)
   {
     Fail(path,
       "not a MetaImage file (no ElementDataFile in its first " + std::to_string(text.size()) +
@@ -578,53 +632,67 @@ ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& tex
   {
     Fail(path, "the MetaImage header states no ElementType");
   }
-  header.Stored.Encoding = compressed ? ValueEncoding::Zlib
-    : binary                          ? ValueEncoding::Raw
-                                      : ValueEncoding::Text;
-  if (compressed)
+  header.Stored.Encoding = fields.Compressed ? ValueEncoding::Zlib
+    : fields.Binary                          ? ValueEncoding::Raw
+                                             : ValueEncoding::Text;
+  if (fields.Compressed)
   {
     if (header.Stored.AtEnd)
     {
       Fail(path, "HeaderSize = -1 (the values end the file) applies to uncompressed data only");
     }
-    header.Stored.Length = compressedBytes;
+    header.Stored.Length = fields.CompressedBytes;
   }
-  else if (!binary && header.Stored.AtEnd)
+  else if (!fields.Binary && header.Stored.AtEnd)
   {
     Fail(path, "HeaderSize = -1 (the values end the file) applies to binary data only");
   }
-  if (dimensions < 2 || dimensions > 3 || int(sizes.size()) != dimensions)
+}
+
+// The header's axes: the voxels along each and its vector, from the spacing and the matrix.
+void SetMetaImageAxes(const std::string& path, const MetaImageFields& fields, ImageHeader& header)
+{
+  if (fields.Dimensions < 2 || fields.Dimensions > 3 ||
+    int(fields.Sizes.size()) != fields.Dimensions)
   {
     Fail(path,
-      "the MetaImage header states NDims = " + std::to_string(dimensions) + " and " +
-        std::to_string(sizes.size()) + " sizes (DimSize); a field needs 2 or 3 dimensions");
+      "the MetaImage header states NDims = " + std::to_string(fields.Dimensions) + " and " +
+        std::to_string(fields.Sizes.size()) + " sizes (DimSize); a field needs 2 or 3 dimensions");
   }
-  if (!spacing.empty() && int(spacing.size()) != dimensions)
+  if (!fields.Spacing.empty() && int(fields.Spacing.size()) != fields.Dimensions)
   {
     Fail(path, "the MetaImage ElementSpacing does not give one number per dimension");
   }
-  if (!matrix.empty() && int(matrix.size()) != dimensions * dimensions)
+  if (!fields.Matrix.empty() && int(fields.Matrix.size()) != fields.Dimensions * fields.Dimensions)
   {
     Fail(path, "the MetaImage TransformMatrix does not hold NDims x NDims numbers");
   }
-  for (int a = 0; a < dimensions; ++a)
+  for (int a = 0; a < fields.Dimensions; ++a)
   {
-    if (!(sizes[a] >= 1.0) || sizes[a] != std::floor(sizes[a]))
+    if (!(fields.Sizes[a] >= 1.0) || fields.Sizes[a] != std::floor(fields.Sizes[a]))
     {
       Fail(path, "the MetaImage DimSize is not a list of positive integers");
     }
-    header.Dimensions[a] = sizes[a];
+    header.Dimensions[a] = fields.Sizes[a];
     // TransformMatrix lists the direction of each axis in turn (ITK writes
     // matrix[i * n + j] = direction of axis i, component j); a negative spacing points the axis
     // the other way.
-    const double step = spacing.empty() ? 1.0 : spacing[a];
+    const double step = fields.Spacing.empty() ? 1.0 : fields.Spacing[a];
     header.Axes[a] = { { 0.0, 0.0, 0.0 } };
-    for (int j = 0; j < dimensions; ++j)
+    for (int j = 0; j < fields.Dimensions; ++j)
     {
-      header.Axes[a][j] =
-        step * (matrix.empty() ? (a == j ? 1.0 : 0.0) : matrix[a * dimensions + j]);
+      header.Axes[a][j] = step *
+        (fields.Matrix.empty() ? (a == j ? 1.0 : 0.0) : fields.Matrix[a * fields.Dimensions + j]);
     }
   }
+}
+
+ImageHeader ParseMetaImageHeader(const std::string& path, const std::string& text)
+{
+  ImageHeader header;
+  const MetaImageFields fields = ReadMetaImageFields(path, text, header);
+  SetMetaImageEncoding(path, text, fields, header);
+  SetMetaImageAxes(path, fields, header);
   return header;
 }
 
