@@ -580,316 +580,400 @@ std::string TimeStep(const netcdf::File& file,
 
 } // namespace
 
-FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions& options)
+namespace
 {
-  std::uint64_t fileBytes = 0;
-  bool classic = false; // CDF-1, -2 and -5 files hold every value uncompressed
-  ClassicHeader header;
+// What cloudvis checks of a file itself before the netCDF library opens it (ClassicHeader,
+// Hdf5FileEnd): the file's size, whether it is a classic file, and a classic file's header.
+struct CheckedFile
+{
+  std::uint64_t Bytes = 0;
+  bool Classic = false; // CDF-1, -2 and -5 files hold every value uncompressed
+  ClassicHeader Header;
+};
+
+CheckedFile CheckBeforeTheLibrary(const std::string& path)
+{
+  CheckedFile checked;
+  const RegularInputFile file(path, "field");
+  checked.Bytes = file.Size();
+  const std::string magic = file.ReadAt(0, 8);
+  checked.Classic = magic.size() >= 4 && magic.compare(0, 3, "CDF") == 0 &&
+    (magic[3] == 1 || magic[3] == 2 || magic[3] == 5);
+  if (!checked.Classic && magic != "\x89HDF\r\n\x1a\n")
   {
-    const RegularInputFile file(path, "field");
-    fileBytes = file.Size();
-    const std::string magic = file.ReadAt(0, 8);
-    classic = magic.size() >= 4 && magic.compare(0, 3, "CDF") == 0 &&
-      (magic[3] == 1 || magic[3] == 2 || magic[3] == 5);
-    if (!classic && magic != "\x89HDF\r\n\x1a\n")
+    Fail(path, "not a NetCDF file (it starts with neither \"CDF\" nor the HDF5 signature)");
+  }
+  if (checked.Classic)
+  {
+    // Its first 16 MiB, more than any header needs.
+    const std::string headerBytes =
+      file.ReadAt(0, std::size_t(std::min<std::uint64_t>(checked.Bytes, 16u << 20)));
+    const std::string problem = checked.Header.Parse(headerBytes, checked.Bytes);
+    if (!problem.empty())
     {
-      Fail(path, "not a NetCDF file (it starts with neither \"CDF\" nor the HDF5 signature)");
-    }
-    if (classic)
-    {
-      // Its first 16 MiB, more than any header needs.
-      const std::string headerBytes =
-        file.ReadAt(0, std::size_t(std::min<std::uint64_t>(fileBytes, 16u << 20)));
-      const std::string problem = header.Parse(headerBytes, fileBytes);
-      if (!problem.empty())
-      {
-        Fail(path, "malformed NetCDF header: " + problem);
-      }
-    }
-    else if (const std::uint64_t end = Hdf5FileEnd(file.ReadAt(0, 64)); end > fileBytes)
-    {
-      Fail(path,
-        "the netCDF-4 (HDF5) file says it holds " + std::to_string(end) + " bytes but holds " +
-          std::to_string(fileBytes) + ": it is truncated");
+      Fail(path, "malformed NetCDF header: " + problem);
     }
   }
-
-  const auto read = [&]() -> FieldFileContents
+  else if (const std::uint64_t end = Hdf5FileEnd(file.ReadAt(0, 64)); end > checked.Bytes)
   {
-    const netcdf::File file(path);
-    const netcdf::Variable& chosen = netcdf::ChooseVariable(file, options.Array);
-    const netcdf::Layout layout = netcdf::LayoutOf(file, chosen);
-    FieldFileContents contents;
-    const std::string step = TimeStep(file, chosen, layout, options, contents.Report);
-    if (classic)
+    Fail(path,
+      "the netCDF-4 (HDF5) file says it holds " + std::to_string(end) + " bytes but holds " +
+        std::to_string(checked.Bytes) + ": it is truncated");
+  }
+  return checked;
+}
+
+// The chosen variable in the open file, at the time step the options choose.
+struct ChosenVariable
+{
+  const netcdf::File& File;
+  const netcdf::Variable& Variable;
+  const netcdf::Layout Layout;
+  const FieldReadOptions& Options;
+  std::size_t Step() const { return std::size_t(this->Options.TimeStep.value_or(0)); }
+};
+
+// The lattice of the file: each axis's dimension and name, its coordinates (the indices without
+// a coordinate variable; one point at 0 for the axis a 2-D variable lacks) and how the
+// coordinates a file implies came about.
+struct FileLattice
+{
+  std::array<AxisSampling, 3> Axes;
+  std::array<double, 3> Dimensions{ { 1.0, 1.0, 1.0 } };
+  std::array<std::string, 3> Names;
+  std::array<std::string, 3> Implied;
+};
+
+FileLattice LatticeOf(const ChosenVariable& v)
+{
+  const std::string& path = v.File.Path();
+  FileLattice lattice;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    const netcdf::Layout::Axis& axis = v.Layout.Space[a];
+    std::vector<double> coordinates{ 0.0 };
+    if (axis.Position >= 0)
     {
-      const std::uint64_t end =
-        header.EndOf(chosen.Name, std::uint64_t(options.TimeStep.value_or(0)));
-      if (end > fileBytes)
+      const netcdf::Dimension& dimension = v.File.DimensionOf(axis.Dimension);
+      lattice.Names[a] = dimension.Name;
+      if (dimension.Length == 0)
       {
         Fail(path,
-          "the values of \"" + chosen.Name + "\" end at byte " + std::to_string(end) +
-            " but the file holds " + std::to_string(fileBytes) + ": it is truncated");
+          "variable \"" + v.Variable.Name + "\" holds no values: its dimension \"" +
+            dimension.Name + "\" has length 0");
       }
-    }
-
-    // The lattice: each axis's dimension, and its coordinates (the indices without a coordinate
-    // variable; one point at 0 for the axis a 2-D variable lacks).
-    std::array<AxisSampling, 3> axes;
-    std::array<double, 3> fileDimensions{ { 1.0, 1.0, 1.0 } };
-    std::array<std::string, 3> axisNames;
-    std::array<std::string, 3> implied; // how the coordinates a file implies came about
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      const netcdf::Layout::Axis& axis = layout.Space[a];
-      std::vector<double> coordinates{ 0.0 };
-      if (axis.Position >= 0)
+      lattice.Dimensions[a] = double(dimension.Length);
+      // Before any coordinates are read: a chunked coordinate may claim any length too.
+      CheckFieldSize(path, lattice.Dimensions, 4.0, v.Options.MaximumVoxels);
+      const netcdf::Variable* c = v.File.CoordinateOf(axis.Dimension);
+      const auto impliedAxis =
+        c ? std::nullopt : netcdf::ImpliedCoordinates(v.File, axis.Dimension, v.Step());
+      if (impliedAxis)
       {
-        const netcdf::Dimension& dimension = file.DimensionOf(axis.Dimension);
-        axisNames[a] = dimension.Name;
-        if (dimension.Length == 0)
+        coordinates = impliedAxis->Coordinates;
+        lattice.Implied[a] = impliedAxis->How;
+      }
+      else if (!c)
+      {
+        coordinates.resize(dimension.Length);
+        for (std::size_t i = 0; i < coordinates.size(); ++i)
         {
-          Fail(path,
-            "variable \"" + chosen.Name + "\" holds no values: its dimension \"" + dimension.Name +
-              "\" has length 0");
-        }
-        fileDimensions[a] = double(dimension.Length);
-        const netcdf::Variable* c = file.CoordinateOf(axis.Dimension);
-        if (!c)
-        {
-          CheckFieldSize(path, fileDimensions, 4.0, options.MaximumVoxels);
-        }
-        const auto impliedAxis = c
-          ? std::nullopt
-          : netcdf::ImpliedCoordinates(
-              file, axis.Dimension, std::size_t(options.TimeStep.value_or(0)));
-        if (impliedAxis)
-        {
-          coordinates = impliedAxis->Coordinates;
-          implied[a] = impliedAxis->How;
-        }
-        else if (!c)
-        {
-          coordinates.resize(dimension.Length);
-          for (std::size_t i = 0; i < coordinates.size(); ++i)
-          {
-            coordinates[i] = double(i);
-          }
-        }
-        else
-        {
-          // Before the coordinates are read: a chunked coordinate may claim any length too.
-          CheckFieldSize(path, fileDimensions, 4.0, options.MaximumVoxels);
-          coordinates = file.Coordinates(*c);
+          coordinates[i] = double(i);
         }
       }
-      axes[a] = SampleAxis(path, coordinates, axisNames[a]);
-    }
-    // The float lattice, and the slab of doubles read at a time: whole chunks of the slowest
-    // spatial dimension (a chunk is then decompressed once), else about 8 MiB.
-    int slowest = -1;
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      const int p = layout.Space[a].Position;
-      slowest = p >= 0 && (slowest < 0 || p < layout.Space[std::size_t(slowest)].Position)
-        ? int(a)
-        : slowest;
-    }
-    const double slice = fileDimensions[0] * fileDimensions[1] * fileDimensions[2] /
-      fileDimensions[std::size_t(slowest)];
-    const std::size_t chunk = file.ChunkLength(chosen, layout.Space[std::size_t(slowest)].Position);
-    const std::size_t slabSlices =
-      chunk > 0 ? chunk : std::size_t(std::max(1.0, std::floor((8u << 20) / 8.0 / slice)));
-    CheckFieldSize(path,
-      fileDimensions,
-      4.0,
-      options.MaximumVoxels,
-      8.0 * slice *
-        double(
-          std::min<std::size_t>(slabSlices, std::size_t(fileDimensions[std::size_t(slowest)]))));
-    netcdf::MissingValues missing(file, chosen);
-    const ValueSource source{ file,
-      chosen,
-      layout,
-      std::size_t(options.TimeStep.value_or(0)),
-      options.Missing.value_or(MissingValueRule::Refuse) == MissingValueRule::Empty,
-      slabSlices };
-    vtkSmartPointer<vtkFloatArray> density = ReadValues(source, axes, missing);
-
-    // The report: what was read, then each axis.
-    const std::string units = file.Text(chosen, "units");
-    const std::string longName = file.Text(chosen, "long_name");
-    const netcdf::Packing packing = netcdf::PackingOf(file, chosen);
-    std::string dimensionsText;
-    for (const int d : chosen.Dimensions)
-    {
-      dimensionsText += (dimensionsText.empty() ? "" : ", ") + file.DimensionOf(d).Name;
-    }
-    const std::string type = netcdf::TypeName(chosen.Type);
-    contents.Report.Add("variable",
-      "\"" + chosen.Name + "\"" + (longName.empty() ? "" : " (" + longName + ")") + " on (" +
-        dimensionsText + "), " + type +
-        (packing.Packed ? ", packed (scale_factor " + Number(packing.Scale) + ", add_offset " +
-              Number(packing.Offset) + "), unpacked to float"
-            : type == "float" ? ""
-                              : ", converted to float"));
-    contents.Report.Add("units", units.empty() ? "not stated" : units);
-    DeclareQuantityOfUnits(units, "the variable's", contents.Report);
-    const netcdf::FieldLattice lattice{ file,
-      chosen,
-      layout,
-      source.Step,
-      { { axes[0].Coordinates, axes[1].Coordinates, axes[2].Coordinates } },
-      axes[2].Reversed,
-      [&](const netcdf::Variable& other)
+      else
       {
-        // Another variable on the field's dimensions, read as the field's values were.
-        const netcdf::Layout otherLayout = netcdf::LayoutOf(file, other);
-        for (std::size_t a = 0; a < 3; ++a)
-        {
-          if (otherLayout.Space[a].Dimension != layout.Space[a].Dimension)
-          {
-            Fail(path,
-              "variable \"" + other.Name + "\" is on the dimensions of \"" + chosen.Name +
-                "\" but they do not stand for the same axes");
-          }
-        }
-        // Its missing values are counted here, not read as empty space: field.missing is the
-        // field's, and the air is needed at every voxel.
-        netcdf::MissingValues otherMissing(file, other);
-        const ValueSource values{ file, other, otherLayout, source.Step, true, slabSlices };
-        vtkSmartPointer<vtkFloatArray> air = ReadValues(values, axes, otherMissing);
-        if (otherMissing.Count() > 0)
-        {
-          Fail(path,
-            "variable \"" + other.Name + "\" holds " + Values(otherMissing.Count(), "missing ") +
-              " (" + otherMissing.Describe() +
-              "): the air's density is needed at every voxel of \"" + chosen.Name +
-              "\"; field.air_density \"standard\" or a number in kg/m^3 gives it another way");
-        }
-        return air;
-      } };
-    netcdf::ConvertMixingRatio(lattice, options, density, contents.Report);
-    netcdf::DeclareDroplets(file, chosen, contents.Report);
-    if (!step.empty())
-    {
-      contents.Report.Add("time step", step);
+        coordinates = v.File.Coordinates(*c);
+      }
     }
-    if (missing.Count() > 0)
-    {
-      contents.Report.Add("missing",
-        Values(missing.Count()) + ", read as empty space (field.missing); marked by " +
-          missing.Describe());
-    }
+    lattice.Axes[a] = SampleAxis(path, coordinates, lattice.Names[a]);
+  }
+  return lattice;
+}
 
-    // Stretched axes: their regular lattice, coarser if field.max_voxels requires it.
-    std::array<int, 3> dims{
-      { int(fileDimensions[0]), int(fileDimensions[1]), int(fileDimensions[2]) }
-    };
-    std::array<double, 3> finest{};
+// The slices of the slowest spatial dimension read at a time: whole chunks of it (a chunk is
+// then decompressed once), else about 8 MiB of doubles; the field's size checked with them.
+std::size_t SlabSlices(const ChosenVariable& v, const FileLattice& lattice)
+{
+  const std::array<double, 3>& d = lattice.Dimensions;
+  int slowest = -1;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    const int p = v.Layout.Space[a].Position;
+    slowest = p >= 0 && (slowest < 0 || p < v.Layout.Space[std::size_t(slowest)].Position)
+      ? int(a)
+      : slowest;
+  }
+  const double slice = d[0] * d[1] * d[2] / d[std::size_t(slowest)];
+  const std::size_t chunk =
+    v.File.ChunkLength(v.Variable, v.Layout.Space[std::size_t(slowest)].Position);
+  const std::size_t slabSlices =
+    chunk > 0 ? chunk : std::size_t(std::max(1.0, std::floor((8u << 20) / 8.0 / slice)));
+  CheckFieldSize(v.File.Path(),
+    d,
+    4.0,
+    v.Options.MaximumVoxels,
+    8.0 * slice * double(std::min<std::size_t>(slabSlices, std::size_t(d[std::size_t(slowest)]))));
+  return slabSlices;
+}
+
+// The report's lines on the variable read: its name, dimensions, type and packing, its units.
+void ReportVariable(const ChosenVariable& v, FieldReport& report)
+{
+  const netcdf::File& file = v.File;
+  const std::string units = file.Text(v.Variable, "units");
+  const std::string longName = file.Text(v.Variable, "long_name");
+  const netcdf::Packing packing = netcdf::PackingOf(file, v.Variable);
+  std::string dimensionsText;
+  for (const int d : v.Variable.Dimensions)
+  {
+    dimensionsText += (dimensionsText.empty() ? "" : ", ") + file.DimensionOf(d).Name;
+  }
+  const std::string type = netcdf::TypeName(v.Variable.Type);
+  report.Add("variable",
+    "\"" + v.Variable.Name + "\"" + (longName.empty() ? "" : " (" + longName + ")") + " on (" +
+      dimensionsText + "), " + type +
+      (packing.Packed ? ", packed (scale_factor " + Number(packing.Scale) + ", add_offset " +
+            Number(packing.Offset) + "), unpacked to float"
+          : type == "float" ? ""
+                            : ", converted to float"));
+  report.Add("units", units.empty() ? "not stated" : units);
+  DeclareQuantityOfUnits(units, "the variable's", report);
+}
+
+// Another variable on the field's dimensions (the air's density), read as the field's values
+// were. Its missing values are refused, not read as empty space: field.missing is the field's,
+// and the air is needed at every voxel.
+vtkSmartPointer<vtkFloatArray> ReadOnTheFieldsLattice(const ChosenVariable& v,
+  const FileLattice& lattice,
+  std::size_t slabSlices,
+  const netcdf::Variable& other)
+{
+  const std::string& path = v.File.Path();
+  const netcdf::Layout otherLayout = netcdf::LayoutOf(v.File, other);
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    if (otherLayout.Space[a].Dimension != v.Layout.Space[a].Dimension)
+    {
+      Fail(path,
+        "variable \"" + other.Name + "\" is on the dimensions of \"" + v.Variable.Name +
+          "\" but they do not stand for the same axes");
+    }
+  }
+  netcdf::MissingValues otherMissing(v.File, other);
+  const ValueSource values{ v.File, other, otherLayout, v.Step(), true, slabSlices };
+  vtkSmartPointer<vtkFloatArray> air = ReadValues(values, lattice.Axes, otherMissing);
+  if (otherMissing.Count() > 0)
+  {
+    Fail(path,
+      "variable \"" + other.Name + "\" holds " + Values(otherMissing.Count(), "missing ") + " (" +
+        otherMissing.Describe() + "): the air's density is needed at every voxel of \"" +
+        v.Variable.Name +
+        "\"; field.air_density \"standard\" or a number in kg/m^3 gives it another way");
+  }
+  return air;
+}
+
+// The points of each axis once the stretched ones are resampled: at their smallest step, coarser
+// where field.max_voxels requires it; the field's size checked with the resampling's peak (each
+// stretched axis is resampled from one lattice into the next, both alive at once). `finest`:
+// the points each axis would have at its smallest step.
+std::array<double, 3> ResampledPoints(const std::string& path,
+  const FileLattice& lattice,
+  const FieldReadOptions& options,
+  std::array<double, 3>& finest)
+{
+  const std::array<AxisSampling, 3>& axes = lattice.Axes;
+  for (int a = 0; a < 3; ++a)
+  {
+    finest[a] = axes[a].Stretched ? axes[a].FinestPoints : double(axes[a].Points);
+  }
+  std::array<double, 3> resampled = finest;
+  while (resampled[0] * resampled[1] * resampled[2] > double(options.MaximumVoxels))
+  {
+    int widest = -1;
+    double ratio = 1.0;
     for (int a = 0; a < 3; ++a)
     {
-      finest[a] = axes[a].Stretched ? axes[a].FinestPoints : double(axes[a].Points);
-    }
-    std::array<double, 3> resampled = finest;
-    while (resampled[0] * resampled[1] * resampled[2] > double(options.MaximumVoxels))
-    {
-      int widest = -1;
-      double ratio = 1.0;
-      for (int a = 0; a < 3; ++a)
+      const double r = resampled[a] / lattice.Dimensions[a];
+      if (axes[a].Stretched && r > ratio)
       {
-        const double r = resampled[a] / fileDimensions[a];
-        if (axes[a].Stretched && r > ratio)
-        {
-          widest = a;
-          ratio = r;
-        }
-      }
-      if (widest < 0)
-      {
-        break; // nothing left to coarsen: CheckFieldSize below says the field is too large
-      }
-      resampled[widest] = std::max(fileDimensions[widest], std::floor(resampled[widest] * 0.9));
-    }
-    // Each stretched axis is resampled from one lattice into the next, both alive at once: the
-    // peak beyond the final lattice (which the 4 bytes per voxel count) is counted too.
-    const auto voxels = [](const std::array<double, 3>& d) { return d[0] * d[1] * d[2]; };
-    std::array<double, 3> before = fileDimensions;
-    double peak = 0.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (axes[a].Stretched)
-      {
-        std::array<double, 3> after = before;
-        after[a] = resampled[a];
-        peak = std::max(peak, voxels(before) + voxels(after));
-        before = after;
+        widest = a;
+        ratio = r;
       }
     }
-    CheckFieldSize(
-      path, resampled, 4.0, options.MaximumVoxels, 4.0 * std::max(0.0, peak - voxels(resampled)));
-    std::vector<std::string> resampling;
-    for (int a = 0; a < 3; ++a)
+    if (widest < 0)
     {
-      AxisSampling& axis = axes[a];
-      const netcdf::Layout::Axis& identified = layout.Space[std::size_t(a)];
-      const netcdf::Variable* coordinate =
-        identified.Position >= 0 ? file.CoordinateOf(identified.Dimension) : nullptr;
-      const std::string coordinateUnits =
-        identified.Position >= 0 ? netcdf::CoordinateUnits(file, identified.Dimension) : "";
-      std::string text = (identified.Position < 0 ? std::string("(none)")
-                                                  : "\"" + axisNames[std::size_t(a)] + "\" (" +
-                               "xyz"[a] + " by " + identified.How + ")") +
-        ": " + Number(axis.Coordinates.front()) + " .. " + Number(axis.Coordinates.back()) +
-        (coordinateUnits.empty() ? "" : " " + coordinateUnits) + ", " +
-        std::to_string(axis.Coordinates.size()) + " points" +
-        (identified.Position < 0 || coordinate ? ""
-            : implied[std::size_t(a)].empty()
-            ? " (no coordinate variable: its indices)"
-            : " (no coordinate variable: " + implied[std::size_t(a)] + ")");
-      if (axis.Reversed)
-      {
-        text += ", decreasing in the file (turned around)";
-      }
-      if (axis.Stretched)
-      {
-        axis.Points = int(resampled[a]);
-        axis.Spacing =
-          (axis.Coordinates.back() - axis.Coordinates.front()) / double(axis.Points - 1);
-        text += ", stretched (steps " + Number(axis.SmallestStep) + " .. " +
-          Number(axis.LargestStep) + ")";
-        resampling.push_back(std::string(1, "xyz"[a]) + ": linearly onto " +
-          std::to_string(axis.Points) + " regular points " + Number(axis.Spacing) + " apart" +
-          (double(axis.Points) == finest[a] ? " (the smallest step of the file)"
-                                            : " (coarser than the smallest step, " +
-                Number(axis.SmallestStep) + ", which would need " +
-                (finest[a] < 1e15 ? std::to_string(std::uint64_t(finest[a])) : Number(finest[a])) +
-                " points: field.max_voxels)"));
-        density = ResampleAlong(density, dims, a, axis);
-      }
-      contents.Report.Add("axis " + std::string(1, "xyz"[a]), text);
+      break; // nothing left to coarsen: CheckFieldSize below says the field is too large
     }
-    netcdf::DeclareLengthAndUp(file, layout, contents.Report);
-    if (resampling.empty())
+    resampled[widest] = std::max(lattice.Dimensions[widest], std::floor(resampled[widest] * 0.9));
+  }
+  const auto voxels = [](const std::array<double, 3>& d) { return d[0] * d[1] * d[2]; };
+  std::array<double, 3> before = lattice.Dimensions;
+  double peak = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (axes[a].Stretched)
     {
-      resampling.push_back("no: the coordinates are evenly spaced");
+      std::array<double, 3> after = before;
+      after[a] = resampled[a];
+      peak = std::max(peak, voxels(before) + voxels(after));
+      before = after;
     }
-    for (const std::string& line : resampling)
-    {
-      contents.Report.Add("resampled", line);
-    }
+  }
+  // The 4 bytes per voxel count the final lattice; the peak beyond it is counted too.
+  CheckFieldSize(
+    path, resampled, 4.0, options.MaximumVoxels, 4.0 * std::max(0.0, peak - voxels(resampled)));
+  return resampled;
+}
 
-    auto field = vtkSmartPointer<vtkImageData>::New();
-    field->SetExtent(0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1);
-    field->SetOrigin(axes[0].Origin, axes[1].Origin, axes[2].Origin);
-    field->SetSpacing(axes[0].Spacing, axes[1].Spacing, axes[2].Spacing);
-    density->SetName(chosen.Name.c_str());
-    field->GetPointData()->SetScalars(density);
-    contents.Image = field;
-    contents.Array = chosen.Name;
-    return contents;
-  };
-  return ReadInIsolation(path, fileBytes, "the netCDF library", read);
+// The report's line on axis `a`: its dimension, coordinates and how they were found.
+std::string DescribeAxis(const ChosenVariable& v, const FileLattice& lattice, int a)
+{
+  const AxisSampling& axis = lattice.Axes[std::size_t(a)];
+  const netcdf::Layout::Axis& identified = v.Layout.Space[std::size_t(a)];
+  const netcdf::Variable* coordinate =
+    identified.Position >= 0 ? v.File.CoordinateOf(identified.Dimension) : nullptr;
+  const std::string coordinateUnits =
+    identified.Position >= 0 ? netcdf::CoordinateUnits(v.File, identified.Dimension) : "";
+  const std::string& implied = lattice.Implied[std::size_t(a)];
+  std::string text = (identified.Position < 0 ? std::string("(none)")
+                                              : "\"" + lattice.Names[std::size_t(a)] + "\" (" +
+                           "xyz"[a] + " by " + identified.How + ")") +
+    ": " + Number(axis.Coordinates.front()) + " .. " + Number(axis.Coordinates.back()) +
+    (coordinateUnits.empty() ? "" : " " + coordinateUnits) + ", " +
+    std::to_string(axis.Coordinates.size()) + " points" +
+    (identified.Position < 0 || coordinate ? ""
+        : implied.empty()                  ? " (no coordinate variable: its indices)"
+                                           : " (no coordinate variable: " + implied + ")");
+  if (axis.Reversed)
+  {
+    text += ", decreasing in the file (turned around)";
+  }
+  return text;
+}
+
+// The stretched axes resampled onto their regular lattices (ResampledPoints), `density` with
+// them, and the report's lines on every axis and on the resampling.
+void ResampleStretchedAxes(const ChosenVariable& v,
+  FileLattice& lattice,
+  vtkSmartPointer<vtkFloatArray>& density,
+  std::array<int, 3>& dims,
+  FieldReport& report)
+{
+  std::array<double, 3> finest{};
+  const std::array<double, 3> resampled =
+    ResampledPoints(v.File.Path(), lattice, v.Options, finest);
+  std::vector<std::string> resampling;
+  for (int a = 0; a < 3; ++a)
+  {
+    AxisSampling& axis = lattice.Axes[std::size_t(a)];
+    std::string text = DescribeAxis(v, lattice, a);
+    if (axis.Stretched)
+    {
+      axis.Points = int(resampled[a]);
+      axis.Spacing = (axis.Coordinates.back() - axis.Coordinates.front()) / double(axis.Points - 1);
+      text +=
+        ", stretched (steps " + Number(axis.SmallestStep) + " .. " + Number(axis.LargestStep) + ")";
+      resampling.push_back(std::string(1, "xyz"[a]) + ": linearly onto " +
+        std::to_string(axis.Points) + " regular points " + Number(axis.Spacing) + " apart" +
+        (double(axis.Points) == finest[a] ? " (the smallest step of the file)"
+                                          : " (coarser than the smallest step, " +
+              Number(axis.SmallestStep) + ", which would need " +
+              (finest[a] < 1e15 ? std::to_string(std::uint64_t(finest[a])) : Number(finest[a])) +
+              " points: field.max_voxels)"));
+      density = ResampleAlong(density, dims, a, axis);
+    }
+    report.Add("axis " + std::string(1, "xyz"[a]), text);
+  }
+  netcdf::DeclareLengthAndUp(v.File, v.Layout, report);
+  if (resampling.empty())
+  {
+    resampling.push_back("no: the coordinates are evenly spaced");
+  }
+  for (const std::string& line : resampling)
+  {
+    report.Add("resampled", line);
+  }
+}
+
+// The read itself, in the isolated child: the variable chosen, its lattice, its values (in air
+// density units when a mixing ratio is converted), the stretched axes resampled, the report.
+FieldFileContents ReadChosenVariable(const std::string& path,
+  const FieldReadOptions& options,
+  const CheckedFile& checked)
+{
+  const netcdf::File file(path);
+  const netcdf::Variable& chosen = netcdf::ChooseVariable(file, options.Array);
+  const ChosenVariable v{ file, chosen, netcdf::LayoutOf(file, chosen), options };
+  FieldFileContents contents;
+  const std::string step = TimeStep(file, chosen, v.Layout, options, contents.Report);
+  if (checked.Classic)
+  {
+    const std::uint64_t end = checked.Header.EndOf(chosen.Name, std::uint64_t(v.Step()));
+    if (end > checked.Bytes)
+    {
+      Fail(path,
+        "the values of \"" + chosen.Name + "\" end at byte " + std::to_string(end) +
+          " but the file holds " + std::to_string(checked.Bytes) + ": it is truncated");
+    }
+  }
+  FileLattice lattice = LatticeOf(v);
+  const std::size_t slabSlices = SlabSlices(v, lattice);
+  netcdf::MissingValues missing(file, chosen);
+  const ValueSource source{ file,
+    chosen,
+    v.Layout,
+    v.Step(),
+    options.Missing.value_or(MissingValueRule::Refuse) == MissingValueRule::Empty,
+    slabSlices };
+  vtkSmartPointer<vtkFloatArray> density = ReadValues(source, lattice.Axes, missing);
+
+  ReportVariable(v, contents.Report);
+  const std::array<AxisSampling, 3>& axes = lattice.Axes;
+  const netcdf::FieldLattice onLattice{ file,
+    chosen,
+    v.Layout,
+    v.Step(),
+    { { axes[0].Coordinates, axes[1].Coordinates, axes[2].Coordinates } },
+    axes[2].Reversed,
+    [&](const netcdf::Variable& other)
+    { return ReadOnTheFieldsLattice(v, lattice, slabSlices, other); } };
+  netcdf::ConvertMixingRatio(onLattice, options, density, contents.Report);
+  netcdf::DeclareDroplets(file, chosen, contents.Report);
+  if (!step.empty())
+  {
+    contents.Report.Add("time step", step);
+  }
+  if (missing.Count() > 0)
+  {
+    contents.Report.Add("missing",
+      Values(missing.Count()) + ", read as empty space (field.missing); marked by " +
+        missing.Describe());
+  }
+
+  const std::array<double, 3>& d = lattice.Dimensions;
+  std::array<int, 3> dims{ { int(d[0]), int(d[1]), int(d[2]) } };
+  ResampleStretchedAxes(v, lattice, density, dims, contents.Report);
+  auto field = vtkSmartPointer<vtkImageData>::New();
+  field->SetExtent(0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1);
+  field->SetOrigin(axes[0].Origin, axes[1].Origin, axes[2].Origin);
+  field->SetSpacing(axes[0].Spacing, axes[1].Spacing, axes[2].Spacing);
+  density->SetName(chosen.Name.c_str());
+  field->GetPointData()->SetScalars(density);
+  contents.Image = field;
+  contents.Array = chosen.Name;
+  return contents;
+}
+} // namespace
+
+FieldFileContents ReadNetCdfFile(const std::string& path, const FieldReadOptions& options)
+{
+  const CheckedFile checked = CheckBeforeTheLibrary(path);
+  return ReadInIsolation(path,
+    checked.Bytes,
+    "the netCDF library",
+    [&]() { return ReadChosenVariable(path, options, checked); });
 }
 
 } // namespace cloudvis
