@@ -499,119 +499,113 @@ void Viewer::Internals::SlicesChanged()
   this->Request();
 }
 
-Viewer::Viewer(const Scene& scene,
-  vtkSmartPointer<vtkImageData> field,
-  const ViewerOptions& options)
-  : Internal(new Internals)
+void Viewer::Internals::OpenViews(vtkImageData* field)
 {
-  Internals& in = *this->Internal;
-  in.Current = scene;
-  in.Field = field;
-  in.Options = options;
-  in.Messages = options.Messages ? options.Messages : &std::cerr;
-  in.Display = std::make_unique<DisplayConnection>("cloudvis view ...");
-
-  vtkRenderWindow* window = in.Window;
-  window->SetDisplayId(in.Display->Get());
+  vtkRenderWindow* window = this->Window;
+  window->SetDisplayId(this->Display->Get());
   // As in RenderOffscreen: an observed ExitEvent turns VTK's abort() on a failed GL context into
   // an error the mapper reports.
   vtkNew<vtkCallbackCommand> onExit;
   window->AddObserver(vtkCommand::ExitEvent, onExit);
   window->SetMultiSamples(0);
-  window->SetSize(options.WindowSize[0], options.WindowSize[1]);
+  window->SetSize(this->Options.WindowSize[0], this->Options.WindowSize[1]);
   window->SetWindowName("cloudvis view");
   window->SetNumberOfLayers(2);
 
-  ApplyBackground(in.Current, in.View);
-  window->AddRenderer(in.View);
-  in.Mapper->SetInputData(field);
-  ConfigureMapper(in.Mapper, in.Current.Render);
-  in.Mapper->SetScatteringVolumeSecondsPerFrame(ScatteringVolumeSecondsPerFrame);
+  ApplyBackground(this->Current, this->View);
+  window->AddRenderer(this->View);
+  this->Mapper->SetInputData(field);
+  ConfigureMapper(this->Mapper, this->Current.Render);
+  this->Mapper->SetScatteringVolumeSecondsPerFrame(ScatteringVolumeSecondsPerFrame);
   // Only the viewer interacts: exports never hold the reprojection's full-resolution history.
-  in.Mapper->SetTemporalReprojection(in.Current.Render.Reprojection);
-  in.ApplyLighting();
+  this->Mapper->SetTemporalReprojection(this->Current.Render.Reprojection);
+  this->ApplyLighting();
   double range[2];
   field->GetScalarRange(range);
   const std::string fitted =
-    in.FitTransferFunctionOnOpening({ { range[0], range[1] } }, field->GetBounds());
-  in.SceneTransferFunction = in.Current.TransferFunction; // what Shift+r goes back to
-  in.Property = MakeVolumeProperty(in.Current.TransferFunction);
-  in.Volume->SetMapper(in.Mapper);
-  in.Volume->SetProperty(in.Property);
+    this->FitTransferFunctionOnOpening({ { range[0], range[1] } }, field->GetBounds());
+  this->SceneTransferFunction = this->Current.TransferFunction; // what Shift+r goes back to
+  this->Property = MakeVolumeProperty(this->Current.TransferFunction);
+  this->Volume->SetMapper(this->Mapper);
+  this->Volume->SetProperty(this->Property);
   // The slices are picked through the cloud: a picker that stopped at the volume (vtkCellPicker
   // picks volumes by their opacity) would never reach them.
-  in.Volume->PickableOff();
-  in.View->AddVolume(in.Volume);
+  this->Volume->PickableOff();
+  this->View->AddVolume(this->Volume);
   // The field's bounding box, as ParaView outlines a dataset.
   vtkNew<vtkOutlineFilter> outline;
   outline->SetInputData(field);
   vtkNew<vtkPolyDataMapper> outlineMapper;
   outlineMapper->SetInputConnection(outline->GetOutputPort());
-  in.Outline->SetMapper(outlineMapper);
-  in.Outline->GetProperty()->SetColor(0.75, 0.75, 0.8);
-  in.Outline->GetProperty()->LightingOff();
-  in.Outline->PickableOff();
-  in.View->AddActor(in.Outline);
-  ApplyCamera(in.Current.Camera, field->GetBounds(), in.View, in.Current.Source);
+  this->Outline->SetMapper(outlineMapper);
+  this->Outline->GetProperty()->SetColor(0.75, 0.75, 0.8);
+  this->Outline->GetProperty()->LightingOff();
+  this->Outline->PickableOff();
+  this->View->AddActor(this->Outline);
+  ApplyCamera(this->Current.Camera, field->GetBounds(), this->View, this->Current.Source);
 
-  in.Editor->SetViewport(0.0, 0.0, 1.0, EditorHeight);
-  in.Editor->SetBackground(0.96, 0.96, 0.97);
-  window->AddRenderer(in.Editor);
+  this->Editor->SetViewport(0.0, 0.0, 1.0, EditorHeight);
+  this->Editor->SetBackground(0.96, 0.96, 0.97);
+  window->AddRenderer(this->Editor);
 
-  in.Overlay->SetViewport(0.0, EditorHeight, 1.0, 1.0);
-  in.Overlay->SetLayer(1);
-  in.Overlay->InteractiveOff();
-  window->AddRenderer(in.Overlay);
-  in.Status = std::make_unique<StatusOverlay>(in.Overlay);
-  in.Time = std::make_unique<ViewerTimeSteps>(
-    options.ReadTimeStep, scene.Field.Read.TimeStep.value_or(0), options.Opened);
-  if (in.Time->Steps())
+  this->Overlay->SetViewport(0.0, EditorHeight, 1.0, 1.0);
+  this->Overlay->SetLayer(1);
+  this->Overlay->InteractiveOff();
+  window->AddRenderer(this->Overlay);
+  this->Status = std::make_unique<StatusOverlay>(this->Overlay);
+  this->Time = std::make_unique<ViewerTimeSteps>(this->Options.ReadTimeStep,
+    this->Current.Field.Read.TimeStep.value_or(0),
+    this->Options.Opened);
+  if (this->Time->Steps())
   {
-    in.Status->SetCorner(in.CornerText());
+    this->Status->SetCorner(this->CornerText());
     // The next step is read while the first is looked at: the first . shows it at once.
-    in.Time->ReadAheadLater(in.Time->Current() + 1,
+    this->Time->ReadAheadLater(this->Time->Current() + 1,
       double(field->GetPointData()->GetScalars()->GetActualMemorySize()) * 1024.0);
   }
   if (!fitted.empty())
   {
-    in.Show(fitted, false);
+    this->Show(fitted, false);
   }
+}
 
-  vtkRenderWindowInteractor* interactor = in.Interactor;
-  interactor->SetRenderWindow(window);
+void Viewer::Internals::ObserveInput(Viewer& owner)
+{
+  vtkRenderWindowInteractor* interactor = this->Interactor;
+  interactor->SetRenderWindow(this->Window);
   interactor->SetDesiredUpdateRate(20.0);
   interactor->SetStillUpdateRate(0.001);
   // Styles and widgets render through the interactor: its RenderEvent becomes a request to the
   // live loop, which renders (LiveLoop.h).
   interactor->EnableRenderOff();
-  in.Loop = std::make_unique<LiveLoop>(interactor,
-    LiveLoop::Hooks{ [&in] { in.RenderFrame(); },
-      [&in] { return in.RefinementPending(); },
-      [&in]
+  this->Loop = std::make_unique<LiveLoop>(interactor,
+    LiveLoop::Hooks{ [this] { this->RenderFrame(); },
+      [this] { return this->RefinementPending(); },
+      [this]
       {
         bool changed = false;
-        const double next = in.Status->Tick(changed);
+        const double next = this->Status->Tick(changed);
         if (changed)
         {
-          in.Loop->Request();
+          this->Loop->Request();
         }
         return next;
       },
-      [this]
+      [this, &owner]
       {
-        this->Internal->SettleGesture();
-        this->WriteStateFile();
+        this->SettleGesture();
+        owner.WriteStateFile();
       },
-      [&in] { return in.Time->ReadAhead(); } });
+      [this] { return this->Time->ReadAhead(); } });
   vtkNew<vtkCallbackCommand> requested;
-  requested->SetClientData(&in);
+  requested->SetClientData(this);
   requested->SetCallback(
     [](vtkObject*, unsigned long, void* data, void*) { static_cast<Internals*>(data)->Request(); });
   interactor->AddObserver(vtkCommand::RenderEvent, requested);
   // A resized window lays its views out again: the marker stays square, the slice views fit
   // their slices, the texts wrap to the new width.
   vtkNew<vtkCallbackCommand> resized;
-  resized->SetClientData(&in);
+  resized->SetClientData(this);
   resized->SetCallback(
     [](vtkObject*, unsigned long, void* data, void*)
     {
@@ -626,7 +620,7 @@ Viewer::Viewer(const Scene& scene,
   // The window manager's close button (WM_DELETE_WINDOW): VTK's X interactor invokes ExitEvent
   // when someone observes it (else it terminates at once), so closing asks like q does.
   vtkNew<vtkCallbackCommand> closed;
-  closed->SetClientData(this);
+  closed->SetClientData(&owner);
   closed->SetCallback(
     [](vtkObject*, unsigned long, void* data, void*)
     {
@@ -638,7 +632,7 @@ Viewer::Viewer(const Scene& scene,
   // Outside the loop (playback), an input event renders once it has been handled by everyone:
   // this observer comes after the style's and the widgets'.
   vtkNew<vtkCallbackCommand> handled;
-  handled->SetClientData(&in);
+  handled->SetClientData(this);
   handled->SetCallback(
     [](vtkObject*, unsigned long, void* data, void*)
     {
@@ -664,7 +658,7 @@ Viewer::Viewer(const Scene& scene,
   // drag, and then only the focus and passive observers see the release.
   vtkNew<vtkCallbackCommand> gesture;
   gesture->PassiveObserverOn();
-  gesture->SetClientData(&in);
+  gesture->SetClientData(this);
   gesture->SetCallback(
     [](vtkObject*, unsigned long event, void* data, void*)
     {
@@ -690,37 +684,40 @@ Viewer::Viewer(const Scene& scene,
   {
     interactor->AddObserver(event, gesture, 100.0);
   }
-  in.Style->SetDefaultRenderer(in.View);
-  interactor->SetInteractorStyle(in.Style);
+  this->Style->SetDefaultRenderer(this->View);
+  interactor->SetInteractorStyle(this->Style);
+}
 
-  in.Editing = std::make_unique<TransferFunctionEditor>(in.Property, field, in.Editor);
-  in.Style->SetEditor(in.Editor, in.Editing->GetScene());
-  in.Style->EditorLeft = [&in]
+void Viewer::Internals::ConnectEditor(Viewer& owner, vtkImageData* field)
+{
+  this->Editing = std::make_unique<TransferFunctionEditor>(this->Property, field, this->Editor);
+  this->Style->SetEditor(this->Editor, this->Editing->GetScene());
+  this->Style->EditorLeft = [this]
   {
-    in.Editing->PointerLeft();
-    in.Request();
+    this->Editing->PointerLeft();
+    this->Request();
   };
-  in.Style->KeyHandler = [this](const std::string& keySym, char keyCode, bool control)
-  { this->PressKey(keySym, keyCode, control); };
-  in.Style->DragHandler = [&in](bool dragging)
+  this->Style->KeyHandler = [&owner](const std::string& keySym, char keyCode, bool control)
+  { owner.PressKey(keySym, keyCode, control); };
+  this->Style->DragHandler = [this](bool dragging)
   {
-    in.Window->SetDesiredUpdateRate(
-      dragging ? in.Interactor->GetDesiredUpdateRate() : in.Interactor->GetStillUpdateRate());
+    this->Window->SetDesiredUpdateRate(
+      dragging ? this->Interactor->GetDesiredUpdateRate() : this->Interactor->GetStillUpdateRate());
     if (dragging)
     {
-      in.Editing->BeginDrag();
+      this->Editing->BeginDrag();
     }
     else
     {
-      in.Editing->EndDrag();
+      this->Editing->EndDrag();
     }
-    in.Request();
+    this->Request();
   };
 
   // A changed function re-renders the 3D view (and the slices colored by it); a drag changes the
   // function several times per mouse move, and the requests become one frame.
   vtkNew<vtkCallbackCommand> changed;
-  changed->SetClientData(&in);
+  changed->SetClientData(this);
   changed->SetCallback(
     [](vtkObject*, unsigned long, void* data, void*)
     {
@@ -734,34 +731,64 @@ Viewer::Viewer(const Scene& scene,
         viewer.Request();
       }
     });
-  in.Property->GetScalarOpacity()->AddObserver(vtkCommand::ModifiedEvent, changed);
-  in.Property->GetRGBTransferFunction()->AddObserver(vtkCommand::ModifiedEvent, changed);
+  this->Property->GetScalarOpacity()->AddObserver(vtkCommand::ModifiedEvent, changed);
+  this->Property->GetRGBTransferFunction()->AddObserver(vtkCommand::ModifiedEvent, changed);
+}
 
-  interactor->Initialize();
-  in.Colors = std::make_unique<SliceColors>(
-    std::array<double, 2>{ { range[0], range[1] } }, in.Property->GetRGBTransferFunction());
-  in.Overlay->AddActor2D(in.Colors->GetColorBar());
+void Viewer::Internals::AddSlicesAndLegends(vtkImageData* field)
+{
+  double range[2];
+  field->GetScalarRange(range);
+  this->Colors = std::make_unique<SliceColors>(
+    std::array<double, 2>{ { range[0], range[1] } }, this->Property->GetRGBTransferFunction());
+  this->Overlay->AddActor2D(this->Colors->GetColorBar());
   // The legend reads the volume's own color function: every edit shows in it.
-  in.Legend->SetLookupTable(in.Property->GetRGBTransferFunction());
+  this->Legend->SetLookupTable(this->Property->GetRGBTransferFunction());
   // Both legends name the field's quantity and its unit, as the readout does: "lwc (g/m^3)".
-  const std::string unit = QuantityUnit(in.Options.Units.Quantity);
+  const std::string unit = QuantityUnit(this->Options.Units.Quantity);
   const std::string quantity =
-    QuantityName(in.Options.Units.Quantity) + (unit.empty() ? "" : " (" + unit + ")");
-  StyleColorBar(in.Legend, quantity);
-  in.Overlay->AddActor2D(in.Legend);
-  in.Slices = std::make_unique<SlicePlanes>(field, in.View, interactor, *in.Colors);
-  in.Slices->Changed = [&in] { in.SlicesChanged(); };
-  in.Views2D = std::make_unique<SliceViews>(field, *in.Slices, *in.Colors);
-  in.Views2D->Changed = [&in] { in.SlicesChanged(); };
-  in.Style->SliceViewMouse =
-    [&in](vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y)
+    QuantityName(this->Options.Units.Quantity) + (unit.empty() ? "" : " (" + unit + ")");
+  StyleColorBar(this->Legend, quantity);
+  this->Overlay->AddActor2D(this->Legend);
+  this->Slices =
+    std::make_unique<SlicePlanes>(field, this->View, this->Interactor.Get(), *this->Colors);
+  this->Slices->Changed = [this] { this->SlicesChanged(); };
+  this->Views2D = std::make_unique<SliceViews>(field, *this->Slices, *this->Colors);
+  this->Views2D->Changed = [this] { this->SlicesChanged(); };
+  this->Style->SliceViewMouse =
+    [this](vtkCloudViewerInteractorStyle::MouseAction action, int button, int x, int y)
   {
-    return in.Views2D->Mouse(
-      action, button, x, y, in.Interactor->GetControlKey() != 0, in.Interactor->GetShiftKey() != 0);
+    return this->Views2D->Mouse(action,
+      button,
+      x,
+      y,
+      this->Interactor->GetControlKey() != 0,
+      this->Interactor->GetShiftKey() != 0);
   };
-  in.Style->HoverHandler = [&in](int x, int y) { in.Hover(x, y); };
-  in.Colors->GetColorBar()->SetTitle(("slices: " + quantity).c_str());
+  this->Style->HoverHandler = [this](int x, int y) { this->Hover(x, y); };
+  this->Colors->GetColorBar()->SetTitle(("slices: " + quantity).c_str());
 
+  this->Orientation->SetOrientationMarker(this->Axes);
+  this->Orientation->SetInteractor(this->Interactor.Get());
+}
+
+Viewer::Viewer(const Scene& scene,
+  vtkSmartPointer<vtkImageData> field,
+  const ViewerOptions& options)
+  : Internal(new Internals)
+{
+  Internals& in = *this->Internal;
+  in.Current = scene;
+  in.Field = field;
+  in.Options = options;
+  in.Messages = options.Messages ? options.Messages : &std::cerr;
+  in.Display = std::make_unique<DisplayConnection>("cloudvis view ...");
+  in.OpenViews(field);
+  in.ObserveInput(*this);
+  in.ConnectEditor(*this, field);
+  in.Interactor->Initialize();
+  in.AddSlicesAndLegends(field);
+  vtkRenderWindowInteractor* interactor = in.Interactor;
   in.Orientation->SetOrientationMarker(in.Axes);
   in.Orientation->SetInteractor(interactor);
   // The layout, slices and their colors as the scene's view section (--layout included) says;

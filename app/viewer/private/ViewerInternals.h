@@ -135,6 +135,18 @@ struct Viewer::Internals
   // one within QuitConfirmSeconds quits.
   double QuitAskedAt = -1e300;
 
+  // The viewer's construction, in its order. The window and its views: the cloud (its mapper,
+  // volume and outline, the transfer function fitted where ParaView would), the editor's and the
+  // overlay's renderers, the status and the time steps.
+  void OpenViews(vtkImageData* field);
+  // The interactor and the live loop, and the observers of its input: render requests, resizes,
+  // the window manager's close, handled events and undo's gestures.
+  void ObserveInput(Viewer& owner);
+  // The interactor style, the transfer function editor and the keys, and the function's changes.
+  void ConnectEditor(Viewer& owner, vtkImageData* field);
+  // The slices, their colors and views, and both legends (after the interactor is initialized).
+  void AddSlicesAndLegends(vtkImageData* field);
+
   // The scene's lights and lighting model on the 3D view and the mapper, as `render` sets them.
   void ApplyLighting();
   // Before the window opens: fits Current's transfer function to the field's value range where
