@@ -432,62 +432,102 @@ void Viewer::Internals::Quit(const Viewer& viewer, bool fromWindowManager)
     true);
 }
 
-void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
+bool Viewer::Internals::ActOnSlices(ViewerAction action, int variant)
 {
   using A = ViewerAction;
   switch (action)
   {
     case A::ToggleSlice:
       this->ToggleSlice(variant);
-      break;
+      return true;
     case A::ToggleOblique:
       this->Slices->SetObliqueVisible(!this->Slices->GetObliqueVisible());
       this->Show(
         std::string("oblique slice: ") + (this->Slices->GetObliqueVisible() ? "shown" : "hidden"),
         false);
       this->SlicesChanged();
-      break;
+      return true;
     case A::StepSlice:
       this->StepSlice(variant == 0 ? 1 : -1);
-      break;
+      return true;
     case A::StepTime:
       this->StepTime(variant == 0 ? -1 : 1);
-      break;
+      return true;
     case A::AutoWindowLevel:
       this->AutoWindowLevel();
-      break;
+      return true;
     case A::ResetWindowLevel:
       this->Colors->ResetWindowLevel();
       this->Show(this->WindowLevelText("window/level reset to the field's range"), false);
       this->SlicesChanged();
-      break;
+      return true;
     case A::TypeWindowLevel:
       this->StartTypingWindowLevel();
-      break;
+      return true;
     case A::CycleSliceColors:
       this->Colors->NextColormap();
       this->Show("slice colors: " + this->Colors->GetColormap(), false);
       this->SlicesChanged();
-      break;
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool Viewer::Internals::ActOnView(ViewerAction action)
+{
+  using A = ViewerAction;
+  switch (action)
+  {
     case A::ToggleLayout:
       this->FourViews = !this->FourViews;
       this->ApplyLayout();
       this->UpdateReadout();
       this->Show(
         this->FourViews ? "four views: 3D, axial, coronal, sagittal" : "the 3D view alone", false);
-      break;
+      return true;
     case A::ToggleVolume:
       this->Volume->SetVisibility(!this->Volume->GetVisibility());
       this->Show(
         this->Volume->GetVisibility() ? "cloud shown" : "cloud hidden (v shows it)", false);
       this->PlaceLegends(); // the cloud's legend goes with the cloud
-      break;
+      return true;
     case A::ToggleLegends:
       this->LegendsVisible = !this->LegendsVisible;
       this->PlaceLegends();
       this->Show(
         std::string("color legends: ") + (this->LegendsVisible ? "shown" : "hidden"), false);
-      break;
+      return true;
+    case A::ResetCamera:
+      ApplyCamera(this->Current.Camera, this->Field->GetBounds(), this->View, this->Current.Source);
+      this->Views2D->ResetZoom();
+      return true;
+    case A::Help:
+      // The pages in turn (keys, the mouse in 3D, in the slice views and the editor), then none.
+      this->Status->SetHelpPage(this->Status->GetHelpPage() + 1);
+      this->PlaceLegends(); // hidden under the help
+      return true;
+    case A::Close:
+      if (this->Status->GetHelpVisible())
+      {
+        this->Status->SetHelpPage(-1);
+        this->PlaceLegends(); // back from under the help
+      }
+      else
+      {
+        this->Show("nothing to close (Esc closes the help and cancels typing; q quits)", false);
+      }
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool Viewer::Internals::ActOnRendering(ViewerAction action, int variant)
+{
+  using A = ViewerAction;
+  switch (action)
+  {
     case A::CycleLighting:
     {
       // The interactive models: the path tracer takes seconds per clean frame, so `m` passes it
@@ -503,20 +543,20 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Current.Render.Lighting.Model = *FindLightingModel(names[next]);
       this->ApplyLighting();
       this->Show("lighting: " + names[next], false);
-      break;
+      return true;
     }
     case A::MoveLightAzimuth:
       this->MoveLight(variant == 0 ? -10.0 : 10.0, 0.0);
-      break;
+      return true;
     case A::MoveLightElevation:
       this->MoveLight(0.0, variant == 0 ? 10.0 : -10.0);
-      break;
+      return true;
     case A::StepLarger:
     case A::StepSmaller:
       this->Current.Render.Step = this->EffectiveStep() * (action == A::StepLarger ? 1.25 : 0.8);
       this->Mapper->SetSampleDistance(this->Current.Render.Step);
       this->Show("step: " + Format("%.3g", this->Current.Render.Step), false);
-      break;
+      return true;
     case A::ResolutionDown:
     case A::ResolutionUp:
       this->Current.Render.ResolutionScale = std::max(0.25,
@@ -525,24 +565,34 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Mapper->SetResolutionScale(this->Current.Render.ResolutionScale);
       this->Show(
         "resolution scale: " + Format("%.3g", this->Current.Render.ResolutionScale), false);
-      break;
+      return true;
     case A::StepExposure:
       this->StepExposure(variant == 0 ? -0.5 : 0.5);
-      break;
+      return true;
     case A::AutoExposure:
       this->UseAutoExposure();
-      break;
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool Viewer::Internals::ActOnTransferFunction(ViewerAction action)
+{
+  using A = ViewerAction;
+  switch (action)
+  {
     case A::NextPreset:
       this->LoadNextPreset();
-      break;
+      return true;
     case A::SavePreset:
       this->SavePreset();
-      break;
+      return true;
     case A::HistogramScale:
       this->Editing->SetLogHistogram(!this->Editing->GetLogHistogram());
       this->Show(
         std::string("histogram: ") + (this->Editing->GetLogHistogram() ? "log" : "linear"), false);
-      break;
+      return true;
     case A::FitTransferFunction:
     {
       this->Editing->FitToData();
@@ -550,55 +600,60 @@ void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
       this->Show("transfer function fitted to the data: [" + Format("%.4g", range[0]) + ", " +
           Format("%.4g", range[1]) + "]",
         false);
-      break;
+      return true;
     }
     case A::ResetTransferFunction:
       this->Editing->Apply(this->SceneTransferFunction);
       this->Preset.clear();
       this->Show("transfer function reset to the scene's (Ctrl+z undoes)", false);
-      break;
+      return true;
     case A::Undo:
     case A::Redo:
       this->UndoStep(action == A::Redo);
-      break;
+      return true;
     case A::DeletePoint:
     {
       const std::string problem = this->Editing->DeleteSelectedPoint();
       this->Show(problem.empty() ? "point removed (Ctrl+z undoes)" : problem, !problem.empty());
-      break;
+      return true;
     }
     case A::TypePointValues:
       this->StartTyping();
-      break;
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool Viewer::Internals::ActOnSession(ViewerAction action, Viewer& viewer)
+{
+  using A = ViewerAction;
+  switch (action)
+  {
     case A::Screenshot:
       viewer.SaveScreenshot();
-      break;
+      return true;
     case A::SaveScene:
       viewer.SaveSceneFile();
-      break;
-    case A::ResetCamera:
-      ApplyCamera(this->Current.Camera, this->Field->GetBounds(), this->View, this->Current.Source);
-      this->Views2D->ResetZoom();
-      break;
-    case A::Help:
-      // The pages in turn (keys, the mouse in 3D, in the slice views and the editor), then none.
-      this->Status->SetHelpPage(this->Status->GetHelpPage() + 1);
-      this->PlaceLegends(); // hidden under the help
-      break;
-    case A::Close:
-      if (this->Status->GetHelpVisible())
-      {
-        this->Status->SetHelpPage(-1);
-        this->PlaceLegends(); // back from under the help
-      }
-      else
-      {
-        this->Show("nothing to close (Esc closes the help and cancels typing; q quits)", false);
-      }
-      break;
+      return true;
     case A::Quit:
       this->Quit(viewer, false);
-      break;
+      return true;
+
+    default:
+      return false;
+  }
+}
+
+void Viewer::Internals::Act(ViewerAction action, int variant, Viewer& viewer)
+{
+  // Each family of actions takes the actions it knows and leaves the others. (Their switches
+  // have defaults, so the compiler no longer names an action none of them takes: this does.)
+  if (!(this->ActOnSlices(action, variant) || this->ActOnView(action) ||
+        this->ActOnRendering(action, variant) || this->ActOnTransferFunction(action) ||
+        this->ActOnSession(action, viewer)))
+  {
+    this->Show("this key's action (" + std::to_string(int(action)) + ") does nothing yet", true);
   }
 }
 

@@ -278,6 +278,15 @@ struct Viewer::Internals
   void Quit(const Viewer& viewer, bool fromWindowManager);
   // What a key of the table does; `variant` is the index of the key pressed in its row.
   void Act(ViewerAction action, int variant, Viewer& viewer);
+  // Act's families of actions, each true when it knows the action (and has done it): the slices,
+  // their colors and the time steps; the layout, what is shown, the camera and the help; the
+  // lighting, the march and the exposure; the transfer function, its presets and undo; the files
+  // the viewer writes, and quitting.
+  bool ActOnSlices(ViewerAction action, int variant);
+  bool ActOnView(ViewerAction action);
+  bool ActOnRendering(ViewerAction action, int variant);
+  bool ActOnTransferFunction(ViewerAction action);
+  bool ActOnSession(ViewerAction action, Viewer& viewer);
 };
 
 } // namespace cloudvis
