@@ -1,7 +1,7 @@
 #include "CloudMarchShader.h"
 
 #include "CloudMarchUniforms.h"
-#include "CloudPathTracePass.h"
+#include "CloudPathTraceInputs.h"
 #include "CloudTransport.h"
 
 #include "CloudMarchFS.h"

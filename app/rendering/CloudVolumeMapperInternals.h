@@ -16,7 +16,7 @@
 #include "CloudLightVolumeTexture.h"
 #include "CloudMarchShader.h"
 #include "CloudOccupancyTexture.h"
-#include "CloudPathTracePass.h"
+#include "CloudPathTraceInputs.h"
 #include "CloudScatteringVolumeTexture.h"
 #include "CloudTransferTexture.h"
 #include "CloudViewTargets.h"

@@ -1,7 +1,7 @@
 // The table of field formats, the checks of read options against a format, the conversion every
 // reader's image goes through, and the writers. The readers themselves live with their formats:
-// VtkXmlImageFiles.cxx (.vti, .pvti), VtkImageFiles.cxx (raw, NRRD, MetaImage), NetCdfFiles.cxx
-// (NetCDF), OpenVdbFiles.cxx (OpenVDB, reader and writer).
+// VtkXmlImageFiles.cxx (.vti, .pvti), NrrdMetaImageRawFiles.cxx (raw, NRRD, MetaImage),
+// NetCdfFiles.cxx (NetCDF), OpenVdbFiles.cxx (OpenVDB, reader and writer).
 #include "FieldIO.h"
 
 #include "AtomicFile.h"

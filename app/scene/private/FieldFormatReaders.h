@@ -25,7 +25,7 @@ class RegularInputFile;
 FieldFileContents ReadVtkXmlImageFile(const std::string& path, const FieldReadOptions& options);
 FieldFileContents ReadVtkXmlParallelImageFile(const std::string& path,
   const FieldReadOptions& options);
-// VtkImageFiles.cxx
+// NrrdMetaImageRawFiles.cxx
 FieldFileContents ReadNrrdFile(const std::string& path, const FieldReadOptions& options);
 FieldFileContents ReadMetaImageFile(const std::string& path, const FieldReadOptions& options);
 FieldFileContents ReadRawFile(const std::string& path, const FieldReadOptions& options);

@@ -1,9 +1,9 @@
-#include "CloudPathTracePass.h"
+#include "CloudPathTraceInputs.h"
 
 #include "CloudGpuMemory.h"
 #include "CloudPathTrace.h"
 
-#include "CloudLightingPathTrace.h"
+#include "CloudLightingPathTraceFS.h"
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -18,7 +18,7 @@ namespace cloudvis
 {
 std::string PathTraceLightingSource()
 {
-  return CloudLightingPathTrace;
+  return CloudLightingPathTraceFS;
 }
 
 bool ExtinctionBoundsTexture::Update(vtkOpenGLRenderWindow* window,
