@@ -301,7 +301,7 @@ void AddPanels(ComparisonWindow& w,
   const std::optional<ReferencePaths>& reference)
 {
   const vtkSmartPointer<vtkVolumeProperty> property = MakeVolumeProperty(scene.TransferFunction);
-  vtkNew<vtkCamera> camera;
+  vtkNew<vtkCamera> camera; // one camera for every panel
   const int frames = scene.Render.Jitter ? scene.Render.Accumulate : 1;
   for (size_t i = 0; i < models.size(); ++i)
   {
