@@ -60,6 +60,10 @@ std::vector<glm::ivec3> ScatteringGrids(glm::ivec3 fieldDimensions)
   return grids;
 }
 
+namespace
+{
+
+// The field of u (its Dimensions and the lengths of IndexToLocal's axes).
 ScatteringField ScatteringFieldOf(const MarchUniforms& u)
 {
   ScatteringField field;
@@ -68,6 +72,7 @@ ScatteringField ScatteringFieldOf(const MarchUniforms& u)
     glm::length(glm::vec3(u.IndexToLocal[1])),
     glm::length(glm::vec3(u.IndexToLocal[2])));
   return field;
+}
 }
 
 glm::vec3 ScatteringCellSize(const ScatteringField& field, glm::ivec3 size)
@@ -121,8 +126,8 @@ void ForEachInput(const glsl::Transport& transport, ScatteringGrid& grid, bool s
           }
     });
 }
-}
 
+// The inputs for u's field, table, phase and lights (as ComputeScatteringVolume).
 void ComputeScatteringInputs(const MarchUniforms& u, ScatteringInputs& inputs)
 {
   glsl::Transport transport = TransportOf(u);
@@ -149,6 +154,9 @@ void ComputeScatteringInputs(const MarchUniforms& u, ScatteringInputs& inputs)
   }
 }
 
+// The relaxation and prolongation from given inputs, coarse to fine, and the finest grid's flux:
+// `volume` is the finest grid with its Fluence and Flux. Deterministic: the same inputs give the
+// same floats on any machine's CPU, whatever its threads.
 void SolveScatteringVolume(const LightingParameters& lighting,
   const ScatteringField& field,
   ScatteringInputs inputs,
@@ -186,6 +194,7 @@ void SolveScatteringVolume(const LightingParameters& lighting,
   }
   volume = std::move(coarse);
 }
+} // namespace
 
 void ComputeScatteringVolume(const MarchUniforms& u,
   ScatteringGrid& volume,

@@ -60,9 +60,6 @@ struct ScatteringField
   glm::vec3 VoxelSize{ 1.0f };
 };
 
-// The field of u (its Dimensions and the lengths of IndexToLocal's axes).
-CLOUDVISFILTERS_EXPORT ScatteringField ScatteringFieldOf(const MarchUniforms& u);
-
 // The local length of a cell per axis on a grid of `size` texels.
 CLOUDVISFILTERS_EXPORT glm::vec3 ScatteringCellSize(const ScatteringField& field, glm::ivec3 size);
 CLOUDVISFILTERS_EXPORT glm::vec3 ScatteringCellSize(const MarchUniforms& u, glm::ivec3 size);
@@ -73,22 +70,11 @@ CLOUDVISFILTERS_EXPORT glm::vec3 ScatteringCellSize(const MarchUniforms& u, glm:
 // these and the phase.
 using ScatteringInputs = std::vector<ScatteringGrid>;
 
-// The inputs for u's field, table, phase and lights (as ComputeScatteringVolume).
-CLOUDVISFILTERS_EXPORT void ComputeScatteringInputs(const MarchUniforms& u,
-  ScatteringInputs& inputs);
-
-// The relaxation and prolongation from given inputs, coarse to fine, and the finest grid's flux:
-// `volume` is the finest grid with its Fluence and Flux. Deterministic: the same inputs give the
-// same floats on any machine's CPU, whatever its threads.
-CLOUDVISFILTERS_EXPORT void SolveScatteringVolume(const LightingParameters& lighting,
-  const ScatteringField& field,
-  ScatteringInputs inputs,
-  ScatteringGrid& volume,
-  const ScatteringSolve& solve = ScatteringSolve());
-
 // Computes the volume for u's field, table, phase and lights (u.LightDepths when the march reads
 // light volumes), with vtkSMPTools: a texel's value depends only on the previous pass's. The
-// inputs, then the solve.
+// inputs (every cell's medium, source and direction, and the coarsest grid's first guess), then
+// the solve (relaxation and prolongation, coarse to fine, then the finest grid's flux),
+// deterministic: the same inputs give the same floats on any machine's CPU, whatever its threads.
 CLOUDVISFILTERS_EXPORT void ComputeScatteringVolume(const MarchUniforms& u,
   ScatteringGrid& volume,
   const ScatteringSolve& solve = ScatteringSolve());

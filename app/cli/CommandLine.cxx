@@ -146,6 +146,11 @@ std::vector<std::string> Arguments::Values(const std::string& option) const
   return found == this->Options.end() ? std::vector<std::string>{} : found->second;
 }
 
+namespace
+{
+
+// Parses a command's arguments (everything after the command name). --help is handled by the
+// caller. Throws UsageError.
 Arguments ParseArguments(const CommandSpec& command, const std::vector<std::string>& arguments)
 {
   Arguments parsed;
@@ -264,9 +269,6 @@ std::string GeneralHelp()
        << "Scene files: docs/scene-format.md. Command line: docs/command-line.md.\n";
   return help.str();
 }
-
-namespace
-{
 
 // What a command prints on standard output, passed on with every byte that is not UTF-8
 // escaped (EscapeInvalidUtf8): commands print paths and scene text, which may hold any bytes.

@@ -151,6 +151,10 @@ bool IsFieldOperand(const std::string& input, const Arguments& arguments)
   return IsFieldFile(input) || arguments.Has("field-format");
 }
 
+namespace
+{
+
+// Adds the scene overrides the field file options stand for.
 void AddFieldFileOverrides(const Arguments& arguments, std::vector<SceneOverride>& overrides)
 {
   const std::pair<const char*, const char*> options[] = { { "field-format", "field.format" },
@@ -166,6 +170,7 @@ void AddFieldFileOverrides(const Arguments& arguments, std::vector<SceneOverride
     }
   }
 }
+} // namespace
 
 Scene LoadOperandScene(const std::string& command,
   const std::string& input,

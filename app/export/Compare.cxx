@@ -69,6 +69,24 @@ std::string FormatMilliseconds(double ms)
   return text;
 }
 
+// The ramp of the difference panel: t in [0, 1] (clamped) to RGB in [0, 1].
+std::array<double, 3> DifferenceColor(double t)
+{
+  // Dark where the models agree, bright where they differ; monotonic in lightness.
+  static const double stops[][3] = { { 0.0, 0.0, 0.0 },
+    { 0.27, 0.05, 0.45 },
+    { 0.80, 0.20, 0.30 },
+    { 1.0, 0.62, 0.10 },
+    { 1.0, 1.0, 0.75 } };
+  const int last = int(sizeof(stops) / sizeof(stops[0])) - 1;
+  const double x = std::min(1.0, std::max(0.0, std::isfinite(t) ? t : 0.0)) * last;
+  const int i = std::min(last - 1, int(x));
+  const double f = x - i;
+  return { stops[i][0] + f * (stops[i + 1][0] - stops[i][0]),
+    stops[i][1] + f * (stops[i + 1][1] - stops[i][1]),
+    stops[i][2] + f * (stops[i + 1][2] - stops[i][2]) };
+}
+
 // The difference image of two float radiances (premultiplied RGBA, same size): per pixel the
 // largest |A - B| over r, g, b, colored through DifferenceColor scaled to the largest difference.
 vtkSmartPointer<vtkImageData> DifferenceImage(const std::vector<float>& a,
@@ -194,20 +212,6 @@ std::string PanelName(const LightingParameters& scene, const ComparedLighting& p
   return panel.Model == LightingModel::March
     ? model + ":" + MultipleScatteringModelName(PanelLighting(scene, panel).MultipleScattering)
     : model;
-}
-
-std::array<double, 3> DifferenceColor(double t)
-{
-  // Dark where the models agree, bright where they differ; monotonic in lightness.
-  static const double stops[][3] = { { 0.0, 0.0, 0.0 }, { 0.27, 0.05, 0.45 }, { 0.80, 0.20, 0.30 },
-    { 1.0, 0.62, 0.10 }, { 1.0, 1.0, 0.75 } };
-  const int last = int(sizeof(stops) / sizeof(stops[0])) - 1;
-  const double x = std::min(1.0, std::max(0.0, std::isfinite(t) ? t : 0.0)) * last;
-  const int i = std::min(last - 1, int(x));
-  const double f = x - i;
-  return { stops[i][0] + f * (stops[i + 1][0] - stops[i][0]),
-    stops[i][1] + f * (stops[i + 1][1] - stops[i][1]),
-    stops[i][2] + f * (stops[i + 1][2] - stops[i][2]) };
 }
 
 namespace

@@ -148,10 +148,16 @@ void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input
   }
 }
 
+namespace
+{
+
+// Whether the field holds no value above 0: its picture is the background alone, which is
+// right, and the commands say so in words (as for a function that HidesEveryValue, Scene.h).
 bool FieldIsEmpty(vtkImageData* field)
 {
   vtkDataArray* values = field->GetPointData()->GetScalars();
   return !values || values->GetNumberOfTuples() == 0 || !(values->GetRange(0)[1] > 0.0);
+}
 }
 
 std::string FitTransferFunctionNote(Scene& scene, vtkImageData* field, bool fieldFileAlone)
@@ -336,13 +342,6 @@ std::vector<float> ReadCheckedMapperImage(
   }
   CheckFiniteImage(rgba.data(), size_t(width) * size_t(height), input);
   return rgba;
-}
-
-void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
-  vtkRenderer* renderer,
-  const std::string& input)
-{
-  ReadCheckedMapperImage(mapper, renderer, input);
 }
 
 void ReadBackgroundImage(vtkRenderWindow* window, vtkVolume* volume, RenderedImage& image)

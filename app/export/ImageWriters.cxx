@@ -201,54 +201,8 @@ void WriteExrScanLines(const RenderedImage& image, const ImageExportOptions& opt
   }
 }
 
-// Output formats: one entry per extension, with the writer below.
-struct ImageFormat
-{
-  const char* Extension;
-  const char* What; // in "cannot write WHAT: REASON"
-  // Writes onto `out` (the temporary's checked stream); `target` names the file in errors.
-  void (*Write)(const RenderedImage& image, const ImageExportOptions& options, std::ostream& out,
-    const std::string& target);
-};
-
-const ImageFormat ImageFormats[] = {
-  { ".png", "the PNG image", WritePngImage },
-  { ".exr", "the EXR image", WriteExrImage },
-};
-
-const ImageFormat& FormatOf(const std::string& path)
-{
-  const std::string extension = LowerCaseExtension(path);
-  for (const ImageFormat& format : ImageFormats)
-  {
-    if (extension == format.Extension)
-    {
-      return format;
-    }
-  }
-  std::string supported;
-  for (const std::string& e : SupportedImageExtensions())
-  {
-    supported += (supported.empty() ? "" : ", ") + e;
-  }
-  throw InputError(path + ": " +
-    (extension.empty() ? std::string("the file name has no image extension")
-                       : "unsupported image format \"" + extension + "\"") +
-    "; supported: " + supported);
-}
-
-} // namespace
-
-std::string CloudvisVersion()
-{
-  return CLOUDVIS_VERSION;
-}
-
-bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options)
-{
-  return LowerCaseExtension(path) == ".exr" || options.PngBits == 16 || options.Transparent;
-}
-
+// The writers of the format table. They write onto `out` (the checked stream of the atomic
+// write, AtomicFile.h); `target` names the output in errors (InputError).
 void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,
   std::ostream& out, const std::string& target)
 {
@@ -333,6 +287,24 @@ void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options
   }
 }
 
+// Output formats: one entry per extension, with its writer (above).
+struct ImageFormat
+{
+  const char* Extension;
+  const char* What; // in "cannot write WHAT: REASON"
+  // Writes onto `out` (the temporary's checked stream); `target` names the file in errors.
+  void (*Write)(const RenderedImage& image,
+    const ImageExportOptions& options,
+    std::ostream& out,
+    const std::string& target);
+};
+
+const ImageFormat ImageFormats[] = {
+  { ".png", "the PNG image", WritePngImage },
+  { ".exr", "the EXR image", WriteExrImage },
+};
+
+// The image formats cloudvis writes, as lower-case extensions with the dot (".png").
 std::vector<std::string> SupportedImageExtensions()
 {
   std::vector<std::string> extensions;
@@ -341,6 +313,39 @@ std::vector<std::string> SupportedImageExtensions()
     extensions.emplace_back(format.Extension);
   }
   return extensions;
+}
+
+const ImageFormat& FormatOf(const std::string& path)
+{
+  const std::string extension = LowerCaseExtension(path);
+  for (const ImageFormat& format : ImageFormats)
+  {
+    if (extension == format.Extension)
+    {
+      return format;
+    }
+  }
+  std::string supported;
+  for (const std::string& e : SupportedImageExtensions())
+  {
+    supported += (supported.empty() ? "" : ", ") + e;
+  }
+  throw InputError(path + ": " +
+    (extension.empty() ? std::string("the file name has no image extension")
+                       : "unsupported image format \"" + extension + "\"") +
+    "; supported: " + supported);
+}
+
+} // namespace
+
+std::string CloudvisVersion()
+{
+  return CLOUDVIS_VERSION;
+}
+
+bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options)
+{
+  return LowerCaseExtension(path) == ".exr" || options.PngBits == 16 || options.Transparent;
 }
 
 void CheckImageOutput(const std::string& path)

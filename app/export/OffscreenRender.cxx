@@ -82,6 +82,9 @@ vtkSmartPointer<vtkVolumeProperty> MakeVolumeProperty(const TransferFunctionSpec
   return property;
 }
 
+namespace
+{
+
 PathTraceFrames PathTraceFramesOf(int samplesPerPixel)
 {
   // The most paths per frame that divides the count, up to 8: few frames (little per-frame
@@ -98,6 +101,7 @@ PathTraceFrames PathTraceFramesOf(int samplesPerPixel)
   frames.Frames = samplesPerPixel / frames.SamplesPerFrame;
   return frames;
 }
+} // namespace
 
 double ClippedCloudShare(const RenderedImage& image, const std::vector<float>& rgba)
 {

@@ -24,6 +24,10 @@
 
 namespace cloudvis
 {
+namespace
+{
+
+// A float as a GLSL literal that reads back as the same float.
 std::string GlslFloat(float value)
 {
   char text[32];
@@ -35,9 +39,6 @@ std::string GlslFloat(float value)
   }
   return literal;
 }
-
-namespace
-{
 constexpr int MaxLights = LightingLimits::MaxLights;
 
 // The constants the GLSL shares with the C++, from their one definition, the program's variant of
@@ -147,6 +148,13 @@ MarchSwitches MarchSwitchesOf(const MarchUniforms& uniforms, bool lightVolumes)
   return switches;
 }
 
+namespace
+{
+
+// The fragment shader's source for a lighting model, the kinds of the lights (positional or
+// directional, in order), the samples the march takes per reading of the occupancy map and the
+// switches (the phase function's among them: the two lobes' programs hold none of the droplets'
+// table code).
 std::string MarchShaderSource(LightingModel model,
   const std::vector<LocalLight>& lights,
   int samplesPerMapRead,
@@ -154,6 +162,7 @@ std::string MarchShaderSource(LightingModel model,
 {
   return ShaderSource(model, lights, samplesPerMapRead, switches.Phase, &switches);
 }
+} // namespace
 
 std::string PassShaderSource(
   const std::vector<LocalLight>& lights, PhaseModel phase, const std::string& passMain)

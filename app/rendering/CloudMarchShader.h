@@ -29,9 +29,6 @@ struct MarchUniforms;
 constexpr float NoDepth = 1e30f;
 constexpr float DepthTransmittance = 0.98f;
 
-// A float as a GLSL literal that reads back as the same float.
-std::string GlslFloat(float value);
-
 // The march reads the occupancy map before every sample where leaps are common, and before every
 // fourth sample (DenseSamplesPerMapRead) in fields whose bricks are mostly occupied (at least
 // DenseOccupiedBrickFraction), where a leap is rare and the map's read and the masked leap code
@@ -60,15 +57,6 @@ struct MarchSwitches
 // The switches of a march with these uniforms (TransportOf's), the light volumes read or not
 // (on the GPU they are textures the mapper holds, not MarchUniforms::LightDepths).
 MarchSwitches MarchSwitchesOf(const MarchUniforms& uniforms, bool lightVolumes);
-
-// The fragment shader's source for a lighting model, the kinds of the lights (positional or
-// directional, in order), the samples the march takes per reading of the occupancy map and the
-// switches (the phase function's among them: the two lobes' programs hold none of the droplets'
-// table code).
-std::string MarchShaderSource(LightingModel model,
-  const std::vector<LocalLight>& lights,
-  int samplesPerMapRead,
-  const MarchSwitches& switches);
 
 // The fragment shader of a pass over a light-transport volume (the light volumes, the
 // multiple-scattering volume): the march's, with the march model's lighting for the lights'

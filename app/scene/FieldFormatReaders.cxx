@@ -170,6 +170,10 @@ void RefuseBeyondFloat(const std::string& path, const std::string& holder, std::
   }
 }
 
+namespace
+{
+
+// "float", "unsigned short", ...: a VTK type in words.
 std::string TypeInWords(int vtkType)
 {
   switch (vtkType)
@@ -195,6 +199,7 @@ std::string TypeInWords(int vtkType)
       return vtkImageScalarTypeNameMacro(vtkType);
   }
 }
+} // namespace
 
 void ReportPointArrays(FieldReport& report, vtkImageData* image, const std::string& chosen)
 {

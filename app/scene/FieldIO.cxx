@@ -183,6 +183,19 @@ vtkSmartPointer<vtkImageData> DensityFieldOf(const std::string& path,
   return field;
 }
 
+// The format whose Id is `id`, or nullptr.
+const FieldFormat* FindFieldFormatById(const std::string& id)
+{
+  for (const FieldFormat& format : FieldFormats())
+  {
+    if (format.Id == id)
+    {
+      return &format;
+    }
+  }
+  return nullptr;
+}
+
 const FieldFormat& FormatFor(const std::string& path, const FieldReadOptions& options)
 {
   if (!options.Format.empty())
@@ -237,6 +250,31 @@ private:
 };
 vtkStandardNewMacro(vtkCloudRunImageDataWriter);
 
+// Writes `field` as VTK XML image data (.vti) onto `out` (seekable): the .vti writer calls it on
+// the stream of its atomic write (AtomicFile.h), WriteVtkXmlImageFile on a piece's file. Errors
+// name `target`, the file the user asked for. `run`, when not empty, is recorded as the
+// generation run of a piece (PieceRunAttribute, FieldPieces.h).
+void WriteVtkXmlImage(vtkImageData* field,
+  std::ostream& out,
+  const std::string& target,
+  const std::string& run = {})
+{
+  VtkMessageCapture messages;
+  vtkNew<vtkCloudRunImageDataWriter> writer;
+  writer->Run = run;
+  writer->SetInputData(field);
+  writer->SetOutputStream(&out);
+  // Raw appended binary (no base64) compressed with zlib: the smallest file VTK and
+  // ParaView read back exactly.
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+  {
+    Fail(target, messages.WithVtkReason("cannot write the field"));
+  }
+}
+
 // The writers, by the extension of the output.
 struct FieldWriter
 {
@@ -260,6 +298,17 @@ const std::vector<FieldWriter>& FieldWriters()
     { ".vdb", WriteOpenVdbFile },
   };
   return writers;
+}
+
+// The extensions fields are written in: ".vti, .pvti, .vdb".
+std::string FieldOutputExtensions()
+{
+  std::vector<std::string> extensions;
+  for (const FieldWriter& writer : FieldWriters())
+  {
+    extensions.push_back(writer.Extension);
+  }
+  return schema::Join(extensions);
 }
 
 } // namespace
@@ -289,18 +338,6 @@ const FieldFormat* FindFieldFormat(const std::string& path)
   {
     if (std::find(format.Extensions.begin(), format.Extensions.end(), extension) !=
       format.Extensions.end())
-    {
-      return &format;
-    }
-  }
-  return nullptr;
-}
-
-const FieldFormat* FindFieldFormatById(const std::string& id)
-{
-  for (const FieldFormat& format : FieldFormats())
-  {
-    if (format.Id == id)
     {
       return &format;
     }
@@ -555,16 +592,6 @@ ResolvedFieldUnits ResolveFieldValues(const std::string& name,
   return units;
 }
 
-std::string FieldOutputExtensions()
-{
-  std::vector<std::string> extensions;
-  for (const FieldWriter& writer : FieldWriters())
-  {
-    extensions.push_back(writer.Extension);
-  }
-  return schema::Join(extensions);
-}
-
 void CheckFieldOutput(const std::string& path)
 {
   CheckOutputTarget(path); // first: "it is a directory" says more than a missing extension
@@ -595,27 +622,6 @@ void WriteField(vtkImageData* field, const std::string& path, const FieldMetadat
       writer.Write(field, path, metadata);
       return;
     }
-  }
-}
-
-void WriteVtkXmlImage(vtkImageData* field,
-  std::ostream& out,
-  const std::string& target,
-  const std::string& run)
-{
-  VtkMessageCapture messages;
-  vtkNew<vtkCloudRunImageDataWriter> writer;
-  writer->Run = run;
-  writer->SetInputData(field);
-  writer->SetOutputStream(&out);
-  // Raw appended binary (no base64) compressed with zlib: the smallest file VTK and
-  // ParaView read back exactly.
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
-  writer->SetCompressorTypeToZLib();
-  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
-  {
-    Fail(target, messages.WithVtkReason("cannot write the field"));
   }
 }
 

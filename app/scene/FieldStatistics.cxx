@@ -79,13 +79,14 @@ FieldStatistics ComputeFieldStatistics(vtkImageData* field, int bins)
   return s;
 }
 
+namespace
+{
+
+// The lower edge of histogram bin `bin` (bin == bins gives the upper edge of the last one).
 double HistogramEdge(const FieldStatistics& s, size_t bin)
 {
   return s.Minimum + (s.Maximum - s.Minimum) * double(bin) / double(s.Histogram.size());
 }
-
-namespace
-{
 
 bool IsIdentity(const std::array<double, 9>& direction)
 {

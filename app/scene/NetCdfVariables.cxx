@@ -576,6 +576,30 @@ Layout LayoutOf(const File& file, const Variable& variable)
   return layout;
 }
 
+namespace
+{
+
+// The CF standard names and the names of LES codes (DALES, MicroHH, PALM, SAM, WRF, UCLA-LES) of
+// the cloud's liquid water, likeliest first.
+const std::vector<std::string>& CloudWaterStandardNames()
+{
+  static const std::vector<std::string> names = { "mass_fraction_of_cloud_liquid_water_in_air",
+    "cloud_liquid_water_mixing_ratio",
+    "mass_concentration_of_cloud_liquid_water_in_air" };
+  return names;
+}
+
+const std::vector<std::string>& CloudWaterNames()
+{
+  // DALES, MicroHH, PALM: ql; many codes: qc, qcl; SAM: QN (liquid and ice); WRF: QCLOUD;
+  // UCLA-LES: l; and liquid water contents.
+  static const std::vector<std::string> names = {
+    "ql", "qc", "qcl", "QN", "QCLOUD", "QC", "l", "lwc", "LWC"
+  };
+  return names;
+}
+} // namespace
+
 const Variable& ChooseVariable(const File& file, const std::string& wanted)
 {
   // Variables that describe others: coordinates (named as their dimension), auxiliary
@@ -654,24 +678,6 @@ const Variable& ChooseVariable(const File& file, const std::string& wanted)
       "no variable can be read as a density (numbers on 2 or 3 spatial dimensions)" + problems);
   }
   return cloudWater ? *cloudWater : *first;
-}
-
-const std::vector<std::string>& CloudWaterStandardNames()
-{
-  static const std::vector<std::string> names = { "mass_fraction_of_cloud_liquid_water_in_air",
-    "cloud_liquid_water_mixing_ratio",
-    "mass_concentration_of_cloud_liquid_water_in_air" };
-  return names;
-}
-
-const std::vector<std::string>& CloudWaterNames()
-{
-  // DALES, MicroHH, PALM: ql; many codes: qc, qcl; SAM: QN (liquid and ice); WRF: QCLOUD;
-  // UCLA-LES: l; and liquid water contents.
-  static const std::vector<std::string> names = {
-    "ql", "qc", "qcl", "QN", "QCLOUD", "QC", "l", "lwc", "LWC"
-  };
-  return names;
 }
 
 // ---- missing values and packing ---------------------------------------------------------------

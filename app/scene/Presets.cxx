@@ -187,10 +187,16 @@ std::vector<std::string> ShippedPresetNames()
   return names;
 }
 
+namespace
+{
+
+// True when a transfer_function.preset value is a path (it contains '/' or ends in ".json", in
+// any case), false when it is the name of a shipped preset.
 bool IsPresetPath(const std::string& reference)
 {
   return reference.find('/') != std::string::npos || LowerCaseExtension(reference) == ".json";
 }
+} // namespace
 
 PresetDocument ReadPreset(
   const std::string& reference, const std::string& baseDirectory, const std::string& paraViewName)

@@ -156,10 +156,16 @@ Scene DefaultScene()
   return Scene{};
 }
 
+namespace
+{
+
+// Reads a scene file into a JSON document. Throws InputError for an unreadable file (with the
+// OS reason) or malformed JSON (with line and column).
 nlohmann::json ReadSceneDocument(const std::string& path)
 {
   return ReadJsonFile(path, "scene file");
 }
+} // namespace
 
 nlohmann::json ReadJsonFile(const std::string& path, const std::string& what)
 {
@@ -294,25 +300,12 @@ nlohmann::json ParseOverrideValue(const std::string& key, const std::string& tex
   return array;
 }
 
-void ApplyOverride(nlohmann::json& document, const std::string& assignment)
+namespace
 {
-  const auto equals = assignment.find('=');
-  if (equals == std::string::npos || equals == 0)
-  {
-    throw UsageError("--set expects KEY=VALUE (for example field.octaves=4), got \"" + assignment + "\"");
-  }
-  const std::string key = assignment.substr(0, equals);
-  const std::vector<std::string> parts = SplitKey(key);
-  for (const std::string& p : parts)
-  {
-    if (p.empty() || key.back() == '.')
-    {
-      throw UsageError("--set " + assignment + ": the key \"" + key + "\" has an empty part");
-    }
-  }
-  SetDocumentValue(document, key, ParseOverrideValue(key, assignment.substr(equals + 1)), "--set");
-}
 
+// Sets a dotted key of a document to a value, creating missing objects on the way. `option`
+// names where the value came from in errors ("--set"). Throws InputError when a part of the
+// key names a value that is not an object.
 void SetDocumentValue(
   nlohmann::json& document, const std::string& key, const nlohmann::json& value, const std::string& option)
 {
@@ -334,6 +327,27 @@ void SetDocumentValue(
     node = &(*node)[p];
   }
   *node = value;
+}
+} // namespace
+
+void ApplyOverride(nlohmann::json& document, const std::string& assignment)
+{
+  const auto equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0)
+  {
+    throw UsageError(
+      "--set expects KEY=VALUE (for example field.octaves=4), got \"" + assignment + "\"");
+  }
+  const std::string key = assignment.substr(0, equals);
+  const std::vector<std::string> parts = SplitKey(key);
+  for (const std::string& p : parts)
+  {
+    if (p.empty() || key.back() == '.')
+    {
+      throw UsageError("--set " + assignment + ": the key \"" + key + "\" has an empty part");
+    }
+  }
+  SetDocumentValue(document, key, ParseOverrideValue(key, assignment.substr(equals + 1)), "--set");
 }
 
 Scene SceneFromDocument(const nlohmann::json& document, const std::string& source,

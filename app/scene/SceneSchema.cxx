@@ -55,12 +55,16 @@ const std::vector<Name>& LightTypes()
   return names;
 }
 
+namespace
+{
+
 // The lighting models by the one table of their names (CloudLightingParameters.h).
 const std::vector<Name>& LightingModels()
 {
   static const std::vector<Name> names = NamesOfTable(LightingModelTable());
   return names;
 }
+} // namespace
 
 const Keys<FieldSpec>& FieldKeys()
 {

@@ -154,6 +154,10 @@ KeyMatch FindKeyBinding(const std::string& keySym, char keyCode, bool control)
   return {};
 }
 
+namespace
+{
+
+// How help and docs write a key ("plus" -> "+", "Escape" -> "Esc", Control -> "Ctrl+").
 std::string KeyLabel(const std::string& keySym, bool control)
 {
   static const std::map<std::string, std::string> labels = { { "Escape", "Esc" },
@@ -186,6 +190,7 @@ std::string KeyLabel(const std::string& keySym, bool control)
   return control ? "Ctrl+" + label : label;
 }
 
+// Every mouse binding, grouped by where, in the order help and docs list them.
 const std::vector<MouseBinding>& MouseBindings()
 {
   // clang-format off: one row per binding.
@@ -240,9 +245,6 @@ const std::vector<MouseBinding>& MouseBindings()
   // clang-format on
   return table;
 }
-
-namespace
-{
 // The help's label of a binding's keys: the keypad's twins of other keys are left to the docs, so
 // that the help fits a small window in a readable font.
 std::string KeysLabel(const KeyBinding& binding, const char* separator)

@@ -26,8 +26,9 @@ bool Near(const std::array<double, 3>& a, const std::array<double, 3>& b)
   }
   return true;
 }
-} // namespace
 
+// What differs between two states, for messages: "camera", "lighting", "exposure", "transfer
+// function", "slices", joined by ", " (empty when nothing does).
 std::string UndoableDifference(const UndoableState& a, const UndoableState& b)
 {
   std::vector<std::string> parts;
@@ -61,6 +62,7 @@ std::string UndoableDifference(const UndoableState& a, const UndoableState& b)
   }
   return text;
 }
+} // namespace
 
 void UndoHistory::Record(const UndoableState& before,
   const UndoableState& now,

@@ -56,9 +56,6 @@ extern const std::vector<OptionSpec> FieldFileOptions;
 // format's (FieldIO.h), or --field-format names its format.
 bool IsFieldOperand(const std::string& input, const Arguments& arguments);
 
-// Adds the scene overrides the field file options stand for.
-void AddFieldFileOverrides(const Arguments& arguments, std::vector<SceneOverride>& overrides);
-
 // The scene of the operand `input`, with --set and `overrides` (AddFieldFileOverrides is added
 // here): for a field file, LoadFieldFileScene (after refusing --set keys that do not apply to a
 // field file: procedural field keys, and with `fieldKeysOnly` every key outside field), else

@@ -58,13 +58,6 @@ struct CommandSpec
 // The commands, in the order help lists them.
 const std::vector<CommandSpec>& Commands();
 
-// Parses a command's arguments (everything after the command name). --help is handled by the
-// caller. Throws UsageError.
-Arguments ParseArguments(const CommandSpec& command, const std::vector<std::string>& arguments);
-
-std::string GeneralHelp();
-std::string CommandHelp(const CommandSpec& command);
-
 // What `cloudvis` with no arguments does: generate the default scene into out/default.vti, render
 // it to out/default.png and print its statistics. Needs an X display.
 int RunDefault(std::ostream& out);

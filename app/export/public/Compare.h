@@ -94,9 +94,6 @@ ComparisonResult RenderComparison(const Scene& scene,
   int timingFrames = 3,
   const std::optional<ReferencePaths>& reference = std::nullopt);
 
-// The ramp of the difference panel: t in [0, 1] (clamped) to RGB in [0, 1].
-std::array<double, 3> DifferenceColor(double t);
-
 } // namespace cloudvis
 
 #endif

@@ -67,10 +67,6 @@ void CheckFiniteImage(const float* rgba, size_t pixels, const std::string& input
 // background.
 constexpr double VisibleAlpha = 1.0 / 255.0;
 
-// Whether the field holds no value above 0: its picture is the background alone, which is
-// right, and the commands say so in words (as for a function that HidesEveryValue, Scene.h).
-bool FieldIsEmpty(vtkImageData* field);
-
 // Fits `scene`'s transfer function to `field`'s values (FitTransferFunctionToField in Scene.h)
 // and says what was done, or that the field is empty, as a line for a command's output ("" when
 // nothing was done). render, compare and animate call it once the field is produced.
@@ -100,12 +96,6 @@ std::string NothingRenderedProblem(vtkRenderer* renderer,
 // throws InputError naming `input` when the mapper kept none.
 std::vector<float> ReadCheckedMapperImage(
   vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, const std::string& input);
-
-// Checks the mapper's float image with ReadCheckedMapperImage; for renders whose export needs
-// only the window's 8-bit pixels.
-void CheckMapperImageFinite(vtkCloudVolumeMapper* mapper,
-  vtkRenderer* renderer,
-  const std::string& input);
 
 // Renders the window once more with `volume` hidden and fills image.BackgroundRGB with what is
 // left (the background as the renderer draws it, display values); shows the volume again.

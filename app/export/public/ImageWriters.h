@@ -16,7 +16,6 @@
 
 #include <iosfwd>
 #include <string>
-#include <vector>
 
 namespace cloudvis
 {
@@ -39,16 +38,6 @@ std::string CloudvisVersion();
 // Whether writing `path` with `options` needs the float image of RenderedImage (Radiance,
 // Auxiliary, BackgroundRGB): EXR, 16-bit PNG and transparent PNG do.
 bool NeedsFloatImage(const std::string& path, const ImageExportOptions& options);
-
-// The writers of the format table. They write onto `out` (the checked stream of the atomic
-// write, AtomicFile.h); `target` names the output in errors (InputError).
-void WritePngImage(const RenderedImage& image, const ImageExportOptions& options,
-  std::ostream& out, const std::string& target);
-void WriteExrImage(const RenderedImage& image, const ImageExportOptions& options,
-  std::ostream& out, const std::string& target);
-
-// The image formats cloudvis writes, as lower-case extensions with the dot (".png").
-std::vector<std::string> SupportedImageExtensions();
 
 // Throws InputError unless `path` ends in a supported extension (the message lists them) and can
 // be written (CheckOutputTarget). Called before any rendering.

@@ -54,8 +54,6 @@ struct PathTraceFrames
   int SamplesPerFrame = 1;
   int Frames = 1;
 };
-PathTraceFrames PathTraceFramesOf(int samplesPerPixel);
-
 // The exposure (EV) a render's display values use: render.exposure, or with "auto" the one
 // ComputeAutoExposure (filters/CloudDisplayTransform.h) chooses from the cloud's float image,
 // `pixels` premultiplied RGBA values.

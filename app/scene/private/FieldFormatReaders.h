@@ -120,9 +120,6 @@ bool BeyondFloat(double value);
 // `beyond` (values for which BeyondFloat held) is not 0: every reader's one refusal of them.
 void RefuseBeyondFloat(const std::string& path, const std::string& holder, std::uint64_t beyond);
 
-// "float", "unsigned short", ...: a VTK type in words.
-std::string TypeInWords(int vtkType);
-
 // The report line "array": the point array used and the others the image holds.
 void ReportPointArrays(FieldReport& report, vtkImageData* image, const std::string& chosen);
 

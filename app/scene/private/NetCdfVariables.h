@@ -138,15 +138,11 @@ Layout LayoutOf(const File& file, const Variable& variable);
 // The variable `wanted` names (field.array); when empty, the one named "density", else the
 // cloud's liquid water among the data variables (not coordinate, auxiliary coordinate or bounds
 // variables) that can be a density (numeric, on 2 or 3 spatial dimensions): by the first of
-// CloudWaterStandardNames, else the first of CloudWaterNames, so that an LES file's wind and
-// temperature are passed over; else the first of them in file order. Throws InputError naming
+// the CF standard names of liquid water, else the first of the LES codes' names for it (ql, qc,
+// QCLOUD, ...), so that an LES file's wind and temperature are passed over; else the first of
+// them in file order. Throws InputError naming
 // the file and, for a refused choice, why it cannot be read and which variables can.
 const Variable& ChooseVariable(const File& file, const std::string& wanted);
-
-// The CF standard names and the names of LES codes (DALES, MicroHH, PALM, SAM, WRF, UCLA-LES) of
-// the cloud's liquid water, likeliest first.
-const std::vector<std::string>& CloudWaterStandardNames();
-const std::vector<std::string>& CloudWaterNames();
 
 // The CF markers of missing values of a variable, compared with its packed values: _FillValue
 // (or, without one, the netCDF default fill value of the type, which is what never-written values

@@ -43,8 +43,6 @@ const Keys<ObliqueSpec>& ObliqueKeys();
 const std::vector<Name>& ShapeTypes();
 const std::vector<Name>& BackgroundTypes();
 const std::vector<Name>& LightTypes();
-const std::vector<Name>& LightingModels();
-
 // A sky without background.sun takes its sun from the lights section, which may come after the
 // background in the document: resolved once the whole scene is read.
 void ResolveSkySun(const json& document, Scene& scene);

@@ -18,7 +18,6 @@
 
 #include <array>
 #include <cstdint>
-#include <iosfwd>
 #include <limits>
 #include <optional>
 #include <string>
@@ -160,9 +159,6 @@ const std::vector<FieldFormat>& FieldFormats();
 // The format whose extension `path` ends in (any case), or nullptr.
 const FieldFormat* FindFieldFormat(const std::string& path);
 
-// The format whose Id is `id`, or nullptr.
-const FieldFormat* FindFieldFormatById(const std::string& id);
-
 // The Ids of FieldFormats() for messages: "vti, pvti, vdb, ...".
 std::string FieldFormatIds();
 
@@ -220,9 +216,6 @@ struct FieldMetadata
   std::string Scene; // the resolved scene as JSON text; empty: none
 };
 
-// The extensions fields are written in: ".vti, .pvti, .vdb".
-std::string FieldOutputExtensions();
-
 // Throws InputError unless `path` can take a field: its directory writable (CheckOutputTarget),
 // and its extension one of FieldOutputExtensions() (any case).
 void CheckFieldOutput(const std::string& path);
@@ -232,18 +225,11 @@ void CheckFieldOutput(const std::string& path);
 // (FieldPieces.h writes several). Throws InputError when the target cannot be written.
 void WriteField(vtkImageData* field, const std::string& path, const FieldMetadata& metadata = {});
 
-// Writes `field` as VTK XML image data (.vti) onto `out` (seekable): WriteField calls it on the
-// stream of its atomic write (AtomicFile.h). Errors name `target`, the file the user asked for.
-// `run`, when not empty, is recorded as the generation run of a piece (PieceRunAttribute,
-// FieldPieces.h).
-void WriteVtkXmlImage(vtkImageData* field,
-  std::ostream& out,
-  const std::string& target,
-  const std::string& run = {});
-
-// WriteVtkXmlImage onto a file created (or truncated) at exactly `path`, not atomically, every
-// write checked (WriteNewFileChecked, AtomicFile.h): the pieces of a .pvti (FieldPieces.h), which
-// their owner renames into place.
+// Writes `field` as VTK XML image data (.vti, as WriteField does) onto a file created (or
+// truncated) at exactly `path`, not atomically, every write checked (WriteNewFileChecked,
+// AtomicFile.h): the pieces of a .pvti (FieldPieces.h), which their owner renames into place.
+// Errors name `target`, the file the user asked for. `run`, when not empty, is recorded as the
+// generation run of a piece (PieceRunAttribute, FieldPieces.h).
 void WriteVtkXmlImageFile(vtkImageData* field,
   const std::string& path,
   const std::string& target,

@@ -42,9 +42,6 @@ struct FieldStatistics
 // Statistics of the active point scalars (component 0) of a field.
 FieldStatistics ComputeFieldStatistics(vtkImageData* field, int bins = 16);
 
-// The lower edge of histogram bin `bin` (bin == bins gives the upper edge of the last one).
-double HistogramEdge(const FieldStatistics& statistics, size_t bin);
-
 // Human-readable report, the histogram drawn as text bars. `name` is the file or scene shown;
 // `source`, when given, what its reader found (format, grid or variable, units, time step,
 // resampling), printed after the name.

@@ -31,10 +31,6 @@ std::string PresetDirectory();
 // The names of the presets in PresetDirectory() (file names without ".json"), sorted.
 std::vector<std::string> ShippedPresetNames();
 
-// True when a transfer_function.preset value is a path (it contains '/' or ends in ".json", in
-// any case), false when it is the name of a shipped preset.
-bool IsPresetPath(const std::string& reference);
-
 struct PresetDocument
 {
   std::string Path;   // the file read, as opened

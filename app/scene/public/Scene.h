@@ -337,12 +337,10 @@ void ResolveFieldOptics(Scene& scene, const ResolvedFieldUnits& units, const std
 // noise on 128^3 voxels over [-2, 2]^3).
 Scene DefaultScene();
 
-// Reads a scene file into a JSON document. Throws InputError for an unreadable file (with the
-// OS reason) or malformed JSON (with line and column).
-nlohmann::json ReadSceneDocument(const std::string& path);
-
-// The same for any JSON file cloudvis reads; `what` names it in messages ("preset file"). The
-// file must be a regular file of at most MaximumJsonFileBytes (InputFiles.h).
+// Reads any JSON file cloudvis reads (a scene file, a preset) into a JSON document; `what` names
+// it in messages ("preset file"). Throws InputError for an unreadable file (with the OS reason)
+// or malformed JSON (with line and column). The file must be a regular file of at most
+// MaximumJsonFileBytes (InputFiles.h).
 nlohmann::json ReadJsonFile(const std::string& path, const std::string& what);
 
 // The reference tables of docs/scene-format.md, generated from the scene schema: Markdown, each
@@ -359,12 +357,6 @@ nlohmann::json WithValidUtf8(nlohmann::json value);
 // assignment has no '=' or an empty key part, InputError when a part of the key names a value
 // that is not an object, or when the value is NaN or infinite.
 void ApplyOverride(nlohmann::json& document, const std::string& assignment);
-
-// Sets a dotted key of a document to a value, creating missing objects on the way. `option`
-// names where the value came from in errors ("--set"). Throws InputError when a part of the
-// key names a value that is not an object.
-void SetDocumentValue(nlohmann::json& document, const std::string& key, const nlohmann::json& value,
-  const std::string& option);
 
 // The value of an assignment: JSON when it parses as JSON (6, "perlin", [1,2,3], true), else a
 // comma-separated list of numbers as an array (128,128,128), else the text as a string (perlin).

@@ -85,9 +85,6 @@ KeyMatch FindKeyBinding(const std::string& keySym, char keyCode, bool control);
 // The key symbol X names a character by ('+' -> "plus", 'a' -> "a"); empty for 0.
 std::string KeySymOfCharacter(char character);
 
-// How help and docs write a key ("plus" -> "+", "Escape" -> "Esc", Control -> "Ctrl+").
-std::string KeyLabel(const std::string& keySym, bool control);
-
 struct MouseBinding
 {
   const char* Where;  // "3D view", "slice view", "editor", ...
@@ -95,9 +92,6 @@ struct MouseBinding
   const char* Effect; // short: the help overlay shows it
   const char* More;   // details docs/viewer.md adds after a colon ("" for none)
 };
-
-// Every mouse binding, grouped by where, in the order help and docs list them.
-const std::vector<MouseBinding>& MouseBindings();
 
 // The help overlay's pages, each two columns of text: "keys" by group, then "mouse-3d" and
 // "mouse-2d" by where (the 3D view's places; the slice views' and the editor's).

@@ -42,10 +42,6 @@ struct UndoableState
   std::array<double, 2> WindowLevel{ { 1.0, 0.5 } };
 };
 
-// What differs between two states, for messages: "camera", "lighting", "exposure", "transfer
-// function", "slices", joined by ", " (empty when nothing does).
-std::string UndoableDifference(const UndoableState& a, const UndoableState& b);
-
 class UndoHistory
 {
 public:
