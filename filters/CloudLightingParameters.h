@@ -285,6 +285,13 @@ inline bool operator!=(const LightingParameters& a, const LightingParameters& b)
   return !(a == b);
 }
 
+// Whether a march with these parameters reads the multiple-scattering volume (the march model,
+// with its multiple scattering from the volume rather than the octaves; CloudScatteringVolume.h).
+inline bool UsesScatteringVolume(const LightingParameters& p)
+{
+  return p.Model == LightingModel::March && p.MultipleScattering == MultipleScatteringModel::Volume;
+}
+
 // The limits ValidateLightingParameters puts on LightingParameters, and the number of lights
 // the renderers take; the scene schema states the same ones from here.
 struct LightingLimits

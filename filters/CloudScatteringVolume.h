@@ -39,13 +39,6 @@ struct ScatteringSolve
   int SweepsPerGrid = 24;
 };
 
-// Whether a march with these parameters reads the volume (the march model, with its multiple
-// scattering from the volume rather than the octaves).
-inline bool UsesScatteringVolume(const LightingParameters& p)
-{
-  return p.Model == LightingModel::March && p.MultipleScattering == MultipleScatteringModel::Volume;
-}
-
 // The finest grid's size for a field of these dimensions, and every grid's from the coarsest
 // (the first with at most 5 texels along its shortest axis, or the finest when it is that small)
 // to the finest: 5^3, 9^3, 17^3 and 33^3 for 128^3 voxels.

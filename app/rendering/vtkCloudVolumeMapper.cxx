@@ -121,58 +121,6 @@ bool vtkCloudVolumeMapper::ComputeOnPiece(vtkRenderer* renderer,
   return !problem || this->Fail(problem.Message);
 }
 
-bool vtkCloudVolumeMapper::ComputePieceOpticalDepths(vtkRenderer* renderer,
-  vtkVolume* volume,
-  cloudvis::OpticalDepthGrid& grid)
-{
-  grid.Lights = 0;
-  grid.Depths.clear();
-  return this->ComputeOnPiece(renderer,
-    volume,
-    "ComputePieceOpticalDepths",
-    [&grid](const cloudvis::MarchSetup& setup)
-    { return cloudvis::ComputePieceOpticalDepths(setup, grid); });
-}
-
-bool vtkCloudVolumeMapper::ComputePieceScatteringInputs(vtkRenderer* renderer,
-  vtkVolume* volume,
-  const cloudvis::VolumeGeometry& whole,
-  std::vector<cloudvis::ScatteringGrid>& inputs)
-{
-  inputs.clear();
-  const cloudvis::OpticalDepthGrid& external = this->Internal->External.GetGrid();
-  return this->ComputeOnPiece(renderer,
-    volume,
-    "ComputePieceScatteringInputs",
-    [&](const cloudvis::MarchSetup& setup)
-    {
-      return cloudvis::ComputePieceScatteringInputs(
-        setup, external.Empty() ? nullptr : &external, whole, inputs);
-    });
-}
-
-void vtkCloudVolumeMapper::SetExternalScatteringVolume(const cloudvis::WholeFieldScattering& volume)
-{
-  this->Internal->ExternalScattering.Set(volume);
-  this->Modified();
-}
-
-const cloudvis::WholeFieldScattering& vtkCloudVolumeMapper::GetExternalScatteringVolume() const
-{
-  return this->Internal->ExternalScattering.GetVolume();
-}
-
-void vtkCloudVolumeMapper::SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid)
-{
-  this->Internal->External.Set(grid);
-  this->Modified();
-}
-
-const cloudvis::OpticalDepthGrid& vtkCloudVolumeMapper::GetExternalOpticalDepths() const
-{
-  return this->Internal->External.GetGrid();
-}
-
 vtkMTimeType vtkCloudVolumeMapper::GetMTime()
 {
   return std::max(this->Superclass::GetMTime(), this->LightingProperty->GetMTime());

@@ -51,6 +51,10 @@
  * float target accumulates the squares, so ReadVariance gives each pixel's standard error. Opaque
  * geometry ends the view ray; paths that scatter ignore it.
  *
+ * Light crosses the pieces of a distributed field (a ParaView representation under MPI, each
+ * rank's mapper drawing its piece) through a vtkCloudPieceExchange: the optical depths and the
+ * multiple-scattering volume the other pieces add.
+ *
  * The work is split as VTK's own volume mapper splits it, into helpers private to the module
  * (app/rendering/Cloud*.h): the density, transfer, occupancy and jitter textures, the per-view
  * targets, the march shader and its uniforms, and the GPU memory checks; Render() runs one
@@ -85,14 +89,8 @@ class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
 namespace cloudvis
 {
-struct LocalFrame;
 struct MarchProblem;
 struct MarchSetup;
-struct MarchUniforms;
-struct OpticalDepthGrid;
-struct ScatteringGrid;
-struct VolumeGeometry;
-struct WholeFieldScattering;
 }
 
 class CLOUDVISRENDERING_EXPORT vtkCloudVolumeMapper : public vtkVolumeMapper
@@ -286,61 +284,6 @@ public:
   const std::vector<cloudvis::Light>* GetCloudLights() const;
   ///@}
 
-  ///@{
-  /**
-   * Light across the pieces of a distributed field (a ParaView representation under MPI, where
-   * each rank's mapper draws its piece; filters/CloudOpticalDepthGrid.h, docs/transport.md).
-   *
-   * ComputePieceOpticalDepths fills `grid`'s Depths and Lights for its Origin, Spacing and Size:
-   * at each grid point, per light (the mapper's lights, in order: SetLights, else `renderer`'s
-   * switched-on lights), the optical depth this mapper's input adds along the ray toward the
-   * light, counting only the part inside the input's box, with the march's extinction (the
-   * volume's property, ExtinctionScale, HalfFloatDensity's texels). On the CPU, with
-   * vtkSMPTools; it needs no OpenGL context and no MPI. False, with GetLastError(), when the
-   * input, the volume or the grid cannot be used.
-   *
-   * SetExternalOpticalDepths gives the mapper the depths that come from outside its input (the
-   * sum over the other pieces: over all of them, minus this piece's own): the march adds them
-   * wherever it uses an optical depth toward a light (the single-scattering beam with the light
-   * volumes or the nested march, and the multiple-scattering volume's source), for the march
-   * lighting model. The grid is copied (an empty one clears them) and must hold the lights the
-   * mapper lights with, else the render fails in words. Setting it restarts the progressive
-   * accumulation and recomputes the multiple-scattering volume, not the light volumes (which
-   * hold the field's own depths). Its texture is part of GetGPUMemoryBytes. Default none.
-   */
-  bool ComputePieceOpticalDepths(vtkRenderer* renderer,
-    vtkVolume* volume,
-    cloudvis::OpticalDepthGrid& grid);
-  void SetExternalOpticalDepths(const cloudvis::OpticalDepthGrid& grid);
-  const cloudvis::OpticalDepthGrid& GetExternalOpticalDepths() const;
-  ///@}
-
-  ///@{
-  /**
-   * The multiple-scattering volume across the pieces of a distributed field
-   * (filters/CloudScatteringVolume.h, "Across the pieces of a distributed field"): the diffusion
-   * must be solved over the whole field, or light would not diffuse across the pieces' faces.
-   *
-   * ComputePieceScatteringInputs fills `inputs` with the inputs of the grids of the whole field
-   * `whole` (cloudvis::WholeFieldGeometry) for the cells this mapper's input owns, zero elsewhere,
-   * lit as the march lights (the volume's property, the mapper's lights or `renderer`'s, and the
-   * external optical depths the mapper was given). On the CPU, without OpenGL or MPI. False,
-   * with GetLastError(), when the input, the volume or the geometry cannot be used.
-   *
-   * SetExternalScatteringVolume gives the mapper a volume solved over the whole field
-   * (cloudvis::SolveWholeFieldScattering of the inputs summed over the pieces): while it is set
-   * and the march's multiple scattering comes from the volume, the march reads it through the map
-   * from its input's voxels to the whole field's, instead of computing a volume of its input.
-   * Copied (an empty one clears it); setting it restarts the progressive accumulation; its
-   * textures are part of GetGPUMemoryBytes. Default none.
-   */
-  bool ComputePieceScatteringInputs(vtkRenderer* renderer,
-    vtkVolume* volume,
-    const cloudvis::VolumeGeometry& whole,
-    std::vector<cloudvis::ScatteringGrid>& inputs);
-  void SetExternalScatteringVolume(const cloudvis::WholeFieldScattering& volume);
-  const cloudvis::WholeFieldScattering& GetExternalScatteringVolume() const;
-  ///@}
 #endif
 
   ///@{
@@ -620,6 +563,10 @@ protected:
 #endif
 
 private:
+  // The exchange between the pieces of a distributed field sets up the march of this mapper's
+  // piece (ComputeOnPiece) and gives it what the other pieces add (Internals' external textures).
+  friend class vtkCloudPieceExchange;
+
   vtkCloudVolumeMapper(const vtkCloudVolumeMapper&) = delete;
   void operator=(const vtkCloudVolumeMapper&) = delete;
 

@@ -2,8 +2,8 @@
 
 #include "CloudLightingParameters.h"
 #include "CloudOpticalDepthGrid.h"
-#include "CloudScatteringVolume.h"
 #include "CloudTransferTable.h"
+#include "vtkCloudPieceExchange.h"
 #include "vtkCloudVolumeMapper.h"
 
 #include <vtkAlgorithm.h>
@@ -45,6 +45,8 @@ vtkCloudVolumeRepresentation::vtkCloudVolumeRepresentation()
   // Across ranks IceT composites the ranks' 8-bit images without saturating: each must hold
   // valid premultiplied colours, and one rank draws the same for the pictures to agree.
   mapper->SetColorWithinAlpha(true);
+  this->Exchange->SetMapper(mapper);
+  this->Exchange->SetVolume(this->Actor);
   this->UpdateSun();
 }
 
@@ -291,9 +293,9 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
     this->ShadowExchange && this->Lighting->GetModel() == vtkCloudLightingProperty::MarchLighting;
   if (!wanted)
   {
-    if (!this->CloudMapper->GetExternalOpticalDepths().Empty())
+    if (!this->Exchange->GetExternalOpticalDepths().Empty())
     {
-      this->CloudMapper->SetExternalOpticalDepths(cloudvis::OpticalDepthGrid());
+      this->Exchange->SetExternalOpticalDepths(cloudvis::OpticalDepthGrid());
     }
     this->ExchangeScatteringVolume(controller, renderer, piece, false);
     this->ExchangedTime = 0;
@@ -333,7 +335,7 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
   if (piece && piece->GetNumberOfPoints() > 0)
   {
     cloudvis::OpticalDepthGrid computed = own;
-    if (this->CloudMapper->ComputePieceOpticalDepths(renderer, this->Actor, computed) &&
+    if (this->Exchange->ComputePieceOpticalDepths(renderer, computed) &&
       computed.Lights == 1 && computed.Depths.size() == values)
     {
       own = computed;
@@ -353,7 +355,7 @@ void vtkCloudVolumeRepresentation::ExchangeOpticalDepth(vtkRenderer* renderer)
     controller->AllReduce(
       own.Depths.data(), total.Depths.data(), vtkIdType(values), vtkCommunicator::SUM_OP);
   }
-  this->CloudMapper->SetExternalOpticalDepths(
+  this->Exchange->SetExternalOpticalDepths(
     anyFailed ? cloudvis::OpticalDepthGrid() : cloudvis::DepthsFromOutside(total, own));
   this->ExchangeScatteringVolume(controller,
     renderer,
@@ -371,10 +373,7 @@ void vtkCloudVolumeRepresentation::ExchangeScatteringVolume(vtkMultiProcessContr
   // either all of them reduce below or none does.
   if (!wanted)
   {
-    if (!this->CloudMapper->GetExternalScatteringVolume().Empty())
-    {
-      this->CloudMapper->SetExternalScatteringVolume(cloudvis::WholeFieldScattering());
-    }
+    this->Exchange->ClearScatteringVolume();
     return;
   }
   // The whole field: the union of the pieces' extents (ParaView's pieces of one image share its
@@ -391,23 +390,20 @@ void vtkCloudVolumeRepresentation::ExchangeScatteringVolume(vtkMultiProcessContr
   const int wholeExtent[6] = {
     wholeFirst[0], wholeLast[0], wholeFirst[1], wholeLast[1], wholeFirst[2], wholeLast[2]
   };
-  cloudvis::VolumeGeometry whole;
-  whole.Dimensions = glm::ivec3(wholeLast[0] - wholeFirst[0] + 1,
-    wholeLast[1] - wholeFirst[1] + 1,
-    wholeLast[2] - wholeFirst[2] + 1);
-  if (glm::any(glm::lessThan(whole.Dimensions, glm::ivec3(1))))
+  const std::size_t values = vtkCloudPieceExchange::GetScatteringInputCount(wholeExtent);
+  if (values == 0)
   {
     return; // no rank holds data (every rank sees the same extents)
   }
-  std::vector<float> own(cloudvis::ScatteringInputValues(whole.Dimensions), 0.0f);
+  std::vector<float> own(values, 0.0f);
   int failed = 0;
   if (holds)
   {
-    whole = cloudvis::WholeFieldGeometry(piece, this->Actor->GetMatrix(), wholeExtent);
-    cloudvis::ScatteringInputs inputs;
-    if (this->CloudMapper->ComputePieceScatteringInputs(renderer, this->Actor, whole, inputs))
+    std::vector<float> computed;
+    if (this->Exchange->ComputePieceScatteringInputs(renderer, wholeExtent, computed) &&
+      computed.size() == values)
     {
-      own = cloudvis::PackScatteringInputs(inputs);
+      own = std::move(computed);
     }
     else
     {
@@ -420,17 +416,14 @@ void vtkCloudVolumeRepresentation::ExchangeScatteringVolume(vtkMultiProcessContr
   controller->AllReduce(&failed, &anyFailed, 1, vtkCommunicator::MAX_OP);
   if (anyFailed)
   {
-    this->CloudMapper->SetExternalScatteringVolume(cloudvis::WholeFieldScattering());
+    this->Exchange->ClearScatteringVolume();
     return;
   }
-  std::vector<float> total(own.size());
-  controller->AllReduce(own.data(), total.data(), vtkIdType(own.size()), vtkCommunicator::SUM_OP);
-  cloudvis::ScatteringInputs inputs;
-  if (holds && cloudvis::UnpackScatteringInputs(total, whole, inputs))
+  std::vector<float> total(values);
+  controller->AllReduce(own.data(), total.data(), vtkIdType(values), vtkCommunicator::SUM_OP);
+  if (holds)
   {
-    // Every rank solves the same sums with the same code: the same volume on every rank.
-    this->CloudMapper->SetExternalScatteringVolume(cloudvis::SolveWholeFieldScattering(
-      this->Lighting->GetParameters(), whole, std::move(inputs)));
+    this->Exchange->SolveScatteringVolume(total, wholeExtent);
   }
 }
 

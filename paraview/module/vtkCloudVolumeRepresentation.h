@@ -27,6 +27,7 @@
 
 #include "cloudvisParaViewModule.h"
 #include "vtkCloudLightingProperty.h" // for the lighting property
+#include "vtkCloudPieceExchange.h"    // for the exchange between ranks
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkNew.h"       // for the lighting property
 #include "vtkTimeStamp.h" // for the exchange's inputs
@@ -123,6 +124,7 @@ private:
     bool wanted);
 
   vtkCloudVolumeMapper* CloudMapper = nullptr; // this->VolumeMapper, as the cloud mapper it is
+  vtkNew<vtkCloudPieceExchange> Exchange;       // CloudMapper's side of the exchange
   vtkNew<vtkCloudLightingProperty> Lighting;
   double SunDirection[3] = { 6.0, 8.0, 4.0 };
   double SunColor[3] = { 1.0, 1.0, 1.0 };

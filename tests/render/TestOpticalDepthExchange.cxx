@@ -1,6 +1,7 @@
 // Light across the pieces of a distributed field (issue 25), without MPI or ParaView: what a
-// rank's mapper computes of its piece (ComputePieceOpticalDepths) and what it adds from the other
-// pieces (SetExternalOpticalDepths), checked on pieces cut with vtkExtractVOI, which share one
+// rank's vtkCloudPieceExchange computes of its mapper's piece (ComputePieceOpticalDepths,
+// ComputePieceScatteringInputs) and gives it from the other pieces (SetExternalOpticalDepths,
+// SolveScatteringVolume), checked on pieces cut with vtkExtractVOI, which share one
 // plane of points as ParaView's pieces do.
 //
 // - The depths of two pieces add up to the whole field's at every grid point (CPU alone).
@@ -18,6 +19,7 @@
 
 #include "CloudOpticalDepthGrid.h"
 #include "CloudScatteringVolume.h"
+#include "vtkCloudPieceExchange.h"
 #include "vtkCloudReferenceRenderer.h"
 
 #include <vtkCamera.h>
@@ -142,6 +144,7 @@ struct RankMapper
 {
   vtkNew<vtkCloudVolumeMapper> Mapper;
   vtkNew<vtkVolume> Volume;
+  vtkNew<vtkCloudPieceExchange> Exchange;
 
   RankMapper(vtkImageData* piece, GpuScene& like)
   {
@@ -153,6 +156,8 @@ struct RankMapper
     this->Volume->SetMapper(this->Mapper);
     this->Volume->SetProperty(like.Volume->GetProperty());
     this->Volume->SetUserMatrix(like.Volume->GetMatrix());
+    this->Exchange->SetMapper(this->Mapper);
+    this->Exchange->SetVolume(this->Volume);
   }
 };
 
@@ -160,8 +165,8 @@ struct RankMapper
 OpticalDepthGrid DepthsOf(vtkImageData* piece, GpuScene& like, OpticalDepthGrid grid)
 {
   RankMapper rank(piece, like);
-  EXPECT_TRUE(rank.Mapper->ComputePieceOpticalDepths(like.Renderer, rank.Volume, grid))
-    << rank.Mapper->GetLastError();
+  EXPECT_TRUE(rank.Exchange->ComputePieceOpticalDepths(like.Renderer, grid))
+    << rank.Exchange->GetLastError();
   return grid;
 }
 
@@ -226,11 +231,14 @@ struct SideScene
 {
   vtkNew<vtkCloudVolumeMapper> Mapper;
   GpuScene Scene{ Mapper, ImageSize, ImageSize };
+  vtkNew<vtkCloudPieceExchange> Exchange; // the mapper's, as a rank's
   glm::dvec3 Centre{ 0.0 }; // where the field's centre is in the world
   double Size = 1.0;        // world units per model unit
 
   SideScene(const Case& c, vtkImageData* field)
   {
+    this->Exchange->SetMapper(this->Mapper);
+    this->Exchange->SetVolume(this->Scene.Volume);
     if (c.Moved)
     {
       this->Centre = glm::dvec3(1e3, -400.0, 300.0);
@@ -355,12 +363,15 @@ TEST(OpticalDepthExchangeCpu, PiecesAddUpToTheWhole)
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(property);
+  vtkNew<vtkCloudPieceExchange> exchange;
+  exchange->SetMapper(mapper);
+  exchange->SetVolume(volume);
 
   const auto depths = [&](vtkImageData* field)
   {
     OpticalDepthGrid grid = CommonGrid(whole);
     mapper->SetInputData(field);
-    EXPECT_TRUE(mapper->ComputePieceOpticalDepths(nullptr, volume, grid)) << mapper->GetLastError();
+    EXPECT_TRUE(exchange->ComputePieceOpticalDepths(nullptr, grid)) << exchange->GetLastError();
     EXPECT_EQ(grid.Lights, 2);
     EXPECT_EQ(grid.Depths.size(), 2 * grid.PointCount());
     return grid;
@@ -401,11 +412,11 @@ TEST_P(OpticalDepthExchange, GpuMatchesCpuReference)
   SideScene side(c, Piece(whole, 2, 0, SplitPoint));
   const OpticalDepthGrid external = ExchangedDepths(whole, side.Scene);
 
-  side.Mapper->SetExternalOpticalDepths(external);
+  side.Exchange->SetExternalOpticalDepths(external);
   const Image gpu = side.Render();
   const vtkTypeInt64 bytes = side.Mapper->GetGPUMemoryBytes();
   const Image cpu = side.Reference(external);
-  side.Mapper->SetExternalOpticalDepths(OpticalDepthGrid());
+  side.Exchange->SetExternalOpticalDepths(OpticalDepthGrid());
   const Image gpuAlone = side.Render();
   const Image cpuAlone = side.Reference(OpticalDepthGrid());
   Dump(gpu, "exchange-" + c.Name + "-gpu");
@@ -453,7 +464,7 @@ TEST_P(OpticalDepthExchange, PieceWithDepthsMatchesWholeField)
   SideScene pieceScene(c, Piece(whole, 2, 0, SplitPoint));
   const OpticalDepthGrid external = ExchangedDepths(whole, pieceScene.Scene);
   const Image alone = pieceScene.Render();
-  pieceScene.Mapper->SetExternalOpticalDepths(external);
+  pieceScene.Exchange->SetExternalOpticalDepths(external);
   const Image piece = pieceScene.Render();
   Dump(all, "exchange-" + c.Name + "-whole");
   Dump(piece, "exchange-" + c.Name + "-piece");
@@ -524,18 +535,35 @@ TEST(OpticalDepthExchangeRefusals, OtherLightsAndEmptyGrids)
   OpticalDepthGrid grid = CommonGrid(whole);
   grid.Lights = 2;
   grid.Depths.assign(2 * grid.PointCount(), 1.0f);
-  side.Mapper->SetExternalOpticalDepths(grid);
+  side.Exchange->SetExternalOpticalDepths(grid);
   side.Scene.Window->Render();
   EXPECT_NE(side.Mapper->GetLastError().find("lit by 1"), std::string::npos)
     << side.Mapper->GetLastError();
 
   OpticalDepthGrid none = CommonGrid(whole);
   none.Size[1] = 0;
-  EXPECT_FALSE(
-    side.Mapper->ComputePieceOpticalDepths(side.Scene.Renderer, side.Scene.Volume, none));
-  EXPECT_NE(side.Mapper->GetLastError().find("at least 1 point"), std::string::npos)
-    << side.Mapper->GetLastError();
+  EXPECT_FALSE(side.Exchange->ComputePieceOpticalDepths(side.Scene.Renderer, none));
+  EXPECT_NE(side.Exchange->GetLastError().find("at least 1 point"), std::string::npos)
+    << side.Exchange->GetLastError();
   EXPECT_TRUE(none.Depths.empty());
+
+  // Summed scattering inputs of another length than the whole field's are refused in words, and
+  // the mapper goes on with its own volume.
+  const int* extent = whole->GetExtent();
+  const std::size_t values = vtkCloudPieceExchange::GetScatteringInputCount(extent);
+  EXPECT_EQ(values, ScatteringInputValues(glm::ivec3(Points)));
+  EXPECT_FALSE(side.Exchange->SolveScatteringVolume(std::vector<float>(values - 1), extent));
+  EXPECT_NE(side.Exchange->GetLastError().find("summed inputs hold"), std::string::npos)
+    << side.Exchange->GetLastError();
+  EXPECT_FALSE(side.Exchange->HasScatteringVolume());
+  const int empty[6] = { 0, -1, 0, 0, 0, 0 };
+  EXPECT_EQ(vtkCloudPieceExchange::GetScatteringInputCount(empty), 0u);
+
+  // Without a mapper the exchange says so.
+  vtkNew<vtkCloudPieceExchange> unset;
+  EXPECT_FALSE(unset->ComputePieceOpticalDepths(nullptr, none));
+  EXPECT_NE(unset->GetLastError().find("needs the mapper"), std::string::npos)
+    << unset->GetLastError();
 }
 
 // ---- The multiple-scattering volume over the whole field ----
@@ -551,9 +579,9 @@ VolumeGeometry WholeOf(vtkImageData* whole, vtkImageData* piece, GpuScene& like)
 
 // The whole field's multiple-scattering inputs as the ranks of `pieces` make them: each piece's
 // owned cells, lit with the other pieces' optical depths (the exchange), summed (what an
-// MPI_Allreduce of PackScatteringInputs makes). `counts` gets the cells each piece owns with
-// medium in them.
-ScatteringInputs SummedInputs(vtkImageData* whole,
+// MPI_Allreduce of the arrays ComputePieceScatteringInputs gives makes). `counts` gets the cells
+// each piece owns with medium in them.
+std::vector<float> SummedInputs(vtkImageData* whole,
   const std::vector<vtkSmartPointer<vtkImageData>>& pieces,
   GpuScene& like,
   std::vector<std::size_t>* counts = nullptr)
@@ -574,17 +602,19 @@ ScatteringInputs SummedInputs(vtkImageData* whole,
   for (std::size_t i = 0; i < pieces.size(); ++i)
   {
     RankMapper rank(pieces[i], like);
-    rank.Mapper->SetExternalOpticalDepths(DepthsFromOutside(total, own[i]));
-    ScatteringInputs inputs;
+    rank.Exchange->SetExternalOpticalDepths(DepthsFromOutside(total, own[i]));
+    std::vector<float> values;
     EXPECT_TRUE(
-      rank.Mapper->ComputePieceScatteringInputs(like.Renderer, rank.Volume, geometry, inputs))
-      << rank.Mapper->GetLastError();
-    const std::vector<float> values = PackScatteringInputs(inputs);
+      rank.Exchange->ComputePieceScatteringInputs(like.Renderer, whole->GetExtent(), values))
+      << rank.Exchange->GetLastError();
+    EXPECT_EQ(values.size(), vtkCloudPieceExchange::GetScatteringInputCount(whole->GetExtent()));
     sum.resize(values.size(), 0.0f);
     for (std::size_t v = 0; v < values.size(); ++v)
       sum[v] += values[v];
     if (counts)
     {
+      ScatteringInputs inputs;
+      EXPECT_TRUE(UnpackScatteringInputs(values, geometry, inputs));
       std::size_t cells = 0;
       for (const ScatteringGrid& level : inputs)
         for (const glm::vec4& medium : level.Medium)
@@ -592,9 +622,15 @@ ScatteringInputs SummedInputs(vtkImageData* whole,
       counts->push_back(cells);
     }
   }
-  ScatteringInputs summed;
-  EXPECT_TRUE(UnpackScatteringInputs(sum, geometry, summed));
-  return summed;
+  return sum;
+}
+
+// The summed inputs as the solve takes them: every grid's cells.
+ScatteringInputs Unpacked(const std::vector<float>& sum, const VolumeGeometry& whole)
+{
+  ScatteringInputs inputs;
+  EXPECT_TRUE(UnpackScatteringInputs(sum, whole, inputs));
+  return inputs;
 }
 
 std::vector<vtkSmartPointer<vtkImageData>> TwoPieces(vtkImageData* whole, int split = SplitPoint)
@@ -643,9 +679,10 @@ TEST(ScatteringAcrossPieces, OwnedInputsSumToTheWholeField)
   // Cut through the ball at z = 13, where the coarsest grid (4^3) has cells centred on the plane
   // the pieces share: the rule that gives such a cell one owner is in the sum.
   const int split = 13;
+  const VolumeGeometry geometry = WholeOf(whole, whole, scene.Scene);
   const ScatteringInputs summed =
-    SummedInputs(whole, TwoPieces(whole, split), scene.Scene, &counts);
-  const ScatteringInputs all = SummedInputs(whole, { whole }, scene.Scene);
+    Unpacked(SummedInputs(whole, TwoPieces(whole, split), scene.Scene, &counts), geometry);
+  const ScatteringInputs all = Unpacked(SummedInputs(whole, { whole }, scene.Scene), geometry);
   ASSERT_EQ(summed.size(), all.size());
   ASSERT_EQ(counts.size(), 2u);
   // Each piece owns cells with medium: the sum is not one piece's.
@@ -712,14 +749,17 @@ TEST(ScatteringAcrossPieces, PieceReadsTheWholeFieldVolume)
   const std::vector<vtkSmartPointer<vtkImageData>> pieces = TwoPieces(whole);
   SideScene pieceScene(c, pieces.front());
   const OpticalDepthGrid external = ExchangedDepths(whole, pieceScene.Scene);
-  const WholeFieldScattering volume =
-    SolveWholeFieldScattering(pieceScene.Mapper->GetLightingProperty()->GetParameters(),
-      WholeOf(whole, pieces.front(), pieceScene.Scene),
-      SummedInputs(whole, pieces, pieceScene.Scene));
-  pieceScene.Mapper->SetExternalOpticalDepths(external);
+  const std::vector<float> sum = SummedInputs(whole, pieces, pieceScene.Scene);
+  // What the exchange solves, for the CPU reference.
+  const VolumeGeometry geometry = WholeOf(whole, pieces.front(), pieceScene.Scene);
+  const WholeFieldScattering volume = SolveWholeFieldScattering(
+    pieceScene.Mapper->GetLightingProperty()->GetParameters(), geometry, Unpacked(sum, geometry));
+  pieceScene.Exchange->SetExternalOpticalDepths(external);
   const Image ownVolume = pieceScene.Render();
   const vtkTypeInt64 ownBytes = pieceScene.Mapper->GetScatteringVolumeBytes();
-  pieceScene.Mapper->SetExternalScatteringVolume(volume);
+  ASSERT_TRUE(pieceScene.Exchange->SolveScatteringVolume(sum, whole->GetExtent()))
+    << pieceScene.Exchange->GetLastError();
+  EXPECT_TRUE(pieceScene.Exchange->HasScatteringVolume());
   const Image piece = pieceScene.Render();
   const vtkTypeInt64 bytes = pieceScene.Mapper->GetGPUMemoryBytes();
   const Image cpu = pieceScene.Reference(external, volume);
@@ -757,11 +797,9 @@ TEST(ScatteringAcrossPieces, PieceReadsTheWholeFieldVolume)
 
   // The whole field reading a volume solved from its own inputs, as a piece of itself, draws what
   // it draws with the volume it computes on the GPU: the world map is the identity's.
-  const VolumeGeometry itself = WholeOf(whole, whole, wholeScene.Scene);
-  wholeScene.Mapper->SetExternalScatteringVolume(
-    SolveWholeFieldScattering(wholeScene.Mapper->GetLightingProperty()->GetParameters(),
-      itself,
-      SummedInputs(whole, { whole }, wholeScene.Scene)));
+  ASSERT_TRUE(wholeScene.Exchange->SolveScatteringVolume(
+    SummedInputs(whole, { whole }, wholeScene.Scene), whole->GetExtent()))
+    << wholeScene.Exchange->GetLastError();
   const Relative same = CompareRelative(wholeScene.Render(), all, [](int, int) { return true; });
   std::cout << "the whole field reading its own inputs' solve vs its GPU volume: RMS " << same.Rms
             << ", max " << same.Max << "\n";
