@@ -34,7 +34,7 @@
 // command varies a scene only through its keys (PathTraceBench.h). One file per command:
 // PathTraceSpeed.cxx, PathTraceErrors.cxx (errors, bounces), PathTraceDefects.cxx,
 // PathTraceFit.cxx.
-#include "CloudLighting.h"
+#include "CloudLightingParameters.h"
 #include "PathTraceBench.h"
 
 #include <cstdio>

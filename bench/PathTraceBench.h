@@ -7,7 +7,7 @@
 #ifndef cloudvis_PathTraceBench_h
 #define cloudvis_PathTraceBench_h
 
-#include "CloudLighting.h"
+#include "CloudLightingParameters.h"
 #include "Scene.h"
 
 #include <vtkSmartPointer.h>

@@ -5,7 +5,7 @@
 #ifndef cloudvis_RenderingBench_h
 #define cloudvis_RenderingBench_h
 
-#include "CloudLighting.h"
+#include "CloudLightingParameters.h"
 #include "RenderedImage.h"
 #include "vtkCloudVolumeMapper.h"
 

@@ -6,9 +6,12 @@
 #     transport code and the mapper's insides, which only filters/ and app/rendering include;
 #   - no public header (filters/' PUBLIC and classes, app/rendering's classes, app/*/public/)
 #     includes a private one, so a public header never drags a private one along;
-#   - a layer's public/ headers include no header of any layer's private/ folder.
+#   - a layer's public/ headers include no header of any layer's private/ folder;
+#   - the clients of the libraries, paraview/ (the plugin's modules) and bench/, include public
+#     headers only, as the layers do, but for the benches named in WHITE_BOX (paths relative to
+#     the source), which measure the CPU transport's own code as tests/unit tests it.
 #   cmake -DSOURCE_DIR=... -DPUBLIC="a.h;b.h" -DPRIVATE="c.h" -DRENDERING_PRIVATE="d.h"
-#         -P PublicHeaders.cmake
+#         -DWHITE_BOX="bench/e.cxx" -P PublicHeaders.cmake
 cmake_minimum_required(VERSION 3.13)
 set(failures "")
 
@@ -70,6 +73,29 @@ foreach(file IN LISTS layer_files)
     "a private header of filters/ or app/rendering")
 endforeach()
 
+# The clients of the libraries see public headers only.
+file(GLOB_RECURSE client_files RELATIVE "${SOURCE_DIR}"
+  "${SOURCE_DIR}/paraview/*.h" "${SOURCE_DIR}/paraview/*.cxx"
+  "${SOURCE_DIR}/bench/*.h" "${SOURCE_DIR}/bench/*.cxx")
+foreach(white_box IN LISTS WHITE_BOX)
+  if(NOT EXISTS "${SOURCE_DIR}/${white_box}")
+    string(APPEND failures "  ${white_box} is named a white-box bench but does not exist\n")
+  endif()
+endforeach()
+file(GLOB all_layer_private_headers "${SOURCE_DIR}/app/*/private/*.h")
+set(all_layer_private_names "")
+foreach(header IN LISTS all_layer_private_headers)
+  get_filename_component(name "${header}" NAME)
+  list(APPEND all_layer_private_names "${name}")
+endforeach()
+foreach(file IN LISTS client_files)
+  if(file IN_LIST WHITE_BOX)
+    continue()
+  endif()
+  check_includes("${SOURCE_DIR}/${file}" "${private_everywhere};${all_layer_private_names}"
+    "paraview/ and bench/ include public headers, but for bench/CMakeLists.txt's white-box benches")
+endforeach()
+
 # Public headers include no private one.
 set(public_files "")
 foreach(header IN LISTS PUBLIC)
@@ -93,5 +119,6 @@ if(failures)
   message(FATAL_ERROR "private headers reached from outside their part:\n${failures}")
 endif()
 list(LENGTH filters_headers count)
-message(STATUS "${count} filters/ headers declared; the layers and the public headers include "
-  "public headers only")
+list(LENGTH client_files clients)
+message(STATUS "${count} filters/ headers declared; the layers, the public headers and ${clients} "
+  "files of paraview/ and bench/ include public headers only")

@@ -1,10 +1,10 @@
 // The optical depths from outside the field that vtkCloudVolumeMapper was given
-// (SetExternalOpticalDepths; filters/CloudOpticalDepthGrid.h): the grid as the mapper holds it,
-// and its 3-D float texture, one block per light stacked along z as the grid's depths are laid
-// out, uploaded when the grid changes and read by the march and the multiple-scattering passes
-// through OpticalDepthToLight (the shader maps an index point onto the grid itself, so the texture
-// is the grid, unresampled: a 33^3 grid takes 144 kB per light). Its memory goes through the
-// mapper's GpuMemoryBudget. Private to the module.
+// (vtkCloudPieceExchange::SetExternalOpticalDepths; filters/CloudOpticalDepthGrid.h): the grid as
+// the mapper holds it, and its 3-D float texture, one block per light stacked along z as the grid's
+// depths are laid out, uploaded when the grid changes and read by the march and the
+// multiple-scattering passes through OpticalDepthToLight (the shader maps an index point onto the
+// grid itself, so the texture is the grid, unresampled: a 33^3 grid takes 144 kB per light). Its
+// memory goes through the mapper's GpuMemoryBudget. Private to the module.
 #ifndef CloudExternalDepthTexture_h
 #define CloudExternalDepthTexture_h
 

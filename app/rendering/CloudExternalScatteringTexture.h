@@ -1,9 +1,9 @@
 // The multiple-scattering volume solved over a whole distributed field that vtkCloudVolumeMapper
-// was given (SetExternalScatteringVolume; filters/CloudScatteringVolume.h): the volume as the
-// mapper holds it, and its fluence and flux as two RGBA32F 3-D textures, uploaded when it changes
-// and bound for the march in place of the mapper's own volume (the shader maps its input's index
-// points onto the whole field's grid itself: 33^3 texels take 1.1 MiB for both at a 128^3 field).
-// Its memory goes through the mapper's GpuMemoryBudget. Private to the module.
+// was given (vtkCloudPieceExchange::SolveScatteringVolume; filters/CloudScatteringVolume.h): the
+// volume as the mapper holds it, and its fluence and flux as two RGBA32F 3-D textures, uploaded
+// when it changes and bound for the march in place of the mapper's own volume (the shader maps its
+// input's index points onto the whole field's grid itself: 33^3 texels take 1.1 MiB for both at a
+// 128^3 field). Its memory goes through the mapper's GpuMemoryBudget. Private to the module.
 #ifndef CloudExternalScatteringTexture_h
 #define CloudExternalScatteringTexture_h
 
