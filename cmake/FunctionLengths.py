@@ -10,28 +10,19 @@ and every Python function there with the ast module, and fails naming each one l
 import argparse
 import ast
 import os
-import subprocess
 import sys
+
+from CppTags import cpp_tags
 
 FOLDERS = ("app", "filters", "paraview")
 
 
 def cpp_lengths(source, ctags):
     """(lines, path, name) of every C++ function and lambda Universal Ctags finds."""
-    try:
-        listing = subprocess.run(
-            [ctags, "--fields=+ne", "-o", "-", "-R", "--languages=C++", "--kinds-C++=f"]
-            + list(FOLDERS),
-            cwd=source, capture_output=True, text=True, check=True).stdout
-    except (OSError, subprocess.CalledProcessError) as error:
-        sys.exit(f"FunctionLengths: {ctags} could not list the functions ({error}); "
-                 "cmake/debian-packages.txt installs universal-ctags")
-    found = []
-    for line in listing.splitlines():
-        columns = line.split("\t")
-        fields = dict(c.split(":", 1) for c in columns[3:] if ":" in c)
-        if "line" in fields and "end" in fields:
-            found.append((int(fields["end"]) - int(fields["line"]) + 1, columns[1], columns[0]))
+    found = [(int(fields["end"]) - int(fields["line"]) + 1, path, name)
+             for name, path, fields in cpp_tags(source, FOLDERS, "f", ctags,
+                                                caller="FunctionLengths")
+             if "line" in fields and "end" in fields]
     if not found:
         sys.exit(f"FunctionLengths: {ctags} gave no function with its end line: it must be "
                  "Universal Ctags (the universal-ctags package), not Exuberant Ctags")

@@ -11,32 +11,15 @@ function only its own file calls belongs in that file's anonymous namespace, not
 import argparse
 import os
 import re
-import subprocess
 import sys
+
+from CppTags import cpp_tags
 
 DECLARING = ("app", "filters", "paraview")
 CALLING = ("app", "filters", "paraview", "bench", "tests", "python")
 SUFFIXES = (".h", ".cxx", ".py", ".glsl", ".cmake", ".txt")
 # A mention in a comment is no call.
 COMMENT = re.compile(r"//[^\n]*|/\*.*?\*/", re.DOTALL)
-
-
-def tags(source, ctags, kinds):
-    """(name, path, scope fields) of every C++ tag of `kinds` in the declaring folders."""
-    try:
-        listing = subprocess.run(
-            [ctags, "--fields=+nKS", "-o", "-", "-R", "--languages=C++", f"--kinds-C++={kinds}"]
-            + list(DECLARING),
-            cwd=source, capture_output=True, text=True, check=True).stdout
-    except (OSError, subprocess.CalledProcessError) as error:
-        sys.exit(f"UnusedExports: {ctags} could not list the functions ({error}); "
-                 "cmake/debian-packages.txt installs universal-ctags")
-    found = []
-    for line in listing.splitlines():
-        columns = line.split("\t")
-        fields = dict(c.split(":", 1) for c in columns[3:] if ":" in c)
-        found.append((columns[0], columns[1], fields))
-    return found
 
 
 def project_files(source):
@@ -57,7 +40,9 @@ def main():
     parser.add_argument("--source", required=True)
     parser.add_argument("--ctags", default="ctags")
     options = parser.parse_args()
-    declared = [(name, path) for name, path, fields in tags(options.source, options.ctags, "p")
+    tags = lambda kinds: cpp_tags(options.source, DECLARING, kinds, options.ctags,
+                                  caller="UnusedExports")
+    declared = [(name, path) for name, path, fields in tags("p")
                 if path.endswith(".h") and not ("class" in fields or "struct" in fields)
                 and not name.startswith("operator")]
     if not declared:
@@ -66,7 +51,7 @@ def main():
     for entry in declared:
         declarations[entry] = declarations.get(entry, 0) + 1
     defined = {}
-    for name, path, _ in tags(options.source, options.ctags, "f"):
+    for name, path, _ in tags("f"):
         if path.endswith(".cxx"):
             defined.setdefault(name, set()).add(path)
     texts = project_files(options.source)
