@@ -115,7 +115,7 @@ $(FUZZ_BUILD_DIR)/CMakeCache.txt: | deps
 
 # Each target starts from its seed corpus; what it finds on the way is kept in
 # $(FUZZ_BUILD_DIR)/corpus/<target> (not in the source tree), crashes in $(FUZZ_BUILD_DIR)/crashes.
-# CLOUDVIS_READ_SECONDS: the isolated read of a field file (app/scene/private/IsolatedRead.h)
+# CLOUDVIS_READ_SECONDS: the isolated read of a field file (app/fields/private/IsolatedRead.h)
 # gives up before libFuzzer's -timeout, so a slow library is reported by cloudvis, not as a hang.
 fuzz: $(FUZZ_BUILD_DIR)/CMakeCache.txt
 	$(CCACHE_ENV) cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS) \

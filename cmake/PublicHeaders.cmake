@@ -1,9 +1,10 @@
 # The headers each part of cloudvis shows the others are the ones it declares public (issue 20):
 #   - every header of filters/ is a class header (vtk*.h) or in exactly one of the lists
 #     PUBLIC and PRIVATE (filters/CMakeLists.txt);
-#   - the application's layers (app/common, scene, export, viewer, cli, main.cxx) include no
-#     private header of filters/ and none of app/rendering's (RENDERING_PRIVATE): those are the
-#     transport code and the mapper's insides, which only filters/ and app/rendering include;
+#   - the application's layers (app/common, fields, statistics, scene, export, viewer, cli,
+#     main.cxx) include no private header of filters/ and none of app/rendering's
+#     (RENDERING_PRIVATE): those are the transport code and the mapper's insides, which only
+#     filters/ and app/rendering include;
 #   - no public header (filters/' PUBLIC and classes, app/rendering's classes, app/*/public/)
 #     includes a private one, so a public header never drags a private one along;
 #   - a layer's public/ headers include no header of any layer's private/ folder;
@@ -63,6 +64,8 @@ set(private_everywhere ${PRIVATE} ${RENDERING_PRIVATE})
 # The application's layers see public headers only.
 file(GLOB_RECURSE layer_files
   "${SOURCE_DIR}/app/common/*.h" "${SOURCE_DIR}/app/common/*.cxx"
+  "${SOURCE_DIR}/app/fields/*.h" "${SOURCE_DIR}/app/fields/*.cxx"
+  "${SOURCE_DIR}/app/statistics/*.h" "${SOURCE_DIR}/app/statistics/*.cxx"
   "${SOURCE_DIR}/app/scene/*.h" "${SOURCE_DIR}/app/scene/*.cxx"
   "${SOURCE_DIR}/app/export/*.h" "${SOURCE_DIR}/app/export/*.cxx"
   "${SOURCE_DIR}/app/viewer/*.h" "${SOURCE_DIR}/app/viewer/*.cxx"

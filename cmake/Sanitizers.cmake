@@ -47,7 +47,7 @@ if(cloudvis_sanitizers)
 endif()
 if(CLOUDVIS_FUZZ)
   add_compile_options(-fsanitize=fuzzer-no-link)
-  # Code that runs in a forked child (app/scene/private/IsolatedRead.h) adds no coverage to the
+  # Code that runs in a forked child (app/fields/private/IsolatedRead.h) adds no coverage to the
   # fuzzer's counters; such code reruns its accepted work in the parent under this definition.
   add_compile_definitions(CLOUDVIS_FUZZING_BUILD)
 endif()

@@ -26,7 +26,7 @@ _ALLOWED_TEXT = {
 }
 
 # Coordinate units that are lengths, and the length unit each is (as LengthUnitFromText in
-# app/scene/FieldUnits.cxx reads a NetCDF coordinate's units; other units declare none).
+# app/fields/FieldUnits.cxx reads a NetCDF coordinate's units; other units declare none).
 _LENGTH_UNITS = {
     "m": "m", "metre": "m", "metres": "m", "meter": "m", "meters": "m",
     "km": "km", "kilometre": "km", "kilometres": "km", "kilometer": "km", "kilometers": "km",

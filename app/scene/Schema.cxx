@@ -30,16 +30,6 @@ void Context::Fail(const std::string& key, const std::string& problem) const
   throw InputError(this->Source + ": " + key + ": " + problem + note);
 }
 
-std::string Join(const std::vector<std::string>& names, const std::string& separator)
-{
-  std::string joined;
-  for (const std::string& name : names)
-  {
-    joined += (joined.empty() ? "" : separator) + name;
-  }
-  return joined;
-}
-
 std::string Describe(const json& value)
 {
   // A string from --set may hold any bytes, and dump() throws on invalid UTF-8.

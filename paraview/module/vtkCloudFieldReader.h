@@ -3,7 +3,7 @@
  * @brief   a density field file, read by cloudvis's own readers
  *
  * vtkCloudFieldReader reads a field file in any format cloudvis reads (the table FieldFormats()
- * of app/scene/public/FieldIO.h: VTK XML image data, OpenVDB, NetCDF-CF, NRRD, MetaImage), with
+ * of app/fields/public/FieldIO.h: VTK XML image data, OpenVDB, NetCDF-CF, NRRD, MetaImage), with
  * the same protections against hostile files and the same result as `cloudvis render FILE`: a
  * float point-data array "density" on image data with the file's extent, origin, spacing and
  * direction. The plugin registers it for the files ParaView 5.11 cannot open, OpenVDB (.vdb) and

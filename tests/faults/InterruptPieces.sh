@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A .pvti generation interrupted by a signal, in one process or under mpirun: the output is
-# replaced as one (app/scene/public/FieldPieces.h), so whatever the moment the signal lands
+# replaced as one (app/fields/public/FieldPieces.h), so whatever the moment the signal lands
 # before the new output is complete, the previous output stays byte for byte as it was (or there
 # is none), no temporary (the run's directory .out.pvti.tmp-RUN/ or anything in it) is left, and
 # `cloudvis info` reads the previous field.

@@ -13,6 +13,8 @@
 #ifndef cloudvis_Schema_h
 #define cloudvis_Schema_h
 
+#include "Words.h" // Join, which the schema's messages use throughout
+
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -46,7 +48,6 @@ struct Context
   [[noreturn]] void Fail(const std::string& key, const std::string& problem) const;
 };
 
-std::string Join(const std::vector<std::string>& names, const std::string& separator = ", ");
 // "number 3", "string \"six\"": a value's JSON type and (shortened) text, for messages.
 std::string Describe(const json& value);
 // Up to 10 significant digits, no trailing zeros: 0.25, 1e+06, 4294967295.

@@ -24,6 +24,11 @@ enum class FieldQuantity
   Lwc,     // liquid water content, g/m^3
 };
 
+// The value above which a field's voxel is cloud (the default threshold of the cloud mask): any
+// density > 0 for a plain density field; for liquid water content the usual LES threshold,
+// 0.01 g/m^3.
+double DefaultCloudThreshold(FieldQuantity quantity);
+
 // How long one world unit (the unit of bounds, spacing and origin) is.
 enum class LengthUnit
 {

@@ -28,11 +28,6 @@ std::string Clouds(std::size_t n)
 }
 } // namespace
 
-double DefaultCloudThreshold(FieldQuantity quantity)
-{
-  return quantity == FieldQuantity::Lwc ? 0.01 : 0.0;
-}
-
 std::vector<Cloud> CloudsOfMask(const std::vector<std::uint8_t>& mask, int width, int height)
 {
   std::vector<Cloud> clouds;

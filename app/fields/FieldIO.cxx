@@ -5,14 +5,13 @@
 #include "FieldIO.h"
 
 #include "AtomicFile.h"
-#include "CloudStatistics.h" // DefaultCloudThreshold
 #include "Errors.h"
 #include "FieldFormatReaders.h"
 #include "FieldPieces.h"
 #include "FieldSeries.h"
 #include "FileNames.h"
 #include "OutOfMemory.h"
-#include "Schema.h" // Join
+#include "Words.h"
 #include "VtkMessageCapture.h"
 
 #include <vtkDataArray.h>
@@ -308,7 +307,7 @@ std::string FieldOutputExtensions()
   {
     extensions.push_back(writer.Extension);
   }
-  return schema::Join(extensions);
+  return Join(extensions);
 }
 
 } // namespace
@@ -352,7 +351,7 @@ std::string FieldFormatIds()
   {
     ids.push_back(format.Id);
   }
-  return schema::Join(ids);
+  return Join(ids);
 }
 
 bool IsFieldFile(const std::string& path)
@@ -367,7 +366,7 @@ std::string FieldFileExtensions()
   {
     extensions.insert(extensions.end(), format.Extensions.begin(), format.Extensions.end());
   }
-  return schema::Join(extensions);
+  return Join(extensions);
 }
 
 std::vector<std::string> RawTypeNames()

@@ -87,6 +87,11 @@ ResolvedFieldUnits ResolveFieldUnits(const FieldUnits& scene, const FieldUnits& 
   return r;
 }
 
+double DefaultCloudThreshold(FieldQuantity quantity)
+{
+  return quantity == FieldQuantity::Lwc ? 0.01 : 0.0;
+}
+
 double MetresPerUnit(LengthUnit unit)
 {
   switch (unit)

@@ -26,10 +26,6 @@ class vtkImageData;
 namespace cloudvis
 {
 
-// The default threshold of the cloud mask: any density > 0 for a plain density field; for liquid
-// water content the usual LES threshold, 0.01 g/m^3.
-double DefaultCloudThreshold(FieldQuantity quantity);
-
 // ---- the projected mask's clouds --------------------------------------------------------------
 
 // One connected cloud of a 2-D mask (4-connectivity: pixels sharing an edge).
