@@ -2,7 +2,7 @@
 // a grid over the volume, computed once when the field, the transfer function, the extinction
 // scale, the step or the lights change, and read by the march (one trilinear lookup per sample
 // per light) instead of a nested march toward each light. A texel's value (LightVolumeTexel) and
-// the march's lookup (LightVolumeDepth) are defined once in shaders/transport/Transport.glsl; the
+// the march's lookup (LightVolumeDepth) are defined once in shaders/transport/LightMarch.glsl; the
 // GPU computes the grid in a pass of its own (app/rendering/CloudLightVolumeTexture.cxx,
 // shaders/CloudLightVolumeFS.glsl) and the CPU here, with the same functions. docs/lighting.md
 // states the equations; the quality setting LightingParameters::Transmittance chooses between

@@ -1,5 +1,5 @@
 // The constants the shaders share with the C++, and the C++ entry points of the lighting
-// functions, which are defined once for the CPU and the GPU in shaders/transport/Transport.glsl
+// functions, which are defined once for the CPU and the GPU in shaders/transport/
 // (docs/transport.md); the equations are written out in docs/lighting.md. The models'
 // parameters, the value a scene gives the renderers, are CloudLightingParameters.h's.
 //
@@ -31,7 +31,7 @@ constexpr float Pi = 3.14159265358979f;
 constexpr float PhaseToRadiance = 4.0f * Pi;
 
 // The lighting functions' C++ entry points: each calls the one definition in
-// shaders/transport/Transport.glsl (through cloudvis::glsl::Transport, CloudTransport.h), where
+// shaders/transport/ (through cloudvis::glsl::Transport, CloudTransport.h), where
 // they are documented, with the parameters' values as its uniforms.
 
 // Henyey-Greenstein phase function: (1 / 4 pi) (1 - g^2) / (1 + g^2 - 2 g mu)^(3/2).
@@ -67,7 +67,7 @@ CLOUDVISFILTERS_EXPORT glm::vec3 ScatteredFraction(const LightingParameters& p,
 // once (at 1e-3 voxels the reach grows by at most 0.002 voxels elsewhere).
 constexpr float LightBoxMargin = 1e-3f;
 
-// The multiple-scattering volume's flux limiter (shaders/transport/Transport.glsl): the largest
+// The multiple-scattering volume's flux limiter (shaders/transport/LightMarch.glsl): the largest
 // |flux| / fluence it lets diffuse light stream at where the medium is thin. Marshak's half-space
 // would be 1/2; 0.35 is the best of 1/2, 0.45, 0.41, 0.35 and 0.29 on the training cases of
 // `cloudvis-bench-pathtrace fit` (docs/lighting.md, "The multiple-scattering volume").

@@ -204,7 +204,7 @@ struct LocalLight
 };
 
 // The phase function every lighting model that scatters uses (render.march.phase): the
-// transport's PhaseTwoLobe and PhaseDroplets (shaders/transport/Transport.glsl).
+// transport's PhaseTwoLobe and PhaseDroplets (shaders/transport/Phase.glsl).
 enum class PhaseModel
 {
   TwoLobe = 0,  // two Henyey-Greenstein lobes, PhaseG1, PhaseG2, PhaseLobeWeight
@@ -296,7 +296,7 @@ inline bool UsesScatteringVolume(const LightingParameters& p)
 // the renderers take; the scene schema states the same ones from here.
 struct LightingLimits
 {
-  // The GLSL's MAX_LIGHTS (the mapper substitutes it into shaders/transport/Transport.glsl). The
+  // The GLSL's MAX_LIGHTS (the mapper substitutes it into shaders/transport/Medium.glsl). The
   // GPU mapper and the CPU renderers refuse more (SetUpMarch), and so does a scene's lights
   // section.
   static constexpr int MaxLights = 8;

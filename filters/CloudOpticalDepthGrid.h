@@ -4,7 +4,7 @@
 // every rank (ComputePieceOpticalDepths); a sum over the ranks (the caller's MPI_Allreduce) minus
 // a piece's own share is the optical depth that comes from outside that piece, which its march
 // then adds wherever it uses an optical depth toward a light (OpticalDepthToLight in
-// shaders/transport/Transport.glsl: the single-scattering beam, the light volumes' and the
+// shaders/transport/LightMarch.glsl: the single-scattering beam, the light volumes' and the
 // nested march's results, the multiple-scattering volume's source). docs/transport.md, "Optical
 // depth from outside the field", states the units and the grid's convention. Nothing here needs
 // MPI or OpenGL: the CPU reference and the GPU mapper read the same grid.

@@ -4,7 +4,7 @@
 // ambient), with every order of scattering. The equations are in docs/lighting.md ("The path
 // tracer"); vtkCloudPathTracer renders images with it.
 //
-// The path tracer is written once, for the CPU and the GPU, in shaders/transport/Transport.glsl
+// The path tracer is written once, for the CPU and the GPU, in shaders/transport/PathTrace.glsl
 // (docs/transport.md): random numbers that are a pure function of (pixel, sample, dimension,
 // seed) computed with 32-bit unsigned integer operations, the majorant walk through the
 // occupancy bricks, free-flight and ratio tracking, phase sampling, next-event estimation and the
@@ -28,7 +28,7 @@
 namespace cloudvis
 {
 
-// Each function below calls its one definition in shaders/transport/Transport.glsl, where it is
+// Each function below calls its one definition in shaders/transport/PathTrace.glsl, where it is
 // documented, with the uniforms TransportOf fills from `u` and `pt`.
 
 // Where a random number comes from: the pixel (j * width + i), the sample index within the

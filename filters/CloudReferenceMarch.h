@@ -1,6 +1,6 @@
 // The CPU's march: MarchRay is the C++ of shaders/CloudMarchFS.glsl's main(), with the name, the
 // arguments and the order of operations of the GLSL, and it calls the lighting models' source
-// terms and the medium's lookups from their one definition, shaders/transport/Transport.glsl
+// terms and the medium's lookups from their one definition in shaders/transport/
 // (through CloudTransport.h); the other functions here are C++ entry points to that source. What
 // the shader gets from uniforms and textures it gets from MarchUniforms (CloudMarchUniforms.h,
 // where SetUpMarch computes them for both). Like the GPU it computes in the local frame of that
@@ -22,7 +22,7 @@
 namespace cloudvis
 {
 
-// ---- The shared source's medium (Transport.glsl) ----
+// ---- The shared source's medium (Medium.glsl) ----
 
 // Entry and exit distances of the ray o + t d through the box [lo, hi].
 CLOUDVISFILTERS_EXPORT glm::vec2 IntersectBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi);
@@ -56,7 +56,7 @@ CLOUDVISFILTERS_EXPORT glm::vec4 MarchRay(glsl::Transport& transport,
 
 // Optical depth from index point p toward a light, to where the light's ray leaves the volume
 // or maxDistance (local), whichever is nearer: indexStep is the unit direction toward it in index
-// units per local unit (LocalToIndex(u, l)), sigmaHere the extinction at p (Transport.glsl's
+// units per local unit (LocalToIndex(u, l)), sigmaHere the extinction at p (Medium.glsl's
 // LightOpticalDepth, with u.Lighting's light steps).
 CLOUDVISFILTERS_EXPORT float LightOpticalDepth(const MarchUniforms& u,
   glm::vec3 p,

@@ -2,9 +2,10 @@
 // grid at a quarter of the field's resolution, computed when the field, the transfer function, the
 // phase or the lights change, and read by the march once per sample. The equations (a
 // delta-Eddington split of the phase and flux-limited diffusion of the diffuse rest) and their
-// texel functions are defined once in shaders/transport/Transport.glsl ("The multiple-scattering
-// volume"); the GPU runs them in passes of its own (app/rendering/), the CPU here, with the same
-// functions and the same order of passes. docs/lighting.md states the model and its error.
+// texel functions are defined once in shaders/transport/Scattering.glsl (LightMarch.glsl's "The
+// multiple-scattering volume" gives the equations); the GPU runs them in passes of its own
+// (app/rendering/), the CPU here, with the same functions and the same order of passes.
+// docs/lighting.md states the model and its error.
 //
 // The solve, per grid from the coarsest to the finest: the cells' medium and diffuse source, a
 // first guess (zero on the coarsest grid, the coarser grid's solution on the others), then

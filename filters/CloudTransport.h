@@ -1,4 +1,4 @@
-// The CPU side of the shared light-transport source, shaders/transport/Transport.glsl (the GPU
+// The CPU side of the shared light-transport source, shaders/transport/ (the GPU
 // splices the same file into its shaders; docs/transport.md explains both). That file is included
 // here inside the body of cloudvis::glsl::Transport: its uniforms become the struct's members,
 // with the GLSL's names, and its functions the struct's member functions, so the C++ calls the
@@ -123,8 +123,12 @@ struct Transport
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 #include "../shaders/transport/DropletPhase.glsl"
+#include "../shaders/transport/LightMarch.glsl"
+#include "../shaders/transport/LightingModels.glsl"
+#include "../shaders/transport/Medium.glsl"
+#include "../shaders/transport/PathTrace.glsl"
+#include "../shaders/transport/Phase.glsl"
 #include "../shaders/transport/Scattering.glsl"
-#include "../shaders/transport/Transport.glsl"
 #pragma GCC diagnostic pop
 
   // ---- C++ only ----

@@ -2,7 +2,7 @@
 // of one light's block of the optical-depth volume (filters/CloudLightVolumes.h). The mapper
 // splices this main() after the march shader's functions (CloudMarchFS.glsl without its main,
 // with the march model's lighting), so the texel's optical depth is the shared source's
-// LightVolumeTexel (shaders/transport/Transport.glsl, which the CPU's ComputeLightVolumes runs
+// LightVolumeTexel (shaders/transport/LightMarch.glsl, which the CPU's ComputeLightVolumes runs
 // too), with the uniforms of LightVolumeMarch: uniform steps of the view's step to the volume's
 // exit or to a point light.
 uniform int LightVolumeLight;   // which light's block

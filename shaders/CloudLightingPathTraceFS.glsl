@@ -1,6 +1,6 @@
 // Lighting model "pathtrace": not a source term of the march but a main() of its own, one fragment
 // per pixel of the march target, which traces SamplesPerFrame paths through the pixel centre with
-// the shared path tracer (TracePath in shaders/transport/Transport.glsl, the very code the CPU's
+// the shared path tracer (TracePath in shaders/transport/PathTrace.glsl, the very code the CPU's
 // vtkCloudPathTracer runs; docs/lighting.md, "The path tracer") and writes their mean
 // (premultiplied radiance and opacity 1 - T) to the color target and the mean of their squares to
 // the moment target; the mapper's additive accumulation sums frames, so the readers get the mean

@@ -32,7 +32,7 @@ uniform int MaximumIterations;
 
 //VTK::Output::Dec
 
-// The light transport shared with the CPU (shaders/transport/Transport.glsl, docs/transport.md),
+// The light transport shared with the CPU (shaders/transport/, docs/transport.md),
 // spliced here with its prelude and the GPU's accessors (shaders/transport/Accessors.glsl): the
 // field's uniforms and textures (Dimensions, IndexToLocal, LocalToIndex, DensityTexture,
 // TransferTexture, TableRange, EmptyDistanceTexture, BrickSize...), IntersectBox, Optical,

@@ -7,9 +7,13 @@
 #include "CloudMarchFS.h"
 #include "CloudTransportAccessors.h"
 #include "CloudTransportDropletPhase.h"
+#include "CloudTransportLightMarch.h"
+#include "CloudTransportLightingModels.h"
+#include "CloudTransportMedium.h"
+#include "CloudTransportPathTrace.h"
+#include "CloudTransportPhase.h"
 #include "CloudTransportPrelude.h"
 #include "CloudTransportScattering.h"
-#include "CloudTransportSource.h"
 
 #include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -76,13 +80,23 @@ std::string Constants(int samplesPerMapRead, PhaseModel phase, const MarchSwitch
   return glsl.str();
 }
 
-// The shared light transport: the GLSL prelude, the source the CPU compiles too, and the GPU's
-// accessors (docs/transport.md).
+// The shared light transport: the GLSL prelude, the source the CPU compiles too (in the order
+// GLSL needs: a function before its callers), and the GPU's accessors (docs/transport.md).
 std::string TransportSource()
 {
-  return std::string(CloudTransportPrelude) + "\n" + CloudTransportDropletPhase + "\n" +
-    CloudTransportSource + "\n" +
-    CloudTransportScattering + "\n" + CloudTransportAccessors;
+  std::string source = CloudTransportPrelude;
+  for (const char* file : { CloudTransportDropletPhase,
+         CloudTransportMedium,
+         CloudTransportPhase,
+         CloudTransportLightMarch,
+         CloudTransportLightingModels,
+         CloudTransportPathTrace,
+         CloudTransportScattering,
+         CloudTransportAccessors })
+  {
+    source += std::string("\n") + file;
+  }
+  return source;
 }
 
 // The lighting model's SourceTerm, which calls the model's term of each light (the shared

@@ -1,6 +1,6 @@
 // What vtkCloudVolumeMapper's "pathtrace" lighting model needs beyond the march's textures and
 // uniforms: the fragment shader's lighting source (shaders/CloudLightingPathTraceFS.glsl, a main()
-// of its own that calls the shared source's TracePath, shaders/transport/Transport.glsl), the
+// of its own that calls the shared source's TracePath, shaders/transport/PathTrace.glsl), the
 // per-brick extinction bounds texture (the majorants and minorants of the occupancy filter's
 // bricks) and the path-trace uniforms: the GPU's side of vtkCloudPathTracer's set-up. Private
 // to the module.

@@ -45,7 +45,7 @@
  * lowered automatically to keep InteractiveFrameRate.
  *
  * The pathtrace lighting model runs vtkCloudPathTracer's path tracer on the GPU (the same code:
- * shaders/transport/Transport.glsl, docs/transport.md): each frame traces PathTraceSamplesPerFrame
+ * shaders/transport/PathTrace.glsl, docs/transport.md): each frame traces PathTraceSamplesPerFrame
  * paths through every pixel centre (no jitter, the CPU's random numbers for pixel, sample and
  * PathTraceSeed) and adds them to the accumulation, up to MaximumAccumulatedFrames frames; a second
  * float target accumulates the squares, so ReadVariance gives each pixel's standard error. Opaque

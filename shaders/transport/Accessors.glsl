@@ -1,4 +1,4 @@
-// The GPU's accessors of the shared light-transport source (shaders/transport/Transport.glsl
+// The GPU's accessors of the shared light-transport source (shaders/transport/Medium.glsl
 // declares them): what the GLSL reads from textures, the one place where the GPU has code of its
 // own. Their C++ definitions, which read the same values from memory, are in
 // filters/CloudTransport.h.

@@ -2,7 +2,7 @@
 // table from Lorenz-Mie theory over a gamma size distribution): its evaluation and its exact
 // sampling, written once for the GPU (spliced into the march and the path tracer with the rest
 // of the transport) and the C++ (the CPU renderers, and the table's own EvaluateDropletPhase and
-// SampleDropletPhaseCosine). Common subset of GLSL 1.50 and C++/glm, as Transport.glsl.
+// SampleDropletPhaseCosine). Common subset of GLSL 1.50 and C++/glm, as Medium.glsl states.
 //
 // Node i of DropletPhaseNodeCount sits at the scattering angle theta_i = pi (i / (N - 1))^2,
 // dense toward the forward peak; between two nodes the function is linear in mu = cos(theta).

@@ -1,8 +1,8 @@
-// The multiple-scattering volume's solver (issue 21), written once for both renderers like
-// shaders/transport/Transport.glsl, after which it is spliced (GPU) or included (CPU, inside
+// The multiple-scattering volume's solver (issue 21), written once for both renderers like the
+// rest of shaders/transport/, after whose five files it is spliced (GPU) or included (CPU, inside
 // cloudvis::glsl::Transport): the texel functions of each pass over a grid's cells, whose order
 // filters/CloudScatteringVolume.h states (ComputeScatteringVolume) and the GPU follows
-// (app/rendering/CloudScatteringVolumeTexture.cxx). Transport.glsl's section "The
+// (app/rendering/CloudScatteringVolumeTexture.cxx). LightMarch.glsl's section "The
 // multiple-scattering volume" gives the equations, the march's use of the result and the phase's
 // moments these functions read. A cell c is an integer texel of a corner-aligned grid of
 // ScatteringVolumeSize texels; t the same as a vec3.

@@ -1,13 +1,14 @@
-// The GPU path tracer (vtkCloudVolumeMapper's pathtrace model: shaders/transport/Transport.glsl
-// compiled as GLSL) against the CPU one (vtkCloudPathTracer: the same source compiled as C++) and against closed forms. Both are Monte Carlo
-// estimates with independent seeds, so they agree when their difference is within the combined
-// standard error each reports (the GPU's from its second-moment target, ReadVariance): checked
-// per channel on the mean over the cloud and on every 4 x 4 tile, with 4.5 standard errors as the
-// gate (about one false alarm in 150,000 checks; the seeds are fixed, so the outcome is
-// reproducible). Each check also requires the standard error to be small against the signal, so
-// a loose estimate cannot pass by being noisy. The closed forms are the CPU tests' own
-// (tests/unit/TestPathTracer.cxx): the opacity of a homogeneous slab seen obliquely, and the
-// white furnace. Small images and sample counts: llvmpipe runs the shader on the CPU.
+// The GPU path tracer (vtkCloudVolumeMapper's pathtrace model: shaders/transport/PathTrace.glsl
+// compiled as GLSL) against the CPU one (vtkCloudPathTracer: the same source compiled as C++) and
+// against closed forms. Both are Monte Carlo estimates with independent seeds, so they agree when
+// their difference is within the combined standard error each reports (the GPU's from its
+// second-moment target, ReadVariance): checked per channel on the mean over the cloud and on every
+// 4 x 4 tile, with 4.5 standard errors as the gate (about one false alarm in 150,000 checks; the
+// seeds are fixed, so the outcome is reproducible). Each check also requires the standard error to
+// be small against the signal, so a loose estimate cannot pass by being noisy. The closed forms are
+// the CPU tests' own (tests/unit/TestPathTracer.cxx): the opacity of a homogeneous slab seen
+// obliquely, and the white furnace. Small images and sample counts: llvmpipe runs the shader on the
+// CPU.
 #include "SupportExpectations.h"
 #include "SupportReference.h"
 #include "SupportScene.h"

@@ -91,7 +91,7 @@ void ExpectOpacityOfTheOpticalDepth(vtkImageData* field,
 TEST(PathTracer, RandomNumbersAreThePcg4dHashOfPixelSampleDimensionAndSeed)
 {
   // Reference values computed independently (Python, arithmetic modulo 2^32): the one definition
-  // (shaders/transport/Transport.glsl), compiled as C++ here and as GLSL on the GPU, must give
+  // (shaders/transport/PathTrace.glsl), compiled as C++ here and as GLSL on the GPU, must give
   // these bits.
   EXPECT_EQ(Pcg4d(glm::uvec4(0u)), glm::uvec4(0x0f02f829u, 0x2d568769u, 0x32b0c43bu, 0xd32548eau));
   EXPECT_EQ(Pcg4d(glm::uvec4(1u, 2u, 3u, 4u)),
