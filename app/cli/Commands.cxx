@@ -28,6 +28,7 @@
 #include "SceneField.h"
 #include "Utf8.h"
 #include "VtkMessageCapture.h"
+#include "Words.h"
 #include "vtkCloudDensitySource.h"
 
 #include <vtkImageData.h>
@@ -62,12 +63,10 @@ const OptionSpec HelpOption{ "help", 'h', "", "show this help and exit" };
 
 OptionSpec LightingOption()
 {
-  std::string names;
-  for (const std::string& name : LightingModelNames())
-  {
-    names += (names.empty() ? "" : ", ") + name;
-  }
-  return { "lighting", 0, "MODEL", "lighting model, one of: " + names + "; overrides render.lighting" };
+  return { "lighting",
+    0,
+    "MODEL",
+    "lighting model, one of: " + Join(LightingModelNames()) + "; overrides render.lighting" };
 }
 
 nlohmann::json ParseSizeOption(const std::string& command, const std::string& text)

@@ -10,6 +10,7 @@
 #include "Errors.h"
 #include "FileNames.h"
 #include "VtkMessageCapture.h"
+#include "Words.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -325,15 +326,10 @@ const ImageFormat& FormatOf(const std::string& path)
       return format;
     }
   }
-  std::string supported;
-  for (const std::string& e : SupportedImageExtensions())
-  {
-    supported += (supported.empty() ? "" : ", ") + e;
-  }
   throw InputError(path + ": " +
     (extension.empty() ? std::string("the file name has no image extension")
                        : "unsupported image format \"" + extension + "\"") +
-    "; supported: " + supported);
+    "; supported: " + Join(SupportedImageExtensions()));
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include "Errors.h"
 #include "FileNames.h"
 #include "Scene.h" // ReadJsonFile
+#include "Words.h"
 
 #include <algorithm>
 #include <cctype>
@@ -31,16 +32,6 @@ std::string FormatNumber(double value)
   out.precision(10);
   out << value;
   return out.str();
-}
-
-std::string Join(const std::vector<std::string>& names)
-{
-  std::string joined;
-  for (const std::string& name : names)
-  {
-    joined += (joined.empty() ? "" : ", ") + name;
-  }
-  return joined;
 }
 
 bool IsPresetName(const std::string& name)

@@ -3,6 +3,7 @@
 #include "ViewerHistory.h"
 
 #include "ViewerInternals.h"
+#include "Words.h"
 
 #include <vtkCamera.h>
 
@@ -55,12 +56,7 @@ std::string UndoableDifference(const UndoableState& a, const UndoableState& b)
   {
     parts.push_back("slices");
   }
-  std::string text;
-  for (const std::string& part : parts)
-  {
-    text += (text.empty() ? "" : ", ") + part;
-  }
-  return text;
+  return Join(parts);
 }
 } // namespace
 
