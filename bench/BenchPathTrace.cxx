@@ -1,5 +1,5 @@
 // The path tracer (vtkCloudPathTracer): how fast it converges on the shipped scenes, and how far
-// each lighting model of the march is from it. Five commands:
+// each lighting model of the march is from it. Six commands:
 //
 //   speed  [--size WxH] [--spp N] [--bounces B] [--brick N] [SCENE.json ...]
 //     Renders each scene (default: data/scenes/fbm-sphere.json, two-lights.json, sphere.json)
@@ -7,6 +7,11 @@
 //     the time to 1% relative standard error at 800 x 600 extrapolated from the run (the error
 //     falls as 1 / sqrt(paths) and the time grows with the pixels); and, as the peer in the same
 //     run, the time of the CPU march of the scene's lighting model (vtkCloudReferenceRenderer).
+//   estimators [--size WxH] [--spp N] [--bounces B] [--seed S] [--png DIR] [SCENE.json ...]
+//     The next-event estimators, plain and light-guided, in one run on the thick cumulus of issue
+//     38 (two lobes and droplets) and the shipped cumulus, or on the scenes given, each with three
+//     seeds: time, noise, the image means' spread, the time to 2% at 400 x 300 and the ratio of the
+//     times to equal noise (docs/lighting.md, "The estimators").
 //   errors [--size WxH] [--spp N] [--bounces B] [--seed S]
 //     The table of docs/lighting.md: each model (march, march without octaves, derivative)
 //     against the path tracer on the fbm-sphere field and a dense field, lit from the side and
@@ -32,8 +37,8 @@
 // Scenes are read by the scene library as `cloudvis render` reads them (any scene it renders), and
 // rendered by the CPU renderers set up as `cloudvis render --cpu-reference` sets them up; each
 // command varies a scene only through its keys (PathTraceBench.h). One file per command:
-// PathTraceSpeed.cxx, PathTraceErrors.cxx (errors, bounces), PathTraceDefects.cxx,
-// PathTraceFit.cxx.
+// PathTraceSpeed.cxx, PathTraceEstimators.cxx, PathTraceErrors.cxx (errors, bounces),
+// PathTraceDefects.cxx, PathTraceFit.cxx.
 #include "CloudLightingParameters.h"
 #include "PathTraceBench.h"
 
@@ -51,12 +56,15 @@ int Usage(const char* program, std::FILE* out = stderr)
   std::fprintf(out,
     "usage: %s speed [--size WxH] [--spp N] [--bounces B] [--brick N] [--seed S] [--png DIR] "
     "[SCENE.json ...]\n"
+    "       %s estimators [--size WxH] [--spp N] [--bounces B] [--seed S] [--png DIR] "
+    "[SCENE.json ...]\n"
     "       %s errors [--size WxH] [--spp N] [--bounces B] [--seed S] [--png DIR]\n"
     "       %s bounces [--size WxH] [--spp N] [--seed S]\n"
     "       %s defects [--size WxH] [--spp N] [--bounces B]\n"
     "       %s fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--split first|stratified] "
     "[--voxels N] [--max-octaves N] [--evaluations E] [--png DIR] [--reference-cache DIR] "
     "[--multiple-scattering octaves|volume]\n",
+    program,
     program,
     program,
     program,
@@ -122,6 +130,8 @@ int main(int argc, char* argv[])
   {
     if (command == "speed")
       return Speed(options);
+    if (command == "estimators")
+      return Estimators(options);
     if (command == "errors")
       return Errors(options);
     if (command == "bounces")

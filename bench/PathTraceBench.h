@@ -104,6 +104,7 @@ std::vector<BenchScene> ErrorFields();
 
 // The commands.
 int Speed(const Options& options);
+int Estimators(const Options& options);
 int Errors(const Options& options);
 int Bounces(const Options& options);
 int Defects(const Options& options);

@@ -118,6 +118,7 @@ glsl::Transport TransportOf(const MarchUniforms& u, const PathTraceUniforms& pt)
   t.BrickSize = pt.BrickSize;
   t.MaxBounces = pt.MaxBounces;
   t.RouletteBounces = pt.RouletteBounces;
+  t.LightGuidedNextEvents = pt.LightGuidedNextEvents;
   return t;
 }
 

@@ -78,7 +78,20 @@ struct CLOUDVISFILTERS_EXPORT PathTraceUniforms
   // Russian roulette from this many scattering events on, with the survival probability the
   // largest component of the throughput (so an albedo-1 path is never killed by it).
   int RouletteBounces = 3;
+  // 1: each scattering event also estimates the next event's direct light along a direction
+  // drawn toward the lights, weighed with the walk's own by multiple importance sampling
+  // (LightGuidedNextEvent in shaders/transport/PathTrace.glsl); 0: the plain estimator.
+  int LightGuidedNextEvents = 0;
 };
+
+// Whether the path tracer guides next events toward the lights unless told otherwise: for the
+// droplets' phase, whose forward peak (thousands per steradian) makes the plain estimator's
+// noise explode on thick clouds; not for the two lobes, whose peak is low enough that the extra
+// shadow ray costs as much as it saves (docs/lighting.md, "The estimators").
+inline bool GuidesNextEventsByDefault(const LightingParameters& p)
+{
+  return p.Phase == PhaseModel::Droplets;
+}
 
 // The edge of the majorant bricks, in cells, that renders path-trace with by default
 // (vtkCloudPathTracer's BrickSize, and the app's GPU mapper for the pathtrace model): the fastest

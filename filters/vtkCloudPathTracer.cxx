@@ -88,6 +88,8 @@ bool vtkCloudPathTracer::RenderImage(const cloudvis::MarchUniforms& uniforms,
   pt.BrickCount = glm::ivec3(brickCount[0], brickCount[1], brickCount[2]);
   pt.BrickSize = float(this->BrickSize);
   pt.MaxBounces = this->MaxBounces;
+  pt.LightGuidedNextEvents = this->NextEventEstimator == LightGuided ||
+    (this->NextEventEstimator == ByPhase && cloudvis::GuidesNextEventsByDefault(uniforms.Lighting));
 
   const int width = this->ImageSize[0], height = this->ImageSize[1];
   const vtkIdType pixels = vtkIdType(width) * height;
@@ -151,4 +153,5 @@ void vtkCloudPathTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaxBounces: " << this->MaxBounces << "\n";
   os << indent << "BrickSize: " << this->BrickSize << "\n";
+  os << indent << "NextEventEstimator: " << this->NextEventEstimator << "\n";
 }

@@ -81,6 +81,24 @@ public:
   vtkGetMacro(BrickSize, int);
   ///@}
 
+  ///@{
+  /**
+   * The estimator of each scattering event's next event: Plain (next-event estimation along
+   * the walk alone), LightGuided (also along a direction drawn toward the lights, weighed by
+   * multiple importance sampling), or ByPhase (the default: light-guided for the droplets'
+   * phase, plain for the two lobes). The image does not depend on it beyond the noise
+   * (docs/lighting.md, "The estimators").
+   */
+  enum NextEventEstimators
+  {
+    ByPhase = 0,
+    Plain = 1,
+    LightGuided = 2,
+  };
+  vtkSetClampMacro(NextEventEstimator, int, ByPhase, LightGuided);
+  vtkGetMacro(NextEventEstimator, int);
+  ///@}
+
 protected:
   vtkCloudPathTracer() = default;
   ~vtkCloudPathTracer() override = default;
@@ -96,6 +114,7 @@ protected:
   unsigned int Seed = 0;
   int MaxBounces = 1024;
   int BrickSize = 8; // cloudvis::PathTraceBrickSize (the .cxx asserts that they agree)
+  int NextEventEstimator = ByPhase;
 
 private:
   vtkCloudPathTracer(const vtkCloudPathTracer&) = delete;

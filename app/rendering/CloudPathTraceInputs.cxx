@@ -81,6 +81,7 @@ void SetPathTraceUniforms(vtkShaderProgram* program, const PathTraceFrame& frame
 {
   program->SetUniformi("MaxBounces", frame.MaxBounces);
   program->SetUniformi("RouletteBounces", PathTraceUniforms{}.RouletteBounces);
+  program->SetUniformi("LightGuidedNextEvents", frame.LightGuidedNextEvents);
   program->SetUniformi("PathTraceSeed", frame.Seed);
   program->SetUniformi("SampleBase", frame.SampleBase);
   program->SetUniformi("SamplesPerFrame", frame.SamplesPerFrame);

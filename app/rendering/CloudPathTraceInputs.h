@@ -54,6 +54,7 @@ struct PathTraceFrame
   int SampleBase = 0;
   int SamplesPerFrame = 1;
   int MarchWidth = 1;
+  int LightGuidedNextEvents = 0; // PathTraceUniforms' (filters/CloudTransport.h)
 };
 void SetPathTraceUniforms(vtkShaderProgram* program, const PathTraceFrame& frame);
 

@@ -607,6 +607,7 @@ void vtkCloudVolumeMapper::MarchFrame::SetFieldUniforms(vtkShaderProgram* progra
     pathFrame.SamplesPerFrame = m.PathTraceSamplesPerFrame;
     pathFrame.SampleBase = frame * m.PathTraceSamplesPerFrame;
     pathFrame.MarchWidth = this->MarchWidth;
+    pathFrame.LightGuidedNextEvents = cloudvis::GuidesNextEventsByDefault(this->Uniforms.Lighting);
     program->SetUniformi(
       "ExtinctionBoundsTexture", in.ExtinctionBounds.GetTexture()->GetTextureUnit());
     cloudvis::SetPathTraceUniforms(program, pathFrame);

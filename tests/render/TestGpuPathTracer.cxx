@@ -160,9 +160,10 @@ TEST(GpuPathTracer, DropletPhaseAgreesWithTheCpuPathTracer)
 {
   // The Mie table's texture, its evaluation at each event and its inverse-CDF sampling with the
   // channels' weights, in GLSL against the same source in C++.
-  // Even small droplets' peak makes next-event estimation noisier than the lobes: 1024 paths
-  // per pixel leave a standard error of about 2% of the mean (measured 1.9-2.1%).
-  ExpectGpuAgreesWithCpu(PhaseModel::Droplets, 128, 0.03);
+  // Even small droplets' peak makes next-event estimation noisier than the lobes, though both
+  // tracers guide next events toward the lights for this phase (LightGuidedNextEvent): 384 paths
+  // per pixel leave a standard error of about 1.6% of the mean (1024 plain paths left 2%).
+  ExpectGpuAgreesWithCpu(PhaseModel::Droplets, 48, 0.03);
 }
 
 TEST(GpuPathTracer, SlabOpacityIsOneMinusExpOfMinusSigmaTimesPath)

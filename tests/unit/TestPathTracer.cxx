@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -502,6 +503,74 @@ TEST(PathTracer, BrickSizeChangesOnlyTheNoise)
     // Two noisy images: their difference has twice the variance of either.
     ExpectNoDifference(images[0], 4, difference, variance, inCloud, value, 8,
       "channel " + std::to_string(channel), 0.03);
+  }
+}
+
+TEST(PathTracer, LightGuidedNextEventsChangeOnlyTheNoiseAndLowerItUnderAForwardPeak)
+{
+  // The light-guided estimator (each event also estimates the next event's direct light along a
+  // direction drawn toward a light, weighed with the walk's own by the balance heuristic) and the
+  // plain one give the same image within the noise, with both phases, two kinds of light, every
+  // order and the environment. Under the droplets' forward peak the guided image is less noisy
+  // (measured at 256 paths per pixel: 0.53 of the plain one's standard error, and 0.78 for the
+  // lobes, whose gain the second shadow ray's cost takes back: docs/lighting.md).
+  auto field = SoftSphere(24);
+  for (PhaseModel phase : { PhaseModel::TwoLobe, PhaseModel::Droplets })
+  {
+    LightingParameters lighting = Ambient(glm::vec3(0.1f, 0.1f, 0.15f));
+    lighting.Phase = phase;
+    lighting.DropletEffectiveRadius = 2.0f;
+    std::vector<Image> images;
+    std::vector<double> noise;
+    for (int estimator : { vtkCloudPathTracer::Plain, vtkCloudPathTracer::LightGuided })
+    {
+      auto tracer = Tracer(field, 16, LinearMedium(10.0f, glm::vec3(0.98f, 0.95f, 0.9f)));
+      SetParallelView(tracer, glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.8);
+      tracer->GetLightingProperty()->SetParameters(lighting);
+      tracer->SetLights(MakeLights(
+        { DirectionalLight({ 1.0f, 0.6f, -0.4f }, 1.5f), PointLight({ -0.5, 1.5, 1.0 }, 1.0f) }));
+      tracer->SetNextEventEstimator(estimator);
+      tracer->SetSamplesPerPixel(256);
+      images.push_back(Render(tracer));
+      const Image& image = images.back();
+      // MeasureImageNoise's measure: the RMS standard error of r, g, b over the footprint
+      // relative to their mean.
+      double sum = 0.0, variance = 0.0, values = 0.0;
+      for (std::size_t p = 0; p < image.Pixels(); ++p)
+        if (image.At(p, 3) > 0.01)
+          for (int c = 0; c < 3; ++c)
+          {
+            sum += image.At(p, c);
+            variance += image.VarianceAt(p, c);
+            values += 1.0;
+          }
+      ASSERT_GT(sum, 0.0);
+      noise.push_back(std::sqrt(variance / values) / (sum / values));
+    }
+    const std::string name = phase == PhaseModel::Droplets ? "droplets" : "two lobes";
+    std::cout << name << ": relative standard error plain " << noise[0] << ", light-guided "
+              << noise[1] << "\n";
+    for (int channel = 0; channel < 4; ++channel)
+    {
+      const auto difference = [&](std::size_t p)
+      { return images[1].At(p, channel) - images[0].At(p, channel); };
+      const auto variance = [&](std::size_t p)
+      { return images[0].VarianceAt(p, channel) + images[1].VarianceAt(p, channel); };
+      const auto inCloud = [&](std::size_t p) { return images[0].At(p, 3) > 0.0f; };
+      ExpectNoDifference(images[0],
+        4,
+        difference,
+        variance,
+        inCloud,
+        MeanOf(images[0], channel, inCloud),
+        8,
+        name + ", channel " + std::to_string(channel),
+        0.05);
+    }
+    if (phase == PhaseModel::Droplets)
+    {
+      EXPECT_LT(noise[1], 0.75 * noise[0]) << "the guided directions find the forward peak";
+    }
   }
 }
 
