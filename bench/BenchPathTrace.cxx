@@ -22,13 +22,16 @@
 //     Measures the march's defects one by one (docs/lighting.md, "What the march gets wrong"):
 //     the light march's midpoint sampling and reach, the octaves per opacity, and bright
 //     isolated pixels of a field that touches the box.
-//   fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--split first|stratified] [--voxels N]
+//   fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--cases standard|real]
+//       [--split first|stratified] [--voxels N]
 //       [--max-octaves N] [--evaluations E] [--png DIR] [--reference-cache DIR]
 //       [--multiple-scattering octaves|volume]
 //     Fits the march's multiple-scattering octaves (N, a, b, c) and the derivative model's
 //     distance h to the path tracer on a fixed case set with held-out cases (docs/lighting.md,
 //     "Fitting the march to the path tracer"), and prints the errors before and after, per case
-//     and per set, with the light volumes and with the nested light march. With
+//     and per set, with the light volumes and with the nested light march. --cases real takes
+//     the real regime of issue 38 instead (optically thick clouds at albedos near 1, with a split
+//     of its own: docs/lighting.md, "The real regime"). With
 //     --multiple-scattering volume it fits nothing: it prints the octaves' and the
 //     multiple-scattering volume's errors per case, and the volume's computation time
 //     (docs/lighting.md, "The multiple-scattering volume"). --reference-cache keeps the path
@@ -61,7 +64,8 @@ int Usage(const char* program, std::FILE* out = stderr)
     "       %s errors [--size WxH] [--spp N] [--bounces B] [--seed S] [--png DIR]\n"
     "       %s bounces [--size WxH] [--spp N] [--seed S]\n"
     "       %s defects [--size WxH] [--spp N] [--bounces B]\n"
-    "       %s fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--split first|stratified] "
+    "       %s fit [--size WxH] [--spp N] [--bounces B] [--seed S] [--cases standard|real] "
+    "[--split first|stratified] "
     "[--voxels N] [--max-octaves N] [--evaluations E] [--png DIR] [--reference-cache DIR] "
     "[--multiple-scattering octaves|volume]\n",
     program,
@@ -100,6 +104,8 @@ int main(int argc, char* argv[])
       options.PngDirectory = argv[++i];
     else if (arg == "--brick" && hasValue)
       options.BrickSize = std::atoi(argv[++i]);
+    else if (arg == "--cases" && hasValue)
+      options.FitCases = argv[++i];
     else if (arg == "--split" && hasValue)
       options.FitSplit = argv[++i];
     else if (arg == "--reference-cache" && hasValue)
@@ -124,6 +130,7 @@ int main(int argc, char* argv[])
     options.FitMaxOctaves > cloudvis::LightingLimits::MaxMultipleScatteringOctaves ||
     options.FitEvaluations < 1 ||
     (options.FitSplit != "first" && options.FitSplit != "stratified") ||
+    (options.FitCases != "standard" && options.FitCases != "real") ||
     (options.MultipleScattering != "octaves" && options.MultipleScattering != "volume"))
     return Usage(argv[0]);
   try

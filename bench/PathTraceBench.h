@@ -36,6 +36,7 @@ struct Options
   int FitMaxOctaves = 6;   // fit: octave counts 1..this are fitted
   int FitEvaluations = 60; // fit: the most objective evaluations per octave count
   std::string FitSplit = "stratified"; // fit: which fields are held out
+  std::string FitCases = "standard";   // fit: the case set, "standard" or "real" (issue 38)
   std::string ReferenceCache; // --reference-cache: keep the references here, read them again
   std::string MultipleScattering = "octaves"; // fit: "volume" measures the volume, fits nothing
   std::vector<std::string> Scenes;

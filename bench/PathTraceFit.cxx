@@ -152,6 +152,113 @@ FitRole RoleOf(const FitField& field, const FitLight& light, float albedo)
                                                                  : FitRole::HeldOut;
 }
 
+// A case set: its fields, and the cases on each (a field's index, a light, an albedo, a role).
+struct FitCaseSpec
+{
+  std::size_t Field = 0;
+  FitLight Light;
+  float Albedo = 1.0f;
+  bool HeldOut = false;
+};
+struct FitCaseSet
+{
+  std::vector<FitField> Fields;
+  std::vector<FitCaseSpec> Cases;
+};
+
+// The set above ("standard"): the fit's 46 cases.
+FitCaseSet StandardCases(const Options& options)
+{
+  FitCaseSet set;
+  set.Fields = FitFields(options.FitSplit, options.FitDimensions);
+  for (std::size_t f = 0; f < set.Fields.size(); ++f)
+    for (const FitLight& light : FitLights)
+      for (float albedo : FitAlbedos)
+      {
+        const FitRole role = RoleOf(set.Fields[f], light, albedo);
+        if (role != FitRole::Unused)
+          set.Cases.push_back({ f, light, albedo, role == FitRole::HeldOut });
+      }
+  return set;
+}
+
+// The real regime of issue 38 ("real"): optically thick clouds at albedos near 1, of the kinds
+// the scenes ship, with the two lobes (the droplets' references are out of reach: docs/
+// lighting.md, "How fast it converges on thick clouds"), no ambient.
+//   Fields: the shipped cumulus at optical diameters near 20, 100 (as shipped) and 500 (its
+//   unit distance 0.25, 0.05, 0.01); the stratocumulus deck, the cumulonimbus and the cloudscape
+//   seen from above, in their physical units (droplet extinction from their liquid water); and a
+//   synthetic one, sphere.json 100 times denser (optical diameter near 50, smooth).
+//   Lights (world directions; the cameras look along -z, but the cloudscape's looks down): from
+//   above, the side, behind, and a low sun (15 degrees high, from the side and a little behind).
+//   The split, chosen before anything was fitted or measured on it: the cumulonimbus and the
+//   cloudscape are held-out fields (every light, albedos 1 and 0.999); on the training fields the
+//   training cases are above, side and behind at albedos 1 and 0.99, and the low sun at albedo
+//   0.999 is held out (a light and an albedo no training case has).
+FitCaseSet RealCases(const Options& options)
+{
+  const std::string cumulus = "data/scenes/cumulus.json";
+  const struct
+  {
+    const char* Name;
+    std::string Path;
+    std::vector<std::string> Assignments;
+    bool HeldOut;
+  } variants[] = {
+    { "cumulus-od20", cumulus, { "transfer_function.unit_distance=0.25" }, false },
+    { "cumulus-od100", cumulus, {}, false },
+    { "cumulus-od500", cumulus, { "transfer_function.unit_distance=0.01" }, false },
+    { "stratocumulus", "data/scenes/stratocumulus.json", {}, false },
+    { "dense-sphere",
+      "data/scenes/sphere.json",
+      { "field.density_scale=100", "transfer_function.opacity=[[0, 0], [100, 0.4]]" },
+      false },
+    { "cumulonimbus", "data/scenes/cumulonimbus.json", {}, true },
+    { "cloudscape", "data/scenes/cloudscape-above.json", {}, true },
+  };
+  FitCaseSet set;
+  for (const auto& variant : variants)
+  {
+    std::vector<std::string> assignments = variant.Assignments;
+    assignments.push_back("ambient.strength=0");
+    assignments.push_back("render.march.phase=two_lobe");
+    if (options.FitDimensions > 0)
+      assignments.push_back("field.dimensions=" + std::to_string(options.FitDimensions));
+    set.Fields.push_back({ ReadBenchScene(variant.Path, assignments), variant.HeldOut });
+    set.Fields.back().Scene.Name = variant.Name;
+  }
+  const FitLight above = { "above", { 0.0f, 1.0f, 0.0f } };
+  const FitLight side = { "side", { 1.0f, 0.0f, 0.0f } };
+  const FitLight behind = { "behind", glm::normalize(glm::vec3(0.2f, 0.3f, -1.0f)) };
+  const FitLight low = { "low sun", glm::normalize(glm::vec3(0.9f, 0.27f, -0.35f)) };
+  for (std::size_t f = 0; f < set.Fields.size(); ++f)
+  {
+    if (set.Fields[f].HeldOut)
+    {
+      for (const FitLight& light : { above, side, behind, low })
+        for (float albedo : { 1.0f, 0.999f })
+          set.Cases.push_back({ f, light, albedo, true });
+      continue;
+    }
+    for (const FitLight& light : { above, side, behind })
+      for (float albedo : { 1.0f, 0.99f })
+        set.Cases.push_back({ f, light, albedo, false });
+    set.Cases.push_back({ f, low, 0.999f, true });
+  }
+  return set;
+}
+
+// An albedo as the case names print it: one decimal where that is exact (the standard set's
+// names, which the reference cache's file names repeat), else three digits.
+std::string AlbedoLabel(float albedo)
+{
+  char label[16];
+  std::snprintf(label, sizeof(label), "%.1f", double(albedo));
+  if (float(std::atof(label)) != albedo)
+    std::snprintf(label, sizeof(label), "%.3g", double(albedo));
+  return label;
+}
+
 // The march of one case with its light volumes computed once: the octaves (N, a, b, c) change
 // only how the optical depth toward the light becomes scattered light, not the optical depth, so
 // a fit that changes nothing else need not recompute the volumes at each evaluation (nor does the
@@ -548,7 +655,7 @@ int Fit(const Options& options)
 {
   const double fitStart = vtkTimerLog::GetUniversalTime();
   std::printf("%d x %d, path tracer %d paths per pixel, bounce cap %d, seed %u; fields on %s "
-              "voxels; split %s\n",
+              "voxels; cases %s, split %s\n",
     options.Width,
     options.Height,
     options.Samples,
@@ -556,32 +663,26 @@ int Fit(const Options& options)
     options.Seed,
     options.FitDimensions > 0 ? std::to_string(options.FitDimensions).append("^3").c_str()
                               : "their own",
-    options.FitSplit.c_str());
+    options.FitCases.c_str(),
+    options.FitCases == "real" ? "the set's own" : options.FitSplit.c_str());
   // The references, once per case.
   std::vector<FitCase> cases;
   std::vector<vtkSmartPointer<vtkImageData>> fields; // kept alive for the marches
-  for (const FitField& fitField : FitFields(options.FitSplit, options.FitDimensions))
+  const FitCaseSet set = options.FitCases == "real" ? RealCases(options) : StandardCases(options);
+  for (std::size_t f = 0; f < set.Fields.size(); ++f)
   {
+    const FitField& fitField = set.Fields[f];
     const Scene& scene = fitField.Scene.Spec;
     fields.push_back(FieldOf(scene));
     vtkImageData* field = fields.back();
-    for (const FitLight& light : FitLights)
-      for (float albedo : FitAlbedos)
+    for (const FitCaseSpec& spec : set.Cases)
+      if (spec.Field == f)
       {
-        const FitRole role = RoleOf(fitField, light, albedo);
-        if (role == FitRole::Unused)
-          continue;
-        const Scene gray = Relit(scene, { LightToward(light.TowardLight) }, albedo);
+        const Scene gray = Relit(scene, { LightToward(spec.Light.TowardLight) }, spec.Albedo);
         FitCase c;
-        char name[120];
-        std::snprintf(name,
-          sizeof(name),
-          "%s, %s, albedo %.1f",
-          fitField.Scene.Name.c_str(),
-          light.Name,
-          double(albedo));
-        c.Name = name;
-        c.HeldOut = role == FitRole::HeldOut;
+        c.Name =
+          fitField.Scene.Name + ", " + spec.Light.Name + ", albedo " + AlbedoLabel(spec.Albedo);
+        c.HeldOut = spec.HeldOut;
         c.Reference = CachedReference(options, c.Name, [&]()
           { return Run(NewTracer(gray, field, options.Bounces, options)); });
         c.ReferenceSeconds = c.Reference.Seconds;

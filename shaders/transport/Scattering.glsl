@@ -146,6 +146,25 @@ vec3 LimitedDiffusion(vec3 sigmaTr, vec3 phi, vec3 gradient, float reach)
   return min(d, vec3(reach));
 }
 
+// How far from a cell's centre its fluence stands for the light that reaches a face toward
+// optically thin space, per channel: half a cell, or, in a cell thicker than that, the depth the
+// beams reach into it, 1 / (sigma_t (1 - albedo f)). The light a beam leaves in a thick cell lies
+// within that depth of the face it came through, and reaches the face again without diffusing
+// from the centre: across half an optically thick cell, diffusion would hold in the light that
+// a thick cloud's surface sends back, and the cell's fluence would grow with its optical depth.
+vec3 SurfaceDepth(vec4 m, float h)
+{
+  vec3 penetration = vec3(1.0f) /
+    max(m.w * (vec3(1.0f) - vec3(m.x, m.y, m.z) * PhaseForwardFraction()), vec3(1e-30f));
+  return min(vec3(0.5f * h), penetration);
+}
+
+// Whether a cell is optically thin across its width h: the space a cloud's surface faces.
+bool OpticallyThin(vec4 m, float h)
+{
+  return m.w * h < 1.0f;
+}
+
 // One half-sweep of red-black Gauss-Seidel at cell c: cells whose x + y + z has the parity
 // `parity` take a new value from their neighbours', the others keep theirs.
 vec4 ScatteringRelaxTexel(ivec3 c, int parity)
@@ -180,10 +199,10 @@ vec4 ScatteringRelaxTexel(ivec3 c, int parity)
     bool outside = n.x < 0 || n.y < 0 || n.z < 0 || n.x >= size.x || n.y >= size.y || n.z >= size.z;
     if (outside)
     {
-      // Marshak's vacuum condition half a cell out: the outflow phi_face / 2, with phi_face
-      // between the cell's and 0 as the diffusion across the half cell allows.
+      // Marshak's vacuum condition on the grid's face: the outflow phi_face / 2, with phi_face
+      // between the cell's and 0 as the diffusion across the cell's surface depth allows.
       vec3 d = LimitedDiffusion(sigmaTr, phi, 2.0f * phi / h, reach);
-      denominator += d / ((0.5f * h + 2.0f * d) * h);
+      denominator += d / ((SurfaceDepth(m, h) + 2.0f * d) * h);
       numerator -= 3.0f * d * (float(s) * moment) / h;
     }
     else
@@ -195,6 +214,14 @@ vec4 ScatteringRelaxTexel(ivec3 c, int parity)
       vec3 momentFace = 0.5f * (moment + SourceMoment(n, a));
       vec3 gradient = (phiN - phi) / h - 3.0f * float(s) * momentFace;
       vec3 d = LimitedDiffusion(0.5f * (sigmaTr + sigmaTrN), 0.5f * (phi + phiN), gradient, reach);
+      if (OpticallyThin(m, h) != OpticallyThin(mN, h))
+      {
+        // The cloud's surface: each side's diffusion over its own depth, in series.
+        vec3 phiFace = 0.5f * (phi + phiN);
+        vec3 resistance = SurfaceDepth(m, h) / LimitedDiffusion(sigmaTr, phiFace, gradient, reach) +
+          SurfaceDepth(mN, h) / LimitedDiffusion(sigmaTrN, phiFace, gradient, reach);
+        d = h / max(resistance, vec3(1e-30f));
+      }
       denominator += d / (h * h);
       numerator += d * phiN / (h * h) - 3.0f * d * (float(s) * momentFace) / h;
     }

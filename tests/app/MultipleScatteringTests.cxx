@@ -3,9 +3,9 @@
 // multiple-scattering volume"): cases no constant of the volume was chosen on, each rendered as
 // the bench renders it (a shipped scene with --set assignments on 64^3 voxels, one white
 // directional light, a uniform gray albedo, no ambient, 64 x 48 pixels, the path tracer with 1024
-// paths per pixel and seed 0). Each gate sits at about 1.5 times the error measured by
-// `cloudvis-bench-pathtrace fit --size 64x48 --spp 1024 --multiple-scattering volume`, and the
-// octaves, the model the volume replaced, miss every one of them.
+// (unless the case says) paths per pixel and seed 0). Each gate sits at about 1.5 times the error
+// measured by `cloudvis-bench-pathtrace fit --size 64x48 --spp 1024 --multiple-scattering volume`,
+// and the octaves, the model the volume replaced, miss every one of them.
 #include "CloudImageComparison.h"
 #include "CpuReference.h"
 #include "Scene.h"
@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ struct HeldOutCase
   float Albedo;
   double MeasuredError;        // the volume's noise-corrected relative RMSE, measured
   double MeasuredOctavesError; // the octaves', measured
+  int PathsPerPixel = 1024;    // the reference's
 };
 
 void PrintTo(const HeldOutCase& c, std::ostream* out)
@@ -89,7 +91,7 @@ TEST_P(MultipleScatteringVolume, StaysWithinItsMeasuredErrorOfThePathTracer)
 
   vtkNew<vtkCloudPathTracer> tracer;
   SetUpReference(scene, field, tracer);
-  tracer->SetSamplesPerPixel(1024);
+  tracer->SetSamplesPerPixel(c.PathsPerPixel);
   tracer->SetMaxBounces(1024);
   tracer->SetSeed(0);
   std::vector<float> variance;
@@ -109,6 +111,9 @@ TEST_P(MultipleScatteringVolume, StaysWithinItsMeasuredErrorOfThePathTracer)
   };
   const ImageError volume = errorOf(MultipleScatteringModel::Volume);
   const ImageError octaves = errorOf(MultipleScatteringModel::Octaves);
+  std::cout << c.Name << ": volume " << volume.NoiseCorrectedRelativeRMSE << " (bias "
+            << volume.BiasRatio << "), octaves " << octaves.NoiseCorrectedRelativeRMSE
+            << ", reference's standard error " << volume.ReferenceRelativeStandardError << "\n";
   const double gate = 1.5 * c.MeasuredError;
   EXPECT_LT(volume.NoiseCorrectedRelativeRMSE, gate)
     << "measured " << c.MeasuredError << "; bias " << volume.BiasRatio;
@@ -145,6 +150,25 @@ INSTANTIATE_TEST_SUITE_P(HeldOut,
       0.9f,
       0.114,
       0.319 }),
+  [](const testing::TestParamInfo<HeldOutCase>& held) { return std::string(held.param.Name); });
+
+// Held out by `fit --cases real` (issue 38's real regime, docs/lighting.md, "The real regime"):
+// the shipped cumulus five times denser (optical diameter near 500) under a low sun at albedo
+// 0.999, a light and an albedo no training case of that set has. The volume is far from the
+// path tracer here; the gate keeps the surface depth of its solve (SurfaceDepth in
+// shaders/transport/Scattering.glsl), without which a thick cell holds the light its surface
+// sends back and the error was 170% (2.6 times this one). 256 paths per pixel: its reference's
+// standard error, 14%, is far below the error the gate measures.
+INSTANTIATE_TEST_SUITE_P(RealRegime,
+  MultipleScatteringVolume,
+  testing::Values(HeldOutCase{ "ThickCumulusLowSun",
+    "cumulus.json",
+    { "transfer_function.unit_distance=0.01" },
+    { 0.9f, 0.27f, -0.35f },
+    0.999f,
+    0.670,
+    1.255,
+    256 }),
   [](const testing::TestParamInfo<HeldOutCase>& held) { return std::string(held.param.Name); });
 
 } // namespace
