@@ -51,6 +51,33 @@ vtkSmartPointer<vtkCloudPathTracer> Tracer(vtkImageData* field,
   return tracer;
 }
 
+// Two path-traced images of one scene agree within their noise, per channel, on the mean over the
+// cloud and on every 4 x 4 tile (ExpectNoDifference); the difference of two noisy images has
+// the sum of their variances. `tightness`: the most the standard error may be of the mean.
+void ExpectSameWithinTheirNoise(const Image& first,
+  const Image& second,
+  const std::string& what,
+  double tightness)
+{
+  for (int channel = 0; channel < 4; ++channel)
+  {
+    const auto difference = [&](std::size_t p)
+    { return second.At(p, channel) - first.At(p, channel); };
+    const auto variance = [&](std::size_t p)
+    { return first.VarianceAt(p, channel) + second.VarianceAt(p, channel); };
+    const auto inCloud = [&](std::size_t p) { return first.At(p, 3) > 0.0f; };
+    ExpectNoDifference(first,
+      4,
+      difference,
+      variance,
+      inCloud,
+      MeanOf(first, channel, inCloud),
+      8,
+      what + "channel " + std::to_string(channel),
+      tightness);
+  }
+}
+
 // The box [-2, 2] x [-2, 2] x [-thickness / 2, thickness / 2] filled with density 1: a slab of
 // constant sigma_t, wide enough that light reaching the framed middle enters through its faces.
 vtkSmartPointer<vtkImageData> ConstantSlab(double thickness)
@@ -492,18 +519,7 @@ TEST(PathTracer, BrickSizeChangesOnlyTheNoise)
     images.push_back(Render(tracer));
   }
   EXPECT_NE(images[0].Values, images[1].Values); // other random decisions, other noise
-  for (int channel = 0; channel < 4; ++channel)
-  {
-    const auto difference = [&](std::size_t p)
-    { return images[1].At(p, channel) - images[0].At(p, channel); };
-    const auto variance = [&](std::size_t p)
-    { return images[0].VarianceAt(p, channel) + images[1].VarianceAt(p, channel); };
-    const auto inCloud = [&](std::size_t p) { return images[0].At(p, 3) > 0.0f; };
-    const double value = MeanOf(images[0], channel, inCloud);
-    // Two noisy images: their difference has twice the variance of either.
-    ExpectNoDifference(images[0], 4, difference, variance, inCloud, value, 8,
-      "channel " + std::to_string(channel), 0.03);
-  }
+  ExpectSameWithinTheirNoise(images[0], images[1], "", 0.03);
 }
 
 TEST(PathTracer, LightGuidedNextEventsChangeOnlyTheNoiseAndLowerItUnderAForwardPeak)
@@ -550,23 +566,7 @@ TEST(PathTracer, LightGuidedNextEventsChangeOnlyTheNoiseAndLowerItUnderAForwardP
     const std::string name = phase == PhaseModel::Droplets ? "droplets" : "two lobes";
     std::cout << name << ": relative standard error plain " << noise[0] << ", light-guided "
               << noise[1] << "\n";
-    for (int channel = 0; channel < 4; ++channel)
-    {
-      const auto difference = [&](std::size_t p)
-      { return images[1].At(p, channel) - images[0].At(p, channel); };
-      const auto variance = [&](std::size_t p)
-      { return images[0].VarianceAt(p, channel) + images[1].VarianceAt(p, channel); };
-      const auto inCloud = [&](std::size_t p) { return images[0].At(p, 3) > 0.0f; };
-      ExpectNoDifference(images[0],
-        4,
-        difference,
-        variance,
-        inCloud,
-        MeanOf(images[0], channel, inCloud),
-        8,
-        name + ", channel " + std::to_string(channel),
-        0.05);
-    }
+    ExpectSameWithinTheirNoise(images[0], images[1], name + ", ", 0.05);
     if (phase == PhaseModel::Droplets)
     {
       EXPECT_LT(noise[1], 0.75 * noise[0]) << "the guided directions find the forward peak";
