@@ -345,27 +345,14 @@ float PhaseSamplingDensity(float mu)
   return PhaseType == PhaseDroplets ? (p.x + p.y + p.z) / 3.0f : p.x;
 }
 
-// The luminance (Rec. 709) of light i's radiance arriving at x, before any extinction: the share
-// of the guided directions it gets.
-float LightLuminanceAt(int i, vec3 x)
-{
-  vec3 l;
-  float lightDistance, falloff;
-  SampleLight(i, x, l, lightDistance, falloff);
-  return dot(LightRadiance[i] * falloff, vec3(0.2126f, 0.7152f, 0.0722f));
-}
-
-// The density, per steradian, of the guided directions at x: the phase's sampling density around
-// each light's direction, mixed by the lights' luminances (their sum `total`).
-float GuidedDensity(vec3 x, vec3 w, float total)
+// The density, per steradian, of the guided directions: the phase's sampling density around each
+// light's direction toLight[i], mixed by the lights' shares.
+float GuidedDensity(vec3 w, vec3 toLight[MAX_LIGHTS], float share[MAX_LIGHTS])
 {
   float density = 0.0f;
   for (int i = 0; i < LightCount; ++i)
   {
-    vec3 l;
-    float lightDistance, falloff;
-    SampleLight(i, x, l, lightDistance, falloff);
-    density += LightLuminanceAt(i, x) / total * PhaseSamplingDensity(dot(l, w));
+    density += share[i] * PhaseSamplingDensity(dot(toLight[i], w));
   }
   return density;
 }
@@ -385,33 +372,41 @@ float GuidedDensity(vec3 x, vec3 w, float total)
 float LightGuidedNextEvent(vec3 p, vec3 d, vec3 walkDirection, vec3 throughput,
   INOUT(RandomStream) rng, INOUT(vec3) radiance)
 {
+  // Each light's direction from here, and its share of the guided directions: the luminance
+  // (Rec. 709) of its radiance arriving here before any extinction, over all the lights'.
   vec3 x = LocalOfIndex(p);
+  vec3 toLight[MAX_LIGHTS];
+  float share[MAX_LIGHTS];
   float total = 0.0f;
   for (int i = 0; i < LightCount; ++i)
   {
-    total += LightLuminanceAt(i, x);
+    float lightDistance, falloff;
+    SampleLight(i, x, toLight[i], lightDistance, falloff);
+    share[i] = dot(LightRadiance[i] * falloff, vec3(0.2126f, 0.7152f, 0.0722f));
+    total += share[i];
   }
   if (!(total > 0.0f))
   {
     return 1.0f; // no light to guide toward: the walk's estimate alone
   }
-  // A light by its luminance, then a direction around it.
+  // A light by its share, then a direction around it.
   float u = NextRandom(rng) * total;
   int chosen = LightCount - 1;
   for (int i = 0; i < LightCount - 1; ++i)
   {
-    u -= LightLuminanceAt(i, x);
+    u -= share[i];
     if (u < 0.0f)
     {
       chosen = i;
       break;
     }
   }
-  vec3 l;
-  float lightDistance, falloff;
-  SampleLight(chosen, x, l, lightDistance, falloff);
+  for (int i = 0; i < LightCount; ++i)
+  {
+    share[i] /= total;
+  }
   vec3 unusedWeight;
-  vec3 guided = SamplePhaseDirection(l, rng, unusedWeight);
+  vec3 guided = SamplePhaseDirection(toLight[chosen], rng, unusedWeight);
   vec3 direction = LocalToIndex * guided;
   float tEnd = IntersectBox(p, direction, vec3(0.0f), Dimensions - 1.0f).y;
   float t = SampleFreeFlight(p, direction, 0.0f, tEnd, rng);
@@ -419,12 +414,12 @@ float LightGuidedNextEvent(vec3 p, vec3 d, vec3 walkDirection, vec3 throughput,
   {
     vec3 q = p + t * direction;
     float mu = dot(d, guided);
-    float densities = PhaseSamplingDensity(mu) + GuidedDensity(x, guided, total);
+    float densities = PhaseSamplingDensity(mu) + GuidedDensity(guided, toLight, share);
     radiance += throughput * (Phase(mu, 1.0f) / densities) * vec3(Optical(DensityAt(q))) *
       DirectLight(q, guided, rng);
   }
   float walkDensity = PhaseSamplingDensity(dot(d, walkDirection));
-  return walkDensity / (walkDensity + GuidedDensity(x, walkDirection, total));
+  return walkDensity / (walkDensity + GuidedDensity(walkDirection, toLight, share));
 }
 
 // One sample of the pixel whose view ray runs from nearPoint to farPoint (local frame): the
