@@ -213,14 +213,18 @@ vec4 ScatteringRelaxTexel(ivec3 c, int parity)
       vec3 sigmaTrN = mN.w * (vec3(1.0f) - vec3(mN.x, mN.y, mN.z) * g);
       vec3 momentFace = 0.5f * (moment + SourceMoment(n, a));
       vec3 gradient = (phiN - phi) / h - 3.0f * float(s) * momentFace;
-      vec3 d = LimitedDiffusion(0.5f * (sigmaTr + sigmaTrN), 0.5f * (phi + phiN), gradient, reach);
+      vec3 phiFace = 0.5f * (phi + phiN);
+      vec3 d;
       if (OpticallyThin(m, h) != OpticallyThin(mN, h))
       {
         // The cloud's surface: each side's diffusion over its own depth, in series.
-        vec3 phiFace = 0.5f * (phi + phiN);
         vec3 resistance = SurfaceDepth(m, h) / LimitedDiffusion(sigmaTr, phiFace, gradient, reach) +
           SurfaceDepth(mN, h) / LimitedDiffusion(sigmaTrN, phiFace, gradient, reach);
         d = h / max(resistance, vec3(1e-30f));
+      }
+      else
+      {
+        d = LimitedDiffusion(0.5f * (sigmaTr + sigmaTrN), phiFace, gradient, reach);
       }
       denominator += d / (h * h);
       numerator += d * phiN / (h * h) - 3.0f * d * (float(s) * momentFace) / h;
