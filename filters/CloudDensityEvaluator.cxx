@@ -463,8 +463,12 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
   }
   // The weather map drifts with the wind, like the noises.
   const glm::dvec3 q = leaned + this->NoiseOffset;
+  // A procedural map's fine octaves turn with height (WeatherNoise); they only ever remove
+  // coverage from the base's, so that every cloud keeps its flat base.
+  const std::uint32_t seed = this->Field.Noise.Seed;
   const float map = l.Source == CoverageSource::Noise
-    ? WeatherNoise(l, this->Field.Noise.Seed, q.x, q.z)
+    ? std::min(
+        WeatherNoise(l, seed, q.x, q.z, h * (l.Top - l.Base)), WeatherNoise(l, seed, q.x, q.z, 0.0))
     : l.Map->Sample(q.x, q.z);
   // Break-up: above the base a 3-D noise moves the map's value, by more the higher up (up to
   // `breakup` from BreakupHeight of the layer on), so that the clouds' sides are not the map's

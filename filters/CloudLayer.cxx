@@ -370,15 +370,22 @@ std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(std::uint32_t seed)
   }
 }
 
-float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z)
+float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z, double height)
 {
+  const double depth = layer.Top - layer.Base;
   double frequency = 1.0 / layer.MapScale, amplitude = 1.0, sum = 0.0, variance = 0.0;
   for (int o = 0; o < layer.MapOctaves; ++o)
   {
     // A slice of 3-D Perlin noise off the lattice's planes (where gradient noise is 0), its own
-    // seed per octave.
+    // seed per octave, that moves through the lattice with height as fast as across for the
+    // octaves at most half the layer's depth wide, not at all for those as wide as the layer is
+    // deep or wider, and in between linearly in depth / wavelength.
+    const double turning = std::clamp(depth * frequency - 1.0, 0.0, 1.0);
     sum += amplitude *
-      noise::Perlin(x * frequency, 0.5, z * frequency, seed * 0x9E3779B1u + 0x7F4A7C15u * o);
+      noise::Perlin(x * frequency,
+        0.5 + turning * height * frequency,
+        z * frequency,
+        seed * 0x9E3779B1u + 0x7F4A7C15u * o);
     variance += amplitude * amplitude;
     frequency *= 2.0;
     amplitude *= layer.MapGain;

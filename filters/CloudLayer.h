@@ -150,11 +150,15 @@ CLOUDVISFILTERS_EXPORT std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(s
 // times this must stay within the 32-bit lattice cells (ValidateNoiseRange).
 CLOUDVISFILTERS_EXPORT double CloudLatticeDensity(const CloudLayer& layer);
 
-// The 2-D Perlin fBm of the procedural weather map at (x, z) in world units, in [0, 1].
+// The Perlin fBm of the procedural weather map at (x, z) in world units and `height` above the
+// layer's base, in [0, 1]. Its octaves wider than the layer is deep are 2-D (they place the
+// clouds); the finer ones, the clouds' own eddies, turn with height as fast as they vary across,
+// so that a cloud's sides are not its outline drawn straight up. At the base it is the 2-D map.
 CLOUDVISFILTERS_EXPORT float WeatherNoise(const CloudLayer& layer,
   std::uint32_t seed,
   double x,
-  double z);
+  double z,
+  double height);
 
 } // namespace cloudvis
 
