@@ -407,6 +407,10 @@ constexpr float TowerInset = 0.5f;
 // its noise is the shape noise at this fraction of its scale.
 constexpr float BreakupHeight = 0.2f;
 constexpr double BreakupScale = 0.25;
+// The rain shaft falls from the tower's footprint set in by this fraction of its radius, and its
+// streaks are this many times longer up and down than across.
+constexpr double RainInset = 0.3;
+constexpr double RainStretch = 3.0;
 // Altocumulus cloudlets per shape_scale.
 constexpr double AltocumulusCells = 4.0;
 }
@@ -507,18 +511,52 @@ bool DensityEvaluator::InDomeLevels(double y) const
   return this->TowerPlan && l.Overshoot > 0.0 && y > l.Top - l.Overshoot && y < l.Top + l.Overshoot;
 }
 
+bool DensityEvaluator::Rains() const
+{
+  return this->TowerPlan && this->Field.Layer.Rain > 0.0;
+}
+
+float DensityEvaluator::RainDensity(glm::dvec3 p) const
+{
+  // The shaft falls straight down (the shear leans the cloud above its base, not the rain) from
+  // the tower's footprint set in by RainInset of its radius, its edge frayed over a falloff width
+  // by the shape noise. Inside it the rain falls in streaks: the detail noise stretched
+  // RainStretch times up and down (and shrunk as much across), of which the highest part rains.
+  const CloudLayer& l = this->Field.Layer;
+  const CloudNoiseVolumes& volumes = *this->CloudNoise;
+  const glm::dvec3 n = p + this->NoiseOffset;
+  const float width = static_cast<float>(this->Field.FalloffWidth);
+  const float fray = 0.5f * width * (2.0f * volumes.Shape.Sample(n / l.ShapeScale) - 1.0f);
+  const float edge = this->TowerPlan->TowerDistance(p.x, p.z) +
+    static_cast<float>(RainInset * this->TowerPlan->Radius()) + fray;
+  const float curtain = Saturate(-edge / width);
+  if (curtain <= 0.0f)
+  {
+    return 0.0f;
+  }
+  const glm::dvec3 streak =
+    n * glm::dvec3(RainStretch, 1.0 / RainStretch, RainStretch) / l.DetailScale;
+  const float streaks =
+    Saturate(noise::Remap(volumes.Detail.Sample(streak), 0.35f, 0.75f, 0.0f, 1.0f));
+  return static_cast<float>(this->Field.DensityScale * l.Rain) * curtain * streaks;
+}
+
 bool DensityEvaluator::CloudLevelMayHoldCloud(double y) const
 {
   // As CloudDensity decides it.
   const CloudLayer& l = this->Field.Layer;
   return HeightProfile(l.Type, static_cast<float>((y - l.Base) / (l.Top - l.Base))) > 0.0f ||
-    this->InDomeLevels(y);
+    this->InDomeLevels(y) || (y < l.Base && this->Rains());
 }
 
 float DensityEvaluator::CloudDensity(glm::dvec3 p) const
 {
   const CloudLayer& l = this->Field.Layer;
   const double height = p.y - l.Base;
+  if (height < 0.0 && this->Rains())
+  {
+    return this->RainDensity(p);
+  }
   const float h = static_cast<float>(height / (l.Top - l.Base));
   const float profile = HeightProfile(l.Type, h);
   const bool dome = this->InDomeLevels(p.y);

@@ -117,6 +117,8 @@ private:
   float CloudCoverage(glm::dvec3 leaned, float h) const;
   float DomeCoverage(glm::dvec3 leaned) const;
   bool InDomeLevels(double y) const; // within a cumulonimbus's overshooting dome's heights
+  bool Rains() const;                // a cumulonimbus on the shapes with a rain shaft
+  float RainDensity(glm::dvec3 p) const; // the rain shaft's, below the base
   bool CloudLevelMayHoldCloud(double y) const;
   bool NeedsNoise(float signedDistance) const;
   void AccumulateOctaveAlongRow(const noise::Octave& octave, int count, const double* noiseX,

@@ -82,6 +82,7 @@ std::string ValidateCloudLayer(const CloudLayer& l)
   require(unit(l.Curl), "curl", l.Curl, "in [0, 1]");
   require(unit(l.Anvil), "anvil", l.Anvil, "in [0, 1]");
   require(unit(l.Breakup), "breakup", l.Breakup, "in [0, 1]");
+  require(unit(l.Rain), "rain", l.Rain, "in [0, 1]");
   require(positive(l.MapScale), "map scale", l.MapScale, "a positive number");
   require(positive(l.ShapeScale), "shape scale", l.ShapeScale, "a positive number");
   require(positive(l.DetailScale), "detail scale", l.DetailScale, "a positive number");
@@ -113,9 +114,13 @@ std::string ValidateCloudLayer(const CloudLayer& l)
     l.Overshoot,
     "a finite number >= 0");
   const bool tower = l.Type == CloudType::Cumulonimbus && l.Source == CoverageSource::Shapes;
-  if (error.str().empty() && !tower && (l.AnvilReach > 0.0 || l.Overshoot > 0.0))
+  const char* towerKey = l.Rain > 0.0 ? "rain"
+    : l.Overshoot > 0.0               ? "overshoot"
+    : l.AnvilReach > 0.0              ? "anvil reach"
+                                      : nullptr;
+  if (error.str().empty() && !tower && towerKey)
   {
-    error << "cloud " << (l.Overshoot > 0.0 ? "overshoot" : "anvil reach")
+    error << "cloud " << towerKey
           << " needs a tower to stand on: the cumulonimbus type with its coverage from the shapes "
              "(coverage_map \"shapes\")";
   }

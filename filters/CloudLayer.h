@@ -115,6 +115,9 @@ struct CloudLayer
   std::array<double, 2> AnvilDirection{ { 1.0, 0.0 } };
   double AnvilReach = 0.0;
   double Overshoot = 0.0;
+  // The cumulonimbus's rain shaft under its base (shapes coverage only): its density at the heart
+  // of its streaks, as a fraction of the field's density scale, 0 .. 1 (0: none).
+  double Rain = 0.0;
   std::array<double, 2> Shear{ { 0.0, 0.0 } }; // x and z displacement per unit of height above base
 };
 

@@ -384,6 +384,11 @@ void vtkCloudDensitySource::SetCloudOvershoot(double overshoot)
   this->SetFieldValue(this->Field.Layer.Overshoot, overshoot);
 }
 
+void vtkCloudDensitySource::SetCloudRain(double rain)
+{
+  this->SetFieldValue(this->Field.Layer.Rain, rain);
+}
+
 void vtkCloudDensitySource::SetCloudShear(double x, double z)
 {
   this->SetFieldValue(this->Field.Layer.Shear, std::array<double, 2>{ { x, z } });

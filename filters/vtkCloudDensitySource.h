@@ -314,8 +314,10 @@ public:
    * map's columns above the base, in [0, 1] (default 0), the cumulonimbus anvil's
    * strength, in [0, 1] (default 0), the direction [x, z] of the upper wind it streams along
    * (default [1, 0]), how far it reaches downwind in world units (default 0), the height of the
-   * overshooting dome above the top in world units (default 0; the last two need CoverageSource
-   * ShapesCoverage), and the shear: x and z displacement per unit of height (default 0).
+   * overshooting dome above the top in world units (default 0), the rain shaft's density under
+   * the base as a fraction of the density scale, in [0, 1] (default 0; the last three need
+   * CoverageSource ShapesCoverage), and the shear: x and z displacement per unit of height
+   * (default 0).
    */
   void SetCloudNoiseScales(double shape, double detail);
   void SetCloudErosion(double erosion);
@@ -325,6 +327,7 @@ public:
   void SetCloudAnvilDirection(double x, double z);
   void SetCloudAnvilReach(double reach);
   void SetCloudOvershoot(double overshoot);
+  void SetCloudRain(double rain);
   void SetCloudShear(double x, double z);
   ///@}
 

@@ -556,6 +556,12 @@ const Keys<FieldSpec>& CloudKeys()
       Nested(&F::Description, &D::Layer, &L::Overshoot),
       "the height of the overshooting dome above `top` on the tower's axis (0: none); `top` plus "
       "it must stay inside the field; needs the shapes' coverage" },
+    { "rain",
+      NumberIn(UnitInterval),
+      Nested(&F::Description, &D::Layer, &L::Rain),
+      "the rain shaft under the tower's base, from it to the field's floor: its density in its "
+      "streaks as a fraction of `density_scale` (0: none); needs the shapes' coverage; see "
+      "[Cumulonimbus](#cumulonimbus)" },
     { "shear",
       NumbersIn(2, AnyNumber, "[x, z]"),
       Nested(&F::Description, &D::Layer, &L::Shear),

@@ -701,12 +701,12 @@ void ResolveAutoDimensions(const Context& c, Scene& s)
         : "the camera position equals the focal point; the view has no direction");
   }
   // What can hold cloud: the field; the cloud model's layer, from its base to its top and the
-  // cumulonimbus's overshooting dome.
+  // cumulonimbus's overshooting dome, and down to the field's floor where it rains.
   std::array<double, 6> region = b;
   if (f.Description.Model == DensityModel::Cloud)
   {
     const CloudLayer& layer = f.Description.Layer;
-    region[2] = std::max(b[2], layer.Base);
+    region[2] = layer.Rain > 0.0 ? b[2] : std::max(b[2], layer.Base);
     region[3] = std::min(b[3], layer.Top + layer.Overshoot);
     if (!(region[2] < region[3]))
     {

@@ -73,7 +73,8 @@ json TowerKeys()
     { "top", 1.0 },
     { "anvil", 0.5 },
     { "anvil_reach", 1.5 },
-    { "overshoot", 0.25 } };
+    { "overshoot", 0.25 },
+    { "rain", 0.01 } };
 }
 
 const float* DensityOf(vtkImageData* image)
@@ -125,11 +126,12 @@ TEST(CloudScene, EveryCloudKeyReachesTheLayerAndRoundTrips)
   // The resolved scene writes the same keys back, and reads back to the same scene.
   const double bounds[6] = { -2, 2, -2, 2, -2, 2 };
   const json written = cloudvis::SceneToJson(scene, cloudvis::ResolveCamera(scene, bounds));
-  // Every key, the tower's two at their defaults (they need the shapes' coverage; see
+  // Every key, the tower's three at their defaults (they need the shapes' coverage; see
   // TowerKeysReachTheLayerAndRoundTrip).
   json expected = EveryCloudKey();
   expected["anvil_reach"] = 0.0;
   expected["overshoot"] = 0.0;
+  expected["rain"] = 0.0;
   EXPECT_EQ(written["field"]["cloud"], expected) << written["field"].dump();
   EXPECT_EQ(written["field"]["noise"], "perlin_worley");
   EXPECT_EQ(written["field"]["noise_period"], 4);
@@ -137,8 +139,8 @@ TEST(CloudScene, EveryCloudKeyReachesTheLayerAndRoundTrips)
   EXPECT_EQ(cloudvis::SceneToJson(again, cloudvis::ResolveCamera(again, bounds)), written);
 }
 
-// The anvil's reach and the overshooting dome need the shapes' tower; they read and write back
-// like the other keys.
+// The anvil's reach, the overshooting dome and the rain shaft need the shapes' tower; they read
+// and write back like the other keys.
 TEST(CloudScene, TowerKeysReachTheLayerAndRoundTrip)
 {
   const json document = { { "field", { { "density_model", "cloud" }, { "cloud", TowerKeys() } } } };
@@ -146,9 +148,10 @@ TEST(CloudScene, TowerKeysReachTheLayerAndRoundTrip)
   const cloudvis::CloudLayer& l = scene.Field.Description.Layer;
   EXPECT_EQ(l.AnvilReach, 1.5);
   EXPECT_EQ(l.Overshoot, 0.25);
+  EXPECT_EQ(l.Rain, 0.01);
   const double bounds[6] = { -2, 2, -2, 2, -2, 2 };
   const json written = cloudvis::SceneToJson(scene, cloudvis::ResolveCamera(scene, bounds));
-  for (const char* key : { "anvil_reach", "overshoot" })
+  for (const char* key : { "anvil_reach", "overshoot", "rain" })
   {
     EXPECT_EQ(written["field"]["cloud"][key], TowerKeys()[key]) << written["field"].dump();
   }

@@ -89,7 +89,7 @@ FieldDescription Cumulus()
 }
 
 // cumulus.json's spheres as a cumulonimbus's tower: an anvil streaming along +z from the
-// footprint, and an overshooting dome above the top.
+// footprint, an overshooting dome above the top, and a rain shaft below the base.
 FieldDescription Tower()
 {
   FieldDescription field = Cumulus();
@@ -98,6 +98,7 @@ FieldDescription Tower()
   field.Layer.AnvilDirection = { { 0.3, 1.0 } };
   field.Layer.AnvilReach = 1.5;
   field.Layer.Overshoot = 0.3;
+  field.Layer.Rain = 0.05;
   field.Layer.Shear = { { 0.1, 0.0 } };
   return field;
 }
@@ -205,7 +206,7 @@ TEST(CloudRows, RowsOfTheNewNoisesAreBitIdenticalToPointEvaluation)
     std::vector<float> row(70);
     const double originX = -2.0, dx = 4.0 / 79.0;
     int cloudy = 0;
-    for (double y : { -0.45, 0.1, 0.35, 0.9, 1.5, 1.7 })
+    for (double y : { -0.9, -0.45, 0.1, 0.35, 0.9, 1.5, 1.7 })
     {
       for (double z : { -0.7, 0.05, 0.6 })
       {
@@ -459,6 +460,17 @@ TEST(CloudLayer, AnInvalidLayerIsRefusedWithWords)
                 l.AnvilReach = 1.0;
               })
               .find("cloud anvil reach needs a tower to stand on"),
+    std::string::npos);
+  EXPECT_NE(
+    problemOf([](CloudLayer& l) { l.Rain = 2.0; }).find("cloud rain must be in [0, 1], got 2"),
+    std::string::npos);
+  EXPECT_NE(problemOf(
+              [](CloudLayer& l)
+              {
+                l.Type = CloudType::Cumulonimbus;
+                l.Rain = 0.1;
+              })
+              .find("cloud rain needs a tower to stand on"),
     std::string::npos);
   EXPECT_NE(problemOf([](CloudLayer& l) { l.Anvil = 1.5; }).find("cloud anvil must be in [0, 1]"),
     std::string::npos);
