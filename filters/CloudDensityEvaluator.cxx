@@ -467,12 +467,9 @@ float DensityEvaluator::CloudCoverage(glm::dvec3 leaned, float h) const
   }
   // The weather map drifts with the wind, like the noises.
   const glm::dvec3 q = leaned + this->NoiseOffset;
-  // A procedural map's fine octaves turn with height (WeatherNoise); they only ever remove
-  // coverage from the base's, so that every cloud keeps its flat base.
-  const std::uint32_t seed = this->Field.Noise.Seed;
+  // (A procedural map's fine octaves turn with height, below the base's value: WeatherNoise.)
   const float map = l.Source == CoverageSource::Noise
-    ? std::min(
-        WeatherNoise(l, seed, q.x, q.z, h * (l.Top - l.Base)), WeatherNoise(l, seed, q.x, q.z, 0.0))
+    ? WeatherNoise(l, this->Field.Noise.Seed, q.x, q.z, h * (l.Top - l.Base))
     : l.Map->Sample(q.x, q.z);
   // Break-up: above the base a 3-D noise moves the map's value, by more the higher up (up to
   // `breakup` from BreakupHeight of the layer on), so that the clouds' sides are not the map's
@@ -526,9 +523,14 @@ float DensityEvaluator::RainDensity(glm::dvec3 p) const
   const CloudNoiseVolumes& volumes = *this->CloudNoise;
   const glm::dvec3 n = p + this->NoiseOffset;
   const float width = static_cast<float>(this->Field.FalloffWidth);
+  const float inset = this->TowerPlan->TowerDistance(p.x, p.z) +
+    static_cast<float>(RainInset * this->TowerPlan->Radius());
+  if (inset - 0.5f * width >= 0.0f)
+  {
+    return 0.0f; // beyond the fray's reach (the shape noise lies in [0, 1])
+  }
   const float fray = 0.5f * width * (2.0f * volumes.Shape.Sample(n / l.ShapeScale) - 1.0f);
-  const float edge = this->TowerPlan->TowerDistance(p.x, p.z) +
-    static_cast<float>(RainInset * this->TowerPlan->Radius()) + fray;
+  const float edge = inset + fray;
   const float curtain = Saturate(-edge / width);
   if (curtain <= 0.0f)
   {

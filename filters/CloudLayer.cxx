@@ -378,23 +378,30 @@ std::shared_ptr<const CloudNoiseVolumes> BakeCloudNoise(std::uint32_t seed)
 float WeatherNoise(const CloudLayer& layer, std::uint32_t seed, double x, double z, double height)
 {
   const double depth = layer.Top - layer.Base;
-  double frequency = 1.0 / layer.MapScale, amplitude = 1.0, sum = 0.0, variance = 0.0;
+  double frequency = 1.0 / layer.MapScale, amplitude = 1.0, variance = 0.0;
+  double atHeight = 0.0, atBase = 0.0; // the sums at `height` and at the base
   for (int o = 0; o < layer.MapOctaves; ++o)
   {
     // A slice of 3-D Perlin noise off the lattice's planes (where gradient noise is 0), its own
     // seed per octave, that moves through the lattice with height as fast as across for the
     // octaves at most half the layer's depth wide, not at all for those as wide as the layer is
     // deep or wider, and in between linearly in depth / wavelength.
+    const std::uint32_t octaveSeed = seed * 0x9E3779B1u + 0x7F4A7C15u * o;
     const double turning = std::clamp(depth * frequency - 1.0, 0.0, 1.0);
-    sum += amplitude *
-      noise::Perlin(x * frequency,
-        0.5 + turning * height * frequency,
-        z * frequency,
-        seed * 0x9E3779B1u + 0x7F4A7C15u * o);
+    const double flat = noise::Perlin(x * frequency, 0.5, z * frequency, octaveSeed);
+    atBase += amplitude * flat;
+    atHeight += amplitude *
+      (turning > 0.0 && height != 0.0
+          ? noise::Perlin(
+              x * frequency, 0.5 + turning * height * frequency, z * frequency, octaveSeed)
+          : flat);
     variance += amplitude * amplitude;
     frequency *= 2.0;
     amplitude *= layer.MapGain;
   }
+  // The turning octaves only ever remove coverage from the base's: every cloud keeps its flat
+  // base.
+  const double sum = std::min(atHeight, atBase);
   // Perlin noise is close to normal with a standard deviation of 0.24 (measured over this slice),
   // so the sum is too, with the octaves' variances added. Its normal distribution function makes
   // the map uniform on [0, 1]: a coverage threshold c then leaves about c of the sky under clouds.

@@ -156,7 +156,8 @@ CLOUDVISFILTERS_EXPORT double CloudLatticeDensity(const CloudLayer& layer);
 // The Perlin fBm of the procedural weather map at (x, z) in world units and `height` above the
 // layer's base, in [0, 1]. Its octaves wider than the layer is deep are 2-D (they place the
 // clouds); the finer ones, the clouds' own eddies, turn with height as fast as they vary across,
-// so that a cloud's sides are not its outline drawn straight up. At the base it is the 2-D map.
+// so that a cloud's sides are not its outline drawn straight up. At the base it is the 2-D map,
+// and above it never exceeds the base's value, so that every cloud keeps a flat base.
 CLOUDVISFILTERS_EXPORT float WeatherNoise(const CloudLayer& layer,
   std::uint32_t seed,
   double x,
