@@ -29,7 +29,7 @@ struct Options
   std::string PngDirectory; // --png: where to write the images, for a look
   int Width = 200, Height = 150;
   int Samples = 16;
-  int Bounces = 1024;
+  int Bounces = PathTraceBounceCap;
   int BrickSize = 8;
   unsigned Seed = 0;
   int FitDimensions = 64;  // fit: the fields' voxels along each axis (0: the scenes' own)

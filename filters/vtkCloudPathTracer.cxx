@@ -17,6 +17,7 @@ vtkStandardNewMacro(vtkCloudPathTracer);
 
 // The header states the default brick size as a number, to stay light for the Python wrapper.
 static_assert(cloudvis::PathTraceBrickSize == 8, "vtkCloudPathTracer.h's default BrickSize");
+static_assert(cloudvis::PathTraceBounceCap == 65536, "vtkCloudPathTracer.h's default MaxBounces");
 
 namespace
 {

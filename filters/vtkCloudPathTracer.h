@@ -112,7 +112,7 @@ protected:
 
   int SamplesPerPixel = 64;
   unsigned int Seed = 0;
-  int MaxBounces = 1024;
+  int MaxBounces = 65536; // cloudvis::PathTraceBounceCap (the .cxx asserts that they agree)
   int BrickSize = 8; // cloudvis::PathTraceBrickSize (the .cxx asserts that they agree)
   int NextEventEstimator = ByPhase;
 

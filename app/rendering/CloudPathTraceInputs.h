@@ -7,6 +7,8 @@
 #ifndef CloudPathTraceInputs_h
 #define CloudPathTraceInputs_h
 
+#include "CloudLightingParameters.h"
+
 #include <vtkNew.h>
 #include <vtkTextureObject.h>
 #include <vtkType.h>
@@ -49,7 +51,7 @@ private:
 // of every pixel of a march target MarchWidth wide.
 struct PathTraceFrame
 {
-  int MaxBounces = 1024;
+  int MaxBounces = PathTraceBounceCap;
   int Seed = 0;
   int SampleBase = 0;
   int SamplesPerFrame = 1;

@@ -33,6 +33,9 @@
 
 using cloudvis::mapper::WindowOf;
 
+static_assert(cloudvis::PathTraceBounceCap == 65536,
+  "vtkCloudVolumeMapper.h's default PathTraceMaxBounces");
+
 vtkStandardNewMacro(vtkCloudVolumeMapper);
 
 vtkCloudVolumeMapper::vtkCloudVolumeMapper()

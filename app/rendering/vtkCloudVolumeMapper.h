@@ -255,7 +255,7 @@ public:
   ///@{
   /**
    * Path-trace model: the most scattering events a path may have (vtkCloudPathTracer's
-   * MaxBounces), 1 to 2^24; 1 is single scattering. Default 1024.
+   * MaxBounces), 1 to 2^24; 1 is single scattering. Default 65536 (cloudvis::PathTraceBounceCap).
    */
   vtkSetClampMacro(PathTraceMaxBounces, int, 1, 1 << 24);
   vtkGetMacro(PathTraceMaxBounces, int);
@@ -555,7 +555,7 @@ protected:
   vtkTypeInt64 MaximumGPUMemory = 0;
   int PathTraceSamplesPerFrame = 1;
   int PathTraceSeed = 0;
-  int PathTraceMaxBounces = 1024;
+  int PathTraceMaxBounces = 65536; // cloudvis::PathTraceBounceCap (asserted in the .cxx)
   double ScatteringVolumeSecondsPerFrame = 0.0;
   vtkSmartPointer<vtkCloudLightingProperty> LightingProperty;
 #ifndef __VTK_WRAP__

@@ -92,7 +92,7 @@ TEST_P(MultipleScatteringVolume, StaysWithinItsMeasuredErrorOfThePathTracer)
   vtkNew<vtkCloudPathTracer> tracer;
   SetUpReference(scene, field, tracer);
   tracer->SetSamplesPerPixel(c.PathsPerPixel);
-  tracer->SetMaxBounces(1024);
+  tracer->SetMaxBounces(PathTraceBounceCap); // the bench's
   tracer->SetSeed(0);
   std::vector<float> variance;
   const std::vector<float> reference = Rgba(tracer, &variance);
@@ -157,8 +157,9 @@ INSTANTIATE_TEST_SUITE_P(HeldOut,
 // 0.999, a light and an albedo no training case of that set has. The volume is far from the
 // path tracer here; the gate keeps the surface depth of its solve (SurfaceDepth in
 // shaders/transport/Scattering.glsl), without which a thick cell holds the light its surface
-// sends back and the error was 170% (2.6 times this one). 256 paths per pixel: its reference's
-// standard error, 14%, is far below the error the gate measures.
+// sends back and the error was 170% (2.6 times this one; 67.0% before the bounce cap rose from
+// 1024 to PathTraceBounceCap, whose reference keeps the deep walks' light). 256 paths per pixel:
+// its reference's standard error, 14%, is far below the error the gate measures.
 INSTANTIATE_TEST_SUITE_P(RealRegime,
   MultipleScatteringVolume,
   testing::Values(HeldOutCase{ "ThickCumulusLowSun",
@@ -166,8 +167,8 @@ INSTANTIATE_TEST_SUITE_P(RealRegime,
     { "transfer_function.unit_distance=0.01" },
     { 0.9f, 0.27f, -0.35f },
     0.999f,
-    0.670,
-    1.255,
+    0.663,
+    1.256,
     256 }),
   [](const testing::TestParamInfo<HeldOutCase>& held) { return std::string(held.param.Name); });
 
