@@ -9,6 +9,14 @@
 // Random numbers are a pure function of (pixel, sample, dimension, seed): sample k of frame f is
 // sample SampleBase + k. Majorants and minorants per occupancy brick come from
 // ExtinctionBoundsTexture, the empty distances from EmptyDistanceTexture (Accessors.glsl).
+//
+// The count target's fourth channel is 1 when the fragment's loops all ran to their ends, else 0,
+// so its mean over the accumulated frames is 1 only where every frame's paths ran whole. A software
+// rasterizer may end a shader's loops early without an error: llvmpipe gives all the loops of a
+// fragment 65535 turns in all (LP_MAX_TGSI_LOOP_ITERATIONS) and then breaks out of every one, which
+// the deep walks of a thick cloud exceed. The budget only runs down, so a loop of two turns after
+// the paths runs both only when it was never spent; the mapper refuses an image with a frame that
+// was cut (vtkCloudVolumeMapper::CountCutPathTracePixels).
 #define CLOUD_OWN_MAIN
 
 uniform int PathTraceSeed;
@@ -37,8 +45,14 @@ void main()
     sum += x;
     squares += x * x;
   }
+  int probeTurns = 0;
+  for (int turn = 0; turn < min(SamplesPerFrame, 1) + 1; ++turn) // not a constant: not unrolled
+  {
+    ++probeTurns;
+  }
   float n = float(SamplesPerFrame);
   gl_FragData[0] = sum / n;
-  gl_FragData[1] = vec4(DensityReads / n, UsefulDensityReads / n, NoDepth, 1.0);
+  gl_FragData[1] =
+    vec4(DensityReads / n, UsefulDensityReads / n, NoDepth, probeTurns == 2 ? 1.0 : 0.0);
   gl_FragData[2] = squares / n;
 }

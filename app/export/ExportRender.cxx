@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <sstream>
 
 namespace cloudvis
 {
@@ -331,6 +332,17 @@ std::string NothingRenderedProblem(vtkRenderer* renderer,
   return messages.WithVtkReason(input + ": nothing was rendered");
 }
 
+std::string CutPathsProblem(const std::string& input, vtkIdType cut, vtkIdType pixels)
+{
+  std::ostringstream words;
+  words << input << ": the GPU ended the path tracer's walks early on " << cut << " of " << pixels
+        << " pixels, so the image lacks their light (a software rasterizer such as llvmpipe "
+           "stops a shader's loops after 65535 turns in all, fewer than the walks of an "
+           "optically thick cloud take); trace it on the CPU (render --cpu-reference) or on a "
+           "hardware GPU";
+  return words.str();
+}
+
 std::vector<float> ReadCheckedMapperImage(
   vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, const std::string& input)
 {
@@ -341,6 +353,11 @@ std::vector<float> ReadCheckedMapperImage(
     throw InputError(input + ": the renderer kept no float image to check");
   }
   CheckFiniteImage(rgba.data(), size_t(width) * size_t(height), input);
+  const vtkIdType cut = mapper->CountCutPathTracePixels(renderer);
+  if (cut > 0)
+  {
+    throw InputError(CutPathsProblem(input, cut, vtkIdType(width) * height));
+  }
   return rgba;
 }
 

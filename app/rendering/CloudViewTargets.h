@@ -29,6 +29,7 @@ public:
   {
     Color = 0,  // premultiplied radiance and opacity, RGBA32F
     Counts = 1, // samples taken, useful samples, depth of the cloud, opacity-weighted depth sum
+                // (the path tracer: 1 where the frame's paths ran whole, CountCutPathTracePixels)
     Moments = 2 // the path tracer's mean square of its samples, RGBA32F (only when allocated)
   };
 

@@ -496,6 +496,16 @@ public:
 #endif
 
   /**
+   * For a path-traced image: how many of its pixels lack light because the GPU ended a frame's
+   * paths early (a software rasterizer's loop budget: llvmpipe stops every loop of a fragment
+   * after 65535 turns in all, which the deep walks of an optically thick cloud exceed; the shader
+   * detects it, shaders/CloudLightingPathTraceFS.glsl). Such an image is too dark and must not be
+   * shown as the truth. 0 when the image was not path traced or every path was whole; -1 when
+   * the renderer has no image.
+   */
+  vtkIdType CountCutPathTracePixels(vtkRenderer* renderer);
+
+  /**
    * The last error, or an empty string when the last render succeeded.
    */
   const std::string& GetLastError() const { return this->LastError; }

@@ -168,24 +168,33 @@ void Viewer::Internals::RenderFrame()
     }
   }
   this->LastFrameWasPreview = preview;
-  // The automatic exposure, once per still: metered on the converged picture, never on the
-  // frames of a drag or of a refinement, whose changing image would make it hunt. A new EV
-  // composites the still again at once (the exposure does not modify the mapper: no march).
+  // The checks of a converged still, once each: whether the path tracer's walks ran whole, and
+  // the automatic exposure, metered on the converged picture, never on the frames of a drag or
+  // of a refinement, whose changing image would make it hunt. A new EV composites the still again
+  // at once (the exposure does not modify the mapper: no march).
   if (!this->StillComplete())
   {
     this->ExposureMetered = false;
+    this->PathsChecked = false;
   }
-  else if (this->Current.Render.AutoExposure && !this->ExposureMetered)
+  else
   {
-    if (this->MeterExposure())
+    if (!this->PathsChecked)
     {
-      render();
+      this->CheckPathsWhole();
     }
-    if (this->AnnounceExposure)
+    if (this->Current.Render.AutoExposure && !this->ExposureMetered)
     {
-      this->AnnounceExposure = false;
-      this->Show(this->ExposureText(), false);
-      this->Loop->Request(); // the message is drawn by the next frame
+      if (this->MeterExposure())
+      {
+        render();
+      }
+      if (this->AnnounceExposure)
+      {
+        this->AnnounceExposure = false;
+        this->Show(this->ExposureText(), false);
+        this->Loop->Request(); // the message is drawn by the next frame
+      }
     }
   }
   ++this->FramesRendered;
@@ -224,6 +233,25 @@ bool Viewer::Internals::StillComplete() const
   return this->Volume->GetVisibility() && this->Mapper->GetLastError().empty() &&
     this->Converged() && !this->Style->IsDragging() &&
     this->Window->GetDesiredUpdateRate() <= this->Interactor->GetStillUpdateRate();
+}
+
+void Viewer::Internals::CheckPathsWhole()
+{
+  this->PathsChecked = true;
+  if (this->Current.Render.Lighting.Model != LightingModel::PathTrace)
+  {
+    return;
+  }
+  this->Window->MakeCurrent();
+  const vtkIdType cut = this->Mapper->CountCutPathTracePixels(this->View);
+  if (cut > 0)
+  {
+    int width = 0, height = 0;
+    std::vector<float> rgba; // read for its size only, and only when paths were cut
+    this->Mapper->ReadImage(this->View, rgba, width, height);
+    this->Show(CutPathsProblem(this->Current.Source, cut, vtkIdType(width) * height), true);
+    this->Loop->Request(); // the message is drawn by the next frame
+  }
 }
 
 bool Viewer::Internals::MeterExposure()

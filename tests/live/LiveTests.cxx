@@ -427,6 +427,43 @@ TEST(Live, MessagesFadeAndTheHintGoesAfterTheHelp)
   EXPECT_FALSE(after["hint_visible"].get<bool>());
 }
 
+// An optically thick sphere at albedo 1 (optical diameter near 2500) opened path-traced (`m`
+// passes the path tracer by): its walks are far longer than the loop budget a software
+// rasterizer gives a fragment (llvmpipe's 65535 turns), so there the GPU cuts them short. `render`
+// refuses such an image; the viewer keeps showing it but says so as an error once the still has
+// converged. Where the GPU runs the walks whole, neither complains.
+TEST(Live, APathTracedStillCutShortByTheGpuIsSaid)
+{
+  support::TemporaryDirectory work;
+  const std::string scene = work.Write("thick.json", R"({
+    "field": { "dimensions": 48, "bounds": [-2, 2, -2, 2, -2, 2], "density_model": "constant",
+               "shape": { "type": "sphere", "radius": 1 }, "noise": "none" },
+    "transfer_function": { "opacity": [[0, 0], [1, 0.05]], "color": [[0, 1, 1, 1], [1, 1, 1, 1]],
+                           "unit_distance": 0.0002 },
+    "render": { "lighting": "pathtrace", "spp": 2, "resolution_scale": 0.25 },
+    "camera": { "position": [0, 0, 7], "view_angle": 30 } })");
+  const support::CommandResult rendered =
+    support::RunCloudvis({ "render", scene, "--size", "480x300", "-o", work.File("thick.png") });
+  const std::string cut = "the GPU ended the path tracer's walks early";
+  const bool refused = rendered.Err.find(cut) != std::string::npos;
+  ASSERT_TRUE(refused ? rendered.Status == 1 : rendered.Status == 0) << rendered.Err;
+
+  LiveSession session(Cloudvis, { scene, "--size", "480x400" });
+  const json traced = session.WaitUntilConverged();
+  ASSERT_EQ(traced["lighting"], "pathtrace");
+  if (refused)
+  {
+    EXPECT_EQ(work.Files(), std::vector<std::string>{ "thick.json" }) << "the refusal left a file";
+    const json said = session.WaitFor(
+      [&](const json& s) { return Said(s, cut); }, "the viewer to say the walks were cut");
+    EXPECT_TRUE(Said(said, "thick.json: ")) << said["messages"].back();
+  }
+  else
+  {
+    EXPECT_FALSE(Logged(traced, cut));
+  }
+}
+
 } // namespace
 } // namespace live
 } // namespace cloudvis

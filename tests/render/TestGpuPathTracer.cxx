@@ -7,13 +7,16 @@
 // seeds are fixed, so the outcome is reproducible). Each check also requires the standard error to
 // be small against the signal, so a loose estimate cannot pass by being noisy. The closed forms are
 // the CPU tests' own (tests/unit/TestPathTracer.cxx): the opacity of a homogeneous slab seen
-// obliquely, and the white furnace. Small images and sample counts: llvmpipe runs the shader on the
+// obliquely, and the white furnace. A thick furnace checks that an image whose paths the GPU cut
+// short is refused. Small images and sample counts: llvmpipe runs the shader on the
 // CPU.
 #include "SupportExpectations.h"
 #include "SupportReference.h"
 #include "SupportScene.h"
 
 #include "CloudMarchUniforms.h"
+#include "Errors.h"
+#include "ExportRender.h"
 #include "vtkCloudPathTracer.h"
 #include "vtkCloudVolumeMapper.h"
 
@@ -68,12 +71,17 @@ struct GpuTrace
     SetParallelView(this->View.Renderer->GetActiveCamera(), focal, view, scale);
   }
 
-  // Accumulates `frames` frames and reads the mean and its variance.
-  Image Render(int frames)
+  // Accumulates `frames` frames and reads the mean and its variance; every path must have run
+  // whole unless `mayBeCut`.
+  Image Render(int frames, bool mayBeCut = false)
   {
     this->Mapper->SetMaximumAccumulatedFrames(frames);
     const Image image = this->View.RenderPathTraced(frames);
     EXPECT_EQ(this->Mapper->GetLastError(), "");
+    if (!mayBeCut)
+    {
+      EXPECT_EQ(this->CutPixels(), 0);
+    }
     EXPECT_EQ(this->Mapper->GetNumberOfAccumulatedSamples(this->View.Renderer),
       frames * this->Mapper->GetPathTraceSamplesPerFrame());
     if (image.Values.empty())
@@ -81,6 +89,12 @@ struct GpuTrace
       ADD_FAILURE() << "the mapper kept no path-traced image";
     }
     return image;
+  }
+
+  vtkIdType CutPixels()
+  {
+    this->View.Window->MakeCurrent();
+    return this->Mapper->CountCutPathTracePixels(this->View.Renderer);
   }
 };
 
@@ -105,6 +119,35 @@ void ExpectAgreement(const Image& image,
 }
 }
 
+// The GPU's image `traced` of `gpu`'s scene, `paths` per pixel, against the CPU tracer's with as
+// many, channel by channel over the cloud, with their standard errors below `tightness` of the
+// mean.
+void ExpectAgreesWithCpu(GpuTrace& gpu, const Image& traced, int paths, double tightness)
+{
+  ASSERT_EQ(traced.Width, Size);
+  vtkNew<vtkCloudPathTracer> cpu;
+  ConfigureReference(cpu, gpu.View);
+  cpu->SetSamplesPerPixel(paths);
+  cpu->SetSeed(0);
+  const Image reference = Render(cpu);
+  ASSERT_EQ(reference.Pixels(), traced.Pixels());
+
+  const auto inCloud = [&](std::size_t p) { return reference.At(p, 3) > 0.0f; };
+  for (int channel = 0; channel < 4; ++channel)
+  {
+    ExpectAgreement(
+      traced,
+      [&](std::size_t p) { return traced.At(p, channel) - reference.At(p, channel); },
+      [&](std::size_t p)
+      { return traced.VarianceAt(p, channel) + reference.VarianceAt(p, channel); },
+      inCloud,
+      MeanOf(reference, channel, inCloud),
+      8,
+      "channel " + std::to_string(channel),
+      tightness);
+  }
+}
+
 // A heterogeneous, optically thick sphere (optical diameter up to 12) with a coloured albedo,
 // lit from the side by a directional light and a point light, in a dim environment, with every
 // order of scattering: every estimator of the tracer takes part (free flight, ratio tracking
@@ -125,30 +168,7 @@ void ExpectGpuAgreesWithCpu(PhaseModel phase, int frames, double tightness)
   gpu.LookAt(glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.9);
   AddLight(gpu.View.Renderer, DirectionalLight(glm::dvec3(1.0, 0.5, 0.2), 1.5f));
   AddLight(gpu.View.Renderer, PointLight(glm::dvec3(-0.5, 1.5, 1.0), 2.0f));
-  const Image traced = gpu.Render(frames);
-  ASSERT_EQ(traced.Width, Size);
-
-  vtkNew<vtkCloudPathTracer> cpu;
-  ConfigureReference(cpu, gpu.View);
-  cpu->SetSamplesPerPixel(8 * frames);
-  cpu->SetSeed(0);
-  const Image reference = Render(cpu);
-  ASSERT_EQ(reference.Pixels(), traced.Pixels());
-
-  const auto inCloud = [&](std::size_t p) { return reference.At(p, 3) > 0.0f; };
-  for (int channel = 0; channel < 4; ++channel)
-  {
-    ExpectAgreement(
-      traced,
-      [&](std::size_t p) { return traced.At(p, channel) - reference.At(p, channel); },
-      [&](std::size_t p)
-      { return traced.VarianceAt(p, channel) + reference.VarianceAt(p, channel); },
-      inCloud,
-      MeanOf(reference, channel, inCloud),
-      8,
-      "channel " + std::to_string(channel),
-      tightness);
-  }
+  ExpectAgreesWithCpu(gpu, gpu.Render(frames), 8 * frames, tightness);
 }
 
 TEST(GpuPathTracer, AgreesWithTheCpuPathTracerWithinTheirStandardErrors)
@@ -229,5 +249,36 @@ TEST(GpuPathTracer, WhiteFurnaceMediumVanishesIntoTheEnvironment)
       MeanOf(image, channel, inCloud),
       8,
       "channel " + std::to_string(channel));
+  }
+}
+
+TEST(GpuPathTracer, AThickConservativeCloudIsTracedWholeOrRefused)
+{
+  // The white furnace on a sphere as thick as a real cloud (optical diameter near 240, albedo
+  // 1): its walks take about (optical depth)^2 events, more loop turns than a software
+  // rasterizer lets a fragment run (llvmpipe ends them all after 65535, without an error), which
+  // leaves the image too dark. Either every path ran whole and the image agrees with the CPU
+  // tracer, or the mapper counts the pixels cut short and the image is refused, saying why.
+  GpuTrace gpu(SoftSphere(24), LinearMedium(200.0f), Ambient(glm::vec3(1.0f)), 8, 5);
+  gpu.LookAt(glm::dvec3(0.0), glm::dvec3(0.3, -0.2, -1.0), 0.8);
+  const Image traced = gpu.Render(2, true);
+  const vtkIdType cut = gpu.CutPixels();
+  ASSERT_GE(cut, 0);
+  if (cut == 0)
+  {
+    ExpectAgreesWithCpu(gpu, traced, 16, 0.02);
+    return;
+  }
+  std::cout << cut << " of " << traced.Pixels() << " pixels cut short: refused\n";
+  try
+  {
+    ReadCheckedMapperImage(gpu.Mapper, gpu.View.Renderer, "thick.json");
+    ADD_FAILURE() << "an image whose paths were cut short was not refused";
+  }
+  catch (const InputError& error)
+  {
+    const std::string expected = "thick.json: the GPU ended the path tracer's walks early on " +
+      std::to_string(cut) + " of " + std::to_string(traced.Pixels()) + " pixels";
+    EXPECT_EQ(std::string(error.what()).substr(0, expected.size()), expected);
   }
 }

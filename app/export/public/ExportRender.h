@@ -9,6 +9,8 @@
 #include "OffscreenRender.h"
 #include "SceneJson.h"
 
+#include <vtkType.h>
+
 #include <array>
 #include <string>
 #include <vector>
@@ -92,8 +94,14 @@ std::string NothingRenderedProblem(vtkRenderer* renderer,
   const VtkMessageCapture& messages,
   const std::string& input);
 
+// What a path-traced image of `pixels` pixels says when the GPU cut the walks of `cut` of them
+// short (vtkCloudVolumeMapper::CountCutPathTracePixels): "INPUT: the GPU ended the path
+// tracer's walks early on CUT of PIXELS pixels, ...", with what to do instead.
+std::string CutPathsProblem(const std::string& input, vtkIdType cut, vtkIdType pixels);
+
 // The mapper's float image of `renderer` (premultiplied RGBA), checked with CheckFiniteImage;
-// throws InputError naming `input` when the mapper kept none.
+// throws InputError naming `input` when the mapper kept none, or when the GPU cut a path-traced
+// image's walks short (vtkCloudVolumeMapper::CountCutPathTracePixels).
 std::vector<float> ReadCheckedMapperImage(
   vtkCloudVolumeMapper* mapper, vtkRenderer* renderer, const std::string& input);
 

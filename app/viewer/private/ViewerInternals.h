@@ -108,6 +108,9 @@ struct Viewer::Internals
   // came before the still converged, and the metering says its EV when it comes.
   bool ExposureMetered = false;
   bool AnnounceExposure = false;
+  // A path-traced still is checked once for walks the GPU cut short (CheckPathsWhole); cleared
+  // with ExposureMetered.
+  bool PathsChecked = false;
   long ExposureMeterings = 0;
   int MeteredFrames = 0; // the frames the still last metered had accumulated
   // Frames whose render marched the cloud: its accumulation grew or started over (a frame that
@@ -172,6 +175,10 @@ struct Viewer::Internals
   // again. Returns whether the EV changed. A float image that cannot be read, or holds NaN or
   // infinity, is shown as an error and the exposure kept.
   bool MeterExposure();
+  // A path-traced still whose walks the GPU cut short (vtkCloudVolumeMapper::
+  // CountCutPathTracePixels, which `render` refuses) is said as an error in the message line: it
+  // stays on screen, but not as the truth.
+  void CheckPathsWhole();
   // The scene's exposure on the mapper: render.exposure's EV, or with "auto" a metering of the
   // next converged still (now, when the one shown is). Returns whether it metered now.
   bool ApplyExposure();
