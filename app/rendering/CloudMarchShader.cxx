@@ -3,6 +3,7 @@
 #include "CloudMarchUniforms.h"
 #include "CloudPathTraceInputs.h"
 #include "CloudTransport.h"
+#include "CloudTransportUniforms.h"
 
 #include "CloudMarchFS.h"
 #include "CloudTransportAccessors.h"
@@ -44,6 +45,39 @@ std::string GlslFloat(float value)
   return literal;
 }
 constexpr int MaxLights = LightingLimits::MaxLights;
+
+// A glsl::Transport member as the uniform of its name, by its type (the GLSL's: the same
+// declaration). vtkShaderProgram takes the matrices by non-const pointer, hence the copies.
+void UploadUniform(vtkShaderProgram* program, const char* name, int value)
+{
+  program->SetUniformi(name, value);
+}
+void UploadUniform(vtkShaderProgram* program, const char* name, float value)
+{
+  program->SetUniformf(name, value);
+}
+void UploadUniform(vtkShaderProgram* program, const char* name, const glm::vec3& value)
+{
+  program->SetUniform3f(name, glm::value_ptr(value));
+}
+void UploadUniform(vtkShaderProgram* program, const char* name, glm::mat3 value)
+{
+  program->SetUniformMatrix3x3(name, glm::value_ptr(value));
+}
+void UploadUniform(vtkShaderProgram* program, const char* name, glm::mat4 value)
+{
+  program->SetUniformMatrix4x4(name, glm::value_ptr(value));
+}
+void UploadUniform(vtkShaderProgram* program, const char* name, const int (&values)[MaxLights])
+{
+  program->SetUniform1iv(name, MaxLights, values);
+}
+void UploadUniform(vtkShaderProgram* program,
+  const char* name,
+  const glm::vec3 (&values)[MaxLights])
+{
+  program->SetUniform3fv(name, MaxLights, glm::value_ptr(values[0]));
+}
 
 // The constants the GLSL shares with the C++, from their one definition, the program's variant of
 // the march loop, its phase, and its switches when they are constants of the program (null: they
@@ -193,50 +227,15 @@ std::string PassShaderSource(
 
 void SetMarchUniforms(vtkShaderProgram* program, const MarchUniforms& u)
 {
-  // The transport's uniforms are the members of the CPU's glsl::Transport, by the same names:
-  // TransportOf is the one mapping from the march's set-up to them.
-  glsl::Transport t = TransportOf(u);
-  program->SetUniform3f("Dimensions", glm::value_ptr(t.Dimensions));
-  program->SetUniformMatrix4x4("IndexToLocal", glm::value_ptr(t.IndexToLocal));
-  program->SetUniformMatrix3x3("LocalToIndex", glm::value_ptr(t.LocalToIndex));
-  program->SetUniformf("DensityScale", t.DensityScale);
-  program->SetUniformf("DensityBias", t.DensityBias);
-  program->SetUniformf("ExtinctionUnit", t.ExtinctionUnit);
-
-  program->SetUniformi("LightCount", t.LightCount);
-  program->SetUniform1iv("LightPositional", MaxLights, t.LightPositional);
-  program->SetUniform3fv("LightPosition", MaxLights, glm::value_ptr(t.LightPosition[0]));
-  program->SetUniform3fv("LightDirection", MaxLights, glm::value_ptr(t.LightDirection[0]));
-  program->SetUniform3fv("LightRadiance", MaxLights, glm::value_ptr(t.LightRadiance[0]));
-  program->SetUniform3fv("LightAttenuation", MaxLights, glm::value_ptr(t.LightAttenuation[0]));
-  program->SetUniform3fv(
-    "LightIndexDirection", MaxLights, glm::value_ptr(t.LightIndexDirection[0]));
-  program->SetUniform3fv("LightIndexOffset", MaxLights, glm::value_ptr(t.LightIndexOffset[0]));
-  program->SetUniform3f("Ambient", glm::value_ptr(t.Ambient));
-
-  program->SetUniformf("DerivativeDistance", t.DerivativeDistance);
-  program->SetUniformf("DerivativeSlopeScale", t.DerivativeSlopeScale);
-  program->SetUniformi("LightSteps", t.LightSteps);
-  program->SetUniformf("LightStep", t.LightStep);
-  program->SetUniformf("LightStepGrowth", t.LightStepGrowth);
-  program->SetUniformf("DropletMeanCosine", t.DropletMeanCosine);
-  program->SetUniformf("DropletSecondMoment", t.DropletSecondMoment);
-  program->SetUniformf("PhaseG1", t.PhaseG1);
-  program->SetUniformf("PhaseG2", t.PhaseG2);
-  program->SetUniformf("PhaseLobeWeight", t.PhaseLobeWeight);
-  program->SetUniformi("MultipleScatteringOctaves", t.MultipleScatteringOctaves);
-  program->SetUniformf("ScatteringFalloff", t.ScatteringFalloff);
-  program->SetUniformf("ExtinctionFalloff", t.ExtinctionFalloff);
-  program->SetUniformf("EccentricityFalloff", t.EccentricityFalloff);
-  program->SetUniformf("PowderStrength", t.PowderStrength);
-  program->SetUniformi("ScatteringVolumeOn", t.ScatteringVolumeOn);
-  program->SetUniform3f("ScatteringVolumeSize", glm::value_ptr(t.ScatteringVolumeSize));
-  program->SetUniformi("ExternalOpticalDepths", t.ExternalOpticalDepths);
-  program->SetUniform3f("ExternalDepthSize", glm::value_ptr(t.ExternalDepthSize));
-  program->SetUniformf("ExternalDepthCount", t.ExternalDepthCount);
-  program->SetUniformMatrix4x4("IndexToExternal", glm::value_ptr(t.IndexToExternal));
-  program->SetUniformi("ExternalScatteringVolume", t.ExternalScatteringVolume);
-  program->SetUniformMatrix4x4("IndexToScattering", glm::value_ptr(t.IndexToScattering));
+  // Every uniform of the transport, from the member of the CPU's glsl::Transport of the same
+  // name (CloudTransportUniforms.h lists them from their declarations): TransportOf is the one
+  // mapping from the march's set-up to them. A program without one of them (a switch that is a
+  // constant of it, a term it does not call) ignores its upload; the passes and the path tracer
+  // set theirs after this.
+  const glsl::Transport t = TransportOf(u);
+#define CLOUD_UPLOAD_UNIFORM(name) UploadUniform(program, #name, t.name);
+  CLOUD_TRANSPORT_UNIFORMS(CLOUD_UPLOAD_UNIFORM)
+#undef CLOUD_UPLOAD_UNIFORM
 
   // The march loop's own (CloudMarchFS.glsl).
   const float tableRange[2] = { float(u.Table->Range[0]), float(u.Table->Range[1]) };
