@@ -15,8 +15,9 @@
 // rasterizer may end a shader's loops early without an error: llvmpipe gives all the loops of a
 // fragment 65535 turns in all (LP_MAX_TGSI_LOOP_ITERATIONS) and then breaks out of every one, which
 // the deep walks of a thick cloud exceed. The budget only runs down, so a loop of two turns after
-// the paths runs both only when it was never spent; the mapper refuses an image with a frame that
-// was cut (vtkCloudVolumeMapper::CountCutPathTracePixels).
+// the paths runs both only when it was never spent. The mapper counts the pixels with a cut frame
+// (vtkCloudVolumeMapper::CountCutPathTracePixels), and cloudvis refuses to show such an image as
+// the truth.
 #define CLOUD_OWN_MAIN
 
 uniform int PathTraceSeed;

@@ -84,20 +84,24 @@ bool vtkCloudVolumeMapper::ReadVariance(vtkRenderer* renderer,
 vtkIdType vtkCloudVolumeMapper::CountCutPathTracePixels(vtkRenderer* renderer)
 {
   auto found = this->Internal->Views.find(renderer);
-  std::vector<float> counts;
-  int width = 0, height = 0;
-  if (found == this->Internal->Views.end() ||
-    !found->second->Read(WindowOf(renderer), cloudvis::ViewTargets::Counts, counts, width, height))
+  if (found == this->Internal->Views.end() || found->second->AccumulatedFrames < 1)
   {
     return -1;
   }
-  if (!found->second->PathTraced)
+  cloudvis::ViewTargets& view = *found->second;
+  std::vector<float> counts;
+  int width = 0, height = 0;
+  if (!view.PathTraced) // only the path tracer's fragments say whether their loops ran whole
   {
     return 0;
   }
+  if (!view.Read(WindowOf(renderer), cloudvis::ViewTargets::Counts, counts, width, height))
+  {
+    return -1;
+  }
   // The fourth channel is 1 for a frame whose loops ran to their ends, 0 for one cut; Read gives
   // its mean over the frames, below 1 by at least 1 / frames where one was cut.
-  const float wholeFrames = 1.0f - 0.5f / float(found->second->AccumulatedFrames);
+  const float wholeFrames = 1.0f - 0.5f / float(view.AccumulatedFrames);
   vtkIdType cut = 0;
   for (size_t i = 3; i < counts.size(); i += 4)
   {
