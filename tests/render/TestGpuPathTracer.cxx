@@ -8,8 +8,7 @@
 // be small against the signal, so a loose estimate cannot pass by being noisy. The closed forms are
 // the CPU tests' own (tests/unit/TestPathTracer.cxx): the opacity of a homogeneous slab seen
 // obliquely, and the white furnace. A thick furnace checks that an image whose paths the GPU cut
-// short is refused. Small images and sample counts: llvmpipe runs the shader on the
-// CPU.
+// short is refused. Small images and sample counts: llvmpipe runs the shader on the CPU.
 #include "SupportExpectations.h"
 #include "SupportReference.h"
 #include "SupportScene.h"
