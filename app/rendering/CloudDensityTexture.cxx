@@ -9,7 +9,6 @@
 #include <vtkTimeStamp.h>
 #include <vtk_glew.h>
 
-#include <algorithm>
 #include <vector>
 
 namespace cloudvis
@@ -22,9 +21,10 @@ bool DensityTexture::Update(vtkOpenGLRenderWindow* window,
   GpuMemoryBudget& budget,
   std::string& problem)
 {
-  const vtkMTimeType dataTime = std::max(input->GetMTime(), scalars->GetMTime());
-  if (this->UploadedInput == input && this->DataTime >= dataTime && this->HalfFloat == halfFloat &&
-    this->Texture->GetHandle())
+  const VolumeSources::Numbers now = {
+    IdentityOf(input), double(input->GetMTime()), double(scalars->GetMTime()), double(halfFloat)
+  };
+  if (this->Sources.Current(now) && this->Texture->GetHandle())
   {
     return true;
   }
@@ -41,14 +41,6 @@ bool DensityTexture::Update(vtkOpenGLRenderWindow* window,
   }
   int dimensions[3];
   input->GetDimensions(dimensions);
-  const int limit = vtkTextureObject::GetMaximumTextureSize3D(window);
-  if (dimensions[0] > limit || dimensions[1] > limit || dimensions[2] > limit)
-  {
-    return fail("the field has " + std::to_string(dimensions[0]) + " x " +
-      std::to_string(dimensions[1]) + " x " + std::to_string(dimensions[2]) +
-      " voxels; this GPU's 3-D textures hold at most " + std::to_string(limit) + " per axis");
-  }
-
   const DensityTexels texels = DensityTexelsOf(scalars, halfFloat);
   const long long voxels = (long long)dimensions[0] * dimensions[1] * dimensions[2];
   const std::string what = "the density texture (" + std::to_string(dimensions[0]) + " x " +
@@ -57,7 +49,8 @@ bool DensityTexture::Update(vtkOpenGLRenderWindow* window,
   const long long bytes = voxels * BytesPerTexel(texels.Format);
   this->Texture->SetContext(window);
   this->Texture->ResetFormatAndType();
-  const std::string allocationProblem = budget.Allocate(what,
+  const std::string allocationProblem = budget.AllocateVolume(what,
+    glm::ivec3(dimensions[0], dimensions[1], dimensions[2]),
     bytes,
     this->Bytes,
     [&]()
@@ -88,13 +81,10 @@ bool DensityTexture::Update(vtkOpenGLRenderWindow* window,
   {
     return fail(allocationProblem);
   }
-  SetSampling(this->Texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
   this->Texels = texels;
   this->Texels.Values = nullptr;
-  this->Bytes = TextureBytes(this->Texture);
-  this->UploadedInput = input;
-  this->DataTime = dataTime;
-  this->HalfFloat = halfFloat;
+  this->Bytes = FinishVolumeTexture(this->Texture);
+  this->Sources.Take(now);
   vtkTimeStamp uploaded;
   uploaded.Modified();
   this->UploadTime = uploaded.GetMTime();
@@ -104,8 +94,8 @@ bool DensityTexture::Update(vtkOpenGLRenderWindow* window,
 void DensityTexture::Release(vtkWindow* window)
 {
   this->Texture->ReleaseGraphicsResources(window);
-  this->UploadedInput = nullptr;
-  this->DataTime = this->UploadTime = 0;
+  this->Sources.Forget();
+  this->UploadTime = 0;
   this->Bytes = 0;
 }
 

@@ -6,6 +6,7 @@
 #define CloudDensityTexture_h
 
 #include "CloudDensityTexels.h"
+#include "CloudVolumeSources.h"
 
 #include <vtkNew.h>
 #include <vtkTextureObject.h>
@@ -48,10 +49,8 @@ public:
 private:
   vtkNew<vtkTextureObject> Texture;
   DensityTexels Texels;
-  vtkImageData* UploadedInput = nullptr; // identity only, never dereferenced
-  vtkMTimeType DataTime = 0;
+  VolumeSources Sources; // the input, its MTime and its scalars', and the half-float switch
   vtkMTimeType UploadTime = 0;
-  bool HalfFloat = false;
   long long Bytes = 0;
 };
 

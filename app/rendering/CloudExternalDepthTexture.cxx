@@ -4,7 +4,6 @@
 
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkShaderProgram.h>
-#include <vtk_glew.h>
 
 namespace cloudvis
 {
@@ -19,25 +18,17 @@ bool ExternalDepthTexture::Update(vtkOpenGLRenderWindow* window,
   GpuMemoryBudget& budget,
   std::string& problem)
 {
-  if (this->Texture->GetHandle() && this->Uploaded.GetMTime() > this->Changed.GetMTime())
+  const VolumeSources::Numbers now = { double(this->Changed.GetMTime()) };
+  if (this->Sources.Current(now) && this->Texture->GetHandle())
   {
     return true;
   }
   const OpticalDepthGrid& grid = this->Grid;
   const int layers = grid.Size[2] * grid.Lights;
-  GLint largest = 0;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
-  if (grid.Size[0] > largest || grid.Size[1] > largest || layers > largest)
-  {
-    problem = "the optical depths from outside the field need a 3-D texture of " +
-      std::to_string(grid.Size[0]) + " x " + std::to_string(grid.Size[1]) + " x " +
-      std::to_string(layers) + " texels (" + std::to_string(grid.Lights) +
-      " lights), more than this GPU's " + std::to_string(largest) + " per axis";
-    this->Release(window);
-    return false;
-  }
   this->Texture->SetContext(window);
-  problem = budget.Allocate("the optical depths from outside the field",
+  problem = budget.AllocateVolume("the texture of the optical depths from outside the field (" +
+      std::to_string(grid.Lights) + " lights)",
+    glm::ivec3(grid.Size[0], grid.Size[1], layers),
     4LL * grid.Size[0] * grid.Size[1] * layers,
     this->Bytes,
     [&]()
@@ -50,8 +41,8 @@ bool ExternalDepthTexture::Update(vtkOpenGLRenderWindow* window,
     this->Release(window);
     return false;
   }
-  SetSampling(this->Texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
-  this->Bytes = TextureBytes(this->Texture);
+  this->Bytes = FinishVolumeTexture(this->Texture);
+  this->Sources.Take(now);
   this->Uploaded.Modified();
   return true;
 }
@@ -59,6 +50,7 @@ bool ExternalDepthTexture::Update(vtkOpenGLRenderWindow* window,
 void ExternalDepthTexture::Release(vtkWindow* window)
 {
   this->Texture->ReleaseGraphicsResources(window);
+  this->Sources.Forget();
   this->Bytes = 0;
 }
 

@@ -9,6 +9,7 @@
 #define CloudExternalDepthTexture_h
 
 #include "CloudOpticalDepthGrid.h"
+#include "CloudVolumeSources.h"
 
 #include <vtkNew.h>
 #include <vtkTextureObject.h>
@@ -45,6 +46,7 @@ public:
 private:
   OpticalDepthGrid Grid;
   vtkTimeStamp Changed;  // when Set last changed the grid
+  VolumeSources Sources; // the Changed it took
   vtkTimeStamp Uploaded; // when the texture last took it
   vtkNew<vtkTextureObject> Texture;
   long long Bytes = 0;

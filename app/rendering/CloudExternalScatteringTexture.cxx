@@ -4,7 +4,6 @@
 
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkShaderProgram.h>
-#include <vtk_glew.h>
 
 namespace cloudvis
 {
@@ -19,7 +18,8 @@ bool ExternalScatteringTexture::Update(vtkOpenGLRenderWindow* window,
   GpuMemoryBudget& budget,
   std::string& problem)
 {
-  if (this->Fluence->GetHandle() && this->Uploaded.GetMTime() > this->Changed.GetMTime())
+  const VolumeSources::Numbers now = { double(this->Changed.GetMTime()) };
+  if (this->Sources.Current(now) && this->Fluence->GetHandle())
   {
     return true;
   }
@@ -33,19 +33,9 @@ bool ExternalScatteringTexture::Update(vtkOpenGLRenderWindow* window,
     this->Release(window);
     return false;
   }
-  GLint largest = 0;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
-  if (grid.Size.x > largest || grid.Size.y > largest || grid.Size.z > largest)
-  {
-    problem = "the multiple-scattering volume of the whole field needs a 3-D texture of " +
-      std::to_string(grid.Size.x) + " x " + std::to_string(grid.Size.y) + " x " +
-      std::to_string(grid.Size.z) + " texels, more than this GPU's " + std::to_string(largest) +
-      " per axis";
-    this->Release(window);
-    return false;
-  }
   const long long held = this->Bytes;
-  problem = budget.Allocate("the multiple-scattering volume of the whole field",
+  problem = budget.AllocateVolume("the multiple-scattering volume of the whole field",
+    grid.Size,
     2 * 16LL * grid.Size.x * grid.Size.y * grid.Size.z,
     held,
     [&]()
@@ -70,12 +60,8 @@ bool ExternalScatteringTexture::Update(vtkOpenGLRenderWindow* window,
     this->Release(window);
     return false;
   }
-  this->Bytes = 0;
-  for (vtkTextureObject* texture : { this->Fluence.Get(), this->Flux.Get() })
-  {
-    SetSampling(texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
-    this->Bytes += TextureBytes(texture);
-  }
+  this->Bytes = FinishVolumeTexture(this->Fluence) + FinishVolumeTexture(this->Flux);
+  this->Sources.Take(now);
   this->Uploaded.Modified();
   return true;
 }
@@ -98,6 +84,7 @@ void ExternalScatteringTexture::Release(vtkWindow* window)
 {
   this->Fluence->ReleaseGraphicsResources(window);
   this->Flux->ReleaseGraphicsResources(window);
+  this->Sources.Forget();
   this->Bytes = 0;
 }
 

@@ -8,6 +8,7 @@
 #define CloudExternalScatteringTexture_h
 
 #include "CloudScatteringVolume.h"
+#include "CloudVolumeSources.h"
 
 #include <vtkNew.h>
 #include <vtkTextureObject.h>
@@ -47,6 +48,7 @@ public:
 private:
   WholeFieldScattering Volume;
   vtkTimeStamp Changed;  // when Set last changed the volume
+  VolumeSources Sources; // the Changed they took
   vtkTimeStamp Uploaded; // when the textures last took it
   vtkNew<vtkTextureObject> Fluence;
   vtkNew<vtkTextureObject> Flux;

@@ -91,6 +91,30 @@ std::string GpuMemoryBudget::Allocate(const std::string& what,
   return {};
 }
 
+std::string GpuMemoryBudget::AllocateVolume(const std::string& what,
+  const glm::ivec3& texels,
+  long long bytes,
+  long long released,
+  const std::function<bool()>& create,
+  const std::string& advice)
+{
+  const int largest = vtkTextureObject::GetMaximumTextureSize3D(this->Window);
+  if (texels.x > largest || texels.y > largest || texels.z > largest)
+  {
+    return what + " needs a 3-D texture of " + std::to_string(texels.x) + " x " +
+      std::to_string(texels.y) + " x " + std::to_string(texels.z) +
+      " texels; this GPU's 3-D textures hold at most " + std::to_string(largest) + " per axis" +
+      advice;
+  }
+  return this->Allocate(what, bytes, released, create);
+}
+
+long long FinishVolumeTexture(vtkTextureObject* texture)
+{
+  SetSampling(texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
+  return TextureBytes(texture);
+}
+
 long long TextureBytes(vtkTextureObject* texture)
 {
   if (!texture->GetHandle())

@@ -5,6 +5,8 @@
 #ifndef CloudGpuMemory_h
 #define CloudGpuMemory_h
 
+#include <glm/vec3.hpp>
+
 #include <functional>
 #include <string>
 
@@ -35,6 +37,18 @@ public:
     long long released,
     const std::function<bool()>& create);
 
+  // Allocates a 3-D texture (or a set of them) as Allocate does, after checking `texels`, its
+  // size along x, y and z (a stacked volume's layers along z), against the GPU's largest 3-D
+  // texture: a size it cannot hold is refused naming `what`, the size and the limit, followed by
+  // `advice` (what the user can change), and `create` does not run. Every GPU volume of the
+  // mapper is made through this.
+  std::string AllocateVolume(const std::string& what,
+    const glm::ivec3& texels,
+    long long bytes,
+    long long released,
+    const std::function<bool()>& create,
+    const std::string& advice = {});
+
   // Bytes the mapper freed outside Allocate (a target that goes with another's resize): no longer
   // held, so that the allocations after it are not checked against them.
   void Release(long long bytes) { this->Held -= bytes; }
@@ -54,6 +68,10 @@ private:
 // components as the driver reports them (so R8 really is one byte a texel, or the count says
 // otherwise). The texture must have its context current.
 long long TextureBytes(vtkTextureObject* texture);
+
+// Finishes a volume's texture as every GPU volume of the mapper is sampled (trilinear, clamped to
+// the edge) and returns the bytes it holds (TextureBytes).
+long long FinishVolumeTexture(vtkTextureObject* texture);
 
 // How a texture is sampled: `filter` for minification and magnification, `wrap` along every
 // axis (vtkTextureObject's enums).

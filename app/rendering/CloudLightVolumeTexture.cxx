@@ -66,9 +66,9 @@ bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   GpuMemoryBudget& budget,
   std::string& problem)
 {
-  std::vector<double> inputSignature = InputSignatureOf(u, inputs);
-  std::vector<double> lightSignature = LightSignatureOf(u);
-  if (inputSignature == this->InputSignature && lightSignature == this->LightSignature &&
+  VolumeSources::Numbers inputNow = InputSignatureOf(u, inputs);
+  VolumeSources::Numbers lightsNow = LightSignatureOf(u);
+  if (this->InputSources.Current(inputNow) && this->LightSources.Current(lightsNow) &&
     this->Texture->GetHandle())
   {
     return true;
@@ -79,29 +79,20 @@ bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   if (!this->Texture->GetHandle() || size.x != this->Size[0] || size.y != this->Size[1] ||
     size.z != this->Size[2] || lights != this->Lights)
   {
-    GLint largest = 0;
-    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
-    if (size.x > largest || size.y > largest || layers > largest)
-    {
-      problem = "the light volumes need a 3-D texture of " + std::to_string(size.x) + " x " +
-        std::to_string(size.y) + " x " + std::to_string(layers) + " texels (" +
-        std::to_string(lights) + " lights), more than this GPU's " + std::to_string(largest) +
-        " per axis: use render.march.transmittance \"nested\" or fewer lights";
-      this->Release(window);
-      return false;
-    }
     this->Texture->SetContext(window);
-    problem = budget.Allocate("the light volumes",
+    problem = budget.AllocateVolume(
+      "the light-volume texture (" + std::to_string(lights) + " lights)",
+      glm::ivec3(size.x, size.y, layers),
       4LL * size.x * size.y * layers,
       this->Bytes,
-      [&]() { return this->Texture->Allocate3D(size.x, size.y, layers, 1, VTK_FLOAT); });
+      [&]() { return this->Texture->Allocate3D(size.x, size.y, layers, 1, VTK_FLOAT); },
+      ": use render.march.transmittance \"nested\" or fewer lights");
     if (!problem.empty())
     {
       this->Release(window);
       return false;
     }
-    SetSampling(this->Texture, vtkTextureObject::Linear, vtkTextureObject::ClampToEdge);
-    this->Bytes = TextureBytes(this->Texture);
+    this->Bytes = FinishVolumeTexture(this->Texture);
     this->Size[0] = size.x;
     this->Size[1] = size.y;
     this->Size[2] = size.z;
@@ -109,20 +100,20 @@ bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   }
   if (!this->Compute(window, u, inputs, problem))
   {
-    this->InputSignature.clear();
-    this->LightSignature.clear();
+    this->InputSources.Forget();
+    this->LightSources.Forget();
     return false;
   }
-  this->InputSignature = std::move(inputSignature);
-  this->LightSignature = std::move(lightSignature);
+  this->InputSources.Take(std::move(inputNow));
+  this->LightSources.Take(std::move(lightsNow));
   ++this->ComputeCount;
   return true;
 }
 
 bool LightVolumeTexture::OnlyLightsChanged(const MarchUniforms& u, const Inputs& inputs) const
 {
-  return this->Texture->GetHandle() && InputSignatureOf(u, inputs) == this->InputSignature &&
-    LightSignatureOf(u) != this->LightSignature;
+  return this->Texture->GetHandle() && this->InputSources.Current(InputSignatureOf(u, inputs)) &&
+    !this->LightSources.Current(LightSignatureOf(u));
 }
 
 bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,
@@ -191,8 +182,8 @@ void LightVolumeTexture::Release(vtkWindow* window)
 {
   this->Texture->ReleaseGraphicsResources(window);
   this->Pass.Release();
-  this->InputSignature.clear();
-  this->LightSignature.clear();
+  this->InputSources.Forget();
+  this->LightSources.Forget();
   this->Bytes = 0;
   this->Lights = 0;
 }

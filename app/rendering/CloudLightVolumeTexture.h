@@ -8,6 +8,7 @@
 #define CloudLightVolumeTexture_h
 
 #include "CloudVolumePass.h"
+#include "CloudVolumeSources.h"
 
 #include <vtkNew.h>
 #include <vtkTextureObject.h>
@@ -68,8 +69,8 @@ private:
 
   vtkNew<vtkTextureObject> Texture;
   VolumePass Pass;
-  std::vector<double> InputSignature; // what the volumes were computed for, lights apart
-  std::vector<double> LightSignature;
+  VolumeSources InputSources; // what the volumes were computed for, lights apart
+  VolumeSources LightSources;
   int Size[3] = { 0, 0, 0 }; // one light's block
   int Lights = 0;
   long long Bytes = 0;

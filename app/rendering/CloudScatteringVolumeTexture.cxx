@@ -135,14 +135,14 @@ bool ScatteringVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   std::string& problem,
   double seconds)
 {
-  std::vector<double> signature = SignatureOf(u, inputs);
-  if (signature != this->Signature || this->Grids.empty())
+  VolumeSources::Numbers signature = SignatureOf(u, inputs);
+  if (!this->Sources.Current(signature) || this->Grids.empty())
   {
     if (!this->Allocate(window, u, budget, problem))
     {
       return false;
     }
-    this->Signature = std::move(signature);
+    this->Sources.Take(std::move(signature));
     // Without a finished volume to show meanwhile, the march waits for this one.
     this->Progressive = this->Finished && seconds > 0.0;
     this->Plan(u, this->Progressive);
@@ -153,7 +153,7 @@ bool ScatteringVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   }
   if (!this->Run(window, u, inputs, this->Progressive ? seconds : 0.0, problem))
   {
-    this->Signature.clear();
+    this->Sources.Forget();
     this->Steps.clear();
     this->Next = 0;
     return false;
@@ -178,17 +178,7 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
   }
   const long long held = this->Bytes;
   this->Release(window);
-  GLint largest = 0;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
   const glm::ivec3 finest = sizes.back();
-  if (finest.x > largest || finest.y > largest || finest.z > largest)
-  {
-    problem = "the multiple-scattering volume needs a 3-D texture of " + std::to_string(finest.x) +
-      " x " + std::to_string(finest.y) + " x " + std::to_string(finest.z) +
-      " texels, more than this GPU's " + std::to_string(largest) + " per axis";
-    budget.Release(held);
-    return false;
-  }
   // RGBA32F: five atlases per grid, and the finished fluence and flux the march reads with the
   // two the next computation writes.
   long long texels = 0;
@@ -199,7 +189,8 @@ bool ScatteringVolumeTexture::Allocate(vtkOpenGLRenderWindow* window,
   }
   texels += 4LL * finest.x * finest.y * finest.z + 1; // and a texel for the unread samplers
   std::vector<Grid> grids(sizes.size());
-  problem = budget.Allocate("the multiple-scattering volume",
+  problem = budget.AllocateVolume("the multiple-scattering volume",
+    finest,
     16 * texels,
     held,
     [&]()
@@ -531,7 +522,7 @@ void ScatteringVolumeTexture::Release(vtkWindow* window)
   this->Finished = false;
   this->Progressive = false;
   this->Pass.Release();
-  this->Signature.clear();
+  this->Sources.Forget();
   this->Steps.clear();
   this->Next = 0;
   this->Bytes = 0;

@@ -117,7 +117,7 @@ private:
   bool Finished = false;
   bool Progressive = false; // the computation under way is spread over frames
   VolumePass Pass;
-  std::vector<double> Signature; // what the volume (finished or under way) is computed for
+  VolumeSources Sources;         // what the volume (finished or under way) is computed for
   std::vector<Step> Steps;       // the computation's passes, in order
   std::size_t Next = 0;          // the next of Steps to run
   double Seconds = 0.0;          // spent on the computation under way

@@ -535,7 +535,9 @@ TEST(CloudVolumeMapper, RefusesBadInputWithAReason)
   tooLong->SetDimensions(70000, 2, 2);
   tooLong->AllocateScalars(VTK_FLOAT, 1);
   tooLong->GetPointData()->GetScalars()->Fill(0.0);
-  EXPECT_NE(RefusalOf(tooLong).find("3-D textures hold at most"), std::string::npos);
+  EXPECT_NE(RefusalOf(tooLong).find("(70000 x 2 x 2 voxels of R32F) needs a 3-D texture of 70000 x "
+                                    "2 x 2 texels; this GPU's 3-D textures hold at most"),
+    std::string::npos);
 
   auto field = SparseCloud(16);
   EXPECT_NE(RefusalOf(field, -0.5).find("sample distance"), std::string::npos);

@@ -374,8 +374,8 @@ TEST(MapperResources, LightVolumesBeyondTheLargest3DTextureAreRefusedNamingTheNe
 
   const Image refused = scene.Render();
   const std::string error = mapper->GetLastError();
-  EXPECT_NE(error.find("light volumes need a 3-D texture of 3 x 3 x " +
-              std::to_string(2 * (depth / 2 + 1)) + " texels (2 lights)"),
+  EXPECT_NE(error.find("the light-volume texture (2 lights) needs a 3-D texture of 3 x 3 x " +
+              std::to_string(2 * (depth / 2 + 1)) + " texels"),
     std::string::npos)
     << error;
   EXPECT_NE(error.find("render.march.transmittance \"nested\""), std::string::npos) << error;

@@ -1,0 +1,50 @@
+// The one rule that decides whether a GPU volume of vtkCloudVolumeMapper is stale: each volume
+// records the numbers it was made from (MTimes, sizes, settings, its input's identity) and is
+// made again when they differ from those of its sources now. The density texture, the optical
+// depths and multiple-scattering volume from outside the field, the light volumes and the
+// multiple-scattering volume all decide by it. Private to the rendering module.
+#ifndef CloudVolumeSources_h
+#define CloudVolumeSources_h
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace cloudvis
+{
+
+class VolumeSources
+{
+public:
+  using Numbers = std::vector<double>;
+
+  // The volume was made from `now` (and has not been forgotten since).
+  bool Current(const Numbers& now) const { return this->Made && now == this->From; }
+  // The volume is now made from `from`.
+  void Take(Numbers from)
+  {
+    this->From = std::move(from);
+    this->Made = true;
+  }
+  // The volume is gone or half made: whatever its sources, it is stale.
+  void Forget()
+  {
+    this->From.clear();
+    this->Made = false;
+  }
+
+private:
+  Numbers From;
+  bool Made = false;
+};
+
+// An object's identity as one of a volume's numbers (never dereferenced). Exact: user-space
+// addresses on the platforms VTK supports take at most 48 bits, a double holds 53.
+inline double IdentityOf(const void* object)
+{
+  return double(reinterpret_cast<std::uintptr_t>(object));
+}
+
+} // namespace cloudvis
+
+#endif
