@@ -40,7 +40,7 @@ public:
   // Allocates a 3-D texture (or a set of them) as Allocate does, after checking `texels`, its
   // size along x, y and z (a stacked volume's layers along z), against the GPU's largest 3-D
   // texture: a size it cannot hold is refused naming `what`, the size and the limit, followed by
-  // `advice` (what the user can change), and `create` does not run. Every GPU volume of the
+  // `advice` (what the user can change), and `create` does not run. Every 3-D texture of the
   // mapper is made through this.
   std::string AllocateVolume(const std::string& what,
     const glm::ivec3& texels,
@@ -69,8 +69,9 @@ private:
 // otherwise). The texture must have its context current.
 long long TextureBytes(vtkTextureObject* texture);
 
-// Finishes a volume's texture as every GPU volume of the mapper is sampled (trilinear, clamped to
-// the edge) and returns the bytes it holds (TextureBytes).
+// Finishes a volume's texture as the mapper's interpolated volumes are sampled (trilinear, clamped
+// to the edge; the bricks' maps are read texel by texel) and returns the bytes it holds
+// (TextureBytes).
 long long FinishVolumeTexture(vtkTextureObject* texture);
 
 // How a texture is sampled: `filter` for minification and magnification, `wrap` along every

@@ -40,7 +40,8 @@ bool OccupancyTexture::Update(vtkOpenGLRenderWindow* window,
   this->Filter->SetBrickSize(brickSize);
   this->Filter->Update();
   vtkImageData* occupancy = this->Filter->GetOutput();
-  if (this->UploadTime >= occupancy->GetMTime() && this->Texture->GetHandle())
+  const VolumeSources::Numbers now = { double(occupancy->GetMTime()) };
+  if (this->Sources.Current(now) && this->Texture->GetHandle())
   {
     return true;
   }
@@ -60,7 +61,8 @@ bool OccupancyTexture::Update(vtkOpenGLRenderWindow* window,
   occupancy->GetDimensions(bricks);
   const long long bytes = (long long)bricks[0] * bricks[1] * bricks[2];
   this->Texture->SetContext(window);
-  const std::string allocationProblem = budget.Allocate("the occupancy texture",
+  const std::string allocationProblem = budget.AllocateVolume("the occupancy texture",
+    glm::ivec3(bricks[0], bricks[1], bricks[2]),
     bytes,
     this->Bytes,
     [&]()
@@ -82,14 +84,14 @@ bool OccupancyTexture::Update(vtkOpenGLRenderWindow* window,
   }
   this->OccupiedFraction = count ? double(occupied) / double(count) : 0.0;
   this->Bytes = TextureBytes(this->Texture);
-  this->UploadTime = occupancy->GetMTime();
+  this->Sources.Take(now);
   return true;
 }
 
 void OccupancyTexture::Release(vtkWindow* window)
 {
   this->Texture->ReleaseGraphicsResources(window);
-  this->UploadTime = 0;
+  this->Sources.Forget();
   this->Bytes = 0;
 }
 

@@ -5,6 +5,7 @@
 #ifndef CloudOccupancyTexture_h
 #define CloudOccupancyTexture_h
 
+#include "CloudVolumeSources.h"
 #include "vtkCloudOccupancyFilter.h"
 
 #include <vtkImageData.h>
@@ -52,7 +53,7 @@ private:
   vtkNew<vtkImageData> FilterInput; // the mapped scalars as the active scalars
   vtkMTimeType DensityTime = 0;
   vtkMTimeType TableTime = 0;
-  vtkMTimeType UploadTime = 0;
+  VolumeSources Sources; // the occupancy filter's output MTime
   int BrickCount[3] = { 0, 0, 0 };
   double OccupiedFraction = 0.0;
   long long Bytes = 0;

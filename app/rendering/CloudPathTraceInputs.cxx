@@ -26,7 +26,8 @@ bool ExtinctionBoundsTexture::Update(vtkOpenGLRenderWindow* window,
   GpuMemoryBudget& budget,
   std::string& problem)
 {
-  if (this->UploadTime >= bricks->GetMTime() && this->Texture->GetHandle())
+  const VolumeSources::Numbers now = { double(bricks->GetMTime()) };
+  if (this->Sources.Current(now) && this->Texture->GetHandle())
   {
     return true;
   }
@@ -49,7 +50,8 @@ bool ExtinctionBoundsTexture::Update(vtkOpenGLRenderWindow* window,
     bounds[std::size_t(b) * 2 + 1] = majorant->GetValue(b);
   }
   this->Texture->SetContext(window);
-  problem = budget.Allocate("the extinction bounds texture",
+  problem = budget.AllocateVolume("the extinction bounds texture",
+    glm::ivec3(count[0], count[1], count[2]),
     (long long)total * 2 * sizeof(float),
     this->Bytes,
     [&]()
@@ -66,14 +68,14 @@ bool ExtinctionBoundsTexture::Update(vtkOpenGLRenderWindow* window,
   }
   SetSampling(this->Texture, vtkTextureObject::Nearest, vtkTextureObject::ClampToEdge);
   this->Bytes = TextureBytes(this->Texture);
-  this->UploadTime = bricks->GetMTime();
+  this->Sources.Take(now);
   return true;
 }
 
 void ExtinctionBoundsTexture::Release(vtkWindow* window)
 {
   this->Texture->ReleaseGraphicsResources(window);
-  this->UploadTime = 0;
+  this->Sources.Forget();
   this->Bytes = 0;
 }
 

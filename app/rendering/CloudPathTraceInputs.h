@@ -8,6 +8,7 @@
 #define CloudPathTraceInputs_h
 
 #include "CloudLightingParameters.h"
+#include "CloudVolumeSources.h"
 
 #include <vtkNew.h>
 #include <vtkTextureObject.h>
@@ -43,7 +44,7 @@ public:
 
 private:
   vtkNew<vtkTextureObject> Texture;
-  vtkMTimeType UploadTime = 0;
+  VolumeSources Sources; // the bricks' MTime
   long long Bytes = 0;
 };
 

@@ -1,8 +1,9 @@
 // The one rule that decides whether a GPU volume of vtkCloudVolumeMapper is stale: each volume
 // records the numbers it was made from (MTimes, sizes, settings, its input's identity) and is
-// made again when they differ from those of its sources now. The density texture, the optical
-// depths and multiple-scattering volume from outside the field, the light volumes and the
-// multiple-scattering volume all decide by it. Private to the rendering module.
+// made again when they differ from those of its sources now. Every 3-D texture of the mapper
+// decides by it: the density, the occupancy and extinction-bounds bricks, the light volumes, the
+// multiple-scattering volume, and the optical depths and scattering from outside the field.
+// Private to the rendering module.
 #ifndef CloudVolumeSources_h
 #define CloudVolumeSources_h
 
