@@ -24,7 +24,7 @@ bool DensityTexture::Update(vtkOpenGLRenderWindow* window,
   const VolumeSources::Numbers now = {
     IdentityOf(input), double(input->GetMTime()), double(scalars->GetMTime()), double(halfFloat)
   };
-  if (this->Sources.Current(now) && this->Texture->GetHandle())
+  if (this->Sources.Current(now, this->Texture))
   {
     return true;
   }

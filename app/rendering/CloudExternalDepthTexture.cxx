@@ -19,7 +19,7 @@ bool ExternalDepthTexture::Update(vtkOpenGLRenderWindow* window,
   std::string& problem)
 {
   const VolumeSources::Numbers now = { double(this->Changed.GetMTime()) };
-  if (this->Sources.Current(now) && this->Texture->GetHandle())
+  if (this->Sources.Current(now, this->Texture))
   {
     return true;
   }

@@ -19,7 +19,7 @@ bool ExternalScatteringTexture::Update(vtkOpenGLRenderWindow* window,
   std::string& problem)
 {
   const VolumeSources::Numbers now = { double(this->Changed.GetMTime()) };
-  if (this->Sources.Current(now) && this->Fluence->GetHandle())
+  if (this->Sources.Current(now, this->Fluence))
   {
     return true;
   }

@@ -68,8 +68,8 @@ bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
 {
   VolumeSources::Numbers inputNow = InputSignatureOf(u, inputs);
   VolumeSources::Numbers lightsNow = LightSignatureOf(u);
-  if (this->InputSources.Current(inputNow) && this->LightSources.Current(lightsNow) &&
-    this->Texture->GetHandle())
+  if (this->InputSources.Current(inputNow, this->Texture) &&
+    this->LightSources.Current(lightsNow, this->Texture))
   {
     return true;
   }
@@ -112,8 +112,8 @@ bool LightVolumeTexture::Update(vtkOpenGLRenderWindow* window,
 
 bool LightVolumeTexture::OnlyLightsChanged(const MarchUniforms& u, const Inputs& inputs) const
 {
-  return this->Texture->GetHandle() && this->InputSources.Current(InputSignatureOf(u, inputs)) &&
-    !this->LightSources.Current(LightSignatureOf(u));
+  return this->InputSources.Current(InputSignatureOf(u, inputs), this->Texture) &&
+    !this->LightSources.Current(LightSignatureOf(u), this->Texture);
 }
 
 bool LightVolumeTexture::Compute(vtkOpenGLRenderWindow* window,

@@ -41,7 +41,7 @@ bool OccupancyTexture::Update(vtkOpenGLRenderWindow* window,
   this->Filter->Update();
   vtkImageData* occupancy = this->Filter->GetOutput();
   const VolumeSources::Numbers now = { double(occupancy->GetMTime()) };
-  if (this->Sources.Current(now) && this->Texture->GetHandle())
+  if (this->Sources.Current(now, this->Texture))
   {
     return true;
   }

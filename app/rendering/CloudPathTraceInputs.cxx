@@ -27,7 +27,7 @@ bool ExtinctionBoundsTexture::Update(vtkOpenGLRenderWindow* window,
   std::string& problem)
 {
   const VolumeSources::Numbers now = { double(bricks->GetMTime()) };
-  if (this->Sources.Current(now) && this->Texture->GetHandle())
+  if (this->Sources.Current(now, this->Texture))
   {
     return true;
   }

@@ -136,7 +136,7 @@ bool ScatteringVolumeTexture::Update(vtkOpenGLRenderWindow* window,
   double seconds)
 {
   VolumeSources::Numbers signature = SignatureOf(u, inputs);
-  if (!this->Sources.Current(signature) || this->Grids.empty())
+  if (!this->Sources.Current(signature, this->Fluence) || this->Grids.empty())
   {
     if (!this->Allocate(window, u, budget, problem))
     {

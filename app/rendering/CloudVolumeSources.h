@@ -7,6 +7,8 @@
 #ifndef CloudVolumeSources_h
 #define CloudVolumeSources_h
 
+#include <vtkTextureObject.h>
+
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -19,8 +21,12 @@ class VolumeSources
 public:
   using Numbers = std::vector<double>;
 
-  // The volume was made from `now` (and has not been forgotten since).
-  bool Current(const Numbers& now) const { return this->Made && now == this->From; }
+  // The volume was made from `now`, has not been forgotten since, and `texture` (the volume's, or
+  // the first of its set) is on the GPU.
+  bool Current(const Numbers& now, vtkTextureObject* texture) const
+  {
+    return this->Made && now == this->From && texture && texture->GetHandle();
+  }
   // The volume is now made from `from`.
   void Take(Numbers from)
   {
